@@ -1,0 +1,31 @@
+// strainwave: design and understand strain wave gears. The one main(): builds the CLI from the subcommands in
+// app/cmd_*.cpp, runs the chosen one, and turns every error into one line on stderr and a non-zero exit.
+#include <cstdio>
+#include <exception>
+
+#include <CLI/CLI.hpp>
+
+#include "app/commands.hpp"
+#include "common/error.hpp"
+#include "common/progress.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"strainwave: FEM, backlash, reconciliation and dynamics of strain wave gears"};
+  app.require_subcommand(1);
+  app.add_flag("--quiet", sw::quiet_progress(), "no progress lines on stderr");
+  sw::app::add_fem_command(app);
+  sw::app::add_run_command(app);
+  // Subcommands of the later modules register here (backlash, reconcile, synth, dynamics).
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const sw::InputError& e) {
+    std::fprintf(stderr, "strainwave: error: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "strainwave: internal error: %s\n", e.what());
+    return 3;
+  }
+  return 0;
+}

@@ -1,0 +1,354 @@
+#include "io/case.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <set>
+#include <sstream>
+
+#include <toml++/toml.h>
+
+#include "common/error.hpp"
+
+namespace sw {
+namespace {
+
+constexpr double kMm = 1e-3;
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+std::string format_number(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+/// Reads one table strictly: every key must be known, every value of the right type and range.
+class TableReader {
+public:
+  TableReader(const toml::table& table, std::string name, std::string file)
+      : table_(table), name_(std::move(name)), file_(std::move(file)) {}
+
+  /// Throws for every key that was never asked for (typos, keys of another shape).
+  void reject_unknown() const {
+    for (const auto& [key, node] : table_) {
+      if (!used_.count(std::string(key.str())))
+        fail(std::string(key.str()), node, "unknown key (allowed: " + allowed() + ")");
+    }
+  }
+
+  std::optional<double> number(const std::string& key) {
+    used_.insert(key);
+    const toml::node* node = table_.get(key);
+    if (!node) return std::nullopt;
+    if (auto v = node->value<double>()) {
+      if (!std::isfinite(*v)) fail(key, *node, "must be a finite number");
+      return *v;
+    }
+    fail(key, *node, "expected a number");
+  }
+
+  double number(const std::string& key, double fallback) { return number(key).value_or(fallback); }
+
+  double positive(const std::string& key, double fallback) {
+    const double v = number(key, fallback);
+    if (!(v > 0)) fail_value(key, v, "must be > 0");
+    return v;
+  }
+
+  double non_negative(const std::string& key, double fallback) {
+    const double v = number(key, fallback);
+    if (!(v >= 0)) fail_value(key, v, "must be >= 0");
+    return v;
+  }
+
+  int integer(const std::string& key, int fallback, int at_least) {
+    used_.insert(key);
+    const toml::node* node = table_.get(key);
+    if (!node) return fallback;
+    const auto v = node->value_exact<int64_t>();
+    if (!v) fail(key, *node, "expected an integer");
+    if (*v < at_least) fail(key, *node, "must be >= " + std::to_string(at_least));
+    return static_cast<int>(*v);
+  }
+
+  std::string choice(const std::string& key, const std::string& fallback, const std::vector<std::string>& allowed) {
+    used_.insert(key);
+    const toml::node* node = table_.get(key);
+    if (!node) return fallback;
+    const auto v = node->value_exact<std::string>();
+    std::string list;
+    for (const auto& a : allowed) list += (list.empty() ? "\"" : ", \"") + a + "\"";
+    if (!v) fail(key, *node, "expected one of " + list);
+    for (const auto& a : allowed)
+      if (*v == a) return *v;
+    fail(key, *node, "expected one of " + list);
+  }
+
+  const toml::array* array(const std::string& key) {
+    used_.insert(key);
+    const toml::node* node = table_.get(key);
+    if (!node) return nullptr;
+    if (!node->is_array()) fail(key, *node, "expected an array of tables");
+    return node->as_array();
+  }
+
+  [[noreturn]] void fail_value(const std::string& key, double value, const std::string& expectation) const {
+    throw InputError(file_ + where(table_.get(key)) + ": " + name_ + "." + key + " = " + format_number(value) + "; " +
+                     expectation);
+  }
+
+  [[noreturn]] void fail(const std::string& key, const toml::node& node, const std::string& expectation) const {
+    std::ostringstream value;
+    if (node.is_table()) value << "{...}";
+    else if (node.is_array()) value << "[...]";
+    else node.visit([&](const auto& v) { value << v; });
+    throw InputError(file_ + where(&node) + ": " + name_ + "." + key + " = " + value.str() + "; " + expectation);
+  }
+
+  const std::string& name() const { return name_; }
+  const std::string& file() const { return file_; }
+
+private:
+  static std::string where(const toml::node* node) {
+    if (!node || !node->source().begin) return "";
+    return ":" + std::to_string(node->source().begin.line);
+  }
+  std::string allowed() const {
+    std::string s;
+    for (const auto& k : used_) s += (s.empty() ? "" : ", ") + k;
+    return s;
+  }
+
+  const toml::table& table_;
+  std::string name_;
+  std::string file_;
+  std::set<std::string> used_;
+};
+
+const toml::table* sub_table(const toml::table& root, const std::string& name, const std::string& file) {
+  const toml::node* node = root.get(name);
+  if (!node) return nullptr;
+  if (!node->is_table())
+    throw InputError(file + ":" + std::to_string(node->source().begin.line) + ": " + name + " must be a table ([" +
+                     name + "])");
+  return node->as_table();
+}
+
+GearParams read_gear(TableReader r) {
+  GearParams g;
+  g.module_m = r.positive("module_mm", g.module_m / kMm) * kMm;
+  g.teeth_flexspline = r.integer("teeth_flexspline", g.teeth_flexspline, 4);
+  g.teeth_circular = r.integer("teeth_circular", g.teeth_circular, 5);
+  const double alpha_deg = r.number("pressure_angle_deg", 20.0);
+  if (!(alpha_deg > 5.0 && alpha_deg < 45.0)) r.fail_value("pressure_angle_deg", alpha_deg, "must be in (5, 45)");
+  g.pressure_angle_rad = alpha_deg * kDeg;
+  g.profile_shift_flexspline = r.number("profile_shift_flexspline", g.profile_shift_flexspline);
+  g.profile_shift_circular = r.number("profile_shift_circular", g.profile_shift_circular);
+  g.cutter_teeth = r.integer("cutter_teeth", g.cutter_teeth, 8);
+  r.reject_unknown();
+  if (g.teeth_circular <= g.teeth_flexspline)
+    r.fail_value("teeth_circular", g.teeth_circular,
+                 "must be > gear.teeth_flexspline = " + std::to_string(g.teeth_flexspline) +
+                     " (the flexspline has fewer teeth than the circular spline)");
+  if ((g.teeth_circular - g.teeth_flexspline) % 2 != 0)
+    r.fail_value("teeth_circular", g.teeth_circular,
+                 "z_c - z_f must be even (a two-lobe wave generator engages two zones)");
+  return g;
+}
+
+FlexsplineParams read_flexspline(TableReader r) {
+  FlexsplineParams f;
+  const std::string shape = r.choice("shape", "cup", {"cup", "tube"});
+  f.shape = shape == "cup" ? FlexsplineShape::Cup : FlexsplineShape::Tube;
+  f.inner_radius_m = r.positive("inner_radius_mm", f.inner_radius_m / kMm) * kMm;
+  f.wall_thickness_m = r.positive("wall_thickness_mm", f.wall_thickness_m / kMm) * kMm;
+  f.length_m = r.positive("length_mm", f.length_m / kMm) * kMm;
+  const std::string teeth = r.choice("teeth", shape == "cup" ? "ring" : "none", {"none", "ring", "explicit"});
+  f.teeth = teeth == "none" ? TeethModel::None : teeth == "ring" ? TeethModel::Ring : TeethModel::Explicit;
+  const bool has_rim = f.teeth != TeethModel::None;
+  f.rim_width_m = (has_rim ? r.positive("rim_width_mm", f.rim_width_m / kMm) : r.non_negative("rim_width_mm", 0.0)) * kMm;
+  f.rim_thickness_m = (has_rim ? r.positive("rim_thickness_mm", f.rim_thickness_m / kMm)
+                               : r.non_negative("rim_thickness_mm", f.wall_thickness_m / kMm)) * kMm;
+  if (f.shape == FlexsplineShape::Cup) {
+    f.diaphragm_thickness_m = r.positive("diaphragm_thickness_mm", f.diaphragm_thickness_m / kMm) * kMm;
+    f.boss_radius_m = r.positive("boss_radius_mm", f.boss_radius_m / kMm) * kMm;
+    f.fillet_radius_m = r.non_negative("fillet_radius_mm", f.fillet_radius_m / kMm) * kMm;
+  }
+  // A tube has no diaphragm, boss or fillet: those keys stay unknown for it and are rejected as such.
+  r.reject_unknown();
+  if (has_rim && f.rim_width_m > f.length_m)
+    r.fail_value("rim_width_mm", f.rim_width_m / kMm,
+                 "must be <= flexspline.length_mm = " + format_number(f.length_m / kMm));
+  return f;
+}
+
+Material read_material(TableReader r) {
+  Material m;
+  m.youngs_modulus_Pa = r.positive("youngs_modulus_Pa", m.youngs_modulus_Pa);
+  m.poisson_ratio = r.number("poisson_ratio", m.poisson_ratio);
+  if (!(m.poisson_ratio > -1.0 && m.poisson_ratio < 0.5))
+    r.fail_value("poisson_ratio", m.poisson_ratio, "must be in (-1, 0.5)");
+  m.density_kg_m3 = r.positive("density_kg_m3", m.density_kg_m3);
+  r.reject_unknown();
+  return m;
+}
+
+WaveGeneratorParams read_wave_generator(TableReader r) {
+  WaveGeneratorParams w;
+  const std::string model = r.choice("model", "four_force", {"four_force", "two_force", "forces", "cam"});
+  w.model = model == "four_force" ? WaveGeneratorModel::FourForce
+            : model == "two_force" ? WaveGeneratorModel::TwoForce
+            : model == "forces"    ? WaveGeneratorModel::Forces
+                                   : WaveGeneratorModel::Cam;
+  if (w.model == WaveGeneratorModel::FourForce) {
+    const double beta = r.number("beta_deg", 30.0);
+    if (!(beta > 0.0 && beta < 90.0)) r.fail_value("beta_deg", beta, "must be in (0, 90)");
+    w.beta_rad = beta * kDeg;
+  }
+  if (auto w0 = r.number("radial_deformation_mm")) {
+    if (!(*w0 > 0)) r.fail_value("radial_deformation_mm", *w0, "must be > 0");
+    w.radial_deformation_m = *w0 * kMm;
+  }
+  if (w.model != WaveGeneratorModel::Cam) w.force_N = r.positive("force_N", w.force_N);
+  if (w.model == WaveGeneratorModel::Cam && !w.radial_deformation_m)
+    throw InputError(r.file() + ": wave_generator.radial_deformation_mm is missing; model = \"cam\" prescribes it");
+  w.axial_position_m = r.non_negative("axial_position_mm", w.axial_position_m / kMm) * kMm;
+  w.band_width_m = r.positive("band_width_mm", w.band_width_m / kMm) * kMm;
+  if (w.model == WaveGeneratorModel::Forces) {
+    const toml::array* list = r.array("forces");
+    if (!list || list->empty())
+      throw InputError(r.file() + ": wave_generator.forces is missing or empty; model = \"forces\" needs a list "
+                                  "like [{angle_deg = 30, weight = 1.0}, ...]");
+    for (std::size_t i = 0; i < list->size(); ++i) {
+      const toml::table* t = list->get(i)->as_table();
+      if (!t) r.fail("forces", *list->get(i), "expected tables {angle_deg = ..., weight = ...}");
+      TableReader f(*t, r.name() + ".forces[" + std::to_string(i) + "]", r.file());
+      WaveGeneratorForce force;
+      force.angle_rad = f.number("angle_deg", 0.0) * kDeg;
+      force.weight = f.positive("weight", 1.0);
+      f.reject_unknown();
+      w.forces.push_back(force);
+    }
+  }
+  r.reject_unknown();
+  return w;
+}
+
+LoadParams read_load(TableReader r) {
+  LoadParams l;
+  l.torque_Nm = r.number("torque_Nm", l.torque_Nm);
+  const std::string how = r.choice("torque_loading", "engagement_zones", {"engagement_zones", "uniform"});
+  l.torque_loading = how == "uniform" ? TorqueLoading::Uniform : TorqueLoading::EngagementZones;
+  const double half = r.number("engagement_half_angle_deg", 20.0);
+  if (!(half > 0.0 && half <= 90.0)) r.fail_value("engagement_half_angle_deg", half, "must be in (0, 90]");
+  l.engagement_half_angle_rad = half * kDeg;
+  r.reject_unknown();
+  return l;
+}
+
+MeshParams read_mesh(TableReader r) {
+  MeshParams m;
+  m.size_m = r.positive("size_mm", m.size_m / kMm) * kMm;
+  m.wall_layers = r.integer("wall_layers", m.wall_layers, 1);
+  m.max_radius_edge_ratio = r.number("max_radius_edge_ratio", m.max_radius_edge_ratio);
+  if (!(m.max_radius_edge_ratio >= 1.1)) r.fail_value("max_radius_edge_ratio", m.max_radius_edge_ratio, "must be >= 1.1");
+  m.min_dihedral_deg = r.number("min_dihedral_deg", m.min_dihedral_deg);
+  if (!(m.min_dihedral_deg >= 0.0 && m.min_dihedral_deg < 20.0))
+    r.fail_value("min_dihedral_deg", m.min_dihedral_deg, "must be in [0, 20) (TetGen cannot guarantee more)");
+  r.reject_unknown();
+  return m;
+}
+
+}  // namespace
+
+Case parse_case(const std::string& toml_text, const std::string& path) {
+  toml::table root;
+  try {
+    root = toml::parse(toml_text, path);
+  } catch (const toml::parse_error& e) {
+    const auto& at = e.source().begin;
+    throw InputError(path + ":" + std::to_string(at.line) + ":" + std::to_string(at.column) +
+                     ": malformed TOML: " + std::string(e.description()));
+  }
+  Case c;
+  c.path = path;
+  c.stem = std::filesystem::path(path).stem().string();
+  static const std::set<std::string> kTables = {"gear", "flexspline", "material", "wave_generator", "load", "mesh"};
+  for (const auto& [key, node] : root) {
+    if (!kTables.count(std::string(key.str())))
+      throw InputError(path + ":" + std::to_string(node.source().begin.line) + ": [" + std::string(key.str()) +
+                       "] is not a known table (allowed: [gear], [flexspline], [material], [wave_generator], "
+                       "[load], [mesh])");
+  }
+  static const toml::table kEmpty;
+  auto table = [&](const char* name) -> const toml::table* { return sub_table(root, name, path); };
+  if (auto t = table("gear")) c.gear = read_gear(TableReader(*t, "gear", path));
+  if (!table("flexspline")) throw InputError(path + ": [flexspline] is missing; every case describes its flexspline");
+  c.flexspline = read_flexspline(TableReader(*table("flexspline"), "flexspline", path));
+  c.material = read_material(TableReader(table("material") ? *table("material") : kEmpty, "material", path));
+  if (auto t = table("wave_generator")) c.wave_generator = read_wave_generator(TableReader(*t, "wave_generator", path));
+  c.load = read_load(TableReader(table("load") ? *table("load") : kEmpty, "load", path));
+  c.mesh = read_mesh(TableReader(table("mesh") ? *table("mesh") : kEmpty, "mesh", path));
+  if (c.flexspline.teeth != TeethModel::None && !c.gear)
+    throw InputError(path + ": flexspline.teeth = \"" +
+                     std::string(c.flexspline.teeth == TeethModel::Ring ? "ring" : "explicit") +
+                     "\" needs a [gear] table (module and teeth), or set teeth = \"none\"");
+  if (c.wave_generator && c.wave_generator->axial_position_m > c.flexspline.length_m)
+    throw InputError(path + ": wave_generator.axial_position_mm = " +
+                     format_number(c.wave_generator->axial_position_m / kMm) +
+                     "; must be <= flexspline.length_mm = " + format_number(c.flexspline.length_m / kMm));
+  return c;
+}
+
+Case load_case(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open the case file (does it exist?)");
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_case(text.str(), path);
+}
+
+std::string describe_case(const Case& c) {
+  std::ostringstream s;
+  const auto mm = [](double m) { return m / kMm; };
+  s << "# resolved case " << c.path << " (lengths in mm, defaults filled in)\n";
+  if (c.gear) {
+    const auto& g = *c.gear;
+    s << "[gear]\nmodule_mm = " << mm(g.module_m) << "\nteeth_flexspline = " << g.teeth_flexspline
+      << "\nteeth_circular = " << g.teeth_circular << "\npressure_angle_deg = " << g.pressure_angle_rad / kDeg
+      << "\nprofile_shift_flexspline = " << g.profile_shift_flexspline
+      << "\nprofile_shift_circular = " << g.profile_shift_circular << "\ncutter_teeth = " << g.cutter_teeth << "\n";
+  }
+  const auto& f = c.flexspline;
+  const bool cup = f.shape == FlexsplineShape::Cup;
+  s << "[flexspline]\nshape = \"" << (cup ? "cup" : "tube") << "\"\ninner_radius_mm = " << mm(f.inner_radius_m)
+    << "\nwall_thickness_mm = " << mm(f.wall_thickness_m) << "\nlength_mm = " << mm(f.length_m)
+    << "\nrim_width_mm = " << mm(f.rim_width_m) << "\nrim_thickness_mm = " << mm(f.rim_thickness_m) << "\nteeth = \""
+    << (f.teeth == TeethModel::None ? "none" : f.teeth == TeethModel::Ring ? "ring" : "explicit") << "\"\n";
+  if (cup)
+    s << "diaphragm_thickness_mm = " << mm(f.diaphragm_thickness_m) << "\nboss_radius_mm = " << mm(f.boss_radius_m)
+      << "\nfillet_radius_mm = " << mm(f.fillet_radius_m) << "\n";
+  s << "[material]\nyoungs_modulus_Pa = " << c.material.youngs_modulus_Pa << "\npoisson_ratio = "
+    << c.material.poisson_ratio << "\ndensity_kg_m3 = " << c.material.density_kg_m3 << "\n";
+  if (c.wave_generator) {
+    const auto& w = *c.wave_generator;
+    static const char* kModels[] = {"four_force", "two_force", "forces", "cam"};
+    s << "[wave_generator]\nmodel = \"" << kModels[static_cast<int>(w.model)] << "\"\n";
+    if (w.model == WaveGeneratorModel::FourForce) s << "beta_deg = " << w.beta_rad / kDeg << "\n";
+    if (w.radial_deformation_m) s << "radial_deformation_mm = " << mm(*w.radial_deformation_m) << "\n";
+    else s << "force_N = " << w.force_N << "\n";
+    s << "axial_position_mm = " << mm(w.axial_position_m) << "\nband_width_mm = " << mm(w.band_width_m) << "\n";
+    for (const auto& force : w.forces)
+      s << "forces += {angle_deg = " << force.angle_rad / kDeg << ", weight = " << force.weight << "}\n";
+  }
+  s << "[load]\ntorque_Nm = " << c.load.torque_Nm << "\ntorque_loading = \""
+    << (c.load.torque_loading == TorqueLoading::Uniform ? "uniform" : "engagement_zones")
+    << "\"\nengagement_half_angle_deg = " << c.load.engagement_half_angle_rad / kDeg << "\n";
+  s << "[mesh]\nsize_mm = " << mm(c.mesh.size_m) << "\nwall_layers = " << c.mesh.wall_layers
+    << "\nmax_radius_edge_ratio = " << c.mesh.max_radius_edge_ratio << "\nmin_dihedral_deg = "
+    << c.mesh.min_dihedral_deg << "\n";
+  return s.str();
+}
+
+}  // namespace sw

@@ -1,0 +1,95 @@
+// Case files: the values arrive in SI, and every kind of bad input is one clear line naming file, key and value.
+#include <gtest/gtest.h>
+
+#include "common/error.hpp"
+#include "io/case.hpp"
+
+namespace sw {
+namespace {
+
+std::string error_of(const std::string& toml) {
+  try {
+    parse_case(toml, "cases/x.toml");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+constexpr const char* kTube = "[flexspline]\nshape = \"tube\"\ninner_radius_mm = 18.5\nwall_thickness_mm = 1.0\n"
+                              "length_mm = 30\nteeth = \"none\"\n";
+
+TEST(CaseFile, ConvertsMillimetresToMetresOnce) {
+  const Case c = parse_case(kTube, "t.toml");
+  EXPECT_DOUBLE_EQ(c.flexspline.inner_radius_m, 18.5e-3);
+  EXPECT_DOUBLE_EQ(c.flexspline.wall_thickness_m, 1.0e-3);
+  EXPECT_EQ(c.flexspline.shape, FlexsplineShape::Tube);
+  EXPECT_FALSE(c.gear.has_value());
+  EXPECT_FALSE(c.wave_generator.has_value());
+}
+
+TEST(CaseFile, NegativeThicknessNamesFileKeyAndValue) {
+  std::string t = kTube;
+  t.replace(t.find("1.0"), 3, "-0.4");
+  EXPECT_EQ(error_of(t), "cases/x.toml:4: flexspline.wall_thickness_mm = -0.4; must be > 0");
+}
+
+TEST(CaseFile, MalformedTomlGivesLineAndColumn) {
+  const std::string e = error_of("[flexspline]\nshape = \"tube\nlength_mm = 3\n");
+  EXPECT_NE(e.find("cases/x.toml:2:"), std::string::npos) << e;
+  EXPECT_NE(e.find("malformed TOML"), std::string::npos) << e;
+}
+
+TEST(CaseFile, UnknownKeyIsRejectedWithItsPath) {
+  const std::string e = error_of(std::string(kTube) + "wall_thicknes_mm = 2\n");
+  EXPECT_NE(e.find("flexspline.wall_thicknes_mm = 2; unknown key"), std::string::npos) << e;
+}
+
+TEST(CaseFile, UnknownTableIsRejected) {
+  EXPECT_NE(error_of(std::string(kTube) + "[solver]\nx = 1\n").find("[solver] is not a known table"),
+            std::string::npos);
+}
+
+TEST(CaseFile, WrongTypeSaysWhatWasExpected) {
+  std::string t = kTube;
+  t.replace(t.find("30"), 2, "\"thirty\"");
+  EXPECT_NE(error_of(t).find("flexspline.length_mm = \"thirty\"; expected a number"), std::string::npos) << error_of(t);
+}
+
+TEST(CaseFile, TubeRejectsCupOnlyKeys) {
+  EXPECT_NE(error_of(std::string(kTube) + "boss_radius_mm = 5\n").find("boss_radius_mm = 5; unknown key"),
+            std::string::npos);
+}
+
+TEST(CaseFile, FlexsplineWithMoreTeethThanCircularSplineIsRejected) {
+  const std::string e = error_of(std::string(kTube) + "[gear]\nteeth_flexspline = 28\nteeth_circular = 26\n");
+  EXPECT_NE(e.find("gear.teeth_circular = 26; must be > gear.teeth_flexspline = 28"), std::string::npos) << e;
+}
+
+TEST(CaseFile, TeethNeedAGearTable) {
+  std::string t = kTube;
+  t.replace(t.find("\"none\""), 6, "\"ring\"\nrim_width_mm = 5\nrim_thickness_mm = 1.2");
+  EXPECT_NE(error_of(t).find("needs a [gear] table"), std::string::npos) << error_of(t);
+}
+
+TEST(CaseFile, MissingFileIsAClearError) {
+  try {
+    load_case("cases/does_not_exist.toml");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "cases/does_not_exist.toml: cannot open the case file (does it exist?)");
+  }
+}
+
+TEST(CaseFile, ForcesListIsReadWithDegreesAndWeights) {
+  const Case c = parse_case(std::string(kTube) +
+                                "[wave_generator]\nmodel = \"forces\"\nforce_N = 10\n"
+                                "forces = [{angle_deg = 30, weight = 2.0}, {angle_deg = 210}]\n",
+                            "f.toml");
+  ASSERT_EQ(c.wave_generator->forces.size(), 2u);
+  EXPECT_NEAR(c.wave_generator->forces[0].angle_rad, 30.0 * 3.14159265358979 / 180.0, 1e-12);
+  EXPECT_DOUBLE_EQ(c.wave_generator->forces[1].weight, 1.0);
+}
+
+}  // namespace
+}  // namespace sw

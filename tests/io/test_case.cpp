@@ -53,7 +53,7 @@ TEST(CaseFile, UnknownTableIsRejected) {
 TEST(CaseFile, WrongTypeSaysWhatWasExpected) {
   std::string t = kTube;
   t.replace(t.find("30"), 2, "\"thirty\"");
-  EXPECT_NE(error_of(t).find("flexspline.length_mm = \"thirty\"; expected a number"), std::string::npos) << error_of(t);
+  EXPECT_NE(error_of(t).find("flexspline.length_mm = 'thirty'; expected a number"), std::string::npos) << error_of(t);
 }
 
 TEST(CaseFile, TubeRejectsCupOnlyKeys) {

@@ -6,62 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "gear/gear.hpp"
+#include "common/params.hpp"
 
 namespace sw {
-
-enum class FlexsplineShape { Cup, Tube };
-enum class TeethModel { None, Ring, Explicit };
-enum class WaveGeneratorModel { FourForce, TwoForce, Forces, Cam };
-enum class TorqueLoading { EngagementZones, Uniform };
-
-struct FlexsplineParams {
-  FlexsplineShape shape = FlexsplineShape::Cup;
-  double inner_radius_m = 18.4e-3;
-  double wall_thickness_m = 0.6e-3;     ///< body wall
-  double length_m = 20.0e-3;            ///< clamped end (or diaphragm) to the open end
-  double rim_width_m = 6.0e-3;          ///< axial width of the toothed rim at the open end
-  double rim_thickness_m = 0.7e-3;      ///< radial thickness under the teeth
-  TeethModel teeth = TeethModel::Ring;
-  double diaphragm_thickness_m = 1.0e-3;  ///< cup only
-  double boss_radius_m = 8.0e-3;          ///< cup only: clamped hub
-  double fillet_radius_m = 1.0e-3;        ///< cup only
-};
-
-struct Material {
-  double youngs_modulus_Pa = 210e9;
-  double poisson_ratio = 0.3;
-  double density_kg_m3 = 7850.0;
-  double shear_modulus_Pa() const { return youngs_modulus_Pa / (2.0 * (1.0 + poisson_ratio)); }
-};
-
-struct WaveGeneratorForce {
-  double angle_rad = 0.0;  ///< from the major axis
-  double weight = 1.0;
-};
-
-struct WaveGeneratorParams {
-  WaveGeneratorModel model = WaveGeneratorModel::FourForce;
-  double beta_rad = 0.5235987755982988;          ///< four_force: ±β from the major axis at both ends of it
-  std::optional<double> radial_deformation_m;    ///< w0 at the major axis; forces are scaled to reach it
-  double force_N = 100.0;                        ///< total of one end's forces when w0 is not given
-  double axial_position_m = 3.0e-3;              ///< from the open end
-  double band_width_m = 4.0e-3;                  ///< cam: axial width of the generator's contact band
-  std::vector<WaveGeneratorForce> forces;        ///< model = forces
-};
-
-struct LoadParams {
-  double torque_Nm = 0.0;
-  TorqueLoading torque_loading = TorqueLoading::EngagementZones;
-  double engagement_half_angle_rad = 0.3490658503988659;  ///< ± around each end of the major axis (20°)
-};
-
-struct MeshParams {
-  double size_m = 0.6e-3;    ///< target edge length away from thin walls
-  int wall_layers = 2;       ///< minimum TET10 layers through any wall
-  double min_dihedral_deg = 0.0;      ///< TetGen quality switch (0 = TetGen default)
-  double max_radius_edge_ratio = 2.0; ///< TetGen -q bound
-};
 
 struct Case {
   std::string path;      ///< the file it came from (for messages)

@@ -10,6 +10,8 @@ struct GearParams {
   double profile_shift_flexspline = 1.52;          ///< x_f
   double profile_shift_circular = 1.57;            ///< x_c
   int cutter_teeth = 80;             ///< z_0 of the shaper cutter that generates the flexspline teeth
+  double addendum_coefficient = 1.0;       ///< h_a* (not in the case file yet: standard basic rack)
+  double tip_clearance_coefficient = 0.25; ///< c* (not in the case file yet: standard basic rack)
 };
 
 }  // namespace sw

@@ -1,0 +1,200 @@
+#include "gear/tooth_profile.hpp"
+
+#include <algorithm>
+#include <numbers>
+#include <sstream>
+
+#include "common/error.hpp"
+
+namespace sw {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+[[noreturn]] void bad_gear(const std::string& what) { throw InputError("[gear]: " + what); }
+
+double half_thickness_at_reference_f(const GearParams& g) {
+  return kPi / (2.0 * g.teeth_flexspline) + 2.0 * g.profile_shift_flexspline * std::tan(g.pressure_angle_rad) / g.teeth_flexspline;
+}
+
+double half_space_at_reference_c(const GearParams& g) {
+  return kPi / (2.0 * g.teeth_circular) + 2.0 * g.profile_shift_circular * std::tan(g.pressure_angle_rad) / g.teeth_circular;
+}
+
+}  // namespace
+
+double inverse_involute(double inv_alpha) {
+  // Start from the series alpha ≈ (3 inv)^(1/3) and polish with Newton on tan a − a − inv (derivative tan² a).
+  double a = std::cbrt(3.0 * inv_alpha);
+  for (int i = 0; i < 40; ++i) {
+    const double t = std::tan(a);
+    const double f = t - a - inv_alpha;
+    const double step = f / std::max(t * t, 1e-300);
+    a -= step;
+    if (std::abs(step) < 1e-16) break;
+  }
+  return a;
+}
+
+double roll_at_radius(double base_radius_m, double radius_m) {
+  const double q = radius_m / base_radius_m;
+  return std::sqrt(std::max(q * q - 1.0, 0.0));
+}
+
+GearRadii gear_radii(const GearParams& g) {
+  if (g.teeth_flexspline < 3 || g.teeth_circular <= g.teeth_flexspline) {
+    std::ostringstream s;
+    s << "teeth_circular = " << g.teeth_circular << ", teeth_flexspline = " << g.teeth_flexspline
+      << "; need teeth_circular > teeth_flexspline >= 3";
+    bad_gear(s.str());
+  }
+  if (!(g.module_m > 0)) bad_gear("module_mm must be > 0");
+  if (g.cutter_teeth < 8) bad_gear("cutter_teeth = " + std::to_string(g.cutter_teeth) + "; must be >= 8");
+  const double m = g.module_m, al = g.pressure_angle_rad, ha = g.addendum_coefficient, c = g.tip_clearance_coefficient;
+  GearRadii r;
+  // Flexspline.
+  r.pitch_f = m * g.teeth_flexspline / 2.0;
+  r.base_f = r.pitch_f * std::cos(al);
+  const double z0 = g.cutter_teeth, x0 = 0.0;
+  const double inv_w0 = involute_function(al) + 2.0 * std::tan(al) * (g.profile_shift_flexspline + x0) / (g.teeth_flexspline + z0);
+  r.cutter_pressure_angle_rad = inverse_involute(inv_w0);
+  r.cutter_centre_distance = m * (g.teeth_flexspline + z0) / 2.0 * std::cos(al) / std::cos(r.cutter_pressure_angle_rad);
+  const double ra0 = m * (z0 / 2.0 + ha + c + x0);
+  const double rb0 = m * z0 / 2.0 * std::cos(al);
+  r.root_f = r.cutter_centre_distance - ra0;
+  r.tip_f = r.pitch_f + m * (ha + g.profile_shift_flexspline);
+  const double gl = r.cutter_centre_distance * std::sin(r.cutter_pressure_angle_rad) - std::sqrt(ra0 * ra0 - rb0 * rb0);
+  r.form_f = gl > 0 ? std::hypot(r.base_f, gl) : r.base_f;
+  r.form_f = std::max(r.form_f, r.root_f);
+  // Circular spline.
+  r.pitch_c = m * g.teeth_circular / 2.0;
+  r.base_c = r.pitch_c * std::cos(al);
+  r.tip_c = r.pitch_c - m * (ha - g.profile_shift_circular);
+  r.root_c = r.pitch_c + m * (ha + c + g.profile_shift_circular);
+  r.form_c = r.pitch_c + m * (ha + g.profile_shift_circular);
+  if (r.form_f >= r.tip_f) {
+    std::ostringstream s;
+    s << "profile_shift_flexspline = " << g.profile_shift_flexspline << ": the involute starts at r = " << r.form_f * 1e3
+      << " mm, above the tip r = " << r.tip_f * 1e3 << " mm; reduce the shift or use more cutter_teeth";
+    bad_gear(s.str());
+  }
+  if (r.tip_c <= r.base_c) {
+    std::ostringstream s;
+    s << "profile_shift_circular = " << g.profile_shift_circular << ": circular-spline tip r = " << r.tip_c * 1e3
+      << " mm is inside its base circle r = " << r.base_c * 1e3 << " mm; increase the shift";
+    bad_gear(s.str());
+  }
+  if (flexspline_tooth_thickness(g, r.tip_f) <= 0) {
+    std::ostringstream s;
+    s << "profile_shift_flexspline = " << g.profile_shift_flexspline << ": flexspline teeth are pointed below the tip"
+      << " (r = " << r.tip_f * 1e3 << " mm); reduce the shift";
+    bad_gear(s.str());
+  }
+  return r;
+}
+
+double flexspline_tooth_thickness(const GearParams& g, double radius_m) {
+  const double rb = g.module_m * g.teeth_flexspline / 2.0 * std::cos(g.pressure_angle_rad);
+  const double aR = std::acos(std::min(1.0, rb / radius_m));
+  return 2.0 * radius_m * (half_thickness_at_reference_f(g) + involute_function(g.pressure_angle_rad) - involute_function(aR));
+}
+
+double circular_space_width(const GearParams& g, double radius_m) {
+  const double rb = g.module_m * g.teeth_circular / 2.0 * std::cos(g.pressure_angle_rad);
+  const double aR = std::acos(std::min(1.0, rb / radius_m));
+  return 2.0 * radius_m * (half_space_at_reference_c(g) + involute_function(g.pressure_angle_rad) - involute_function(aR));
+}
+
+Involute flexspline_flank(const GearParams& g) {
+  const GearRadii r = gear_radii(g);
+  Involute f;
+  f.base_radius = r.base_f;
+  f.epsilon = half_thickness_at_reference_f(g) + involute_function(g.pressure_angle_rad);
+  f.u_min = roll_at_radius(r.base_f, r.form_f);
+  f.u_max = roll_at_radius(r.base_f, r.tip_f);
+  return f;
+}
+
+Involute circular_space_flank(const GearParams& g) {
+  const GearRadii r = gear_radii(g);
+  Involute f;
+  f.base_radius = r.base_c;
+  f.epsilon = half_space_at_reference_c(g) + involute_function(g.pressure_angle_rad);
+  f.u_min = roll_at_radius(r.base_c, r.tip_c);
+  f.u_max = roll_at_radius(r.base_c, r.form_c);
+  return f;
+}
+
+Eigen::Vector2d involute_point(const Involute& f, double u) {
+  const double t = f.epsilon - u, c = std::cos(t), s = std::sin(t);
+  return f.base_radius * Eigen::Vector2d(c - u * s, s + u * c);
+}
+
+Eigen::Vector2d involute_tangent(const Involute& f, double u) {
+  const double t = f.epsilon - u;
+  return f.base_radius * u * Eigen::Vector2d(std::cos(t), std::sin(t));
+}
+
+double involute_signed_distance(const Involute& f, const Eigen::Vector2d& p, double* foot_u) {
+  const double R = p.norm();
+  const double aR = std::acos(std::min(1.0, f.base_radius / R));
+  const double arg = std::atan2(p.y(), p.x());
+  if (foot_u) *foot_u = f.epsilon - arg + aR;
+  return f.base_radius * (arg + std::tan(aR) - aR - f.epsilon);
+}
+
+std::vector<Eigen::Vector2d> flexspline_outline(const GearParams& g, int points_per_flank) {
+  const int n = std::max(points_per_flank, 2);
+  const GearRadii r = gear_radii(g);
+  const Involute f = flexspline_flank(g);
+  const int z = g.teeth_flexspline;
+  const double half_pitch = kPi / z;
+  auto polar = [](double rad, double ang) { return Eigen::Vector2d(rad * std::cos(ang), rad * std::sin(ang)); };
+  auto flank_angle = [&](double rad) { return f.epsilon - involute_function(std::acos(std::min(1.0, f.base_radius / rad))); };
+
+  // Template of one pitch, tooth centred on angle 0, from the gap centre at −π/z (inclusive) to +π/z (exclusive),
+  // as (radius, angle) pairs.
+  std::vector<std::pair<double, double>> pitch;
+  const double th_form = flank_angle(r.form_f), th_tip = flank_angle(r.tip_f);
+  const double drop = r.form_f - r.root_f;
+  const double gap = half_pitch - th_form;  // angular half-width of the gap at the form radius
+  if (gap <= 0) bad_gear("flexspline teeth overlap at the form radius; reduce profile_shift_flexspline");
+  const double dth = std::min(drop / r.root_f, 0.8 * gap);  // fillet's angular extent
+  const int nr = std::max(1, n / 4), nf = std::max(2, n / 2), nt = std::max(1, n / 3);
+  // Root arc (cw half), at the root radius from −π/z to the start of the cw fillet.
+  const double root_start = -half_pitch, root_end = -(th_form + dth);
+  for (int i = 0; i < nr; ++i) pitch.emplace_back(r.root_f, root_start + (root_end - root_start) * i / nr);
+  // cw fillet: root to form (mirror of the ccw fillet, traversed in the opposite direction).
+  auto fillet = [&](double s) { return std::pair{r.root_f + drop * (1.0 - std::sin(s)), th_form + dth * (1.0 - std::cos(s))}; };
+  if (drop > 0) {
+    for (int i = nf; i >= 1; --i) {
+      auto [rad, ang] = fillet(0.5 * kPi * i / nf);
+      pitch.emplace_back(rad, -ang);
+    }
+  }
+  // cw flank: form to tip (equally spaced in radius), then the tip arc interior, then the ccw flank tip to form.
+  for (int i = 0; i < n; ++i) {
+    const double rad = r.form_f + (r.tip_f - r.form_f) * i / (n - 1);
+    pitch.emplace_back(rad, -flank_angle(rad));
+  }
+  for (int i = 1; i <= nt; ++i) pitch.emplace_back(r.tip_f, -th_tip + 2.0 * th_tip * i / (nt + 1));
+  for (int i = n - 1; i >= 0; --i) {
+    const double rad = r.form_f + (r.tip_f - r.form_f) * i / (n - 1);
+    pitch.emplace_back(rad, flank_angle(rad));
+  }
+  if (drop > 0) {
+    for (int i = 1; i <= nf; ++i) pitch.push_back(fillet(0.5 * kPi * i / nf));
+  }
+  for (int i = 1; i < nr; ++i) pitch.emplace_back(r.root_f, -root_end + (half_pitch + root_end) * i / nr);
+
+  std::vector<Eigen::Vector2d> out;
+  out.reserve(static_cast<size_t>(z) * pitch.size());
+  for (int k = 0; k < z; ++k) {
+    const double off = 2.0 * kPi * k / z;
+    for (const auto& [rad, ang] : pitch) out.push_back(polar(rad, ang + off));
+  }
+  return out;
+}
+
+}  // namespace sw

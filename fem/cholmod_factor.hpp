@@ -1,0 +1,51 @@
+#pragma once
+// Sparse Cholesky by CHOLMOD (supernodal, ordering as CHOLMOD chooses: AMD or METIS), factorised once and reused for
+// every right-hand side. CHOLMOD stays out of this header (pimpl).
+#include <memory>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "fem/assembly.hpp"
+
+namespace sw {
+
+/// Which BLAS the process runs CHOLMOD's dense kernels on, and whether it is the slow reference one.
+struct BlasInfo {
+  std::string description;  ///< e.g. "OpenBLAS 0.3.21 (pthreads, 2 threads) from /usr/lib/.../libblas.so.3"
+  bool is_reference = false;
+};
+
+/// Inspects the loaded BLAS (OpenBLAS is recognised by its openblas_get_config symbol).
+BlasInfo detect_blas();
+
+struct FactorStats {
+  std::int64_t equations = 0;
+  std::int64_t matrix_nnz = 0;   ///< stored upper triangle
+  double factor_nnz = 0;         ///< nnz(L)
+  double factor_gflop = 0;       ///< floating-point work of the numeric factorisation (GF)
+  double analyse_s = 0, factor_s = 0;
+  std::string ordering;          ///< ordering CHOLMOD selected
+  bool supernodal = true;
+};
+
+class CholmodFactor {
+public:
+  /// Analyses and factorises K (upper triangle). Throws InputError with a sentence for CHOLMOD's failures; a matrix
+  /// that is not positive definite means the supports leave rigid-body motion free.
+  explicit CholmodFactor(const SymmetricCsc& K);
+  ~CholmodFactor();
+  CholmodFactor(const CholmodFactor&) = delete;
+  CholmodFactor& operator=(const CholmodFactor&) = delete;
+
+  /// Solves K·X = B for all columns of B at once (n x k).
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
+
+  const FactorStats& stats() const;
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace sw

@@ -1,0 +1,36 @@
+#pragma once
+// Consistent nodal loads: surface tractions integrated over quadratic (TRI6) boundary faces with the isoparametric
+// map, so curved faces get their true area. For a uniform traction on a flat TRI6 the corner loads are zero and each
+// midside node takes one third of the face's resultant.
+#include <functional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "mesh/tet_mesh.hpp"
+
+namespace sw {
+
+/// Traction (Pa, 3-vector) at surface point x (m) with outward unit normal n.
+using TractionField = std::function<Eigen::Vector3d(const Eigen::Vector3d& x, const Eigen::Vector3d& n)>;
+
+/// Consistent load vector (3·n_nodes, N) of `traction` over the listed boundary faces.
+/// Integrated with the 7-point degree-5 rule on each face.
+Eigen::VectorXd traction_load(const TetMesh& mesh, const std::vector<const BoundaryFace*>& faces,
+                              const TractionField& traction);
+
+/// Faces with the given marker whose centroid satisfies `keep` (any face if `keep` is empty).
+std::vector<const BoundaryFace*> select_faces(const TetMesh& mesh, int marker,
+                                              const std::function<bool(const Eigen::Vector3d&)>& keep = {});
+
+/// Area (m²) of the faces, from the isoparametric map.
+double faces_area(const TetMesh& mesh, const std::vector<const BoundaryFace*>& faces);
+
+/// Resultant force (N) and moment about the origin (N·m) of a full dof load vector.
+struct Resultant {
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+};
+Resultant load_resultant(const TetMesh& mesh, const Eigen::VectorXd& f);
+
+}  // namespace sw

@@ -2,6 +2,7 @@
 // Option structs of a case, SI units. Shared by every stage (mesh, fem, kinematics, dynamics) without depending on
 // the TOML parser, which lives in io/case.hpp and fills them.
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "gear/gear.hpp"
@@ -59,6 +60,18 @@ struct MeshParams {
   int wall_layers = 2;       ///< minimum TET10 layers through any wall
   double min_dihedral_deg = 0.0;      ///< TetGen quality switch (0 = TetGen default)
   double max_radius_edge_ratio = 2.0; ///< TetGen -q bound
+};
+
+/// A whole case: what to mesh, load and solve.
+struct Case {
+  std::string path;      ///< the file it came from (for messages)
+  std::string stem;      ///< file name without directory and extension (default output folder)
+  std::optional<GearParams> gear;
+  FlexsplineParams flexspline;
+  Material material;
+  std::optional<WaveGeneratorParams> wave_generator;
+  LoadParams load;
+  MeshParams mesh;
 };
 
 }  // namespace sw

@@ -10,16 +10,6 @@
 
 namespace sw {
 
-struct Case {
-  std::string path;      ///< the file it came from (for messages)
-  std::string stem;      ///< file name without directory and extension (default output folder)
-  std::optional<GearParams> gear;
-  FlexsplineParams flexspline;
-  Material material;
-  std::optional<WaveGeneratorParams> wave_generator;
-  LoadParams load;
-  MeshParams mesh;
-};
 
 /// Parses and validates a case file. Throws InputError (one line: "file: key = value; expectation").
 Case load_case(const std::string& path);

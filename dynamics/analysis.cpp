@@ -1,0 +1,125 @@
+#include "dynamics/analysis.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <numbers>
+
+#include <fftw3.h>
+
+namespace sw {
+namespace {
+
+constexpr double kRpmPerRadS = 60.0 / (2.0 * std::numbers::pi);
+constexpr int kLines = 10;
+
+}  // namespace
+
+Spectrum amplitude_spectrum(const std::vector<double>& signal, double dt) {
+  const int n = int(signal.size());
+  assert(n >= 8);
+  double mean = 0.0;
+  for (double v : signal) mean += v;
+  mean /= n;
+  std::vector<double> in(n);
+  double gain = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const double w = 0.5 - 0.5 * std::cos(2.0 * std::numbers::pi * i / (n - 1));
+    in[i] = (signal[i] - mean) * w;
+    gain += w;
+  }
+  std::vector<fftw_complex> out(n / 2 + 1);
+  fftw_plan plan = fftw_plan_dft_r2c_1d(n, in.data(), out.data(), FFTW_ESTIMATE);
+  fftw_execute(plan);
+  fftw_destroy_plan(plan);
+  Spectrum s;
+  s.resolution_Hz = 1.0 / (n * dt);
+  s.frequency_Hz.resize(n / 2 + 1);
+  s.amplitude_N.resize(n / 2 + 1);
+  for (int k = 0; k <= n / 2; ++k) {
+    s.frequency_Hz[k] = k * s.resolution_Hz;
+    s.amplitude_N[k] = (k == 0 ? 1.0 : 2.0) * std::hypot(out[k][0], out[k][1]) / gain;
+  }
+  return s;
+}
+
+std::vector<SpectralLine> spectral_lines(const Spectrum& s, double fmin, int max_lines) {
+  std::vector<SpectralLine> lines;
+  const auto& a = s.amplitude_N;
+  for (std::size_t k = 1; k + 1 < a.size(); ++k) {
+    if (s.frequency_Hz[k] < fmin || !(a[k] > a[k - 1] && a[k] >= a[k + 1])) continue;
+    double shift = 0.0;
+    if (a[k - 1] > 0 && a[k + 1] > 0) {
+      const double l = std::log(a[k - 1]), c = std::log(a[k]), r = std::log(a[k + 1]);
+      const double den = l - 2.0 * c + r;
+      if (den < 0) shift = std::clamp(0.5 * (l - r) / den, -0.5, 0.5);
+    }
+    lines.push_back({s.frequency_Hz[k] + shift * s.resolution_Hz, a[k]});
+  }
+  std::sort(lines.begin(), lines.end(), [](auto& x, auto& y) { return x.amplitude_N > y.amplitude_N; });
+  if (int(lines.size()) > max_lines) lines.resize(max_lines);
+  return lines;
+}
+
+DynamicsSummary summarize(const DynamicsModel& m, const DynamicsSeries& s) {
+  const auto& p = m.params;
+  DynamicsSummary r;
+  r.theory = steady_state(m);
+  const auto& t = s.time_s;
+  const std::size_t n = t.size();
+  std::size_t i0 = std::lower_bound(t.begin(), t.end(), p.steady_from_s - 1e-12) - t.begin();
+  if (i0 + 8 > n) i0 = n > 8 ? n - 8 : 0;
+  const std::size_t i1 = n - 1;
+  const double span = t[i1] - t[i0];
+
+  const bool compliant = p.flexspline_compliance_rad_per_Nm > 0.0;
+  std::vector<BodyId> bodies{BodyId::WaveGenerator, BodyId::FlexsplineFlange, BodyId::CircularSpline};
+  if (compliant) bodies.insert(bodies.begin() + 1, BodyId::FlexsplineRim);
+  for (BodyId b : bodies) {
+    const int k = static_cast<int>(b);
+    SpeedCheck c;
+    c.body = body_name(b);
+    c.simulated_rpm = (s.angle_rad[k][i1] - s.angle_rad[k][i0]) / span * kRpmPerRadS;
+    c.theory_rpm = r.theory.speed_rad_s[k] * kRpmPerRadS;
+    c.error_rel = c.theory_rpm == 0.0 ? std::abs(c.simulated_rpm) : std::abs(c.simulated_rpm / c.theory_rpm - 1.0);
+    r.max_speed_error_rel = std::max(r.max_speed_error_rel, c.error_rel);
+    r.speeds.push_back(c);
+  }
+
+  const LoadSharing qs = quasi_static_load_sharing(m.pairs, p, r.theory.mesh_torque_Nm);
+  double qs_max = 0.0;
+  for (double f : qs.force_N) qs_max = std::max(qs_max, std::abs(f));
+  r.mesh_torque_Nm = 0.0;
+  for (std::size_t i = 0; i < m.pairs.size(); ++i) {
+    PairForceCheck c;
+    c.pair = int(i) + 1;
+    c.angle_deg = m.pairs[i].angle_rad * 180.0 / std::numbers::pi;
+    c.arm_m = m.pairs[i].arm_m();
+    double sum = 0.0;
+    for (std::size_t j = i0; j <= i1; ++j) sum += s.pair_force_N[i][j];
+    c.mean_N = sum / double(i1 - i0 + 1);
+    c.quasi_static_N = qs.force_N[i];
+    const bool loaded = std::abs(c.quasi_static_N) > 1e-9 * qs_max;
+    c.error_rel = std::abs(c.mean_N - c.quasi_static_N) / (loaded ? std::abs(c.quasi_static_N) : std::max(qs_max, 1e-300));
+    if (loaded) r.max_pair_force_error_rel = std::max(r.max_pair_force_error_rel, c.error_rel);
+    r.mesh_torque_Nm += c.mean_N * c.arm_m;
+    r.pair_forces.push_back(c);
+  }
+  r.torque_balance_error_rel = std::abs(r.mesh_torque_Nm - r.theory.mesh_torque_Nm) /
+                               std::max(std::abs(r.theory.mesh_torque_Nm), 1e-300);
+  r.energy_error_rel = s.energy.error_rel();
+
+  std::vector<double> window(s.total_force_N.begin() + i0, s.total_force_N.begin() + i1 + 1);
+  double mean = 0.0, var = 0.0;
+  for (double v : window) mean += v;
+  mean /= double(window.size());
+  for (double v : window) var += (v - mean) * (v - mean);
+  r.mean_total_force_N = mean;
+  r.force_fluctuation_N = std::sqrt(var / double(window.size()));
+  r.spectrum = amplitude_spectrum(window, p.output_step_s);
+  // Lines below two bins are the Hann window's own leakage of the removed mean and of slow drifts.
+  r.lines = spectral_lines(r.spectrum, 2.5 * r.spectrum.resolution_Hz, kLines);
+  return r;
+}
+
+}  // namespace sw

@@ -1,0 +1,63 @@
+#pragma once
+// Post-processing of a dynamics run: steady speeds against the kinematic relations, mean pair forces against the
+// quasi-static load sharing of the same contact law, the torque and energy balances, and the force spectrum (FFTW).
+#include <string>
+#include <vector>
+
+#include "dynamics/model.hpp"
+#include "dynamics/simulate.hpp"
+
+namespace sw {
+
+struct SpeedCheck {
+  std::string body;
+  double simulated_rpm = 0.0;   ///< mean over the steady window: Δθ/Δt
+  double theory_rpm = 0.0;      ///< steady_state()
+  double error_rel = 0.0;       ///< |sim − theory|/|theory| (0 for a fixed body)
+};
+
+struct PairForceCheck {
+  int pair = 0;
+  double angle_deg = 0.0;        ///< position from the major axis
+  double arm_m = 0.0;            ///< n·ρ
+  double mean_N = 0.0;           ///< mean over the steady window (signed, drive flank positive)
+  double quasi_static_N = 0.0;   ///< quasi_static_load_sharing()
+  double error_rel = 0.0;        ///< |mean − qs| / |qs|; for unloaded pairs |mean − qs| / max|qs|
+};
+
+struct Spectrum {
+  double resolution_Hz = 0.0;
+  std::vector<double> frequency_Hz, amplitude_N;  ///< single-sided amplitude of a sinusoid (Hann, coherent gain)
+};
+
+struct SpectralLine {
+  double frequency_Hz = 0.0;  ///< refined by a parabola through the log-amplitudes of the peak and its neighbours
+  double amplitude_N = 0.0;
+};
+
+struct DynamicsSummary {
+  SteadyState theory;
+  std::vector<SpeedCheck> speeds;
+  double max_speed_error_rel = 0.0;
+  std::vector<PairForceCheck> pair_forces;
+  double max_pair_force_error_rel = 0.0;    ///< over loaded pairs
+  double mesh_torque_Nm = 0.0;              ///< Σ mean F_i·arm_i
+  double torque_balance_error_rel = 0.0;    ///< |Σ mean F_i·arm_i − M_theory| / |M_theory|
+  double energy_error_rel = 0.0;
+  double mean_total_force_N = 0.0;
+  double force_fluctuation_N = 0.0;         ///< standard deviation of the total meshing force in the steady window
+  Spectrum spectrum;                        ///< of the total meshing force in the steady window
+  std::vector<SpectralLine> lines;          ///< strongest first
+};
+
+/// Amplitude spectrum of a uniformly sampled signal (dt [s]): mean removed, Hann window, FFTW r2c. Precondition: ≥ 8
+/// samples.
+Spectrum amplitude_spectrum(const std::vector<double>& signal, double dt_s);
+
+/// Local maxima of the spectrum above min_frequency_Hz, strongest first, at most max_lines.
+std::vector<SpectralLine> spectral_lines(const Spectrum& s, double min_frequency_Hz, int max_lines);
+
+/// Everything dynamics.json reports, over the window [steady_from_s, duration_s].
+DynamicsSummary summarize(const DynamicsModel& m, const DynamicsSeries& series);
+
+}  // namespace sw

@@ -1,0 +1,74 @@
+#pragma once
+// The case file's [dynamics] table (issue 6), SI units. Header-only and dependent on the standard library alone, so that
+// io/case.hpp can hold it without depending on the dynamics module. Millimetre keys of the file are converted once by
+// the case parser; every key has the default written here.
+#include <string>
+
+namespace sw {
+
+/// Which body is held, which one is driven at the prescribed speed and which one carries the load torque.
+///   cs_fixed: circular spline fixed, wave generator driven, flexspline output (the usual reducer)
+///   fs_fixed: flexspline (its flange) fixed, wave generator driven, circular spline output
+///   wg_fixed: wave generator fixed, flexspline (its flange) driven, circular spline output
+///   all_free: nothing fixed; wave generator driven, flexspline output with the load torque, circular spline free against
+///             a viscous brake (the brake gives the two-degree-of-freedom differential its steady state)
+enum class DynamicsConfiguration { CsFixed, FsFixed, WgFixed, AllFree };
+
+/// Ramp shape of drive speed and load torque.
+///   Paper: the seed paper's two-parabola STEP, with its printed typo corrected (second half 1 - ½((t2-t)/(t2-t1))²,
+///          t1 the midpoint): C¹ continuous. Cubic: the multibody codes' STEP, Δ²(3 - 2Δ).
+enum class RampShape { Paper, Cubic };
+
+struct DynamicsParams {
+  DynamicsConfiguration configuration = DynamicsConfiguration::CsFixed;  ///< key `configuration`
+  RampShape ramp_shape = RampShape::Paper;                               ///< key `ramp` = "paper" | "cubic"
+
+  double drive_speed_rpm = 1000.0;     ///< final speed of the driven body, > 0
+  double drive_ramp_start_s = 0.0;     ///< ramp from 0 ...
+  double drive_ramp_end_s = 0.01;      ///< ... to drive_speed_rpm, > start
+  double load_torque_Nm = 100.0;       ///< final load on the output body, >= 0, always resisting its motion
+  double load_ramp_start_s = 0.01;
+  double load_ramp_end_s = 0.02;       ///< > load_ramp_start_s
+
+  // Tooth-pair contact f = k·δ^m1 + c·δ̇·|δ̇|^m2·δ^m3 for δ > 0 (clamped at 0: teeth push, never pull).
+  double stiffness_N_per_m = 8.0e7;              ///< k0 (for m1 = 1: N/m; generally N/m^m1), > 0
+  double stiffness_variation_N_per_m = 0.0;      ///< Δk in k(t) = k0 + Δk·sin(2π f_m t + φ), 0 <= Δk < k0
+  double stiffness_phase_deg = 0.0;              ///< φ
+  double damping_Ns_per_m = 1.0e3;               ///< c, >= 0
+  double exponent_stiffness = 1.0;               ///< m1 >= 1
+  double exponent_damping = 0.0;                 ///< m2 >= 0
+  double exponent_indentation = 0.0;             ///< m3 >= 0
+
+  // Flexspline torsional compliance between the toothed rim and the output flange (0 = one rigid body).
+  double flexspline_compliance_rad_per_Nm = 0.0;      ///< C_τ (e.g. FEM result.json compliance_rad_per_Nm), >= 0
+  double flexspline_torsion_damping_Nms_per_rad = 0.0;///< viscous damping in parallel with the spring 1/C_τ, >= 0
+
+  /// all_free only: viscous brake on the circular spline, > 0; it reacts the load, so the circular spline creeps at
+  /// ω_c = (z_c/z_f)·T/b, and it must exceed (z_c/z_f)²·T/(ω_w·(z_c/z_f − 1)) for the load to resist the flexspline.
+  double circular_spline_drag_Nms_per_rad = 1000.0;
+  double load_inertia_kgm2 = 0.0;        ///< added to the output body, >= 0
+  double circular_spline_outer_radius_m = 0.0;  ///< 0 = pitch radius + 2.25·module + 0.15·pitch radius
+  double circular_spline_width_m = 0.0;         ///< 0 = flexspline.rim_width
+  double base_clearance_m = 0.0;         ///< approximate clearance model only (until kinematics/ supplies clearances)
+
+  double duration_s = 0.1;               ///< simulated time, > 0
+  double output_step_s = 1.0e-5;        ///< sampling of dynamics.csv, > 0
+  double steady_from_s = 0.05;           ///< start of the steady window used for means, balances and spectra
+  double relative_tolerance = 1.0e-8;    ///< integrator (CVODE BDF) local error control
+  double absolute_tolerance_rad = 1.0e-13;  ///< on the angles' deviation from the kinematic motion
+};
+
+/// Case-file spelling of a configuration ("cs_fixed", ...).
+inline const char* to_string(DynamicsConfiguration c) {
+  switch (c) {
+    case DynamicsConfiguration::CsFixed: return "cs_fixed";
+    case DynamicsConfiguration::FsFixed: return "fs_fixed";
+    case DynamicsConfiguration::WgFixed: return "wg_fixed";
+    case DynamicsConfiguration::AllFree: return "all_free";
+  }
+  return "?";
+}
+
+inline const char* to_string(RampShape r) { return r == RampShape::Paper ? "paper" : "cubic"; }
+
+}  // namespace sw

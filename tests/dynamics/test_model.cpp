@@ -1,0 +1,3 @@
+#include <gtest/gtest.h>
+#include "dynamics/model.hpp"
+TEST(Dummy, X) {}

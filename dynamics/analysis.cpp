@@ -94,10 +94,10 @@ DynamicsSummary summarize(const DynamicsModel& m, const DynamicsSeries& s) {
     PairForceCheck c;
     c.pair = int(i) + 1;
     c.angle_deg = m.pairs[i].angle_rad * 180.0 / std::numbers::pi;
-    c.arm_m = m.pairs[i].arm_m();
     double sum = 0.0;
     for (std::size_t j = i0; j <= i1; ++j) sum += s.pair_force_N[i][j];
     c.mean_N = sum / double(i1 - i0 + 1);
+    c.arm_m = c.mean_N >= 0.0 ? m.pairs[i].arm_m() : m.pairs[i].coast_arm();
     c.quasi_static_N = qs.force_N[i];
     const bool loaded = std::abs(c.quasi_static_N) > 1e-9 * qs_max;
     c.error_rel = std::abs(c.mean_N - c.quasi_static_N) / (loaded ? std::abs(c.quasi_static_N) : std::max(qs_max, 1e-300));

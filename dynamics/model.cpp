@@ -141,11 +141,11 @@ LoadSharing quasi_static_load_sharing(const std::vector<ToothPair>& pairs, const
   auto forces = [&](double e, std::vector<double>* out) {
     double torque = 0.0;
     for (std::size_t i = 0; i < pairs.size(); ++i) {
-      const double a = pairs[i].arm_m();
-      const double f = flank_force(p, p.stiffness_N_per_m, a * e - pairs[i].clearance_drive_m, 0.0).force_N -
-                       flank_force(p, p.stiffness_N_per_m, -a * e - pairs[i].clearance_coast_m, 0.0).force_N;
-      if (out) (*out)[i] = f;
-      torque += f * a;
+      const double a = pairs[i].arm_m(), b = pairs[i].coast_arm();
+      const double fd = flank_force(p, p.stiffness_N_per_m, a * e - pairs[i].clearance_drive_m, 0.0).force_N;
+      const double fc = flank_force(p, p.stiffness_N_per_m, -b * e - pairs[i].clearance_coast_m, 0.0).force_N;
+      if (out) (*out)[i] = fd - fc;
+      torque += fd * a - fc * b;
     }
     return torque;
   };

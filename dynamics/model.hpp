@@ -38,14 +38,18 @@ namespace sw {
 
 /// One engaged tooth pair, at a fixed position in the wave generator's frame (the pattern of clearances is stationary
 /// there; the passing of individual teeth is represented by the stiffness variation k(t) at f_m).
+/// Penetrations: drive flank δ = arm_m()·e − clearance_drive_m, coast flank δ = −coast_arm()·e − clearance_coast_m.
 struct ToothPair {
   double angle_rad = 0.0;           ///< position from the major axis in the wave-generator frame (reports only)
   double clearance_drive_m = 0.0;   ///< clearance of the loaded flank along its normal (may be < 0: preload)
   double clearance_coast_m = 0.0;   ///< clearance of the opposite flank along its normal
   double lever_arm_m = 0.0;         ///< radius at which the pair acts on the flexspline rim, > 0
   double normal_projection = 1.0;   ///< projection of the circumferential direction on the flank normal (cos α), (0,1]
-  /// Effective arm n·ρ [m]: pair force × arm = torque on the flexspline.
+  double coast_arm_m = 0.0;         ///< effective arm of the coast flank when it differs (0 = same as the drive flank)
+  /// Effective arm n·ρ [m] of the drive flank: pair force × arm = torque on the flexspline.
   double arm_m() const { return lever_arm_m * normal_projection; }
+  /// Effective arm of the coast flank [m].
+  double coast_arm() const { return coast_arm_m > 0.0 ? coast_arm_m : arm_m(); }
 };
 
 enum class BodyId { WaveGenerator = 0, FlexsplineRim = 1, FlexsplineFlange = 2, CircularSpline = 3 };

@@ -80,23 +80,23 @@ public:
     const double m1 = p_.exponent_stiffness;
     double M = 0.0, total = 0.0, U = 0.0, p_diss = 0.0, p_param = 0.0;
     for (std::size_t i = 0; i < m_.pairs.size(); ++i) {
-      const double a = m_.pairs[i].arm_m();
       double F = 0.0;
       for (int flank = 0; flank < 2; ++flank) {
         const double sgn = flank == 0 ? 1.0 : -1.0;
+        const double a = flank == 0 ? m_.pairs[i].arm_m() : m_.pairs[i].coast_arm();
         const double j = flank == 0 ? m_.pairs[i].clearance_drive_m : m_.pairs[i].clearance_coast_m;
         const double delta = sgn * a * e - j;
         if (delta <= 0.0) continue;
         const double rate = sgn * a * e_rate;
         const FlankForce ff = flank_force(p_, k, delta, rate);
         F += sgn * ff.force_N;
+        M += sgn * a * ff.force_N;
         p_diss += (ff.force_N - ff.elastic_N) * rate;
         const double u = (m1 == 1.0 ? delta * delta : std::pow(delta, m1 + 1.0)) / (m1 + 1.0);
         U += k * u;
         p_param += k_rate * u;
       }
       s.pair_force[i] = F;
-      M += a * F;
       total += std::abs(F);
     }
     std::array<double, kBodyCount> Q{}, T{};

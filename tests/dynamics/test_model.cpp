@@ -1,3 +1,169 @@
+// Unit tests of the dynamics model's parts: ramps, kinematic relations, mesh frequency, contact law, quasi-static load
+// sharing, inertias and the stand-in clearances. Each is checked against a closed form.
+#include <cmath>
+#include <numbers>
+
 #include <gtest/gtest.h>
+
+#include "common/error.hpp"
 #include "dynamics/model.hpp"
-TEST(Dummy, X) {}
+#include "tests/dynamics/seed_models.hpp"
+
+using namespace sw;
+
+namespace {
+constexpr double kPi = std::numbers::pi;
+constexpr double kRoundoff = 1e-12;        // closed forms evaluated in double: a few ulps, scaled
+constexpr double kFiniteDifference = 1e-6; // central differences with h = 1e-6 of the ramp time: O(h²) + roundoff/h
+}  // namespace
+
+TEST(Ramp, PaperStepIsContinuousWithContinuousSlopeAndReachesOne) {
+  const double t0 = 0.002, t1 = 0.012, mid = 0.007, h = 1e-9;
+  for (RampShape shape : {RampShape::Paper, RampShape::Cubic}) {
+    EXPECT_EQ(ramp(shape, t0 - 1e-3, t0, t1), 0.0);
+    EXPECT_EQ(ramp(shape, t1 + 1e-3, t0, t1), 1.0);
+    EXPECT_NEAR(ramp(shape, mid, t0, t1), 0.5, kRoundoff);
+    EXPECT_NEAR(ramp(shape, mid - h, t0, t1), ramp(shape, mid + h, t0, t1), 1e-6);
+    EXPECT_NEAR(ramp_rate(shape, mid - h, t0, t1), ramp_rate(shape, mid + h, t0, t1), 1e-3);
+  }
+  // The printed formula's second half, 1 − ½((t − t1)/(t2 − t1))², would jump from ½ to 1 at the midpoint: ours does not.
+  EXPECT_NEAR(ramp(RampShape::Paper, mid + 1e-7, t0, t1), 0.5, 1e-4);
+}
+
+TEST(Ramp, RateAndIntegralAreTheDerivativeAndTheIntegralOfTheValue) {
+  const double t0 = 0.0, t1 = 0.01;
+  for (RampShape shape : {RampShape::Paper, RampShape::Cubic}) {
+    double integral = 0.0;
+    const int n = 20000;
+    for (int i = 0; i < n; ++i) {
+      const double t = (i + 0.5) * 0.015 / n;
+      integral += ramp(shape, t, t0, t1) * 0.015 / n;
+      const double h = 1e-6 * (t1 - t0);
+      if (std::abs(t - 0.005) > 2 * h)  // skip the paper ramp's kink in the second derivative
+        EXPECT_NEAR(ramp_rate(shape, t, t0, t1),
+                    (ramp(shape, t + h, t0, t1) - ramp(shape, t - h, t0, t1)) / (2 * h), kFiniteDifference / (t1 - t0) * 10);
+    }
+    EXPECT_NEAR(ramp_integral(shape, 0.015, t0, t1), integral, 1e-9);  // midpoint rule, n = 20000
+    EXPECT_NEAR(ramp_integral(shape, 0.015, t0, t1), 0.5 * (t1 - t0) + 0.005, kRoundoff);
+  }
+}
+
+TEST(Kinematics, EveryConfigurationSatisfiesTheMeshRelationAndTheTextbookRatios) {
+  const double n = 1000.0, w = n * 2 * kPi / 60;
+  for (auto cfg : {DynamicsConfiguration::CsFixed, DynamicsConfiguration::FsFixed, DynamicsConfiguration::WgFixed,
+                   DynamicsConfiguration::AllFree}) {
+    const auto m = test::seed_model(cfg);
+    const SteadyState s = steady_state(m);
+    const double ww = s.speed_rad_s[0], wf = s.speed_rad_s[2], wc = s.speed_rad_s[3];
+    EXPECT_NEAR(190 * (wf - ww), 192 * (wc - ww), kRoundoff * w) << to_string(cfg);
+    EXPECT_NEAR(s.mesh_frequency_Hz, 190 * std::abs(wf - ww) / (2 * kPi), kRoundoff * 1e4);
+  }
+  // cs_fixed: reduction z_f/(z_c − z_f) = 95, reversed; f_m = z_c·n/60.
+  auto s = steady_state(test::seed_model(DynamicsConfiguration::CsFixed));
+  EXPECT_NEAR(s.speed_rad_s[2], -w / 95.0, kRoundoff);
+  EXPECT_NEAR(s.mesh_frequency_Hz, 192 * n / 60, 1e-9);
+  EXPECT_GT(s.load_torque_Nm, 0.0);  // resists the backward-turning flexspline
+  EXPECT_NEAR(s.mesh_torque_Nm, 100.0, kRoundoff);
+  // fs_fixed: reduction z_c/(z_c − z_f) = 96, same sense; f_m = z_f·n/60; the CS output sees M·z_c/z_f.
+  s = steady_state(test::seed_model(DynamicsConfiguration::FsFixed));
+  EXPECT_NEAR(s.speed_rad_s[3], w / 96.0, kRoundoff);
+  EXPECT_NEAR(s.mesh_frequency_Hz, 190 * n / 60, 1e-9);
+  EXPECT_NEAR(s.mesh_torque_Nm * 192.0 / 190.0, 100.0, kRoundoff * 100);
+  // wg_fixed: internal gear pair, ω_c = ω_f·z_f/z_c.
+  s = steady_state(test::seed_model(DynamicsConfiguration::WgFixed));
+  EXPECT_NEAR(s.speed_rad_s[3], w * 190.0 / 192.0, kRoundoff * w);
+  // all_free: the brake creeps at ω_c = (z_c/z_f)·T/b.
+  s = steady_state(test::seed_model(DynamicsConfiguration::AllFree));
+  EXPECT_NEAR(s.speed_rad_s[3], 192.0 / 190.0 * 100.0 / 1000.0, kRoundoff);
+  EXPECT_LT(s.speed_rad_s[2], 0.0);
+}
+
+TEST(Kinematics, AllFreeRejectsABrakeTooWeakForTheLoadToResist) {
+  auto m = test::seed_model(DynamicsConfiguration::AllFree);
+  m.params.circular_spline_drag_Nms_per_rad = 10.0;  // bound is (192/190)²·100/(104.7·2/190) ≈ 92.6
+  try {
+    steady_state(m);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("circular_spline_drag_Nms_per_rad = 10"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Contact, FollowsThePaperLawAndNeverPulls) {
+  DynamicsParams p;
+  p.damping_Ns_per_m = 1e3;
+  EXPECT_EQ(flank_force(p, 8e7, -1e-6, 1.0).force_N, 0.0);
+  EXPECT_NEAR(flank_force(p, 8e7, 2e-6, 0.01).force_N, 8e7 * 2e-6 + 1e3 * 0.01, kRoundoff);
+  EXPECT_EQ(flank_force(p, 8e7, 2e-6, -1.0).force_N, 0.0);  // damping would pull: clamped
+  p.exponent_stiffness = 1.5;
+  p.exponent_damping = 1.0;
+  p.exponent_indentation = 2.0;
+  const double d = 3e-6, r = -0.02;
+  EXPECT_NEAR(flank_force(p, 1e10, d, r).force_N, 1e10 * std::pow(d, 1.5) + 1e3 * r * std::abs(r) * d * d, 1e-12);
+}
+
+TEST(LoadSharing, MatchesClosedFormsForOneAndTwoPairs) {
+  DynamicsParams p;  // k = 8e7, m1 = 1
+  std::vector<ToothPair> one{{0.0, 0.0, 0.0, 0.02, 0.9}};
+  auto r = quasi_static_load_sharing(one, p, 36.0);
+  EXPECT_NEAR(r.force_N[0], 36.0 / 0.018, 1e-9);
+  // Two pairs, clearances 0 and j: the second takes load once a·e > j. k·a·(a e) + k·a·(a e − j) = M.
+  const double a = 0.018, j = 5e-6, M = 100.0, k = 8e7;
+  std::vector<ToothPair> two{{0.0, 0.0, 0.0, 0.02, 0.9}, {0.1, j, j, 0.02, 0.9}};
+  r = quasi_static_load_sharing(two, p, M);
+  const double e = (M / (k * a) + j) / (2 * a);
+  EXPECT_NEAR(r.force_N[0], k * a * e, 1e-9);
+  EXPECT_NEAR(r.force_N[1], k * (a * e - j), 1e-9);
+  // Reversed torque loads the coast flanks.
+  r = quasi_static_load_sharing(two, p, -M);
+  EXPECT_NEAR(r.force_N[0], -k * a * -r.deflection_rad, 1e-9);
+  EXPECT_LT(r.force_N[1], 0.0);
+}
+
+TEST(LoadSharing, NonlinearLawBalancesTheTorque) {
+  auto m = test::seed_model();
+  m.params.exponent_stiffness = 1.5;
+  m.params.stiffness_N_per_m = 8e7 / std::sqrt(5e-6);  // same force as the linear law at δ = 5 µm
+  const auto r = quasi_static_load_sharing(m.pairs, m.params, 100.0);
+  double torque = 0.0;
+  for (std::size_t i = 0; i < m.pairs.size(); ++i) torque += r.force_N[i] * m.pairs[i].arm_m();
+  EXPECT_NEAR(torque, 100.0, 1e-9);
+}
+
+TEST(Inertia, TubeWallMatchesTheThickRingFormula) {
+  GearParams g;
+  FlexsplineParams fs;
+  fs.length_m = 0.03;
+  fs.rim_width_m = 0.0;  // no rim, no teeth: only the wall remains
+  Material mat;
+  const auto J = body_inertias(g, fs, false, mat, DynamicsParams{});
+  const double r1 = fs.inner_radius_m, r2 = r1 + fs.wall_thickness_m;
+  const double exact = mat.density_kg_m3 * kPi * 0.03 * (std::pow(r2, 4) - std::pow(r1, 4)) / 2;
+  EXPECT_NEAR(J[BodyId::FlexsplineRim] + J[BodyId::FlexsplineFlange], exact, 1e-12 * exact);
+  EXPECT_NEAR(J[BodyId::FlexsplineRim], J[BodyId::FlexsplineFlange], 1e-12 * exact);
+}
+
+TEST(Inertia, SeedGearInertiasArePositiveAndOfTheExpectedSize) {
+  const auto m = test::seed_model();
+  // A steel cup of r ≈ 19 mm and a few tens of grams: J ≈ m·r² ≈ 1e-5 kg·m²; all bodies within a decade of it.
+  for (double J : m.inertia.kgm2) {
+    EXPECT_GT(J, 1e-7);
+    EXPECT_LT(J, 1e-3);
+  }
+}
+
+TEST(StandInClearances, SmallGearHasThreePairsPerZoneAndNoClearanceOnTheMajorAxis) {
+  const auto m = test::small_model();
+  ASSERT_EQ(m.pairs.size(), 6u);  // teeth every 13.85°: 0, ±13.85° within ±20°, at both ends
+  int on_axis = 0;
+  for (const auto& p : m.pairs) {
+    if (std::abs(std::sin(p.angle_rad)) < 1e-12) {
+      ++on_axis;
+      EXPECT_NEAR(p.clearance_drive_m, 0.0, 1e-15);
+      EXPECT_NEAR(p.lever_arm_m, 14e-3, 1e-15);  // deformed pitch radius m·z_f/2 + w0 = m·z_c/2
+    } else {
+      EXPECT_GT(p.clearance_drive_m, 30e-6);
+    }
+  }
+  EXPECT_EQ(on_axis, 2);
+}

@@ -1,4 +1,8 @@
-#include <chrono>
+// Validation of the integrated dynamics against issue 6: steady speeds vs kinematics, mean pair forces vs quasi-static
+// load sharing, torque and energy balances, the spectral line of a varying mesh stiffness, and the damping sweep.
+// The thresholds are the issue's acceptance limits; the measured values (printed) are orders of magnitude below them,
+// limited by the integrator's tolerances (relative 1e-8, 1e-13 rad on the deviation from kinematic motion).
+#include <cmath>
 #include <cstdio>
 
 #include <gtest/gtest.h>
@@ -8,38 +12,126 @@
 
 using namespace sw;
 
-TEST(DynamicsProbe, PrintsNumbers) {
-  for (auto cfg : {DynamicsConfiguration::CsFixed, DynamicsConfiguration::FsFixed, DynamicsConfiguration::WgFixed,
-                   DynamicsConfiguration::AllFree}) {
-    auto m = test::seed_model(cfg);
-    const auto t0 = std::chrono::steady_clock::now();
-    auto s = simulate(m);
-    const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    auto r = summarize(m, s);
-    std::printf("%s: %.2f s, steps %ld rhs %ld jac %ld etf %ld; pairs %zu\n", to_string(cfg), el, s.stats.steps,
-                s.stats.rhs_evals, s.stats.jac_evals, s.stats.error_test_fails, m.pairs.size());
-    for (auto& c : r.speeds) std::printf("  %s sim %.8g th %.8g err %.3g\n", c.body.c_str(), c.simulated_rpm, c.theory_rpm, c.error_rel);
-    std::printf("  max pair err %.3g torque err %.3g energy %.3g (in %.4g out %.4g diss %.4g ke %.4g pe %.4g) fluct %.4g mean %.4g fm %.1f\n",
-                r.max_pair_force_error_rel, r.torque_balance_error_rel, r.energy_error_rel, s.energy.input_J,
-                s.energy.output_J, s.energy.dissipated_J, s.energy.kinetic_J, s.energy.potential_J, r.force_fluctuation_N,
-                r.mean_total_force_N, r.theory.mesh_frequency_Hz);
-    for (int i = 0; i < 3 && i < int(r.lines.size()); ++i) std::printf("  line %.1f Hz %.4g N\n", r.lines[i].frequency_Hz, r.lines[i].amplitude_N);
+namespace {
+constexpr double kSpeedTolerance = 1e-4;        // issue: 0.01 % (the paper reached 0.04 %)
+constexpr double kPairForceTolerance = 1e-2;    // issue: 1 % (the paper: 1.04 %)
+constexpr double kTorqueBalanceTolerance = 1e-3;// issue: 0.1 %
+constexpr double kEnergyTolerance = 5e-3;       // issue: 0.5 % of the input work
+constexpr double kStiffnessVariation = 0.2;     // Δk/k0 for the spectral and damping tests
+
+DynamicsSummary run(const DynamicsModel& m, DynamicsSeries* keep = nullptr) {
+  DynamicsSeries s = simulate(m);
+  DynamicsSummary r = summarize(m, s);
+  if (keep) *keep = std::move(s);
+  return r;
+}
+
+const char* name(DynamicsConfiguration c) { return to_string(c); }
+}  // namespace
+
+class EveryConfiguration : public ::testing::TestWithParam<DynamicsConfiguration> {};
+
+TEST_P(EveryConfiguration, SteadySpeedsMatchTheKinematicRelations) {
+  for (bool compliant : {false, true}) {
+    auto m = test::seed_model(GetParam());
+    if (compliant) {
+      m.params.flexspline_compliance_rad_per_Nm = 2e-5;  // a 190/192 cup's order of magnitude (SPEC φ₀ example)
+      m.params.flexspline_torsion_damping_Nms_per_rad = 0.5;
+    }
+    const auto r = run(m);
+    for (const auto& c : r.speeds) {
+      std::printf("  %s%s %-16s simulated %14.8f rpm  theory %14.8f rpm  error %.2e\n", name(GetParam()),
+                  compliant ? "+C" : "  ", c.body.c_str(), c.simulated_rpm, c.theory_rpm, c.error_rel);
+      if (c.theory_rpm != 0.0) EXPECT_LT(c.error_rel, kSpeedTolerance) << c.body;
+      else EXPECT_LT(std::abs(c.simulated_rpm), 1e-9) << c.body;
+    }
   }
 }
 
-TEST(DynamicsProbe, Varying) {
-  for (int which = 0; which < 2; ++which)
-  for (double c : {1e2, 3e2, 1e3, 3e3, 1e4}) {
-    auto m = which ? test::small_model() : test::seed_model();
-    m.params.stiffness_variation_N_per_m = 0.2 * m.params.stiffness_N_per_m;
+TEST_P(EveryConfiguration, MeanPairForcesMatchQuasiStaticSharingAndBalanceTheLoad) {
+  const auto r = run(test::seed_model(GetParam()));
+  int loaded = 0;
+  for (const auto& c : r.pair_forces)
+    if (std::abs(c.quasi_static_N) > 0) ++loaded;
+  std::printf("  %s: %d of %zu pairs loaded, max pair error %.2e, torque balance %.2e, energy %.2e\n", name(GetParam()),
+              loaded, r.pair_forces.size(), r.max_pair_force_error_rel, r.torque_balance_error_rel, r.energy_error_rel);
+  EXPECT_GE(loaded, 4);  // load sharing is exercised, not a single pair
+  EXPECT_LT(r.max_pair_force_error_rel, kPairForceTolerance);
+  EXPECT_LT(r.torque_balance_error_rel, kTorqueBalanceTolerance);
+  EXPECT_LT(r.energy_error_rel, kEnergyTolerance);
+}
+
+INSTANTIATE_TEST_SUITE_P(Dynamics, EveryConfiguration,
+                         ::testing::Values(DynamicsConfiguration::CsFixed, DynamicsConfiguration::FsFixed,
+                                           DynamicsConfiguration::WgFixed, DynamicsConfiguration::AllFree),
+                         [](const auto& info) { return std::string(to_string(info.param)); });
+
+TEST(DynamicsForces, SmallGearWithNonlinearContactSharesTheLoadAsStaticsSays) {
+  auto m = test::small_model();
+  m.params.exponent_stiffness = 1.5;
+  m.params.stiffness_N_per_m = 8e7 / std::sqrt(50e-6);  // the linear law's force at δ = 50 µm
+  m.params.exponent_indentation = 1.0;                     // damping fades in with penetration
+  const auto r = run(m);
+  for (const auto& c : r.pair_forces)
+    std::printf("  pair %d at %7.2f deg: mean %10.3f N, quasi-static %10.3f N, error %.2e\n", c.pair, c.angle_deg,
+                c.mean_N, c.quasi_static_N, c.error_rel);
+  EXPECT_LT(r.max_pair_force_error_rel, kPairForceTolerance);
+  EXPECT_LT(r.torque_balance_error_rel, kTorqueBalanceTolerance);
+  EXPECT_LT(r.energy_error_rel, kEnergyTolerance);
+}
+
+TEST(DynamicsEnergy, BalancesWithVaryingStiffnessAndACompliantFlexspline) {
+  auto m = test::seed_model(DynamicsConfiguration::CsFixed);
+  m.params.stiffness_variation_N_per_m = kStiffnessVariation * m.params.stiffness_N_per_m;
+  m.params.flexspline_compliance_rad_per_Nm = 2e-5;
+  m.params.flexspline_torsion_damping_Nms_per_rad = 0.5;
+  DynamicsSeries s;
+  const auto r = run(m, &s);
+  const auto& e = s.energy;
+  std::printf("  input %.6f J + parametric %.6f J = output %.6f + dissipated %.6f + kinetic %.6f + potential %.6f;"
+              " error %.2e\n", e.input_J, e.parametric_J, e.output_J, e.dissipated_J, e.kinetic_J, e.potential_J,
+              r.energy_error_rel);
+  EXPECT_GT(e.dissipated_J, 0.0);
+  EXPECT_NE(e.parametric_J, 0.0);
+  EXPECT_LT(r.energy_error_rel, kEnergyTolerance);
+}
+
+TEST(DynamicsSpectrum, VaryingStiffnessPutsTheStrongestLineAtTheMeshFrequencyConstantDoesNot) {
+  for (bool small : {false, true}) {
+    auto m = small ? test::small_model() : test::seed_model();
+    const auto constant = run(m);
+    m.params.stiffness_variation_N_per_m = kStiffnessVariation * m.params.stiffness_N_per_m;
+    const auto varying = run(m);
+    const double fm = varying.theory.mesh_frequency_Hz, bin = varying.spectrum.resolution_Hz;
+    ASSERT_FALSE(varying.lines.empty());
+    std::printf("  %s: f_m = %.1f Hz; varying k: strongest %.1f Hz (%.3g N), next %.1f Hz; constant k: strongest %s"
+                " %.1f Hz (%.3g N)\n", small ? "26/28" : "190/192", fm, varying.lines[0].frequency_Hz,
+                varying.lines[0].amplitude_N, varying.lines.size() > 1 ? varying.lines[1].frequency_Hz : 0.0,
+                constant.lines.empty() ? "none" : "", constant.lines.empty() ? 0.0 : constant.lines[0].frequency_Hz,
+                constant.lines.empty() ? 0.0 : constant.lines[0].amplitude_N);
+    EXPECT_NEAR(varying.lines[0].frequency_Hz, fm, bin);
+    // Harmonics: the second line sits at 2·f_m (the contact law is nonlinear in k·δ with δ ∝ 1/k).
+    ASSERT_GE(varying.lines.size(), 2u);
+    EXPECT_NEAR(varying.lines[1].frequency_Hz, 2 * fm, bin);
+    // Constant k: no line at f_m, and whatever is strongest is below 1e-3 of the varying run's line (numerical noise
+    // and the decay of the start-up transient).
+    for (const auto& l : constant.lines) {
+      EXPECT_LT(l.amplitude_N, 1e-3 * varying.lines[0].amplitude_N) << l.frequency_Hz;
+    }
+    if (!constant.lines.empty()) EXPECT_GT(std::abs(constant.lines[0].frequency_Hz - fm), bin);
+  }
+}
+
+TEST(DynamicsDamping, SweepFrom1e2To1e4ReducesTheForceFluctuationMonotonically) {
+  std::printf("  c [N s/m]   fluctuation of the total meshing force [N rms]   line at f_m [N]\n");
+  double previous = INFINITY;
+  for (double c : {1e2, 2e2, 5e2, 1e3, 2e3, 5e3, 1e4}) {
+    auto m = test::seed_model();
+    m.params.stiffness_variation_N_per_m = kStiffnessVariation * m.params.stiffness_N_per_m;
     m.params.damping_Ns_per_m = c;
-    const auto t0 = std::chrono::steady_clock::now();
-    auto s = simulate(m);
-    const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    auto r = summarize(m, s);
-    std::printf("%d c %.0f: %.2f s steps %ld; fluct %.5g mean %.5g, pair err %.3g, energy %.3g par %.4g fm %.1f speederr %.3g\n", which, c, el,
-                s.stats.steps, r.force_fluctuation_N, r.mean_total_force_N, r.max_pair_force_error_rel, r.energy_error_rel,
-                s.energy.parametric_J, r.theory.mesh_frequency_Hz, r.max_speed_error_rel);
-    for (int i = 0; i < 4 && i < int(r.lines.size()); ++i) std::printf("  line %.1f Hz %.4g N\n", r.lines[i].frequency_Hz, r.lines[i].amplitude_N);
+    const auto r = run(m);
+    std::printf("  %9.0f   %14.6f   %14.6f\n", c, r.force_fluctuation_N, r.lines.empty() ? 0.0 : r.lines[0].amplitude_N);
+    EXPECT_LT(r.force_fluctuation_N, previous) << "c = " << c;
+    previous = r.force_fluctuation_N;
   }
 }

@@ -1,0 +1,404 @@
+#include "reconcile/catalog.hpp"
+
+#include <cmath>
+
+#include "reconcile/fit.hpp"
+
+namespace sw::reconcile {
+
+Eigen::VectorXd soft_start_column(const Eigen::VectorXd& torque_Nm, double t1_Nm) {
+  return torque_Nm.cwiseMax(-t1_Nm).cwiseMin(t1_Nm);
+}
+
+Eigen::VectorXd hysteresis_column(const Experiment& e, double transition_Nm) {
+  Eigen::VectorXd c(e.n);
+  for (int i = 0; i < e.n; ++i)
+    c[i] = -e.direction[i] * (0.5 - std::exp(-e.since_reversal_Nm[i] / transition_Nm));
+  return c;
+}
+
+double hysteresis_loss_rad(double h_rad, double transition_Nm, double amplitude_Nm) {
+  return h_rad * (1.0 - 2.0 * std::exp(-amplitude_Nm / transition_Nm));
+}
+
+Eigen::VectorXd lost_motion_column(const Eigen::VectorXd& torque_Nm, double transition_Nm) {
+  return 0.5 * (torque_Nm / transition_Nm).array().tanh();
+}
+
+namespace {
+
+using Vec = Eigen::VectorXd;
+using Mat = Eigen::MatrixXd;
+
+Mat col(const Vec& v) { return v; }
+Mat none(const Experiment& e) { return Mat(e.n, 0); }
+std::pair<Vec, Vec> no_bounds(const Experiment&) { return {Vec(0), Vec(0)}; }
+std::pair<Vec, Vec> bounds1(double lo, double hi) { return {Vec::Constant(1, lo), Vec::Constant(1, hi)}; }
+
+Mat harmonic(const Vec& angle, int order) {
+  Mat m(angle.size(), 2);
+  m.col(0) = (order * angle.array()).cos();
+  m.col(1) = (order * angle.array()).sin();
+  return m;
+}
+
+NamedValues harmonic_headline(const FitResult& f, int term, const std::string& unit) {
+  const Vec& b = f.terms[term].beta;
+  return {{"order", double(f.terms[term].spec->order)},
+          {"amplitude_" + unit, std::hypot(b[0], b[1])},
+          {"phase_rad", std::atan2(-b[1], b[0])}};
+}
+
+double added_series_compliance(const FitResult& f) {
+  const int s = f.find("series_compliance");
+  return s >= 0 ? f.terms[s].beta[0] : 0.0;
+}
+
+/// Normalised time in [-1, 1] and Legendre polynomials of it (drift basis).
+Mat legendre(const Experiment& e, int from, int to) {
+  const double t0 = e.time.minCoeff(), t1 = e.time.maxCoeff();
+  const Vec x = ((e.time.array() - t0) / std::max(t1 - t0, 1e-300) * 2.0 - 1.0).matrix();
+  Mat m(e.n, to - from + 1);
+  for (int p = from; p <= to; ++p) {
+    Vec v;
+    switch (p) {
+      case 1: v = x; break;
+      case 2: v = (1.5 * x.array().square() - 0.5).matrix(); break;
+      case 3: v = (2.5 * x.array().cube() - 1.5 * x.array()).matrix(); break;
+      default: v = (4.375 * x.array().pow(4) - 3.75 * x.array().square() + 0.375).matrix(); break;
+    }
+    m.col(p - from) = v;
+  }
+  return m;
+}
+
+std::vector<EffectSpec> torsion_effects() {
+  std::vector<EffectSpec> v;
+  {
+    EffectSpec s;
+    s.name = "series_compliance";
+    s.physics = "compliance in series with the flexspline body (tooth bending and contact, wave-generator bearing): "
+                "the whole drive twists more per newton-metre than the flexspline alone";
+    s.bounds = no_bounds;
+    s.columns = [](const Experiment& e, const Vec&) { return col(e.torque_Nm); };
+    s.headline = [](const Experiment&, const FitResult& f, int t) {
+      return NamedValues{{"compliance_rad_per_Nm", f.terms[t].beta[0]}};
+    };
+    v.push_back(s);
+  }
+  {
+    EffectSpec s;
+    s.name = "stiffness_nonlinearity";
+    s.physics = "soft start of the torque-twist curve (progressive tooth engagement): below T1 the drive is softer "
+                "(catalog segment law, slope 1/K1 up to T1, then 1/K2)";
+    s.nonlinear_names = {"T1_Nm"};
+    s.bounds = [](const Experiment& e) {
+      return bounds1(0.08 * e.torque_amplitude_Nm, 0.8 * e.torque_amplitude_Nm);
+    };
+    s.columns = [](const Experiment& e, const Vec& th) { return col(soft_start_column(e.torque_Nm, th[0])); };
+    s.headline = [](const Experiment& e, const FitResult& f, int t) {
+      const double c2 = e.model.compliance_rad_per_Nm + added_series_compliance(f);
+      const double c1 = c2 + f.terms[t].beta[0];
+      return NamedValues{{"K1_Nm_per_rad", 1.0 / c1}, {"T1_Nm", f.terms[t].theta[0]}, {"K2_Nm_per_rad", 1.0 / c2}};
+    };
+    v.push_back(s);
+  }
+  {
+    EffectSpec s;
+    s.name = "hysteresis";
+    s.physics = "friction in the tooth contacts: the loading branch lies below the unloading branch and the drive "
+                "needs some torque after each reversal before it moves the other way";
+    s.nonlinear_names = {"transition_Nm"};
+    s.bounds = [](const Experiment& e) {
+      return bounds1(0.005 * e.torque_amplitude_Nm, 0.25 * e.torque_amplitude_Nm);
+    };
+    s.columns = [](const Experiment& e, const Vec& th) { return col(hysteresis_column(e, th[0])); };
+    s.headline = [](const Experiment& e, const FitResult& f, int t) {
+      return NamedValues{
+          {"loss_rad", hysteresis_loss_rad(f.terms[t].beta[0], f.terms[t].theta[0], e.torque_amplitude_Nm)},
+          {"transition_Nm", f.terms[t].theta[0]}};
+    };
+    v.push_back(s);
+  }
+  {
+    EffectSpec s;
+    s.name = "lost_motion";
+    s.physics = "play between the teeth (or in the output coupling): the twist jumps while the torque crosses zero";
+    s.nonlinear_names = {"transition_Nm"};
+    s.bounds = [](const Experiment& e) {
+      return bounds1(0.001 * e.torque_amplitude_Nm, 0.05 * e.torque_amplitude_Nm);
+    };
+    s.columns = [](const Experiment& e, const Vec& th) { return col(lost_motion_column(e.torque_Nm, th[0])); };
+    s.headline = [](const Experiment&, const FitResult& f, int t) {
+      return NamedValues{{"width_rad", f.terms[t].beta[0]}, {"transition_Nm", f.terms[t].theta[0]}};
+    };
+    v.push_back(s);
+  }
+  for (auto& s : v) s.kind = Kind::Torsion;
+  return v;
+}
+
+std::vector<EffectSpec> transmission_effects() {
+  std::vector<EffectSpec> v;
+  for (int k = 1; k <= kMaxHarmonicOrder; ++k) {
+    EffectSpec s;
+    s.name = "wg_harmonic";
+    s.order = k;
+    s.physics = k == 1 ? "kinematic error locked to the wave generator, once per revolution: eccentricity"
+                       : "kinematic error locked to the wave generator, order " + std::to_string(k) +
+                             (k == 2 ? ": ovality of the generator or the circular spline" : "");
+    s.n_linear = 2;
+    s.multiplicity = kMaxHarmonicOrder;
+    s.bounds = no_bounds;
+    s.columns = [k](const Experiment& e, const Vec&) { return harmonic(e.wg_angle_rad, k); };
+    s.headline = [](const Experiment&, const FitResult& f, int t) { return harmonic_headline(f, t, "rad"); };
+    v.push_back(s);
+  }
+  for (int k = 1; k <= kMaxHarmonicOrder; ++k) {
+    EffectSpec s;
+    s.name = "output_harmonic";
+    s.order = k;
+    s.physics = "error locked to the flexspline/output, order " + std::to_string(k) +
+                " per output revolution (runout, accumulated pitch error)";
+    s.n_linear = 2;
+    s.multiplicity = kMaxHarmonicOrder;
+    s.bounds = no_bounds;
+    s.columns = [k](const Experiment& e, const Vec&) { return harmonic(e.output_angle_rad, k); };
+    s.headline = [](const Experiment&, const FitResult& f, int t) { return harmonic_headline(f, t, "rad"); };
+    v.push_back(s);
+  }
+  for (auto& s : v) s.kind = Kind::Transmission;
+  return v;
+}
+
+std::vector<EffectSpec> backlash_effects() {
+  std::vector<EffectSpec> v;
+  {
+    EffectSpec s;
+    s.name = "load_torsion";
+    s.physics = "the flexspline's torsional rotation under load (phi0 = C_tau * T) closes the clearance on the "
+                "loaded flanks; the basic kinematic model assumes phi0 = 0";
+    s.bounds = no_bounds;
+    s.columns = [](const Experiment& e, const Vec&) {
+      return col(-e.model.pitch_radius_m * 1e6 * e.torque_Nm);  // um per (rad/Nm)
+    };
+    s.headline = [](const Experiment&, const FitResult& f, int t) {
+      return NamedValues{{"compliance_rad_per_Nm", f.terms[t].beta[0]}};
+    };
+    v.push_back(s);
+  }
+  for (int k = 1; k <= kMaxHarmonicOrder; ++k) {
+    EffectSpec s;
+    s.name = "wg_harmonic";
+    s.order = k;
+    s.physics = "clearance modulated with the wave-generator angle, order " + std::to_string(k) +
+                (k == 1 ? " (eccentric assembly)" : k == 2 ? " (ovality of generator or circular spline)" : "");
+    s.n_linear = 2;
+    s.multiplicity = kMaxHarmonicOrder;
+    s.bounds = no_bounds;
+    s.columns = [k](const Experiment& e, const Vec&) { return harmonic(e.wg_angle_rad, k); };
+    s.headline = [](const Experiment&, const FitResult& f, int t) { return harmonic_headline(f, t, "um"); };
+    v.push_back(s);
+  }
+  {
+    EffectSpec s;
+    s.name = "uniform_clearance";
+    s.physics = "a clearance change everywhere (tooth thickness, centre distance, thermal growth)";
+    s.bounds = no_bounds;
+    s.columns = [](const Experiment& e, const Vec&) { return col(Vec::Ones(e.n)); };
+    s.headline = [](const Experiment&, const FitResult& f, int t) {
+      return NamedValues{{"offset_um", f.terms[t].beta[0]}};
+    };
+    v.push_back(s);
+  }
+  for (auto& s : v) s.kind = Kind::Backlash;
+  return v;
+}
+
+std::vector<SignatureSpec> torsion_signatures() {
+  std::vector<SignatureSpec> v;
+  auto torque = [](const Experiment& e) { return e.torque_Nm; };
+  auto linear = [](const Experiment& e) { return col(e.torque_Nm); };
+  {
+    SignatureSpec s;
+    s.name = "torque_linear";
+    s.domain = "torque";
+    s.what = "residual proportional to torque (the drive is softer or stiffer than C_tau)";
+    s.basis = linear;
+    s.condition = none;
+    s.triggers = {"series_compliance", "stiffness_nonlinearity"};
+    s.where = torque;
+    s.where_unit = "N*m";
+    v.push_back(s);
+  }
+  {
+    SignatureSpec s;
+    s.name = "torque_shape";
+    s.domain = "torque";
+    s.what = "residual bends with torque beyond a straight line (soft start or play)";
+    s.basis = [](const Experiment& e) {
+      Mat m(e.n, 3);
+      const double a = e.torque_amplitude_Nm;
+      m.col(0) = soft_start_column(e.torque_Nm, 0.15 * a);
+      m.col(1) = soft_start_column(e.torque_Nm, 0.3 * a);
+      m.col(2) = soft_start_column(e.torque_Nm, 0.5 * a);
+      return m;
+    };
+    s.condition = linear;
+    s.triggers = {"stiffness_nonlinearity", "lost_motion"};
+    s.where = torque;
+    s.where_unit = "N*m";
+    v.push_back(s);
+  }
+  {
+    SignatureSpec s;
+    s.name = "loading_unloading";
+    s.domain = "torque branch";
+    s.what = "loading and unloading branches apart at equal torque";
+    s.basis = [](const Experiment& e) {
+      Mat m(e.n, 2);
+      m.col(0) = e.direction;
+      m.col(1) = hysteresis_column(e, 0.1 * e.torque_amplitude_Nm);
+      return m;
+    };
+    s.condition = none;
+    s.triggers = {"hysteresis"};
+    s.where = torque;
+    s.where_unit = "N*m";
+    v.push_back(s);
+  }
+  {
+    SignatureSpec s;
+    s.name = "zero_crossing";
+    s.domain = "torque zero crossing";
+    s.what = "twist jumps while the torque crosses zero";
+    s.basis = [](const Experiment& e) { return col(lost_motion_column(e.torque_Nm, 0.01 * e.torque_amplitude_Nm)); };
+    s.condition = linear;
+    s.triggers = {"lost_motion", "stiffness_nonlinearity"};
+    s.where = torque;
+    s.where_unit = "N*m";
+    v.push_back(s);
+  }
+  {
+    SignatureSpec s;
+    s.name = "time_drift";
+    s.domain = "time";
+    s.what = "slow drift of the residual in time (temperature, creep, sensor drift): no catalog effect";
+    s.basis = [](const Experiment& e) { return legendre(e, 1, 2); };
+    s.condition = none;
+    s.where = [](const Experiment& e) { return e.time; };
+    s.where_unit = "s";
+    v.push_back(s);
+  }
+  return v;
+}
+
+std::vector<SignatureSpec> angle_order_signatures(const std::string& prefix, const std::string& domain,
+                                                  const std::string& effect, bool output) {
+  std::vector<SignatureSpec> v;
+  for (int k = 1; k <= kMaxHarmonicOrder; ++k) {
+    SignatureSpec s;
+    s.name = prefix + "_order_" + std::to_string(k);
+    s.domain = domain;
+    s.what = "order " + std::to_string(k) + " line in the residual's " + domain + " spectrum";
+    s.basis = [k, output](const Experiment& e) { return harmonic(output ? e.output_angle_rad : e.wg_angle_rad, k); };
+    s.condition = none;
+    s.triggers = {effect + "#" + std::to_string(k)};
+    s.where = [output](const Experiment& e) {
+      return Vec(((output ? e.output_angle_rad : e.wg_angle_rad) * (180.0 / M_PI)).array());
+    };
+    s.where_unit = "deg";
+    s.periodic = true;
+    v.push_back(s);
+  }
+  return v;
+}
+
+std::vector<SignatureSpec> transmission_signatures() {
+  auto v = angle_order_signatures("wg", "wave-generator angle", "wg_harmonic", false);
+  auto o = angle_order_signatures("output", "output angle", "output_harmonic", true);
+  v.insert(v.end(), o.begin(), o.end());
+  SignatureSpec s;
+  s.name = "time_drift";
+  s.domain = "time";
+  s.what = "slow drift of the transmission error in time beyond a constant ratio error: no catalog effect";
+  s.basis = [](const Experiment& e) { return legendre(e, 2, 3); };
+  s.condition = none;
+  s.where = [](const Experiment& e) { return e.time; };
+  s.where_unit = "s";
+  v.push_back(s);
+  return v;
+}
+
+std::vector<SignatureSpec> backlash_signatures() {
+  auto v = angle_order_signatures("wg", "wave-generator angle", "wg_harmonic", false);
+  {
+    SignatureSpec s;
+    s.name = "torque_dependence";
+    s.domain = "torque";
+    s.what = "backlash changes with the applied torque";
+    s.basis = [](const Experiment& e) { return col(e.torque_Nm); };
+    s.condition = [](const Experiment& e) { return col(Vec::Ones(e.n)); };
+    s.triggers = {"load_torsion"};
+    s.where = [](const Experiment& e) { return e.torque_Nm; };
+    s.where_unit = "N*m";
+    v.push_back(s);
+  }
+  {
+    SignatureSpec s;
+    s.name = "mean_offset";
+    s.domain = "all positions";
+    s.what = "backlash offset from the basic model at every position";
+    s.basis = [](const Experiment& e) { return col(Vec::Ones(e.n)); };
+    s.condition = none;
+    s.triggers = {"uniform_clearance", "load_torsion"};
+    s.where = [](const Experiment& e) { return Vec(e.wg_angle_rad * (180.0 / M_PI)); };
+    s.where_unit = "deg";
+    s.periodic = true;
+    v.push_back(s);
+  }
+  return v;
+}
+
+}  // namespace
+
+const std::vector<EffectSpec>& effect_catalog(Kind kind) {
+  static const std::vector<EffectSpec> torsion = torsion_effects();
+  static const std::vector<EffectSpec> transmission = transmission_effects();
+  static const std::vector<EffectSpec> backlash = backlash_effects();
+  static const std::vector<EffectSpec> empty;
+  switch (kind) {
+    case Kind::Torsion: return torsion;
+    case Kind::Transmission: return transmission;
+    case Kind::Backlash: return backlash;
+    default: return empty;
+  }
+}
+
+const std::vector<SignatureSpec>& signature_catalog(Kind kind) {
+  static const std::vector<SignatureSpec> torsion = torsion_signatures();
+  static const std::vector<SignatureSpec> transmission = transmission_signatures();
+  static const std::vector<SignatureSpec> backlash = backlash_signatures();
+  static const std::vector<SignatureSpec> empty;
+  switch (kind) {
+    case Kind::Torsion: return torsion;
+    case Kind::Transmission: return transmission;
+    case Kind::Backlash: return backlash;
+    default: return empty;
+  }
+}
+
+Eigen::MatrixXd nuisance_columns(const Experiment& e) {
+  switch (e.kind) {
+    case Kind::Torsion: return Eigen::MatrixXd::Ones(e.n, 1);
+    case Kind::Transmission: {
+      Eigen::MatrixXd m(e.n, 2);
+      m.col(0).setOnes();
+      m.col(1) = e.wg_angle_rad;
+      return m;
+    }
+    default: return Eigen::MatrixXd(e.n, 0);
+  }
+}
+
+}  // namespace sw::reconcile

@@ -1,0 +1,125 @@
+#include "reconcile/experiment.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/error.hpp"
+
+namespace sw::reconcile {
+
+Branches find_branches(const Eigen::VectorXd& x, double threshold) {
+  const int n = static_cast<int>(x.size());
+  Branches b;
+  b.direction = Eigen::VectorXd::Zero(n);
+  b.branch_start.assign(n, 0);
+  if (n == 0) return b;
+  // Initial direction: the first move larger than the threshold.
+  int dir = 1;
+  for (int i = 1; i < n; ++i) {
+    if (std::abs(x[i] - x[0]) > threshold) {
+      dir = x[i] > x[0] ? 1 : -1;
+      break;
+    }
+  }
+  int extreme = 0;
+  std::vector<int> turning{0};
+  std::vector<int> dirs{dir};
+  for (int i = 1; i < n; ++i) {
+    if ((dir > 0 && x[i] > x[extreme]) || (dir < 0 && x[i] < x[extreme])) extreme = i;
+    if ((dir > 0 && x[extreme] - x[i] > threshold) || (dir < 0 && x[i] - x[extreme] > threshold)) {
+      turning.push_back(extreme);
+      dir = -dir;
+      dirs.push_back(dir);
+      extreme = i;
+    }
+  }
+  for (std::size_t s = 0; s < turning.size(); ++s) {
+    const int from = s == 0 ? 0 : turning[s] + 1;
+    const int to = s + 1 < turning.size() ? turning[s + 1] : n - 1;
+    for (int i = from; i <= to; ++i) {
+      b.direction[i] = dirs[s];
+      b.branch_start[i] = turning[s];
+    }
+  }
+  b.reversals.assign(turning.begin() + 1, turning.end());
+  return b;
+}
+
+namespace {
+Eigen::VectorXd to_vec(const std::vector<double>& v) { return Eigen::Map<const Eigen::VectorXd>(v.data(), v.size()); }
+}  // namespace
+
+Experiment make_experiment(const Recording& rec, const Baseline& base) {
+  Experiment e;
+  e.kind = rec.kind;
+  e.n = static_cast<int>(rec.rows());
+  e.model = base;
+  if (e.n < kMinSamples)
+    throw InputError(rec.path + ": rows = " + std::to_string(e.n) + "; reconcile needs at least " +
+                     std::to_string(kMinSamples) + " samples (noise model, held-out block, signature tests)");
+  if (const auto* t = rec.column("time_s")) {
+    e.time = to_vec(*t);
+    e.has_time = true;
+  } else {
+    e.time = Eigen::VectorXd::LinSpaced(e.n, 0.0, e.n - 1.0);
+  }
+  switch (rec.kind) {
+    case Kind::Torsion: {
+      if (!(base.compliance_rad_per_Nm > 0.0))
+        throw InputError(rec.path + ": compliance_rad_per_Nm = " + std::to_string(base.compliance_rad_per_Nm) +
+                         "; a torsion baseline needs C_tau > 0 (give --fem DIR/result.json or --compliance)");
+      e.torque_Nm = to_vec(*rec.column("torque_Nm"));
+      e.measured = to_vec(*rec.column("twist_rad"));
+      e.baseline = base.compliance_rad_per_Nm * e.torque_Nm;
+      e.response_name = "twist_rad";
+      e.response_unit = "rad";
+      const double range = e.torque_Nm.maxCoeff() - e.torque_Nm.minCoeff();
+      if (!(range > 0.0)) throw InputError(rec.path + ": torque_Nm is constant; a torsion test must vary the torque");
+      const Branches br = find_branches(e.torque_Nm, 0.02 * range);
+      e.direction = br.direction;
+      e.since_reversal_Nm.resize(e.n);
+      for (int i = 0; i < e.n; ++i) e.since_reversal_Nm[i] = std::abs(e.torque_Nm[i] - e.torque_Nm[br.branch_start[i]]);
+      std::vector<double> amps;
+      for (int r : br.reversals) amps.push_back(std::abs(e.torque_Nm[r]));
+      if (amps.empty()) {
+        e.torque_amplitude_Nm = e.torque_Nm.cwiseAbs().maxCoeff();
+      } else {
+        std::nth_element(amps.begin(), amps.begin() + amps.size() / 2, amps.end());
+        e.torque_amplitude_Nm = amps[amps.size() / 2];
+      }
+      break;
+    }
+    case Kind::Transmission: {
+      if (base.teeth_flexspline <= 0 || base.teeth_circular <= base.teeth_flexspline)
+        throw InputError(rec.path + ": teeth z_f = " + std::to_string(base.teeth_flexspline) + ", z_c = " +
+                         std::to_string(base.teeth_circular) +
+                         "; the transmission baseline needs 0 < z_f < z_c (case [gear] or metadata teeth_*)");
+      e.wg_angle_rad = to_vec(*rec.column("wg_angle_rad"));
+      e.measured = to_vec(*rec.column("output_angle_rad"));
+      const double ratio = double(base.teeth_circular - base.teeth_flexspline) / base.teeth_flexspline;
+      e.baseline = -ratio * e.wg_angle_rad;
+      e.output_angle_rad = e.baseline;
+      e.response_name = "output_angle_rad";
+      e.response_unit = "rad";
+      break;
+    }
+    case Kind::Backlash: {
+      if (!base.backlash_um)
+        throw InputError(rec.path + ": kind = backlash; the basic kinematic backlash model is not available");
+      e.wg_angle_rad = to_vec(*rec.column("wg_angle_deg")) * (M_PI / 180.0);
+      e.torque_Nm = to_vec(*rec.column("torque_Nm"));
+      e.measured = to_vec(*rec.column("backlash_um"));
+      e.baseline.resize(e.n);
+      for (int i = 0; i < e.n; ++i) e.baseline[i] = base.backlash_um(e.wg_angle_rad[i]);
+      e.response_name = "backlash_um";
+      e.response_unit = "um";
+      break;
+    }
+    case Kind::Dynamics:
+      throw InputError(rec.path + ": kind = dynamics; reconcile does not analyse dynamics recordings yet "
+                       "(supported: torsion, transmission, backlash)");
+  }
+  return e;
+}
+
+}  // namespace sw::reconcile

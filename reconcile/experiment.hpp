@@ -1,0 +1,60 @@
+#pragma once
+// The recorded experiment put side by side with the simulated one (the baseline): the response, the baseline's
+// prediction of it, and the derived inputs each effect's model is built from (torque direction, reversal torques,
+// angles). Everything is SI except backlash responses, which stay in micrometres as recorded.
+#include <functional>
+#include <string>
+
+#include <Eigen/Dense>
+
+#include "reconcile/recording.hpp"
+
+namespace sw::reconcile {
+
+/// What the current simulation predicts, per kind. Only the fields of the recording's kind are used.
+struct Baseline {
+  double compliance_rad_per_Nm = 0.0;  ///< torsion: C_tau of the flexspline body (twist = C_tau * T)
+  int teeth_flexspline = 0;            ///< transmission: z_f
+  int teeth_circular = 0;              ///< transmission: z_c (output = -wg * (z_c - z_f) / z_f)
+  double pitch_radius_m = 0.0;         ///< backlash: flexspline pitch radius (load_torsion converts phi0 to um)
+  /// backlash: the basic kinematic model, backlash in um at a wave-generator angle in rad (phi0 = 0).
+  std::function<double(double wg_angle_rad)> backlash_um;
+};
+
+struct Experiment {
+  Kind kind = Kind::Torsion;
+  int n = 0;
+  Eigen::VectorXd time;              ///< time_s, or the row index when the recording has none
+  bool has_time = false;
+  Eigen::VectorXd torque_Nm;         ///< torsion, backlash
+  Eigen::VectorXd wg_angle_rad;      ///< transmission, backlash
+  Eigen::VectorXd output_angle_rad;  ///< transmission: ideal output angle (noise free, from the ratio)
+  Eigen::VectorXd measured;          ///< the response column (twist_rad, output_angle_rad, backlash_um)
+  Eigen::VectorXd baseline;          ///< the baseline's prediction of it
+  Eigen::VectorXd direction;         ///< torsion: +1 while torque rises, -1 while it falls
+  Eigen::VectorXd since_reversal_Nm; ///< torsion: |T - T at the last reversal|
+  double torque_amplitude_Nm = 0.0;  ///< torsion: median |T| at reversals (or max |T|)
+  Baseline model;                    ///< the baseline parameters used
+  std::string response_name;         ///< column name of the response
+  std::string response_unit;         ///< "rad" or "um"
+  Eigen::VectorXd residual() const { return measured - baseline; }
+};
+
+/// Builds the experiment from a recording and the baseline. Throws InputError when the baseline lacks what the
+/// kind needs (e.g. C_tau <= 0 for torsion) or the recording is too short (< kMinSamples rows) or degenerate.
+Experiment make_experiment(const Recording& recording, const Baseline& baseline);
+
+/// The fewest rows reconcile analyses (AR order 8 estimation, a held-out block and the signature tests need them).
+inline constexpr int kMinSamples = 100;
+
+/// Direction (+1/-1) of each sample and the index of the turning point that started its branch. A reversal is
+/// declared when the signal moves back from its running extreme by more than `threshold` (same units as x), so noise
+/// smaller than that never splits a branch.
+struct Branches {
+  Eigen::VectorXd direction;
+  std::vector<int> branch_start;  ///< per sample: index of the turning point (0 for the first branch)
+  std::vector<int> reversals;     ///< indices of the turning points
+};
+Branches find_branches(const Eigen::VectorXd& x, double threshold);
+
+}  // namespace sw::reconcile

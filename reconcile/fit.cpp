@@ -1,0 +1,269 @@
+#include "reconcile/fit.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include <unsupported/Eigen/LevenbergMarquardt>
+#include <unsupported/Eigen/NumericalDiff>
+
+namespace sw::reconcile {
+
+using Vec = Eigen::VectorXd;
+using Mat = Eigen::MatrixXd;
+
+double FitResult::bic() const {
+  return n_w * std::log(std::max(rss_w, 1e-300) / n_w) + k * std::log(static_cast<double>(n_w));
+}
+
+Vec FitResult::params() const {
+  std::vector<double> p(nuisance_beta.data(), nuisance_beta.data() + nuisance_beta.size());
+  for (const auto& t : terms) {
+    p.insert(p.end(), t.beta.data(), t.beta.data() + t.beta.size());
+    p.insert(p.end(), t.theta.data(), t.theta.data() + t.theta.size());
+  }
+  return Eigen::Map<Vec>(p.data(), p.size());
+}
+
+void FitResult::set_params(const Vec& p) {
+  int i = 0;
+  for (int j = 0; j < nuisance_beta.size(); ++j) nuisance_beta[j] = p[i++];
+  for (auto& t : terms) {
+    for (int j = 0; j < t.beta.size(); ++j) t.beta[j] = p[i++];
+    for (int j = 0; j < t.theta.size(); ++j) t.theta[j] = p[i++];
+  }
+}
+
+int FitResult::find(const std::string& name) const {
+  for (std::size_t i = 0; i < terms.size(); ++i)
+    if (terms[i].spec->name == name) return static_cast<int>(i);
+  return -1;
+}
+
+std::vector<double> start_grid(double lo, double hi, int count) {
+  std::vector<double> g(count);
+  const bool log_spaced = lo > 0.0 && hi / lo > 20.0;
+  for (int i = 0; i < count; ++i) {
+    const double f = (i + 0.5) / count;
+    g[i] = log_spaced ? lo * std::pow(hi / lo, f) : lo + (hi - lo) * f;
+  }
+  return g;
+}
+
+namespace {
+
+/// Design matrix (all rows) for given thetas.
+Mat design(const Experiment& e, const std::vector<Term>& terms, const std::vector<Vec>& thetas) {
+  Mat X = nuisance_columns(e);
+  for (std::size_t i = 0; i < terms.size(); ++i) X = hcat(X, terms[i].spec->columns(e, thetas[i]));
+  return X;
+}
+
+struct Problem {
+  const Experiment& e;
+  const std::vector<Term>& terms;
+  const ArModel& ar;
+  int rows;
+  Vec yw;                              // whitened y over the rows
+  std::vector<std::pair<int, int>> slot;  // (term, theta index) per free nonlinear parameter
+  Vec lo, hi;
+
+  std::vector<Vec> thetas_from(const Vec& theta_free) const {
+    std::vector<Vec> th;
+    for (const auto& t : terms) th.push_back(t.theta);
+    for (std::size_t s = 0; s < slot.size(); ++s) th[slot[s].first][slot[s].second] = theta_free[s];
+    return th;
+  }
+  LsResult solve(const Vec& theta_free) const {
+    const Mat X = design(e, terms, thetas_from(theta_free)).topRows(rows);
+    return least_squares(whiten(ar, X), yw);
+  }
+  Vec theta_of(const Vec& u) const {
+    Vec th(u.size());
+    for (int i = 0; i < u.size(); ++i) th[i] = lo[i] + (hi[i] - lo[i]) / (1.0 + std::exp(-u[i]));
+    return th;
+  }
+  Vec u_of(const Vec& th) const {
+    Vec u(th.size());
+    for (int i = 0; i < th.size(); ++i) {
+      const double f = std::clamp((th[i] - lo[i]) / (hi[i] - lo[i]), 1e-6, 1.0 - 1e-6);
+      u[i] = std::log(f / (1.0 - f));
+    }
+    return u;
+  }
+};
+
+struct LmFunctor : Eigen::DenseFunctor<double> {
+  const Problem* p;
+  LmFunctor(const Problem* problem, int inputs, int values) : DenseFunctor<double>(inputs, values), p(problem) {}
+  int operator()(const InputType& u, ValueType& f) const {
+    f = p->solve(p->theta_of(u)).residual;
+    return 0;
+  }
+};
+
+}  // namespace
+
+Mat design_matrix(const Experiment& e, const std::vector<Term>& terms) {
+  std::vector<Vec> th;
+  for (const auto& t : terms) th.push_back(t.theta);
+  return design(e, terms, th);
+}
+
+Vec model_contribution(const Experiment& e, const FitResult& m) {
+  std::vector<Vec> th;
+  Vec beta = m.nuisance_beta;
+  for (const auto& t : m.terms) {
+    th.push_back(t.theta);
+    Vec b(beta.size() + t.beta.size());
+    b << beta, t.beta;
+    beta = b;
+  }
+  const Mat X = design(e, m.terms, th);
+  return X.cols() ? Vec(X * beta) : Vec(Vec::Zero(e.n));
+}
+
+FitResult fit_model(const Experiment& e, const Vec& y, std::vector<Term> terms, const ArModel& ar,
+                    const FitOptions& opt) {
+  const int rows = opt.rows < 0 ? e.n : opt.rows;
+  Problem prob{e, terms, ar, rows, whiten(ar, Vec(y.head(rows))), {}, {}, {}};
+  std::vector<double> lo, hi;
+  for (std::size_t i = 0; i < terms.size(); ++i) {
+    auto& t = terms[i];
+    if (t.theta.size() != t.spec->n_nonlinear()) {
+      const auto [l, h] = t.spec->bounds(e);
+      t.theta = 0.5 * (l + h);
+    }
+    if (t.spec->n_nonlinear() == 0) continue;
+    const auto [l, h] = t.spec->bounds(e);
+    for (int j = 0; j < t.spec->n_nonlinear(); ++j) {
+      prob.slot.emplace_back(static_cast<int>(i), j);
+      lo.push_back(l[j]);
+      hi.push_back(h[j]);
+    }
+  }
+  prob.lo = Eigen::Map<Vec>(lo.data(), lo.size());
+  prob.hi = Eigen::Map<Vec>(hi.data(), hi.size());
+  const int nfree = static_cast<int>(prob.slot.size());
+  Vec theta_free(nfree);
+  for (int s = 0; s < nfree; ++s) theta_free[s] = terms[prob.slot[s].first].theta[prob.slot[s].second];
+
+  Vec best_theta = theta_free;
+  if (nfree > 0) {
+    // Starts: the given thetas, plus the best grid points of the last term's nonlinear parameters.
+    std::vector<Vec> starts{theta_free};
+    const Term& last = terms.back();
+    const int nl = last.spec->n_nonlinear();
+    if (opt.multistart_last && nl == 1) {
+      const auto [l, h] = last.spec->bounds(e);
+      std::vector<std::pair<double, Vec>> scored;
+      for (double g : start_grid(l[0], h[0], 16)) {
+        Vec th = theta_free;
+        th[nfree - 1] = g;
+        scored.emplace_back(prob.solve(th).rss, th);
+      }
+      std::sort(scored.begin(), scored.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+      starts.clear();
+      for (int s = 0; s < std::min<int>(opt.starts, scored.size()); ++s) starts.push_back(scored[s].second);
+    }
+    double best_rss = std::numeric_limits<double>::infinity();
+    for (const Vec& s : starts) {
+      LmFunctor functor(&prob, nfree, static_cast<int>(prob.yw.size()));
+      Eigen::NumericalDiff<LmFunctor> nd(functor);
+      Eigen::LevenbergMarquardt<Eigen::NumericalDiff<LmFunctor>> lm(nd);
+      lm.setMaxfev(60 * (nfree + 1));
+      Vec u = prob.u_of(s);
+      lm.minimize(u);
+      const Vec th = prob.theta_of(u);
+      const double rss = prob.solve(th).rss;
+      const double rss_start = prob.solve(s).rss;
+      if (rss < best_rss) { best_rss = rss; best_theta = th; }
+      if (rss_start < best_rss) { best_rss = rss_start; best_theta = s; }
+    }
+  }
+  const auto thetas = prob.thetas_from(best_theta);
+  for (std::size_t i = 0; i < terms.size(); ++i) terms[i].theta = thetas[i];
+  const LsResult ls = prob.solve(best_theta);
+
+  FitResult out;
+  const int nn = static_cast<int>(nuisance_columns(e).cols());
+  out.nuisance_beta = ls.beta.head(nn);
+  int c = nn;
+  for (auto& t : terms) {
+    t.beta = ls.beta.segment(c, t.spec->n_linear);
+    c += t.spec->n_linear;
+  }
+  out.terms = terms;
+  out.rss_w = ls.rss;
+  out.n_w = static_cast<int>(prob.yw.size());
+  out.k = ls.rank + nfree;
+  out.contribution = model_contribution(e, out);
+
+  if (opt.covariance) {
+    // Jacobian of the whitened prediction with respect to params() (central differences for theta).
+    const Vec p0 = out.params();
+    Mat J(out.n_w, p0.size());
+    for (int j = 0; j < p0.size(); ++j) {
+      FitResult a = out, b = out;
+      Vec pa = p0, pb = p0;
+      double h = 1e-6 * std::max(std::abs(p0[j]), 1e-12);
+      // Theta steps relative to their bound width.
+      {
+        int idx = nn;
+        for (std::size_t ti = 0; ti < out.terms.size(); ++ti) {
+          idx += out.terms[ti].spec->n_linear;
+          for (int q = 0; q < out.terms[ti].spec->n_nonlinear(); ++q, ++idx)
+            if (idx == j) {
+              const auto [l, hh] = out.terms[ti].spec->bounds(e);
+              h = 1e-4 * (hh[q] - l[q]);
+            }
+        }
+      }
+      pa[j] += h;
+      pb[j] -= h;
+      a.set_params(pa);
+      b.set_params(pb);
+      J.col(j) = whiten(ar, Vec((model_contribution(e, a) - model_contribution(e, b)).head(rows))) / (2.0 * h);
+    }
+    const double s2 = out.rss_w / std::max(1, out.n_w - out.k);
+    const Mat JtJ = J.transpose() * J;
+    // Scale for conditioning, then pseudo-inverse.
+    Vec d = JtJ.diagonal().cwiseMax(1e-300).cwiseSqrt();
+    const Mat S = d.cwiseInverse().asDiagonal() * JtJ * d.cwiseInverse().asDiagonal();
+    Eigen::CompleteOrthogonalDecomposition<Mat> cod(S);
+    cod.setThreshold(1e-12);
+    out.cov = s2 * d.cwiseInverse().asDiagonal() * Mat(cod.pseudoInverse()) * d.cwiseInverse().asDiagonal();
+  }
+  return out;
+}
+
+std::vector<Headline> headline_with_ci(const Experiment& e, const FitResult& model, int term) {
+  const NamedValues base = model.terms[term].spec->headline(e, model, term);
+  std::vector<Headline> out;
+  for (const auto& [name, v] : base) out.push_back({name, v, v, v});
+  if (model.cov.size() == 0) return out;
+  const Vec p0 = model.params();
+  Mat G(base.size(), p0.size());
+  for (int j = 0; j < p0.size(); ++j) {
+    const double h = 1e-6 * std::max(std::abs(p0[j]), 1e-12);
+    FitResult a = model, b = model;
+    Vec pa = p0, pb = p0;
+    pa[j] += h;
+    pb[j] -= h;
+    a.set_params(pa);
+    b.set_params(pb);
+    const NamedValues va = a.terms[term].spec->headline(e, a, term);
+    const NamedValues vb = b.terms[term].spec->headline(e, b, term);
+    for (std::size_t i = 0; i < base.size(); ++i) G(i, j) = (va[i].second - vb[i].second) / (2.0 * h);
+  }
+  for (std::size_t i = 0; i < base.size(); ++i) {
+    if (base[i].first == "order") continue;
+    const double var = G.row(i) * model.cov * G.row(i).transpose();
+    const double half = 1.959964 * std::sqrt(std::max(var, 0.0));
+    out[i].lo = base[i].second - half;
+    out[i].hi = base[i].second + half;
+  }
+  return out;
+}
+
+}  // namespace sw::reconcile

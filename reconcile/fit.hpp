@@ -1,0 +1,65 @@
+#pragma once
+// Fitting a model (nuisance columns + catalog effects) to the residual recording - baseline by generalised least
+// squares under an AR noise model: linear coefficients by least squares (variable projection), nonlinear ones by
+// bounded Levenberg-Marquardt (Eigen, logistic reparameterisation) from several starts.
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "reconcile/catalog.hpp"
+#include "reconcile/stats.hpp"
+
+namespace sw::reconcile {
+
+struct Term {
+  const EffectSpec* spec = nullptr;
+  Eigen::VectorXd theta;  ///< nonlinear parameters (size spec->n_nonlinear())
+  Eigen::VectorXd beta;   ///< linear coefficients (size spec->n_linear)
+};
+
+struct FitResult {
+  std::vector<Term> terms;
+  Eigen::VectorXd nuisance_beta;
+  Eigen::VectorXd contribution;  ///< nuisance + effects for every row of the experiment (response units)
+  double rss_w = 0.0;            ///< whitened residual sum of squares over the fitted rows
+  int n_w = 0;                   ///< whitened rows
+  int k = 0;                     ///< free parameters (rank of the linear part + nonlinear parameters)
+  Eigen::MatrixXd cov;           ///< covariance of params() (whitened Gauss-Newton, s^2 (J^T J)^+)
+  double bic() const;
+  /// All parameters stacked: nuisance beta, then per term beta then theta.
+  Eigen::VectorXd params() const;
+  /// Sets the parameters from params() layout (contribution is not recomputed).
+  void set_params(const Eigen::VectorXd& p);
+  /// Index of the first term with this effect name; -1 when absent.
+  int find(const std::string& name) const;
+};
+
+/// The design matrix (n rows): nuisance columns, then each term's columns at its theta.
+Eigen::MatrixXd design_matrix(const Experiment& e, const std::vector<Term>& terms);
+
+/// The contribution (n rows) of a model with given parameters.
+Eigen::VectorXd model_contribution(const Experiment& e, const FitResult& model);
+
+struct FitOptions {
+  int rows = -1;                 ///< fit the first `rows` rows only (a training block); -1: all
+  bool multistart_last = true;   ///< grid search the last term's theta for starts
+  int starts = 3;                ///< best grid points polished by LM
+  bool covariance = false;       ///< compute cov (costs one Jacobian)
+};
+
+/// Fits `y` (the residual recording - baseline, n rows) with nuisance + terms under AR noise `ar`.
+/// Terms' theta are the starting values (ignored for the last term when multistart_last).
+FitResult fit_model(const Experiment& e, const Eigen::VectorXd& y, std::vector<Term> terms, const ArModel& ar,
+                    const FitOptions& options = {});
+
+/// Headline parameters of term `term` with 95 % Wald intervals by the delta method (value, lo, hi).
+struct Headline {
+  std::string name;
+  double value = 0.0, lo = 0.0, hi = 0.0;
+};
+std::vector<Headline> headline_with_ci(const Experiment& e, const FitResult& model, int term);
+
+/// Evenly spaced start grid between lo and hi; log-spaced when lo > 0 and hi / lo > 20.
+std::vector<double> start_grid(double lo, double hi, int count);
+
+}  // namespace sw::reconcile

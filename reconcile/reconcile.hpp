@@ -1,0 +1,79 @@
+#pragma once
+// reconcile: locate -> hypothesise -> fit -> select. Given an experiment (recording + baseline), find where the
+// residual differs from noise, name the catalog effects that explain it, fit them with confidence intervals and
+// keep only those that pass every test (significance against the estimated noise, BIC, held-out block, signature
+// removed).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "reconcile/experiment.hpp"
+#include "reconcile/fit.hpp"
+#include "reconcile/stats.hpp"
+
+namespace sw::reconcile {
+
+struct Options {
+  double alpha_family = 0.05;    ///< family-wise level of the signature tests (Bonferroni over the kind's signatures)
+  double alpha_effect = 0.01;    ///< level an effect must reach (after multiplicity) to be accepted
+  double min_delta_bic = 10.0;   ///< BIC must drop by more than this ("very strong" on the Kass-Raftery scale)
+  int bootstrap = 99;            ///< parametric bootstrap replicates for effects with nonlinear parameters
+  double heldout_fraction = 0.25;///< the last contiguous fraction of the rows is held out
+  int ar_max_order = 8;          ///< largest AR order of the noise model
+  std::uint64_t seed = 1;        ///< bootstrap random seed (results are reproducible)
+  int max_effects = 4;           ///< forward selection stops here
+};
+
+struct Location {
+  std::string signature;
+  std::string domain;
+  std::string description;
+  double p_value = 1.0;          ///< Bonferroni-adjusted over the kind's signatures
+  bool has_range = false;
+  double lo = 0.0, hi = 0.0;     ///< where it is strongest, in `where_unit` of the signature
+};
+
+struct AcceptedEffect {
+  std::string name;
+  std::string physics;
+  std::vector<Headline> params;  ///< headline parameters with 95 % intervals
+  double delta_bic = 0.0;        ///< BIC(model with it) - BIC(model without it), at acceptance
+  double p_value = 1.0;          ///< F-test (times multiplicity) or parametric bootstrap
+  std::string test;              ///< "F" or "bootstrap"
+};
+
+struct Rejected {
+  std::string name;
+  std::string reason;
+};
+
+struct Result {
+  Kind kind = Kind::Torsion;
+  int samples = 0;
+  int heldout_rows = 0;                  ///< the last rows, never used to fit what is scored on them
+  double baseline_rms = 0.0, baseline_heldout_rms = 0.0;
+  double final_rms = 0.0, final_heldout_rms = 0.0;
+  bool significant = false;
+  std::vector<Location> locations;       ///< significant signatures of the baseline residual
+  std::vector<AcceptedEffect> effects;
+  std::vector<Rejected> rejected;
+  std::vector<Location> unexplained;     ///< signatures still significant after the final model
+  std::string verdict;                   ///< no_significant_mismatch | explained | partly_explained
+  ArModel noise;                         ///< the estimated noise model
+  Eigen::VectorXd residual_before;       ///< recording - baseline - nuisance fit (n)
+  Eigen::VectorXd residual_after;        ///< recording - baseline - final model (n)
+  Eigen::VectorXd final_prediction;      ///< baseline + final model (n)
+  Eigen::VectorXd baseline_prediction;   ///< baseline + nuisance fit (n)
+  FitResult final_model;
+  double seconds = 0.0;
+};
+
+/// Runs the whole analysis. Deterministic for a given options.seed.
+Result reconcile(const Experiment& e, const Options& options = {});
+
+/// Number of locations/unexplained signatures tested for a kind (the Bonferroni factor).
+int signature_count(Kind kind);
+
+}  // namespace sw::reconcile

@@ -1,0 +1,228 @@
+#include "reconcile/recording.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "common/error.hpp"
+
+namespace sw::reconcile {
+namespace {
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r");
+  if (b == std::string::npos) return {};
+  const auto e = s.find_last_not_of(" \t\r");
+  return s.substr(b, e - b + 1);
+}
+
+std::vector<std::string> split(const std::string& line, char sep) {
+  std::vector<std::string> out;
+  std::string cur;
+  for (char ch : line) {
+    if (ch == sep) {
+      out.push_back(trim(cur));
+      cur.clear();
+    } else {
+      cur.push_back(ch);
+    }
+  }
+  out.push_back(trim(cur));
+  return out;
+}
+
+std::optional<double> parse_number(const std::string& s) {
+  if (s.empty()) return std::nullopt;
+  double v = 0.0;
+  const char* first = s.data();
+  const char* last = s.data() + s.size();
+  if (*first == '+') ++first;
+  const auto [ptr, ec] = std::from_chars(first, last, v);
+  if (ec != std::errc() || ptr != last || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
+std::string where(const std::string& path, int line) { return path + ":" + std::to_string(line) + ": "; }
+
+std::string join(const std::vector<std::string>& v) {
+  std::string s;
+  for (std::size_t i = 0; i < v.size(); ++i) s += (i ? "," : "") + v[i];
+  return s;
+}
+
+std::optional<Kind> kind_from_name(const std::string& s) {
+  for (Kind k : {Kind::Torsion, Kind::Transmission, Kind::Backlash, Kind::Dynamics})
+    if (kind_name(k) == s) return k;
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::string kind_name(Kind kind) {
+  switch (kind) {
+    case Kind::Torsion: return "torsion";
+    case Kind::Transmission: return "transmission";
+    case Kind::Backlash: return "backlash";
+    case Kind::Dynamics: return "dynamics";
+  }
+  return "?";
+}
+
+std::vector<std::string> kind_columns(Kind kind) {
+  switch (kind) {
+    case Kind::Torsion: return {"torque_Nm", "twist_rad"};
+    case Kind::Transmission: return {"wg_angle_rad", "output_angle_rad"};
+    case Kind::Backlash: return {"wg_angle_deg", "torque_Nm", "backlash_um"};
+    case Kind::Dynamics: return {"wg_speed_rpm", "output_speed_rpm", "mesh_force_N"};
+  }
+  return {};
+}
+
+bool kind_has_time(Kind kind) { return kind != Kind::Backlash; }
+
+const std::vector<double>* Recording::column(const std::string& name) const {
+  for (std::size_t c = 0; c < columns.size(); ++c)
+    if (columns[c] == name) return &values[c];
+  return nullptr;
+}
+
+std::optional<std::string> Recording::meta(const std::string& key) const {
+  for (const auto& [k, v] : metadata)
+    if (k == key) return v;
+  return std::nullopt;
+}
+
+std::optional<double> Recording::meta_number(const std::string& key) const {
+  const auto v = meta(key);
+  if (!v) return std::nullopt;
+  // Allow a trailing comment or unit after whitespace ("44.1   (rated)").
+  const std::string first = split(*v, ' ').front();
+  const auto x = parse_number(first);
+  if (!x) throw InputError(path + ": metadata " + key + " = '" + *v + "'; expected a number");
+  return x;
+}
+
+Recording parse_recording(const std::string& text, const std::string& path) {
+  Recording rec;
+  rec.path = path;
+  std::istringstream in(text);
+  std::string raw;
+  int line_no = 0;
+  bool have_version = false;
+  std::optional<Kind> kind;
+  bool have_header = false;
+  std::vector<std::string> expected;
+  int time_col = -1;
+  double last_time = 0.0;
+  int last_time_line = 0;
+  while (std::getline(in, raw)) {
+    ++line_no;
+    const std::string line = trim(raw);
+    if (line.empty()) continue;
+    if (!have_header && line[0] == '#') {
+      const std::string body = trim(line.substr(1));
+      const auto colon = body.find(':');
+      if (colon == std::string::npos) continue;  // a free comment line
+      const std::string key = trim(body.substr(0, colon));
+      const std::string value = trim(body.substr(colon + 1));
+      rec.metadata.emplace_back(key, value);
+      if (key == "strainwave-recording") {
+        if (value != "1")
+          throw InputError(where(path, line_no) + "strainwave-recording = '" + value +
+                           "'; expected format version 1");
+        have_version = true;
+      } else if (key == "kind") {
+        kind = kind_from_name(value);
+        if (!kind)
+          throw InputError(where(path, line_no) + "kind = '" + value +
+                           "'; expected one of torsion, transmission, backlash, dynamics");
+      }
+      continue;
+    }
+    if (!have_header) {
+      if (!have_version)
+        throw InputError(where(path, line_no) +
+                         "strainwave-recording missing; expected a '# strainwave-recording: 1' line before the header");
+      if (!kind)
+        throw InputError(where(path, line_no) +
+                         "kind missing; expected a '# kind: torsion|transmission|backlash|dynamics' line before the header");
+      rec.kind = *kind;
+      rec.columns = split(line, ',');
+      expected = kind_columns(*kind);
+      const bool with_time = kind_has_time(*kind) && !rec.columns.empty() && rec.columns[0] == "time_s";
+      std::vector<std::string> want = expected;
+      if (with_time) want.insert(want.begin(), "time_s");
+      for (std::size_t c = 0; c < rec.columns.size(); ++c) {
+        const auto& name = rec.columns[c];
+        bool known = false;
+        for (const auto& w : want) known = known || (w == name);
+        if (!known)
+          throw InputError(where(path, line_no) + "column = '" + name + "'; unknown for kind " + kind_name(*kind) +
+                           ", expected the columns " + (kind_has_time(*kind) ? "[time_s,]" : "") + join(expected));
+      }
+      if (rec.columns != want)
+        throw InputError(where(path, line_no) + "header = '" + join(rec.columns) + "'; expected the columns " +
+                         (kind_has_time(*kind) ? "[time_s,]" : "") + join(expected) + " in this order");
+      if (with_time) time_col = 0;
+      rec.values.assign(rec.columns.size(), {});
+      have_header = true;
+      continue;
+    }
+    if (line[0] == '#')
+      throw InputError(where(path, line_no) + "row = '" + line + "'; metadata lines must come before the header");
+    const auto fields = split(line, ',');
+    if (fields.size() != rec.columns.size())
+      throw InputError(where(path, line_no) + "row has " + std::to_string(fields.size()) + " values; expected " +
+                       std::to_string(rec.columns.size()) + " (" + join(rec.columns) + ")");
+    for (std::size_t c = 0; c < fields.size(); ++c) {
+      const auto v = parse_number(fields[c]);
+      if (!v)
+        throw InputError(where(path, line_no) + rec.columns[c] + " = '" + fields[c] +
+                         "'; expected a finite number");
+      rec.values[c].push_back(*v);
+    }
+    if (time_col >= 0) {
+      const double t = rec.values[time_col].back();
+      if (!rec.lines.empty() && !(t > last_time))
+        throw InputError(where(path, line_no) + "time_s = " + fields[time_col] + "; time must increase (line " +
+                         std::to_string(last_time_line) + " has " + std::to_string(last_time) + ")");
+      last_time = t;
+      last_time_line = line_no;
+    }
+    rec.lines.push_back(line_no);
+  }
+  if (!have_header) {
+    if (!have_version)
+      throw InputError(path + ": strainwave-recording missing; expected a '# strainwave-recording: 1' line");
+    if (!kind) throw InputError(path + ": kind missing; expected a '# kind: ...' metadata line");
+    throw InputError(path + ": header missing; expected a line naming the columns");
+  }
+  return rec;
+}
+
+Recording load_recording(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw InputError(path + ": cannot be read; check the recording path");
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return parse_recording(ss.str(), path);
+}
+
+std::string format_recording(const Recording& recording) {
+  std::string out;
+  for (const auto& [k, v] : recording.metadata) out += "# " + k + ": " + v + "\n";
+  out += join(recording.columns) + "\n";
+  char buf[64];
+  for (std::size_t r = 0; r < recording.rows(); ++r) {
+    for (std::size_t c = 0; c < recording.columns.size(); ++c) {
+      std::snprintf(buf, sizeof buf, "%.17g", recording.values[c][r]);
+      out += (c ? "," : "") + std::string(buf);
+    }
+    out += "\n";
+  }
+  return out;
+}
+
+}  // namespace sw::reconcile

@@ -1,0 +1,61 @@
+#pragma once
+// Statistics for reconcile: the noise model (an autoregressive process estimated from the data), prewhitening, and
+// the F-test of nested linear models in the whitened space (generalised least squares with an estimated AR filter).
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include <Eigen/Dense>
+
+namespace sw::reconcile {
+
+/// e_t = x_t - sum_k a[k] x_{t-1-k} is white with standard deviation `innovation_sd` (same units as the data).
+struct ArModel {
+  std::vector<double> a;           ///< AR coefficients a_1..a_p (empty: white noise)
+  double innovation_sd = 0.0;      ///< sd of the white innovations
+  double process_sd = 0.0;         ///< sd of the AR process itself (what a plot of the noise shows)
+  int order() const { return static_cast<int>(a.size()); }
+};
+
+/// Fits AR(p), p = 0..max_order, by Yule-Walker (Levinson-Durbin; always stationary) to a zero-mean-ish residual and
+/// keeps the order with the lowest BIC. Precondition: x.size() > 4 * max_order.
+ArModel fit_ar(const Eigen::VectorXd& x, int max_order = 8);
+
+/// The prewhitened rows p..n-1 of a vector or of each column (n-p rows): the GLS transform for that AR model.
+Eigen::VectorXd whiten(const ArModel& ar, const Eigen::VectorXd& x);
+Eigen::MatrixXd whiten(const ArModel& ar, const Eigen::MatrixXd& X);
+
+/// n samples of the AR process (burn-in discarded), innovations N(0, innovation_sd^2).
+Eigen::VectorXd simulate_ar(const ArModel& ar, int n, std::mt19937_64& rng);
+
+/// Regularised incomplete beta I_x(a, b), 0 <= x <= 1, a, b > 0.
+double incomplete_beta(double a, double b, double x);
+
+/// Upper tail P(F(d1, d2) > f).
+double f_upper_tail(double f, double d1, double d2);
+
+/// Least squares on whitened data with column-pivoting QR (rank-revealing).
+struct LsResult {
+  Eigen::VectorXd beta;      ///< coefficients (zeros for dropped, collinear columns)
+  Eigen::VectorXd residual;  ///< y - X beta
+  double rss = 0.0;
+  int rank = 0;
+};
+LsResult least_squares(const Eigen::MatrixXd& X, const Eigen::VectorXd& y);
+
+/// Nested F-test: does adding `extra` to `base` explain more of y than noise would? Inputs already whitened.
+/// Returns the p-value (1 when `extra` adds no rank).
+struct FTest {
+  double f = 0.0;
+  double p_value = 1.0;
+  int df_extra = 0;
+  int df_resid = 0;
+  double rss_base = 0.0;
+  double rss_full = 0.0;
+};
+FTest f_test(const Eigen::MatrixXd& base, const Eigen::MatrixXd& extra, const Eigen::VectorXd& y);
+
+/// Horizontal concatenation that tolerates zero-column blocks.
+Eigen::MatrixXd hcat(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b);
+
+}  // namespace sw::reconcile

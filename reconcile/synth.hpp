@@ -1,0 +1,56 @@
+#pragma once
+// Synthetic recordings for proofs and demos: the baseline of a kind plus chosen hidden effects (the same model laws
+// reconcile fits), white + AR(1) noise, sensor gain error and encoder quantisation, and a truth record.
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "reconcile/experiment.hpp"
+#include "reconcile/recording.hpp"
+
+namespace sw::reconcile {
+
+/// One hidden effect: a catalog name, its harmonic order (0 if none) and its parameters in SPEC units. Missing
+/// parameters take defaults (see synth_effect_help()).
+struct SynthEffect {
+  std::string name;
+  int order = 0;
+  std::map<std::string, double> params;
+};
+
+struct SynthOptions {
+  Kind kind = Kind::Torsion;
+  Baseline baseline;                       ///< the simulated model the effects are added to
+  int samples = 4000;
+  double cycles = 4.0;                     ///< torsion: torque cycles; transmission: output revolutions
+  double torque_amplitude_Nm = 44.1;       ///< torsion: +-amplitude; backlash: highest torque level
+  int torque_levels = 3;                   ///< backlash: levels 0 .. amplitude, equally spaced
+  double sample_period_s = 0.01;           ///< time_s step (torsion, transmission)
+  std::vector<SynthEffect> effects;
+  double concealment = 0.0;                ///< > 0: each effect scaled so effect RMS = concealment * noise RMS
+  double white_sd = 0.0;                   ///< white noise sd (response units)
+  double ar1_sd = 0.0;                     ///< AR(1) component: process sd (response units)
+  double ar1_phi = 0.8;                    ///< AR(1) coefficient, |phi| < 1
+  double quantum = 0.0;                    ///< encoder/sensor resolution (response units); 0: none
+  double gain_error = 0.0;                 ///< measured response = (1 + gain_error) * true response
+  std::uint64_t seed = 1;
+};
+
+struct SynthResult {
+  Recording recording;
+  std::string truth_json;                  ///< effects with their (scaled) headline parameters, noise, seed
+  double noise_rms = 0.0;                  ///< sqrt(white^2 + ar1^2 + quantum^2 / 12)
+  std::vector<std::pair<std::string, double>> effect_rms;  ///< RMS of each effect's contribution
+};
+
+/// Generates a recording. Throws InputError for unknown effect names or parameters, or effects of another kind.
+SynthResult synthesize(const SynthOptions& options);
+
+/// Parses "name[:key=value,...]" ("order" is a key too). Throws InputError naming the text and the expectation.
+SynthEffect parse_synth_effect(const std::string& text);
+
+/// Help text listing each kind's effects, their parameters and defaults.
+std::string synth_effect_help();
+
+}  // namespace sw::reconcile

@@ -1,0 +1,221 @@
+#include "kinematics/neutral_curve.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include <Eigen/Dense>
+
+#include "common/error.hpp"
+
+namespace sw {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+/// Derived series v = −∫₀^φ w dφ and μ = −(1/r_m) dw/dφ of an inextensible ring from w (w must have no constant term).
+void derive_inextensible(NeutralCurve& c) {
+  const size_t n = c.w.a.size();
+  c.v.a.assign(n, 0.0);
+  c.v.b.assign(n, 0.0);
+  c.mu.a.assign(n, 0.0);
+  c.mu.b.assign(n, 0.0);
+  for (size_t k = 1; k < n; ++k) {
+    const double kk = static_cast<double>(k);
+    // ∫₀^φ (a cos kφ + b sin kφ) = (a/k) sin kφ − (b/k)(cos kφ − 1)
+    c.v.b[k] = -c.w.a[k] / kk;
+    c.v.a[k] = c.w.b[k] / kk;
+    c.v.a[0] -= c.w.b[k] / kk;
+    // d/dφ (a cos kφ + b sin kφ) = −k a sin kφ + k b cos kφ
+    c.mu.b[k] = kk * c.w.a[k] / c.mean_radius_m;
+    c.mu.a[k] = -kk * c.w.b[k] / c.mean_radius_m;
+  }
+}
+
+}  // namespace
+
+double FourierSeries::value(double phi) const {
+  if (a.empty()) return 0.0;
+  const double c1 = std::cos(phi), s1 = std::sin(phi);
+  double c = 1.0, s = 0.0, sum = a[0];
+  for (size_t k = 1; k < a.size(); ++k) {
+    const double cn = c * c1 - s * s1;
+    s = s * c1 + c * s1;
+    c = cn;
+    sum += a[k] * c + b[k] * s;
+  }
+  return sum;
+}
+
+double FourierSeries::derivative(double phi) const {
+  if (a.empty()) return 0.0;
+  const double c1 = std::cos(phi), s1 = std::sin(phi);
+  double c = 1.0, s = 0.0, sum = 0.0;
+  for (size_t k = 1; k < a.size(); ++k) {
+    const double cn = c * c1 - s * s1;
+    s = s * c1 + c * s1;
+    c = cn;
+    sum += static_cast<double>(k) * (b[k] * c - a[k] * s);
+  }
+  return sum;
+}
+
+NeutralPoint NeutralCurve::at(double phi) const { return {w.value(phi), v.value(phi), mu.value(phi)}; }
+
+double rim_mean_radius(const FlexsplineParams& f) { return f.inner_radius_m + 0.5 * f.rim_thickness_m; }
+
+NeutralCurve cam_neutral_curve(double mean_radius_m, double w0_m) {
+  NeutralCurve c;
+  c.mean_radius_m = mean_radius_m;
+  c.w.a = {0.0, 0.0, w0_m};
+  c.w.b = {0.0, 0.0, 0.0};
+  derive_inextensible(c);
+  std::ostringstream s;
+  s << "cam w0·cos2φ, w0 = " << w0_m * 1e3 << " mm";
+  c.source = s.str();
+  return c;
+}
+
+NeutralCurve generator_neutral_curve(double mean_radius_m, double w0_m, const WaveGeneratorParams& wg, int n_max) {
+  if (wg.model == WaveGeneratorModel::Cam) return cam_neutral_curve(mean_radius_m, w0_m);
+  std::vector<WaveGeneratorForce> forces;
+  std::ostringstream name;
+  switch (wg.model) {
+    case WaveGeneratorModel::FourForce:
+      for (double base : {0.0, kPi})
+        for (double sgn : {-1.0, 1.0}) forces.push_back({base + sgn * wg.beta_rad, 1.0});
+      name << "thin ring, four forces at ±" << wg.beta_rad * 180.0 / kPi << "° and 180°±" << wg.beta_rad * 180.0 / kPi << "°";
+      break;
+    case WaveGeneratorModel::TwoForce:
+      forces = {{0.0, 1.0}, {kPi, 1.0}};
+      name << "thin ring, two forces on the major axis";
+      break;
+    default:
+      if (wg.forces.empty()) throw InputError("[wave_generator]: model = \"forces\" needs a non-empty forces list");
+      for (const auto& f : wg.forces) {
+        forces.push_back(f);
+        forces.push_back({f.angle_rad + kPi, f.weight});
+      }
+      name << "thin ring, " << forces.size() << " forces (list mirrored to both ends of the major axis)";
+  }
+  NeutralCurve c;
+  c.mean_radius_m = mean_radius_m;
+  c.w.a.assign(n_max + 1, 0.0);
+  c.w.b.assign(n_max + 1, 0.0);
+  for (int n = 2; n <= n_max; ++n) {
+    const double g = 1.0 / std::pow(n * n - 1.0, 2);
+    for (const auto& f : forces) {
+      c.w.a[n] += f.weight * g * std::cos(n * f.angle_rad);
+      c.w.b[n] += f.weight * g * std::sin(n * f.angle_rad);
+    }
+  }
+  const double w_at_0 = c.w.value(0.0);
+  if (!(w_at_0 > 0)) {
+    throw InputError("[wave_generator]: the forces give no outward displacement on the major axis (w(0) = " +
+                     std::to_string(w_at_0) + " in units of P·R³/EI); put them near 0° and 180°");
+  }
+  for (int n = 0; n <= n_max; ++n) {
+    c.w.a[n] *= w0_m / w_at_0;
+    c.w.b[n] *= w0_m / w_at_0;
+  }
+  derive_inextensible(c);
+  name << ", w0 = " << w0_m * 1e3 << " mm";
+  c.source = name.str();
+  return c;
+}
+
+NeutralCurve read_fem_neutral_curve(const std::filesystem::path& csv, double mean_radius_m, FemLoadCase which) {
+  std::ifstream in(csv);
+  const std::string file = csv.string();
+  if (!in) throw InputError(file + ": cannot open (run `strainwave fem` first, or pass the FEM output folder)");
+  const std::vector<std::string> expected = {"phi_rad", "w_wg_m", "v_wg_m", "mu_wg_rad", "w_comb_m", "v_comb_m", "mu_comb_rad"};
+  std::string line;
+  int line_no = 0;
+  std::vector<std::string> header;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (line.empty() || line[0] == '#') continue;
+    std::stringstream ss(line);
+    std::string col;
+    while (std::getline(ss, col, ',')) {
+      col.erase(0, col.find_first_not_of(" \t\r"));
+      col.erase(col.find_last_not_of(" \t\r") + 1);
+      header.push_back(col);
+    }
+    break;
+  }
+  if (header != expected) {
+    std::string want;
+    for (const auto& e : expected) want += (want.empty() ? "" : ",") + e;
+    throw InputError(file + ":" + std::to_string(line_no) + ": header must be `" + want + "`");
+  }
+  const int off = which == FemLoadCase::GeneratorOnly ? 1 : 4;
+  std::vector<double> phi, w, v, mu;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (line.empty() || line == "\r" || line[0] == '#') continue;
+    std::stringstream ss(line);
+    std::string cell;
+    std::vector<double> row;
+    while (std::getline(ss, cell, ',')) {
+      char* end = nullptr;
+      const double x = std::strtod(cell.c_str(), &end);
+      while (end && (*end == ' ' || *end == '\r' || *end == '\t')) ++end;
+      if (cell.empty() || end == cell.c_str() || *end != '\0' || !std::isfinite(x)) {
+        throw InputError(file + ":" + std::to_string(line_no) + ": column " + std::to_string(row.size() + 1) + " = '" +
+                         cell + "'; expected a finite number");
+      }
+      row.push_back(x);
+    }
+    if (row.size() != expected.size()) {
+      throw InputError(file + ":" + std::to_string(line_no) + ": " + std::to_string(row.size()) + " values; expected " +
+                       std::to_string(expected.size()));
+    }
+    phi.push_back(row[0]);
+    w.push_back(row[off]);
+    v.push_back(row[off + 1]);
+    mu.push_back(row[off + 2]);
+  }
+  if (phi.size() < 360) {
+    throw InputError(file + ": " + std::to_string(phi.size()) +
+                     " rows; need at least 360 (one per degree over the full circle)");
+  }
+  const double span = *std::max_element(phi.begin(), phi.end()) - *std::min_element(phi.begin(), phi.end());
+  if (span < 2.0 * kPi * (1.0 - 2.0 / phi.size()) - 1e-9) {
+    throw InputError(file + ": phi_rad spans " + std::to_string(span) + " rad; expected the full circle (2π)");
+  }
+  const int order = std::min<int>(64, static_cast<int>(phi.size()) / 2 - 1);
+  Eigen::MatrixXd A(phi.size(), 2 * order + 1);
+  for (size_t i = 0; i < phi.size(); ++i) {
+    A(i, 0) = 1.0;
+    for (int k = 1; k <= order; ++k) {
+      A(i, 2 * k - 1) = std::cos(k * phi[i]);
+      A(i, 2 * k) = std::sin(k * phi[i]);
+    }
+  }
+  const auto qr = A.colPivHouseholderQr();
+  auto fit = [&](const std::vector<double>& y) {
+    const Eigen::VectorXd c = qr.solve(Eigen::Map<const Eigen::VectorXd>(y.data(), y.size()));
+    FourierSeries s;
+    s.a.assign(order + 1, 0.0);
+    s.b.assign(order + 1, 0.0);
+    s.a[0] = c(0);
+    for (int k = 1; k <= order; ++k) {
+      s.a[k] = c(2 * k - 1);
+      s.b[k] = c(2 * k);
+    }
+    return s;
+  };
+  NeutralCurve c;
+  c.mean_radius_m = mean_radius_m;
+  c.w = fit(w);
+  c.v = fit(v);
+  c.mu = fit(mu);
+  c.source = "fem " + file + (which == FemLoadCase::GeneratorOnly ? " (generator only)" : " (generator + torque)");
+  return c;
+}
+
+}  // namespace sw

@@ -1,0 +1,198 @@
+// Backlash engine: rigid internal pair against the classical formula, symmetry of the two engagement zones, the
+// first-order effect of the wind-up φ₀, the undeformed flexspline, and the seed case's table pinned.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <vector>
+
+#include "kinematics/backlash.hpp"
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kDeg = kPi / 180.0;
+constexpr double kRm = 18.75e-3;  // seed case: inner radius 18.4 mm + rim 0.7 mm / 2
+constexpr double kW0 = 0.2e-3;
+
+double inv(double a) { return std::tan(a) - a; }
+
+sw::BacklashModel cam_model(double w0 = kW0, sw::GearParams g = {}) {
+  return sw::make_backlash_model(g, sw::cam_neutral_curve(kRm, w0));
+}
+
+sw::BacklashModel ring_model() {
+  return sw::make_backlash_model(sw::GearParams{}, sw::generator_neutral_curve(kRm, kW0, sw::WaveGeneratorParams{}));
+}
+
+// The issue asks for 1e-4 mm; the engine solves to 1e-12 m on the exact involutes and the classical relation is exact
+// for involutes, so the check is made 1e5 times tighter (1e-9 mm), which is what the engine promises.
+constexpr double kClassicalTol = 1e-12;  // m
+
+struct RigidSet {
+  sw::GearParams gear;
+  double a_from_m, a_to_m;  // centre distances with mesh positions whose contacts lie inside both flanks
+};
+
+std::vector<RigidSet> rigid_sets() {
+  sw::GearParams conventional;  // a conventional internal pair with a healthy contact ratio
+  conventional.teeth_flexspline = 60;
+  conventional.teeth_circular = 72;
+  conventional.profile_shift_flexspline = 0.3;
+  conventional.profile_shift_circular = 0.5;
+  conventional.cutter_teeth = 30;
+  return {{sw::GearParams{}, 0.201e-3, 0.2031e-3}, {conventional, 1.200e-3, 1.2441e-3}};
+}
+
+TEST(RigidInternalPair, CircumferentialBacklashMatchesTheClassicalFormulaOverCentreDistances) {
+ for (const RigidSet& set : rigid_sets()) {
+  const sw::GearParams& g = set.gear;
+  const sw::GearRadii radii = sw::gear_radii(g);
+  const sw::BacklashModel m = sw::make_backlash_model(g, sw::cam_neutral_curve(0.9 * radii.root_f, 0.0));
+  const double al = g.pressure_angle_rad, zf = g.teeth_flexspline, zc = g.teeth_circular;
+  const double rbf = m.radii.base_f, rbc = m.radii.base_c;
+  // Zero-backlash centre distance: inv α_w = inv α + 2 tan α (x_c − x_f)/(z_c − z_f).
+  const double aw0 = (rbc - rbf) / std::cos(sw::inverse_involute(
+                                       inv(al) + 2 * std::tan(al) * (g.profile_shift_circular - g.profile_shift_flexspline) / (zc - zf)));
+  if (zf == 190) EXPECT_NEAR(aw0 * 1e3, 0.20874, 1e-5);  // hand: inv α_w = 0.0331025, α_w = 25.79°
+  int checked = 0;
+  for (double a = set.a_from_m; a <= set.a_to_m; a += 0.002e-3) {
+    const double aw = std::acos((rbc - rbf) / a);
+    const double rwf = rbf / std::cos(aw), rwc = rbc / std::cos(aw);
+    const double s_wf = 2 * rwf * (kPi / (2 * zf) + 2 * g.profile_shift_flexspline * std::tan(al) / zf + inv(al) - inv(aw));
+    const double e_wc = 2 * rwc * (kPi / (2 * zc) + 2 * g.profile_shift_circular * std::tan(al) / zc + inv(al) - inv(aw));
+    const double jt_classical = e_wc - s_wf;  // arc on the working pitch circles (they roll without slip)
+    // Flexspline as a rigid gear centred at (a, 0), turned by θ_f; the circular spline turned by θ_f·z_f/z_c (a
+    // meshing motion). Where both closest points lie inside the flanks (the common normal is the line of action),
+    // j_t1 + j_t2 is the normal backlash; where one sits on a flank end, the truncated flanks can only be farther.
+    int interior = 0;
+    for (double th = -0.012; th <= 0.012; th += 0.0005) {
+      sw::ToothPlacement t;
+      t.angle_rad = th;
+      t.offset_m = {a, 0.0};
+      const auto p = sw::tooth_clearance(m, t, th * zf / zc);
+      auto inside = [&](const sw::FlankClearance& c) {
+        const double rc = c.point_c.norm();
+        return c.roll_f > m.flank_f.u_min + 1e-9 && c.roll_f < m.flank_f.u_max - 1e-9 && rc > m.radii.tip_c + 1e-12 &&
+               rc < m.radii.form_c - 1e-12;
+      };
+      const double jt = (p.ccw.clearance_m + p.cw.clearance_m) / std::cos(aw);
+      if (inside(p.ccw) && inside(p.cw)) {
+        EXPECT_NEAR(jt, jt_classical, kClassicalTol) << "a = " << a * 1e3 << " mm, θ = " << th;
+        // The common normal is the line of action: inclined by α_w to the tangent of the pitch circles.
+        // (1e-6: the minimum is flat along near-parallel flanks, so its location is far less sharp than its value.)
+        EXPECT_NEAR(std::abs(p.ccw.normal.dot(Eigen::Vector2d(0, 1))), std::cos(aw), 1e-6);
+        ++interior;
+      } else {
+        EXPECT_GE(jt, jt_classical - kClassicalTol) << "a = " << a * 1e3 << " mm, θ = " << th;
+      }
+      if (std::abs(th) < 1e-12) EXPECT_NEAR(p.ccw.clearance_m, p.cw.clearance_m, 1e-14);
+    }
+    EXPECT_GE(interior, 3) << "a = " << a * 1e3 << " mm: too few mesh positions with both contacts on the flanks";
+    checked += interior;
+    if (a > aw0) EXPECT_LT(jt_classical, 0.0);  // beyond aw0 both sides report the interference, unclipped
+  }
+  std::printf("rigid pair z %d/%d: %d positions with both contacts on the flanks\n", g.teeth_flexspline,
+              g.teeth_circular, checked);
+ }
+}
+
+TEST(Symmetry, BothEngagementZonesGiveTheSameClearances) {
+  for (const auto& m : {cam_model(), ring_model()}) {
+    for (double deg : {0.0, 12.5, 30.0, 47.0, 66.0, -21.0, -58.0}) {
+      const auto p = sw::pair_clearance(m, deg * kDeg, 0.0);
+      const auto q = sw::pair_clearance(m, deg * kDeg + kPi, 0.0);
+      const auto r = sw::pair_clearance(m, -deg * kDeg, 0.0);
+      EXPECT_NEAR(p.ccw.clearance_m, q.ccw.clearance_m, 1e-13) << m.curve.source << " φ = " << deg;
+      EXPECT_NEAR(p.cw.clearance_m, q.cw.clearance_m, 1e-13) << m.curve.source << " φ = " << deg;
+      // Mirror about the major axis swaps the flanks.
+      EXPECT_NEAR(p.ccw.clearance_m, r.cw.clearance_m, 1e-13) << m.curve.source << " φ = " << deg;
+    }
+  }
+}
+
+TEST(WindUp, FirstOrderChangeIsTheRotationProjectedOnEachFlankNormal) {
+  // φ₀ turns the tooth about the axis: d j/dφ₀ = −(p_f × n)_z for the closing (ccw) flank and the opposite sign on
+  // the cw flank. 1 %: the issue's bound; second-order terms are ~1e-6 relative at δ = 1e-6 rad.
+  const double d = 1e-6;
+  int checked = 0;
+  for (const auto& m : {cam_model(), ring_model()}) {
+    for (double deg : {-40.0, -20.0, -5.0, 0.0, 10.0, 25.0, 40.0}) {
+      const auto p = sw::pair_clearance(m, deg * kDeg, 0.0);
+      const auto q = sw::pair_clearance(m, deg * kDeg, d);
+      ASSERT_TRUE(p.engaged);
+      ASSERT_GT(p.ccw.clearance_m, 0.0);
+      ASSERT_GT(p.cw.clearance_m, 0.0);
+      const double d1 = q.ccw.clearance_m - p.ccw.clearance_m, d2 = q.cw.clearance_m - p.cw.clearance_m;
+      EXPECT_LT(d1, 0.0);
+      EXPECT_GT(d2, 0.0);
+      EXPECT_NEAR(d1, -p.ccw.lever_arm_m * d, 0.01 * std::abs(d1)) << deg;
+      EXPECT_NEAR(d2, -p.cw.lever_arm_m * d, 0.01 * std::abs(d2)) << deg;
+      // Independent bound on the lever: between the base and the tip radius of the flexspline.
+      EXPECT_GT(std::abs(p.ccw.lever_arm_m), 0.9 * m.radii.base_f);
+      EXPECT_LT(std::abs(p.ccw.lever_arm_m), m.radii.tip_f + kW0);
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 14);
+}
+
+TEST(Undeformed, FlexspineInsideTheTipCircleTouchesNothing) {
+  sw::GearParams g;
+  g.profile_shift_flexspline = 0.5;  // r_af = 19.30 mm < r_ac = 19.314 mm: the undeformed gear clears every tip
+  const auto m = cam_model(0.0, g);
+  ASSERT_LT(m.radii.tip_f, m.radii.tip_c);
+  for (int k = 0; k < g.teeth_flexspline; ++k) {
+    const auto p = sw::pair_clearance(m, sw::tooth_material_angle(g, k, 0.3), 0.0);
+    EXPECT_FALSE(p.engaged) << k;
+    EXPECT_GT(p.ccw.clearance_m, 0.0) << k;
+    EXPECT_GT(p.cw.clearance_m, 0.0) << k;
+    EXPECT_TRUE(sw::interferences(p).empty()) << k;
+  }
+  EXPECT_TRUE(std::isinf(sw::min_backlash_m(m, 0.3, 0.0)));
+}
+
+TEST(Undeformed, SeedTeethOverlapTheCircularSplineAndThatIsReported) {
+  // The seed set's tips overlap by r_af − r_ac = 0.19 mm: a round flexspline cannot be assembled. Where a flexspline
+  // tooth faces a circular-spline tooth (φ ≈ ±90°) the overlap must show as interference, not as a clipped zero.
+  const auto m = cam_model(0.0);
+  const auto p = sw::pair_clearance(m, 90 * kDeg, 0.0);
+  EXPECT_FALSE(sw::interferences(p).empty());
+  EXPECT_LT(p.backlash_m(), -1e-5);
+}
+
+TEST(SeedCase, TableIsPinned) {
+  // Regression pins, j/m at the paper's positions ψ (from the minor axis; tooth at φ = 90° − ψ), basic and with the
+  // paper's φ₀ = 2.046e-4 rad. Tolerance 1e-5 (2 nm): far above solver precision, far below any real change.
+  struct Row { double psi, cam_basic, cam_comp, ring_basic, ring_comp; };
+  const Row rows[] = {
+      {0, 0.77609, 0.75638, 0.78663, 0.76720},      // out of mesh: tip faces a circular-spline tip
+      {30, -0.04808, -0.06639, -0.01425, -0.03257},  // entry: the ccw flank's tip corner cuts the next tooth
+      {45, 0.07195, 0.05354, 0.08360, 0.06516},
+      {90, 0.01710, -0.00135, 0.01710, -0.00135}};  // major axis: φ₀·r ≈ 3.7 µm closes the 3.4 µm clearance
+  const auto cam = cam_model();
+  const auto ring = ring_model();
+  for (const auto& r : rows) {
+    const double phi = (90 - r.psi) * kDeg;
+    const double cb = sw::pair_clearance(cam, phi, 0).backlash_m() / 0.2e-3;
+    const double cc = sw::pair_clearance(cam, phi, 2.046e-4).backlash_m() / 0.2e-3;
+    const double rb = sw::pair_clearance(ring, phi, 0).backlash_m() / 0.2e-3;
+    const double rc = sw::pair_clearance(ring, phi, 2.046e-4).backlash_m() / 0.2e-3;
+    EXPECT_NEAR(cb, r.cam_basic, 1e-5);
+    EXPECT_NEAR(cc, r.cam_comp, 1e-5);
+    EXPECT_NEAR(rb, r.ring_basic, 1e-5);
+    EXPECT_NEAR(rc, r.ring_comp, 1e-5);
+  }
+}
+
+TEST(Revolution, RepeatsEveryCircularSplinePitchAndFindsTheEntryInterference) {
+  const auto m = ring_model();
+  const auto s = sw::sweep_revolution(m, 0.0, 3600);
+  EXPECT_EQ(s.distinct_positions, 75);  // 0.1° steps modulo 360°/192 = 1.875°: multiples of 0.025°
+  // Spot check the periodicity claim against a direct evaluation at a step that was not solved directly.
+  EXPECT_NEAR(s.min_backlash_m[1234], sw::min_backlash_m(m, s.wg_angle_rad[1234], 0.0), 1e-13);
+  EXPECT_LT(s.min_m, 0.0);
+}
+
+}  // namespace

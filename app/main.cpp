@@ -13,9 +13,13 @@ int main(int argc, char** argv) {
   CLI::App app{"strainwave: FEM, backlash, reconciliation and dynamics of strain wave gears"};
   app.require_subcommand(1);
   app.add_flag("--quiet", sw::quiet_progress(), "no progress lines on stderr");
-  // sw::app::add_fem_command(app);  (enabled when fem lands)
+  sw::app::add_fem_command(app);
   // sw::app::add_run_command(app);
   // Subcommands of the later modules register here (backlash, reconcile, synth, dynamics).
+  sw::app::add_backlash_command(app);
+  sw::app::add_dynamics_command(app);
+  sw::app::add_reconcile_command(app);
+  sw::app::add_synth_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -2,6 +2,8 @@
 
 #include <array>
 
+#include <Eigen/Geometry>
+
 namespace sw {
 namespace {
 

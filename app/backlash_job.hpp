@@ -1,0 +1,22 @@
+#pragma once
+// The backlash job shared by `strainwave backlash` and `strainwave run`.
+#include <filesystem>
+#include <optional>
+
+#include "common/params.hpp"
+#include "io/backlash_output.hpp"
+
+namespace sw::app {
+
+struct BacklashJobOptions {
+  std::optional<std::filesystem::path> fem_result;  ///< --fem DIR/result.json: φ₀ (or C_τ·T) and neutral_curve.csv
+  std::optional<double> phi0_rad;                   ///< --phi0: overrides the FEM's φ₀
+  bool fem_curve = false;                           ///< --curve fem: neutral_curve.csv beside result.json
+  int revolution_steps = 3600;                      ///< 0.1° steps
+};
+
+/// Builds the model from the case, sweeps, writes backlash.json/.csv/.svg and profiles.vtp under out_dir, prints the
+/// paper's table on stdout. Throws InputError for a case without [gear] or without wave_generator.radial_deformation_mm.
+BacklashReport run_backlash_job(const Case& c, const BacklashJobOptions& options, const std::filesystem::path& out_dir);
+
+}  // namespace sw::app

@@ -1,0 +1,120 @@
+// `strainwave backlash CASE.toml [--fem DIR/result.json] [--phi0 RAD] [--curve generator|fem] [--out DIR]`:
+// backlash over a wave-generator revolution, basic (φ₀ = 0) and load-compensated (φ₀ from the FEM or --phi0).
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "app/backlash_job.hpp"
+#include "app/commands.hpp"
+#include "common/error.hpp"
+#include "common/progress.hpp"
+#include "io/atomic_file.hpp"
+#include "io/case.hpp"
+
+namespace sw::app {
+
+namespace fs = std::filesystem;
+
+BacklashReport run_backlash_job(const Case& c, const BacklashJobOptions& o, const fs::path& out_dir) {
+  constexpr double kPi = std::numbers::pi;
+  if (!c.gear) throw InputError(c.path + ": [gear] is missing; the backlash model needs the tooth data");
+  if (!c.wave_generator || !c.wave_generator->radial_deformation_m)
+    throw InputError(c.path + ": wave_generator.radial_deformation_mm is missing; the backlash model needs w0");
+  const double rm = rim_mean_radius(c.flexspline);
+  const double w0 = *c.wave_generator->radial_deformation_m;
+
+  BacklashReport r;
+  r.case_path = c.path;
+  r.module_m = c.gear->module_m;
+  r.torque_Nm = c.load.torque_Nm;
+  std::optional<FemCompensation> fem;
+  if (o.fem_result) fem = read_fem_compensation(*o.fem_result);
+  if (o.phi0_rad) {
+    r.phi0_rad = *o.phi0_rad;
+    r.phi0_source = "--phi0";
+  } else if (fem && fem->compliance_rad_per_Nm && c.load.torque_Nm != 0) {
+    r.phi0_rad = *fem->compliance_rad_per_Nm * c.load.torque_Nm;
+    r.phi0_source = "C_tau x torque from " + o.fem_result->string();
+  } else if (fem) {
+    r.phi0_rad = fem->phi0_rad;
+    r.phi0_source = "phi0_rad from " + o.fem_result->string();
+  } else {
+    r.phi0_source = "none (no --fem, no --phi0): compensated = basic";
+  }
+  if (fem) r.compliance_rad_per_Nm = fem->compliance_rad_per_Nm;
+
+  NeutralCurve curve;
+  if (o.fem_curve) {
+    if (!o.fem_result) throw InputError("--curve fem needs --fem DIR/result.json (neutral_curve.csv is read beside it)");
+    curve = read_fem_neutral_curve(o.fem_result->parent_path() / "neutral_curve.csv", rm, FemLoadCase::GeneratorOnly);
+  } else {
+    curve = generator_neutral_curve(rm, w0, *c.wave_generator);
+  }
+  r.curve_source = curve.source;
+  const BacklashModel m = make_backlash_model(*c.gear, curve);
+  progress("backlash: " + curve.source + ", r_m = " + std::to_string(rm * 1e3) + " mm, phi0 = " +
+           std::to_string(r.phi0_rad) + " rad");
+
+  Stopwatch clock;
+  for (double pos : {0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 90.0}) {
+    const double phi = (90.0 - pos) * kPi / 180.0;
+    r.table.push_back({pos, pair_clearance(m, phi, 0.0), pair_clearance(m, phi, r.phi0_rad)});
+  }
+  for (int i = -719; i <= 720; ++i) {  // 0.25° over (−180°, 180°]
+    const double phi = i * 0.25 * kPi / 180.0;
+    r.positions_basic.push_back(pair_clearance(m, phi, 0.0));
+    r.positions_compensated.push_back(pair_clearance(m, phi, r.phi0_rad));
+  }
+  const double t_positions = clock.lap();
+  r.revolution_basic = sweep_revolution(m, 0.0, o.revolution_steps);
+  r.revolution_compensated = sweep_revolution(m, r.phi0_rad, o.revolution_steps);
+  const double t_rev = clock.lap();
+  progress("backlash: 1440 pair positions in " + std::to_string(t_positions) + " s; revolution (" +
+           std::to_string(o.revolution_steps) + " steps x 2) in " + std::to_string(t_rev) + " s");
+
+  write_file_atomic(out_dir / "backlash.json", backlash_json(r));
+  write_file_atomic(out_dir / "backlash.csv", backlash_csv(r));
+  write_file_atomic(out_dir / "backlash.svg", backlash_svg(r));
+  write_profiles_vtp(out_dir / "profiles.vtp", m, r.phi0_rad);
+
+  std::printf("backlash %s: %s\n  phi0 = %.6e rad (%s)\n", c.path.c_str(), curve.source.c_str(), r.phi0_rad,
+              r.phi0_source.c_str());
+  std::printf("  %-10s %-8s %-12s %-12s %-9s %s\n", "psi(deg)", "engaged", "j/m basic", "j/m comp", "change", "j_t1/j_t2 basic -> comp (um)");
+  for (const auto& row : r.table) {
+    const double b = row.basic.backlash_m() / r.module_m, cc = row.compensated.backlash_m() / r.module_m;
+    std::printf("  %-10.0f %-8s %-12.5f %-12.5f %+7.1f%%  %.3f/%.3f -> %.3f/%.3f%s\n", row.position_deg,
+                row.basic.engaged ? "yes" : "no", b, cc, b != 0 ? 100.0 * (cc - b) / std::abs(b) : 0.0,
+                row.basic.ccw.clearance_m * 1e6, row.basic.cw.clearance_m * 1e6, row.compensated.ccw.clearance_m * 1e6,
+                row.compensated.cw.clearance_m * 1e6, b < 0 || cc < 0 ? "  (interference)" : "");
+  }
+  std::printf("  min over engaged pairs and a revolution: basic %.5f mm (j/m %.5f), compensated %.5f mm (j/m %.5f)\n",
+              r.revolution_basic.min_m * 1e3, r.revolution_basic.min_m / r.module_m, r.revolution_compensated.min_m * 1e3,
+              r.revolution_compensated.min_m / r.module_m);
+  std::printf("  wrote %s\n", out_dir.string().c_str());
+  return r;
+}
+
+void add_backlash_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("backlash", "backlash over a wave-generator cycle, basic and load-compensated");
+  static std::string case_path, out, fem, curve = "generator";
+  static double phi0 = 0;
+  static int steps = 3600;
+  cmd->add_option("case", case_path, "case file (TOML)")->required();
+  cmd->add_option("--fem", fem, "FEM result (DIR/result.json): phi0 = C_tau x torque, or its phi0_rad");
+  auto* phi0_opt = cmd->add_option("--phi0", phi0, "flexspline wind-up under load, rad (overrides --fem)");
+  cmd->add_option("--curve", curve, "deformed neutral curve: generator (case's model) or fem (neutral_curve.csv)")
+      ->check(CLI::IsMember({"generator", "fem"}));
+  cmd->add_option("--steps", steps, "wave-generator steps per revolution")->check(CLI::Range(1, 1000000));
+  cmd->add_option("--out", out, "output directory (default out/<case stem>/)");
+  cmd->callback([phi0_opt] {
+    const Case c = load_case(case_path);
+    BacklashJobOptions o;
+    if (!fem.empty()) o.fem_result = fem;
+    if (phi0_opt->count() > 0) o.phi0_rad = phi0;
+    o.fem_curve = curve == "fem";
+    o.revolution_steps = steps;
+    run_backlash_job(c, o, out.empty() ? fs::path("out") / c.stem : fs::path(out));
+  });
+}
+
+}  // namespace sw::app

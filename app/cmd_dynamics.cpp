@@ -1,0 +1,129 @@
+// `strainwave dynamics CASE.toml [--out DIR] [--clearances kinematics|approximate]`: the multibody run-up and steady
+// run of issue 6. Reads the case, takes the tooth-pair clearances of the basic kinematic model (kinematics/, φ₀ = 0,
+// wave generator at 0) or the dynamics module's stand-in, integrates, checks against kinematics and statics, and
+// writes dynamics.csv, dynamics.json and dynamics.svg (atomically).
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "app/commands.hpp"
+#include "common/error.hpp"
+#include "common/progress.hpp"
+#include "dynamics/analysis.hpp"
+#include "dynamics/report.hpp"
+#include "io/atomic_file.hpp"
+#include "io/case.hpp"
+#include "kinematics/backlash.hpp"
+#include "kinematics/neutral_curve.hpp"
+
+namespace sw::app {
+namespace {
+
+/// The case's [dynamics] table, whichever way io/case.hpp holds it (optional, plain, or not yet at all).
+template <class C>
+DynamicsParams dynamics_params_of(const C& c) {
+  if constexpr (requires { c.dynamics.has_value(); }) {
+    return c.dynamics ? *c.dynamics : DynamicsParams{};
+  } else if constexpr (requires { DynamicsParams{c.dynamics}; }) {
+    return c.dynamics;
+  } else {
+    return DynamicsParams{};
+  }
+}
+
+double radial_deformation(const Case& c) {
+  if (c.wave_generator && c.wave_generator->radial_deformation_m) return *c.wave_generator->radial_deformation_m;
+  return c.gear->module_m * (c.gear->teeth_circular - c.gear->teeth_flexspline) / 2.0;  // standard: rim meets the CS
+}
+
+/// Adapter from the backlash module: every engaged pair at wave-generator angle 0, φ₀ = 0. The ccw flank closes with
+/// a positive (ccw) wind-up of the rim, which is the model's drive flank; its arm is d(clearance)/dφ₀ with the sign
+/// turned; a flank whose clearance does not close with the matching rotation never touches (infinite clearance).
+std::vector<ToothPair> pairs_from_kinematics(const Case& c) {
+  const double rm = rim_mean_radius(c.flexspline);
+  const NeutralCurve curve = c.wave_generator ? generator_neutral_curve(rm, radial_deformation(c), *c.wave_generator)
+                                              : cam_neutral_curve(rm, radial_deformation(c));
+  const BacklashModel model = make_backlash_model(*c.gear, curve);
+  std::vector<ToothPair> pairs;
+  constexpr double kNever = std::numeric_limits<double>::infinity();
+  for (const PairClearance& pc : pair_clearances(model, 0.0, 0.0, true)) {
+    ToothPair t;
+    t.angle_rad = pc.phi_rad;
+    t.normal_projection = 1.0;  // the kinematic lever arm is already the moment of the flank normal
+    t.lever_arm_m = std::abs(pc.ccw.lever_arm_m);
+    t.clearance_drive_m = pc.ccw.lever_arm_m > 0 ? pc.ccw.clearance_m : kNever;
+    t.coast_arm_m = std::abs(pc.cw.lever_arm_m);
+    t.clearance_coast_m = pc.cw.lever_arm_m < 0 ? pc.cw.clearance_m : kNever;
+    if (t.lever_arm_m > 0 && t.coast_arm_m > 0) pairs.push_back(t);
+  }
+  return pairs;
+}
+
+void run_dynamics(const std::string& case_path, std::string out_dir, const std::string& clearances) {
+  Stopwatch total;
+  const Case c = load_case(case_path);
+  if (!c.gear) throw InputError(case_path + ": [gear] is missing; the dynamics needs the tooth numbers and module");
+  const DynamicsParams p = dynamics_params_of(c);
+  if (out_dir.empty()) out_dir = "out/" + c.stem;
+  std::vector<ToothPair> pairs;
+  std::string source;
+  if (clearances == "kinematics") {
+    pairs = pairs_from_kinematics(c);
+    source = "kinematics (basic model, wave generator at 0, phi0 = 0), " + std::to_string(pairs.size()) + " engaged pairs";
+  } else {
+    pairs = approximate_tooth_pairs(*c.gear, radial_deformation(c), c.load.engagement_half_angle_rad,
+                                    p.base_clearance_m);
+    source = "approximate stand-in (w0(1 - cos 2phi) sin(alpha) within +-engagement_half_angle), " +
+             std::to_string(pairs.size()) + " pairs";
+  }
+  const DynamicsModel m = make_model(*c.gear, c.flexspline, c.flexspline.shape == FlexsplineShape::Cup, c.material, p,
+                                     std::move(pairs), case_path);
+  progress("dynamics: " + std::string(to_string(p.configuration)) + ", " + std::to_string(m.pairs.size()) +
+           " tooth pairs (" + source + "), " + std::to_string(std::lround(p.duration_s / p.output_step_s)) +
+           " output steps");
+  Stopwatch sim;
+  const DynamicsSeries s = simulate(m);
+  DynamicsReportInfo info;
+  info.case_path = case_path;
+  info.clearance_source = source;
+  info.simulate_time_s = sim.lap();
+  progress("dynamics: integrated " + std::to_string(p.duration_s) + " s in " + std::to_string(info.simulate_time_s) +
+           " s (" + std::to_string(s.stats.steps) + " steps)");
+  const DynamicsSummary r = summarize(m, s);
+  const std::filesystem::path dir(out_dir);
+  write_file_atomic(dir / "dynamics.csv", dynamics_csv(m, s));
+  info.total_time_s = total.lap();
+  write_file_atomic(dir / "dynamics.json", dynamics_json(m, s, r, info));
+  write_file_atomic(dir / "dynamics.svg", dynamics_svg(m, s, r, info));
+  std::printf("dynamics %s (%s, %d/%d teeth, %zu pairs): %.3g s simulated in %.3g s (real-time factor %.3g)\n",
+              case_path.c_str(), to_string(p.configuration), m.teeth_flexspline, m.teeth_circular, m.pairs.size(),
+              p.duration_s, info.simulate_time_s, p.duration_s / info.simulate_time_s);
+  for (const auto& sc : r.speeds)
+    std::printf("  speed %-16s %12.6f rpm (theory %12.6f, error %.2e)\n", sc.body.c_str(), sc.simulated_rpm,
+                sc.theory_rpm, sc.error_rel);
+  std::printf("  pair forces vs quasi-static: max error %.2e; torque balance %.2e; energy balance %.2e\n",
+              r.max_pair_force_error_rel, r.torque_balance_error_rel, r.energy_error_rel);
+  std::printf("  mesh frequency %.2f Hz; strongest line %s\n", r.theory.mesh_frequency_Hz,
+              r.lines.empty() ? "none" : (std::to_string(r.lines[0].frequency_Hz) + " Hz").c_str());
+  std::printf("  wrote %s/dynamics.{csv,json,svg}\n", out_dir.c_str());
+}
+
+}  // namespace
+
+void add_dynamics_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("dynamics", "multibody run-up and steady run with tooth-pair contact (issue 6)");
+  auto case_path = std::make_shared<std::string>();
+  auto out = std::make_shared<std::string>();
+  auto clearances = std::make_shared<std::string>("kinematics");
+  cmd->add_option("case", *case_path, "case file (TOML) with [gear] and an optional [dynamics] table")->required();
+  cmd->add_option("--out", *out, "output directory (default out/<case stem>/)");
+  cmd->add_option("--clearances", *clearances, "tooth-pair clearances: kinematics (backlash module) | approximate")
+      ->check(CLI::IsMember({"kinematics", "approximate"}));
+  cmd->callback([=] { run_dynamics(*case_path, *out, *clearances); });
+}
+
+}  // namespace sw::app

@@ -1,0 +1,83 @@
+// `strainwave fem CASE.toml`: mesh the flexspline, solve every load case on one factorisation, write result.json,
+// neutral_curve.csv and the VTK files; `strainwave run` chains fem and backlash.
+#include <cstdio>
+#include <filesystem>
+
+#include "app/commands.hpp"
+#include "app/fem_job.hpp"
+#include "common/progress.hpp"
+#include "fem/flexspline_analysis.hpp"
+#include "io/atomic_file.hpp"
+#include "io/case.hpp"
+#include "io/fem_output.hpp"
+#include "mesh/shapes.hpp"
+
+namespace sw::app {
+
+namespace fs = std::filesystem;
+
+fs::path default_out_dir(const Case& c) { return fs::path("out") / c.stem; }
+
+TetMesh mesh_for_case(const Case& c) {
+  const auto& f = c.flexspline;
+  return mesh_tube(f.inner_radius_m, f.inner_radius_m + f.wall_thickness_m, f.length_m, c.mesh);
+}
+
+FemJobResult run_fem_job(const Case& c, const fs::path& out_dir) {
+  const double t_start = elapsed_s();
+  RunInfo run;
+  run.blas = detect_blas();
+  progress("BLAS: " + run.blas.description);
+  if (run.blas.is_reference)
+    std::fprintf(stderr,
+                 "strainwave: warning: CHOLMOD runs on the reference BLAS (%s), which is 10-50x slower; install "
+                 "libopenblas0-pthread (scripts/setup.sh does)\n",
+                 run.blas.description.c_str());
+  Stopwatch clock;
+  progress("mesh: " + c.path);
+  const TetMesh mesh = mesh_for_case(c);
+  run.mesh_s = clock.lap();
+  progress("mesh: " + std::to_string(mesh.n_nodes()) + " nodes, " + std::to_string(mesh.tets.size()) +
+           " TET10, min dihedral " + std::to_string(mesh.quality.min_dihedral_deg) + " deg");
+  FemJobResult job;
+  job.solution = analyse_flexspline(c, mesh);
+  clock.lap();
+  progress("output: " + out_dir.string());
+  write_fem_vtk(out_dir, c, mesh, job.solution);
+  if (job.solution.neutral_curve) write_file_atomic(out_dir / "neutral_curve.csv", neutral_curve_csv(*job.solution.neutral_curve));
+  run.output_s = clock.lap();
+  run.total_s = elapsed_s() - t_start;
+  run.peak_rss_bytes = peak_rss_bytes();
+  job.result_json_path = out_dir / "result.json";
+  write_file_atomic(job.result_json_path, fem_result_json(c, mesh, job.solution, run));
+  const auto& s = job.solution;
+  std::printf("fem %s: %zu nodes, %lld equations, factor %.2f GF in %.2f s (%.1f GF/s), total %.1f s, peak %.0f MB\n",
+              c.path.c_str(), mesh.n_nodes(), static_cast<long long>(s.factor.equations), s.factor.factor_gflop,
+              s.factor.factor_s, s.factor.factor_s > 0 ? s.factor.factor_gflop / s.factor.factor_s : 0.0, run.total_s,
+              run.peak_rss_bytes / 1e6);
+  std::printf("  phi0 = %.6e rad at T = %g N·m (C_tau = %.6e rad/N·m); theory T·L/(G·J) = %.6e rad (FEM/theory %.4f)\n",
+              s.phi0_rad, s.torque_Nm, s.compliance_rad_per_Nm, s.phi0_theory_rad,
+              s.phi0_theory_rad != 0 ? s.phi0_rad / s.phi0_theory_rad : 0.0);
+  std::printf("  reaction torque %.9g N·m vs applied %.9g N·m\n", s.reaction_torque_Nm, s.applied_torque_Nm);
+  if (c.wave_generator)
+    std::printf("  generator: %.4g N per force, w0 = %.4f mm, net rim rotation %.2e rad; hoop stress %+.1f MPa at "
+                "%.0f deg, %+.1f MPa at %.0f deg\n",
+                s.generator_force_N, s.generator_w0_m * 1e3, s.generator_rotation_rad, s.hoop.max_tensile_Pa / 1e6,
+                s.hoop.max_tensile_angle_deg, s.hoop.max_compressive_Pa / 1e6, s.hoop.max_compressive_angle_deg);
+  std::printf("  wrote %s\n", out_dir.string().c_str());
+  return job;
+}
+
+void add_fem_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("fem", "mesh the flexspline, solve every load case, extract phi0 and C_tau");
+  static std::string case_path, out;
+  cmd->add_option("case", case_path, "case file (TOML)")->required();
+  cmd->add_option("--out", out, "output directory (default out/<case stem>/)");
+  cmd->callback([] {
+    const Case c = load_case(case_path);
+    progress("case:\n" + describe_case(c));
+    run_fem_job(c, out.empty() ? default_out_dir(c) : fs::path(out));
+  });
+}
+
+}  // namespace sw::app

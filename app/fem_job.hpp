@@ -1,0 +1,25 @@
+#pragma once
+// The fem job shared by `strainwave fem` and `strainwave run`.
+#include <filesystem>
+
+#include "common/params.hpp"
+#include "fem/flexspline_analysis.hpp"
+#include "mesh/tet_mesh.hpp"
+
+namespace sw::app {
+
+struct FemJobResult {
+  FlexsplineSolution solution;
+  std::filesystem::path result_json_path;
+};
+
+/// out/<case stem>/
+std::filesystem::path default_out_dir(const Case& c);
+
+/// The mesh of the case's flexspline.
+TetMesh mesh_for_case(const Case& c);
+
+/// Meshes, solves, writes every fem output under out_dir, prints the summary.
+FemJobResult run_fem_job(const Case& c, const std::filesystem::path& out_dir);
+
+}  // namespace sw::app

@@ -1,0 +1,24 @@
+#pragma once
+// Shared by `strainwave reconcile` and `strainwave synth`: the baseline (current simulation) of a recording kind,
+// from the case, the FEM result and the kinematics module. Messages name the file and field on bad input.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "io/case.hpp"
+#include "reconcile/experiment.hpp"
+#include "reconcile/recording.hpp"
+
+namespace sw::app {
+
+struct BaselineSources {
+  std::optional<Case> case_file;           ///< the case, when given
+  std::string fem_result;                  ///< path of result.json ("" if none)
+  std::optional<double> compliance;        ///< --compliance overrides the FEM result
+  const reconcile::Recording* recording = nullptr;  ///< metadata used where the case is silent
+};
+
+/// Builds the baseline of `kind`. `notes` receives case/metadata disagreements and where each number came from.
+reconcile::Baseline make_baseline(reconcile::Kind kind, const BaselineSources& src, std::vector<std::string>& notes);
+
+}  // namespace sw::app

@@ -1,0 +1,254 @@
+#include "io/backlash_output.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkIntArray.h>
+#include <vtkNew.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkXMLPolyDataWriter.h>
+
+#include "common/error.hpp"
+#include "io/atomic_file.hpp"
+
+namespace sw {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kDeg = 180.0 / kPi;
+
+double change_percent(double basic, double comp) { return basic != 0 ? 100.0 * (comp - basic) / std::abs(basic) : 0.0; }
+
+nlohmann::json pair_json(const PairClearance& p) {
+  return {{"phi_deg", p.phi_rad * kDeg},
+          {"engaged", p.engaged},
+          {"depth_mm", p.depth_m * 1e3},
+          {"j_t1_mm", p.ccw.clearance_m * 1e3},
+          {"j_t2_mm", p.cw.clearance_m * 1e3},
+          {"lever_arm_t1_mm", p.ccw.lever_arm_m * 1e3},
+          {"lever_arm_t2_mm", p.cw.lever_arm_m * 1e3}};
+}
+
+}  // namespace
+
+FemCompensation read_fem_compensation(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  const std::string file = path.string();
+  if (!in) throw InputError(file + ": cannot open; run `strainwave fem CASE.toml` first or pass --phi0 RAD");
+  nlohmann::json j;
+  try {
+    in >> j;
+  } catch (const std::exception& e) {
+    throw InputError(file + ": not valid JSON (" + std::string(e.what()) + ")");
+  }
+  if (!j.is_object() || !j.contains("phi0_rad") || !j["phi0_rad"].is_number())
+    throw InputError(file + ": phi0_rad is missing or not a number; expected the result.json of `strainwave fem`");
+  FemCompensation c;
+  c.phi0_rad = j["phi0_rad"].get<double>();
+  if (j.contains("compliance_rad_per_Nm") && j["compliance_rad_per_Nm"].is_number())
+    c.compliance_rad_per_Nm = j["compliance_rad_per_Nm"].get<double>();
+  return c;
+}
+
+std::string backlash_json(const BacklashReport& r) {
+  nlohmann::json j;
+  j["case"] = r.case_path;
+  j["neutral_curve"] = r.curve_source;
+  j["module_mm"] = r.module_m * 1e3;
+  j["phi0_rad"] = r.phi0_rad;
+  j["phi0_source"] = r.phi0_source;
+  j["torque_Nm"] = r.torque_Nm;
+  if (r.compliance_rad_per_Nm) j["compliance_rad_per_Nm"] = *r.compliance_rad_per_Nm;
+  j["table"] = nlohmann::json::array();
+  for (const auto& row : r.table) {
+    const double b = row.basic.backlash_m() / r.module_m, c = row.compensated.backlash_m() / r.module_m;
+    j["table"].push_back({{"position_deg", row.position_deg},
+                          {"basic_over_m", b},
+                          {"compensated_over_m", c},
+                          {"change_percent", change_percent(b, c)},
+                          {"basic", pair_json(row.basic)},
+                          {"compensated", pair_json(row.compensated)}});
+  }
+  const auto& rb = r.revolution_basic;
+  const auto& rc = r.revolution_compensated;
+  j["min_backlash_basic_mm"] = rb.min_m * 1e3;
+  j["min_backlash_compensated_mm"] = rc.min_m * 1e3;
+  j["max_backlash_basic_mm"] = rb.max_m * 1e3;
+  j["max_backlash_compensated_mm"] = rc.max_m * 1e3;
+  j["revolution"] = {{"steps", rb.wg_angle_rad.size()},
+                     {"distinct_positions", rb.distinct_positions},
+                     {"min_basic_at_wg_deg", rb.min_at_rad * kDeg},
+                     {"min_compensated_at_wg_deg", rc.min_at_rad * kDeg},
+                     {"engaged_pairs", {rb.engaged_pairs_min, rb.engaged_pairs_max}},
+                     {"definition", "min over engaged pairs (flexspline tip beyond the circular-spline tip circle) "
+                                    "of min(j_t1, j_t2), then min/max over the revolution"}};
+  nlohmann::json locs = nlohmann::json::array();
+  auto add = [&](const std::vector<PairClearance>& ps, const char* which) {
+    for (const auto& p : ps)
+      for (const auto& i : interferences(p))
+        locs.push_back({{"model", which},
+                        {"phi_deg", i.phi_rad * kDeg},
+                        {"position_deg", p.position_deg},
+                        {"where", i.where},
+                        {"depth_mm", i.depth_m * 1e3},
+                        {"x_mm", i.point.x() * 1e3},
+                        {"y_mm", i.point.y() * 1e3}});
+  };
+  add(r.positions_basic, "basic");
+  add(r.positions_compensated, "compensated");
+  j["interference"] = !locs.empty() || rb.min_m < 0 || rc.min_m < 0;
+  j["interference_locations"] = locs;
+  return j.dump(2) + "\n";
+}
+
+std::string backlash_csv(const BacklashReport& r) {
+  std::ostringstream s;
+  s.precision(10);
+  s << "phi_deg,position_deg,engaged,depth_mm,j_t1_basic_mm,j_t2_basic_mm,j_t1_comp_mm,j_t2_comp_mm,"
+       "backlash_basic_over_m,backlash_comp_over_m,lever_arm_t1_mm,lever_arm_t2_mm\n";
+  for (size_t i = 0; i < r.positions_basic.size(); ++i) {
+    const auto& b = r.positions_basic[i];
+    const auto& c = r.positions_compensated[i];
+    s << b.phi_rad * kDeg << "," << b.position_deg << "," << (b.engaged ? 1 : 0) << "," << b.depth_m * 1e3 << ","
+      << b.ccw.clearance_m * 1e3 << "," << b.cw.clearance_m * 1e3 << "," << c.ccw.clearance_m * 1e3 << ","
+      << c.cw.clearance_m * 1e3 << "," << b.backlash_m() / r.module_m << "," << c.backlash_m() / r.module_m << ","
+      << b.ccw.lever_arm_m * 1e3 << "," << b.cw.lever_arm_m * 1e3 << "\n";
+  }
+  return s.str();
+}
+
+std::string backlash_svg(const BacklashReport& r) {
+  const double W = 900, H = 520, L = 80, R = 30, T = 60, B = 70;
+  double ymin = 0, ymax = 0;
+  for (const auto* v : {&r.positions_basic, &r.positions_compensated})
+    for (const auto& p : *v)
+      if (p.engaged && std::abs(p.phi_rad) <= kPi / 2) {
+        ymin = std::min(ymin, p.backlash_m() / r.module_m);
+        ymax = std::max(ymax, p.backlash_m() / r.module_m);
+      }
+  if (ymax <= ymin) ymax = ymin + 1;
+  const double pad = 0.05 * (ymax - ymin);
+  ymin -= pad;
+  ymax += pad;
+  auto X = [&](double deg) { return L + (deg + 90.0) / 180.0 * (W - L - R); };
+  auto Y = [&](double v) { return T + (ymax - v) / (ymax - ymin) * (H - T - B); };
+  std::ostringstream s;
+  s.precision(6);
+  s << "<svg xmlns='http://www.w3.org/2000/svg' width='" << W << "' height='" << H << "' font-family='sans-serif' "
+    << "font-size='13'>\n<rect width='100%' height='100%' fill='white'/>\n";
+  s << "<text x='" << W / 2 << "' y='22' text-anchor='middle' font-size='16'>Backlash j/m of a tooth pair vs its "
+    << "position (" << r.case_path << ")</text>\n";
+  s << "<text x='" << W / 2 << "' y='42' text-anchor='middle' fill='#555'>" << r.curve_source << "; compensated: phi0 = "
+    << r.phi0_rad << " rad (" << r.phi0_source << "); j = min(j_t1, j_t2); negative = interference</text>\n";
+  s << "<rect x='" << L << "' y='" << T << "' width='" << W - L - R << "' height='" << H - T - B
+    << "' fill='none' stroke='#333'/>\n";
+  for (int d = -90; d <= 90; d += 15) {
+    s << "<line x1='" << X(d) << "' y1='" << T << "' x2='" << X(d) << "' y2='" << H - B << "' stroke='#eee'/>";
+    s << "<text x='" << X(d) << "' y='" << H - B + 18 << "' text-anchor='middle'>" << d << "</text>\n";
+  }
+  const double step = std::pow(10.0, std::floor(std::log10((ymax - ymin) / 5)));
+  for (double v = std::ceil(ymin / step) * step; v <= ymax; v += step) {
+    s << "<line x1='" << L << "' y1='" << Y(v) << "' x2='" << W - R << "' y2='" << Y(v) << "' stroke='"
+      << (std::abs(v) < 1e-12 ? "#000" : "#eee") << "'/>";
+    s << "<text x='" << L - 6 << "' y='" << Y(v) + 4 << "' text-anchor='end'>" << v << "</text>\n";
+  }
+  s << "<text x='" << (L + W - R) / 2 << "' y='" << H - 25 << "' text-anchor='middle'>material angle of the tooth "
+    << "from the major axis, deg (0 = major axis, ±90 = minor axis; table position = 90 − |angle|)</text>\n";
+  s << "<text transform='translate(20," << (T + H - B) / 2 << ") rotate(-90)' text-anchor='middle'>j / m</text>\n";
+  auto curve = [&](const std::vector<PairClearance>& ps, const char* colour, const char* dash) {
+    std::string d;
+    bool pen = false;
+    for (const auto& p : ps) {
+      if (!p.engaged || std::abs(p.phi_rad) > kPi / 2) { pen = false; continue; }
+      std::ostringstream q;
+      q << (pen ? " L" : " M") << X(p.phi_rad * kDeg) << "," << Y(p.backlash_m() / r.module_m);
+      d += q.str();
+      pen = true;
+    }
+    s << "<path d='" << d << "' fill='none' stroke='" << colour << "' stroke-width='2' stroke-dasharray='" << dash
+      << "'/>\n";
+  };
+  curve(r.positions_basic, "#1f77b4", "none");
+  curve(r.positions_compensated, "#d62728", "6,4");
+  for (const auto& row : r.table) {
+    const double deg = 90.0 - row.position_deg;
+    for (const auto& [p, col] : {std::pair{&row.basic, "#1f77b4"}, std::pair{&row.compensated, "#d62728"}})
+      if (p->engaged) s << "<circle cx='" << X(deg) << "' cy='" << Y(p->backlash_m() / r.module_m) << "' r='4' fill='" << col << "'/>\n";
+  }
+  s << "<rect x='" << W - R - 250 << "' y='" << T + 8 << "' width='240' height='48' fill='white' stroke='#999'/>\n";
+  s << "<line x1='" << W - R - 240 << "' y1='" << T + 24 << "' x2='" << W - R - 200 << "' y2='" << T + 24
+    << "' stroke='#1f77b4' stroke-width='2'/><text x='" << W - R - 192 << "' y='" << T + 28 << "'>basic (phi0 = 0)</text>\n";
+  s << "<line x1='" << W - R - 240 << "' y1='" << T + 44 << "' x2='" << W - R - 200 << "' y2='" << T + 44
+    << "' stroke='#d62728' stroke-width='2' stroke-dasharray='6,4'/><text x='" << W - R - 192 << "' y='" << T + 48
+    << "'>compensated (phi0)</text>\n";
+  s << "<text x='" << L << "' y='" << H - 6 << "' fill='#555'>min over a revolution: basic "
+    << r.revolution_basic.min_m * 1e3 << " mm, compensated " << r.revolution_compensated.min_m * 1e3
+    << " mm; only engaged positions are drawn</text>\n";
+  s << "</svg>\n";
+  return s.str();
+}
+
+void write_profiles_vtp(const std::filesystem::path& path, const BacklashModel& m, double phi0_rad) {
+  vtkNew<vtkPoints> pts;
+  vtkNew<vtkCellArray> lines;
+  vtkNew<vtkIntArray> part;
+  part->SetName("part");
+  auto add_line = [&](const std::vector<Eigen::Vector2d>& poly, int p) {
+    lines->InsertNextCell(static_cast<vtkIdType>(poly.size()));
+    for (const auto& q : poly) lines->InsertCellPoint(pts->InsertNextPoint(q.x() * 1e3, q.y() * 1e3, 0.0));
+    part->InsertNextValue(p);
+  };
+  const int n = 16;
+  const Involute& f = m.flank_f;
+  std::vector<Eigen::Vector2d> tooth;  // cw flank up, tip, ccw flank down (tooth 0, flexspline frame)
+  for (int i = 0; i <= n; ++i) {
+    const Eigen::Vector2d q = involute_point(f, f.u_min + (f.u_max - f.u_min) * i / n);
+    tooth.emplace_back(q.x(), -q.y());
+  }
+  for (int i = n; i >= 0; --i) tooth.push_back(involute_point(f, f.u_min + (f.u_max - f.u_min) * i / n));
+  for (int k = 0; k < m.gear.teeth_flexspline; ++k) {
+    const double phi = tooth_material_angle(m.gear, k, 0.0);
+    for (int which = 0; which < 2; ++which) {
+      const ToothPlacement t = place_tooth(m.curve, phi, which == 0 ? 0.0 : phi0_rad);
+      const double c = std::cos(t.angle_rad), s = std::sin(t.angle_rad);
+      std::vector<Eigen::Vector2d> poly;
+      for (const auto& q : tooth) poly.emplace_back(c * q.x() - s * q.y() + t.offset_m.x(), s * q.x() + c * q.y() + t.offset_m.y());
+      add_line(poly, which);
+    }
+  }
+  const Involute& cs = m.flank_c;
+  for (int j = 0; j < m.gear.teeth_circular; ++j) {
+    const double a = 2.0 * kPi * j / m.gear.teeth_circular, c = std::cos(a), s = std::sin(a);
+    std::vector<Eigen::Vector2d> poly;  // space j: cw side from tip out to the form radius, back in on the ccw side
+    for (int i = 0; i <= n; ++i) {
+      const Eigen::Vector2d q = involute_point(cs, cs.u_min + (cs.u_max - cs.u_min) * i / n);
+      poly.emplace_back(c * q.x() + s * q.y(), s * q.x() - c * q.y());
+    }
+    for (int i = n; i >= 0; --i) {
+      const Eigen::Vector2d q = involute_point(cs, cs.u_min + (cs.u_max - cs.u_min) * i / n);
+      poly.emplace_back(c * q.x() - s * q.y(), s * q.x() + c * q.y());
+    }
+    add_line(poly, 2);
+  }
+  vtkNew<vtkPolyData> pd;
+  pd->SetPoints(pts);
+  pd->SetLines(lines);
+  pd->GetCellData()->AddArray(part);
+  write_via_temp(path, [&](const std::filesystem::path& tmp) {
+    vtkNew<vtkXMLPolyDataWriter> w;
+    w->SetFileName(tmp.string().c_str());
+    w->SetInputData(pd);
+    w->SetDataModeToAscii();
+    if (w->Write() != 1) throw InputError(path.string() + ": VTK could not write the file");
+  });
+}
+
+}  // namespace sw

@@ -1,0 +1,116 @@
+#include "io/fem_output.hpp"
+
+#include <sys/resource.h>
+
+#include <cstdio>
+#include <numbers>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "fem/post.hpp"
+#include "io/vtu.hpp"
+
+namespace sw {
+
+long peak_rss_bytes() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss * 1024L;
+}
+
+std::string fem_result_json(const Case& c, const TetMesh& mesh, const FlexsplineSolution& s, const RunInfo& run) {
+  using nlohmann::json;
+  json j;
+  j["case"] = c.path;
+  j["torque_Nm"] = s.torque_Nm;
+  j["phi0_rad"] = s.phi0_rad;
+  j["compliance_rad_per_Nm"] = s.compliance_rad_per_Nm;
+  j["phi0_theory_rad"] = s.phi0_theory_rad;
+  j["phi0_reading"] = {{"radius_mm", s.reading_radius_m * 1e3}, {"z_mm", s.reading_z_m * 1e3}};
+  j["applied_torque_Nm"] = s.applied_torque_Nm;
+  j["reaction_torque_Nm"] = s.reaction_torque_Nm;
+  j["torque_balance_error_rel"] =
+      s.torque_Nm != 0 ? std::abs(s.reaction_torque_Nm + s.applied_torque_Nm) / std::abs(s.torque_Nm) : 0.0;
+  j["max_hoop_stress_Pa"] = s.hoop.max_tensile_Pa;
+  j["max_hoop_stress_angle_deg"] = s.hoop.max_tensile_angle_deg;
+  j["min_hoop_stress_Pa"] = s.hoop.max_compressive_Pa;
+  j["min_hoop_stress_angle_deg"] = s.hoop.max_compressive_angle_deg;
+  j["hoop_stress_case"] = s.cases.front().name;
+  if (c.wave_generator) {
+    j["wave_generator"] = {{"force_per_point_N", s.generator_force_N},
+                           {"w0_reached_mm", s.generator_w0_m * 1e3},
+                           {"net_force_N", {s.generator_net_force[0], s.generator_net_force[1], s.generator_net_force[2]}},
+                           {"net_moment_Nm",
+                            {s.generator_net_moment[0], s.generator_net_moment[1], s.generator_net_moment[2]}},
+                           {"rim_rotation_rad", s.generator_rotation_rad}};
+    json sweep = json::array();
+    for (const auto& [T, c_tau] : s.torque_sweep) sweep.push_back({{"torque_Nm", T}, {"compliance_rad_per_Nm", c_tau}});
+    j["torque_sweep"] = sweep;
+  }
+  json cases = json::array();
+  for (const auto& lc : s.cases) cases.push_back({{"name", lc.name}, {"rim_rotation_rad", lc.rim_rotation_rad}});
+  j["load_cases"] = cases;
+  j["mesh"] = {{"nodes", mesh.n_nodes()},
+               {"elements", mesh.tets.size()},
+               {"min_dihedral_deg", mesh.quality.min_dihedral_deg},
+               {"max_dihedral_deg", mesh.quality.max_dihedral_deg},
+               {"max_radius_edge_ratio", mesh.quality.max_radius_edge_ratio}};
+  j["solver"] = {{"dofs", 3 * mesh.n_nodes()},
+                 {"equations", s.factor.equations},
+                 {"matrix_nnz", s.factor.matrix_nnz},
+                 {"factor_nnz", s.factor.factor_nnz},
+                 {"factor_gflop", s.factor.factor_gflop},
+                 {"factor_gflop_per_s", s.factor.factor_s > 0 ? s.factor.factor_gflop / s.factor.factor_s : 0.0},
+                 {"ordering", s.factor.ordering},
+                 {"supernodal", s.factor.supernodal},
+                 {"blas", run.blas.description}};
+  j["timings_s"] = {{"mesh", run.mesh_s},
+                    {"assemble", s.assemble_s},
+                    {"analyse", s.factor.analyse_s},
+                    {"factor", s.factor.factor_s},
+                    {"solve", s.solve_s},
+                    {"output", run.output_s},
+                    {"total", run.total_s}};
+  j["peak_rss_bytes"] = run.peak_rss_bytes;
+  return j.dump(2) + "\n";
+}
+
+std::string neutral_curve_csv(const NeutralCurveSamples& nc) {
+  std::ostringstream s;
+  s << "# neutral circle radius_mm " << nc.radius_m * 1e3 << ", z_mm " << nc.z_m * 1e3 << "\n";
+  s << "phi_rad,w_wg_m,v_wg_m,mu_wg_rad,w_comb_m,v_comb_m,mu_comb_rad\n";
+  char line[512];
+  for (std::size_t k = 0; k < nc.phi_rad.size(); ++k) {
+    std::snprintf(line, sizeof line, "%.9f,%.9e,%.9e,%.9e,%.9e,%.9e,%.9e\n", nc.phi_rad[k], nc.w_wg_m[k], nc.v_wg_m[k],
+                  nc.mu_wg_rad[k], nc.w_comb_m[k], nc.v_comb_m[k], nc.mu_comb_rad[k]);
+    s << line;
+  }
+  return s.str();
+}
+
+void write_fem_vtk(const std::filesystem::path& dir, const Case& c, const TetMesh& mesh, const FlexsplineSolution& s) {
+  std::vector<std::pair<std::string, std::string>> datasets;
+  const Eigen::Index n = static_cast<Eigen::Index>(mesh.n_nodes());
+  for (const auto& lc : s.cases) {
+    const CylindricalFields cyl = cylindrical_components(mesh, lc.u, lc.stress);
+    std::vector<NodalField> fields;
+    fields.push_back({"displacement", Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(
+                                          lc.u.data(), n, 3)});
+    fields.push_back({"stress", lc.stress});
+    fields.push_back({"von_mises", von_mises(lc.stress)});
+    fields.push_back({"u_r", cyl.u_r});
+    fields.push_back({"u_theta", cyl.u_theta});
+    fields.push_back({"stress_rr", cyl.s_rr});
+    fields.push_back({"stress_hoop", cyl.s_thetatheta});
+    fields.push_back({"stress_zz", cyl.s_zz});
+    fields.push_back({"stress_ztheta", cyl.s_ztheta});
+    const std::string file = "flexspline_" + lc.name + ".vtu";
+    write_vtu(dir / file, mesh, fields);
+    datasets.emplace_back(lc.name, file);
+  }
+  (void)c;
+  write_pvd(dir / "flexspline.pvd", datasets);
+}
+
+}  // namespace sw

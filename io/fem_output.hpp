@@ -1,0 +1,32 @@
+#pragma once
+// Writes what `strainwave fem` produces: result.json (keys in SPEC.md), neutral_curve.csv (for the kinematics module),
+// flexspline.pvd with one .vtu per load case.
+#include <filesystem>
+#include <string>
+
+#include "common/params.hpp"
+#include "fem/cholmod_factor.hpp"
+#include "fem/flexspline_analysis.hpp"
+#include "mesh/tet_mesh.hpp"
+
+namespace sw {
+
+struct RunInfo {
+  double mesh_s = 0, output_s = 0, total_s = 0;
+  long peak_rss_bytes = 0;
+  BlasInfo blas;
+};
+
+/// Peak resident set size of this process so far (bytes).
+long peak_rss_bytes();
+
+/// result.json text for the solution.
+std::string fem_result_json(const Case& c, const TetMesh& mesh, const FlexsplineSolution& s, const RunInfo& run);
+
+/// neutral_curve.csv text: phi_rad,w_wg_m,v_wg_m,mu_wg_rad,w_comb_m,v_comb_m,mu_comb_rad (one row per degree).
+std::string neutral_curve_csv(const NeutralCurveSamples& nc);
+
+/// Writes flexspline.pvd and flexspline_<case>.vtu (displacement, stress, von Mises, cylindrical components).
+void write_fem_vtk(const std::filesystem::path& dir, const Case& c, const TetMesh& mesh, const FlexsplineSolution& s);
+
+}  // namespace sw

@@ -22,7 +22,7 @@ double theta_of(const Eigen::Vector3d& x) { return std::atan2(x[1], x[0]); }
 Eigen::VectorXd torque_load(const TetMesh& mesh, const std::vector<const BoundaryFace*>& faces, double torque_Nm,
                             const std::string& where) {
   if (faces.empty()) throw InputError("no boundary faces to carry the torque on " + where + "; refine the mesh");
-  const Eigen::VectorXd unit = traction_load(mesh, faces, [](const Eigen::Vector3d& x, const Eigen::Vector3d&) {
+  const Eigen::VectorXd unit = traction_load(mesh, faces, [](const Eigen::Vector3d& x, const Eigen::Vector3d&) -> Eigen::Vector3d {
     return Eigen::Vector3d(-x[1], x[0], 0.0);  // r·e_θ: the exact torsion shear shape τ ∝ r
   });
   const std::vector<bool> all(mesh.n_nodes(), true);
@@ -76,7 +76,7 @@ Eigen::VectorXd generator_load(const Case& c, const TetMesh& mesh) {
                        std::to_string(force.angle_rad * 180 / kPi) + " deg, z = " + std::to_string(z_wg * 1e3) +
                        " mm; check wave_generator.axial_position_mm / band_width_mm or refine mesh.size_mm");
     const double area = faces_area(mesh, faces);
-    f += traction_load(mesh, faces, [&](const Eigen::Vector3d& x, const Eigen::Vector3d&) {
+    f += traction_load(mesh, faces, [&](const Eigen::Vector3d& x, const Eigen::Vector3d&) -> Eigen::Vector3d {
       const double r = std::hypot(x[0], x[1]);
       return Eigen::Vector3d(x[0] / r, x[1] / r, 0.0) * (force.weight / area);
     });

@@ -83,21 +83,21 @@ TEST(LameCylinder, InnerRadialDisplacementAndHoopStress) {
   const double E = kSteel.youngs_modulus_Pa, nu = kSteel.poisson_ratio;
   auto u_exact = [&](double r) { return ((1 - nu) * A * r + (1 + nu) * B / r) / E; };
   // Supports consistent with the exact field: z = 0 is a symmetry plane (u_z = 0 there, as ε_z is uniform and
-  // the field is symmetric about the mid-plane of a tube of twice the length); u_y = 0 at a node on the +x axis and
-  // u_x = 0 at one on the +y axis (the exact field is radial) remove the in-plane rigid motions.
+  // the field is symmetric about the mid-plane of a tube of twice the length); the exact (radial) displacement
+  // prescribed as u_y at nodes near the ±x axis and u_x at one near the +y axis removes the in-plane rigid motions.
   std::vector<bool> fixed(3 * m.n_nodes(), false);
   Eigen::VectorXd prescribed = Eigen::VectorXd::Zero(3 * m.n_nodes());
   for (const auto* f : select_faces(m, kSurfaceClamped))
     for (int v : f->nodes) fixed[3 * v + 2] = true;
-  const int a = nearest_node(m, {ri, 0, 0}), b = nearest_node(m, {0, ri, 0});
-  fixed[3 * a + 1] = fixed[3 * b + 0] = true;
-  for (int n : {a, b}) {
+  const int a = nearest_node(m, {ri, 0, 0}), b = nearest_node(m, {0, ri, 0}), c = nearest_node(m, {-ri, 0, 0});
+  fixed[3 * a + 1] = fixed[3 * b + 0] = fixed[3 * c + 1] = true;
+  for (int n : {a, b, c}) {
     const double x = m.nodes(n, 0), y = m.nodes(n, 1), r = std::hypot(x, y);
     prescribed[3 * n] = u_exact(r) * x / r;
     prescribed[3 * n + 1] = u_exact(r) * y / r;
   }
   const Eigen::VectorXd f = traction_load(m, select_faces(m, kSurfaceInner),
-                                          [&](const Eigen::Vector3d& x, const Eigen::Vector3d& n) {
+                                          [&](const Eigen::Vector3d& x, const Eigen::Vector3d& n) -> Eigen::Vector3d {
                                             (void)x;
                                             return Eigen::Vector3d(-p * n);  // pressure pushes against the normal
                                           });
@@ -145,7 +145,7 @@ RingResult pinched_ring(double size_m) {
       return std::abs(std::remainder(std::atan2(x[1], x[0]) - at, 2 * kPi)) < kHalf;
     });
     const double area = faces_area(m, faces);
-    f += traction_load(m, faces, [&](const Eigen::Vector3d& x, const Eigen::Vector3d&) {
+    f += traction_load(m, faces, [&](const Eigen::Vector3d& x, const Eigen::Vector3d&) -> Eigen::Vector3d {
       const double r = std::hypot(x[0], x[1]);
       return Eigen::Vector3d(-x[0] / r, -x[1] / r, 0) * (P / area);
     });
@@ -204,7 +204,7 @@ TEST(Cantilever, TipDeflectionMatchesTimoshenkoBeam) {
     for (int v : f->nodes) fixed[3 * v] = fixed[3 * v + 1] = fixed[3 * v + 2] = true;
   const auto end = select_faces(m, kSurfaceBarEnd);
   const double area = faces_area(m, end);
-  const Eigen::VectorXd f = traction_load(m, end, [&](const Eigen::Vector3d&, const Eigen::Vector3d&) {
+  const Eigen::VectorXd f = traction_load(m, end, [&](const Eigen::Vector3d&, const Eigen::Vector3d&) -> Eigen::Vector3d {
     return Eigen::Vector3d(0, 0, -P / area);
   });
   const Eigen::VectorXd u = solve(m, fixed, f);

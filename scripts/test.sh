@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# Sets everything up and runs the whole test suite (ctest). Each test runs its BLAS single-threaded, so two tests
+# can share the two cores without collapsing each other.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+cd build
+ctest --output-on-failure -j"$(nproc)" --timeout 1500

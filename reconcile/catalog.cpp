@@ -261,7 +261,7 @@ std::vector<SignatureSpec> torsion_signatures() {
       m.col(1) = hysteresis_column(e, 0.1 * e.torque_amplitude_Nm);
       return m;
     };
-    s.condition = none;
+    s.condition = linear;
     s.triggers = {"hysteresis"};
     s.where = torque;
     s.where_unit = "N*m";

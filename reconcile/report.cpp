@@ -1,1 +1,295 @@
 #include "reconcile/report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include <fftw3.h>
+#include <nlohmann/json.hpp>
+
+#include "reconcile/catalog.hpp"
+
+namespace sw::reconcile {
+
+using Vec = Eigen::VectorXd;
+
+namespace {
+
+std::string num(double v, const char* f = "%.4g") {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+std::string esc(const std::string& s) {
+  std::string o;
+  for (char c : s) {
+    if (c == '<') o += "&lt;";
+    else if (c == '>') o += "&gt;";
+    else if (c == '&') o += "&amp;";
+    else if (c == '"') o += "&quot;";
+    else o += c;
+  }
+  return o;
+}
+
+nlohmann::json location_json(const Location& l) {
+  return {{"domain", l.domain}, {"description", l.description}, {"p_value", l.p_value}};
+}
+
+/// A line/point plot as inline SVG. Series: (label, colour, x, y, as points?). Shaded x-ranges.
+struct Series {
+  std::string label, colour;
+  std::vector<double> x, y;
+  bool points = false;
+};
+
+std::string svg_plot(const std::string& title, const std::string& xlabel, const std::string& ylabel,
+                     const std::vector<Series>& series, const std::vector<std::pair<double, double>>& shade = {}) {
+  const double W = 760, H = 300, L = 70, R = 20, T = 30, B = 45;
+  double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+  for (const auto& s : series)
+    for (std::size_t i = 0; i < s.x.size(); ++i) {
+      if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
+      x0 = std::min(x0, s.x[i]); x1 = std::max(x1, s.x[i]);
+      y0 = std::min(y0, s.y[i]); y1 = std::max(y1, s.y[i]);
+    }
+  if (!(x1 > x0)) { x0 -= 1; x1 += 1; }
+  if (!(y1 > y0)) { y0 -= 1; y1 += 1; }
+  const double pad = 0.05 * (y1 - y0);
+  y0 -= pad; y1 += pad;
+  auto px = [&](double x) { return L + (x - x0) / (x1 - x0) * (W - L - R); };
+  auto py = [&](double y) { return H - B - (y - y0) / (y1 - y0) * (H - T - B); };
+  std::string s = "<svg xmlns='http://www.w3.org/2000/svg' width='" + num(W) + "' height='" + num(H) +
+                  "' style='background:#fff;border:1px solid #ccc'>";
+  s += "<text x='" + num(L) + "' y='18' font-size='14' font-weight='bold'>" + esc(title) + "</text>";
+  for (const auto& [a, b] : shade) {
+    const double xa = px(std::max(a, x0)), xb = px(std::min(b, x1));
+    s += "<rect x='" + num(std::min(xa, xb)) + "' y='" + num(T) + "' width='" + num(std::max(2.0, std::abs(xb - xa))) +
+         "' height='" + num(H - T - B) + "' fill='#fd6' opacity='0.35'/>";
+  }
+  s += "<rect x='" + num(L) + "' y='" + num(T) + "' width='" + num(W - L - R) + "' height='" + num(H - T - B) +
+       "' fill='none' stroke='#333'/>";
+  for (int i = 0; i <= 4; ++i) {
+    const double xv = x0 + (x1 - x0) * i / 4.0, yv = y0 + (y1 - y0) * i / 4.0;
+    s += "<text x='" + num(px(xv)) + "' y='" + num(H - B + 15) + "' font-size='10' text-anchor='middle'>" +
+         num(xv, "%.3g") + "</text>";
+    s += "<text x='" + num(L - 4) + "' y='" + num(py(yv) + 3) + "' font-size='10' text-anchor='end'>" +
+         num(yv, "%.3g") + "</text>";
+  }
+  s += "<text x='" + num((L + W - R) / 2) + "' y='" + num(H - 8) + "' font-size='12' text-anchor='middle'>" +
+       esc(xlabel) + "</text>";
+  s += "<text x='14' y='" + num((T + H - B) / 2) + "' font-size='12' text-anchor='middle' transform='rotate(-90 14 " +
+       num((T + H - B) / 2) + ")'>" + esc(ylabel) + "</text>";
+  int legend = 0;
+  for (const auto& ser : series) {
+    const std::size_t n = ser.x.size();
+    const std::size_t stride = std::max<std::size_t>(1, n / 1500);  // keep the page small
+    if (ser.points) {
+      for (std::size_t i = 0; i < n; i += stride)
+        s += "<circle cx='" + num(px(ser.x[i]), "%.1f") + "' cy='" + num(py(ser.y[i]), "%.1f") + "' r='1.2' fill='" +
+             ser.colour + "' opacity='0.5'/>";
+    } else {
+      s += "<polyline fill='none' stroke='" + ser.colour + "' stroke-width='1.2' points='";
+      for (std::size_t i = 0; i < n; i += stride)
+        s += num(px(ser.x[i]), "%.1f") + "," + num(py(ser.y[i]), "%.1f") + " ";
+      s += "'/>";
+    }
+    s += "<rect x='" + num(W - R - 200) + "' y='" + num(T + 6 + 14 * legend) + "' width='10' height='10' fill='" +
+         ser.colour + "'/><text x='" + num(W - R - 185) + "' y='" + num(T + 15 + 14 * legend) +
+         "' font-size='11'>" + esc(ser.label) + "</text>";
+    ++legend;
+  }
+  return s + "</svg>";
+}
+
+std::vector<double> stdv(const Vec& v) { return std::vector<double>(v.data(), v.data() + v.size()); }
+
+}  // namespace
+
+Spectrum order_spectrum(const Vec& angle_rad, const Vec& y, double max_order) {
+  Spectrum out;
+  const int n = static_cast<int>(angle_rad.size());
+  if (n < 8) return out;
+  // Sort by angle (backlash rows repeat the angle at each torque level: use the first sweep only if not monotone).
+  std::vector<int> idx;
+  idx.push_back(0);
+  for (int i = 1; i < n && angle_rad[i] > angle_rad[idx.back()]; ++i) idx.push_back(i);
+  const int m = static_cast<int>(idx.size());
+  if (m < 8) return out;
+  const double a0 = angle_rad[idx.front()], a1 = angle_rad[idx.back()];
+  const double revolutions = (a1 - a0) / (2.0 * M_PI);
+  if (!(revolutions > 0.0)) return out;
+  std::vector<double> u(m);
+  int j = 0;
+  for (int k = 0; k < m; ++k) {  // linear interpolation onto a uniform grid
+    const double a = a0 + (a1 - a0) * k / (m - 1.0);
+    while (j + 1 < m - 1 && angle_rad[idx[j + 1]] < a) ++j;
+    const double xa = angle_rad[idx[j]], xb = angle_rad[idx[j + 1]];
+    const double t = xb > xa ? (a - xa) / (xb - xa) : 0.0;
+    u[k] = (1 - t) * y[idx[j]] + t * y[idx[j + 1]];
+  }
+  const int nc = m / 2 + 1;
+  fftw_complex* c = fftw_alloc_complex(nc);
+  fftw_plan plan = fftw_plan_dft_r2c_1d(m, u.data(), c, FFTW_ESTIMATE);
+  fftw_execute(plan);
+  for (int k = 0; k < nc; ++k) {
+    const double order = k / revolutions;
+    if (order > max_order) break;
+    out.order.push_back(order);
+    out.amplitude.push_back((k == 0 ? 1.0 : 2.0) * std::hypot(c[k][0], c[k][1]) / m);
+  }
+  fftw_destroy_plan(plan);
+  fftw_free(c);
+  return out;
+}
+
+std::string report_json(const Result& r) {
+  nlohmann::json j;
+  j["kind"] = kind_name(r.kind);
+  j["samples"] = r.samples;
+  j["baseline"] = {{"rms", r.baseline_rms}, {"heldout_rms", r.baseline_heldout_rms}};
+  nlohmann::json locs = nlohmann::json::array();
+  for (const auto& l : r.locations) locs.push_back(location_json(l));
+  for (const auto& l : r.unexplained) {
+    nlohmann::json u = location_json(l);
+    u["description"] = "unexplained after the final model: " + l.description;
+    locs.push_back(u);
+  }
+  j["mismatch"] = {{"significant", r.significant}, {"locations", locs}};
+  nlohmann::json fx = nlohmann::json::array();
+  for (const auto& e : r.effects) {
+    nlohmann::json params = nlohmann::json::object(), ci = nlohmann::json::object();
+    for (const auto& h : e.params) {
+      if (h.name == "order") {
+        params[h.name] = static_cast<int>(h.value);
+        continue;
+      }
+      params[h.name] = h.value;
+      ci[h.name] = {h.lo, h.hi};
+    }
+    fx.push_back({{"name", e.name}, {"physics", e.physics}, {"params", params}, {"ci95", ci},
+                  {"delta_bic", e.delta_bic}, {"p_value", e.p_value}});
+  }
+  j["effects"] = fx;
+  nlohmann::json rej = nlohmann::json::array();
+  for (const auto& x : r.rejected) rej.push_back({{"name", x.name}, {"reason", x.reason}});
+  j["rejected"] = rej;
+  j["final"] = {{"rms", r.final_rms}, {"heldout_rms", r.final_heldout_rms}};
+  j["verdict"] = r.verdict;
+  return j.dump(2) + "\n";
+}
+
+std::string report_summary(const Result& r) {
+  std::string s = "reconcile (" + kind_name(r.kind) + ", " + std::to_string(r.samples) + " samples): " + r.verdict + "\n";
+  for (const auto& l : r.locations) s += "  mismatch in " + l.domain + " (p " + num(l.p_value, "%.2g") + "): " + l.description + "\n";
+  for (const auto& e : r.effects) {
+    s += "  missing physics: " + e.name + " (dBIC " + num(e.delta_bic, "%.1f") + ", p " + num(e.p_value, "%.2g") + ")\n   ";
+    for (const auto& h : e.params)
+      s += h.name == "order" ? " order " + num(h.value, "%.0f")
+                             : " " + h.name + " = " + num(h.value) + " [" + num(h.lo) + ", " + num(h.hi) + "]";
+    s += "\n";
+  }
+  for (const auto& u : r.unexplained) s += "  still unexplained: " + u.description + "\n";
+  s += "  residual RMS " + num(r.baseline_rms) + " -> " + num(r.final_rms) + "; held-out (last " +
+       std::to_string(r.heldout_rows) + " rows) " + num(r.baseline_heldout_rms) + " -> " + num(r.final_heldout_rms) + "\n";
+  return s;
+}
+
+std::string report_html(const Experiment& e, const Recording& rec, const Result& r, const std::vector<std::string>& notes) {
+  std::string h = "<!DOCTYPE html><html><head><meta charset='utf-8'><title>strainwave reconcile: " + esc(rec.path) +
+                  "</title><style>body{font-family:sans-serif;max-width:820px;margin:2em auto;color:#222}"
+                  "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:3px 8px;font-size:13px}"
+                  ".v{font-size:20px;font-weight:bold}</style></head><body>";
+  h += "<h1>Reconcile: " + esc(rec.path) + "</h1>";
+  h += "<p class='v'>Verdict: " + esc(r.verdict) + "</p>";
+  for (const auto& n : notes) h += "<p style='color:#a40'>Note: " + esc(n) + "</p>";
+  h += "<h2>Recording</h2><table>";
+  for (const auto& [k, v] : rec.metadata) h += "<tr><td>" + esc(k) + "</td><td>" + esc(v) + "</td></tr>";
+  h += "<tr><td>samples</td><td>" + std::to_string(r.samples) + "</td></tr>";
+  h += "<tr><td>noise model (estimated)</td><td>AR(" + std::to_string(r.noise.order()) + "), sd " +
+       num(r.noise.process_sd) + " " + e.response_unit + ", innovation sd " + num(r.noise.innovation_sd) + "</td></tr></table>";
+
+  h += "<h2>Where the mismatch is</h2>";
+  if (r.locations.empty()) h += "<p>No signature differs from the estimated noise.</p>";
+  else {
+    h += "<table><tr><th>domain</th><th>what</th><th>p (Bonferroni)</th></tr>";
+    for (const auto& l : r.locations)
+      h += "<tr><td>" + esc(l.domain) + "</td><td>" + esc(l.description) + "</td><td>" + num(l.p_value, "%.2g") + "</td></tr>";
+    h += "</table>";
+  }
+  h += "<h2>Missing physics</h2>";
+  if (r.effects.empty()) h += "<p>No catalog effect passed every test.</p>";
+  for (const auto& f : r.effects) {
+    h += "<h3>" + esc(f.name) + "</h3><p>" + esc(f.physics) + "</p><table><tr><th>parameter</th><th>value</th><th>95 % interval</th></tr>";
+    for (const auto& p : f.params)
+      h += "<tr><td>" + esc(p.name) + "</td><td>" + num(p.value) + "</td><td>" +
+           (p.name == "order" ? std::string("exact") : "[" + num(p.lo) + ", " + num(p.hi) + "]") + "</td></tr>";
+    h += "</table><p>BIC change " + num(f.delta_bic, "%.1f") + ", p = " + num(f.p_value, "%.3g") + " (" + esc(f.test) + ")</p>";
+  }
+  if (!r.unexplained.empty()) {
+    h += "<p><b>Still unexplained:</b></p><ul>";
+    for (const auto& u : r.unexplained) h += "<li>" + esc(u.description) + " (p " + num(u.p_value, "%.2g") + ")</li>";
+    h += "</ul>";
+  }
+  if (!r.rejected.empty()) {
+    h += "<h3>Considered and rejected</h3><ul>";
+    for (const auto& x : r.rejected) h += "<li>" + esc(x.reason) + "</li>";
+    h += "</ul>";
+  }
+  h += "<h2>Fit on held-out data</h2><p>The last " + std::to_string(r.heldout_rows) +
+       " rows were never used to fit the model that is scored on them.</p><table><tr><th></th><th>RMS (all)</th><th>RMS (held out)</th></tr>"
+       "<tr><td>baseline</td><td>" + num(r.baseline_rms) + "</td><td>" + num(r.baseline_heldout_rms) + "</td></tr>"
+       "<tr><td>reconciled</td><td>" + num(r.final_rms) + "</td><td>" + num(r.final_heldout_rms) + "</td></tr></table>";
+
+  // Plots.
+  Vec x;
+  std::string xl;
+  if (e.kind == Kind::Torsion) { x = e.torque_Nm; xl = "torque (N*m)"; }
+  else if (e.kind == Kind::Transmission) { x = e.wg_angle_rad * (180.0 / M_PI); xl = "wave-generator angle (deg)"; }
+  else { x = e.wg_angle_rad * (180.0 / M_PI); xl = "wave-generator angle (deg)"; }
+  std::vector<std::pair<double, double>> shade;
+  for (const auto& l : r.locations)
+    if (l.has_range && (e.kind == Kind::Torsion ? l.domain != "time" : false)) shade.emplace_back(l.lo, l.hi);
+  h += "<h2>Plots</h2>";
+  if (e.kind == Kind::Transmission) {
+    // Transmission: the ideal line hides everything; show the transmission error instead.
+    h += svg_plot("transmission error: recording and models minus the ideal ratio", xl, e.response_name,
+                  {{"recording - ideal", "#888", stdv(x), stdv(e.measured - e.baseline), true},
+                   {"baseline (offset, ratio)", "#36c", stdv(x), stdv(r.baseline_prediction - e.baseline)},
+                   {"reconciled", "#c33", stdv(x), stdv(r.final_prediction - e.baseline)}});
+  } else {
+    h += svg_plot("recording vs baseline vs reconciled model", xl, e.response_name,
+                  {{"recording", "#888", stdv(x), stdv(e.measured), true},
+                   {"baseline", "#36c", stdv(x), stdv(r.baseline_prediction)},
+                   {"reconciled", "#c33", stdv(x), stdv(r.final_prediction)}}, shade);
+  }
+  h += "<br>" + svg_plot("residual before (baseline) and after (reconciled); shaded: located region", xl,
+                         e.response_name, {{"before", "#36c", stdv(x), stdv(r.residual_before), true},
+                                           {"after", "#c33", stdv(x), stdv(r.residual_after), true}}, shade);
+  h += "<br>" + svg_plot("residual over the recording (time order)", e.has_time ? "time (s)" : "row", e.response_name,
+                         {{"before", "#36c", stdv(e.time), stdv(r.residual_before)},
+                          {"after", "#c33", stdv(e.time), stdv(r.residual_after)}});
+  if (e.kind != Kind::Torsion) {
+    const Spectrum a = order_spectrum(e.wg_angle_rad, r.residual_before, 6.0);
+    const Spectrum b = order_spectrum(e.wg_angle_rad, r.residual_after, 6.0);
+    h += "<br>" + svg_plot("residual spectrum in wave-generator orders", "order (per wave-generator revolution)",
+                           "amplitude (" + e.response_unit + ")",
+                           {{"before", "#36c", a.order, a.amplitude}, {"after", "#c33", b.order, b.amplitude}});
+    if (e.kind == Kind::Transmission) {
+      const Vec out_angle = -e.output_angle_rad;
+      const Spectrum c = order_spectrum(out_angle, r.residual_before, 6.0);
+      const Spectrum d = order_spectrum(out_angle, r.residual_after, 6.0);
+      h += "<br>" + svg_plot("residual spectrum in output orders", "order (per output revolution)",
+                             "amplitude (" + e.response_unit + ")",
+                             {{"before", "#36c", c.order, c.amplitude}, {"after", "#c33", d.order, d.amplitude}});
+    }
+  }
+  h += "<p style='font-size:11px;color:#777'>Tests: signatures by GLS F-tests under the estimated AR noise "
+       "(Bonferroni over the kind's signatures); effects accepted only when significant (F-test times the number of "
+       "harmonic orders searched, or a parametric bootstrap for breakpoints and transitions), BIC lower by more than "
+       "10, held-out RMS lower, and their signature removed. Intervals: Wald, delta method.</p></body></html>\n";
+  return h;
+}
+
+}  // namespace sw::reconcile

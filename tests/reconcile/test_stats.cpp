@@ -1,1 +1,83 @@
+// Statistics building blocks: F tail, AR estimation and whitening, branch detection, report keys.
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include <nlohmann/json.hpp>
+
+#include "reconcile/experiment.hpp"
+#include "reconcile/reconcile.hpp"
+#include "reconcile/report.hpp"
+#include "reconcile/stats.hpp"
+
+using namespace sw::reconcile;
+
+TEST(IncompleteBeta, MatchesClosedForms) {
+  // I_x(1, 1) = x; I_0.5(a, a) = 1/2 by symmetry; I_x(a, 1) = x^a.
+  constexpr double kTol = 1e-12;  // continued fraction converges to machine precision here
+  EXPECT_NEAR(incomplete_beta(1.0, 1.0, 0.3), 0.3, kTol);
+  EXPECT_NEAR(incomplete_beta(7.5, 7.5, 0.5), 0.5, kTol);
+  EXPECT_NEAR(incomplete_beta(3.0, 1.0, 0.6), 0.216, kTol);
+}
+
+TEST(FTail, MatchesTabulatedCriticalValues) {
+  // Tabulated: F(1, 1000) 95 % point 3.851; F(3, 100) 99 % point 3.984.
+  constexpr double kTableTol = 2e-4;  // tables give 4 significant digits
+  EXPECT_NEAR(f_upper_tail(3.851, 1, 1000), 0.05, kTableTol);
+  EXPECT_NEAR(f_upper_tail(3.984, 3, 100), 0.01, kTableTol);
+}
+
+TEST(ArModel, RecoversAnAr1ProcessAndWhitensIt) {
+  ArModel truth;
+  truth.a = {0.7};
+  truth.innovation_sd = 2.0;
+  std::mt19937_64 rng(7);
+  const Eigen::VectorXd x = simulate_ar(truth, 20000, rng);
+  const ArModel fit = fit_ar(x, 8);
+  ASSERT_GE(fit.order(), 1);
+  // Standard error of phi-hat ~ sqrt((1 - phi^2) / n) = 0.005: allow 5 sigma.
+  EXPECT_NEAR(fit.a[0], 0.7, 0.025);
+  EXPECT_NEAR(fit.innovation_sd, 2.0, 0.05);
+  const Eigen::VectorXd w = whiten(fit, x);
+  // Whitened lag-1 autocorrelation ~ N(0, 1/n): 5 sigma = 0.035.
+  const double r1 = w.head(w.size() - 1).dot(w.tail(w.size() - 1)) / w.squaredNorm();
+  EXPECT_LT(std::abs(r1), 0.035);
+}
+
+TEST(Branches, SplitATorqueCycleAtItsReversalsOnly) {
+  const int n = 1000;
+  Eigen::VectorXd t(n);
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> noise(0.0, 0.2);
+  for (int i = 0; i < n; ++i) t[i] = 40.0 * std::sin(2 * M_PI * 2.0 * i / n) + noise(rng);
+  const Branches b = find_branches(t, 0.02 * 80.0);
+  // Two cycles starting at zero going up: reversals near samples 125, 375, 625, 875.
+  ASSERT_EQ(b.reversals.size(), 4u);
+  for (int k = 0; k < 4; ++k) EXPECT_NEAR(b.reversals[k], 125 + 250 * k, 15);
+  EXPECT_EQ(b.direction[50], 1);
+  EXPECT_EQ(b.direction[200], -1);
+}
+
+TEST(Report, JsonHasExactlyTheSpecKeys) {
+  Result r;
+  r.verdict = "no_significant_mismatch";
+  Location l;
+  l.domain = "torque";
+  r.locations.push_back(l);
+  AcceptedEffect e;
+  e.name = "hysteresis";
+  e.params = {{"loss_rad", 1e-4, 0.9e-4, 1.1e-4}};
+  r.effects.push_back(e);
+  r.rejected.push_back({"lost_motion", "x"});
+  const auto j = nlohmann::json::parse(report_json(r));
+  std::vector<std::string> keys;
+  for (const auto& [k, v] : j.items()) keys.push_back(k);
+  EXPECT_EQ(keys, (std::vector<std::string>{"baseline", "effects", "final", "kind", "mismatch", "rejected", "samples",
+                                            "verdict"}));
+  EXPECT_TRUE(j["baseline"].contains("heldout_rms"));
+  EXPECT_TRUE(j["mismatch"]["locations"][0].contains("p_value"));
+  for (const char* k : {"name", "physics", "params", "ci95", "delta_bic", "p_value"})
+    EXPECT_TRUE(j["effects"][0].contains(k)) << k;
+  EXPECT_EQ(j["effects"][0]["ci95"]["loss_rad"].size(), 2u);
+}

@@ -124,7 +124,56 @@ void curve_of(const Ring& ring, const RowMatrixX3d& d, double radius, std::vecto
   }
 }
 
+/// Where φ₀ is read: the open end face of a plain tube, else a ring at the rim's neutral radius and mid-width.
+class RotationReader {
+public:
+  RotationReader(const Case& c, const TetMesh& mesh) : mesh_(mesh), sampler_(mesh) {
+    const auto& f = c.flexspline;
+    plain_tube_ = f.shape == FlexsplineShape::Tube && f.teeth == TeethModel::None;
+    radius_ = neutral_radius(f);
+    z_ = plain_tube_ ? f.length_m : f.length_m - 0.5 * f.rim_width_m;
+    ring_ = reading_ring(radius_, z_);
+    if (plain_tube_) {
+      std::vector<bool> seen(mesh.n_nodes(), false);
+      for (const auto* face : select_faces(mesh, kSurfaceOpenEnd))
+        for (int v : face->nodes)
+          if (!seen[v]) {
+            seen[v] = true;
+            end_nodes_.push_back(v);
+          }
+    }
+  }
+  double operator()(const Eigen::VectorXd& u) const {
+    if (!plain_tube_) return rigid_rotation_z(ring_.points, sample(sampler_, ring_, u));
+    RowMatrixX3d p(end_nodes_.size(), 3), d(end_nodes_.size(), 3);
+    for (std::size_t k = 0; k < end_nodes_.size(); ++k) {
+      p.row(k) = mesh_.nodes.row(end_nodes_[k]);
+      d.row(k) = u.segment<3>(3 * end_nodes_[k]).transpose();
+    }
+    return rigid_rotation_z(p, d);
+  }
+  const PointSampler& sampler() const { return sampler_; }
+  double radius() const { return radius_; }
+  double z() const { return z_; }
+
+private:
+  const TetMesh& mesh_;
+  PointSampler sampler_;
+  bool plain_tube_ = false;
+  double radius_ = 0, z_ = 0;
+  Ring ring_;
+  std::vector<int> end_nodes_;
+};
+
 }  // namespace
+
+Eigen::VectorXd torque_load_vector(const Case& c, const TetMesh& mesh, double torque_Nm) {
+  return unit_torque_load(c, mesh) * torque_Nm;
+}
+
+double reading_rotation(const Case& c, const TetMesh& mesh, const Eigen::VectorXd& u) {
+  return RotationReader(c, mesh)(u);
+}
 
 std::vector<bool> clamped_nodes(const TetMesh& mesh) {
   std::vector<bool> fixed(mesh.n_nodes(), false);
@@ -141,7 +190,6 @@ double neutral_radius(const FlexsplineParams& f) {
 FlexsplineSolution analyse_flexspline(const Case& c, const TetMesh& mesh) {
   FlexsplineSolution s;
   const auto& f = c.flexspline;
-  const bool plain_tube = f.shape == FlexsplineShape::Tube && f.teeth == TeethModel::None;
 
   // Supports and the one factorisation.
   const std::vector<bool> fixed_node = clamped_nodes(mesh);
@@ -178,30 +226,10 @@ FlexsplineSolution analyse_flexspline(const Case& c, const TetMesh& mesh) {
   const Eigen::VectorXd u_unit_torque = expand_to_full(dofs, X.col(0), zeros);
   s.solve_s = clock.lap();
 
-  // Where φ₀ is read: the open end face of a plain tube, else a ring at the rim's neutral radius and mid-width.
-  const PointSampler sampler(mesh);
-  s.reading_radius_m = neutral_radius(f);
-  s.reading_z_m = plain_tube ? f.length_m : f.length_m - 0.5 * f.rim_width_m;
-  std::vector<int> end_nodes;
-  if (plain_tube) {
-    std::vector<bool> seen(mesh.n_nodes(), false);
-    for (const auto* face : select_faces(mesh, kSurfaceOpenEnd))
-      for (int v : face->nodes)
-        if (!seen[v]) {
-          seen[v] = true;
-          end_nodes.push_back(v);
-        }
-  }
-  const Ring ring = reading_ring(s.reading_radius_m, s.reading_z_m);
-  auto rotation = [&](const Eigen::VectorXd& u) {
-    if (!plain_tube) return rigid_rotation_z(ring.points, sample(sampler, ring, u));
-    RowMatrixX3d p(end_nodes.size(), 3), d(end_nodes.size(), 3);
-    for (std::size_t k = 0; k < end_nodes.size(); ++k) {
-      p.row(k) = mesh.nodes.row(end_nodes[k]);
-      d.row(k) = u.segment<3>(3 * end_nodes[k]).transpose();
-    }
-    return rigid_rotation_z(p, d);
-  };
+  const RotationReader rotation(c, mesh);
+  const PointSampler& sampler = rotation.sampler();
+  s.reading_radius_m = rotation.radius();
+  s.reading_z_m = rotation.z();
 
   const double unit_rotation = rotation(u_unit_torque);
   s.compliance_rad_per_Nm = unit_rotation;

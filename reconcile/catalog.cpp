@@ -93,7 +93,7 @@ std::vector<EffectSpec> torsion_effects() {
                 "(catalog segment law, slope 1/K1 up to T1, then 1/K2)";
     s.nonlinear_names = {"T1_Nm"};
     s.bounds = [](const Experiment& e) {
-      return bounds1(0.08 * e.torque_amplitude_Nm, 0.8 * e.torque_amplitude_Nm);
+      return bounds1(0.08 * e.torque_amplitude_Nm, 0.6 * e.torque_amplitude_Nm);
     };
     s.columns = [](const Experiment& e, const Vec& th) { return col(soft_start_column(e.torque_Nm, th[0])); };
     s.headline = [](const Experiment& e, const FitResult& f, int t) {

@@ -222,6 +222,7 @@ TEST(UnexplainedMismatch, IsReportedAsPartlyExplainedNotInventedAsAnEffect) {
   const Result r = reconcile(make_experiment(s.recording, o.baseline));
   SCOPED_TRACE(names(r));
   EXPECT_EQ(r.verdict, "partly_explained");
-  ASSERT_FALSE(r.unexplained.empty());
-  EXPECT_EQ(r.unexplained[0].domain, "time");
+  bool time_flagged = false;
+  for (const auto& u : r.unexplained) time_flagged = time_flagged || u.domain == "time";
+  EXPECT_TRUE(time_flagged);
 }

@@ -1,0 +1,229 @@
+#include "mesh/revolve.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <numeric>
+#include <cstdlib>
+#include <cstdio>
+
+#include <Eigen/Geometry>
+
+#include "common/error.hpp"
+#include "mesh/tetgen_mesh.hpp"
+
+namespace sw {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+Eigen::Vector2d closest_profile_point(const ProfileSurface& s, const Eigen::Vector2d& q) {
+  if (s.kind == ProfileSurface::Kind::Line) {
+    const Eigen::Vector2d d = s.b - s.a;
+    return s.a + d * ((q - s.a).dot(d) / d.squaredNorm());
+  }
+  const Eigen::Vector2d v = q - s.centre;
+  const double n = v.norm();
+  return n > 0.0 ? Eigen::Vector2d(s.centre + v * (s.radius / n)) : Eigen::Vector2d(s.centre + Eigen::Vector2d(s.radius, 0));
+}
+
+// Union-find over profile vertices.
+int find_root(std::vector<int>& parent, int i) {
+  while (parent[i] != i) i = parent[i] = parent[parent[i]];
+  return i;
+}
+
+}  // namespace
+
+Eigen::Vector3d project_to_surface(const ProfileSurface& s, const Eigen::Vector3d& p) {
+  const double r = std::hypot(p.x(), p.y());
+  const Eigen::Vector2d q = closest_profile_point(s, Eigen::Vector2d(r, p.z()));
+  if (r == 0.0) return {q.x(), 0.0, q.y()};
+  return {p.x() * (q.x() / r), p.y() * (q.x() / r), q.y()};
+}
+
+void project_boundary(TetMesh& mesh, const std::vector<int>& face_surface,
+                      const std::vector<ProfileSurface>& surfaces) {
+  assert(face_surface.size() == mesh.faces.size());
+  auto move = [&](int node, const ProfileSurface& s) {
+    const Eigen::Vector3d p = mesh.nodes.row(node);
+    mesh.nodes.row(node) = project_to_surface(s, p).transpose();
+  };
+  // Corners first (each node once per distinct surface it touches; a node on two surfaces meeting at a ring gets
+  // both projections, which commute there: the ring lies on both).
+  std::vector<std::vector<int>> done(mesh.n_nodes());
+  auto once = [&](int node, int s) {
+    auto& d = done[node];
+    if (std::find(d.begin(), d.end(), s) != d.end()) return false;
+    d.push_back(s);
+    return true;
+  };
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    for (int k = 0; k < 3; ++k)
+      if (once(mesh.faces[f].nodes[k], face_surface[f])) move(mesh.faces[f].nodes[k], surfaces[face_surface[f]]);
+  for (const auto& t : mesh.tets)
+    for (int e = 0; e < 6; ++e)
+      mesh.nodes.row(t[4 + e]) = 0.5 * (mesh.nodes.row(t[kTetEdges[e][0]]) + mesh.nodes.row(t[kTetEdges[e][1]]));
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    for (int k = 3; k < 6; ++k)
+      if (once(mesh.faces[f].nodes[k], face_surface[f])) move(mesh.faces[f].nodes[k], surfaces[face_surface[f]]);
+}
+
+TetMesh mesh_revolved(const RevolvedProfile& profile, const MeshParams& params) {
+  const auto& V = profile.vertices;
+  assert(profile.edge_size_m.size() == profile.edges.size());
+  double scale = 0.0;
+  for (const auto& v : V) scale = std::max(scale, v.norm());
+  const double eps = 1e-12 * scale;
+
+  // 1. Split every edge at the profile vertices lying on it (layer lines end on other edges), then into
+  //    sub-segments no longer than its size; points on Circle edges are put on the arc.
+  std::vector<Eigen::Vector2d> verts = V;
+  // Coincident profile vertices are one vertex (builders may repeat the corners they share).
+  std::vector<int> same(V.size());
+  for (std::size_t v = 0; v < V.size(); ++v) {
+    same[v] = static_cast<int>(v);
+    for (std::size_t u = 0; u < v; ++u)
+      if ((V[u] - V[v]).norm() <= eps) {
+        same[v] = same[u];
+        break;
+      }
+  }
+  struct Segment { int a, b, surface; double size; bool horizontal; };
+  std::vector<Segment> segs;
+  for (std::size_t e = 0; e < profile.edges.size(); ++e) {
+    const ProfileEdge& E = profile.edges[e];
+    const int v0 = same[E.v0], v1 = same[E.v1];
+    const Eigen::Vector2d pa = V[v0], pb = V[v1];
+    const double size = profile.edge_size_m[e];
+    if (pa.x() <= eps && pb.x() <= eps) continue;  // along the axis: sweeps nothing
+    const Eigen::Vector2d d = pb - pa;
+    std::vector<std::pair<double, int>> stops = {{0.0, v0}, {1.0, v1}};
+    for (int v = 0; v < static_cast<int>(V.size()); ++v) {
+      if (same[v] != v || v == v0 || v == v1) continue;
+      const double t = (V[v] - pa).dot(d) / d.squaredNorm();
+      if (t > 1e-9 && t < 1 - 1e-9 && (pa + t * d - V[v]).norm() <= eps) stops.emplace_back(t, v);
+    }
+    std::sort(stops.begin(), stops.end());
+    const bool horizontal = std::abs(d.y()) <= eps;
+    for (std::size_t k = 0; k + 1 < stops.size(); ++k) {
+      const int a = stops[k].second, b = stops[k + 1].second;
+      const Eigen::Vector2d qa = V[a], qb = V[b];
+      const int n = std::max(1, static_cast<int>(std::ceil((qb - qa).norm() / size - 1e-9)));
+      int prev = a;
+      for (int i = 1; i <= n; ++i) {
+        int next = b;
+        if (i < n) {
+          Eigen::Vector2d q = qa + (qb - qa) * (static_cast<double>(i) / n);
+          if (profile.surfaces[E.surface].kind == ProfileSurface::Kind::Circle)
+            q = closest_profile_point(profile.surfaces[E.surface], q);
+          verts.push_back(q);
+          next = static_cast<int>(verts.size()) - 1;
+        }
+        segs.push_back({prev, next, E.surface, size, horizontal});
+        prev = next;
+      }
+    }
+  }
+
+  // 2. Angular counts: each ring from its radius and the smallest size of its segments; rings joined by swept
+  //    (non-horizontal) segments share the largest count of their group.
+  const int nv = static_cast<int>(verts.size());
+  std::vector<int> parent(nv);
+  std::iota(parent.begin(), parent.end(), 0);
+  auto on_axis = [&](int v) { return verts[v].x() <= eps; };
+  for (const auto& s : segs)
+    if (!s.horizontal && !on_axis(s.a) && !on_axis(s.b)) parent[find_root(parent, s.a)] = find_root(parent, s.b);
+  std::vector<int> group_n(nv, 8);
+  auto ring_count = [&](double r, double size) {
+    const int n = static_cast<int>(std::ceil(2.0 * kPi * r / size - 1e-9));
+    return std::max(8, (n + 7) / 8 * 8);
+  };
+  for (const auto& s : segs)
+    for (int v : {s.a, s.b})
+      if (!on_axis(v)) {
+        const int g = find_root(parent, v);
+        group_n[g] = std::max(group_n[g], ring_count(verts[v].x(), s.size));
+      }
+
+  // 3. Points: a ring of N points per off-axis vertex (angle 2 pi k / N), one point per axis vertex.
+  Plc plc;
+  std::vector<int> first(nv, -1), count(nv, 0);
+  std::vector<bool> used(nv, false);
+  for (const auto& s : segs)
+    for (int v : {s.a, s.b}) used[v] = used[v] || !on_axis(v) || !s.horizontal;  // discs need no axis point
+  for (int v = 0; v < nv; ++v) {
+    if (!used[v]) continue;
+    first[v] = static_cast<int>(plc.points.size());
+    if (on_axis(v)) {
+      count[v] = 1;
+      plc.points.emplace_back(0.0, 0.0, verts[v].y());
+      continue;
+    }
+    const int n = group_n[find_root(parent, v)];
+    count[v] = n;
+    for (int k = 0; k < n; ++k) {
+      const double th = 2.0 * kPi * k / n;
+      plc.points.emplace_back(verts[v].x() * std::cos(th), verts[v].x() * std::sin(th), verts[v].y());
+    }
+  }
+  auto ring = [&](int v) {
+    std::vector<int> r(count[v]);
+    std::iota(r.begin(), r.end(), first[v]);
+    return r;
+  };
+
+  // 4. Facets; marker = surface index + 1 (TetGen uses 0 for "none").
+  for (const auto& s : segs) {
+    const int marker = s.surface + 1;
+    if (s.horizontal) {
+      int lo = s.a, hi = s.b;
+      if (verts[lo].x() > verts[hi].x()) std::swap(lo, hi);
+      if (on_axis(lo)) {
+        plc.facets.push_back({{ring(hi)}, {}, marker});
+      } else {
+        plc.facets.push_back({{ring(hi), ring(lo)}, {Eigen::Vector3d(0, 0, verts[lo].y())}, marker});
+      }
+      continue;
+    }
+    if (on_axis(s.a) || on_axis(s.b)) {  // cone to a tip on the axis
+      const int tip = on_axis(s.a) ? s.a : s.b, base = on_axis(s.a) ? s.b : s.a;
+      const int n = count[base];
+      for (int k = 0; k < n; ++k)
+        plc.facets.push_back({{{first[tip], first[base] + k, first[base] + (k + 1) % n}}, {}, marker});
+      continue;
+    }
+    const int n = count[s.a];
+    assert(count[s.b] == n);
+    for (int k = 0; k < n; ++k) {
+      const int k1 = (k + 1) % n;
+      plc.facets.push_back(
+          {{{first[s.a] + k, first[s.a] + k1, first[s.b] + k1, first[s.b] + k}}, {}, marker});
+    }
+  }
+  for (const auto& r : profile.regions) {
+    const double h = r.size_m;
+    plc.regions.push_back({Eigen::Vector3d(r.seed.x(), 0.0, r.seed.y()), r.id, h * h * h / (6.0 * std::sqrt(2.0))});
+  }
+
+  TetgenOptions options;
+  options.max_radius_edge_ratio = params.max_radius_edge_ratio;
+  options.min_dihedral_deg = params.min_dihedral_deg;
+  options.preserve_boundary = std::getenv("SWNOY") == nullptr;  // the swept surfaces are already meshed: keep their nodes on the true surfaces
+  TetMesh mesh = tetrahedralize_plc(plc, options);
+
+  std::vector<int> face_surface(mesh.faces.size());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const int s = mesh.faces[f].marker - 1;
+    if (s < 0 || s >= static_cast<int>(profile.surfaces.size()))
+      throw InputError("mesh: a boundary face of the revolved profile lies on no profile edge (marker " +
+                       std::to_string(mesh.faces[f].marker) + "); the profile is not closed");
+    face_surface[f] = s;
+  }
+  project_boundary(mesh, face_surface, profile.surfaces);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) mesh.faces[f].marker = profile.surfaces[face_surface[f]].marker;
+  mesh.quality = mesh_quality(mesh);
+  return mesh;
+}
+
+}  // namespace sw

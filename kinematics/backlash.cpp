@@ -186,7 +186,8 @@ PairClearance pair_clearance(const BacklashModel& m, double phi, double phi0) {
   const int j = static_cast<int>(std::lround(wrap_pi(std::atan2(centre.y(), centre.x()) - base) / pitch_c));
   PairClearance p = tooth_clearance(m, tooth, base + j * pitch_c);
   p.phi_rad = wrap_pi(phi);
-  p.position_deg = 90.0 - std::abs(p.phi_rad) * 180.0 / kPi;
+  const double from_major = std::min(std::abs(p.phi_rad), kPi - std::abs(p.phi_rad));  // nearest end of the axis
+  p.position_deg = 90.0 - from_major * 180.0 / kPi;
   p.space = j;
   return p;
 }

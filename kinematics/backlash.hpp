@@ -48,7 +48,7 @@ struct FlankClearance {
 struct PairClearance {
   int pair = 0;              ///< flexspline tooth index k (0 for pair_clearance())
   double phi_rad = 0;        ///< material angle of the tooth from the major axis, (−π, π]
-  double position_deg = 0;   ///< paper's tooth-pair position: 90 − |φ| in degrees (0 minor axis, 90 major axis)
+  double position_deg = 0;   ///< paper's tooth-pair position: 90° − angle to the nearest end of the major axis (0 minor, 90 major)
   bool engaged = false;      ///< the flexspline tip reaches beyond the circular spline's tip circle
   double depth_m = 0;        ///< radial overlap: |tip centre| − r_ac (> 0 when engaged), metres
   double tip_to_root_m = 0;  ///< r_rc − |tip centre|: radial tip clearance in the space (< 0: tip hits the root)

@@ -4,8 +4,6 @@
 #include <cassert>
 #include <cmath>
 #include <numeric>
-#include <cstdlib>
-#include <cstdio>
 
 #include <Eigen/Geometry>
 
@@ -149,6 +147,7 @@ TetMesh mesh_revolved(const RevolvedProfile& profile, const MeshParams& params) 
   // 3. Points: a ring of N points per off-axis vertex (angle 2 pi k / N), one point per axis vertex.
   Plc plc;
   std::vector<int> first(nv, -1), count(nv, 0);
+  std::vector<int> ring_of_point, index_in_ring;  // per PLC point: its profile vertex (-1 on the axis), its k
   std::vector<bool> used(nv, false);
   for (const auto& s : segs)
     for (int v : {s.a, s.b}) used[v] = used[v] || !on_axis(v) || !s.horizontal;  // discs need no axis point
@@ -157,12 +156,16 @@ TetMesh mesh_revolved(const RevolvedProfile& profile, const MeshParams& params) 
     first[v] = static_cast<int>(plc.points.size());
     if (on_axis(v)) {
       count[v] = 1;
+      ring_of_point.push_back(-1);
+      index_in_ring.push_back(0);
       plc.points.emplace_back(0.0, 0.0, verts[v].y());
       continue;
     }
     const int n = group_n[find_root(parent, v)];
     count[v] = n;
     for (int k = 0; k < n; ++k) {
+      ring_of_point.push_back(v);
+      index_in_ring.push_back(k);
       const double th = 2.0 * kPi * k / n;
       plc.points.emplace_back(verts[v].x() * std::cos(th), verts[v].x() * std::sin(th), verts[v].y());
     }
@@ -209,7 +212,7 @@ TetMesh mesh_revolved(const RevolvedProfile& profile, const MeshParams& params) 
   TetgenOptions options;
   options.max_radius_edge_ratio = params.max_radius_edge_ratio;
   options.min_dihedral_deg = params.min_dihedral_deg;
-  options.preserve_boundary = std::getenv("SWNOY") == nullptr;  // the swept surfaces are already meshed: keep their nodes on the true surfaces
+  options.preserve_boundary = true;  // the swept surfaces are already meshed: keep their nodes on the true surfaces
   TetMesh mesh = tetrahedralize_plc(plc, options);
 
   std::vector<int> face_surface(mesh.faces.size());
@@ -221,6 +224,23 @@ TetMesh mesh_revolved(const RevolvedProfile& profile, const MeshParams& params) 
     face_surface[f] = s;
   }
   project_boundary(mesh, face_surface, profile.surfaces);
+  // Edges between neighbouring points of one ring are chords of a circle about the axis, on boundary and internal
+  // surfaces alike (region interfaces, layer surfaces, rims of flat faces): their midside nodes go onto the circle.
+  // TetGen keeps the input points first and in order, and -Y adds none on the facets.
+  const int n_input = static_cast<int>(ring_of_point.size());
+  for (const auto& t : mesh.tets)
+    for (int e = 0; e < 6; ++e) {
+      const int a = t[kTetEdges[e][0]], b = t[kTetEdges[e][1]];
+      if (a >= n_input || b >= n_input || ring_of_point[a] < 0 || ring_of_point[a] != ring_of_point[b]) continue;
+      const int n = count[ring_of_point[a]];
+      const int dk = (index_in_ring[a] - index_in_ring[b] + n) % n;
+      if (dk != 1 && dk != n - 1) continue;
+      const double r = verts[ring_of_point[a]].x();
+      const int m = t[4 + e];
+      const double rm = std::hypot(mesh.nodes(m, 0), mesh.nodes(m, 1));
+      mesh.nodes(m, 0) *= r / rm;
+      mesh.nodes(m, 1) *= r / rm;
+    }
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) mesh.faces[f].marker = profile.surfaces[face_surface[f]].marker;
   mesh.quality = mesh_quality(mesh);
   return mesh;

@@ -20,6 +20,7 @@ enum Surface : int {
   kSurfaceOpenEnd = 5,     ///< annular face at z = length
   kSurfaceDiaphragm = 6,   ///< cup: diaphragm faces, fillet, step faces
   kSurfaceBarEnd = 7,      ///< bar: the loaded end x = length (fixed end is kSurfaceClamped)
+  kSurfaceRimStep = 8,     ///< annular shoulder z = length - rim_width between the body's outer wall and the rim's outer surface
 };
 
 /// A boundary triangle, quadratic: corners 0..2 then midsides of edges (0,1), (1,2), (2,0).

@@ -42,9 +42,40 @@ Incidence node_elements(const TetMesh& mesh) {
   return inc;
 }
 
+/// Element stiffness with the frames of its nodes applied: K' = Tᵀ·K·T, T = blockdiag(R_a).
+Matrix30d element_stiffness(const TetMesh& mesh, std::size_t e, const Matrix6d& D, const NodeFrames& frames) {
+  Matrix30d K = tet10_stiffness(element_coordinates(mesh, e), D);
+  if (frames.empty()) return K;
+  for (int a = 0; a < 10; ++a) {
+    const int f = frames.frame_of_node[mesh.tets[e][a]];
+    if (f < 0) continue;
+    const Eigen::Matrix3d& R = frames.rotations[f];
+    K.middleCols<3>(3 * a) = (K.middleCols<3>(3 * a) * R).eval();
+    K.middleRows<3>(3 * a) = (R.transpose() * K.middleRows<3>(3 * a)).eval();
+  }
+  return K;
+}
+
 }  // namespace
 
-SymmetricCsc assemble_stiffness(const TetMesh& mesh, const Material& material, const DofMap& dofs) {
+Eigen::VectorXd to_local(const NodeFrames& frames, const Eigen::VectorXd& global) {
+  Eigen::VectorXd v = global;
+  for (std::size_t i = 0; i < frames.frame_of_node.size(); ++i)
+    if (frames.frame_of_node[i] >= 0)
+      v.segment<3>(3 * i) = frames.rotations[frames.frame_of_node[i]].transpose() * global.segment<3>(3 * i);
+  return v;
+}
+
+Eigen::VectorXd to_global(const NodeFrames& frames, const Eigen::VectorXd& local) {
+  Eigen::VectorXd v = local;
+  for (std::size_t i = 0; i < frames.frame_of_node.size(); ++i)
+    if (frames.frame_of_node[i] >= 0)
+      v.segment<3>(3 * i) = frames.rotations[frames.frame_of_node[i]] * local.segment<3>(3 * i);
+  return v;
+}
+
+SymmetricCsc assemble_stiffness(const TetMesh& mesh, const Material& material, const DofMap& dofs,
+                                const NodeFrames& frames) {
   const std::size_t n_nodes = mesh.n_nodes();
   const Incidence inc = node_elements(mesh);
 
@@ -95,7 +126,7 @@ SymmetricCsc assemble_stiffness(const TetMesh& mesh, const Material& material, c
   for (std::size_t e = 0; e < mesh.tets.size(); ++e) {
     Matrix30d Ke;
     try {
-      Ke = tet10_stiffness(element_coordinates(mesh, e), D);
+      Ke = element_stiffness(mesh, e, D, frames);
     } catch (const std::runtime_error& err) {
       throw std::runtime_error("element " + std::to_string(e) + ": " + err.what());
     }
@@ -117,7 +148,7 @@ SymmetricCsc assemble_stiffness(const TetMesh& mesh, const Material& material, c
 }
 
 Eigen::VectorXd dirichlet_lift(const TetMesh& mesh, const Material& material, const DofMap& dofs,
-                               const Eigen::VectorXd& prescribed) {
+                               const Eigen::VectorXd& prescribed, const NodeFrames& frames) {
   Eigen::VectorXd f = Eigen::VectorXd::Zero(dofs.n_equations);
   const Matrix6d D = elasticity_matrix(material);
   for (std::size_t e = 0; e < mesh.tets.size(); ++e) {
@@ -132,7 +163,7 @@ Eigen::VectorXd dirichlet_lift(const TetMesh& mesh, const Material& material, co
         }
       }
     if (!any) continue;
-    const Eigen::Matrix<double, 30, 1> fe = tet10_stiffness(element_coordinates(mesh, e), D) * ue;
+    const Eigen::Matrix<double, 30, 1> fe = element_stiffness(mesh, e, D, frames) * ue;
     for (int a = 0; a < 10; ++a)
       for (int c = 0; c < 3; ++c) {
         const std::int64_t i = dofs.equation[3 * mesh.tets[e][a] + c];

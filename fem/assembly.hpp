@@ -30,14 +30,30 @@ struct SymmetricCsc {
   std::size_t nnz() const { return value.size(); }
 };
 
+/// Local bases at some nodes, so a condition can fix a non-Cartesian component (the radial displacement under a
+/// cam): where a node has a frame R (columns = local axes in global coordinates), its three dofs are the components
+/// along those axes, u_global = R·u_local. Nodes without a frame keep x, y, z.
+struct NodeFrames {
+  std::vector<int> frame_of_node;          ///< size n_nodes (or empty = no frames), −1 = global axes
+  std::vector<Eigen::Matrix3d> rotations;  ///< orthonormal, one per frame
+  bool empty() const { return rotations.empty(); }
+};
+
 /// Global stiffness (N/m) over the free dofs of `dofs`: pattern from the node graph, then element scatter.
 /// Memory: the pattern and values only (no triplets, no dense blocks beyond one 30x30 element matrix).
-SymmetricCsc assemble_stiffness(const TetMesh& mesh, const Material& material, const DofMap& dofs);
+/// With `frames`, the dofs of framed nodes are local components (K' = Tᵀ·K·T element by element).
+SymmetricCsc assemble_stiffness(const TetMesh& mesh, const Material& material, const DofMap& dofs,
+                                const NodeFrames& frames = {});
 
 /// Right-hand-side contribution −K_fc·u_c of prescribed (nonzero) values on fixed dofs, over the free equations.
-/// `prescribed` has size 3·n_nodes (values on free dofs are ignored).
+/// `prescribed` has size 3·n_nodes (values on free dofs are ignored; local components at framed nodes).
 Eigen::VectorXd dirichlet_lift(const TetMesh& mesh, const Material& material, const DofMap& dofs,
-                               const Eigen::VectorXd& prescribed);
+                               const Eigen::VectorXd& prescribed, const NodeFrames& frames = {});
+
+/// Converts a full dof vector between global components and the frames' local ones (loads: to_local; solutions:
+/// to_global).
+Eigen::VectorXd to_local(const NodeFrames& frames, const Eigen::VectorXd& global);
+Eigen::VectorXd to_global(const NodeFrames& frames, const Eigen::VectorXd& local);
 
 /// Internal forces K·u (N) at every dof (3·n_nodes) by element loop; at fixed dofs minus applied loads this is the
 /// reaction.

@@ -56,7 +56,7 @@ std::vector<WaveGeneratorForce> generator_forces(const WaveGeneratorParams& w) {
     case WaveGeneratorModel::Cam:
       break;
   }
-  throw InputError("wave_generator.model = \"cam\" is not available yet; use four_force, two_force or forces");
+  throw std::logic_error("generator_forces: a cam prescribes a shape, it has no forces");
 }
 
 /// Radial outward patch loads on the inner wall, one per force, each of magnitude weight (N) as the integral of the
@@ -191,14 +191,42 @@ FlexsplineSolution analyse_flexspline(const Case& c, const TetMesh& mesh) {
   FlexsplineSolution s;
   const auto& f = c.flexspline;
 
-  // Supports and the one factorisation.
+  // Supports: the clamped faces; under a cam also the radial dof of the inner wall over the generator's band, in a
+  // cylindrical frame at each of those nodes. The same supports serve every load case, so one factorisation does.
+  const bool cam = c.wave_generator && c.wave_generator->model == WaveGeneratorModel::Cam;
   const std::vector<bool> fixed_node = clamped_nodes(mesh);
   std::vector<bool> fixed(3 * mesh.n_nodes());
   for (std::size_t i = 0; i < mesh.n_nodes(); ++i) fixed[3 * i] = fixed[3 * i + 1] = fixed[3 * i + 2] = fixed_node[i];
+  NodeFrames frames;
+  Eigen::VectorXd cam_shape = Eigen::VectorXd::Zero(3 * mesh.n_nodes());  // local radial values w0·cos2θ
+  std::vector<bool> band_node(mesh.n_nodes(), false);
+  if (cam) {
+    const auto& w = *c.wave_generator;
+    const double z_wg = f.length_m - w.axial_position_m;
+    const auto band = select_faces(mesh, kSurfaceInner, [&](const Eigen::Vector3d& x) {
+      return std::abs(x[2] - z_wg) <= 0.5 * w.band_width_m;
+    });
+    if (band.empty())
+      throw InputError("wave_generator: no inner-wall faces in the cam's band at z = " + std::to_string(z_wg * 1e3) +
+                       " mm; check wave_generator.axial_position_mm / band_width_mm");
+    frames.frame_of_node.assign(mesh.n_nodes(), -1);
+    for (const auto* face : band)
+      for (int v : face->nodes) {
+        if (band_node[v] || fixed_node[v]) continue;
+        band_node[v] = true;
+        const double t = theta_of(mesh.nodes.row(v).transpose());
+        Eigen::Matrix3d R;
+        R << std::cos(t), -std::sin(t), 0, std::sin(t), std::cos(t), 0, 0, 0, 1;  // columns e_r, e_θ, e_z
+        frames.frame_of_node[v] = static_cast<int>(frames.rotations.size());
+        frames.rotations.push_back(R);
+        fixed[3 * v] = true;  // local radial component
+        cam_shape[3 * v] = *w.radial_deformation_m * std::cos(2 * t);
+      }
+  }
   const DofMap dofs = make_dof_map(fixed);
   Stopwatch clock;
   progress("assemble: " + std::to_string(dofs.n_equations) + " equations");
-  const SymmetricCsc K = assemble_stiffness(mesh, c.material, dofs);
+  const SymmetricCsc K = assemble_stiffness(mesh, c.material, dofs, frames);
   s.assemble_s = clock.lap();
   progress("factorise: nnz(K) = " + std::to_string(K.nnz()));
   const CholmodFactor factor(K);
@@ -207,23 +235,25 @@ FlexsplineSolution analyse_flexspline(const Case& c, const TetMesh& mesh) {
            std::to_string(s.factor.factor_gflop) + " GF in " + std::to_string(s.factor.factor_s) + " s");
   clock.lap();
 
-  // Right-hand sides: unit torque, unit generator; solved together.
+  // Right-hand sides: unit torque, and the unit generator (forces) or the cam's prescribed shape; solved together.
   s.torque_Nm = c.load.torque_Nm;
   const bool has_torque = s.torque_Nm != 0.0;
   const bool has_generator = c.wave_generator.has_value();
-  std::vector<Eigen::VectorXd> loads;
   const Eigen::VectorXd f_torque = unit_torque_load(c, mesh);
-  loads.push_back(f_torque);
   Eigen::VectorXd f_gen;
+  Eigen::MatrixXd B(dofs.n_equations, has_generator ? 2 : 1);
+  B.col(0) = restrict_to_free(dofs, to_local(frames, f_torque));
   if (has_generator) {
-    f_gen = generator_load(c, mesh);
-    loads.push_back(f_gen);
+    if (cam) {
+      B.col(1) = dirichlet_lift(mesh, c.material, dofs, cam_shape, frames);
+    } else {
+      f_gen = generator_load(c, mesh);
+      B.col(1) = restrict_to_free(dofs, f_gen);
+    }
   }
-  Eigen::MatrixXd B(dofs.n_equations, static_cast<Eigen::Index>(loads.size()));
-  for (std::size_t k = 0; k < loads.size(); ++k) B.col(static_cast<Eigen::Index>(k)) = restrict_to_free(dofs, loads[k]);
   const Eigen::MatrixXd X = factor.solve(B);
   const Eigen::VectorXd zeros = Eigen::VectorXd::Zero(3 * mesh.n_nodes());
-  const Eigen::VectorXd u_unit_torque = expand_to_full(dofs, X.col(0), zeros);
+  const Eigen::VectorXd u_unit_torque = to_global(frames, expand_to_full(dofs, X.col(0), zeros));
   s.solve_s = clock.lap();
 
   const RotationReader rotation(c, mesh);
@@ -234,12 +264,15 @@ FlexsplineSolution analyse_flexspline(const Case& c, const TetMesh& mesh) {
   const double unit_rotation = rotation(u_unit_torque);
   s.compliance_rad_per_Nm = unit_rotation;
   s.phi0_rad = unit_rotation * s.torque_Nm;
+  // Theory: T·L/(G·J) of the body wall, L from where the body wall starts (the clamp of a tube, the diaphragm's face
+  // of a cup) to the reading plane.
   const double G = c.material.shear_modulus_Pa();
   const double ri = f.inner_radius_m, ro = f.inner_radius_m + f.wall_thickness_m;
   const double J = kPi / 2 * (std::pow(ro, 4) - std::pow(ri, 4));
-  s.phi0_theory_rad = s.torque_Nm * s.reading_z_m / (G * J);
+  const double body_start = f.shape == FlexsplineShape::Cup ? f.diaphragm_thickness_m : 0.0;
+  s.phi0_theory_rad = s.torque_Nm * (s.reading_z_m - body_start) / (G * J);
 
-  // Torque balance: applied moment vs the reaction moment of the supports.
+  // Torque balance: applied moment vs the reaction moment of the clamp (a cam's radial supports carry no moment).
   const Eigen::VectorXd u_torque = u_unit_torque * s.torque_Nm;
   s.applied_torque_Nm = moment_about_z(mesh, f_torque * s.torque_Nm, std::vector<bool>(mesh.n_nodes(), true));
   const Eigen::VectorXd reactions = internal_forces(mesh, c.material, u_torque) - f_torque * s.torque_Nm;
@@ -247,23 +280,33 @@ FlexsplineSolution analyse_flexspline(const Case& c, const TetMesh& mesh) {
 
   Eigen::VectorXd u_gen;
   if (has_generator) {
-    const Eigen::VectorXd u_unit_gen = expand_to_full(dofs, X.col(1), zeros);
+    const auto& w = *c.wave_generator;
+    const Eigen::VectorXd u_unit_gen = to_global(frames, expand_to_full(dofs, X.col(1), cam ? cam_shape : zeros));
     // Major-axis radial displacement of the neutral circle at the rim mid-width.
     const double z_mid = f.length_m - 0.5 * f.rim_width_m;
     const Eigen::Vector3d a(s.reading_radius_m, 0, z_mid), b(-s.reading_radius_m, 0, z_mid);
     const double w_unit = 0.5 * (sampler.displacement(a, u_unit_gen)[0] - sampler.displacement(b, u_unit_gen)[0]);
     if (!(w_unit > 0))
-      throw InputError("wave_generator: the generator forces do not push the major axis outward (w = " +
-                       std::to_string(w_unit) + " m per N); check the force angles");
-    const auto& w = *c.wave_generator;
-    double total_at_end = 0;  // sum of weights near θ = 0 (one end of the major axis)
-    for (const auto& force : generator_forces(w))
-      if (std::abs(wrap_pi(force.angle_rad)) < kPi / 2) total_at_end += force.weight;
-    const double scale = w.radial_deformation_m ? *w.radial_deformation_m / w_unit
-                                                : w.force_N / std::max(total_at_end, 1e-300);
+      throw InputError("wave_generator: the generator does not push the major axis outward (w = " +
+                       std::to_string(w_unit) + " m per unit load); check the force angles");
+    double scale = 1.0;  // a cam prescribes its shape: no scaling
+    if (!cam) {
+      double total_at_end = 0;  // sum of weights near θ = 0 (one end of the major axis)
+      for (const auto& force : generator_forces(w))
+        if (std::abs(wrap_pi(force.angle_rad)) < kPi / 2) total_at_end += force.weight;
+      scale = w.radial_deformation_m ? *w.radial_deformation_m / w_unit : w.force_N / std::max(total_at_end, 1e-300);
+      s.generator_force_N = scale * (w.model == WaveGeneratorModel::FourForce ? 0.5 : 1.0);
+    }
     u_gen = u_unit_gen * scale;
-    f_gen *= scale;
-    s.generator_force_N = scale * (w.model == WaveGeneratorModel::FourForce ? 0.5 : 1.0);
+    if (cam) {
+      // The cam's contact forces on the flexspline: the reactions at the band nodes.
+      const Eigen::VectorXd r = internal_forces(mesh, c.material, u_gen);
+      f_gen = Eigen::VectorXd::Zero(3 * mesh.n_nodes());
+      for (std::size_t i = 0; i < mesh.n_nodes(); ++i)
+        if (band_node[i]) f_gen.segment<3>(3 * i) = r.segment<3>(3 * i);
+    } else {
+      f_gen *= scale;
+    }
     s.generator_w0_m = w_unit * scale;
     const Resultant res = load_resultant(mesh, f_gen);
     s.generator_net_force = res.force;

@@ -85,6 +85,14 @@ struct SteadyState {
   double mesh_frequency_Hz = 0.0;  ///< f_m = z_f·|ω_f − ω_w|/2π
 };
 
+/// Checks every [dynamics] value against its documented range; throws InputError naming `where` (the case file), the
+/// key, the value and the constraint ("cases/x.toml: dynamics.damping_Ns_per_m = -1; must be >= 0").
+void validate(const DynamicsParams& p, const std::string& where);
+
+/// A model from case values: inertias from the geometry, the given tooth pairs. Throws InputError (via validate()).
+DynamicsModel make_model(const GearParams& gear, const FlexsplineParams& fs, bool cup, const Material& mat,
+                         const DynamicsParams& p, std::vector<ToothPair> pairs, const std::string& where);
+
 /// Body roles, steady speeds, output load and mesh torque for the model's configuration at full speed and load.
 /// Precondition: 0 < z_f < z_c; drive speed > 0; throws InputError for all_free when the
 /// circular spline's brake is too weak for the load to resist (see DynamicsParams).

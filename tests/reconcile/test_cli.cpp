@@ -1,0 +1,76 @@
+// The reconcile and synth commands through the CLI: synth writes a recording and its truth, reconcile names the hidden
+// effect and writes reconcile.json/html; a bad recording gives one line with the line number, a non-zero exit and
+// no output files.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string binary() {
+  const char* dir = std::getenv("SW_BUILD_DIR");
+  return (dir ? std::string(dir) : std::string("build")) + "/strainwave";
+}
+
+int sh(const std::string& cmd) { return WEXITSTATUS(std::system(cmd.c_str())); }
+
+std::string slurp(const fs::path& p) {
+  std::ifstream f(p);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+fs::path scratch(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("sw_reconcile_cli_" + name);
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+const char* kCase =
+    "[gear]\nmodule_mm = 0.2\nteeth_flexspline = 190\nteeth_circular = 192\npressure_angle_deg = 20.0\n"
+    "profile_shift_flexspline = 1.52\nprofile_shift_circular = 1.57\ncutter_teeth = 80\n[flexspline]\nshape = \"cup\"\n";
+
+}  // namespace
+
+TEST(ReconcileCli, SynthThenReconcileNamesTheHiddenHarmonic) {
+  ASSERT_TRUE(fs::exists(binary())) << binary();
+  const fs::path d = scratch("harmonic");
+  std::ofstream(d / "case.toml") << kCase;
+  ASSERT_EQ(sh(binary() + " --quiet synth --kind transmission --case " + (d / "case.toml").string() +
+               " --effect wg_harmonic:order=2 --concealment 1 --seed 5 --out " + (d / "rec.csv").string() +
+               " > /dev/null"), 0);
+  ASSERT_TRUE(fs::exists(d / "rec.truth.json"));
+  ASSERT_EQ(sh(binary() + " --quiet reconcile " + (d / "case.toml").string() + " " + (d / "rec.csv").string() +
+               " --out " + (d / "out").string() + " > /dev/null"), 0);
+  const auto j = nlohmann::json::parse(slurp(d / "out" / "reconcile.json"));
+  EXPECT_EQ(j["verdict"], "explained");
+  ASSERT_EQ(j["effects"].size(), 1u);
+  EXPECT_EQ(j["effects"][0]["name"], "wg_harmonic");
+  EXPECT_EQ(j["effects"][0]["params"]["order"], 2);
+  const std::string html = slurp(d / "out" / "reconcile.html");
+  EXPECT_NE(html.find("<svg"), std::string::npos);
+  EXPECT_EQ(html.find("<script src"), std::string::npos);  // self-contained
+}
+
+TEST(ReconcileCli, BadRecordingFailsWithTheLineAndWritesNothing) {
+  ASSERT_TRUE(fs::exists(binary())) << binary();
+  const fs::path d = scratch("bad");
+  std::ofstream(d / "case.toml") << kCase;
+  std::ofstream(d / "bad.csv") << "# strainwave-recording: 1\n# kind: transmission\ntime_s,wg_angle_rad,output_angle_rad\n"
+                                  "0,0,0\n0.1,0.1,x\n";
+  const int rc = sh(binary() + " reconcile " + (d / "case.toml").string() + " " + (d / "bad.csv").string() +
+                    " --out " + (d / "out").string() + " 2> " + (d / "err.txt").string() + " > /dev/null");
+  EXPECT_NE(rc, 0);
+  const std::string err = slurp(d / "err.txt");
+  EXPECT_NE(err.find("bad.csv:5: output_angle_rad = 'x'; expected a finite number"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(d / "out" / "reconcile.json"));
+}

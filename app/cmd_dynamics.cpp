@@ -80,6 +80,11 @@ void run_dynamics(const std::string& case_path, std::string out_dir, const std::
     source = "approximate stand-in (w0(1 - cos 2phi) sin(alpha) within +-engagement_half_angle), " +
              std::to_string(pairs.size()) + " pairs";
   }
+  int interfering = 0;
+  for (const auto& tp : pairs) interfering += (tp.clearance_drive_m < 0 || tp.clearance_coast_m < 0) ? 1 : 0;
+  if (interfering > 0)
+    progress("dynamics: " + std::to_string(interfering) +
+             " pairs have negative clearance (interference) at rest; it is carried as contact preload");
   const DynamicsModel m = make_model(*c.gear, c.flexspline, c.flexspline.shape == FlexsplineShape::Cup, c.material, p,
                                      std::move(pairs), case_path);
   progress("dynamics: " + std::string(to_string(p.configuration)) + ", " + std::to_string(m.pairs.size()) +

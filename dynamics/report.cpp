@@ -162,6 +162,10 @@ std::string dynamics_json(const DynamicsModel& m, const DynamicsSeries& s, const
     j["pair_forces"].push_back({{"pair", c.pair}, {"angle_deg", c.angle_deg}, {"arm_m", c.arm_m},
                                 {"mean_N", c.mean_N}, {"quasi_static_N", c.quasi_static_N}, {"error_rel", c.error_rel}});
   j["max_pair_force_error_rel"] = r.max_pair_force_error_rel;
+  int interfering = 0;
+  for (const auto& tp : m.pairs) interfering += (tp.clearance_drive_m < 0 || tp.clearance_coast_m < 0) ? 1 : 0;
+  j["pairs_in_interference"] = interfering;  // negative clearance at rest: carried as contact preload
+  j["total_force_at_rest_N"] = s.total_force_N.empty() ? 0.0 : s.total_force_N.front();
   j["mesh_torque_Nm"] = r.mesh_torque_Nm;
   j["mesh_torque_theory_Nm"] = r.theory.mesh_torque_Nm;
   j["load_torque_Nm"] = r.theory.load_torque_Nm;
@@ -207,19 +211,25 @@ std::string dynamics_svg(const DynamicsModel& m, const DynamicsSeries& s, const 
   o << "<svg xmlns='http://www.w3.org/2000/svg' width='" << W << "' height='" << H << "' viewBox='0 0 " << W << ' '
     << H << "' font-family='sans-serif'>\n<rect width='100%' height='100%' fill='white'/>\n";
   char head[512];
-  std::snprintf(head, sizeof head,
-                "strainwave dynamics: %s, z_f/z_c = %d/%d, %s, drive %.0f rpm, load %.1f N·m, k = %.3g%s N/m, c = %.3g N·s/m",
+  std::snprintf(head, sizeof head, "strainwave dynamics: %s (z_f/z_c = %d/%d, %s, %zu tooth pairs)",
                 info.case_path.c_str(), m.teeth_flexspline, m.teeth_circular, to_string(p.configuration),
-                p.drive_speed_rpm, p.load_torque_Nm, p.stiffness_N_per_m,
-                p.stiffness_variation_N_per_m > 0 ? (" ± " + fmt(p.stiffness_variation_N_per_m)).c_str() : "",
-                p.damping_Ns_per_m);
-  o << "<text x='20' y='26' font-size='15' font-weight='bold'>" << escape(head) << "</text>\n";
+                m.pairs.size());
+  o << "<text x='20' y='24' font-size='15' font-weight='bold'>" << escape(head) << "</text>\n";
   std::snprintf(head, sizeof head,
-                "steady window %.3g–%.3g s: max speed error %.2e, max pair-force error vs quasi-static %.2e, torque "
-                "balance %.2e, energy balance %.2e, f_m = %.1f Hz",
+                "drive %.0f rpm (ramp %g–%g s, %s STEP), load %g N·m (ramp %g–%g s); contact k = %.3g%s N/m, c = %.3g "
+                "N·s/m, m1/m2/m3 = %g/%g/%g",
+                p.drive_speed_rpm, p.drive_ramp_start_s, p.drive_ramp_end_s, to_string(p.ramp_shape), p.load_torque_Nm,
+                p.load_ramp_start_s, p.load_ramp_end_s, p.stiffness_N_per_m,
+                p.stiffness_variation_N_per_m > 0
+                    ? (" ± " + fmt(p.stiffness_variation_N_per_m) + " sin(2π f_m t)").c_str() : "",
+                p.damping_Ns_per_m, p.exponent_stiffness, p.exponent_damping, p.exponent_indentation);
+  o << "<text x='20' y='42' font-size='12'>" << escape(head) << "</text>\n";
+  std::snprintf(head, sizeof head,
+                "steady window %g–%g s: speed error %.2e, pair forces vs quasi-static %.2e, torque balance %.2e, "
+                "energy balance %.2e, f_m = %.2f Hz",
                 p.steady_from_s, p.duration_s, r.max_speed_error_rel, r.max_pair_force_error_rel,
                 r.torque_balance_error_rel, r.energy_error_rel, r.theory.mesh_frequency_Hz);
-  o << "<text x='20' y='46' font-size='12'>" << escape(head) << "</text>\n";
+  o << "<text x='20' y='58' font-size='12'>" << escape(head) << "</text>\n";
   const auto& t = s.time_s;
   const double tmax = t.empty() ? 1.0 : t.back();
 

@@ -167,3 +167,21 @@ TEST(StandInClearances, SmallGearHasThreePairsPerZoneAndNoClearanceOnTheMajorAxi
   }
   EXPECT_EQ(on_axis, 2);
 }
+
+TEST(Validation, RejectsOutOfRangeKeysWithFileKeyValueAndConstraint) {
+  DynamicsParams p;
+  p.damping_Ns_per_m = -1.0;
+  try {
+    validate(p, "cases/x.toml");
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "cases/x.toml: dynamics.damping_Ns_per_m = -1; must be >= 0");
+  }
+  p = DynamicsParams{};
+  p.stiffness_variation_N_per_m = p.stiffness_N_per_m;  // k(t) would reach 0
+  EXPECT_THROW(validate(p, "c.toml"), InputError);
+  p = DynamicsParams{};
+  p.drive_ramp_end_s = p.drive_ramp_start_s;
+  EXPECT_THROW(validate(p, "c.toml"), InputError);
+  EXPECT_NO_THROW(validate(DynamicsParams{}, "c.toml"));
+}

@@ -5,10 +5,12 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <string>
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include "app/commands.hpp"
 #include "common/error.hpp"
@@ -63,11 +65,33 @@ std::vector<ToothPair> pairs_from_kinematics(const Case& c) {
   return pairs;
 }
 
-void run_dynamics(const std::string& case_path, std::string out_dir, const std::string& clearances) {
+/// C_τ from `strainwave fem`'s result.json (key compliance_rad_per_Nm).
+double compliance_from_fem(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path + ": cannot be read; give the result.json written by `strainwave fem`");
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(in);
+  } catch (const std::exception& e) {
+    throw InputError(path + ": not valid JSON (" + e.what() + ")");
+  }
+  if (!j.contains("compliance_rad_per_Nm") || !j["compliance_rad_per_Nm"].is_number() ||
+      !(j["compliance_rad_per_Nm"].get<double>() > 0))
+    throw InputError(path + ": compliance_rad_per_Nm is missing or not > 0; expected the FEM's C_tau in rad/(N m)");
+  return j["compliance_rad_per_Nm"].get<double>();
+}
+
+void run_dynamics(const std::string& case_path, std::string out_dir, const std::string& clearances,
+                  const std::string& fem_result) {
   Stopwatch total;
   const Case c = load_case(case_path);
   if (!c.gear) throw InputError(case_path + ": [gear] is missing; the dynamics needs the tooth numbers and module");
-  const DynamicsParams p = dynamics_params_of(c);
+  DynamicsParams p = dynamics_params_of(c);
+  if (!fem_result.empty()) {
+    p.flexspline_compliance_rad_per_Nm = compliance_from_fem(fem_result);
+    progress("dynamics: flexspline rim and flange joined by 1/C_tau, C_tau = " +
+             std::to_string(p.flexspline_compliance_rad_per_Nm) + " rad/(N m) from " + fem_result);
+  }
   if (out_dir.empty()) out_dir = "out/" + c.stem;
   std::vector<ToothPair> pairs;
   std::string source;
@@ -128,7 +152,10 @@ void add_dynamics_command(CLI::App& app) {
   cmd->add_option("--out", *out, "output directory (default out/<case stem>/)");
   cmd->add_option("--clearances", *clearances, "tooth-pair clearances: kinematics (backlash module) | approximate")
       ->check(CLI::IsMember({"kinematics", "approximate"}));
-  cmd->callback([=] { run_dynamics(*case_path, *out, *clearances); });
+  auto fem = std::make_shared<std::string>();
+  cmd->add_option("--fem", *fem, "FEM result (DIR/result.json): split the flexspline into rim and flange joined by "
+                                 "1/C_tau (overrides dynamics.flexspline_compliance_rad_per_Nm)");
+  cmd->callback([=] { run_dynamics(*case_path, *out, *clearances, *fem); });
 }
 
 }  // namespace sw::app

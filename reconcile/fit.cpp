@@ -199,7 +199,7 @@ FitResult fit_model(const Experiment& e, const Vec& y, std::vector<Term> terms, 
   out.k = ls.rank + nfree;
   out.contribution = model_contribution(e, out);
 
-  if (opt.covariance) {
+  if (opt.covariance && out.params().size() > 0) {
     // Jacobian of the whitened prediction with respect to params() (central differences for theta).
     const Vec p0 = out.params();
     Mat J(out.n_w, p0.size());

@@ -3,6 +3,8 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 namespace sw::reconcile {
 
@@ -128,6 +130,9 @@ LsResult least_squares(const Eigen::MatrixXd& X, const Eigen::VectorXd& y) {
     out.rss = y.squaredNorm();
     return out;
   }
+  if (X.rows() == 0 || !X.allFinite() || !y.allFinite())
+    throw std::runtime_error("least_squares: " + std::to_string(X.rows()) + "x" + std::to_string(X.cols()) +
+                             " system with non-finite entries or no rows");
   // Scale columns so the rank threshold is meaningful across units.
   Eigen::VectorXd scale = X.colwise().norm().transpose();
   for (int j = 0; j < scale.size(); ++j)

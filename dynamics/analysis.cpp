@@ -24,7 +24,7 @@ Spectrum amplitude_spectrum(const std::vector<double>& signal, double dt) {
   std::vector<double> in(n);
   double gain = 0.0;
   for (int i = 0; i < n; ++i) {
-    const double w = 0.5 - 0.5 * std::cos(2.0 * std::numbers::pi * i / (n - 1));
+    const double w = 0.5 - 0.5 * std::cos(2.0 * std::numbers::pi * i / n);  // periodic Hann: exact on-bin gain
     in[i] = (signal[i] - mean) * w;
     gain += w;
   }
@@ -116,6 +116,9 @@ DynamicsSummary summarize(const DynamicsModel& m, const DynamicsSeries& s) {
   for (double v : window) var += (v - mean) * (v - mean);
   r.mean_total_force_N = mean;
   r.force_fluctuation_N = std::sqrt(var / double(window.size()));
+  // The spectrum takes the window without its last sample, so that it spans exactly (t_end − t_start) and a tone
+  // with a whole number of periods in it (f_m·span integer) falls on a bin.
+  window.pop_back();
   r.spectrum = amplitude_spectrum(window, p.output_step_s);
   // Lines below two bins are the Hann window's own leakage of the removed mean and of slow drifts.
   r.lines = spectral_lines(r.spectrum, 2.5 * r.spectrum.resolution_Hz, kLines);

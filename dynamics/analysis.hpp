@@ -50,8 +50,8 @@ struct DynamicsSummary {
   std::vector<SpectralLine> lines;          ///< strongest first
 };
 
-/// Amplitude spectrum of a uniformly sampled signal (dt [s]): mean removed, Hann window, FFTW r2c. Precondition: ≥ 8
-/// samples.
+/// Amplitude spectrum of a uniformly sampled signal (dt [s]): mean removed, periodic Hann window, FFTW r2c; a sinusoid
+/// of amplitude A on a bin shows A exactly. Precondition: ≥ 8 samples.
 Spectrum amplitude_spectrum(const std::vector<double>& signal, double dt_s);
 
 /// Local maxima of the spectrum above min_frequency_Hz, strongest first, at most max_lines.

@@ -4,6 +4,7 @@
 // limited by the integrator's tolerances (relative 1e-8, 1e-13 rad on the deviation from kinematic motion).
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 #include <gtest/gtest.h>
 
@@ -133,5 +134,36 @@ TEST(DynamicsDamping, SweepFrom1e2To1e4ReducesTheForceFluctuationMonotonically) 
     std::printf("  %9.0f   %14.6f   %14.6f\n", c, r.force_fluctuation_N, r.lines.empty() ? 0.0 : r.lines[0].amplitude_N);
     EXPECT_LT(r.force_fluctuation_N, previous) << "c = " << c;
     previous = r.force_fluctuation_N;
+  }
+}
+
+// Independent check of the dynamics: n pairs with zero clearance and equal arms a, circular spline fixed, the
+// flexspline of inertia J free, constant load T. Linearized about e0 = T/(n·k0·a²), the deviation ε obeys
+//     J·ε̈ + C·ε̇ + K·ε = −(Δk/k0)·T·sin(ωt + φ),   K = n·k0·a²,  C = n·c·a²,  ω = 2π·f_m
+// (the product Δk·ε only feeds DC and 2ω, back into ω at order (Δk/k0)²), and the total meshing force Σ F_i = (T − J·ε̈)/a
+// fluctuates at f_m with amplitude J·ω²·(Δk/k0)·T / (a·|K − J·ω² + iCω|).
+TEST(DynamicsResponse, MeshFrequencyLineMatchesTheLinearizedOscillator) {
+  constexpr double kAmplitudeTolerance = 1e-3;  // (Δk/k0)² = 1e-4 nonlinearity + integrator error; on-bin Hann is exact
+  for (double J : {1e-5, 2e-4}) {
+    DynamicsModel m;
+    m.teeth_flexspline = 190;
+    m.teeth_circular = 192;
+    m.inertia[BodyId::WaveGenerator] = 1e-5;
+    m.inertia[BodyId::FlexsplineFlange] = J;
+    m.inertia[BodyId::CircularSpline] = 1e-4;
+    const int n = 4;
+    const double a = 0.018;
+    for (int i = 0; i < n; ++i) m.pairs.push_back({0.1 * i, 0.0, 0.0, a, 1.0});
+    m.params.stiffness_variation_N_per_m = 0.01 * m.params.stiffness_N_per_m;
+    const auto r = run(m);
+    const double k0 = m.params.stiffness_N_per_m, c = m.params.damping_Ns_per_m, T = m.params.load_torque_Nm;
+    const double w = 2 * std::numbers::pi * r.theory.mesh_frequency_Hz;
+    const double K = n * k0 * a * a, C = n * c * a * a;
+    const double expected = J * w * w * 0.01 * T / (a * std::hypot(K - J * w * w, C * w));
+    ASSERT_FALSE(r.lines.empty());
+    std::printf("  J = %g kg m²: line %.2f Hz, amplitude %.6f N, linearized oscillator %.6f N, error %.2e\n", J,
+                r.lines[0].frequency_Hz, r.lines[0].amplitude_N, expected, r.lines[0].amplitude_N / expected - 1);
+    EXPECT_NEAR(r.lines[0].frequency_Hz, 3200.0, 1e-6 * 3200);
+    EXPECT_NEAR(r.lines[0].amplitude_N, expected, kAmplitudeTolerance * expected);
   }
 }

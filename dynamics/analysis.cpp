@@ -12,6 +12,9 @@ namespace {
 
 constexpr double kRpmPerRadS = 60.0 / (2.0 * std::numbers::pi);
 constexpr int kLines = 10;
+// Without load the references of the relative errors vanish; below these floors the errors are taken against them.
+constexpr double kForceFloor_N = 1e-6;
+constexpr double kTorqueFloor_Nm = 1e-6;
 
 }  // namespace
 
@@ -100,13 +103,14 @@ DynamicsSummary summarize(const DynamicsModel& m, const DynamicsSeries& s) {
     c.arm_m = c.mean_N >= 0.0 ? m.pairs[i].arm_m() : m.pairs[i].coast_arm();
     c.quasi_static_N = qs.force_N[i];
     const bool loaded = std::abs(c.quasi_static_N) > 1e-9 * qs_max;
-    c.error_rel = std::abs(c.mean_N - c.quasi_static_N) / (loaded ? std::abs(c.quasi_static_N) : std::max(qs_max, 1e-300));
+    c.error_rel = std::abs(c.mean_N - c.quasi_static_N) /
+                  (loaded ? std::abs(c.quasi_static_N) : std::max(qs_max, kForceFloor_N));
     if (loaded) r.max_pair_force_error_rel = std::max(r.max_pair_force_error_rel, c.error_rel);
     r.mesh_torque_Nm += c.mean_N * c.arm_m;
     r.pair_forces.push_back(c);
   }
   r.torque_balance_error_rel = std::abs(r.mesh_torque_Nm - r.theory.mesh_torque_Nm) /
-                               std::max(std::abs(r.theory.mesh_torque_Nm), 1e-300);
+                               std::max(std::abs(r.theory.mesh_torque_Nm), kTorqueFloor_Nm);
   r.energy_error_rel = s.energy.error_rel();
 
   std::vector<double> window(s.total_force_N.begin() + i0, s.total_force_N.begin() + i1 + 1);

@@ -42,7 +42,7 @@ struct DynamicsSummary {
   std::vector<PairForceCheck> pair_forces;
   double max_pair_force_error_rel = 0.0;    ///< over loaded pairs
   double mesh_torque_Nm = 0.0;              ///< Σ mean F_i·arm_i
-  double torque_balance_error_rel = 0.0;    ///< |Σ mean F_i·arm_i − M_theory| / |M_theory|
+  double torque_balance_error_rel = 0.0;    ///< |Σ mean F_i·arm_i − M_theory| / max(|M_theory|, 1e-6 N·m)
   double energy_error_rel = 0.0;
   double mean_total_force_N = 0.0;
   double force_fluctuation_N = 0.0;         ///< standard deviation of the total meshing force in the steady window

@@ -17,7 +17,7 @@ constexpr double kRoundoff = 1e-12;        // closed forms evaluated in double: 
 constexpr double kFiniteDifference = 1e-6; // central differences with h = 1e-6 of the ramp time: O(h²) + roundoff/h
 }  // namespace
 
-TEST(Ramp, PaperStepIsContinuousWithContinuousSlopeAndReachesOne) {
+TEST(DynamicsRamp, PaperStepIsContinuousWithContinuousSlopeAndReachesOne) {
   const double t0 = 0.002, t1 = 0.012, mid = 0.007, h = 1e-9;
   for (RampShape shape : {RampShape::Paper, RampShape::Cubic}) {
     EXPECT_EQ(ramp(shape, t0 - 1e-3, t0, t1), 0.0);
@@ -30,7 +30,7 @@ TEST(Ramp, PaperStepIsContinuousWithContinuousSlopeAndReachesOne) {
   EXPECT_NEAR(ramp(RampShape::Paper, mid + 1e-7, t0, t1), 0.5, 1e-4);
 }
 
-TEST(Ramp, RateAndIntegralAreTheDerivativeAndTheIntegralOfTheValue) {
+TEST(DynamicsRamp, RateAndIntegralAreTheDerivativeAndTheIntegralOfTheValue) {
   const double t0 = 0.0, t1 = 0.01;
   for (RampShape shape : {RampShape::Paper, RampShape::Cubic}) {
     double integral = 0.0;
@@ -48,7 +48,7 @@ TEST(Ramp, RateAndIntegralAreTheDerivativeAndTheIntegralOfTheValue) {
   }
 }
 
-TEST(Kinematics, EveryConfigurationSatisfiesTheMeshRelationAndTheTextbookRatios) {
+TEST(DynamicsKinematics, EveryConfigurationSatisfiesTheMeshRelationAndTheTextbookRatios) {
   const double n = 1000.0, w = n * 2 * kPi / 60;
   for (auto cfg : {DynamicsConfiguration::CsFixed, DynamicsConfiguration::FsFixed, DynamicsConfiguration::WgFixed,
                    DynamicsConfiguration::AllFree}) {
@@ -78,7 +78,7 @@ TEST(Kinematics, EveryConfigurationSatisfiesTheMeshRelationAndTheTextbookRatios)
   EXPECT_LT(s.speed_rad_s[2], 0.0);
 }
 
-TEST(Kinematics, AllFreeRejectsABrakeTooWeakForTheLoadToResist) {
+TEST(DynamicsKinematics, AllFreeRejectsABrakeTooWeakForTheLoadToResist) {
   auto m = test::seed_model(DynamicsConfiguration::AllFree);
   m.params.circular_spline_drag_Nms_per_rad = 10.0;  // bound is (192/190)²·100/(104.7·2/190) ≈ 92.6
   try {
@@ -89,7 +89,7 @@ TEST(Kinematics, AllFreeRejectsABrakeTooWeakForTheLoadToResist) {
   }
 }
 
-TEST(Contact, FollowsThePaperLawAndNeverPulls) {
+TEST(DynamicsContact, FollowsThePaperLawAndNeverPulls) {
   DynamicsParams p;
   p.damping_Ns_per_m = 1e3;
   EXPECT_EQ(flank_force(p, 8e7, -1e-6, 1.0).force_N, 0.0);
@@ -102,7 +102,7 @@ TEST(Contact, FollowsThePaperLawAndNeverPulls) {
   EXPECT_NEAR(flank_force(p, 1e10, d, r).force_N, 1e10 * std::pow(d, 1.5) + 1e3 * r * std::abs(r) * d * d, 1e-12);
 }
 
-TEST(LoadSharing, MatchesClosedFormsForOneAndTwoPairs) {
+TEST(DynamicsLoadSharing, MatchesClosedFormsForOneAndTwoPairs) {
   DynamicsParams p;  // k = 8e7, m1 = 1
   std::vector<ToothPair> one{{0.0, 0.0, 0.0, 0.02, 0.9}};
   auto r = quasi_static_load_sharing(one, p, 36.0);
@@ -120,7 +120,7 @@ TEST(LoadSharing, MatchesClosedFormsForOneAndTwoPairs) {
   EXPECT_LT(r.force_N[1], 0.0);
 }
 
-TEST(LoadSharing, NonlinearLawBalancesTheTorque) {
+TEST(DynamicsLoadSharing, NonlinearLawBalancesTheTorque) {
   auto m = test::seed_model();
   m.params.exponent_stiffness = 1.5;
   m.params.stiffness_N_per_m = 8e7 / std::sqrt(5e-6);  // same force as the linear law at δ = 5 µm
@@ -130,7 +130,7 @@ TEST(LoadSharing, NonlinearLawBalancesTheTorque) {
   EXPECT_NEAR(torque, 100.0, 1e-9);
 }
 
-TEST(Inertia, TubeWallMatchesTheThickRingFormula) {
+TEST(DynamicsInertia, TubeWallMatchesTheThickRingFormula) {
   GearParams g;
   FlexsplineParams fs;
   fs.length_m = 0.03;
@@ -143,7 +143,7 @@ TEST(Inertia, TubeWallMatchesTheThickRingFormula) {
   EXPECT_NEAR(J[BodyId::FlexsplineRim], J[BodyId::FlexsplineFlange], 1e-12 * exact);
 }
 
-TEST(Inertia, SeedGearInertiasArePositiveAndOfTheExpectedSize) {
+TEST(DynamicsInertia, SeedGearInertiasArePositiveAndOfTheExpectedSize) {
   const auto m = test::seed_model();
   // A steel cup of r ≈ 19 mm and a few tens of grams: J ≈ m·r² ≈ 1e-5 kg·m²; all bodies within a decade of it.
   for (double J : m.inertia.kgm2) {
@@ -152,7 +152,7 @@ TEST(Inertia, SeedGearInertiasArePositiveAndOfTheExpectedSize) {
   }
 }
 
-TEST(StandInClearances, SmallGearHasThreePairsPerZoneAndNoClearanceOnTheMajorAxis) {
+TEST(DynamicsStandInClearances, SmallGearHasThreePairsPerZoneAndNoClearanceOnTheMajorAxis) {
   const auto m = test::small_model();
   ASSERT_EQ(m.pairs.size(), 6u);  // teeth every 13.85°: 0, ±13.85° within ±20°, at both ends
   int on_axis = 0;
@@ -168,7 +168,7 @@ TEST(StandInClearances, SmallGearHasThreePairsPerZoneAndNoClearanceOnTheMajorAxi
   EXPECT_EQ(on_axis, 2);
 }
 
-TEST(Validation, RejectsOutOfRangeKeysWithFileKeyValueAndConstraint) {
+TEST(DynamicsValidation, RejectsOutOfRangeKeysWithFileKeyValueAndConstraint) {
   DynamicsParams p;
   p.damping_Ns_per_m = -1.0;
   try {

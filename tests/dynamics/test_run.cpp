@@ -2,6 +2,7 @@
 // load sharing, torque and energy balances, the spectral line of a varying mesh stiffness, and the damping sweep.
 // The thresholds are the acceptance limits; the measured values (printed) are orders of magnitude below them,
 // limited by the integrator's tolerances (relative 1e-8, 1e-13 rad on the deviation from kinematic motion).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -66,6 +67,21 @@ INSTANTIATE_TEST_SUITE_P(Dynamics, EveryConfiguration,
                          ::testing::Values(DynamicsConfiguration::CsFixed, DynamicsConfiguration::FsFixed,
                                            DynamicsConfiguration::WgFixed, DynamicsConfiguration::AllFree),
                          [](const auto& info) { return std::string(to_string(info.param)); });
+
+TEST(DynamicsForces, WithoutLoadNoPairCarriesForceAndTheCubicRampReachesTheSameSteadyState) {
+  auto m = test::small_model();
+  m.params.load_torque_Nm = 0.0;
+  m.params.ramp_shape = RampShape::Cubic;
+  const auto r = run(m);
+  std::printf("  no load: max speed error %.2e, mesh torque %.3e N m, largest |mean pair force| ", r.max_speed_error_rel,
+              r.mesh_torque_Nm);
+  double largest = 0.0;
+  for (const auto& c : r.pair_forces) largest = std::max(largest, std::abs(c.mean_N));
+  std::printf("%.3e N\n", largest);
+  EXPECT_LT(r.max_speed_error_rel, kSpeedTolerance);
+  EXPECT_LT(largest, 1e-3);  // N: a millinewton against the kilonewtons of the loaded run
+  EXPECT_LT(r.torque_balance_error_rel, kTorqueBalanceTolerance);
+}
 
 TEST(DynamicsForces, SmallGearWithNonlinearContactSharesTheLoadAsStaticsSays) {
   auto m = test::small_model();

@@ -1,0 +1,75 @@
+#pragma once
+// Small helpers shared by the benchmark programs (bench/fem_scaling.cpp, bench/vs_calculix.cpp): the mesh of a case,
+// a scratch directory that cleans up after itself, the process's current resident set.
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <system_error>
+
+#include "common/error.hpp"
+#include "common/params.hpp"
+#include "mesh/shapes.hpp"
+#include "mesh/tet_mesh.hpp"
+
+namespace sw::bench {
+
+/// The flexspline mesh of a case, as `strainwave fem` builds it (app/cmd_fem.cpp's mesh_for_case lives in the
+/// executable, so the benches call the mesh module directly). Tubes only until mesh/flexspline.hpp's
+/// mesh_flexspline lands; then the cup branch calls it. Throws InputError for a cup.
+inline TetMesh mesh_for_bench(const Case& c) {
+  const auto& f = c.flexspline;
+  if (f.shape != FlexsplineShape::Tube)
+    throw InputError(c.path + ": flexspline.shape = \"cup\" is not meshable by the benches yet (mesh_flexspline is "
+                     "not in the tree); use a tube case");
+  return mesh_tube(f.inner_radius_m, f.inner_radius_m + f.wall_thickness_m, f.length_m, c.mesh);
+}
+
+/// A fresh directory under the system temp dir (`prefix`XXXXXX), removed with its content on destruction unless
+/// keep() was called.
+class TempDir {
+public:
+  explicit TempDir(const std::string& prefix) {
+    std::string tmpl = (std::filesystem::temp_directory_path() / (prefix + "XXXXXX")).string();
+    if (!mkdtemp(tmpl.data())) throw InputError("cannot create a temporary directory " + tmpl);
+    path_ = tmpl;
+  }
+  ~TempDir() {
+    if (keep_) return;
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+  void keep() { keep_ = true; }
+
+private:
+  std::filesystem::path path_;
+  bool keep_ = false;
+};
+
+/// Current resident set size of this process (bytes), from /proc/self/status (0 if unavailable).
+inline long current_rss_bytes() {
+  std::ifstream in("/proc/self/status");
+  std::string key;
+  while (in >> key) {
+    if (key == "VmRSS:") {
+      long kb = 0;
+      in >> kb;
+      return kb * 1024L;
+    }
+    in.ignore(4096, '\n');
+  }
+  return 0;
+}
+
+/// Memory held by the mesh arrays (bytes): coordinates, connectivity, regions, boundary faces.
+inline double mesh_bytes(const TetMesh& m) {
+  return static_cast<double>(m.n_nodes()) * 3 * sizeof(double) +
+         static_cast<double>(m.tets.size()) * (sizeof(std::array<int, 10>) + sizeof(int)) +
+         static_cast<double>(m.faces.size()) * sizeof(BoundaryFace);
+}
+
+}  // namespace sw::bench

@@ -1,0 +1,311 @@
+// bench_vs_calculix: our whole fem solve against CalculiX (ccx) on the same TET10 mesh, supports and nodal loads.
+//
+// What it does and measures:
+//   1. ccx: if `ccx` is not on PATH, installs Debian's calculix-ccx (apt-get, non-interactive; sudo when not root).
+//   2. Meshes the case once (tube cases; see bench_util.hpp), prints its size. Not counted in either time.
+//   3. Ours, timed: analyse_flexspline(case, mesh) = assemble + CHOLMOD analyse/factor + solve of every load case +
+//      φ₀ + reaction check + nodal stresses (exactly what `strainwave fem` does between meshing and writing).
+//   4. Writes the same mesh as a CalculiX deck in a temp dir: *NODE, *ELEMENT TYPE=C3D10 (VTK quadratic-tetra order
+//      is the Abaqus/CalculiX C3D10 order), *BOUNDARY fixing all dofs of the clamped nodes, *MATERIAL/*ELASTIC,
+//      *SOLID SECTION, *STATIC, *CLOAD with the nonzero entries of our consistent torque load vector on free nodes,
+//      *NODE FILE U. Not counted in either time.
+//   5. Runs `ccx -i job` there (OMP_NUM_THREADS = CCX_NPROC_EQUATION_SOLVER = --ccx-threads, default 2), wall clock
+//      from exec to exit, so it includes ccx reading its input and writing its .frd. Never at the same time as ours.
+//   6. Reads the displacements from the ASCII .frd's last DISP block (" -1", node I10, 3×E12.5), takes φ₀ with our
+//      own reading_rotation, and prints both φ₀, their relative difference (target 1e-5), the largest nodal
+//      displacement difference, both wall times and the speed-up ccx ÷ ours (target ≥ 3×).
+// The .frd holds 6 significant digits, so agreement better than a few 1e-6 cannot be seen through it.
+//
+// Run (Release build; on a quiet machine for the timing):
+//   cmake -S . -B build-bench && cmake --build build-bench -j2 --target bench_vs_calculix
+//   build-bench/bench/bench_vs_calculix cases/tube_torsion.toml [--size-mm 0.5] [--layers 3] [--keep]
+// Our BLAS threads come from the environment (OPENBLAS_NUM_THREADS); give both sides the same count
+// (--ccx-threads) for a fair speed-up. --keep leaves the ccx deck, log and .frd in the temp dir.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "bench/bench_util.hpp"
+#include "common/error.hpp"
+#include "common/progress.hpp"
+#include "fem/assembly.hpp"
+#include "fem/cholmod_factor.hpp"
+#include "fem/flexspline_analysis.hpp"
+#include "io/case.hpp"
+#include "io/fem_output.hpp"
+
+namespace sw::bench {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Path of `name` on PATH, empty if absent.
+std::string which(const std::string& name) {
+  const char* path = std::getenv("PATH");
+  std::string dirs = path ? path : "/usr/bin:/bin";
+  std::size_t start = 0;
+  while (start <= dirs.size()) {
+    const std::size_t end = std::min(dirs.find(':', start), dirs.size());
+    const fs::path candidate = fs::path(dirs.substr(start, end - start)) / name;
+    if (access(candidate.c_str(), X_OK) == 0) return candidate.string();
+    start = end + 1;
+  }
+  return {};
+}
+
+std::string ensure_ccx() {
+  std::string ccx = which("ccx");
+  if (!ccx.empty()) return ccx;
+  std::fprintf(stderr, "bench_vs_calculix: ccx not on PATH; installing Debian's calculix-ccx\n");
+  const std::string sudo = geteuid() == 0 ? "" : "sudo ";
+  const std::string cmd = sudo + "env DEBIAN_FRONTEND=noninteractive apt-get install -y -q calculix-ccx";
+  if (std::system(cmd.c_str()) != 0 || (ccx = which("ccx")).empty())
+    throw InputError("could not install calculix-ccx (`" + cmd + "` failed); install it by hand");
+  return ccx;
+}
+
+/// Writes the CalculiX deck: same nodes (1-based ids), C3D10 elements, clamped nodes, material, nodal loads.
+/// ccx reads at most 20 characters per number, hence %.13e (14 significant digits, "-1.2345678901234e-18").
+void write_inp(const fs::path& path, const Case& c, const TetMesh& mesh, const std::vector<bool>& fixed_node,
+               const Eigen::VectorXd& load) {
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (!f) throw InputError("cannot write " + path.string());
+  static char buffer[1 << 20];
+  std::setvbuf(f, buffer, _IOFBF, sizeof buffer);
+  std::fprintf(f, "** strainwave bench_vs_calculix: %s (SI units: m, N, Pa)\n*HEADING\nstrainwave %s\n",
+               c.path.c_str(), c.stem.c_str());
+  std::fprintf(f, "*NODE, NSET=NALL\n");
+  for (std::size_t i = 0; i < mesh.n_nodes(); ++i)
+    std::fprintf(f, "%zu,%.13e,%.13e,%.13e\n", i + 1, mesh.nodes(i, 0), mesh.nodes(i, 1), mesh.nodes(i, 2));
+  std::fprintf(f, "*ELEMENT, TYPE=C3D10, ELSET=EALL\n");
+  for (std::size_t e = 0; e < mesh.tets.size(); ++e) {
+    std::fprintf(f, "%zu", e + 1);
+    for (int v : mesh.tets[e]) std::fprintf(f, ",%d", v + 1);
+    std::fprintf(f, "\n");
+  }
+  std::fprintf(f, "*NSET, NSET=NFIX\n");
+  int on_line = 0;
+  for (std::size_t i = 0; i < mesh.n_nodes(); ++i)
+    if (fixed_node[i]) {
+      std::fprintf(f, on_line ? ",%zu" : "%zu", i + 1);
+      if (++on_line == 12) {
+        std::fprintf(f, "\n");
+        on_line = 0;
+      }
+    }
+  if (on_line) std::fprintf(f, "\n");
+  std::fprintf(f, "*BOUNDARY\nNFIX,1,3\n");
+  std::fprintf(f, "*MATERIAL, NAME=MAT\n*ELASTIC\n%.13e,%.13e\n", c.material.youngs_modulus_Pa,
+               c.material.poisson_ratio);
+  std::fprintf(f, "*SOLID SECTION, ELSET=EALL, MATERIAL=MAT\n");
+  std::fprintf(f, "*STEP\n*STATIC\n*CLOAD\n");
+  for (std::size_t i = 0; i < mesh.n_nodes(); ++i) {
+    if (fixed_node[i]) continue;  // a load on a fixed dof goes straight into the reaction, in both codes
+    for (int d = 0; d < 3; ++d)
+      if (load[3 * i + d] != 0.0) std::fprintf(f, "%zu,%d,%.13e\n", i + 1, d + 1, load[3 * i + d]);
+  }
+  std::fprintf(f, "*NODE FILE\nU\n*END STEP\n");
+  if (std::fclose(f) != 0) throw InputError("cannot write " + path.string());
+}
+
+/// Runs ccx in `dir` on job.inp, stdout/stderr to ccx.log; returns wall seconds.
+double run_ccx(const std::string& ccx, const fs::path& dir, int threads) {
+  std::fflush(stdout);
+  std::fflush(stderr);
+  Stopwatch clock;
+  const pid_t pid = fork();
+  if (pid < 0) throw InputError("fork() failed");
+  if (pid == 0) {
+    if (chdir(dir.c_str()) != 0) _exit(127);
+    const std::string t = std::to_string(threads);
+    setenv("OMP_NUM_THREADS", t.c_str(), 1);
+    setenv("CCX_NPROC_EQUATION_SOLVER", t.c_str(), 1);
+    std::FILE* log = std::freopen("ccx.log", "w", stdout);
+    if (!log || dup2(fileno(stdout), STDERR_FILENO) < 0) _exit(127);
+    execl(ccx.c_str(), "ccx", "-i", "job", static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  const double wall = clock.lap();
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    throw InputError("ccx failed (status " + std::to_string(status) + "); see " + (dir / "ccx.log").string() +
+                     " (run with --keep)");
+  return wall;
+}
+
+/// Displacements (3·n_nodes) from the last DISP block of a CalculiX ASCII .frd.
+Eigen::VectorXd read_frd_displacements(const fs::path& path, std::size_t n_nodes) {
+  std::ifstream in(path);
+  if (!in) throw InputError("cannot read " + path.string());
+  Eigen::VectorXd u;
+  std::vector<bool> seen;
+  std::string line;
+  bool in_disp = false, found = false;
+  while (std::getline(in, line)) {
+    if (line.rfind(" -4", 0) == 0) {
+      in_disp = line.compare(3, 6, "  DISP") == 0;
+      if (in_disp) {
+        u = Eigen::VectorXd::Zero(3 * n_nodes);
+        seen.assign(n_nodes, false);
+        found = true;
+      }
+      continue;
+    }
+    if (!in_disp) continue;
+    if (line.rfind(" -3", 0) == 0) {
+      in_disp = false;
+      continue;
+    }
+    if (line.rfind(" -1", 0) != 0) continue;
+    // " -1" + node id + 3 x E12.5: the id's width is what is left (I10 in ccx 2.x, I5 in the short format).
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+    const std::size_t id_width = line.size() - 3 - 36;
+    if (line.size() < 3 + 36 + 1 || id_width > 10) throw InputError(path.string() + ": bad DISP line \"" + line + "\"");
+    const long id = std::stol(line.substr(3, id_width));
+    if (id < 1 || static_cast<std::size_t>(id) > n_nodes)
+      throw InputError(path.string() + ": node " + std::to_string(id) + " out of range");
+    for (int d = 0; d < 3; ++d) u[3 * (id - 1) + d] = std::stod(line.substr(3 + id_width + 12 * d, 12));
+    seen[id - 1] = true;
+  }
+  if (!found) throw InputError(path.string() + ": no DISP block (did ccx finish?)");
+  for (std::size_t i = 0; i < n_nodes; ++i)
+    if (!seen[i]) throw InputError(path.string() + ": no displacement for node " + std::to_string(i + 1));
+  return u;
+}
+
+/// What ccx.log says about its run: its equation count (-1 if absent) and the lines naming the solver, equations,
+/// nonzeros and its own total time.
+struct CcxLog {
+  long long equations = -1;
+  std::string summary;
+};
+
+CcxLog read_ccx_log(const fs::path& log) {
+  std::ifstream in(log);
+  std::string line;
+  CcxLog out;
+  auto trim = [](std::string t) {
+    t.erase(0, t.find_first_not_of(' '));
+    t.erase(t.find_last_not_of(" \r") + 1);
+    return t;
+  };
+  while (std::getline(in, line)) {
+    const std::string t = trim(line);
+    if (t == "number of equations" || t == "number of nonzero lower triangular matrix elements") {
+      std::string value;
+      std::getline(in, value);
+      out.summary += "  ccx: " + t + " " + trim(value) + "\n";
+      if (t == "number of equations") out.equations = std::atoll(value.c_str());
+    } else if (t.find("solver") != std::string::npos || t.rfind("Total CalculiX Time", 0) == 0) {
+      out.summary += "  ccx: " + t + "\n";
+    }
+  }
+  return out;
+}
+
+int run(int argc, char** argv) {
+  CLI::App app{"Our fem solve vs CalculiX on the same TET10 mesh and loads (see the header of bench/vs_calculix.cpp)"};
+  std::string case_path;
+  double size_mm = 0;
+  int layers = 0, ccx_threads = 2;
+  bool keep = false;
+  app.add_option("case", case_path, "case file (TOML)")->required();
+  app.add_option("--size-mm", size_mm, "override mesh.size_mm");
+  app.add_option("--layers", layers, "override mesh.wall_layers");
+  app.add_option("--ccx-threads", ccx_threads, "OMP_NUM_THREADS and CCX_NPROC_EQUATION_SOLVER for ccx")
+      ->capture_default_str();
+  app.add_flag("--keep", keep, "keep the temp dir with the ccx deck, log and .frd");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  Case c = load_case(case_path);
+  if (size_mm > 0) c.mesh.size_m = size_mm * 1e-3;
+  if (layers > 0) c.mesh.wall_layers = layers;
+  if (c.load.torque_Nm == 0.0) throw InputError(case_path + ": load.torque_Nm = 0; the comparison needs a torque");
+  const std::string ccx = ensure_ccx();
+  TempDir tmp("sw_vs_ccx_");
+  if (keep) tmp.keep();
+
+  const BlasInfo blas = detect_blas();
+  std::printf("bench_vs_calculix: %s (mesh.size_mm %g, wall_layers %d, T = %g N·m)\nBLAS (ours): %s\nccx: %s, %d "
+              "threads\n",
+              case_path.c_str(), c.mesh.size_m * 1e3, c.mesh.wall_layers, c.load.torque_Nm, blas.description.c_str(),
+              ccx.c_str(), ccx_threads);
+
+  Stopwatch clock;
+  const TetMesh mesh = mesh_for_bench(c);
+  const double mesh_s = clock.lap();
+  std::printf("mesh: %zu nodes, %zu TET10, min dihedral %.1f deg, %.2f s (shared, not timed below)\n",
+              mesh.n_nodes(), mesh.tets.size(), mesh.quality.min_dihedral_deg, mesh_s);
+  std::fflush(stdout);
+
+  progress("ours: analyse_flexspline");
+  clock.lap();
+  const FlexsplineSolution ours = analyse_flexspline(c, mesh);
+  const double ours_s = clock.lap();
+  const Eigen::VectorXd* u_ours = nullptr;
+  for (const auto& lc : ours.cases)
+    if (lc.name == "torque") u_ours = &lc.u;
+  if (!u_ours) throw InputError("analyse_flexspline returned no torque case");
+
+  const std::vector<bool> fixed_node = clamped_nodes(mesh);
+  const Eigen::VectorXd load = torque_load_vector(c, mesh, c.load.torque_Nm);
+  const fs::path inp = tmp.path() / "job.inp";
+  write_inp(inp, c, mesh, fixed_node, load);
+  const double inp_s = clock.lap();
+  progress("ccx deck " + inp.string() + " written in " + std::to_string(inp_s) + " s; running ccx");
+
+  const double ccx_s = run_ccx(ccx, tmp.path(), ccx_threads);
+  progress("ccx done in " + std::to_string(ccx_s) + " s; reading job.frd");
+  const Eigen::VectorXd u_ccx = read_frd_displacements(tmp.path() / "job.frd", mesh.n_nodes());
+  const double phi_ccx = reading_rotation(c, mesh, u_ccx);
+  const double phi_ours = ours.phi0_rad;
+  const double du = (u_ccx - *u_ours).reshaped(3, mesh.n_nodes()).colwise().norm().maxCoeff();
+  const double umax = u_ours->reshaped(3, mesh.n_nodes()).colwise().norm().maxCoeff();
+
+  const CcxLog ccx_log = read_ccx_log(tmp.path() / "ccx.log");
+  std::printf("\n%-30s %16s %16s\n", "", "strainwave", "CalculiX");
+  std::printf("%-30s %16lld %16lld\n", "equations", static_cast<long long>(ours.factor.equations),
+              ccx_log.equations);
+  std::printf("%-30s %16.9e %16.9e\n", "phi0 (rad)", phi_ours, phi_ccx);
+  std::printf("%-30s %16.3f %16.3f\n", "wall time (s)", ours_s, ccx_s);
+  std::printf("%-30s %16.2e   (target <= 1e-5)\n", "phi0 relative difference", std::abs(phi_ours - phi_ccx) /
+              std::abs(phi_ccx));
+  std::printf("%-30s %16.2e   (max over nodes of |u_ours - u_ccx| / max |u|)\n", "displacement difference",
+              du / umax);
+  std::printf("%-30s %16.2f   (target >= 3)\n", "speed-up (ccx / ours)", ccx_s / ours_s);
+  std::printf("%-30s %16.2e   (phi0 theory %.6e rad)\n", "ours vs T·L/(G·J)", phi_ours / ours.phi0_theory_rad - 1,
+              ours.phi0_theory_rad);
+  std::printf("ours: factor %.2f GF in %.2f s (%.1f GF/s), nnz(L) %.0f, assemble %.2f s, solve %.2f s, peak RSS %.0f MB"
+              "\n",
+              ours.factor.factor_gflop, ours.factor.factor_s,
+              ours.factor.factor_s > 0 ? ours.factor.factor_gflop / ours.factor.factor_s : 0.0, ours.factor.factor_nnz,
+              ours.assemble_s, ours.solve_s, peak_rss_bytes() / 1e6);
+  std::printf("%s", ccx_log.summary.c_str());
+  if (keep) std::printf("ccx files kept in %s\n", tmp.path().c_str());
+  return 0;
+}
+
+}  // namespace
+}  // namespace sw::bench
+
+int main(int argc, char** argv) {
+  try {
+    return sw::bench::run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_vs_calculix: %s\n", e.what());
+    return 1;
+  }
+}

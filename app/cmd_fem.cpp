@@ -10,7 +10,7 @@
 #include "io/atomic_file.hpp"
 #include "io/case.hpp"
 #include "io/fem_output.hpp"
-#include "mesh/shapes.hpp"
+#include "mesh/flexspline.hpp"
 
 namespace sw::app {
 
@@ -18,10 +18,7 @@ namespace fs = std::filesystem;
 
 fs::path default_out_dir(const Case& c) { return fs::path("out") / c.stem; }
 
-TetMesh mesh_for_case(const Case& c) {
-  const auto& f = c.flexspline;
-  return mesh_tube(f.inner_radius_m, f.inner_radius_m + f.wall_thickness_m, f.length_m, c.mesh);
-}
+TetMesh mesh_for_case(const Case& c) { return mesh_flexspline(c.flexspline, c.gear, c.mesh); }
 
 FemJobResult run_fem_job(const Case& c, const fs::path& out_dir) {
   const double t_start = elapsed_s();

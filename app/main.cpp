@@ -14,7 +14,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.add_flag("--quiet", sw::quiet_progress(), "no progress lines on stderr");
   sw::app::add_fem_command(app);
-  // sw::app::add_run_command(app);
+  sw::app::add_run_command(app);
   // Subcommands of the later modules register here (backlash, reconcile, synth, dynamics).
   sw::app::add_backlash_command(app);
   sw::app::add_dynamics_command(app);

@@ -1,3 +1,4 @@
+#include <array>
 #include "mesh/revolve.hpp"
 
 #include <algorithm>
@@ -34,11 +35,62 @@ int find_root(std::vector<int>& parent, int i) {
 }  // namespace
 
 Eigen::Vector3d project_to_surface(const ProfileSurface& s, const Eigen::Vector3d& p) {
+  if (s.kind == ProfileSurface::Kind::Fixed) return p;
   const double r = std::hypot(p.x(), p.y());
   const Eigen::Vector2d q = closest_profile_point(s, Eigen::Vector2d(r, p.z()));
   if (r == 0.0) return {q.x(), 0.0, q.y()};
   return {p.x() * (q.x() / r), p.y() * (q.x() / r), q.y()};
 }
+
+namespace {
+
+/// det of the TET10 map's Jacobian at natural point (a, b, c), VTK node order.
+double tet10_det(const TetMesh& m, const std::array<int, 10>& t, double a, double b, double c) {
+  const double L[4] = {1 - a - b - c, a, b, c};
+  static const double dL[4][3] = {{-1, -1, -1}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) J.col(k) += (4 * L[i] - 1) * dL[i][k] * m.nodes.row(t[i]).transpose();
+  for (int e = 0; e < 6; ++e) {
+    const int p = kTetEdges[e][0], q = kTetEdges[e][1];
+    for (int k = 0; k < 3; ++k) J.col(k) += 4 * (dL[p][k] * L[q] + L[p] * dL[q][k]) * m.nodes.row(t[4 + e]).transpose();
+  }
+  return J.determinant();
+}
+
+/// True if the curved element stays well shaped: det J at its corners, midsides and centre above a fifth of the
+/// straight element's (a projected midside node moved too far for the element's size fails this).
+bool well_shaped(const TetMesh& m, const std::array<int, 10>& t) {
+  const double straight = (m.nodes.row(t[1]) - m.nodes.row(t[0])).dot(
+      (m.nodes.row(t[2]) - m.nodes.row(t[0])).cross(m.nodes.row(t[3]) - m.nodes.row(t[0])));
+  static const double kPoints[15][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0.5, 0, 0},
+                                        {0.5, 0.5, 0}, {0, 0.5, 0}, {0, 0, 0.5}, {0.5, 0, 0.5}, {0, 0.5, 0.5},
+                                        {0.25, 0.25, 0.25}, {0.1381966, 0.1381966, 0.1381966},
+                                        {0.5854102, 0.1381966, 0.1381966}, {0.1381966, 0.5854102, 0.1381966},
+                                        {0.1381966, 0.1381966, 0.5854102}};
+  for (const auto& p : kPoints)
+    if (!(tet10_det(m, t, p[0], p[1], p[2]) > 0.2 * straight)) return false;
+  return true;
+}
+
+
+/// Where a projected midside node distorts its element too much (a coarse ring near the axis, a thin layer under a
+/// strongly curved surface, an edge on two surfaces), puts that element's midside nodes back on its straight edges: a
+/// valid straight element beats an inverted curved one. Repeats, since a node moved back changes its neighbours.
+void straighten_distorted(TetMesh& mesh) {
+  for (int pass = 0; pass < 4; ++pass) {
+    bool changed = false;
+    for (const auto& t : mesh.tets) {
+      if (well_shaped(mesh, t)) continue;
+      for (int e = 0; e < 6; ++e)
+        mesh.nodes.row(t[4 + e]) = 0.5 * (mesh.nodes.row(t[kTetEdges[e][0]]) + mesh.nodes.row(t[kTetEdges[e][1]]));
+      changed = true;
+    }
+    if (!changed) break;
+  }
+}
+
+}  // namespace
 
 void project_boundary(TetMesh& mesh, const std::vector<int>& face_surface,
                       const std::vector<ProfileSurface>& surfaces) {
@@ -67,7 +119,20 @@ void project_boundary(TetMesh& mesh, const std::vector<int>& face_surface,
       if (once(mesh.faces[f].nodes[k], face_surface[f])) move(mesh.faces[f].nodes[k], surfaces[face_surface[f]]);
 }
 
-TetMesh mesh_revolved(const RevolvedProfile& profile, const MeshParams& params) {
+std::vector<int> RevolvedPlc::ring(double r_m, double z_m) const {
+  double scale = 0.0;
+  for (const auto& v : vertex_rz) scale = std::max(scale, v.norm());
+  for (std::size_t v = 0; v < vertex_rz.size(); ++v)
+    if (first[v] >= 0 && count[v] > 1 && (vertex_rz[v] - Eigen::Vector2d(r_m, z_m)).norm() <= 1e-9 * scale) {
+      std::vector<int> r(count[v]);
+      std::iota(r.begin(), r.end(), first[v]);
+      return r;
+    }
+  throw InputError("mesh: no ring of the revolved profile at r = " + std::to_string(r_m * 1e3) +
+                   " mm, z = " + std::to_string(z_m * 1e3) + " mm to attach a facet to");
+}
+
+RevolvedPlc revolve_profile(const RevolvedProfile& profile) {
   const auto& V = profile.vertices;
   assert(profile.edge_size_m.size() == profile.edges.size());
   double scale = 0.0;
@@ -208,7 +273,27 @@ TetMesh mesh_revolved(const RevolvedProfile& profile, const MeshParams& params) 
     const double h = r.size_m;
     plc.regions.push_back({Eigen::Vector3d(r.seed.x(), 0.0, r.seed.y()), r.id, h * h * h / (6.0 * std::sqrt(2.0))});
   }
+  RevolvedPlc out;
+  out.plc = std::move(plc);
+  out.vertex_rz = std::move(verts);
+  out.first = std::move(first);
+  out.count = std::move(count);
+  out.ring_of_point = std::move(ring_of_point);
+  out.index_in_ring = std::move(index_in_ring);
+  return out;
+}
 
+TetMesh mesh_revolved(const RevolvedProfile& profile, const MeshParams& params) {
+  return mesh_revolved_plc(revolve_profile(profile), profile.surfaces, params);
+}
+
+TetMesh mesh_revolved_plc(const RevolvedPlc& revolved, const std::vector<ProfileSurface>& surfaces,
+                          const MeshParams& params) {
+  const Plc& plc = revolved.plc;
+  const auto& verts = revolved.vertex_rz;
+  const auto& count = revolved.count;
+  const auto& ring_of_point = revolved.ring_of_point;
+  const auto& index_in_ring = revolved.index_in_ring;
   TetgenOptions options;
   options.max_radius_edge_ratio = params.max_radius_edge_ratio;
   options.min_dihedral_deg = params.min_dihedral_deg;
@@ -218,15 +303,16 @@ TetMesh mesh_revolved(const RevolvedProfile& profile, const MeshParams& params) 
   std::vector<int> face_surface(mesh.faces.size());
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     const int s = mesh.faces[f].marker - 1;
-    if (s < 0 || s >= static_cast<int>(profile.surfaces.size()))
+    if (s < 0 || s >= static_cast<int>(surfaces.size()))
       throw InputError("mesh: a boundary face of the revolved profile lies on no profile edge (marker " +
                        std::to_string(mesh.faces[f].marker) + "); the profile is not closed");
     face_surface[f] = s;
   }
-  project_boundary(mesh, face_surface, profile.surfaces);
+  project_boundary(mesh, face_surface, surfaces);
   // Edges between neighbouring points of one ring are chords of a circle about the axis, on boundary and internal
   // surfaces alike (region interfaces, layer surfaces, rims of flat faces): their midside nodes go onto the circle.
-  // TetGen keeps the input points first and in order, and -Y adds none on the facets.
+  // TetGen keeps the input points first and in order, and -Y adds none on the facets. Points a caller appended
+  // after the revolved ones are on no ring.
   const int n_input = static_cast<int>(ring_of_point.size());
   for (const auto& t : mesh.tets)
     for (int e = 0; e < 6; ++e) {
@@ -241,7 +327,8 @@ TetMesh mesh_revolved(const RevolvedProfile& profile, const MeshParams& params) 
       mesh.nodes(m, 0) *= r / rm;
       mesh.nodes(m, 1) *= r / rm;
     }
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f) mesh.faces[f].marker = profile.surfaces[face_surface[f]].marker;
+  straighten_distorted(mesh);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) mesh.faces[f].marker = surfaces[face_surface[f]].marker;
   mesh.quality = mesh_quality(mesh);
   return mesh;
 }

@@ -1,0 +1,33 @@
+// `strainwave run CASE.toml`: the main job. fem (φ₀, C_τ, neutral curve) then backlash fed with that φ₀; both tables
+// printed, both sets of files written under one output directory.
+#include <filesystem>
+
+#include "app/backlash_job.hpp"
+#include "app/commands.hpp"
+#include "app/fem_job.hpp"
+#include "common/progress.hpp"
+#include "io/case.hpp"
+
+namespace sw::app {
+
+void add_run_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("run", "fem then backlash fed with its phi0: the main job");
+  static std::string case_path, out;
+  cmd->add_option("case", case_path, "case file (TOML)")->required();
+  cmd->add_option("--out", out, "output directory (default out/<case stem>/)");
+  cmd->callback([] {
+    const Case c = load_case(case_path);
+    progress("case:\n" + describe_case(c));
+    const std::filesystem::path dir = out.empty() ? default_out_dir(c) : std::filesystem::path(out);
+    const FemJobResult fem = run_fem_job(c, dir);
+    if (!c.gear || !c.wave_generator) {
+      std::printf("run: no backlash for this case (it needs [gear] and [wave_generator])\n");
+      return;
+    }
+    BacklashJobOptions options;
+    options.fem_result = fem.result_json_path;
+    run_backlash_job(c, options, dir);
+  });
+}
+
+}  // namespace sw::app

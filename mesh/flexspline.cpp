@@ -48,6 +48,117 @@ struct ProfileBuilder {
   void region(double r, double z, int id, double size) { p.regions.push_back({Eigen::Vector2d(r, z), id, size}); }
 };
 
+// The explicit rim's prism: the tooth outline extruded over the rim width, from the inner radius r_p (the outermost
+// rim layer cylinder, shared with the revolved part) out to the outline.
+struct ToothedRim {
+  std::vector<Eigen::Vector2d> outline;  // closed CCW cross-section, metres
+  std::vector<double> layer_radii_m;     // layer cylinders through the rim's revolved part; the last is r_p
+  double inner_radius_m = 0.0;           // r_p
+  double tooth_size_m = 0.0;             // target edge across a tooth
+  double axial_size_m = 0.0;             // axial spacing of the flank quads
+  Eigen::Vector2d seed = Eigen::Vector2d::Zero();  // (x, y) inside tooth 0
+};
+
+// Drops outline points closer than min_spacing to the last point kept, pitch by pitch (every pitch the same, so the
+// teeth stay identical; each pitch starts at its gap centre, which is kept). The shaper-cut root fillet can be far
+// smaller than a tooth (0.013 mm deep at the seed case, 0.01 mm segments against 0.16 mm flank edges): extruded, such
+// segments give needle faces whose tets are slivers, and resolving them would take ~0.01 mm tets along the whole rim
+// width. Dropping them replaces the fillet and the root arc's ends by one chord, moving the boundary by less than
+// the fillet's depth.
+std::vector<Eigen::Vector2d> simplify_outline(const std::vector<Eigen::Vector2d>& outline, int teeth,
+                                              double min_spacing) {
+  const std::size_t per = outline.size() / static_cast<std::size_t>(teeth);
+  std::vector<std::size_t> keep = {0};
+  for (std::size_t i = 1; i < per; ++i)
+    if ((outline[i] - outline[keep.back()]).norm() >= min_spacing && (outline[i] - outline[per]).norm() >= min_spacing)
+      keep.push_back(i);
+  std::vector<Eigen::Vector2d> out;
+  out.reserve(keep.size() * teeth);
+  for (int k = 0; k < teeth; ++k)
+    for (const std::size_t i : keep) out.push_back(outline[k * per + i]);
+  return out;
+}
+
+// Axial over cross-section edge length on the tooth flanks. The teeth are prisms whose fields vary slowly along the
+// axis, so their tets may be longer axially than the layered walls' (kMaxLayerAspect = 2); 2.5 brings the seed case
+// from ~600k to ~440k nodes with the worst tet set by the shoulder, not by the teeth.
+constexpr double kToothAxialAspect = 2.5;
+
+// Sizes: a tooth at mid height is t_mid thick; its cross-section gets edges of t_mid / 2 (two quadratic tets
+// across), the flanks a point every such edge, the extrusion kToothAxialAspect times that axially.
+// The rim's layer cylinders are the body's (so the body/rim interface has no near-coincident rings), plus
+// cylinders from the body's outer radius r_o up to the root circle when the rim base reaches half a layer beyond
+// r_o; the prism then starts at the last of them, so its base under the tooth roots is never a thin strip.
+ToothedRim toothed_rim(const FlexsplineParams& f, const GearParams& g, const MeshParams& mesh) {
+  const GearRadii r = gear_radii(g);
+  const double ri = f.inner_radius_m, ro = ri + f.wall_thickness_m;
+  const WallSize wb = wall_size(ro - ri, mesh);
+  ToothedRim t;
+  const double t_mid = flexspline_tooth_thickness(g, 0.5 * (r.form_f + r.tip_f));
+  t.tooth_size_m = std::min(mesh.size_m, 0.5 * t_mid);
+  t.axial_size_m = std::min(mesh.size_m, kToothAxialAspect * t.tooth_size_m);
+  const int per_flank = std::max(3, static_cast<int>(std::ceil((r.tip_f - r.form_f) / t.tooth_size_m - 1e-9)) + 1);
+  t.outline = simplify_outline(flexspline_outline(g, per_flank), g.teeth_flexspline, 0.4 * t.tooth_size_m);
+  for (int k = 1; k < wb.layers; ++k) t.layer_radii_m.push_back(ri + k * wb.across_m);
+  const double base = r.root_f - ro;
+  if (base >= 0.5 * wb.across_m) {
+    const int m = std::max(1, static_cast<int>(std::lround(base / wb.across_m)));
+    for (int j = 0; j < m; ++j) t.layer_radii_m.push_back(ro + j * base / m);
+  }
+  if (t.layer_radii_m.empty()) t.layer_radii_m.push_back(0.5 * (ri + r.root_f));
+  t.inner_radius_m = t.layer_radii_m.back();
+  t.seed = Eigen::Vector2d(0.5 * (r.form_f + r.tip_f), 0.0);
+  return t;
+}
+
+// Appends the prism to the revolved PLC: the outline at M + 1 levels z_j from L - w to L, flank quads between
+// them (marker: a Fixed surface, kSurfaceRimOuter), the open end z = L between the ring r_p and the outline, the
+// shoulder z = L - w between the ring max(r_o, r_p) and the outline, and region 1 with the volume of a regular tet
+// of the axial size as its bound (a cap only: the flank quads set the sizes in the teeth).
+void add_toothed_prism(RevolvedPlc& revolved, std::vector<ProfileSurface>& surfaces, const ToothedRim& t,
+                       const FlexsplineParams& f) {
+  const double ri = f.inner_radius_m, ro = ri + f.wall_thickness_m, L = f.length_m, zr = L - f.rim_width_m;
+  auto surface = [&](ProfileSurface s) {
+    surfaces.push_back(s);
+    return static_cast<int>(surfaces.size());  // marker = index + 1
+  };
+  ProfileSurface flank;
+  flank.kind = ProfileSurface::Kind::Fixed;
+  flank.marker = kSurfaceRimOuter;
+  ProfileSurface top;
+  top.a = Eigen::Vector2d(0.0, L);
+  top.b = Eigen::Vector2d(1.0, L);
+  top.marker = kSurfaceOpenEnd;
+  ProfileSurface shoulder = top;
+  shoulder.a.y() = shoulder.b.y() = zr;
+  shoulder.marker = kSurfaceRimStep;
+  const int flank_marker = surface(flank), top_marker = surface(top), shoulder_marker = surface(shoulder);
+
+  Plc& plc = revolved.plc;
+  const int P = static_cast<int>(t.outline.size());
+  const int M = std::max(1, static_cast<int>(std::ceil(f.rim_width_m / t.axial_size_m - 1e-9)));
+  const int first = static_cast<int>(plc.points.size());
+  for (int j = 0; j <= M; ++j) {
+    const double z = j == M ? L : zr + f.rim_width_m * j / M;
+    for (const auto& q : t.outline) plc.points.emplace_back(q.x(), q.y(), z);
+  }
+  auto at = [&](int i, int j) { return first + j * P + (i % P); };
+  for (int j = 0; j < M; ++j)
+    for (int i = 0; i < P; ++i)
+      plc.facets.push_back({{{at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)}}, {}, flank_marker});
+  auto level = [&](int j) {
+    std::vector<int> v(P);
+    for (int i = 0; i < P; ++i) v[i] = at(i, j);
+    return v;
+  };
+  plc.facets.push_back({{level(M), revolved.ring(t.inner_radius_m, L)}, {Eigen::Vector3d(0, 0, L)}, top_marker});
+  plc.facets.push_back(
+      {{level(0), revolved.ring(std::max(ro, t.inner_radius_m), zr)}, {Eigen::Vector3d(0, 0, zr)}, shoulder_marker});
+  const double h = t.axial_size_m;
+  plc.regions.push_back({Eigen::Vector3d(t.seed.x(), t.seed.y(), L - 0.5 * f.rim_width_m), 1,
+                         h * h * h / (6.0 * std::sqrt(2.0))});
+}
+
 }  // namespace
 
 double rim_outer_radius(const FlexsplineParams& f, const std::optional<GearParams>& gear) {
@@ -55,6 +166,7 @@ double rim_outer_radius(const FlexsplineParams& f, const std::optional<GearParam
   if (f.teeth == TeethModel::None) return root;
   if (!gear) throw InputError("flexspline.teeth needs the [gear] table (module, teeth, profile shift) for the tooth height");
   const GearRadii r = gear_radii(*gear);
+  if (f.teeth == TeethModel::Explicit) return r.tip_f;
   return root + 0.5 * (r.tip_f - r.root_f);
 }
 
@@ -97,13 +209,16 @@ void validate_flexspline(const FlexsplineParams& f, const std::optional<GearPara
       throw InputError("flexspline.rim_thickness_mm = " + mm(f.rim_thickness_m) + "; inner_radius_mm + rim_thickness_mm = " +
                        mm(want) + " must match the teeth's root circle " + mm(root) +
                        " mm (from [gear]) within 0.25 module = " + mm(0.25 * gear->module_m) + " mm");
+    const double ro = f.inner_radius_m + f.wall_thickness_m;
+    if (f.teeth == TeethModel::Explicit && !(root > ro))
+      throw InputError("flexspline.teeth = \"explicit\": the teeth's root circle " + mm(root) +
+                       " mm (from [gear]) must lie outside the body wall, inner_radius_mm + wall_thickness_mm = " +
+                       mm(ro) + " mm; reduce wall_thickness_mm or inner_radius_mm");
   }
 }
 
 TetMesh mesh_flexspline(const FlexsplineParams& f, const std::optional<GearParams>& gear, const MeshParams& mesh) {
   validate_flexspline(f, gear, mesh);
-  if (f.teeth == TeethModel::Explicit)
-    throw InputError("flexspline.teeth = \"explicit\"; not meshed yet: use \"ring\" or \"none\"");
   const bool cup = f.shape == FlexsplineShape::Cup;
   if (!cup && f.teeth == TeethModel::None)
     return mesh_tube(f.inner_radius_m, f.inner_radius_m + f.wall_thickness_m, f.length_m, mesh);
@@ -119,14 +234,32 @@ TetMesh mesh_flexspline(const FlexsplineParams& f, const std::optional<GearParam
 
   ProfileBuilder b;
   using V2 = Eigen::Vector2d;
-  // Rim: inner wall, open end, outer surface, shoulder, body/rim interface, layer lines.
-  b.line(V2(ri, L), V2(ri, zr), kSurfaceInner, std::min(sr, sb));
-  b.line(V2(ri, L), V2(rr, L), kSurfaceOpenEnd, sr);
-  b.line(V2(rr, L), V2(rr, zr), kSurfaceRimOuter, sr);
-  b.line(V2(rr, zr), V2(ro, zr), kSurfaceRimStep, sr);
-  b.line(V2(ri, zr), V2(ro, zr), kSurfaceOther, std::min(sr, sb));
-  for (int k = 1; k < wr.layers; ++k) b.line(V2(ri + k * wr.across_m, zr), V2(ri + k * wr.across_m, L), kSurfaceOther, sr);
-  for (int k = 0; k < wr.layers; ++k) b.region(ri + (k + 0.5) * wr.across_m, L - 0.5 * w, 1, sr);
+  std::optional<ToothedRim> teeth;
+  if (f.teeth == TeethModel::Explicit) {
+    // Revolved part of the rim: inner wall, open end and layer cylinders up to the prism's inner radius r_p.
+    teeth = toothed_rim(f, *gear, mesh);
+    const double rp = teeth->inner_radius_m, sp = teeth->axial_size_m;
+    b.line(V2(ri, L), V2(ri, zr), kSurfaceInner, std::min(sr, sb));
+    b.line(V2(ri, L), V2(rp, L), kSurfaceOpenEnd, sb);
+    b.line(V2(ri, zr), V2(ro, zr), kSurfaceOther, sb);
+    if (rp > ro) b.line(V2(ro, zr), V2(rp, zr), kSurfaceRimStep, sb);
+    double r0 = ri;
+    for (const double r : teeth->layer_radii_m) {
+      b.line(V2(r, zr), V2(r, L), kSurfaceOther, r == rp ? sp : sb);
+      b.region(0.5 * (r0 + r), L - 0.5 * w, 1, sb);
+      r0 = r;
+    }
+  } else {
+    // Rim: inner wall, open end, outer surface, shoulder, body/rim interface, layer lines.
+    b.line(V2(ri, L), V2(ri, zr), kSurfaceInner, std::min(sr, sb));
+    b.line(V2(ri, L), V2(rr, L), kSurfaceOpenEnd, sr);
+    b.line(V2(rr, L), V2(rr, zr), kSurfaceRimOuter, sr);
+    b.line(V2(rr, zr), V2(ro, zr), kSurfaceRimStep, sr);
+    b.line(V2(ri, zr), V2(ro, zr), kSurfaceOther, std::min(sr, sb));
+    for (int k = 1; k < wr.layers; ++k)
+      b.line(V2(ri + k * wr.across_m, zr), V2(ri + k * wr.across_m, L), kSurfaceOther, sr);
+    for (int k = 0; k < wr.layers; ++k) b.region(ri + (k + 0.5) * wr.across_m, L - 0.5 * w, 1, sr);
+  }
   // Body: outer wall, layer lines, inner wall down to the fillet (or to z = 0 for the tube).
   b.line(V2(ro, zr), V2(ro, td), kSurfaceOuter, sb);
   for (int k = 1; k < wb.layers; ++k) b.line(V2(ri + k * wb.across_m, td), V2(ri + k * wb.across_m, zr), kSurfaceOther, sb);
@@ -163,7 +296,11 @@ TetMesh mesh_flexspline(const FlexsplineParams& f, const std::optional<GearParam
     b.line(V2(0, hb), V2(0, 0), kSurfaceOther, sboss);  // the axis: sweeps nothing
     b.region(0.5 * rb, 0.5 * hb, 3, sboss);
   }
-  return mesh_revolved(b.p, mesh);
+  if (!teeth) return mesh_revolved(b.p, mesh);
+  RevolvedPlc revolved = revolve_profile(b.p);
+  std::vector<ProfileSurface> surfaces = b.p.surfaces;
+  add_toothed_prism(revolved, surfaces, *teeth, f);
+  return mesh_revolved_plc(revolved, surfaces, mesh);
 }
 
 }  // namespace sw

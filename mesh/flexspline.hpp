@@ -17,7 +17,16 @@
 // almost no hoop stress, so the ring over-states the rim's hoop bending stiffness (the ovalisation the wave
 // generator imposes) by about ((t_rim + h/2) / t_rim)^3 and its torsional stiffness less so; it also smooths the
 // stress concentration at the tooth roots. Teeth "none": the rim is rim_thickness thick with no ring.
-// Teeth "explicit" is not meshed yet (InputError).
+// Teeth "explicit": the rim's outer surface is the tooth outline of gear/tooth_profile.hpp (flexspline_outline, tooth 0
+// on +x) extruded from z = length - rim_width to length. The rim's inner part stays revolved: the inner wall and the
+// body's layer cylinders continue to the open end (plus cylinders between r_o and the root circle when the rim base
+// reaches half a layer beyond r_o); the outermost of them, r_p, is the inner face of a prism r_p .. outline whose
+// facets are built directly: the outline at every axial level, planar flank quads (kSurfaceRimOuter, corners and
+// midside nodes on the outline's polyline, not projected), the open end z = length (kSurfaceOpenEnd) and the shoulder
+// z = length - rim_width from max(r_o, r_p) to the outline (kSurfaceRimStep), sharing the revolved part's rings.
+// Region 1, like the ring. Edges across a tooth are half its mid-height thickness, 2.5 times that axially; outline
+// points closer than 0.4 of that edge are merged, which replaces a root fillet much smaller than the tooth (0.013 mm
+// deep at the seed case) by a chord (see simplify_outline in flexspline.cpp). Needs root circle > r_o.
 #include <optional>
 
 #include "common/params.hpp"
@@ -27,11 +36,12 @@
 namespace sw {
 
 /// Outer radius (m) of the rim for the teeth model: inner_radius + rim_thickness for "none", plus half the tooth
-/// height (tip - root radius of `gear`) for "ring". Throws InputError when "ring" has no gear.
+/// height (tip - root radius of `gear`) for "ring", the tip radius for "explicit". Throws InputError when "ring" or
+/// "explicit" has no gear.
 double rim_outer_radius(const FlexsplineParams& f, const std::optional<GearParams>& gear);
 
 /// Checks every dimension and combination of the flexspline keys (and the teeth against the gear: root circle
-/// within 0.25 module of inner_radius + rim_thickness). Throws InputError naming the keys in mm, e.g.
+/// within 0.25 module of inner_radius + rim_thickness; for "explicit" also outside inner_radius + wall_thickness). Throws InputError naming the keys in mm, e.g.
 /// "flexspline.fillet_radius_mm = 3; must be < inner_radius_mm - boss_radius_mm = 2.4".
 void validate_flexspline(const FlexsplineParams& f, const std::optional<GearParams>& gear, const MeshParams& mesh);
 

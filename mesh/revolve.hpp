@@ -7,6 +7,7 @@
 
 #include "common/params.hpp"
 #include "mesh/tet_mesh.hpp"
+#include "mesh/tetgen_mesh.hpp"
 
 namespace sw {
 
@@ -14,7 +15,7 @@ namespace sw {
 /// r = const or a cone) or the circle (centre, radius) (a torus, e.g. a fillet), both in (r, z). `marker` is the
 /// Surface marker its boundary faces get; edges between two regions use any marker (they are not boundary).
 struct ProfileSurface {
-  enum class Kind { Line, Circle };
+  enum class Kind { Line, Circle, Fixed };  ///< Fixed: a non-revolved facet given exactly by its points (no projection)
   Kind kind = Kind::Line;
   Eigen::Vector2d a = Eigen::Vector2d::Zero(), b = Eigen::Vector2d::Zero();  ///< Line: two distinct points (r, z)
   Eigen::Vector2d centre = Eigen::Vector2d::Zero();                           ///< Circle
@@ -56,6 +57,28 @@ Eigen::Vector3d project_to_surface(const ProfileSurface& s, const Eigen::Vector3
 /// and the midside nodes of boundary faces are projected. face_surface[i] indexes `surfaces` for mesh.faces[i].
 /// Interior midside nodes stay at midpoints. Precondition: the moves are small against the local edge length.
 void project_boundary(TetMesh& mesh, const std::vector<int>& face_surface, const std::vector<ProfileSurface>& surfaces);
+
+/// A revolved profile turned into a PLC (steps 1-4 of mesh_revolved), with the rings of points it is made of, so that
+/// a caller can attach non-axisymmetric facets to those rings (e.g. a toothed prism) before meshing it with
+/// mesh_revolved_plc. Facet marker = surface index + 1; region volume bounds from the region sizes.
+struct RevolvedPlc {
+  Plc plc;
+  std::vector<Eigen::Vector2d> vertex_rz;  ///< per profile vertex after splitting: (r, z), metres
+  std::vector<int> first, count;           ///< per vertex: its ring's first PLC point and size (-1 / 0: unused)
+  std::vector<int> ring_of_point, index_in_ring;  ///< per revolved PLC point: its vertex (-1 on the axis), its k
+  /// PLC points of the ring through (r, z), point k at polar angle 2 pi k / n. Throws InputError when no ring
+  /// passes there (a caller's geometry that does not meet the profile).
+  std::vector<int> ring(double r_m, double z_m) const;
+};
+
+/// Steps 1-4 of mesh_revolved: split the edges, choose the angular counts and build the PLC.
+RevolvedPlc revolve_profile(const RevolvedProfile& profile);
+
+/// Meshes a revolved PLC, possibly extended by the caller (points appended after the revolved ones, facets with
+/// markers = index + 1 into `surfaces`, which extends profile.surfaces; Kind::Fixed surfaces are not projected),
+/// then projects the curved-surface nodes and the ring chords' midside nodes and sets the surface markers.
+TetMesh mesh_revolved_plc(const RevolvedPlc& revolved, const std::vector<ProfileSurface>& surfaces,
+                          const MeshParams& mesh);
 
 /// Meshes the revolved profile: each non-horizontal edge is split into sub-segments of at most its size and swept
 /// as planar trapezoids over N angular steps (N per ring group, from the smallest size on it and its largest radius,

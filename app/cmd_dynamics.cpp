@@ -93,6 +93,7 @@ void run_dynamics(const std::string& case_path, std::string out_dir, const std::
              std::to_string(p.flexspline_compliance_rad_per_Nm) + " rad/(N m) from " + fem_result);
   }
   if (out_dir.empty()) out_dir = "out/" + c.stem;
+  progress("case:\n" + describe(p));
   std::vector<ToothPair> pairs;
   std::string source;
   if (clearances == "kinematics") {

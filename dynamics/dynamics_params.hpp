@@ -2,6 +2,8 @@
 // The case file's [dynamics] table (issue 6), SI units. Header-only and dependent on the standard library alone, so that
 // io/case.hpp can hold it without depending on the dynamics module. Millimetre keys of the file are converted once by
 // the case parser; every key has the default written here.
+#include <optional>
+#include <sstream>
 #include <string>
 
 namespace sw {
@@ -70,5 +72,54 @@ inline const char* to_string(DynamicsConfiguration c) {
 }
 
 inline const char* to_string(RampShape r) { return r == RampShape::Paper ? "paper" : "cubic"; }
+
+/// Inverse of to_string(); nullopt for an unknown spelling (the parser names the allowed ones).
+inline std::optional<DynamicsConfiguration> parse_configuration(const std::string& s) {
+  for (auto c : {DynamicsConfiguration::CsFixed, DynamicsConfiguration::FsFixed, DynamicsConfiguration::WgFixed,
+                 DynamicsConfiguration::AllFree})
+    if (s == to_string(c)) return c;
+  return std::nullopt;
+}
+
+inline std::optional<RampShape> parse_ramp_shape(const std::string& s) {
+  if (s == "paper") return RampShape::Paper;
+  if (s == "cubic") return RampShape::Cubic;
+  return std::nullopt;
+}
+
+/// The resolved [dynamics] table in the case file's own keys and units (millimetres where the key says _mm).
+inline std::string describe(const DynamicsParams& p) {
+  std::ostringstream o;
+  o.precision(10);
+  o << "[dynamics]\n"
+    << "configuration = \"" << to_string(p.configuration) << "\"\n"
+    << "ramp = \"" << to_string(p.ramp_shape) << "\"\n"
+    << "drive_speed_rpm = " << p.drive_speed_rpm << "\n"
+    << "drive_ramp_start_s = " << p.drive_ramp_start_s << "\n"
+    << "drive_ramp_end_s = " << p.drive_ramp_end_s << "\n"
+    << "load_torque_Nm = " << p.load_torque_Nm << "\n"
+    << "load_ramp_start_s = " << p.load_ramp_start_s << "\n"
+    << "load_ramp_end_s = " << p.load_ramp_end_s << "\n"
+    << "stiffness_N_per_m = " << p.stiffness_N_per_m << "\n"
+    << "stiffness_variation_N_per_m = " << p.stiffness_variation_N_per_m << "\n"
+    << "stiffness_phase_deg = " << p.stiffness_phase_deg << "\n"
+    << "damping_Ns_per_m = " << p.damping_Ns_per_m << "\n"
+    << "exponent_stiffness = " << p.exponent_stiffness << "\n"
+    << "exponent_damping = " << p.exponent_damping << "\n"
+    << "exponent_indentation = " << p.exponent_indentation << "\n"
+    << "flexspline_compliance_rad_per_Nm = " << p.flexspline_compliance_rad_per_Nm << "\n"
+    << "flexspline_torsion_damping_Nms_per_rad = " << p.flexspline_torsion_damping_Nms_per_rad << "\n"
+    << "circular_spline_drag_Nms_per_rad = " << p.circular_spline_drag_Nms_per_rad << "\n"
+    << "load_inertia_kgm2 = " << p.load_inertia_kgm2 << "\n"
+    << "circular_spline_outer_radius_mm = " << p.circular_spline_outer_radius_m * 1e3 << "\n"
+    << "circular_spline_width_mm = " << p.circular_spline_width_m * 1e3 << "\n"
+    << "base_clearance_mm = " << p.base_clearance_m * 1e3 << "\n"
+    << "duration_s = " << p.duration_s << "\n"
+    << "output_step_s = " << p.output_step_s << "\n"
+    << "steady_from_s = " << p.steady_from_s << "\n"
+    << "relative_tolerance = " << p.relative_tolerance << "\n"
+    << "absolute_tolerance_rad = " << p.absolute_tolerance_rad << "\n";
+  return o.str();
+}
 
 }  // namespace sw

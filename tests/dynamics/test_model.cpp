@@ -185,3 +185,17 @@ TEST(DynamicsValidation, RejectsOutOfRangeKeysWithFileKeyValueAndConstraint) {
   EXPECT_THROW(validate(p, "c.toml"), InputError);
   EXPECT_NO_THROW(validate(DynamicsParams{}, "c.toml"));
 }
+
+TEST(DynamicsParamsText, DescribeListsEveryKeyAndTheEnumSpellingsRoundTrip) {
+  const std::string text = describe(DynamicsParams{});
+  for (const char* key : {"configuration = \"cs_fixed\"", "ramp = \"paper\"", "drive_speed_rpm = 1000",
+                          "stiffness_N_per_m = 80000000", "damping_Ns_per_m = 1000", "output_step_s = 1e-05",
+                          "circular_spline_drag_Nms_per_rad = 1000", "base_clearance_mm = 0"})
+    EXPECT_NE(text.find(key), std::string::npos) << key << "\n" << text;
+  for (auto c : {DynamicsConfiguration::CsFixed, DynamicsConfiguration::FsFixed, DynamicsConfiguration::WgFixed,
+                 DynamicsConfiguration::AllFree})
+    EXPECT_EQ(parse_configuration(to_string(c)), c);
+  EXPECT_FALSE(parse_configuration("CS fixed").has_value());
+  EXPECT_EQ(parse_ramp_shape("cubic"), RampShape::Cubic);
+  EXPECT_FALSE(parse_ramp_shape("linear").has_value());
+}

@@ -49,6 +49,8 @@ public:
     inertia_[idx(ss_.output)] += p_.load_inertia_kgm2;
     for (int b = 0; b < kBodyCount; ++b)
       if (ss_.role[b] == BodyRole::Free) free_.push_back(b);
+    kinematic_residual_ = (ratio_[idx(fs_)] - ratio_[idx(BodyId::WaveGenerator)]) -
+                          rho_ * (ratio_[idx(BodyId::CircularSpline)] - ratio_[idx(BodyId::WaveGenerator)]);
     mesh_phase_rate_ = m.teeth_flexspline * std::abs(ratio_[idx(fs_)] - ratio_[idx(BodyId::WaveGenerator)]);
     pair_force_.resize(m.pairs.size());
   }
@@ -70,10 +72,11 @@ public:
       s.theta[b] = ratio_[b] * Theta + x[b];
       s.omega[b] = ratio_[b] * Omega + v[b];
     }
-    // Mesh deflection: the reference motion is kinematic, so only the deviations enter.
+    // Mesh deflection. The reference motion is kinematic when steady_state() is right, so its share κ·Θ is zero to
+    // rounding; it is kept so that a wrong speed ratio shows up as a slipping body instead of being assumed away.
     const int w = idx(BodyId::WaveGenerator), c = idx(BodyId::CircularSpline), f = idx(fs_);
-    const double e = (x[f] - x[w]) - rho_ * (x[c] - x[w]);
-    const double e_rate = (v[f] - v[w]) - rho_ * (v[c] - v[w]);
+    const double e = kinematic_residual_ * Theta + (x[f] - x[w]) - rho_ * (x[c] - x[w]);
+    const double e_rate = kinematic_residual_ * Omega + (v[f] - v[w]) - rho_ * (v[c] - v[w]);
     const double psi = mesh_phase_rate_ * Theta + p_.stiffness_phase_deg * std::numbers::pi / 180.0;
     const double k = p_.stiffness_N_per_m + p_.stiffness_variation_N_per_m * std::sin(psi);
     const double k_rate = p_.stiffness_variation_N_per_m * std::cos(psi) * mesh_phase_rate_ * Omega;
@@ -160,6 +163,7 @@ private:
   SteadyState ss_;
   std::array<double, kBodyCount> ratio_{}, inertia_{};
   double drive_speed_ = 0.0, rho_ = 1.0, mesh_phase_rate_ = 0.0;
+  double kinematic_residual_ = 0.0;  ///< de/dΘ of the reference motion: 0 up to rounding
   bool compliant_ = false;
   BodyId fs_ = BodyId::FlexsplineFlange;
   std::vector<int> free_;

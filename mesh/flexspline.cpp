@@ -79,6 +79,10 @@ std::vector<Eigen::Vector2d> simplify_outline(const std::vector<Eigen::Vector2d>
   return out;
 }
 
+// Boss edge length over mesh.size: every boss face is clamped, so its tets carry no strain worth resolving; only the
+// interface with the diaphragm (r = boss_radius) keeps the diaphragm's size.
+constexpr double kBossSizeFactor = 4.0;
+
 // Axial over cross-section edge length on the tooth flanks. The teeth are prisms whose fields vary slowly along the
 // axis, so their tets may be longer axially than the layered walls' (kMaxLayerAspect = 2); 2.5 brings the seed case
 // from ~600k to ~440k nodes with the worst tet set by the shoulder, not by the teeth.
@@ -230,7 +234,7 @@ TetMesh mesh_flexspline(const FlexsplineParams& f, const std::optional<GearParam
   const double rb = f.boss_radius_m, hb = 2.0 * td, rf = cup ? f.fillet_radius_m : 0.0;
   const WallSize wb = wall_size(ro - ri, mesh), wr = wall_size(rr - ri, mesh);
   const WallSize wd = cup ? wall_size(td, mesh) : wb;
-  const double sb = wb.along_m, sr = wr.along_m, sd = wd.along_m, sboss = mesh.size_m;
+  const double sb = wb.along_m, sr = wr.along_m, sd = wd.along_m, sboss = kBossSizeFactor * mesh.size_m;
 
   ProfileBuilder b;
   using V2 = Eigen::Vector2d;
@@ -289,8 +293,8 @@ TetMesh mesh_flexspline(const FlexsplineParams& f, const std::optional<GearParam
     for (int k = 1; k < wd.layers; ++k) b.line(V2(rb, k * wd.across_m), V2(ro, k * wd.across_m), kSurfaceOther, sd);
     for (int k = 0; k < wd.layers; ++k) b.region(0.5 * (rb + ri - rf), (k + 0.5) * wd.across_m, 2, sd);
     // Boss: interface with the diaphragm, clamped side, top and bottom.
-    b.line(V2(rb, 0), V2(rb, td), kSurfaceOther, std::min(sd, sboss));
-    b.line(V2(rb, td), V2(rb, hb), kSurfaceClamped, std::min(sd, sboss));
+    b.line(V2(rb, 0), V2(rb, td), kSurfaceOther, sd);  // the diaphragm's side sets the ring at rb
+    b.line(V2(rb, td), V2(rb, hb), kSurfaceClamped, sd);
     b.line(V2(rb, hb), V2(0, hb), kSurfaceClamped, sboss);
     b.line(V2(0, 0), V2(rb, 0), kSurfaceClamped, sboss);
     b.line(V2(0, hb), V2(0, 0), kSurfaceOther, sboss);  // the axis: sweeps nothing

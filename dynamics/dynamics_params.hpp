@@ -49,6 +49,10 @@ struct DynamicsParams {
   /// ω_c = (z_c/z_f)·T/b, and it must exceed (z_c/z_f)²·T/(ω_w·(z_c/z_f − 1)) for the load to resist the flexspline.
   double circular_spline_drag_Nms_per_rad = 1000.0;
   double load_inertia_kgm2 = 0.0;        ///< added to the output body, >= 0
+  /// Drag on the output body (bearings, seals, tooth friction lumped): −(T_c·tanh(ω/ω_s) + b·ω). SPEC's drag_torque.
+  double output_drag_coulomb_Nm = 0.0;            ///< T_c >= 0
+  double output_drag_viscous_Nms_per_rad = 0.0;   ///< b >= 0
+  double drag_smoothing_rad_per_s = 1.0e-3;       ///< ω_s > 0: the Coulomb step is smoothed over this speed
   double circular_spline_outer_radius_m = 0.0;  ///< 0 = pitch radius + 2.25·module + 0.15·pitch radius
   double circular_spline_width_m = 0.0;         ///< 0 = flexspline.rim_width
   double base_clearance_m = 0.0;         ///< approximate clearance model only (until kinematics/ supplies clearances)
@@ -111,6 +115,9 @@ inline std::string describe(const DynamicsParams& p) {
     << "flexspline_torsion_damping_Nms_per_rad = " << p.flexspline_torsion_damping_Nms_per_rad << "\n"
     << "circular_spline_drag_Nms_per_rad = " << p.circular_spline_drag_Nms_per_rad << "\n"
     << "load_inertia_kgm2 = " << p.load_inertia_kgm2 << "\n"
+    << "output_drag_coulomb_Nm = " << p.output_drag_coulomb_Nm << "\n"
+    << "output_drag_viscous_Nms_per_rad = " << p.output_drag_viscous_Nms_per_rad << "\n"
+    << "drag_smoothing_rad_per_s = " << p.drag_smoothing_rad_per_s << "\n"
     << "circular_spline_outer_radius_mm = " << p.circular_spline_outer_radius_m * 1e3 << "\n"
     << "circular_spline_width_mm = " << p.circular_spline_width_m * 1e3 << "\n"
     << "base_clearance_mm = " << p.base_clearance_m * 1e3 << "\n"

@@ -69,18 +69,29 @@ SteadyState steady_state(const DynamicsModel& m) {
       // The flexspline carries the load T, the circular spline reacts it through its brake: along the differential's
       // free mode (z_c, z_f) the generalized forces cancel, z_c·T − z_f·b·ω_c = 0, and the kinematic relation gives
       // ω_f. The load resists the flexspline's (backward) motion only while ω_f < 0, i.e. b > b_min.
+      // With output drag D(ω_f) the flexspline's torque is T + D(ω_f) and
+      //   g(ω_f) = ω_f − (1 − ρ)·ω_w − ρ²·(T + D(ω_f))/b = 0,   g' = 1 − ρ²·D'/b ≥ 1: bisection on a bracket.
       const double T = p.load_torque_Nm;
-      const double b_min = rho * rho * T / (w * (rho - 1.0));
-      if (!(b > b_min)) {
+      auto g = [&](double wf_) { return wf_ - (1.0 - rho) * w - rho * rho * (T + output_drag_Nm(p, wf_)) / b; };
+      double lo = -1.0, hi = 1.0;
+      while (g(lo) > 0) lo *= 2.0;
+      while (g(hi) < 0) hi *= 2.0;
+      for (int it = 0; it < 200; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        if (mid == lo || mid == hi) break;
+        (g(mid) < 0 ? lo : hi) = mid;
+      }
+      wf = 0.5 * (lo + hi);
+      if (!(wf < 0.0) && T > 0.0) {
+        const double b_min = rho * rho * T / (w * (rho - 1.0));
         std::ostringstream os;
         os << "[dynamics] circular_spline_drag_Nms_per_rad = " << b << "; with load_torque_Nm = " << T
            << " and configuration = \"all_free\" it must be > " << b_min
-           << " (else the load drives the flexspline instead of resisting it)";
+           << " (more with output drag; else the load drives the flexspline instead of resisting it)";
         throw InputError(os.str());
       }
       ww = w;
-      wc = rho * T / b;
-      wf = (1.0 - rho) * w + rho * wc;
+      wc = (wf - (1.0 - rho) * w) / rho;
       s.load_torque_Nm = T;
       break;
     }
@@ -92,14 +103,18 @@ SteadyState steady_state(const DynamicsModel& m) {
   speed(BodyId::CircularSpline) = wc;
   if (p.configuration != DynamicsConfiguration::AllFree)
     s.load_torque_Nm = -sign(s.speed_rad_s[static_cast<int>(s.output)]) * p.load_torque_Nm;
+  s.drag_torque_Nm = output_drag_Nm(p, s.speed_rad_s[static_cast<int>(s.output)]);
   // Steady mesh torque from the free body that carries the load: flexspline (Q_f = −M) or circular spline (Q_c = ρM).
-  if (s.output == BodyId::FlexsplineFlange) {
-    s.mesh_torque_Nm = s.load_torque_Nm;
-  } else {
-    s.mesh_torque_Nm = -s.load_torque_Nm / rho;
-  }
+  const double on_output = s.load_torque_Nm + s.drag_torque_Nm;
+  s.mesh_torque_Nm = s.output == BodyId::FlexsplineFlange ? on_output : -on_output / rho;
   s.mesh_frequency_Hz = zf * std::abs(wf - ww) / (2.0 * kPi);
   return s;
+}
+
+double output_drag_Nm(const DynamicsParams& p, double omega) {
+  double d = p.output_drag_viscous_Nms_per_rad * omega;
+  if (p.output_drag_coulomb_Nm != 0.0) d += p.output_drag_coulomb_Nm * std::tanh(omega / p.drag_smoothing_rad_per_s);
+  return -d;
 }
 
 double ramp(RampShape shape, double t, double t0, double t1) {
@@ -201,6 +216,10 @@ void validate(const DynamicsParams& p, const std::string& w) {
   require(p.circular_spline_drag_Nms_per_rad > 0, w, "circular_spline_drag_Nms_per_rad",
           p.circular_spline_drag_Nms_per_rad, "must be > 0");
   require(p.load_inertia_kgm2 >= 0, w, "load_inertia_kgm2", p.load_inertia_kgm2, "must be >= 0");
+  require(p.output_drag_coulomb_Nm >= 0, w, "output_drag_coulomb_Nm", p.output_drag_coulomb_Nm, "must be >= 0");
+  require(p.output_drag_viscous_Nms_per_rad >= 0, w, "output_drag_viscous_Nms_per_rad",
+          p.output_drag_viscous_Nms_per_rad, "must be >= 0");
+  require(p.drag_smoothing_rad_per_s > 0, w, "drag_smoothing_rad_per_s", p.drag_smoothing_rad_per_s, "must be > 0");
   require(p.circular_spline_outer_radius_m >= 0, w, "circular_spline_outer_radius_mm",
           p.circular_spline_outer_radius_m * 1e3, "must be >= 0 (0 = default)");
   require(p.circular_spline_width_m >= 0, w, "circular_spline_width_mm", p.circular_spline_width_m * 1e3,

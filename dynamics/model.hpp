@@ -14,6 +14,7 @@
 //     wg_fixed (ω_w = 0):  ω_c = +(z_f/z_c) · ω_f           (an internal gear pair)
 //     all_free (wave generator driven, load T on the flexspline, brake b on the circular spline):
 //              ω_c = (z_c/z_f)·T/b,  ω_f = (1 − z_c/z_f)·ω_w + (z_c/z_f)·ω_c
+//              (with output drag D(ω_f), T is T + D(ω_f) and ω_f solves the resulting monotone equation)
 // The seed paper's printed relations (ω_g = (Z_f − Z_c)/Z_f·ω_w, ω_c = Z_f/Z_c·ω_g) mix two configurations and its speed
 // table matches neither, so they are not used.
 //
@@ -81,6 +82,7 @@ struct SteadyState {
   BodyId driven = BodyId::WaveGenerator;
   BodyId output = BodyId::FlexsplineFlange;
   double load_torque_Nm = 0.0;     ///< signed torque applied to the output body at full load (opposes its motion)
+  double drag_torque_Nm = 0.0;     ///< output drag at the steady speed (signed, opposes the motion)
   double mesh_torque_Nm = 0.0;     ///< M = Σ F_i n_i ρ_i at steady state (torque the mesh takes off the flexspline rim)
   double mesh_frequency_Hz = 0.0;  ///< f_m = z_f·|ω_f − ω_w|/2π
 };
@@ -92,6 +94,9 @@ void validate(const DynamicsParams& p, const std::string& where);
 /// A model from case values: inertias from the geometry, the given tooth pairs. Throws InputError (via validate()).
 DynamicsModel make_model(const GearParams& gear, const FlexsplineParams& fs, bool cup, const Material& mat,
                          const DynamicsParams& p, std::vector<ToothPair> pairs, const std::string& where);
+
+/// Drag torque on the output body at speed ω [rad/s]: −(T_c·tanh(ω/ω_s) + b·ω) [N·m].
+double output_drag_Nm(const DynamicsParams& p, double omega_rad_s);
 
 /// Body roles, steady speeds, output load and mesh torque for the model's configuration at full speed and load.
 /// Precondition: 0 < z_f < z_c; drive speed > 0; throws InputError for all_free when the

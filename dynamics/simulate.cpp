@@ -116,7 +116,7 @@ public:
       U += 0.5 * K * (x[o] - x[r]) * (x[o] - x[r]);
     }
     s.load_torque = ss_.load_torque_Nm * ramp(p_.ramp_shape, t, p_.load_ramp_start_s, p_.load_ramp_end_s);
-    T[idx(ss_.output)] += s.load_torque;
+    T[idx(ss_.output)] += s.load_torque + output_drag_Nm(p_, s.omega[idx(ss_.output)]);
     if (p_.configuration == DynamicsConfiguration::AllFree) {
       T[c] -= p_.circular_spline_drag_Nms_per_rad * s.omega[c];
     }

@@ -50,6 +50,24 @@ TEST_P(EveryConfiguration, SteadySpeedsMatchTheKinematicRelations) {
   }
 }
 
+TEST_P(EveryConfiguration, OutputDragAddsToTheMeshTorqueAndKeepsTheBalances) {
+  auto m = test::seed_model(GetParam());
+  m.params.output_drag_coulomb_Nm = 5.0;
+  m.params.output_drag_viscous_Nms_per_rad = 0.5;
+  const auto r = run(m);
+  const double out = r.theory.speed_rad_s[int(r.theory.output)];
+  const double drag = 5.0 * std::tanh(std::abs(out) / 1e-3) + 0.5 * std::abs(out);  // resists: adds to the load
+  const double on_output = 100.0 + drag;
+  const double expected = r.theory.output == BodyId::FlexsplineFlange ? on_output : on_output * 190.0 / 192.0;
+  std::printf("  %s: drag %.4f N m, mesh torque %.6f N m (expected %.6f), speed error %.2e, torque balance %.2e,"
+              " energy %.2e\n", name(GetParam()), drag, r.mesh_torque_Nm, expected, r.max_speed_error_rel,
+              r.torque_balance_error_rel, r.energy_error_rel);
+  EXPECT_NEAR(std::abs(r.mesh_torque_Nm), expected, kTorqueBalanceTolerance * expected);
+  EXPECT_LT(r.max_speed_error_rel, kSpeedTolerance);
+  EXPECT_LT(r.max_pair_force_error_rel, kPairForceTolerance);
+  EXPECT_LT(r.energy_error_rel, kEnergyTolerance);
+}
+
 TEST_P(EveryConfiguration, MeanPairForcesMatchQuasiStaticSharingAndBalanceTheLoad) {
   const auto r = run(test::seed_model(GetParam()));
   int loaded = 0;

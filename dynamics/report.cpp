@@ -144,6 +144,31 @@ std::string dynamics_csv(const DynamicsModel& m, const DynamicsSeries& s) {
   return out;
 }
 
+std::string dynamics_recording(const DynamicsModel& m, const DynamicsSeries& s,
+                               const std::vector<std::string>& extra_metadata) {
+  const SteadyState ss = steady_state(m);
+  const auto& p = m.params;
+  std::string out = "# strainwave-recording: 1\n# kind: dynamics\n";
+  out += "# source: strainwave dynamics model (" + std::string(to_string(p.configuration)) + ")\n";
+  out += "# teeth_flexspline: " + std::to_string(m.teeth_flexspline) + "\n";
+  out += "# teeth_circular: " + std::to_string(m.teeth_circular) + "\n";
+  out += "# output_body: " + std::string(body_name(ss.output)) + "\n";
+  for (const auto& line : extra_metadata) out += "# " + line + "\n";
+  out += "time_s,wg_speed_rpm,output_speed_rpm,mesh_force_N\n";
+  const int wg = static_cast<int>(BodyId::WaveGenerator), o = static_cast<int>(ss.output);
+  for (std::size_t j = 0; j < s.time_s.size(); ++j) {
+    append(out, s.time_s[j]);
+    out += ',';
+    append(out, s.speed_rad_s[wg][j] * kRpmPerRadS);
+    out += ',';
+    append(out, s.speed_rad_s[o][j] * kRpmPerRadS);
+    out += ',';
+    append(out, s.total_force_N[j]);
+    out += '\n';
+  }
+  return out;
+}
+
 std::string dynamics_json(const DynamicsModel& m, const DynamicsSeries& s, const DynamicsSummary& r,
                           const DynamicsReportInfo& info) {
   using nlohmann::json;

@@ -5,6 +5,7 @@
 //   dynamics.json the keys of SPEC.md ("Dynamics result") plus the parameters, inertias, energies and solver statistics
 //   dynamics.svg  speeds over time, pair forces and total force over time, force spectrum with f_m marked
 #include <string>
+#include <vector>
 
 #include "dynamics/analysis.hpp"
 
@@ -19,6 +20,12 @@ struct DynamicsReportInfo {
 };
 
 std::string dynamics_csv(const DynamicsModel& m, const DynamicsSeries& s);
+
+/// The run as a SPEC.md recording of kind `dynamics` (input of `strainwave reconcile`): metadata lines, then
+/// time_s,wg_speed_rpm,output_speed_rpm,mesh_force_N (output = the configuration's output body, mesh force = Σ|F_i|).
+/// `extra_metadata` lines are written as given ("key: value", without the leading "# ").
+std::string dynamics_recording(const DynamicsModel& m, const DynamicsSeries& s,
+                               const std::vector<std::string>& extra_metadata = {});
 std::string dynamics_json(const DynamicsModel& m, const DynamicsSeries& s, const DynamicsSummary& r,
                           const DynamicsReportInfo& info);
 std::string dynamics_svg(const DynamicsModel& m, const DynamicsSeries& s, const DynamicsSummary& r,

@@ -1,5 +1,6 @@
 // Unit tests of the dynamics model's parts: ramps, kinematic relations, mesh frequency, contact law, quasi-static load
 // sharing, inertias and the stand-in clearances. Each is checked against a closed form.
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -7,6 +8,8 @@
 
 #include "common/error.hpp"
 #include "dynamics/model.hpp"
+#include "dynamics/report.hpp"
+#include "dynamics/simulate.hpp"
 #include "tests/dynamics/seed_models.hpp"
 
 using namespace sw;
@@ -198,4 +201,16 @@ TEST(DynamicsParamsText, DescribeListsEveryKeyAndTheEnumSpellingsRoundTrip) {
   EXPECT_FALSE(parse_configuration("CS fixed").has_value());
   EXPECT_EQ(parse_ramp_shape("cubic"), RampShape::Cubic);
   EXPECT_FALSE(parse_ramp_shape("linear").has_value());
+}
+
+TEST(DynamicsRecording, HasTheSpecHeaderColumnsAndOneRowPerSample) {
+  auto m = test::small_model();
+  m.params.duration_s = 0.002;
+  m.params.steady_from_s = 0.001;
+  const auto s = simulate(m);
+  const std::string rec = dynamics_recording(m, s, {"note: test"});
+  EXPECT_EQ(rec.rfind("# strainwave-recording: 1\n# kind: dynamics\n", 0), 0u) << rec.substr(0, 200);
+  EXPECT_NE(rec.find("# note: test\n"), std::string::npos);
+  EXPECT_NE(rec.find("\ntime_s,wg_speed_rpm,output_speed_rpm,mesh_force_N\n"), std::string::npos);
+  EXPECT_EQ(std::count(rec.begin(), rec.end(), '\n'), 6 + 1 + 1 + 201);  // metadata, note, header, 0…0.002 s
 }

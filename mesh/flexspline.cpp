@@ -59,6 +59,23 @@ struct ToothedRim {
   Eigen::Vector2d seed = Eigen::Vector2d::Zero();  // (x, y) inside tooth 0
 };
 
+// Layer cylinders through a rim from the inner radius ri to r_outer over a body wall ri..ro: the body's own layer
+// radii continued (so the body/rim interface z = length - rim_width carries no near-coincident rings: a rim layered
+// on its own, at ri + k (r_outer - ri) / n, put a ring 0.04 mm outside r_o for a 0.4 mm wall, whose thin annulus
+// gave 2.7 degree slivers), then r_o and cylinders up to r_outer at about the body's layer thickness when the rim
+// reaches at least half a layer beyond r_o. Empty for a one-layer body under a thin rim.
+std::vector<double> rim_layer_radii(double ri, double ro, double r_outer, const MeshParams& mesh) {
+  const WallSize wb = wall_size(ro - ri, mesh);
+  std::vector<double> radii;
+  for (int k = 1; k < wb.layers; ++k) radii.push_back(ri + k * wb.across_m);
+  const double beyond = r_outer - ro;
+  if (beyond >= 0.5 * wb.across_m) {
+    const int m = std::max(1, static_cast<int>(std::lround(beyond / wb.across_m)));
+    for (int j = 0; j < m; ++j) radii.push_back(ro + j * beyond / m);
+  }
+  return radii;
+}
+
 // Drops outline points closer than min_spacing to the last point kept, pitch by pitch (every pitch the same, so the
 // teeth stay identical; each pitch starts at its gap centre, which is kept). The shaper-cut root fillet can be far
 // smaller than a tooth (0.013 mm deep at the seed case, 0.01 mm segments against 0.16 mm flank edges): extruded, such
@@ -103,13 +120,8 @@ ToothedRim toothed_rim(const FlexsplineParams& f, const GearParams& g, const Mes
   t.axial_size_m = std::min(mesh.size_m, kToothAxialAspect * t.tooth_size_m);
   const int per_flank = std::max(3, static_cast<int>(std::ceil((r.tip_f - r.form_f) / t.tooth_size_m - 1e-9)) + 1);
   t.outline = simplify_outline(flexspline_outline(g, per_flank), g.teeth_flexspline, 0.4 * t.tooth_size_m);
-  for (int k = 1; k < wb.layers; ++k) t.layer_radii_m.push_back(ri + k * wb.across_m);
-  const double base = r.root_f - ro;
-  if (base >= 0.5 * wb.across_m) {
-    const int m = std::max(1, static_cast<int>(std::lround(base / wb.across_m)));
-    for (int j = 0; j < m; ++j) t.layer_radii_m.push_back(ro + j * base / m);
-  }
-  if (t.layer_radii_m.empty()) t.layer_radii_m.push_back(0.5 * (ri + r.root_f));
+  t.layer_radii_m = rim_layer_radii(ri, ro, r.root_f, mesh);
+  if (t.layer_radii_m.empty()) t.layer_radii_m.push_back(0.5 * (ri + r.root_f));  // the prism needs an inner ring
   t.inner_radius_m = t.layer_radii_m.back();
   t.seed = Eigen::Vector2d(0.5 * (r.form_f + r.tip_f), 0.0);
   return t;
@@ -260,9 +272,13 @@ TetMesh mesh_flexspline(const FlexsplineParams& f, const std::optional<GearParam
     b.line(V2(rr, L), V2(rr, zr), kSurfaceRimOuter, sr);
     b.line(V2(rr, zr), V2(ro, zr), kSurfaceRimStep, sr);
     b.line(V2(ri, zr), V2(ro, zr), kSurfaceOther, std::min(sr, sb));
-    for (int k = 1; k < wr.layers; ++k)
-      b.line(V2(ri + k * wr.across_m, zr), V2(ri + k * wr.across_m, L), kSurfaceOther, sr);
-    for (int k = 0; k < wr.layers; ++k) b.region(ri + (k + 0.5) * wr.across_m, L - 0.5 * w, 1, sr);
+    double r0 = ri;
+    for (const double r : rim_layer_radii(ri, ro, rr, mesh)) {
+      b.line(V2(r, zr), V2(r, L), kSurfaceOther, sr);
+      b.region(0.5 * (r0 + r), L - 0.5 * w, 1, sr);
+      r0 = r;
+    }
+    b.region(0.5 * (r0 + rr), L - 0.5 * w, 1, sr);
   }
   // Body: outer wall, layer lines, inner wall down to the fillet (or to z = 0 for the tube).
   b.line(V2(ro, zr), V2(ro, td), kSurfaceOuter, sb);

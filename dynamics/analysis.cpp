@@ -70,9 +70,15 @@ DynamicsSummary summarize(const DynamicsModel& m, const DynamicsSeries& s) {
   r.theory = steady_state(m);
   const auto& t = s.time_s;
   const std::size_t n = t.size();
-  std::size_t i0 = std::lower_bound(t.begin(), t.end(), p.steady_from_s - 1e-12) - t.begin();
-  if (i0 + 8 > n) i0 = n > 8 ? n - 8 : 0;
   const std::size_t i1 = n - 1;
+  // The window starts at steady_from_s, moved later to span a whole number of mesh periods (to the nearest sample),
+  // so that means over it are not biased by a fraction of a period of the k(t) oscillation.
+  double t_start = p.steady_from_s;
+  const double fm = r.theory.mesh_frequency_Hz;
+  if (fm > 0 && (t[i1] - t_start) * fm >= 1.0) t_start = t[i1] - std::floor((t[i1] - t_start) * fm + 1e-9) / fm;
+  std::size_t i0 = std::size_t(std::lround(t_start / p.output_step_s));
+  if (i0 + 8 > n) i0 = n > 8 ? n - 8 : 0;
+  r.window_start_s = t[i0];
   const double span = t[i1] - t[i0];
 
   const bool compliant = p.flexspline_compliance_rad_per_Nm > 0.0;

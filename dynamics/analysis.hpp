@@ -37,6 +37,7 @@ struct SpectralLine {
 
 struct DynamicsSummary {
   SteadyState theory;
+  double window_start_s = 0.0;              ///< steady window [window_start_s, duration_s]: whole mesh periods
   std::vector<SpeedCheck> speeds;
   double max_speed_error_rel = 0.0;
   std::vector<PairForceCheck> pair_forces;
@@ -57,7 +58,8 @@ Spectrum amplitude_spectrum(const std::vector<double>& signal, double dt_s);
 /// Local maxima of the spectrum above min_frequency_Hz, strongest first, at most max_lines.
 std::vector<SpectralLine> spectral_lines(const Spectrum& s, double min_frequency_Hz, int max_lines);
 
-/// Everything dynamics.json reports, over the window [steady_from_s, duration_s].
+/// Everything dynamics.json reports, over the steady window: from steady_from_s (moved later to span a whole number of
+/// mesh periods) to duration_s.
 DynamicsSummary summarize(const DynamicsModel& m, const DynamicsSeries& series);
 
 }  // namespace sw

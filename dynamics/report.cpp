@@ -113,6 +113,8 @@ void line(std::ostringstream& o, const Panel& p, const std::vector<double>& x, c
 
 void legend(std::ostringstream& o, const Panel& p, int row, const std::string& color, const std::string& text) {
   const double y = p.y + 16 + 16 * row;
+  o << "<rect x='" << p.x + p.w - 256 << "' y='" << y - 12 << "' width='252' height='16' fill='white' "
+    << "fill-opacity='0.85'/>\n";
   o << "<line x1='" << p.x + p.w - 250 << "' x2='" << p.x + p.w - 230 << "' y1='" << y - 4 << "' y2='" << y - 4
     << "' stroke='" << color << "' stroke-width='2'/><text x='" << p.x + p.w - 225 << "' y='" << y
     << "' font-size='11'>" << escape(text) << "</text>\n";
@@ -205,7 +207,7 @@ std::string dynamics_json(const DynamicsModel& m, const DynamicsSeries& s, const
   j["spectrum_resolution_Hz"] = r.spectrum.resolution_Hz;
   j["spectral_lines"] = json::array();
   for (const auto& l : r.lines) j["spectral_lines"].push_back({{"frequency_Hz", l.frequency_Hz}, {"amplitude_N", l.amplitude_N}});
-  j["steady_window_s"] = {p.steady_from_s, p.duration_s};
+  j["steady_window_s"] = {r.window_start_s, p.duration_s};
   j["clearance_source"] = info.clearance_source;
   json inertia;
   for (int b = 0; b < kBodyCount; ++b) inertia[body_name(BodyId(b))] = m.inertia.kgm2[b];
@@ -248,13 +250,13 @@ std::string dynamics_svg(const DynamicsModel& m, const DynamicsSeries& s, const 
                 p.stiffness_variation_N_per_m > 0
                     ? (" ± " + fmt(p.stiffness_variation_N_per_m) + " sin(2π f_m t)").c_str() : "",
                 p.damping_Ns_per_m, p.exponent_stiffness, p.exponent_damping, p.exponent_indentation);
-  o << "<text x='20' y='42' font-size='12'>" << escape(head) << "</text>\n";
+  o << "<text x='20' y='42' font-size='11'>" << escape(head) << "</text>\n";
   std::snprintf(head, sizeof head,
                 "steady window %g–%g s: speed error %.2e, pair forces vs quasi-static %.2e, torque balance %.2e, "
                 "energy balance %.2e, f_m = %.2f Hz",
-                p.steady_from_s, p.duration_s, r.max_speed_error_rel, r.max_pair_force_error_rel,
+                r.window_start_s, p.duration_s, r.max_speed_error_rel, r.max_pair_force_error_rel,
                 r.torque_balance_error_rel, r.energy_error_rel, r.theory.mesh_frequency_Hz);
-  o << "<text x='20' y='58' font-size='12'>" << escape(head) << "</text>\n";
+  o << "<text x='20' y='58' font-size='11'>" << escape(head) << "</text>\n";
   const auto& t = s.time_s;
   const double tmax = t.empty() ? 1.0 : t.back();
 
@@ -262,15 +264,18 @@ std::string dynamics_svg(const DynamicsModel& m, const DynamicsSeries& s, const 
   Panel sp{80, 90, 880, 220, 0, tmax, -0.1, 1.2};
   frame(o, sp, "Speeds (each divided by its steady kinematic value)", "time [s]", "speed / steady speed");
   int row = 0;
+  std::ostringstream leg;  // legends go on top of the lines
   for (BodyId b : reported_bodies(m)) {
     const double th = r.theory.speed_rad_s[int(b)];
     if (th == 0.0) continue;
     std::vector<double> y(t.size());
     for (std::size_t j = 0; j < t.size(); ++j) y[j] = s.speed_rad_s[int(b)][j] / th;
     line(o, sp, t, y, kColors[row % 8], 1.5);
-    legend(o, sp, row, kColors[row % 8], std::string(body_name(b)) + " (steady " + fmt(th * kRpmPerRadS) + " rpm)");
+    legend(leg, sp, row, kColors[row % 8], std::string(body_name(b)) + " (steady " + fmt(th * kRpmPerRadS) + " rpm)");
     ++row;
   }
+  o << leg.str();
+  leg.str("");
 
   // 2. Pair forces.
   double fmax = 0.0, fmin = 0.0;
@@ -290,9 +295,12 @@ std::string dynamics_svg(const DynamicsModel& m, const DynamicsSeries& s, const 
     const bool strong = k < 4;
     line(o, pf, t, s.pair_force_N[i], strong ? kColors[k] : "#bbb", strong ? 1.4 : 0.7);
     if (strong)
-      legend(o, pf, int(k), kColors[k], "pair " + std::to_string(i + 1) + " at " + fmt(std::round(r.pair_forces[i].angle_deg * 10) / 10) +
+      legend(leg, pf, int(k), kColors[k], "pair " + std::to_string(i + 1) + " at " + fmt(std::round(r.pair_forces[i].angle_deg * 10) / 10) +
                                         "°: mean " + fmt(std::round(r.pair_forces[i].mean_N)) + " N");
   }
+
+  o << leg.str();
+  leg.str("");
 
   // 3. Total meshing force.
   double tmin = 0, tmx = 0;

@@ -52,7 +52,6 @@ public:
     kinematic_residual_ = (ratio_[idx(fs_)] - ratio_[idx(BodyId::WaveGenerator)]) -
                           rho_ * (ratio_[idx(BodyId::CircularSpline)] - ratio_[idx(BodyId::WaveGenerator)]);
     mesh_phase_rate_ = m.teeth_flexspline * std::abs(ratio_[idx(fs_)] - ratio_[idx(BodyId::WaveGenerator)]);
-    pair_force_.resize(m.pairs.size());
   }
   int size() const { return 2 * int(free_.size()) + kQuadratures; }
   const std::vector<int>& free_bodies() const { return free_; }
@@ -167,7 +166,6 @@ private:
   bool compliant_ = false;
   BodyId fs_ = BodyId::FlexsplineFlange;
   std::vector<int> free_;
-  mutable std::vector<double> pair_force_;
 };
 
 struct RhsData {

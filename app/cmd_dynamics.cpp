@@ -2,6 +2,7 @@
 // run of issue 6. Reads the case, takes the tooth-pair clearances of the basic kinematic model (kinematics/, φ₀ = 0,
 // wave generator at 0) or the dynamics module's stand-in, integrates, checks against kinematics and statics, and
 // writes dynamics.csv, dynamics.json and dynamics.svg (atomically).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -81,8 +82,23 @@ double compliance_from_fem(const std::string& path) {
   return j["compliance_rad_per_Nm"].get<double>();
 }
 
+/// What to do with a flank whose clearance at rest is negative (interference in the basic kinematic model):
+/// "preload" keeps it (contact force at rest), "clip" sets the clearance to 0, "drop" removes the pair.
+std::vector<ToothPair> treat_interference(std::vector<ToothPair> pairs, const std::string& policy) {
+  if (policy == "preload") return pairs;
+  std::vector<ToothPair> out;
+  for (ToothPair t : pairs) {
+    const bool interferes = t.clearance_drive_m < 0 || t.clearance_coast_m < 0;
+    if (policy == "drop" && interferes) continue;
+    t.clearance_drive_m = std::max(0.0, t.clearance_drive_m);
+    t.clearance_coast_m = std::max(0.0, t.clearance_coast_m);
+    out.push_back(t);
+  }
+  return out;
+}
+
 void run_dynamics(const std::string& case_path, std::string out_dir, const std::string& clearances,
-                  const std::string& fem_result) {
+                  const std::string& fem_result, const std::string& interference) {
   Stopwatch total;
   const Case c = load_case(case_path);
   if (!c.gear) throw InputError(case_path + ": [gear] is missing; the dynamics needs the tooth numbers and module");
@@ -107,9 +123,14 @@ void run_dynamics(const std::string& case_path, std::string out_dir, const std::
   }
   int interfering = 0;
   for (const auto& tp : pairs) interfering += (tp.clearance_drive_m < 0 || tp.clearance_coast_m < 0) ? 1 : 0;
-  if (interfering > 0)
-    progress("dynamics: " + std::to_string(interfering) +
-             " pairs have negative clearance (interference) at rest; it is carried as contact preload");
+  if (interfering > 0) {
+    progress("dynamics: " + std::to_string(interfering) + " pairs have negative clearance (interference) at rest: " +
+             (interference == "preload" ? "carried as contact preload"
+              : interference == "clip"  ? "clearance set to 0"
+                                        : "pairs left out"));
+    pairs = treat_interference(std::move(pairs), interference);
+    source += ", interference: " + interference;
+  }
   const DynamicsModel m = make_model(*c.gear, c.flexspline, c.flexspline.shape == FlexsplineShape::Cup, c.material, p,
                                      std::move(pairs), case_path);
   progress("dynamics: " + std::string(to_string(p.configuration)) + ", " + std::to_string(m.pairs.size()) +
@@ -156,7 +177,11 @@ void add_dynamics_command(CLI::App& app) {
   auto fem = std::make_shared<std::string>();
   cmd->add_option("--fem", *fem, "FEM result (DIR/result.json): split the flexspline into rim and flange joined by "
                                  "1/C_tau (overrides dynamics.flexspline_compliance_rad_per_Nm)");
-  cmd->callback([=] { run_dynamics(*case_path, *out, *clearances, *fem); });
+  auto interference = std::make_shared<std::string>("preload");
+  cmd->add_option("--interference", *interference,
+                  "flanks with negative clearance at rest: preload (keep, default) | clip (clearance 0) | drop (pair)")
+      ->check(CLI::IsMember({"preload", "clip", "drop"}));
+  cmd->callback([=] { run_dynamics(*case_path, *out, *clearances, *fem, *interference); });
 }
 
 }  // namespace sw::app

@@ -70,3 +70,38 @@ TEST(DynamicsCli, BadCaseFailsWithOneLineAndWritesNothing) {
   EXPECT_FALSE(fs::exists(dir / "out" / "dynamics.json"));
   fs::remove_all(dir);
 }
+
+// End to end on the SPEC example gear (190/192) with the backlash module's clearances and the [dynamics] defaults
+// (the paper's drive, load and contact), independent of whether the case parser reads [dynamics] yet.
+TEST(DynamicsCli, SeedGearRunsEndToEndOnKinematicClearances) {
+  const fs::path dir = fs::temp_directory_path() / "sw_test_dynamics_seed";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "seed.toml")
+      << "[gear]\nmodule_mm = 0.2\nteeth_flexspline = 190\nteeth_circular = 192\npressure_angle_deg = 20.0\n"
+         "profile_shift_flexspline = 1.52\nprofile_shift_circular = 1.57\ncutter_teeth = 80\n"
+         "[flexspline]\nshape = \"cup\"\ninner_radius_mm = 18.4\nwall_thickness_mm = 0.6\nlength_mm = 20.0\n"
+         "rim_width_mm = 6.0\nrim_thickness_mm = 0.7\nteeth = \"ring\"\ndiaphragm_thickness_mm = 1.0\n"
+         "boss_radius_mm = 8.0\nfillet_radius_mm = 1.0\n"
+         "[material]\nyoungs_modulus_Pa = 210e9\npoisson_ratio = 0.3\ndensity_kg_m3 = 7850\n"
+         "[wave_generator]\nmodel = \"four_force\"\nbeta_deg = 30.0\nradial_deformation_mm = 0.2\n"
+         "axial_position_mm = 3.0\n[load]\ntorque_Nm = 44.1\n";
+  for (const std::string policy : {"preload", "drop"}) {
+    const fs::path out = dir / policy;
+    const int rc = run(binary() + " --quiet dynamics " + (dir / "seed.toml").string() + " --interference " + policy +
+                           " --out " + out.string(), dir / "log");
+    ASSERT_EQ(rc, 0) << slurp(dir / "log");
+    const auto j = nlohmann::json::parse(slurp(out / "dynamics.json"));
+    for (const auto& s : j.at("speeds")) EXPECT_LT(s.at("error_rel").get<double>(), kSpeedTolerance) << s.dump();
+    EXPECT_LT(j.at("max_pair_force_error_rel").get<double>(), kPairForceTolerance) << policy;
+    EXPECT_LT(j.at("torque_balance_error_rel").get<double>(), kTorqueTolerance) << policy;
+    EXPECT_LT(j.at("energy_error_rel").get<double>(), kEnergyTolerance) << policy;
+    EXPECT_NEAR(j.at("mesh_torque_Nm").get<double>(), 100.0, 100.0 * kTorqueTolerance);  // cs_fixed: Σ F·a = load
+    EXPECT_NEAR(j.at("mesh_frequency_Hz").get<double>(), 3200.0, 1e-9);
+    EXPECT_LT(j.at("timings_s").at("simulate").get<double>(), 10.0);  // issue 6 performance bound
+    if (policy == "drop") EXPECT_EQ(j.at("total_force_at_rest_N").get<double>(), 0.0);
+    std::printf("  %s: %zu pairs, %d in interference, simulate %.3f s\n", policy.c_str(), j.at("pair_forces").size(),
+                j.at("pairs_in_interference").get<int>(), j.at("timings_s").at("simulate").get<double>());
+  }
+  fs::remove_all(dir);
+}

@@ -11,10 +11,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string binary() {
-  const char* dir = std::getenv("SW_BUILD_DIR");
-  return (fs::path(dir ? dir : "build") / "strainwave").string();
-}
+/// The strainwave binary of this build tree (its path is compiled in: ctest's ENVIRONMENT property is not relied on).
+std::string binary() { return SW_STRAINWAVE_BINARY; }
 
 /// Runs a command, returns its exit code; stdout+stderr into `log`.
 int run(const std::string& cmd, const fs::path& log) {

@@ -10,21 +10,14 @@
 
 #include "common/error.hpp"
 #include "common/params.hpp"
+#include "mesh/flexspline.hpp"
 #include "mesh/shapes.hpp"
 #include "mesh/tet_mesh.hpp"
 
 namespace sw::bench {
 
-/// The flexspline mesh of a case, as `strainwave fem` builds it (app/cmd_fem.cpp's mesh_for_case lives in the
-/// executable, so the benches call the mesh module directly). Tubes only until mesh/flexspline.hpp's
-/// mesh_flexspline lands; then the cup branch calls it. Throws InputError for a cup.
-inline TetMesh mesh_for_bench(const Case& c) {
-  const auto& f = c.flexspline;
-  if (f.shape != FlexsplineShape::Tube)
-    throw InputError(c.path + ": flexspline.shape = \"cup\" is not meshable by the benches yet (mesh_flexspline is "
-                     "not in the tree); use a tube case");
-  return mesh_tube(f.inner_radius_m, f.inner_radius_m + f.wall_thickness_m, f.length_m, c.mesh);
-}
+/// The flexspline mesh of a case, as `strainwave fem` builds it.
+inline TetMesh mesh_for_bench(const Case& c) { return mesh_flexspline(c.flexspline, c.gear, c.mesh); }
 
 /// A fresh directory under the system temp dir (`prefix`XXXXXX), removed with its content on destruction unless
 /// keep() was called.

@@ -59,7 +59,11 @@ double tet10_det(const TetMesh& m, const std::array<int, 10>& t, double a, doubl
 }
 
 /// True if the curved element stays well shaped: det J at its corners, midsides and centre above a fifth of the
-/// straight element's (a projected midside node moved too far for the element's size fails this).
+/// straight element's times kMinDetRatio (a projected midside node moved too far for the element's size fails this).
+// Smallest det J (at corners, midsides, centre, Gauss points) relative to the straight element accepted for a curved
+// one: any positive value keeps the map invertible; a small margin keeps the element usable.
+constexpr double kMinDetRatio = 0.02;
+
 bool well_shaped(const TetMesh& m, const std::array<int, 10>& t) {
   const double straight = (m.nodes.row(t[1]) - m.nodes.row(t[0])).dot(
       (m.nodes.row(t[2]) - m.nodes.row(t[0])).cross(m.nodes.row(t[3]) - m.nodes.row(t[0])));
@@ -69,7 +73,7 @@ bool well_shaped(const TetMesh& m, const std::array<int, 10>& t) {
                                         {0.5854102, 0.1381966, 0.1381966}, {0.1381966, 0.5854102, 0.1381966},
                                         {0.1381966, 0.1381966, 0.5854102}};
   for (const auto& p : kPoints)
-    if (!(tet10_det(m, t, p[0], p[1], p[2]) > 0.2 * straight)) return false;
+    if (!(tet10_det(m, t, p[0], p[1], p[2]) > kMinDetRatio * straight)) return false;
   return true;
 }
 
@@ -78,12 +82,21 @@ bool well_shaped(const TetMesh& m, const std::array<int, 10>& t) {
 /// strongly curved surface, an edge on two surfaces), puts that element's midside nodes back on its straight edges: a
 /// valid straight element beats an inverted curved one. Repeats, since a node moved back changes its neighbours.
 void straighten_distorted(TetMesh& mesh) {
-  for (int pass = 0; pass < 4; ++pass) {
+  std::vector<bool> on_boundary(mesh.n_nodes(), false);
+  for (const auto& f : mesh.faces)
+    for (int v : f.nodes) on_boundary[v] = true;
+  auto straighten = [&](const std::array<int, 10>& t, bool boundary_too) {
+    for (int e = 0; e < 6; ++e)
+      if (boundary_too || !on_boundary[t[4 + e]])
+        mesh.nodes.row(t[4 + e]) = 0.5 * (mesh.nodes.row(t[kTetEdges[e][0]]) + mesh.nodes.row(t[kTetEdges[e][1]]));
+  };
+  // First only the element's interior midside nodes (chords of interior rings), which cost no boundary accuracy;
+  // then, for elements still distorted, the boundary ones too.
+  for (int pass = 0; pass < 6; ++pass) {
     bool changed = false;
     for (const auto& t : mesh.tets) {
       if (well_shaped(mesh, t)) continue;
-      for (int e = 0; e < 6; ++e)
-        mesh.nodes.row(t[4 + e]) = 0.5 * (mesh.nodes.row(t[kTetEdges[e][0]]) + mesh.nodes.row(t[kTetEdges[e][1]]));
+      straighten(t, pass >= 2);
       changed = true;
     }
     if (!changed) break;

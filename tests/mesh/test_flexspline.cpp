@@ -23,6 +23,10 @@ constexpr double kPi = std::numbers::pi;
 // small share of the volume: 1e-4 relative overall, the accuracy the FEM needs from the geometry.
 constexpr double kVolumeTol = 1e-4;
 constexpr double kAreaTol = 1e-4;
+// At the coarse test size (1 mm edges on a 1 mm fillet: 1.5 edges per quarter arc) some fillet elements would be
+// inverted by projecting their midside nodes onto the torus; the mesher straightens those (revolve.cpp), which moves
+// the fillet's volume and area by up to ~0.4 % of the body. Finer meshes project them.
+constexpr double kCoarseFilletTol = 5e-3;
 // Interfaces between regions are not projected except along their ring edges (only boundary faces are), so how
 // the volume splits between boss and diaphragm across the interface cylinder r = boss_radius carries the chordal
 // error of that polygonal surface, O(dθ^2 / 24) ~ 5e-4 at the coarse ring (56 points); the total is unaffected.
@@ -66,9 +70,9 @@ TEST(MeshFlexspline, CupVolumeRegionsAndMarkedAreasMatchTheProfile) {
   const double rim = kPi * (rr * rr - ri * ri) * w;
   EXPECT_NEAR(region_volume(m, 3) / boss, 1.0, kRegionSplitTol);
   EXPECT_NEAR(region_volume(m, 2) / diaphragm, 1.0, kRegionSplitTol);
-  EXPECT_NEAR(region_volume(m, 0) / body, 1.0, kVolumeTol);
+  EXPECT_NEAR(region_volume(m, 0) / body, 1.0, kCoarseFilletTol);
   EXPECT_NEAR(region_volume(m, 1) / rim, 1.0, kVolumeTol);
-  EXPECT_NEAR(mesh_volume(m) / (boss + diaphragm + body + rim), 1.0, kVolumeTol);
+  EXPECT_NEAR(mesh_volume(m) / (boss + diaphragm + body + rim), 1.0, kCoarseFilletTol);
 
   const double fillet_area = 2 * kPi * rf * ((ri - rf) * kPi / 2 + rf);
   EXPECT_NEAR(boundary_area(m, kSurfaceInner) / (2 * kPi * ri * (L - td - rf)), 1.0, kAreaTol);
@@ -79,7 +83,7 @@ TEST(MeshFlexspline, CupVolumeRegionsAndMarkedAreasMatchTheProfile) {
   EXPECT_NEAR(boundary_area(m, kSurfaceClamped) / (2 * kPi * rb * rb + 2 * kPi * rb * (hb - td)), 1.0, kAreaTol);
   EXPECT_NEAR(boundary_area(m, kSurfaceDiaphragm) /
                   (kPi * (ro * ro - rb * rb) + kPi * ((ri - rf) * (ri - rf) - rb * rb) + fillet_area),
-              1.0, kAreaTol);
+              1.0, kCoarseFilletTol);
   EXPECT_EQ(boundary_area(m, kSurfaceOther), 0.0);
   EXPECT_GT(m.quality.min_dihedral_deg, 3.0);
 }
@@ -201,7 +205,9 @@ FlexsplineParams coarse_toothed_cup(const GearParams& g) {
 constexpr double kRimOutlineTol = 5e-3;
 constexpr double kFlankAreaTol = 2e-2;
 // The revolved parts (body, diaphragm, boss) are those of the ring variant up to the angular counts of shared rings.
-constexpr double kSameRevolvedTol = 1e-4;
+// The two meshes differ where the mesher straightens elements that projection would distort (coarse fillet, see
+// kCoarseFilletTol), which differs by up to ~2e-4 of a region between them.
+constexpr double kSameRevolvedTol = 1e-3;
 constexpr double kMidsideMoveTol = 0.02e-3;
 
 TEST(MeshFlexsplineExplicitTeeth, VolumeAndToothSurfacesMatchTheOutlineExtrudedOverTheRim) {

@@ -30,11 +30,11 @@ struct SigTest {
 };
 
 SigTest test_signature(const Experiment& e, const SignatureSpec& s, const Vec& y, const std::vector<Term>& terms,
-                       const ArModel& ar, int m) {
+                       const ArModel& ar, const SpectralCalibration& cal, int m) {
   const Mat base = hcat(design_matrix(e, terms), s.condition(e));
   const Mat B = s.basis(e);
   const Vec yw = whiten(ar, y);
-  const FTest t = f_test(whiten(ar, base), whiten(ar, B), yw);
+  const FTest t = calibrated_f_test(cal, whiten(ar, base), whiten(ar, B), yw);
   SigTest out;
   out.p_adj = std::min(1.0, t.p_value * m);
   const Mat full = hcat(base, B);
@@ -139,8 +139,14 @@ Result reconcile(const Experiment& e, const Options& opt) {
     Mat rich = nuisance_columns(e);
     for (const auto& s : sigs) rich = hcat(hcat(rich, s.basis(e)), s.condition(e));
     r.noise = fit_ar(least_squares(rich, y).residual, opt.ar_max_order);
+    if (opt.spectral_half_width > 0) {
+      const Mat rich_w = whiten(r.noise, rich);
+      r.calibration = spectral_calibration(rich_w, least_squares(rich_w, whiten(r.noise, y)).residual,
+                                           opt.spectral_half_width);
+    }
   }
   const ArModel& ar = r.noise;
+  const SpectralCalibration& cal = r.calibration;
   progress("reconcile: " + kind_name(e.kind) + ", " + std::to_string(e.n) + " samples, noise AR(" +
            std::to_string(ar.order()) + ") sd " + fmt("%.3g", ar.process_sd));
 
@@ -154,7 +160,7 @@ Result reconcile(const Experiment& e, const Options& opt) {
   std::set<std::string> candidates;
   std::vector<bool> located(m, false);
   for (int i = 0; i < m; ++i) {
-    const SigTest t = test_signature(e, sigs[i], y, cur.terms, ar, m);
+    const SigTest t = test_signature(e, sigs[i], y, cur.terms, ar, cal, m);
     if (t.p_adj < opt.alpha_family) {
       located[i] = true;
       r.locations.push_back(make_location(e, sigs[i], t));
@@ -209,9 +215,9 @@ Result reconcile(const Experiment& e, const Options& opt) {
       for (int i = 0; i < m; ++i) {
         if (!located[i]) continue;
         if (std::find(sigs[i].triggers.begin(), sigs[i].triggers.end(), id) == sigs[i].triggers.end()) continue;
-        const double before = test_signature(e, sigs[i], y, cur.terms, ar, m).p_adj;
+        const double before = test_signature(e, sigs[i], y, cur.terms, ar, cal, m).p_adj;
         if (!(before < opt.alpha_family)) continue;
-        const double after = test_signature(e, sigs[i], y, ev.alt.terms, ar, m).p_adj;
+        const double after = test_signature(e, sigs[i], y, ev.alt.terms, ar, cal, m).p_adj;
         if (after >= opt.alpha_family) removes = true;
         else left = sigs[i].name + " (p " + fmt("%.2g", after) + ")";
       }
@@ -224,7 +230,8 @@ Result reconcile(const Experiment& e, const Options& opt) {
       std::string test;
       if (ev.spec->n_nonlinear() == 0) {
         const Mat X0 = design_matrix(e, cur.terms);
-        const FTest ft = f_test(whiten(ar, X0), whiten(ar, Mat(ev.spec->columns(e, Vec(0)))), whiten(ar, y));
+        const FTest ft =
+            calibrated_f_test(cal, whiten(ar, X0), whiten(ar, Mat(ev.spec->columns(e, Vec(0)))), whiten(ar, y));
         p = std::min(1.0, ft.p_value * ev.spec->multiplicity);
         test = "F";
       } else {
@@ -294,7 +301,7 @@ Result reconcile(const Experiment& e, const Options& opt) {
   r.final_heldout_rms = heldout_rms(e, y, cur.terms, ar, train, false);
 
   for (int i = 0; i < m; ++i) {
-    const SigTest t = test_signature(e, sigs[i], y, cur.terms, ar, m);
+    const SigTest t = test_signature(e, sigs[i], y, cur.terms, ar, cal, m);
     if (t.p_adj < opt.alpha_family) r.unexplained.push_back(make_location(e, sigs[i], t));
   }
   if (r.effects.empty() && !r.significant && r.unexplained.empty()) r.verdict = "no_significant_mismatch";

@@ -22,6 +22,9 @@ struct Options {
   int bootstrap = 99;            ///< parametric bootstrap replicates for effects with nonlinear parameters
   double heldout_fraction = 0.25;///< the last contiguous fraction of the rows is held out
   int ar_max_order = 8;          ///< largest AR order of the noise model
+  /// Half-width (Fourier bins) of the spectral calibration of the noise level (stats.hpp SpectralCalibration);
+  /// 0: trust the AR model's level at every frequency (anti-conservative for slow patterns under ARMA noise).
+  int spectral_half_width = 20;
   std::uint64_t seed = 1;        ///< bootstrap random seed (results are reproducible)
   int max_effects = 4;           ///< forward selection stops here
 };
@@ -62,6 +65,7 @@ struct Result {
   std::vector<Location> unexplained;     ///< signatures still significant after the final model
   std::string verdict;                   ///< no_significant_mismatch | explained | partly_explained
   ArModel noise;                         ///< the estimated noise model
+  SpectralCalibration calibration;       ///< its level checked against the data, per frequency
   Eigen::VectorXd residual_before;       ///< recording - baseline - nuisance fit (n)
   Eigen::VectorXd residual_after;        ///< recording - baseline - final model (n)
   Eigen::VectorXd final_prediction;      ///< baseline + final model (n)

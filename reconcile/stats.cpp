@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <fftw3.h>
+
 namespace sw::reconcile {
 
 ArModel fit_ar(const Eigen::VectorXd& x_in, int max_order) {
@@ -166,6 +168,116 @@ FTest f_test(const Eigen::MatrixXd& base, const Eigen::MatrixXd& extra, const Ei
   if (t.df_extra <= 0 || t.df_resid <= 0 || !(r1.rss > 0.0)) return t;
   t.f = std::max(0.0, (r0.rss - r1.rss) / t.df_extra) / (r1.rss / t.df_resid);
   t.p_value = f_upper_tail(t.f, t.df_extra, t.df_resid);
+  return t;
+}
+
+namespace {
+
+/// |U x|^2 over the full circle, U the unitary DFT (sums to ||x||^2).
+Eigen::VectorXd power_spectrum(const Eigen::VectorXd& x) {
+  const int n = static_cast<int>(x.size());
+  const int nc = n / 2 + 1;
+  std::vector<double> in(x.data(), x.data() + n);
+  fftw_complex* c = fftw_alloc_complex(nc);
+  fftw_plan plan = fftw_plan_dft_r2c_1d(n, in.data(), c, FFTW_ESTIMATE);
+  fftw_execute(plan);
+  Eigen::VectorXd p(n);
+  for (int j = 0; j < nc; ++j) {
+    const double v = (c[j][0] * c[j][0] + c[j][1] * c[j][1]) / n;
+    p[j] = v;
+    if (j > 0 && n - j >= nc) p[n - j] = v;
+  }
+  fftw_destroy_plan(plan);
+  fftw_free(c);
+  return p;
+}
+
+/// Orthonormal basis of the column space of X (rank-revealing), n x rank.
+Eigen::MatrixXd orthonormal_basis(const Eigen::MatrixXd& X) {
+  if (X.cols() == 0) return Eigen::MatrixXd(X.rows(), 0);
+  Eigen::VectorXd scale = X.colwise().norm().transpose();
+  for (int j = 0; j < scale.size(); ++j)
+    if (!(scale[j] > 0.0)) scale[j] = 1.0;
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(X * scale.cwiseInverse().asDiagonal());
+  qr.setThreshold(1e-9);
+  const int r = static_cast<int>(qr.rank());
+  Eigen::MatrixXd q = qr.householderQ() * Eigen::MatrixXd::Identity(X.rows(), r);
+  return q;
+}
+
+/// Circular moving sum over +-h of v.
+Eigen::VectorXd circular_moving_sum(const Eigen::VectorXd& v, int h) {
+  const int n = static_cast<int>(v.size());
+  Eigen::VectorXd out(n);
+  double acc = 0.0;
+  for (int k = -h; k <= h; ++k) acc += v[((k % n) + n) % n];
+  for (int j = 0; j < n; ++j) {
+    out[j] = acc;
+    acc += v[(j + h + 1) % n] - v[((j - h) % n + n) % n];
+  }
+  return out;
+}
+
+}  // namespace
+
+SpectralCalibration spectral_calibration(const Eigen::MatrixXd& rich_w, const Eigen::VectorXd& resid_w,
+                                         int half_width) {
+  SpectralCalibration cal;
+  const int n = static_cast<int>(resid_w.size());
+  if (n < 4 * (2 * half_width + 1)) return cal;  // too short to smooth: no calibration (plain F-test)
+  cal.n = n;
+  cal.half_width = half_width;
+  cal.periodogram = power_spectrum(resid_w);
+  cal.leverage = Eigen::VectorXd::Zero(n);
+  const Eigen::MatrixXd q = orthonormal_basis(rich_w);
+  for (int c = 0; c < q.cols(); ++c) cal.leverage += power_spectrum(q.col(c));
+  return cal;
+}
+
+FTest calibrated_f_test(const SpectralCalibration& cal, const Eigen::MatrixXd& base, const Eigen::MatrixXd& extra,
+                        const Eigen::VectorXd& y) {
+  if (!cal.valid() || cal.n != y.size()) return f_test(base, extra, y);
+  FTest t;
+  const LsResult r0 = least_squares(base, y);
+  const LsResult r1 = least_squares(hcat(base, extra), y);
+  t.rss_base = r0.rss;
+  t.rss_full = r1.rss;
+  t.df_extra = r1.rank - r0.rank;
+  if (t.df_extra <= 0) return t;
+  // Orthonormal basis of the extra columns with base projected out: where the tested pattern's energy lies.
+  const Eigen::MatrixXd qb = orthonormal_basis(base);
+  Eigen::MatrixXd ex = extra;
+  if (qb.cols() > 0) ex -= qb * (qb.transpose() * extra);
+  const Eigen::MatrixXd qe = orthonormal_basis(ex);
+  if (qe.cols() == 0) return t;
+  const int n = cal.n;
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(n);
+  for (int c = 0; c < qe.cols(); ++c) w += power_spectrum(qe.col(c));
+  w /= w.sum();
+  // Smoothed level s_j = sum_band I / sum_band (1 - h); estimate sum_j w_j s_j = sum_i c_i I_i.
+  const Eigen::VectorXd free_dims = (1.0 - cal.leverage.array()).max(0.0).matrix();
+  const Eigen::VectorXd denom = circular_moving_sum(free_dims, cal.half_width);
+  Eigen::VectorXd wd(n);
+  for (int j = 0; j < n; ++j) wd[j] = denom[j] > 1e-9 ? w[j] / denom[j] : 0.0;
+  const Eigen::VectorXd c = circular_moving_sum(wd, cal.half_width);
+  const double level = c.dot(cal.periodogram);
+  // Satterthwaite: I_i (i and n - i are the same ordinate) ~ m_i chi2_2 / 2, m_i = s_i (1 - h_i); m_i from the data.
+  const Eigen::VectorXd s_hat = circular_moving_sum(cal.periodogram, cal.half_width).cwiseQuotient(
+      denom.cwiseMax(1e-9));
+  double mean = 0.0, var = 0.0;
+  for (int i = 0; i <= n / 2; ++i) {
+    const int k = (n - i) % n;
+    const bool single = i == 0 || k == i;
+    const double ci = single ? c[i] : c[i] + c[k];
+    const double mi = s_hat[i] * free_dims[i];
+    mean += ci * mi;
+    var += (single ? 2.0 : 1.0) * ci * ci * mi * mi;
+  }
+  const double nu = var > 0.0 ? 2.0 * mean * mean / var : 1e9;
+  t.df_resid = static_cast<int>(std::max(1.0, std::floor(nu)));
+  if (!(level > 0.0)) return t;
+  t.f = std::max(0.0, (r0.rss - r1.rss) / t.df_extra) / level;
+  t.p_value = f_upper_tail(t.f, t.df_extra, nu);
   return t;
 }
 

@@ -55,6 +55,35 @@ struct FTest {
 };
 FTest f_test(const Eigen::MatrixXd& base, const Eigen::MatrixXd& extra, const Eigen::VectorXd& y);
 
+/// Nonparametric check of the parametric noise model, used to calibrate tests of slow (low-order) patterns.
+///
+/// A finite AR model of noise that is not AR (AR(1) + white + quantisation is ARMA(1,1)) gets the spectrum's level at
+/// low frequencies wrong: the AR(4..6) that AIC picks underestimates the long-run variance by 5-16 %. Every signature
+/// that varies slowly (a mean offset, a torque step, a harmonic per torque level or per output revolution, a drift)
+/// is tested against exactly that level, so the GLS F-test with the AR model alone is anti-conservative there.
+/// The calibration keeps the AR model for the spectrum's shape and measures what it gets wrong: the periodogram of the
+/// whitened residual of a rich model (every signature basis), smoothed over +-half_width Fourier bins and corrected
+/// for the dimensions that rich model removed from each bin (its leverage), is the level of the whitened noise at
+/// each frequency (1 where the AR model is right). A test's denominator is that level weighted by where the tested
+/// pattern's energy lies, with Satterthwaite degrees of freedom (tens, not thousands: the level is estimated).
+struct SpectralCalibration {
+  int n = 0;                   ///< whitened rows
+  int half_width = 0;          ///< smoothing half-width in Fourier bins
+  Eigen::VectorXd periodogram; ///< |U r|^2 over the full circle (U the unitary DFT), r the whitened rich residual
+  Eigen::VectorXd leverage;    ///< sum over the rich model's orthonormal columns of |U q|^2 (full circle)
+  bool valid() const { return n > 0; }
+};
+
+/// rich_w: the whitened rich design (n_w x K), resid_w: the whitened residual of y on it.
+SpectralCalibration spectral_calibration(const Eigen::MatrixXd& rich_w, const Eigen::VectorXd& resid_w,
+                                         int half_width = 20);
+
+/// Nested test like f_test, but with the noise level in the denominator taken from the calibration at the
+/// frequencies where the extra columns (orthogonalised against base) carry their energy: F(df_extra, nu) with nu the
+/// Satterthwaite degrees of freedom of that level. Inputs whitened with the AR model the calibration was built with.
+FTest calibrated_f_test(const SpectralCalibration& cal, const Eigen::MatrixXd& base, const Eigen::MatrixXd& extra,
+                        const Eigen::VectorXd& y);
+
 /// Horizontal concatenation that tolerates zero-column blocks.
 Eigen::MatrixXd hcat(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b);
 

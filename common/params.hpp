@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "dynamics/dynamics_params.hpp"  // header-only, standard library only
 #include "gear/gear.hpp"
 
 namespace sw {
@@ -72,6 +73,7 @@ struct Case {
   std::optional<WaveGeneratorParams> wave_generator;
   LoadParams load;
   MeshParams mesh;
+  std::optional<DynamicsParams> dynamics;
 };
 
 }  // namespace sw

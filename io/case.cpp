@@ -260,6 +260,45 @@ MeshParams read_mesh(TableReader r) {
   return m;
 }
 
+DynamicsParams read_dynamics(TableReader r) {
+  DynamicsParams d;
+  const std::string conf = r.choice("configuration", to_string(d.configuration),
+                                    {"cs_fixed", "fs_fixed", "wg_fixed", "all_free"});
+  d.configuration = *parse_configuration(conf);
+  d.ramp_shape = *parse_ramp_shape(r.choice("ramp", "paper", {"paper", "cubic"}));
+  d.drive_speed_rpm = r.positive("drive_speed_rpm", d.drive_speed_rpm);
+  d.drive_ramp_start_s = r.non_negative("drive_ramp_start_s", d.drive_ramp_start_s);
+  d.drive_ramp_end_s = r.positive("drive_ramp_end_s", d.drive_ramp_end_s);
+  d.load_torque_Nm = r.non_negative("load_torque_Nm", d.load_torque_Nm);
+  d.load_ramp_start_s = r.non_negative("load_ramp_start_s", d.load_ramp_start_s);
+  d.load_ramp_end_s = r.positive("load_ramp_end_s", d.load_ramp_end_s);
+  d.stiffness_N_per_m = r.positive("stiffness_N_per_m", d.stiffness_N_per_m);
+  d.stiffness_variation_N_per_m = r.non_negative("stiffness_variation_N_per_m", d.stiffness_variation_N_per_m);
+  d.stiffness_phase_deg = r.number("stiffness_phase_deg", d.stiffness_phase_deg);
+  d.damping_Ns_per_m = r.non_negative("damping_Ns_per_m", d.damping_Ns_per_m);
+  d.exponent_stiffness = r.positive("exponent_stiffness", d.exponent_stiffness);
+  d.exponent_damping = r.non_negative("exponent_damping", d.exponent_damping);
+  d.exponent_indentation = r.non_negative("exponent_indentation", d.exponent_indentation);
+  d.flexspline_compliance_rad_per_Nm = r.non_negative("flexspline_compliance_rad_per_Nm", d.flexspline_compliance_rad_per_Nm);
+  d.flexspline_torsion_damping_Nms_per_rad =
+      r.non_negative("flexspline_torsion_damping_Nms_per_rad", d.flexspline_torsion_damping_Nms_per_rad);
+  d.circular_spline_drag_Nms_per_rad = r.positive("circular_spline_drag_Nms_per_rad", d.circular_spline_drag_Nms_per_rad);
+  d.load_inertia_kgm2 = r.non_negative("load_inertia_kgm2", d.load_inertia_kgm2);
+  d.output_drag_coulomb_Nm = r.non_negative("output_drag_coulomb_Nm", d.output_drag_coulomb_Nm);
+  d.output_drag_viscous_Nms_per_rad = r.non_negative("output_drag_viscous_Nms_per_rad", d.output_drag_viscous_Nms_per_rad);
+  d.drag_smoothing_rad_per_s = r.positive("drag_smoothing_rad_per_s", d.drag_smoothing_rad_per_s);
+  d.circular_spline_outer_radius_m = r.non_negative("circular_spline_outer_radius_mm", 0.0) * kMm;
+  d.circular_spline_width_m = r.non_negative("circular_spline_width_mm", 0.0) * kMm;
+  d.base_clearance_m = r.number("base_clearance_mm", 0.0) * kMm;
+  d.duration_s = r.positive("duration_s", d.duration_s);
+  d.output_step_s = r.positive("output_step_s", d.output_step_s);
+  d.steady_from_s = r.non_negative("steady_from_s", d.steady_from_s);
+  d.relative_tolerance = r.positive("relative_tolerance", d.relative_tolerance);
+  d.absolute_tolerance_rad = r.positive("absolute_tolerance_rad", d.absolute_tolerance_rad);
+  r.reject_unknown();
+  return d;
+}
+
 }  // namespace
 
 Case parse_case(const std::string& toml_text, const std::string& path) {
@@ -274,12 +313,13 @@ Case parse_case(const std::string& toml_text, const std::string& path) {
   Case c;
   c.path = path;
   c.stem = std::filesystem::path(path).stem().string();
-  static const std::set<std::string> kTables = {"gear", "flexspline", "material", "wave_generator", "load", "mesh"};
+  static const std::set<std::string> kTables = {"gear", "flexspline", "material", "wave_generator", "load", "mesh",
+                                                "dynamics"};
   for (const auto& [key, node] : root) {
     if (!kTables.count(std::string(key.str())))
       throw InputError(path + ":" + std::to_string(node.source().begin.line) + ": [" + std::string(key.str()) +
                        "] is not a known table (allowed: [gear], [flexspline], [material], [wave_generator], "
-                       "[load], [mesh])");
+                       "[load], [mesh], [dynamics])");
   }
   static const toml::table kEmpty;
   auto table = [&](const char* name) -> const toml::table* { return sub_table(root, name, path); };
@@ -290,6 +330,7 @@ Case parse_case(const std::string& toml_text, const std::string& path) {
   if (auto t = table("wave_generator")) c.wave_generator = read_wave_generator(TableReader(*t, "wave_generator", path));
   c.load = read_load(TableReader(table("load") ? *table("load") : kEmpty, "load", path));
   c.mesh = read_mesh(TableReader(table("mesh") ? *table("mesh") : kEmpty, "mesh", path));
+  if (auto t = table("dynamics")) c.dynamics = read_dynamics(TableReader(*t, "dynamics", path));
   if (c.flexspline.teeth != TeethModel::None && !c.gear)
     throw InputError(path + ": flexspline.teeth = \"" +
                      std::string(c.flexspline.teeth == TeethModel::Ring ? "ring" : "explicit") +
@@ -348,6 +389,7 @@ std::string describe_case(const Case& c) {
   s << "[mesh]\nsize_mm = " << mm(c.mesh.size_m) << "\nwall_layers = " << c.mesh.wall_layers
     << "\nmax_radius_edge_ratio = " << c.mesh.max_radius_edge_ratio << "\nmin_dihedral_deg = "
     << c.mesh.min_dihedral_deg << "\n";
+  if (c.dynamics) s << describe(*c.dynamics);
   return s.str();
 }
 

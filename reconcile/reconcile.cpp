@@ -113,6 +113,21 @@ double bootstrap_p(const Experiment& e, const FitResult& cur, const FitResult& a
   return (1.0 + exceed) / (B + 1.0);
 }
 
+/// Complexity for parsimony between rivals: nonlinear parameters first, then linear ones.
+std::pair<int, int> complexity(const EffectSpec& s) { return {s.n_nonlinear(), s.n_linear}; }
+
+/// Do both effects appear among the triggers of one located signature?
+bool share_signature(const std::vector<SignatureSpec>& sigs, const std::vector<bool>& located, const EffectSpec& a,
+                     const EffectSpec& b) {
+  for (std::size_t i = 0; i < sigs.size(); ++i) {
+    if (!located[i]) continue;
+    const auto& t = sigs[i].triggers;
+    if (std::find(t.begin(), t.end(), a.id()) != t.end() && std::find(t.begin(), t.end(), b.id()) != t.end())
+      return true;
+  }
+  return false;
+}
+
 std::string effect_label(const EffectSpec& s) {
   return s.order ? s.name + " (order " + std::to_string(s.order) + ")" : s.name;
 }
@@ -205,6 +220,36 @@ Result reconcile(const Experiment& e, const Options& opt) {
       }
       const double h_cur = heldout_rms(e, y, cur.terms, ar, train, false);
       const double h_alt = heldout_rms(e, y, ev.alt.terms, ar, train, false);
+      // Parsimony between rivals of one signature: a more complex effect (e.g. the soft start's breakpoint) that
+      // would pass on its own must also beat each simpler rival that passes the BIC bar (e.g. plain series
+      // compliance) clearly, by BIC and on the held-out block; otherwise the simpler one is named.
+      std::string simpler;
+      for (const auto& rv : evals) {
+        if (&rv == &ev || !(rv.dbic < -opt.min_delta_bic)) continue;
+        if (complexity(*rv.spec) >= complexity(*ev.spec) || !share_signature(sigs, located, *rv.spec, *ev.spec))
+          continue;
+        const double dbic_rv = ev.alt.bic() - rv.alt.bic();
+        const double h_rv = heldout_rms(e, y, rv.alt.terms, ar, train, false);
+        // ... unless the complex one removes a located signature that only it (not the simpler one) explains.
+        bool needed = false;
+        for (int i = 0; i < m && !needed; ++i) {
+          const auto& t = sigs[i].triggers;
+          if (!located[i] || std::find(t.begin(), t.end(), id) == t.end() ||
+              std::find(t.begin(), t.end(), rv.spec->id()) != t.end())
+            continue;
+          needed = test_signature(e, sigs[i], y, rv.alt.terms, ar, cal, m).p_adj < opt.alpha_family &&
+                   test_signature(e, sigs[i], y, ev.alt.terms, ar, cal, m).p_adj >= opt.alpha_family;
+        }
+        if (!needed && (!(dbic_rv < -opt.min_delta_bic) || !(h_alt < h_rv))) {
+          simpler = effect_label(*rv.spec) + " explains as much (BIC " + fmt("%.1f", dbic_rv) + " vs it, held-out " +
+                    fmt("%.4g", h_rv) + " -> " + fmt("%.4g", h_alt) + ")";
+          break;
+        }
+      }
+      if (!simpler.empty()) {
+        rejected[id] = label + ": the simpler rival " + simpler;
+        continue;
+      }
       if (!(h_alt < h_cur)) {
         rejected[id] = label + ": held-out RMS not improved (" + fmt("%.4g", h_cur) + " -> " + fmt("%.4g", h_alt) + ")";
         continue;

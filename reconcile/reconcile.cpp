@@ -326,6 +326,65 @@ Result reconcile(const Experiment& e, const Options& opt) {
     }
   }
 
+  // Parsimony again once the model is complete: a complex term that entered because it also mimicked another
+  // effect's signature (the soft start bending like unmodelled hysteresis) is replaced by its simpler rival when,
+  // with the other effects in, it no longer beats it clearly (BIC > min_delta_bic and held-out) and no located
+  // signature that only it explains needs it.
+  for (std::size_t i = 0; i < cur.terms.size(); ++i) {
+    const EffectSpec& cx = *cur.terms[i].spec;
+    for (const auto& rv : effect_catalog(e.kind)) {
+      if (complexity(rv) >= complexity(cx) || !share_signature(sigs, located, rv, cx)) continue;
+      bool present = false;
+      for (const auto& t : cur.terms) present = present || t.spec->id() == rv.id();
+      if (present) continue;
+      std::vector<Term> swapped = cur.terms;
+      swapped[i] = Term{&rv, Vec(0), Vec(0)};
+      FitOptions o;
+      o.multistart_last = false;
+      const FitResult sw = fit_model(e, y, swapped, ar, o);
+      const double dbic = cur.bic() - sw.bic();
+      const double h_cx = heldout_rms(e, y, cur.terms, ar, train, false);
+      const double h_rv = heldout_rms(e, y, sw.terms, ar, train, false);
+      if (dbic < -opt.min_delta_bic && h_cx < h_rv) continue;  // the complex one is clearly better
+      bool needed = false;
+      for (int k = 0; k < m && !needed; ++k) {
+        const auto& t = sigs[k].triggers;
+        if (!located[k] || std::find(t.begin(), t.end(), cx.id()) == t.end() ||
+            std::find(t.begin(), t.end(), rv.id()) != t.end())
+          continue;
+        needed = test_signature(e, sigs[k], y, sw.terms, ar, cal, m).p_adj < opt.alpha_family;
+      }
+      if (needed) continue;
+      // The simpler one must stand on its own: significant against the model without it.
+      std::vector<Term> without = sw.terms;
+      without.erase(without.begin() + i);
+      const FitResult wo = fit_model(e, y, without, ar, o);
+      double p = 1.0;
+      if (rv.n_nonlinear() == 0) {
+        const FTest ft = calibrated_f_test(cal, whiten(ar, design_matrix(e, without)),
+                                           whiten(ar, Mat(rv.columns(e, Vec(0)))), whiten(ar, y));
+        p = std::min(1.0, ft.p_value * rv.multiplicity);
+      }
+      if (!(p <= opt.alpha_effect) || !(sw.bic() - wo.bic() < -opt.min_delta_bic)) continue;
+      const std::string cx_id = cx.id();
+      rejected[cx_id] = effect_label(cx) + ": with the other effects in, the simpler rival " + effect_label(rv) +
+                        " explains as much (BIC " + fmt("%.1f", dbic) + " vs it, held-out " + fmt("%.4g", h_rv) +
+                        " -> " + fmt("%.4g", h_cx) + ")";
+      accepted_info.erase(cx_id);
+      AcceptedEffect a;
+      a.name = rv.name;
+      a.physics = rv.physics;
+      a.delta_bic = sw.bic() - wo.bic();
+      a.p_value = p;
+      a.test = "F";
+      accepted_info[rv.id()] = a;
+      rejected.erase(rv.id());
+      progress("reconcile: replaced " + cx_id + " by its simpler rival " + rv.id());
+      cur = sw;
+      break;
+    }
+  }
+
   // Final fit with covariance, headlines with intervals.
   {
     FitOptions o;

@@ -12,6 +12,7 @@
 int main(int argc, char** argv) {
   CLI::App app{"strainwave: FEM, backlash, reconciliation and dynamics of strain wave gears"};
   app.require_subcommand(1);
+  app.fallthrough();  // --quiet may follow the subcommand too
   app.add_flag("--quiet", sw::quiet_progress(), "no progress lines on stderr");
   sw::app::add_fem_command(app);
   sw::app::add_run_command(app);

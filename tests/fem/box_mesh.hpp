@@ -4,6 +4,8 @@
 #include <map>
 #include <random>
 
+#include <Eigen/Geometry>
+
 #include "mesh/tet_mesh.hpp"
 
 namespace sw::test {

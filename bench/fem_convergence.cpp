@@ -49,6 +49,12 @@ int main(int argc, char** argv) {
       return 0;
     }
     const double p = std::log(d1 / d2) / std::log(1.0 / ratio);
+    if (!(p > 0.5)) {
+      std::printf("differences do not shrink (%.3e then %.3e, order %.2f): not in the asymptotic range, no "
+                  "extrapolation; the finest mesh differs from the coarsest by %.3f %%\n",
+                  d1, d2, p, 100 * (phi[n - 1] / phi[0] - 1));
+      return 0;
+    }
     const double extrapolated = phi[n - 1] + d2 / (std::pow(1.0 / ratio, p) - 1.0);
     std::printf("observed order p = %.2f, extrapolated phi0 = %.9e rad\n", p, extrapolated);
     for (std::size_t k = 0; k < n; ++k)

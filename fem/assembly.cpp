@@ -14,6 +14,13 @@ DofMap make_dof_map(const std::vector<bool>& fixed) {
   return d;
 }
 
+std::vector<std::int64_t> equation_nodes(const DofMap& dofs) {
+  std::vector<std::int64_t> node(dofs.n_equations);
+  for (std::size_t g = 0; g < dofs.equation.size(); ++g)
+    if (dofs.equation[g] >= 0) node[dofs.equation[g]] = static_cast<std::int64_t>(g / 3);
+  return node;
+}
+
 Eigen::Matrix<double, 10, 3> element_coordinates(const TetMesh& mesh, std::size_t e) {
   Eigen::Matrix<double, 10, 3> x;
   for (int a = 0; a < 10; ++a) x.row(a) = mesh.nodes.row(mesh.tets[e][a]);

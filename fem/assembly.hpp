@@ -18,6 +18,9 @@ struct DofMap {
   std::int64_t n_equations = 0;
 };
 
+/// Node of every equation (size n_equations): lets the solver order the node graph instead of the dof graph.
+std::vector<std::int64_t> equation_nodes(const DofMap& dofs);
+
 /// Numbers the free dofs. `fixed` has size 3·n_nodes (true = eliminated).
 DofMap make_dof_map(const std::vector<bool>& fixed);
 

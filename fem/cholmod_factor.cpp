@@ -3,7 +3,9 @@
 #include <cholmod.h>
 #include <dlfcn.h>
 
+#include <algorithm>
 #include <chrono>
+#include <vector>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -78,7 +80,57 @@ constexpr double kMinPivotRatio = 1e-13;
 
 }  // namespace
 
-CholmodFactor::CholmodFactor(const SymmetricCsc& K) : impl_(std::make_unique<Impl>()) {
+namespace {
+
+/// Fill-reducing permutation of K's equations from METIS on the graph of its blocks (nodes).
+std::vector<std::int64_t> block_ordering(const SymmetricCsc& K, const std::vector<std::int64_t>& block,
+                                         cholmod_common& c) {
+  // Renumber the blocks that have equations 0..nb-1 in order of first appearance (equations are block-contiguous).
+  std::vector<std::int64_t> compact(K.n), first_equation;
+  std::int64_t nb = 0;
+  for (std::int64_t j = 0; j < K.n; ++j) {
+    if (j == 0 || block[j] != block[j - 1]) first_equation.push_back(j), ++nb;
+    compact[j] = nb - 1;
+  }
+  first_equation.push_back(K.n);
+  // Upper pattern of the block graph, column by column, deduplicated with a marker.
+  std::vector<std::int64_t> colptr(nb + 1, 0), rows, mark(nb, -1);
+  for (std::int64_t b = 0; b < nb; ++b) {
+    for (std::int64_t j = first_equation[b]; j < first_equation[b + 1]; ++j)
+      for (std::int64_t k = K.column_start[j]; k < K.column_start[j + 1]; ++k) {
+        const std::int64_t a = compact[K.row[k]];
+        if (mark[a] != b) {
+          mark[a] = b;
+          rows.push_back(a);
+        }
+      }
+    std::sort(rows.begin() + colptr[b], rows.end());
+    colptr[b + 1] = static_cast<std::int64_t>(rows.size());
+  }
+  cholmod_sparse G{};
+  G.nrow = G.ncol = static_cast<size_t>(nb);
+  G.nzmax = rows.size();
+  G.p = colptr.data();
+  G.i = rows.data();
+  G.stype = 1;
+  G.itype = CHOLMOD_LONG;
+  G.xtype = CHOLMOD_PATTERN;
+  G.dtype = CHOLMOD_DOUBLE;
+  G.sorted = 1;
+  G.packed = 1;
+  std::vector<std::int64_t> block_perm(nb);
+  if (!cholmod_l_metis(&G, nullptr, 0, 1, block_perm.data(), &c)) return {};
+  std::vector<std::int64_t> perm;
+  perm.reserve(K.n);
+  for (std::int64_t b : block_perm)
+    for (std::int64_t j = first_equation[b]; j < first_equation[b + 1]; ++j) perm.push_back(j);
+  return perm;
+}
+
+}  // namespace
+
+CholmodFactor::CholmodFactor(const SymmetricCsc& K, const std::vector<std::int64_t>& block_of_equation)
+    : impl_(std::make_unique<Impl>()) {
   cholmod_common& c = impl_->common;
   cholmod_l_start(&c);
   c.supernodal = CHOLMOD_SUPERNODAL;
@@ -105,14 +157,21 @@ CholmodFactor::CholmodFactor(const SymmetricCsc& K) : impl_(std::make_unique<Imp
   A.packed = 1;
 
   auto t0 = std::chrono::steady_clock::now();
-  impl_->factor = cholmod_l_analyze(&A, &c);
+  std::vector<std::int64_t> perm;
+  if (!block_of_equation.empty()) perm = block_ordering(K, block_of_equation, c);
+  if (!perm.empty()) {
+    c.method[0].ordering = CHOLMOD_GIVEN;
+    impl_->factor = cholmod_l_analyze_p(&A, perm.data(), nullptr, 0, &c);
+  } else {
+    impl_->factor = cholmod_l_analyze(&A, &c);
+  }
   if (!impl_->factor || c.status < CHOLMOD_OK) throw InputError(status_sentence(c, K.n));
   impl_->stats.analyse_s = seconds_since(t0);
   impl_->stats.factor_gflop = c.fl * 1e-9;
   impl_->stats.factor_nnz = c.lnz;
   static const char* kOrderings[] = {"natural", "given", "AMD", "METIS", "NESDIS", "COLAMD", "postordered"};
   const int ord = impl_->factor->ordering;
-  impl_->stats.ordering = ord >= 0 && ord < 7 ? kOrderings[ord] : "other";
+  impl_->stats.ordering = !perm.empty() ? "METIS on the node graph" : ord >= 0 && ord < 7 ? kOrderings[ord] : "other";
 
   t0 = std::chrono::steady_clock::now();
   const int ok = cholmod_l_factorize(&A, impl_->factor, &c);

@@ -33,7 +33,12 @@ class CholmodFactor {
 public:
   /// Analyses and factorises K (upper triangle). Throws InputError with a sentence for CHOLMOD's failures; a matrix
   /// that is not positive definite means the supports leave rigid-body motion free.
-  explicit CholmodFactor(const SymmetricCsc& K);
+  ///
+  /// `block_of_equation` (optional, size n): the node each equation belongs to. When given, the fill-reducing
+  /// ordering is computed by METIS on the node graph (a third of the size, a ninth of the edges of the dof graph) and
+  /// expanded to the node's equations, which keeps each node's dofs together and makes the analysis several times
+  /// cheaper for the same fill.
+  explicit CholmodFactor(const SymmetricCsc& K, const std::vector<std::int64_t>& block_of_equation = {});
   ~CholmodFactor();
   CholmodFactor(const CholmodFactor&) = delete;
   CholmodFactor& operator=(const CholmodFactor&) = delete;

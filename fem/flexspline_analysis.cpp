@@ -229,7 +229,7 @@ FlexsplineSolution analyse_flexspline(const Case& c, const TetMesh& mesh) {
   const SymmetricCsc K = assemble_stiffness(mesh, c.material, dofs, frames);
   s.assemble_s = clock.lap();
   progress("factorise: nnz(K) = " + std::to_string(K.nnz()));
-  const CholmodFactor factor(K);
+  const CholmodFactor factor(K, equation_nodes(dofs));
   s.factor = factor.stats();
   progress("factorised: nnz(L) = " + std::to_string(static_cast<long long>(s.factor.factor_nnz)) + ", " +
            std::to_string(s.factor.factor_gflop) + " GF in " + std::to_string(s.factor.factor_s) + " s");

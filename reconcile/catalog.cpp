@@ -215,6 +215,106 @@ std::vector<EffectSpec> backlash_effects() {
   return v;
 }
 
+std::vector<EffectSpec> dynamics_effects() {
+  std::vector<EffectSpec> v;
+  {
+    EffectSpec s;
+    s.name = "mesh_stiffness_variation";
+    s.physics = "mesh stiffness that varies as teeth engage and disengage: k(t) = k0 (1 + r sin(2 pi f_m t + phi)), "
+                "a line at the mesh frequency f_m = z_f |n_f - n_w| / 60 in the meshing force";
+    s.n_linear = 2;
+    s.bounds = no_bounds;
+    s.columns = [](const Experiment& e, const Vec&) { return Mat(e.sensitivity.leftCols(2)); };
+    s.headline = [](const Experiment& e, const FitResult& f, int t) {
+      const Vec& b = f.terms[t].beta;
+      return NamedValues{{"amplitude_ratio", std::hypot(b[0], b[1])},
+                         {"frequency_Hz", e.model.mesh_frequency_Hz},
+                         {"phase_rad", std::atan2(b[1], b[0])}};
+    };
+    v.push_back(s);
+  }
+  {
+    EffectSpec s;
+    s.name = "damping";
+    s.physics = "contact damping other than the model's: the meshing-force fluctuations after the run-up and load "
+                "steps decay at another rate";
+    s.bounds = no_bounds;
+    s.columns = [](const Experiment& e, const Vec&) { return Mat(e.sensitivity.col(2)); };
+    s.headline = [](const Experiment& e, const FitResult& f, int t) {
+      return NamedValues{{"coefficient_Ns_per_m", e.model.damping_Ns_per_m + f.terms[t].beta[0]},
+                         {"added_Ns_per_m", f.terms[t].beta[0]}};
+    };
+    v.push_back(s);
+  }
+  {
+    EffectSpec s;
+    s.name = "drag_torque";
+    s.physics = "friction drag in bearings and teeth (Coulomb + viscous) on the output: the mesh carries more torque "
+                "than the load, by an amount that grows with speed";
+    s.n_linear = 2;
+    s.bounds = no_bounds;
+    s.columns = [](const Experiment& e, const Vec&) { return Mat(e.sensitivity.rightCols(2)); };
+    s.headline = [](const Experiment& e, const FitResult& f, int t) {
+      const Vec& b = f.terms[t].beta;
+      return NamedValues{{"coulomb_Nm", b[0]},
+                         {"viscous_Nms_per_rad", b[1]},
+                         {"torque_at_speed_Nm", b[0] + b[1] * e.model.output_speed_rad_s}};
+    };
+    v.push_back(s);
+  }
+  for (auto& s : v) s.kind = Kind::Dynamics;
+  return v;
+}
+
+std::vector<SignatureSpec> dynamics_signatures() {
+  std::vector<SignatureSpec> v;
+  auto time = [](const Experiment& e) { return e.time; };
+  {
+    SignatureSpec s;
+    s.name = "mesh_frequency_lines";
+    s.domain = "frequency";
+    s.what = "a line at the mesh frequency f_m and its second harmonic in the meshing-force spectrum";
+    s.basis = [](const Experiment& e) {
+      Mat m(e.n, 4);
+      for (int k = 1; k <= 2; ++k) {
+        m.col(2 * k - 2) = (k * e.mesh_phase_rad.array()).cos();
+        m.col(2 * k - 1) = (k * e.mesh_phase_rad.array()).sin();
+      }
+      return m;
+    };
+    s.condition = none;
+    s.triggers = {"mesh_stiffness_variation"};
+    s.where = time;
+    s.where_unit = "s";
+    v.push_back(s);
+  }
+  {
+    SignatureSpec s;
+    s.name = "fluctuation_decay";
+    s.domain = "time";
+    s.what = "the meshing-force fluctuations after the run-up and load steps decay at another rate or amplitude";
+    s.basis = [](const Experiment& e) { return Mat(e.sensitivity.col(2)); };
+    s.condition = none;
+    s.triggers = {"damping"};
+    s.where = time;
+    s.where_unit = "s";
+    v.push_back(s);
+  }
+  {
+    SignatureSpec s;
+    s.name = "speed_dependent_offset";
+    s.domain = "time (speed)";
+    s.what = "a meshing-force offset that grows with speed (the mesh carries a drag torque besides the load)";
+    s.basis = [](const Experiment& e) { return Mat(e.sensitivity.rightCols(2)); };
+    s.condition = none;
+    s.triggers = {"drag_torque"};
+    s.where = time;
+    s.where_unit = "s";
+    v.push_back(s);
+  }
+  return v;
+}
+
 std::vector<SignatureSpec> torsion_signatures() {
   std::vector<SignatureSpec> v;
   auto torque = [](const Experiment& e) { return e.torque_Nm; };
@@ -366,11 +466,13 @@ const std::vector<EffectSpec>& effect_catalog(Kind kind) {
   static const std::vector<EffectSpec> torsion = torsion_effects();
   static const std::vector<EffectSpec> transmission = transmission_effects();
   static const std::vector<EffectSpec> backlash = backlash_effects();
+  static const std::vector<EffectSpec> dynamics = dynamics_effects();
   static const std::vector<EffectSpec> empty;
   switch (kind) {
     case Kind::Torsion: return torsion;
     case Kind::Transmission: return transmission;
     case Kind::Backlash: return backlash;
+    case Kind::Dynamics: return dynamics;
     default: return empty;
   }
 }
@@ -379,11 +481,13 @@ const std::vector<SignatureSpec>& signature_catalog(Kind kind) {
   static const std::vector<SignatureSpec> torsion = torsion_signatures();
   static const std::vector<SignatureSpec> transmission = transmission_signatures();
   static const std::vector<SignatureSpec> backlash = backlash_signatures();
+  static const std::vector<SignatureSpec> dynamics = dynamics_signatures();
   static const std::vector<SignatureSpec> empty;
   switch (kind) {
     case Kind::Torsion: return torsion;
     case Kind::Transmission: return transmission;
     case Kind::Backlash: return backlash;
+    case Kind::Dynamics: return dynamics;
     default: return empty;
   }
 }

@@ -49,6 +49,23 @@ namespace {
 Eigen::VectorXd to_vec(const std::vector<double>& v) { return Eigen::Map<const Eigen::VectorXd>(v.data(), v.size()); }
 }  // namespace
 
+Eigen::VectorXd resample(const std::vector<double>& t, const std::vector<double>& y, const Eigen::VectorXd& at) {
+  Eigen::VectorXd out(at.size());
+  const std::size_t m = t.size();
+  if (m == 0) return Eigen::VectorXd::Zero(at.size());
+  std::size_t j = 0;
+  for (Eigen::Index i = 0; i < at.size(); ++i) {
+    const double x = at[i];
+    while (j + 2 < m && t[j + 1] < x) ++j;
+    if (m == 1 || x <= t[0]) { out[i] = y[0]; continue; }
+    if (x >= t[m - 1]) { out[i] = y[m - 1]; continue; }
+    while (j + 1 < m && t[j + 1] < x) ++j;
+    const double w = (x - t[j]) / std::max(t[j + 1] - t[j], 1e-300);
+    out[i] = (1.0 - w) * y[j] + w * y[j + 1];
+  }
+  return out;
+}
+
 Experiment make_experiment(const Recording& rec, const Baseline& base) {
   Experiment e;
   e.kind = rec.kind;
@@ -115,9 +132,59 @@ Experiment make_experiment(const Recording& rec, const Baseline& base) {
       e.response_unit = "um";
       break;
     }
-    case Kind::Dynamics:
-      throw InputError(rec.path + ": kind = dynamics; reconcile does not analyse dynamics recordings yet "
-                       "(supported: torsion, transmission, backlash)");
+    case Kind::Dynamics: {
+      if (!base.dynamics_run)
+        throw InputError(rec.path + ": kind = dynamics; the dynamics baseline (the case's [dynamics] model) is not "
+                         "available");
+      if (!e.has_time)
+        throw InputError(rec.path + ": time_s missing; a dynamics recording needs time_s as its first column");
+      e.measured = to_vec(*rec.column("mesh_force_N"));
+      e.response_name = "mesh_force_N";
+      e.response_unit = "N";
+      const DynamicsRun b0 = base.dynamics_run(DynamicsVariation{});
+      if (b0.time_s.size() < 2 || e.time.maxCoeff() > b0.time_s.back() * (1.0 + 1e-9) + 1e-12)
+        throw InputError(rec.path + ": time_s reaches " + std::to_string(e.time.maxCoeff()) +
+                         " s; the case's dynamics run covers only " +
+                         std::to_string(b0.time_s.empty() ? 0.0 : b0.time_s.back()) +
+                         " s (raise dynamics.duration_s)");
+      e.baseline = resample(b0.time_s, b0.mesh_force_N, e.time);
+      e.mesh_phase_rad = resample(b0.time_s, b0.mesh_phase_rad, e.time);
+      // Wave-generator angle of the baseline (for plots in wave-generator orders).
+      std::vector<double> wg_angle(b0.time_s.size(), 0.0);
+      for (std::size_t i = 1; i < wg_angle.size(); ++i)
+        wg_angle[i] = wg_angle[i - 1] + 0.5 * (b0.wg_speed_rpm[i] + b0.wg_speed_rpm[i - 1]) * (M_PI / 30.0) *
+                                            (b0.time_s[i] - b0.time_s[i - 1]);
+      e.wg_angle_rad = resample(b0.time_s, wg_angle, e.time);
+      // Sensitivity basis from a few perturbed runs (the dynamics run is ~0.1 s).
+      auto force = [&](const DynamicsVariation& v) { return resample(b0.time_s, base.dynamics_run(v).mesh_force_N, e.time); };
+      e.sensitivity.resize(e.n, 5);
+      const double dk = 0.1;
+      DynamicsVariation v;
+      v.stiffness_ratio = dk;
+      e.sensitivity.col(0) = (force(v) - e.baseline) / dk;
+      v.stiffness_phase_rad = 0.5 * M_PI;
+      e.sensitivity.col(1) = (force(v) - e.baseline) / dk;
+      const double c0 = base.damping_Ns_per_m;
+      if (c0 > 0.0) {
+        DynamicsVariation lo, hi;
+        lo.damping_Ns_per_m = 0.5 * c0;
+        hi.damping_Ns_per_m = 1.5 * c0;
+        e.sensitivity.col(2) = (force(hi) - force(lo)) / c0;
+      } else {
+        DynamicsVariation hi;
+        hi.damping_Ns_per_m = 1e3;
+        e.sensitivity.col(2) = (force(hi) - e.baseline) / 1e3;
+      }
+      const double tc = std::max(0.05 * base.load_torque_Nm, 0.1);
+      DynamicsVariation dc;
+      dc.drag_coulomb_Nm = tc;
+      e.sensitivity.col(3) = (force(dc) - e.baseline) / tc;
+      const double bv = tc / std::max(base.output_speed_rad_s, 1e-6);
+      DynamicsVariation dv;
+      dv.drag_viscous_Nms_per_rad = bv;
+      e.sensitivity.col(4) = (force(dv) - e.baseline) / bv;
+      break;
+    }
   }
   return e;
 }

@@ -4,12 +4,27 @@
 // angles). Everything is SI except backlash responses, which stay in micrometres as recorded.
 #include <functional>
 #include <string>
+#include <vector>
 
 #include <Eigen/Dense>
 
 #include "reconcile/recording.hpp"
 
 namespace sw::reconcile {
+
+/// A change of the dynamics model that one catalog effect stands for (SI). All zero / negative: the baseline model.
+struct DynamicsVariation {
+  double stiffness_ratio = 0.0;        ///< mesh_stiffness_variation: Δk/k0 of k(t) = k0 + Δk·sin(ψ_mesh + phase)
+  double stiffness_phase_rad = 0.0;
+  double damping_Ns_per_m = -1.0;      ///< damping: contact damping coefficient (< 0: the model's own)
+  double drag_coulomb_Nm = 0.0;        ///< drag_torque: output drag added to the model's
+  double drag_viscous_Nms_per_rad = 0.0;
+};
+
+/// One run of the dynamics model on its own output grid (the recording columns plus the mesh phase ψ_mesh(t)).
+struct DynamicsRun {
+  std::vector<double> time_s, wg_speed_rpm, output_speed_rpm, mesh_force_N, mesh_phase_rad;
+};
 
 /// What the current simulation predicts, per kind. Only the fields of the recording's kind are used.
 struct Baseline {
@@ -19,6 +34,15 @@ struct Baseline {
   double pitch_radius_m = 0.0;         ///< backlash: flexspline pitch radius (load_torsion converts phi0 to um)
   /// backlash: the basic kinematic model, backlash in um at a wave-generator angle in rad (phi0 = 0).
   std::function<double(double wg_angle_rad)> backlash_um;
+  /// dynamics: runs the dynamics model of the recording's conditions (constant mesh stiffness) with a variation;
+  /// supplied by the app (reconcile does not link the dynamics module).
+  std::function<DynamicsRun(const DynamicsVariation&)> dynamics_run;
+  double damping_Ns_per_m = 0.0;       ///< dynamics: the model's contact damping c0
+  double mesh_frequency_Hz = 0.0;      ///< dynamics: f_m = z_f·|n_f − n_w|/60 at full speed
+  double steady_from_s = 0.0;          ///< dynamics: start of the steady window
+  double drive_ramp_end_s = 0.0;       ///< dynamics: end of the speed ramp
+  double load_torque_Nm = 0.0;         ///< dynamics: full load (sets the drag perturbation)
+  double output_speed_rad_s = 0.0;     ///< dynamics: steady output speed magnitude
 };
 
 struct Experiment {
@@ -34,6 +58,10 @@ struct Experiment {
   Eigen::VectorXd direction;         ///< torsion: +1 while torque rises, -1 while it falls
   Eigen::VectorXd since_reversal_Nm; ///< torsion: |T - T at the last reversal|
   double torque_amplitude_Nm = 0.0;  ///< torsion: median |T| at reversals (or max |T|)
+  Eigen::VectorXd mesh_phase_rad;    ///< dynamics: ψ_mesh(t) of the baseline run (2π per tooth passing)
+  /// dynamics: sensitivity columns of the response (mesh_force_N) from perturbed runs, per unit parameter:
+  /// 0,1: Δk/k0 at phase 0 and π/2; 2: damping (per N·s/m); 3: Coulomb drag (per N·m); 4: viscous drag (per N·m·s/rad)
+  Eigen::MatrixXd sensitivity;
   Baseline model;                    ///< the baseline parameters used
   std::string response_name;         ///< column name of the response
   std::string response_unit;         ///< "rad" or "um"
@@ -43,6 +71,9 @@ struct Experiment {
 /// Builds the experiment from a recording and the baseline. Throws InputError when the baseline lacks what the
 /// kind needs (e.g. C_tau <= 0 for torsion) or the recording is too short (< kMinSamples rows) or degenerate.
 Experiment make_experiment(const Recording& recording, const Baseline& baseline);
+
+/// Linear interpolation of y(t) (t ascending) at `at`; constant beyond the ends.
+Eigen::VectorXd resample(const std::vector<double>& t, const std::vector<double>& y, const Eigen::VectorXd& at);
 
 /// The fewest rows reconcile analyses (AR order 8 estimation, a held-out block and the signature tests need them).
 inline constexpr int kMinSamples = 100;

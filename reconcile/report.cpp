@@ -247,6 +247,7 @@ std::string report_html(const Experiment& e, const Recording& rec, const Result&
   std::string xl;
   if (e.kind == Kind::Torsion) { x = e.torque_Nm; xl = "torque (N*m)"; }
   else if (e.kind == Kind::Transmission) { x = e.wg_angle_rad * (180.0 / M_PI); xl = "wave-generator angle (deg)"; }
+  else if (e.kind == Kind::Dynamics) { x = e.time; xl = "time (s)"; }
   else { x = e.wg_angle_rad * (180.0 / M_PI); xl = "wave-generator angle (deg)"; }
   std::vector<std::pair<double, double>> shade;
   for (const auto& l : r.locations)
@@ -270,7 +271,7 @@ std::string report_html(const Experiment& e, const Recording& rec, const Result&
   h += "<br>" + svg_plot("residual over the recording (time order)", e.has_time ? "time (s)" : "row", e.response_name,
                          {{"before", "#36c", stdv(e.time), stdv(r.residual_before)},
                           {"after", "#c33", stdv(e.time), stdv(r.residual_after)}});
-  if (e.kind != Kind::Torsion) {
+  if (e.kind != Kind::Torsion && e.kind != Kind::Dynamics) {
     const Spectrum a = order_spectrum(e.wg_angle_rad, r.residual_before, 6.0);
     const Spectrum b = order_spectrum(e.wg_angle_rad, r.residual_after, 6.0);
     h += "<br>" + svg_plot("residual spectrum in wave-generator orders", "order (per wave-generator revolution)",

@@ -118,6 +118,49 @@ Shape shape_of(const SynthEffect& fx, const Experiment& e) {
                    " (see strainwave synth --help)");
 }
 
+/// A dynamics effect as a model variation with amplitude `scale` times its headline parameters.
+struct DynamicsEffect {
+  DynamicsVariation variation;
+  std::function<DynamicsVariation(double scale)> scaled;
+  std::function<nlohmann::json(double scale)> headline;
+};
+
+DynamicsEffect dynamics_effect(const SynthEffect& fx, const Baseline& b) {
+  DynamicsEffect d;
+  if (fx.name == "mesh_stiffness_variation") {
+    check_keys(fx, {"amplitude_ratio", "phase_rad"});
+    const double r = get(fx, "amplitude_ratio", 0.05), ph = get(fx, "phase_rad", 0.3);
+    const double fm = b.mesh_frequency_Hz;
+    d.scaled = [r, ph](double k) { DynamicsVariation v; v.stiffness_ratio = k * r; v.stiffness_phase_rad = ph; return v; };
+    d.headline = [r, ph, fm](double k) {
+      return nlohmann::json{{"amplitude_ratio", k * r}, {"frequency_Hz", fm}, {"phase_rad", ph}};
+    };
+  } else if (fx.name == "damping") {
+    check_keys(fx, {"coefficient_Ns_per_m"});
+    const double c0 = b.damping_Ns_per_m;
+    const double c = get(fx, "coefficient_Ns_per_m", c0 > 0 ? 2.0 * c0 : 1e3);
+    d.scaled = [c, c0](double k) { DynamicsVariation v; v.damping_Ns_per_m = std::max(0.0, c0 + k * (c - c0)); return v; };
+    d.headline = [c, c0](double k) {
+      return nlohmann::json{{"coefficient_Ns_per_m", std::max(0.0, c0 + k * (c - c0))}, {"added_Ns_per_m", k * (c - c0)}};
+    };
+  } else if (fx.name == "drag_torque") {
+    check_keys(fx, {"coulomb_Nm", "viscous_Nms_per_rad"});
+    const double tc = get(fx, "coulomb_Nm", std::max(0.02 * b.load_torque_Nm, 0.1));
+    const double bv = get(fx, "viscous_Nms_per_rad", tc / std::max(b.output_speed_rad_s, 1e-6));
+    const double w = b.output_speed_rad_s;
+    d.scaled = [tc, bv](double k) {
+      DynamicsVariation v; v.drag_coulomb_Nm = k * tc; v.drag_viscous_Nms_per_rad = k * bv; return v;
+    };
+    d.headline = [tc, bv, w](double k) {
+      return nlohmann::json{{"coulomb_Nm", k * tc}, {"viscous_Nms_per_rad", k * bv}, {"torque_at_speed_Nm", k * (tc + bv * w)}};
+    };
+  } else {
+    throw InputError("synth effect = '" + fx.name + "'; not an effect of kind dynamics (see strainwave synth --help)");
+  }
+  d.variation = d.scaled(1.0);
+  return d;
+}
+
 }  // namespace
 
 SynthEffect parse_synth_effect(const std::string& text) {
@@ -155,8 +198,88 @@ std::string synth_effect_help() {
          "  backlash:     load_torsion:compliance_rad_per_Nm (2e-5)\n"
          "                wg_harmonic:order=k,amplitude_um (1),phase_rad (0.3)\n"
          "                uniform_clearance:offset_um (1)\n"
+         "  dynamics:     mesh_stiffness_variation:amplitude_ratio (0.05),phase_rad (0.3)   [frequency_Hz = f_m]\n"
+         "                damping:coefficient_Ns_per_m (2 c0)\n"
+         "                drag_torque:coulomb_Nm (0.02 load),viscous_Nms_per_rad (same torque at speed)\n"
          "With --concealment R each effect's amplitude is rescaled so that its RMS is R times the noise RMS.";
 }
+
+namespace {
+
+/// Dynamics: the recording is a run of the dynamics model with the hidden effects (all at once), on the model's own
+/// time grid, plus noise on the meshing force (white, AR(1), quantum) and white noise of speed_sd_rpm on both speeds.
+SynthResult synthesize_dynamics(const SynthOptions& o, Recording rec) {
+  const Baseline& b = o.baseline;
+  if (!b.dynamics_run) throw InputError("synth: kind = dynamics needs the case's dynamics model (--case)");
+  SynthResult out;
+  out.noise_rms = std::sqrt(o.white_sd * o.white_sd + o.ar1_sd * o.ar1_sd + o.quantum * o.quantum / 12.0);
+  const DynamicsRun base = b.dynamics_run(DynamicsVariation{});
+  const Vec f0 = Eigen::Map<const Vec>(base.mesh_force_N.data(), base.mesh_force_N.size());
+  auto force = [&](const DynamicsVariation& v) {
+    const DynamicsRun r = b.dynamics_run(v);
+    return std::make_pair(r, Vec(Eigen::Map<const Vec>(r.mesh_force_N.data(), r.mesh_force_N.size())));
+  };
+  DynamicsVariation all;
+  nlohmann::json effects = nlohmann::json::array();
+  for (const auto& fx : o.effects) {
+    DynamicsEffect d = dynamics_effect(fx, b);
+    double k = 1.0;
+    Vec diff = force(d.variation).second - f0;
+    if (o.concealment > 0.0) {
+      // Rescale so the effect's RMS on the meshing force is concealment x noise RMS (two secant steps).
+      for (int it = 0; it < 2; ++it) {
+        const double r = rms(diff);
+        if (!(r > 0.0)) throw InputError("synth effect " + fx.name + " has no effect on this run");
+        k *= o.concealment * out.noise_rms / r;
+        diff = force(d.scaled(k)).second - f0;
+      }
+    }
+    const DynamicsVariation v = d.scaled(k);
+    if (fx.name == "mesh_stiffness_variation") { all.stiffness_ratio = v.stiffness_ratio; all.stiffness_phase_rad = v.stiffness_phase_rad; }
+    if (fx.name == "damping") all.damping_Ns_per_m = v.damping_Ns_per_m;
+    if (fx.name == "drag_torque") { all.drag_coulomb_Nm = v.drag_coulomb_Nm; all.drag_viscous_Nms_per_rad = v.drag_viscous_Nms_per_rad; }
+    out.effect_rms.push_back({fx.name, rms(diff)});
+    effects.push_back({{"name", fx.name}, {"params", d.headline(k)}, {"rms", rms(diff)}});
+  }
+  const DynamicsRun run = o.effects.empty() ? base : force(all).first;
+  const int n = static_cast<int>(run.time_s.size());
+  rec.columns = {"time_s", "wg_speed_rpm", "output_speed_rpm", "mesh_force_N"};
+  rec.values = {run.time_s, run.wg_speed_rpm, run.output_speed_rpm, run.mesh_force_N};
+  rec.lines.resize(n);
+  for (int i = 0; i < n; ++i) rec.lines[i] = i + 1;
+  rec.metadata.push_back({"mesh_frequency_Hz", std::to_string(b.mesh_frequency_Hz)});
+  rec.metadata.push_back({"load_torque_Nm", std::to_string(b.load_torque_Nm)});
+  std::mt19937_64 rng(o.seed);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  const double innov = o.ar1_sd * std::sqrt(1.0 - o.ar1_phi * o.ar1_phi);
+  double ar = o.ar1_sd * normal(rng);
+  for (int i = 0; i < n; ++i) {
+    if (i > 0) ar = o.ar1_phi * ar + innov * normal(rng);
+    double v = (1.0 + o.gain_error) * rec.values[3][i] + o.white_sd * normal(rng) + ar;
+    if (o.quantum > 0.0) v = std::round(v / o.quantum) * o.quantum;
+    rec.values[3][i] = v;
+    rec.values[1][i] += o.speed_sd_rpm * normal(rng);
+    rec.values[2][i] += o.speed_sd_rpm * normal(rng);
+  }
+  nlohmann::json truth = {
+      {"kind", kind_name(o.kind)},
+      {"seed", o.seed},
+      {"samples", n},
+      {"effects", effects},
+      {"noise",
+       {{"white_sd", o.white_sd}, {"ar1_sd", o.ar1_sd}, {"ar1_phi", o.ar1_phi}, {"quantum", o.quantum},
+        {"speed_sd_rpm", o.speed_sd_rpm}, {"rms", out.noise_rms}}},
+      {"gain_error", o.gain_error},
+      {"concealment", o.concealment},
+      {"baseline",
+       {{"damping_Ns_per_m", b.damping_Ns_per_m}, {"mesh_frequency_Hz", b.mesh_frequency_Hz},
+        {"load_torque_Nm", b.load_torque_Nm}, {"output_speed_rad_s", b.output_speed_rad_s}}}};
+  out.truth_json = truth.dump(2) + "\n";
+  out.recording = std::move(rec);
+  return out;
+}
+
+}  // namespace
 
 SynthResult synthesize(const SynthOptions& o) {
   if (o.samples < kMinSamples)
@@ -202,8 +325,10 @@ SynthResult synthesize(const SynthOptions& o) {
       cols[0][i] = 360.0 * (i % per) / per;
       cols[1][i] = levels == 1 ? A : A * level / (levels - 1.0);
     }
+  } else if (o.kind == Kind::Dynamics) {
+    return synthesize_dynamics(o, std::move(rec));
   } else {
-    throw InputError("synth: kind = " + kind_name(o.kind) + "; synth writes torsion, transmission, backlash");
+    throw InputError("synth: kind = " + kind_name(o.kind) + "; synth writes torsion, transmission, backlash, dynamics");
   }
   rec.values = cols;
   rec.lines.resize(n);

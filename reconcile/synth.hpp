@@ -33,6 +33,7 @@ struct SynthOptions {
   double ar1_sd = 0.0;                     ///< AR(1) component: process sd (response units)
   double ar1_phi = 0.8;                    ///< AR(1) coefficient, |phi| < 1
   double quantum = 0.0;                    ///< encoder/sensor resolution (response units); 0: none
+  double speed_sd_rpm = 0.0;               ///< dynamics: white noise on both speed columns, rpm
   double gain_error = 0.0;                 ///< measured response = (1 + gain_error) * true response
   std::uint64_t seed = 1;
 };

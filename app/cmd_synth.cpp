@@ -34,7 +34,8 @@ void run_synth(SynthArgs a) {
   if (a.kind == "torsion") kind = Kind::Torsion;
   else if (a.kind == "transmission") kind = Kind::Transmission;
   else if (a.kind == "backlash") kind = Kind::Backlash;
-  else throw InputError("--kind = '" + a.kind + "'; expected torsion, transmission or backlash");
+  else if (a.kind == "dynamics") kind = Kind::Dynamics;
+  else throw InputError("--kind = '" + a.kind + "'; expected torsion, transmission, backlash or dynamics");
   BaselineSources src;
   if (!a.case_path.empty()) src.case_file = load_case(a.case_path);
   src.fem_result = a.fem;
@@ -51,8 +52,9 @@ void run_synth(SynthArgs a) {
   a.o.kind = kind;
   a.o.baseline = make_baseline(kind, src, notes);
   // Per-kind noise defaults (response units): an encoder-like resolution and a mix of white and AR(1) noise.
-  const double def_white = kind == Kind::Backlash ? 0.2 : kind == Kind::Torsion ? 1e-6 : 2e-6;
-  const double def_q = kind == Kind::Backlash ? 0.1 : kind == Kind::Torsion ? 5e-7 : 1e-6;
+  const double def_white = kind == Kind::Dynamics ? 5.0 : kind == Kind::Backlash ? 0.2 : kind == Kind::Torsion ? 1e-6 : 2e-6;
+  const double def_q = kind == Kind::Dynamics ? 1.0 : kind == Kind::Backlash ? 0.1 : kind == Kind::Torsion ? 5e-7 : 1e-6;
+  if (kind == Kind::Dynamics) a.o.speed_sd_rpm = 0.05;
   a.o.white_sd = a.white >= 0 ? a.white : def_white;
   a.o.ar1_sd = a.ar1 >= 0 ? a.ar1 : def_white;
   a.o.quantum = a.quantum >= 0 ? a.quantum : def_q;
@@ -67,7 +69,7 @@ void run_synth(SynthArgs a) {
   rec.metadata.push_back({"truth", truth.filename().string()});
   write_file_atomic(truth, r.truth_json);
   write_file_atomic(path, reconcile::format_recording(rec));
-  std::printf("synth %s: %d samples, noise RMS %.3g", a.kind.c_str(), a.o.samples, r.noise_rms);
+  std::printf("synth %s: %zu samples, noise RMS %.3g", a.kind.c_str(), r.recording.rows(), r.noise_rms);
   for (const auto& [name, rms] : r.effect_rms) std::printf(", %s RMS %.3g", name.c_str(), rms);
   std::printf("\n  wrote %s and %s\n", path.string().c_str(), truth.string().c_str());
 }
@@ -81,8 +83,10 @@ void add_synth_command(CLI::App& app) {
   cmd->footer(reconcile::synth_effect_help() +
               "\nNoise defaults (response units): torsion white 1e-6 rad, AR(1) 1e-6 rad, quantum 5e-7 rad;\n"
               "transmission 2e-6 / 2e-6 / 1e-6 rad; backlash 0.2 / 0.2 / 0.1 um. Torsion without --fem/--compliance\n"
-              "uses C_tau = 5e-5 rad/(N*m); transmission without a case uses z_f = 190, z_c = 192; backlash needs --case.");
-  cmd->add_option("--kind", a->kind, "torsion | transmission | backlash")->capture_default_str();
+              "uses C_tau = 5e-5 rad/(N*m); transmission without a case uses z_f = 190, z_c = 192; backlash needs --case.\n"
+              "dynamics (needs --case with [gear] and [dynamics]): the case's run with the hidden effects on its own time\n"
+              "grid; noise on mesh_force_N white 5 N, AR(1) 5 N, quantum 1 N; speeds white 0.05 rpm.");
+  cmd->add_option("--kind", a->kind, "torsion | transmission | backlash | dynamics")->capture_default_str();
   cmd->add_option("--out", a->out, "recording path (default out/synth_<kind>.csv); truth beside it");
   cmd->add_option("--case", a->case_path, "case file for the baseline (gear, flexspline)")->check(CLI::ExistingFile);
   cmd->add_option("--fem", a->fem, "FEM result.json (torsion C_tau)");

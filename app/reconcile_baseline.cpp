@@ -2,10 +2,13 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 
 #include <nlohmann/json.hpp>
 
 #include "common/error.hpp"
+#include "dynamics/model.hpp"
+#include "dynamics/simulate.hpp"
 #include "kinematics/backlash.hpp"
 #include "kinematics/neutral_curve.hpp"
 
@@ -43,7 +46,76 @@ double radial_deformation(const Case& c) {
   return c.gear->module_m * (c.gear->teeth_circular - c.gear->teeth_flexspline) / 2.0;
 }
 
+template <class C>
+DynamicsParams dynamics_params_of(const C& c) {
+  if constexpr (requires { c.dynamics.has_value(); }) {
+    return c.dynamics ? *c.dynamics : DynamicsParams{};
+  } else if constexpr (requires { DynamicsParams{c.dynamics}; }) {
+    return c.dynamics;
+  } else {
+    return DynamicsParams{};
+  }
+}
+
+/// Tooth pairs as `strainwave dynamics` builds them by default (kinematics clearances, interference as preload).
+std::vector<ToothPair> pairs_from_kinematics(const Case& c) {
+  const double rm = rim_mean_radius(c.flexspline);
+  const NeutralCurve curve = c.wave_generator ? generator_neutral_curve(rm, radial_deformation(c), *c.wave_generator)
+                                              : cam_neutral_curve(rm, radial_deformation(c));
+  const BacklashModel model = make_backlash_model(*c.gear, curve);
+  std::vector<ToothPair> pairs;
+  constexpr double kNever = std::numeric_limits<double>::infinity();
+  for (const PairClearance& pc : pair_clearances(model, 0.0, 0.0, true)) {
+    ToothPair t;
+    t.angle_rad = pc.phi_rad;
+    t.normal_projection = 1.0;
+    t.lever_arm_m = std::abs(pc.ccw.lever_arm_m);
+    t.clearance_drive_m = pc.ccw.lever_arm_m > 0 ? pc.ccw.clearance_m : kNever;
+    t.coast_arm_m = std::abs(pc.cw.lever_arm_m);
+    t.clearance_coast_m = pc.cw.lever_arm_m < 0 ? pc.cw.clearance_m : kNever;
+    if (t.lever_arm_m > 0 && t.coast_arm_m > 0) pairs.push_back(t);
+  }
+  return pairs;
+}
+
 }  // namespace
+
+reconcile::Baseline dynamics_baseline(const DynamicsModel& model) {
+  reconcile::Baseline b;
+  b.teeth_flexspline = model.teeth_flexspline;
+  b.teeth_circular = model.teeth_circular;
+  const SteadyState ss = steady_state(model);
+  b.damping_Ns_per_m = model.params.damping_Ns_per_m;
+  b.mesh_frequency_Hz = ss.mesh_frequency_Hz;
+  b.steady_from_s = model.params.steady_from_s;
+  b.drive_ramp_end_s = model.params.drive_ramp_end_s;
+  b.load_torque_Nm = model.params.load_torque_Nm;
+  b.output_speed_rad_s = std::abs(ss.speed_rad_s[static_cast<int>(ss.output)]);
+  b.dynamics_run = [model, ss](const reconcile::DynamicsVariation& v) {
+    DynamicsModel m = model;
+    m.params.stiffness_variation_N_per_m = v.stiffness_ratio * m.params.stiffness_N_per_m;
+    m.params.stiffness_phase_deg = v.stiffness_phase_rad * 180.0 / M_PI;
+    if (v.damping_Ns_per_m >= 0.0) m.params.damping_Ns_per_m = v.damping_Ns_per_m;
+    m.params.output_drag_coulomb_Nm += v.drag_coulomb_Nm;
+    m.params.output_drag_viscous_Nms_per_rad += v.drag_viscous_Nms_per_rad;
+    const DynamicsSeries s = simulate(m);
+    reconcile::DynamicsRun r;
+    r.time_s = s.time_s;
+    const int wg = static_cast<int>(BodyId::WaveGenerator), out = static_cast<int>(ss.output);
+    const int drv = static_cast<int>(ss.driven);
+    const double rpm = 30.0 / M_PI;
+    const double w_drive = std::abs(ss.speed_rad_s[drv]);
+    const double rate = w_drive > 0 ? 2.0 * M_PI * ss.mesh_frequency_Hz / w_drive : 0.0;
+    for (std::size_t i = 0; i < s.time_s.size(); ++i) {
+      r.wg_speed_rpm.push_back(s.speed_rad_s[wg][i] * rpm);
+      r.output_speed_rpm.push_back(s.speed_rad_s[out][i] * rpm);
+      r.mesh_force_N.push_back(s.total_force_N[i]);
+      r.mesh_phase_rad.push_back(rate * std::abs(s.angle_rad[drv][i]) + m.params.stiffness_phase_deg * 0.0);
+    }
+    return r;
+  };
+  return b;
+}
 
 reconcile::Baseline make_baseline(Kind kind, const BaselineSources& src, std::vector<std::string>& notes) {
   reconcile::Baseline b;
@@ -96,8 +168,31 @@ reconcile::Baseline make_baseline(Kind kind, const BaselineSources& src, std::ve
       notes.push_back("backlash baseline: basic kinematic model (phi0 = 0) of " + c->path);
       break;
     }
-    case Kind::Dynamics:
-      throw InputError("kind = dynamics; reconcile does not analyse dynamics recordings yet");
+    case Kind::Dynamics: {
+      if (!c || !c->gear)
+        throw InputError((c ? c->path : std::string("case")) +
+                         ": [gear] missing; the dynamics baseline needs the case's gear and [dynamics] table");
+      const DynamicsParams p = dynamics_params_of(*c);
+      if (p.stiffness_variation_N_per_m != 0.0)
+        notes.push_back("the case has dynamics.stiffness_variation_N_per_m = " +
+                        std::to_string(p.stiffness_variation_N_per_m) + "; the baseline uses constant mesh stiffness");
+      DynamicsParams q = p;
+      q.stiffness_variation_N_per_m = 0.0;
+      const DynamicsModel m = make_model(*c->gear, c->flexspline, c->flexspline.shape == FlexsplineShape::Cup,
+                                         c->material, q, pairs_from_kinematics(*c), c->path);
+      reconcile::Baseline d = dynamics_baseline(m);
+      b.dynamics_run = d.dynamics_run;
+      b.damping_Ns_per_m = d.damping_Ns_per_m;
+      b.mesh_frequency_Hz = d.mesh_frequency_Hz;
+      b.steady_from_s = d.steady_from_s;
+      b.drive_ramp_end_s = d.drive_ramp_end_s;
+      b.load_torque_Nm = d.load_torque_Nm;
+      b.output_speed_rad_s = d.output_speed_rad_s;
+      notes.push_back("dynamics baseline: the [dynamics] model of " + c->path + " (" + to_string(q.configuration) +
+                      ", constant mesh stiffness, kinematics clearances), " + std::to_string(m.pairs.size()) +
+                      " tooth pairs; f_m = " + std::to_string(d.mesh_frequency_Hz) + " Hz");
+      break;
+    }
   }
   return b;
 }

@@ -61,6 +61,13 @@ FemJobResult run_fem_job(const Case& c, const fs::path& out_dir) {
                 "%.0f deg, %+.1f MPa at %.0f deg\n",
                 s.generator_force_N, s.generator_w0_m * 1e3, s.generator_rotation_rad, s.hoop.max_tensile_Pa / 1e6,
                 s.hoop.max_tensile_angle_deg, s.hoop.max_compressive_Pa / 1e6, s.hoop.max_compressive_angle_deg);
+  if (!s.hoop.inner_Pa.empty())
+    std::printf("  hoop stress at z = %.1f mm (%s case), inner/outer wall, MPa: 0 deg %+.0f/%+.0f, 30 deg %+.0f/%+.0f, "
+                "45 deg %+.0f/%+.0f, 90 deg %+.0f/%+.0f\n",
+                s.hoop.profile_z_m * 1e3, s.cases.front().name.c_str(), s.hoop.inner_Pa[0] / 1e6,
+                s.hoop.outer_Pa[0] / 1e6, s.hoop.inner_Pa[30] / 1e6, s.hoop.outer_Pa[30] / 1e6,
+                s.hoop.inner_Pa[45] / 1e6, s.hoop.outer_Pa[45] / 1e6, s.hoop.inner_Pa[90] / 1e6,
+                s.hoop.outer_Pa[90] / 1e6);
   std::printf("  wrote %s\n", out_dir.string().c_str());
   return job;
 }

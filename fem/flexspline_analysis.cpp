@@ -339,6 +339,22 @@ FlexsplineSolution analyse_flexspline(const Case& c, const TetMesh& mesh) {
   for (auto& lc : s.cases) lc.stress = nodal_stress(mesh, c.material, lc.u);
   const LoadCaseSolution& hoop_case = s.cases.front();
   const CylindricalFields cyl = cylindrical_components(mesh, hoop_case.u, hoop_case.stress);
+  {
+    // Hoop profile at the generator plane (or the rim's mid-width), just inside both walls of the rim base.
+    const double z = c.wave_generator ? f.length_m - c.wave_generator->axial_position_m : s.reading_z_m;
+    const double inset = 1e-3 * f.inner_radius_m;
+    s.hoop.profile_z_m = z;
+    s.hoop.inner_radius_m = f.inner_radius_m + inset;
+    s.hoop.outer_radius_m = (f.teeth == TeethModel::None ? f.inner_radius_m + f.wall_thickness_m
+                                                         : f.inner_radius_m + f.rim_thickness_m) - inset;
+    for (int k = 0; k < kRingSamples; ++k) {
+      const double t = 2 * kPi * k / kRingSamples;
+      for (const auto& [r, out] : {std::pair{s.hoop.inner_radius_m, &s.hoop.inner_Pa},
+                                   std::pair{s.hoop.outer_radius_m, &s.hoop.outer_Pa}})
+        out->push_back(sampler.interpolate(Eigen::Vector3d(r * std::cos(t), r * std::sin(t), z),
+                                           cyl.s_thetatheta)[0]);
+    }
+  }
   s.hoop.max_tensile_Pa = -1e300;
   s.hoop.max_compressive_Pa = 1e300;
   for (std::size_t i = 0; i < mesh.n_nodes(); ++i) {

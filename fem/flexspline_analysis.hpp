@@ -49,6 +49,10 @@ struct NeutralCurveSamples {
 struct HoopStressExtreme {
   double max_tensile_Pa = 0, max_tensile_angle_deg = 0, max_tensile_z_m = 0;
   double max_compressive_Pa = 0, max_compressive_angle_deg = 0, max_compressive_z_m = 0;
+  /// Hoop stress around the rim at the generator's axial position, on the inner and outer wall (1° steps from the
+  /// major axis): where the pattern's tension and compression sit, away from the extremes' local peaks.
+  double profile_z_m = 0, inner_radius_m = 0, outer_radius_m = 0;
+  std::vector<double> inner_Pa, outer_Pa;
 };
 
 struct FlexsplineSolution {

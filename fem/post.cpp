@@ -145,6 +145,18 @@ std::pair<long, Eigen::Vector3d> PointSampler::locate(const Eigen::Vector3d& x) 
   return {-1, Eigen::Vector3d::Zero()};
 }
 
+Eigen::VectorXd PointSampler::interpolate(const Eigen::Vector3d& x,
+                                          const Eigen::Ref<const Eigen::MatrixXd>& field) const {
+  const auto [e, xi] = locate(x);
+  if (e < 0)
+    throw InputError("sample point (" + std::to_string(x[0] * 1e3) + ", " + std::to_string(x[1] * 1e3) + ", " +
+                     std::to_string(x[2] * 1e3) + ") mm lies outside the mesh");
+  const auto N = tet10_shape(xi);
+  Eigen::VectorXd v = Eigen::VectorXd::Zero(field.cols());
+  for (int a = 0; a < 10; ++a) v += N[a] * field.row(mesh_.tets[e][a]).transpose();
+  return v;
+}
+
 Eigen::Vector3d PointSampler::displacement(const Eigen::Vector3d& x, const Eigen::VectorXd& u) const {
   const auto [e, xi] = locate(x);
   if (e < 0)

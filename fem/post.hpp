@@ -42,6 +42,8 @@ public:
   explicit PointSampler(const TetMesh& mesh);
   /// Displacement (3) at x of the full dof vector u; throws InputError if x lies outside the mesh.
   Eigen::Vector3d displacement(const Eigen::Vector3d& x, const Eigen::VectorXd& u) const;
+  /// Nodal field (n_nodes x k) interpolated at x; throws InputError if x lies outside the mesh.
+  Eigen::VectorXd interpolate(const Eigen::Vector3d& x, const Eigen::Ref<const Eigen::MatrixXd>& field) const;
   /// Element and natural coordinates of x (element −1 if outside).
   std::pair<long, Eigen::Vector3d> locate(const Eigen::Vector3d& x) const;
 

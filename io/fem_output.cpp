@@ -37,6 +37,18 @@ std::string fem_result_json(const Case& c, const TetMesh& mesh, const Flexspline
   j["min_hoop_stress_Pa"] = s.hoop.max_compressive_Pa;
   j["min_hoop_stress_angle_deg"] = s.hoop.max_compressive_angle_deg;
   j["hoop_stress_case"] = s.cases.front().name;
+  {
+    nlohmann::json profile = {{"z_mm", s.hoop.profile_z_m * 1e3},
+                              {"inner_radius_mm", s.hoop.inner_radius_m * 1e3},
+                              {"outer_radius_mm", s.hoop.outer_radius_m * 1e3},
+                              {"angle_deg", json::array()}, {"inner_Pa", json::array()}, {"outer_Pa", json::array()}};
+    for (int deg : {0, 15, 30, 45, 60, 75, 90}) {
+      profile["angle_deg"].push_back(deg);
+      profile["inner_Pa"].push_back(s.hoop.inner_Pa.at(deg));
+      profile["outer_Pa"].push_back(s.hoop.outer_Pa.at(deg));
+    }
+    j["hoop_stress_profile"] = profile;
+  }
   if (c.wave_generator) {
     j["wave_generator"] = {{"force_per_point_N", s.generator_force_N},
                            {"w0_reached_mm", s.generator_w0_m * 1e3},

@@ -173,15 +173,16 @@ RingResult pinched_ring(double size_m) {
 
 TEST(PinchedRing, DiameterChangesMatchThinRingTheoryAndConverge) {
   constexpr double kLoaded = -0.1488, kFree = 0.1366, kTol = 0.02;
-  const double sizes[3] = {1.0e-3, 0.7e-3, 0.5e-3};
+  const double sizes[3] = {1.0e-3, 0.5e-3, 1.0e-3 / 3};
   RingResult r[3];
   for (int k = 0; k < 3; ++k) {
     r[k] = pinched_ring(sizes[k]);
     std::printf("pinched ring h = %.2f mm: %zu nodes, loaded %.5f (%.2f %%), free %.5f (%.2f %%)\n", sizes[k] * 1e3,
                 r[k].nodes, r[k].loaded, 100 * (r[k].loaded / kLoaded - 1), r[k].free, 100 * (r[k].free / kFree - 1));
   }
-  // Observed order from three meshes with ratio-varying steps: p = ln(|e1−e0|/|e2−e1|) / ln(h ratio), for the free
-  // diameter (h ratios close to 1.4 each).
+  // Observed order from three meshes (h = 1, 1/2, 1/3 mm: one, two, three layers): p ≈ ln(|d1/d2|) / ln(h1/h2) for
+  // the free diameter, approximate because the two refinement ratios differ (2 and 1.5). The converged values differ
+  // from thin-ring theory by its own O(t/R) error (0.25 % loaded, 0.04 % free at R/t = 20).
   const double d1 = r[1].free - r[0].free, d2 = r[2].free - r[1].free;
   if (std::abs(d2) > 0 && std::abs(d1) > 0)
     std::printf("pinched ring observed convergence order %.2f\n",

@@ -4,4 +4,4 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
-build/strainwave fem "${1:-cases/tube_torsion.toml}"
+build/strainwave run "${1:-cases/tube_torsion.toml}"

@@ -222,13 +222,17 @@ std::vector<EffectSpec> dynamics_effects() {
     s.name = "mesh_stiffness_variation";
     s.physics = "mesh stiffness that varies as teeth engage and disengage: k(t) = k0 (1 + r sin(2 pi f_m t + phi)), "
                 "a line at the mesh frequency f_m = z_f |n_f - n_w| / 60 in the meshing force";
-    s.n_linear = 2;
+    // The lines at f_m and 2 f_m locked to the mesh phase; Δk/k0 from the f_m line's amplitude through the
+    // calibration curve of runs at a few Δk/k0 (the response is far from linear in Δk).
+    s.n_linear = 4;
     s.bounds = no_bounds;
-    s.columns = [](const Experiment& e, const Vec&) { return Mat(e.sensitivity.leftCols(2)); };
+    s.columns = [](const Experiment& e, const Vec&) { return mesh_lines(e); };
     s.headline = [](const Experiment& e, const FitResult& f, int t) {
       const Vec& b = f.terms[t].beta;
-      return NamedValues{{"amplitude_ratio", std::hypot(b[0], b[1])},
+      const double line = std::hypot(b[0], b[1]);
+      return NamedValues{{"amplitude_ratio", invert_calibration(e.calib_ratio, e.calib_line_N, 0.01, line)},
                          {"frequency_Hz", e.model.mesh_frequency_Hz},
+                         {"line_amplitude_N", line},
                          {"phase_rad", std::atan2(b[1], b[0])}};
     };
     v.push_back(s);
@@ -238,11 +242,15 @@ std::vector<EffectSpec> dynamics_effects() {
     s.name = "damping";
     s.physics = "contact damping other than the model's: the meshing-force fluctuations after the run-up and load "
                 "steps decay at another rate";
+    // Linear in the sensitivity column at c0 (central difference of runs at c0/2 and 3c0/2); the response is far
+    // from linear in c, so the fitted coefficient is mapped back to c through the calibration curve of runs at a
+    // table of c (a free nonlinear c with a free scale extrapolates badly from one transient to the next).
     s.bounds = no_bounds;
     s.columns = [](const Experiment& e, const Vec&) { return Mat(e.sensitivity.col(2)); };
     s.headline = [](const Experiment& e, const FitResult& f, int t) {
-      return NamedValues{{"coefficient_Ns_per_m", e.model.damping_Ns_per_m + f.terms[t].beta[0]},
-                         {"added_Ns_per_m", f.terms[t].beta[0]}};
+      const double c0 = e.model.damping_Ns_per_m;
+      const double c = invert_calibration(e.calib_damping, e.calib_damping_beta, c0 > 0 ? c0 : 1e3, f.terms[t].beta[0]);
+      return NamedValues{{"coefficient_Ns_per_m", c}, {"added_Ns_per_m", c - c0}};
     };
     v.push_back(s);
   }
@@ -274,14 +282,7 @@ std::vector<SignatureSpec> dynamics_signatures() {
     s.name = "mesh_frequency_lines";
     s.domain = "frequency";
     s.what = "a line at the mesh frequency f_m and its second harmonic in the meshing-force spectrum";
-    s.basis = [](const Experiment& e) {
-      Mat m(e.n, 4);
-      for (int k = 1; k <= 2; ++k) {
-        m.col(2 * k - 2) = (k * e.mesh_phase_rad.array()).cos();
-        m.col(2 * k - 1) = (k * e.mesh_phase_rad.array()).sin();
-      }
-      return m;
-    };
+    s.basis = [](const Experiment& e) { return mesh_lines(e); };
     s.condition = none;
     s.triggers = {"mesh_stiffness_variation"};
     s.where = time;

@@ -66,6 +66,47 @@ Eigen::VectorXd resample(const std::vector<double>& t, const std::vector<double>
   return out;
 }
 
+Eigen::MatrixXd mesh_lines(const Experiment& e) {
+  Eigen::MatrixXd m(e.n, 4);
+  for (int k = 1; k <= 2; ++k) {
+    m.col(2 * k - 2) = (k * e.mesh_phase_rad.array()).cos();
+    m.col(2 * k - 1) = (k * e.mesh_phase_rad.array()).sin();
+  }
+  return m;
+}
+
+Eigen::VectorXd damping_response(const Experiment& e, double c) {
+  const auto& x = e.calib_damping;
+  const int m = static_cast<int>(x.size());
+  if (m < 2) return Eigen::VectorXd::Zero(e.n);
+  int j = 0;
+  while (j + 2 < m && x[j + 1] < c) ++j;
+  const double w = (std::log(std::max(c, 1e-300)) - std::log(x[j])) / (std::log(x[j + 1]) - std::log(x[j]));
+  return (1.0 - w) * e.damping_runs.col(j) + w * e.damping_runs.col(j + 1);
+}
+
+double invert_calibration(const std::vector<double>& x, const std::vector<double>& y, double x_ref, double value) {
+  const int m = static_cast<int>(x.size());
+  if (m < 2) return x_ref;
+  std::vector<int> order(m - 1);
+  for (int i = 0; i < m - 1; ++i) order[i] = i;
+  auto dist = [&](int i) {
+    const double mid = 0.5 * (x[i] + x[i + 1]);
+    return std::abs(std::log(std::max(mid, 1e-300)) - std::log(std::max(x_ref, 1e-300)));
+  };
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return dist(a) < dist(b); });
+  for (int i : order) {
+    const double lo = std::min(y[i], y[i + 1]), hi = std::max(y[i], y[i + 1]);
+    if (value >= lo && value <= hi && hi > lo) return x[i] + (value - y[i]) / (y[i + 1] - y[i]) * (x[i + 1] - x[i]);
+  }
+  // Beyond the curve: extend the end segment on the side of the value.
+  const bool rising = y[m - 1] > y[0];
+  const bool above = rising ? value > std::max(y[0], y[m - 1]) : value < std::min(y[0], y[m - 1]);
+  const int i = above ? m - 2 : 0;
+  const double slope = (y[i + 1] - y[i]) / (x[i + 1] - x[i]);
+  return slope != 0.0 ? x[i] + (value - y[i]) / slope : x[i];
+}
+
 Experiment make_experiment(const Recording& rec, const Baseline& base) {
   Experiment e;
   e.kind = rec.kind;
@@ -183,6 +224,32 @@ Experiment make_experiment(const Recording& rec, const Baseline& base) {
       DynamicsVariation dv;
       dv.drag_viscous_Nms_per_rad = bv;
       e.sensitivity.col(4) = (force(dv) - e.baseline) / bv;
+      // Calibration of the nonlinear responses (the mesh responds to Δk and c far from linearly: flanks leave and
+      // regain contact, the ringing after a load step decays at a rate set by c).
+      const Eigen::MatrixXd lines = mesh_lines(e);
+      const auto lines_qr = lines.colPivHouseholderQr();
+      e.calib_ratio = {0.0, 0.01, 0.03, 0.1, 0.3, 0.6, 0.9};
+      e.calib_line_N = {0.0};
+      for (std::size_t j = 1; j < e.calib_ratio.size(); ++j) {
+        DynamicsVariation sv;
+        sv.stiffness_ratio = e.calib_ratio[j];
+        const Eigen::VectorXd b = lines_qr.solve(Eigen::VectorXd(force(sv) - e.baseline));
+        e.calib_line_N.push_back(std::hypot(b[0], b[1]));
+      }
+      const Eigen::VectorXd sc = e.sensitivity.col(2);
+      const double scn = std::max(sc.squaredNorm(), 1e-300);
+      const double cref = c0 > 0.0 ? c0 : 1e3;
+      const std::vector<double> factors{0.125, 0.25, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0, 5.0, 8.0};
+      e.damping_runs.resize(e.n, static_cast<Eigen::Index>(factors.size()));
+      for (std::size_t j = 0; j < factors.size(); ++j) {
+        const double f = factors[j];
+        DynamicsVariation cv;
+        cv.damping_Ns_per_m = f * cref;
+        const Eigen::VectorXd d = f == 1.0 && c0 > 0.0 ? Eigen::VectorXd::Zero(e.n) : Eigen::VectorXd(force(cv) - e.baseline);
+        e.calib_damping.push_back(f * cref);
+        e.calib_damping_beta.push_back(sc.dot(d) / scn);
+        e.damping_runs.col(static_cast<Eigen::Index>(j)) = d;
+      }
       break;
     }
   }

@@ -62,6 +62,12 @@ struct Experiment {
   /// dynamics: sensitivity columns of the response (mesh_force_N) from perturbed runs, per unit parameter:
   /// 0,1: Δk/k0 at phase 0 and π/2; 2: damping (per N·s/m); 3: Coulomb drag (per N·m); 4: viscous drag (per N·m·s/rad)
   Eigen::MatrixXd sensitivity;
+  /// dynamics: calibration curves of the nonlinear responses, from runs at a few parameter values (ascending):
+  /// the amplitude of the f_m line (least-squares on mesh_lines()) against Δk/k0, and the coefficient of the damping
+  /// sensitivity column (least squares) against the damping coefficient.
+  std::vector<double> calib_ratio, calib_line_N, calib_damping, calib_damping_beta;
+  /// dynamics: mesh_force_N(c_j) - baseline for each c_j of calib_damping (n x J): the damping effect re-simulated.
+  Eigen::MatrixXd damping_runs;
   Baseline model;                    ///< the baseline parameters used
   std::string response_name;         ///< column name of the response
   std::string response_unit;         ///< "rad" or "um"
@@ -74,6 +80,16 @@ Experiment make_experiment(const Recording& recording, const Baseline& baseline)
 
 /// Linear interpolation of y(t) (t ascending) at `at`; constant beyond the ends.
 Eigen::VectorXd resample(const std::vector<double>& t, const std::vector<double>& y, const Eigen::VectorXd& at);
+
+/// dynamics: cos/sin(k ψ_mesh) for k = 1, 2 (n x 4), the mesh-frequency line and its harmonic.
+Eigen::MatrixXd mesh_lines(const Experiment& e);
+
+/// dynamics: the response change of a damping coefficient c, interpolated (linear in log c) between damping_runs.
+Eigen::VectorXd damping_response(const Experiment& e, double c);
+
+/// Inverse of a calibration curve y(x) given at ascending x: the x whose y is `y`, searched on the segments nearest
+/// x_ref first (the curve may fold back far away); linear extrapolation beyond the ends.
+double invert_calibration(const std::vector<double>& x, const std::vector<double>& y, double x_ref, double value);
 
 /// The fewest rows reconcile analyses (AR order 8 estimation, a held-out block and the signature tests need them).
 inline constexpr int kMinSamples = 100;

@@ -61,6 +61,25 @@ TEST(ReconcileCli, SynthThenReconcileNamesTheHiddenHarmonic) {
   EXPECT_EQ(html.find("<script src"), std::string::npos);  // self-contained
 }
 
+TEST(ReconcileCli, SynthDynamicsThenReconcileNamesTheDragTorque) {
+  ASSERT_TRUE(fs::exists(binary())) << binary();
+  const fs::path d = scratch("dynamics");
+  std::ofstream(d / "case.toml") << kCase << "[dynamics]\nduration_s = 0.04\nsteady_from_s = 0.02\n";
+  ASSERT_EQ(sh(binary() + " --quiet synth --kind dynamics --case " + (d / "case.toml").string() +
+               " --effect drag_torque:coulomb_Nm=2 --concealment 2 --seed 5 --out " + (d / "rec.csv").string() +
+               " > /dev/null"), 0);
+  const auto truth = nlohmann::json::parse(slurp(d / "rec.truth.json"));
+  ASSERT_EQ(sh(binary() + " --quiet reconcile " + (d / "case.toml").string() + " " + (d / "rec.csv").string() +
+               " --out " + (d / "out").string() + " > /dev/null"), 0);
+  const auto j = nlohmann::json::parse(slurp(d / "out" / "reconcile.json"));
+  EXPECT_EQ(j["kind"], "dynamics");
+  ASSERT_EQ(j["effects"].size(), 1u);
+  EXPECT_EQ(j["effects"][0]["name"], "drag_torque");
+  const double want = truth["effects"][0]["params"]["torque_at_speed_Nm"].get<double>();
+  const double got = j["effects"][0]["params"]["torque_at_speed_Nm"].get<double>();
+  EXPECT_NEAR(got, want, 0.25 * want);
+}
+
 TEST(ReconcileCli, BadRecordingFailsWithTheLineAndWritesNothing) {
   ASSERT_TRUE(fs::exists(binary())) << binary();
   const fs::path d = scratch("bad");

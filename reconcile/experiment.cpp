@@ -75,16 +75,6 @@ Eigen::MatrixXd mesh_lines(const Experiment& e) {
   return m;
 }
 
-Eigen::VectorXd damping_response(const Experiment& e, double c) {
-  const auto& x = e.calib_damping;
-  const int m = static_cast<int>(x.size());
-  if (m < 2) return Eigen::VectorXd::Zero(e.n);
-  int j = 0;
-  while (j + 2 < m && x[j + 1] < c) ++j;
-  const double w = (std::log(std::max(c, 1e-300)) - std::log(x[j])) / (std::log(x[j + 1]) - std::log(x[j]));
-  return (1.0 - w) * e.damping_runs.col(j) + w * e.damping_runs.col(j + 1);
-}
-
 double invert_calibration(const std::vector<double>& x, const std::vector<double>& y, double x_ref, double value) {
   const int m = static_cast<int>(x.size());
   if (m < 2) return x_ref;
@@ -240,7 +230,6 @@ Experiment make_experiment(const Recording& rec, const Baseline& base) {
       const double scn = std::max(sc.squaredNorm(), 1e-300);
       const double cref = c0 > 0.0 ? c0 : 1e3;
       const std::vector<double> factors{0.125, 0.25, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0, 5.0, 8.0};
-      e.damping_runs.resize(e.n, static_cast<Eigen::Index>(factors.size()));
       for (std::size_t j = 0; j < factors.size(); ++j) {
         const double f = factors[j];
         DynamicsVariation cv;
@@ -248,7 +237,6 @@ Experiment make_experiment(const Recording& rec, const Baseline& base) {
         const Eigen::VectorXd d = f == 1.0 && c0 > 0.0 ? Eigen::VectorXd::Zero(e.n) : Eigen::VectorXd(force(cv) - e.baseline);
         e.calib_damping.push_back(f * cref);
         e.calib_damping_beta.push_back(sc.dot(d) / scn);
-        e.damping_runs.col(static_cast<Eigen::Index>(j)) = d;
       }
       break;
     }

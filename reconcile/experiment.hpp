@@ -66,8 +66,6 @@ struct Experiment {
   /// the amplitude of the f_m line (least-squares on mesh_lines()) against Δk/k0, and the coefficient of the damping
   /// sensitivity column (least squares) against the damping coefficient.
   std::vector<double> calib_ratio, calib_line_N, calib_damping, calib_damping_beta;
-  /// dynamics: mesh_force_N(c_j) - baseline for each c_j of calib_damping (n x J): the damping effect re-simulated.
-  Eigen::MatrixXd damping_runs;
   Baseline model;                    ///< the baseline parameters used
   std::string response_name;         ///< column name of the response
   std::string response_unit;         ///< "rad" or "um"
@@ -83,9 +81,6 @@ Eigen::VectorXd resample(const std::vector<double>& t, const std::vector<double>
 
 /// dynamics: cos/sin(k ψ_mesh) for k = 1, 2 (n x 4), the mesh-frequency line and its harmonic.
 Eigen::MatrixXd mesh_lines(const Experiment& e);
-
-/// dynamics: the response change of a damping coefficient c, interpolated (linear in log c) between damping_runs.
-Eigen::VectorXd damping_response(const Experiment& e, double c);
 
 /// Inverse of a calibration curve y(x) given at ascending x: the x whose y is `y`, searched on the segments nearest
 /// x_ref first (the curve may fold back far away); linear extrapolation beyond the ends.

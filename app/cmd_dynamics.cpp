@@ -20,51 +20,12 @@
 #include "dynamics/report.hpp"
 #include "io/atomic_file.hpp"
 #include "io/case.hpp"
+#include "dynamics/kinematic_pairs.hpp"
 #include "kinematics/backlash.hpp"
 #include "kinematics/neutral_curve.hpp"
 
 namespace sw::app {
 namespace {
-
-/// The case's [dynamics] table, whichever way io/case.hpp holds it (optional, plain, or not yet at all).
-template <class C>
-DynamicsParams dynamics_params_of(const C& c) {
-  if constexpr (requires { c.dynamics.has_value(); }) {
-    return c.dynamics ? *c.dynamics : DynamicsParams{};
-  } else if constexpr (requires { DynamicsParams{c.dynamics}; }) {
-    return c.dynamics;
-  } else {
-    return DynamicsParams{};
-  }
-}
-
-double radial_deformation(const Case& c) {
-  if (c.wave_generator && c.wave_generator->radial_deformation_m) return *c.wave_generator->radial_deformation_m;
-  return c.gear->module_m * (c.gear->teeth_circular - c.gear->teeth_flexspline) / 2.0;  // standard: rim meets the CS
-}
-
-/// Adapter from the backlash module: every engaged pair at wave-generator angle 0, φ₀ = 0. The ccw flank closes with
-/// a positive (ccw) wind-up of the rim, which is the model's drive flank; its arm is d(clearance)/dφ₀ with the sign
-/// turned; a flank whose clearance does not close with the matching rotation never touches (infinite clearance).
-std::vector<ToothPair> pairs_from_kinematics(const Case& c) {
-  const double rm = rim_mean_radius(c.flexspline);
-  const NeutralCurve curve = c.wave_generator ? generator_neutral_curve(rm, radial_deformation(c), *c.wave_generator)
-                                              : cam_neutral_curve(rm, radial_deformation(c));
-  const BacklashModel model = make_backlash_model(*c.gear, curve);
-  std::vector<ToothPair> pairs;
-  constexpr double kNever = std::numeric_limits<double>::infinity();
-  for (const PairClearance& pc : pair_clearances(model, 0.0, 0.0, true)) {
-    ToothPair t;
-    t.angle_rad = pc.phi_rad;
-    t.normal_projection = 1.0;  // the kinematic lever arm is already the moment of the flank normal
-    t.lever_arm_m = std::abs(pc.ccw.lever_arm_m);
-    t.clearance_drive_m = pc.ccw.lever_arm_m > 0 ? pc.ccw.clearance_m : kNever;
-    t.coast_arm_m = std::abs(pc.cw.lever_arm_m);
-    t.clearance_coast_m = pc.cw.lever_arm_m < 0 ? pc.cw.clearance_m : kNever;
-    if (t.lever_arm_m > 0 && t.coast_arm_m > 0) pairs.push_back(t);
-  }
-  return pairs;
-}
 
 /// C_τ from `strainwave fem`'s result.json (key compliance_rad_per_Nm).
 double compliance_from_fem(const std::string& path) {
@@ -102,7 +63,7 @@ void run_dynamics(const std::string& case_path, std::string out_dir, const std::
   Stopwatch total;
   const Case c = load_case(case_path);
   if (!c.gear) throw InputError(case_path + ": [gear] is missing; the dynamics needs the tooth numbers and module");
-  DynamicsParams p = dynamics_params_of(c);
+  DynamicsParams p = c.dynamics.value_or(DynamicsParams{});
   if (!fem_result.empty()) {
     p.flexspline_compliance_rad_per_Nm = compliance_from_fem(fem_result);
     progress("dynamics: flexspline rim and flange joined by 1/C_tau, C_tau = " +
@@ -116,7 +77,7 @@ void run_dynamics(const std::string& case_path, std::string out_dir, const std::
     pairs = pairs_from_kinematics(c);
     source = "kinematics (basic model, wave generator at 0, phi0 = 0), " + std::to_string(pairs.size()) + " engaged pairs";
   } else {
-    pairs = approximate_tooth_pairs(*c.gear, radial_deformation(c), c.load.engagement_half_angle_rad,
+    pairs = approximate_tooth_pairs(*c.gear, case_radial_deformation_m(c), c.load.engagement_half_angle_rad,
                                     p.base_clearance_m);
     source = "approximate stand-in (w0(1 - cos 2phi) sin(alpha) within +-engagement_half_angle), " +
              std::to_string(pairs.size()) + " pairs";

@@ -9,6 +9,7 @@
 #include "common/error.hpp"
 #include "dynamics/model.hpp"
 #include "dynamics/simulate.hpp"
+#include "dynamics/kinematic_pairs.hpp"
 #include "kinematics/backlash.hpp"
 #include "kinematics/neutral_curve.hpp"
 
@@ -39,43 +40,6 @@ std::optional<int> meta_int(const reconcile::Recording* r, const std::string& ke
   const auto v = r->meta_number(key);
   if (!v) return std::nullopt;
   return static_cast<int>(std::lround(*v));
-}
-
-double radial_deformation(const Case& c) {
-  if (c.wave_generator && c.wave_generator->radial_deformation_m) return *c.wave_generator->radial_deformation_m;
-  return c.gear->module_m * (c.gear->teeth_circular - c.gear->teeth_flexspline) / 2.0;
-}
-
-template <class C>
-DynamicsParams dynamics_params_of(const C& c) {
-  if constexpr (requires { c.dynamics.has_value(); }) {
-    return c.dynamics ? *c.dynamics : DynamicsParams{};
-  } else if constexpr (requires { DynamicsParams{c.dynamics}; }) {
-    return c.dynamics;
-  } else {
-    return DynamicsParams{};
-  }
-}
-
-/// Tooth pairs as `strainwave dynamics` builds them by default (kinematics clearances, interference as preload).
-std::vector<ToothPair> pairs_from_kinematics(const Case& c) {
-  const double rm = rim_mean_radius(c.flexspline);
-  const NeutralCurve curve = c.wave_generator ? generator_neutral_curve(rm, radial_deformation(c), *c.wave_generator)
-                                              : cam_neutral_curve(rm, radial_deformation(c));
-  const BacklashModel model = make_backlash_model(*c.gear, curve);
-  std::vector<ToothPair> pairs;
-  constexpr double kNever = std::numeric_limits<double>::infinity();
-  for (const PairClearance& pc : pair_clearances(model, 0.0, 0.0, true)) {
-    ToothPair t;
-    t.angle_rad = pc.phi_rad;
-    t.normal_projection = 1.0;
-    t.lever_arm_m = std::abs(pc.ccw.lever_arm_m);
-    t.clearance_drive_m = pc.ccw.lever_arm_m > 0 ? pc.ccw.clearance_m : kNever;
-    t.coast_arm_m = std::abs(pc.cw.lever_arm_m);
-    t.clearance_coast_m = pc.cw.lever_arm_m < 0 ? pc.cw.clearance_m : kNever;
-    if (t.lever_arm_m > 0 && t.coast_arm_m > 0) pairs.push_back(t);
-  }
-  return pairs;
 }
 
 }  // namespace
@@ -161,8 +125,8 @@ reconcile::Baseline make_baseline(Kind kind, const BaselineSources& src, std::ve
                          ": [gear] missing; the backlash baseline (basic kinematic model) needs the gear and flexspline");
       const double rm = rim_mean_radius(c->flexspline);
       const NeutralCurve curve = c->wave_generator
-                                     ? generator_neutral_curve(rm, radial_deformation(*c), *c->wave_generator)
-                                     : cam_neutral_curve(rm, radial_deformation(*c));
+                                     ? generator_neutral_curve(rm, case_radial_deformation_m(*c), *c->wave_generator)
+                                     : cam_neutral_curve(rm, case_radial_deformation_m(*c));
       const BacklashModel model = make_backlash_model(*c->gear, curve);
       b.backlash_um = [model](double wg_angle_rad) { return 1e6 * min_backlash_m(model, wg_angle_rad, 0.0); };
       notes.push_back("backlash baseline: basic kinematic model (phi0 = 0) of " + c->path);
@@ -172,7 +136,7 @@ reconcile::Baseline make_baseline(Kind kind, const BaselineSources& src, std::ve
       if (!c || !c->gear)
         throw InputError((c ? c->path : std::string("case")) +
                          ": [gear] missing; the dynamics baseline needs the case's gear and [dynamics] table");
-      const DynamicsParams p = dynamics_params_of(*c);
+      const DynamicsParams p = c->dynamics.value_or(DynamicsParams{});
       if (p.stiffness_variation_N_per_m != 0.0)
         notes.push_back("the case has dynamics.stiffness_variation_N_per_m = " +
                         std::to_string(p.stiffness_variation_N_per_m) + "; the baseline uses constant mesh stiffness");

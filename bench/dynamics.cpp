@@ -23,6 +23,7 @@
 #include "dynamics/model.hpp"
 #include "dynamics/simulate.hpp"
 #include "io/case.hpp"
+#include "dynamics/kinematic_pairs.hpp"
 #include "kinematics/backlash.hpp"
 #include "kinematics/neutral_curve.hpp"
 
@@ -34,33 +35,6 @@ namespace {
 
 /// Process CPU time (all threads), seconds.
 double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
-
-// The next two are app/cmd_dynamics.cpp's model-building lines (radial_deformation, pairs_from_kinematics).
-double radial_deformation(const sw::Case& c) {
-  if (c.wave_generator && c.wave_generator->radial_deformation_m) return *c.wave_generator->radial_deformation_m;
-  return c.gear->module_m * (c.gear->teeth_circular - c.gear->teeth_flexspline) / 2.0;
-}
-
-std::vector<sw::ToothPair> pairs_from_kinematics(const sw::Case& c) {
-  using namespace sw;
-  const double rm = rim_mean_radius(c.flexspline);
-  const NeutralCurve curve = c.wave_generator ? generator_neutral_curve(rm, radial_deformation(c), *c.wave_generator)
-                                              : cam_neutral_curve(rm, radial_deformation(c));
-  const BacklashModel model = make_backlash_model(*c.gear, curve);
-  std::vector<ToothPair> pairs;
-  constexpr double kNever = std::numeric_limits<double>::infinity();
-  for (const PairClearance& pc : pair_clearances(model, 0.0, 0.0, true)) {
-    ToothPair t;
-    t.angle_rad = pc.phi_rad;
-    t.normal_projection = 1.0;
-    t.lever_arm_m = std::abs(pc.ccw.lever_arm_m);
-    t.clearance_drive_m = pc.ccw.lever_arm_m > 0 ? pc.ccw.clearance_m : kNever;
-    t.coast_arm_m = std::abs(pc.cw.lever_arm_m);
-    t.clearance_coast_m = pc.cw.lever_arm_m < 0 ? pc.cw.clearance_m : kNever;
-    if (t.lever_arm_m > 0 && t.coast_arm_m > 0) pairs.push_back(t);
-  }
-  return pairs;
-}
 
 }  // namespace
 

@@ -74,7 +74,7 @@ reconcile::Baseline dynamics_baseline(const DynamicsModel& model) {
       r.wg_speed_rpm.push_back(s.speed_rad_s[wg][i] * rpm);
       r.output_speed_rpm.push_back(s.speed_rad_s[out][i] * rpm);
       r.mesh_force_N.push_back(s.total_force_N[i]);
-      r.mesh_phase_rad.push_back(rate * std::abs(s.angle_rad[drv][i]) + m.params.stiffness_phase_deg * 0.0);
+      r.mesh_phase_rad.push_back(rate * std::abs(s.angle_rad[drv][i]));
     }
     return r;
   };

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "../dynamics/seed_models.hpp"
+#include "app/reconcile_baseline.hpp"
 #include "dynamics/simulate.hpp"
 #include "reconcile/reconcile.hpp"
 #include "reconcile/synth.hpp"
@@ -30,40 +31,6 @@ DynamicsModel test_model() {
   return m;
 }
 
-Baseline baseline_of(const DynamicsModel& model) {
-  Baseline b;
-  const SteadyState ss = steady_state(model);
-  b.teeth_flexspline = model.teeth_flexspline;
-  b.teeth_circular = model.teeth_circular;
-  b.damping_Ns_per_m = model.params.damping_Ns_per_m;
-  b.mesh_frequency_Hz = ss.mesh_frequency_Hz;
-  b.steady_from_s = model.params.steady_from_s;
-  b.drive_ramp_end_s = model.params.drive_ramp_end_s;
-  b.load_torque_Nm = model.params.load_torque_Nm;
-  b.output_speed_rad_s = std::abs(ss.speed_rad_s[static_cast<int>(ss.output)]);
-  b.dynamics_run = [model, ss](const DynamicsVariation& v) {
-    DynamicsModel m = model;
-    m.params.stiffness_variation_N_per_m = v.stiffness_ratio * m.params.stiffness_N_per_m;
-    m.params.stiffness_phase_deg = v.stiffness_phase_rad * 180.0 / M_PI;
-    if (v.damping_Ns_per_m >= 0.0) m.params.damping_Ns_per_m = v.damping_Ns_per_m;
-    m.params.output_drag_coulomb_Nm += v.drag_coulomb_Nm;
-    m.params.output_drag_viscous_Nms_per_rad += v.drag_viscous_Nms_per_rad;
-    const DynamicsSeries s = simulate(m);
-    DynamicsRun r;
-    r.time_s = s.time_s;
-    const int wg = 0, out = static_cast<int>(ss.output), drv = static_cast<int>(ss.driven);
-    const double rate = 2.0 * M_PI * ss.mesh_frequency_Hz / std::abs(ss.speed_rad_s[drv]);
-    for (std::size_t i = 0; i < s.time_s.size(); ++i) {
-      r.wg_speed_rpm.push_back(s.speed_rad_s[wg][i] * 30.0 / M_PI);
-      r.output_speed_rpm.push_back(s.speed_rad_s[out][i] * 30.0 / M_PI);
-      r.mesh_force_N.push_back(s.total_force_N[i]);
-      r.mesh_phase_rad.push_back(rate * std::abs(s.angle_rad[drv][i]));
-    }
-    return r;
-  };
-  return b;
-}
-
 struct Case {
   std::string effect;       // synth --effect text ("" = null)
   double concealment;
@@ -76,7 +43,7 @@ double c_ratio = 0.0;
 Result run_case(const Case& c, std::uint64_t seed, double* truth) {
   SynthOptions o;
   o.kind = Kind::Dynamics;
-  o.baseline = baseline_of(test_model());
+  o.baseline = app::dynamics_baseline(test_model());  // the one `strainwave reconcile` uses
   o.white_sd = c.noise;
   o.ar1_sd = c.noise;
   o.quantum = 0.2 * c.noise;

@@ -75,6 +75,16 @@ nlohmann::json geometry_json(const GeometryCheck& g) {
 
 }  // namespace
 
+namespace {
+
+/// Angle of a tooth from the nearer end of the major axis, degrees, signed (counter-clockwise positive).
+double from_major_axis_deg(double phi_rad) {
+  const double a = std::abs(phi_rad) > 0.5 * kPi ? std::remainder(phi_rad - kPi, 2.0 * kPi) : phi_rad;
+  return a * kDeg;
+}
+
+}  // namespace
+
 std::string geometry_check_text(const GeometryCheck& g, double module_m) {
   const auto& r = g.radii;
   char buf[2048];
@@ -96,15 +106,15 @@ std::string geometry_check_text(const GeometryCheck& g, double module_m) {
   line("    major-axis pair: j_t1 %.3f um, j_t2 %.3f um, dead band %.3f arcmin of output rotation\n",
        g.major_axis.ccw.clearance_m * 1e6, g.major_axis.cw.clearance_m * 1e6, g.major_axis_play_rad * kArcmin);
   if (!g.interference) {
-    line("    no interference at rest: smallest clearance %.3f um (pair at %.2f deg from the major axis, %s / %s)\n",
-         g.worst_clearance_m * 1e6, g.worst.phi_rad * kDeg,
+    line("    no interference at rest: smallest clearance %.3f um (pair %+.2f deg from the major axis, %s / %s)\n",
+         g.worst_clearance_m * 1e6, from_major_axis_deg(g.worst.phi_rad),
          part_name((g.worst.ccw.clearance_m < g.worst.cw.clearance_m ? g.worst.ccw : g.worst.cw).part_f),
          part_name((g.worst.ccw.clearance_m < g.worst.cw.clearance_m ? g.worst.ccw : g.worst.cw).part_c));
     return out;
   }
   const FlankClearance& w = g.worst.ccw.clearance_m < g.worst.cw.clearance_m ? g.worst.ccw : g.worst.cw;
-  line("    INTERFERENCE at rest: %.3f um deep, pair at %.2f deg from the major axis (flexspline %s into "
-       "circular-spline %s)\n", -g.worst_clearance_m * 1e6, g.worst.phi_rad * kDeg, part_name(w.part_f),
+  line("    INTERFERENCE at rest: %.3f um deep, pair %+.2f deg from the major axis (flexspline %s into "
+       "circular-spline %s)\n", -g.worst_clearance_m * 1e6, from_major_axis_deg(g.worst.phi_rad), part_name(w.part_f),
        part_name(w.part_c));
   if (g.addendum_scale_free > 0)
     line("    remedy: addenda x %.3f or less (addendum_coefficient_flexspline <= %.3f, _circular <= %.3f)\n",

@@ -77,8 +77,38 @@ TEST(Cases, SeedCupRunsFemThenBacklash) {
   // backlash used the FEM's φ₀ (C_τ·T).
   const auto b = read_json(out / "backlash.json");
   EXPECT_NEAR(b["phi0_rad"].get<double>() / j["phi0_rad"].get<double>(), 1.0, 1e-9);
+  // ... and the FEM's own generator-deformed neutral curve, and says so.
+  EXPECT_NE(b["neutral_curve"].get<std::string>().find("FEM neutral curve"), std::string::npos) << b["neutral_curve"];
   EXPECT_TRUE(fs::exists(out / "neutral_curve.csv"));
   EXPECT_TRUE(fs::exists(out / "backlash.svg"));
+  fs::remove_all(out);
+}
+
+// The seed gear set with its short teeth on the generator model's curve: no interference at rest, the smallest
+// clearance 2.9 µm, a geometric play of about 1.1 arcmin that φ₀ does not change, no backlash out of the mesh zone,
+// and the loaded flank in contact at the major axis under the FEM's φ₀ (never called interference).
+TEST(Cases, SeedGearSetHasNoInterferenceAndReportsItsPlay) {
+  const fs::path out = fresh_dir("seed_backlash");
+  const CliRun r = run("backlash --quiet cases/seed_190_192.toml --phi0 4.138e-4 --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto b = read_json(out / "backlash.json");
+  EXPECT_FALSE(b["interference"].get<bool>());
+  EXPECT_FALSE(b["geometry_check"]["interference_at_rest"].get<bool>());
+  EXPECT_NEAR(b["geometry_check"]["smallest_clearance_um"].get<double>(), 2.87, 0.05);
+  const auto& play = b["angular_play_arcmin"];
+  EXPECT_NEAR(play["min"].get<double>(), 1.095, 0.01);
+  EXPECT_NEAR(play["max"].get<double>(), 1.101, 0.01);
+  EXPECT_NEAR(play["with_phi0"][0].get<double>(), play["min"].get<double>(), 1e-6);  // 1e-9 rad = 3.4e-6 arcmin
+  EXPECT_NEAR(play["with_phi0"][1].get<double>(), play["max"].get<double>(), 1e-6);
+  for (const auto& row : b["table"]) {
+    if (row["position_deg"].get<double>() == 0.0) {
+      EXPECT_FALSE(row["in_mesh"].get<bool>());
+      EXPECT_TRUE(row["basic_over_m"].is_null());
+    }
+    if (row["position_deg"].get<double>() == 90.0)
+      EXPECT_EQ(row["compensated_state"].get<std::string>(), "loaded flank in contact");
+  }
+  EXPECT_NE(r.output.find("not the catalog's lost motion"), std::string::npos) << r.output;
   fs::remove_all(out);
 }
 

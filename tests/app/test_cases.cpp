@@ -40,7 +40,7 @@ fs::path fresh_dir(const std::string& name) {
   return d;
 }
 
-// The tube's TET10 torsion is exact up to geometry: 0.1 % (issue 3); reaction = applied is an identity of the discrete
+// The tube's TET10 torsion is exact up to geometry: 0.1 %; reaction = applied is an identity of the discrete
 // equations: 1e-8.
 TEST(Cases, TubeTorsionReproducesTheoryAndBalancesTorque) {
   const fs::path out = fresh_dir("tube");

@@ -2,6 +2,8 @@
 // text), and bad input through the CLI gives one clear line, a non-zero exit and no output files.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -145,6 +147,33 @@ TEST(CliErrors, MissingMalformedAndInvalidCasesGiveOneLineAndNoOutput) {
   std::ofstream(dir / "fillet.toml") << "[gear]\n[flexspline]\nshape = \"cup\"\nfillet_radius_mm = 30\n"
                                         "rim_thickness_mm = 0.6425\n";
   expect_clean_failure("fem --quiet " + (dir / "fillet.toml").string(), "fillet_radius_mm = 30", dir / "out");
+  fs::remove_all(dir);
+}
+
+// A case that would never fit is refused before meshing, in seconds, with the estimate in its one line.
+TEST(CliErrors, ACaseThatWouldNeverFitIsRefusedInSecondsWithTheEstimate) {
+  const fs::path dir = fresh_dir("huge");
+  fs::create_directories(dir);
+  std::ifstream in("cases/seed_190_192.toml");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string from = "size_mm = 0.6";
+  ASSERT_NE(text.find(from), std::string::npos);
+  text.replace(text.find(from), from.size(), "size_mm = 0.05");
+  { std::ofstream(dir / "huge.toml") << text; }
+  const auto start = std::chrono::steady_clock::now();
+  const fs::path out = dir / "out";
+  const CliRun r = run("fem --quiet " + (dir / "huge.toml").string() + " --out " + out.string());
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_LT(seconds, 10.0);
+  EXPECT_NE(r.output.find("would have about"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("GB"), std::string::npos) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  // The estimate itself must say >= 100 GB: the number after "need about".
+  const size_t at = r.output.find("need about ");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  EXPECT_GE(std::stod(r.output.substr(at + 11)), 100.0) << r.output;
+  EXPECT_FALSE(fs::exists(out / "result.json"));
   fs::remove_all(dir);
 }
 

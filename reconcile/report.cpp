@@ -320,7 +320,9 @@ std::string report_html(const Experiment& e, const Recording& rec, const Result&
                    {"baseline (offset, ratio)", "#36c", stdv(x), stdv(r.baseline_prediction - e.baseline)},
                    {"reconciled", "#c33", stdv(x), stdv(r.final_prediction - e.baseline)}});
   } else {
-    h += svg_plot("recording vs baseline vs reconciled model", xl, e.response_name,
+    h += svg_plot(e.kind == Kind::Torsion ? "torque-twist loop: recording, baseline (C_tau T) and the fitted model"
+                                          : "recording vs baseline vs reconciled model",
+                  xl, e.response_name,
                   {{"recording", "#888", stdv(x), stdv(e.measured), true},
                    {"baseline", "#36c", stdv(x), stdv(r.baseline_prediction)},
                    {"reconciled", "#c33", stdv(x), stdv(r.final_prediction)}}, shade);

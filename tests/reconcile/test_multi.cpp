@@ -16,8 +16,10 @@
 #include "reconcile/catalog.hpp"
 #include "reconcile/reconcile.hpp"
 #include "reconcile/synth.hpp"
+#include "tests/reconcile/result_lookup.hpp"
 
 using namespace sw::reconcile;
+using namespace sw::reconcile::testing;
 
 namespace {
 
@@ -29,8 +31,6 @@ constexpr double kLossTol = 0.20;
 /// Held-out RMS at the noise level within 20 %.
 constexpr double kNoiseTol = 0.20;
 
-double rel_err(double got, double want) { return std::abs(got - want) / std::abs(want); }
-
 std::string names(const Result& r) {
   std::string s;
   for (const auto& e : r.effects) s += e.name + " ";
@@ -40,22 +40,6 @@ std::string names(const Result& r) {
   return s;
 }
 
-const AcceptedEffect* find(const Result& r, const std::string& name, int order = 0) {
-  for (const auto& e : r.effects) {
-    if (e.name != name) continue;
-    if (order == 0) return &e;
-    for (const auto& p : e.params)
-      if (p.name == "order" && std::lround(p.value) == order) return &e;
-  }
-  return nullptr;
-}
-
-double param(const AcceptedEffect& e, const std::string& name) {
-  for (const auto& p : e.params)
-    if (p.name == name) return p.value;
-  ADD_FAILURE() << "no parameter " << name;
-  return NAN;
-}
 
 nlohmann::json read_json(const std::string& path) {
   std::ifstream f(path);

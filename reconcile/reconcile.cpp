@@ -492,48 +492,73 @@ void prune(Analysis& a) {
   }
 }
 
-/// Parsimony once the model is complete: a complex term that entered because it also mimicked another effect's
-/// signature is replaced by its simpler rival when, with the other effects in, it no longer beats it clearly (BIC
-/// and held-out) and no located signature that only it explains needs it.
-void prefer_simpler(Analysis& a) {
+/// Parsimony once the model is complete: a complex term that entered because it also mimicked other effects'
+/// signatures (a three-segment law bending like play and series compliance together) is replaced by its simpler
+/// rivals -- one rival, or all the simpler effects that share a located signature with it -- when, with the other
+/// effects in, it no longer beats them clearly (BIC and held-out) and no located signature that only it explains
+/// needs it. The rivals then face prune() like every other effect. Returns whether the model changed.
+bool prefer_simpler(Analysis& a) {
   for (std::size_t i = 0; i < a.cur.terms.size(); ++i) {
     const EffectSpec& cx = *a.cur.terms[i].spec;
+    auto usable = [&](const EffectSpec& rv) {
+      if (complexity(rv) >= complexity(cx) || !share_signature(a, rv, cx) || has(a.cur.terms, rv.id())) return false;
+      if (rv.conflicts(cx)) return false;  // variants of one law: prune() weighed them
+      for (const auto& t : a.cur.terms)
+        if (rv.conflicts(*t.spec)) return false;
+      return true;
+    };
+    std::vector<std::vector<const EffectSpec*>> rival_sets;
+    std::vector<const EffectSpec*> all;
+    std::pair<int, int> total{0, 0};
     for (const auto& rv : effect_catalog(a.e.kind)) {
-      if (complexity(rv) >= complexity(cx) || !share_signature(a, rv, cx) || has(a.cur.terms, rv.id())) continue;
-      if (rv.conflicts(cx)) continue;  // variants of one law: prune() weighed them
-      bool conflict = false;
-      for (const auto& t : a.cur.terms) conflict = conflict || rv.conflicts(*t.spec);
-      if (conflict) continue;
-      std::vector<Term> swapped = a.cur.terms;
-      swapped[i] = Term{&rv, Vec(0), Vec(0)};
-      const FitResult sw = a.fit(swapped, false);
+      if (!usable(rv)) continue;
+      rival_sets.push_back({&rv});
+      bool clash = false;
+      for (const EffectSpec* x : all) clash = clash || rv.conflicts(*x);
+      if (clash) continue;
+      all.push_back(&rv);
+      total.first += rv.n_nonlinear();
+      total.second += rv.n_linear;
+    }
+    if (all.size() > 1 && total < complexity(cx)) rival_sets.push_back(all);
+    for (const auto& rivals : rival_sets) {
+      FitResult sw = a.fit(without(a.cur.terms, i), false);
+      std::string label;
+      for (const EffectSpec* rv : rivals) {
+        sw = a.fit(with(sw.terms, rv));
+        label += (label.empty() ? "" : " + ") + effect_label(*rv);
+      }
       const double dbic = a.cur.bic() - sw.bic();
       const double h_cx = a.heldout(a.cur.terms), h_rv = a.heldout(sw.terms);
       if (dbic < -a.opt.min_delta_bic && h_cx < h_rv) continue;  // the complex one is clearly better
       bool needed = false;
       for (int k = 0; k < a.m && !needed; ++k) {
-        if (!a.located[k] || !triggers(a.sigs[k], cx.id()) || triggers(a.sigs[k], rv.id())) continue;
-        needed = a.significant(k, sw.terms);
+        if (!a.located[k] || !triggers(a.sigs[k], cx.id())) continue;
+        bool rival_points = false;
+        for (const EffectSpec* rv : rivals) rival_points = rival_points || triggers(a.sigs[k], rv->id());
+        if (!rival_points) needed = a.significant(k, sw.terms);
       }
       if (needed) continue;
-      // The simpler one must stand on its own: significant against the model without it.
-      std::vector<Term> order = without(sw.terms, i);
-      order.push_back(sw.terms[i]);
-      FitResult full = sw;
-      full.terms = order;
-      const FitResult wo = a.fit(without(sw.terms, i), false);
-      const auto [p, test] = a.effect_test(wo, full, rv.n_nonlinear());
-      if (!(p <= a.opt.alpha_effect) || !(sw.bic() - wo.bic() < -a.opt.min_delta_bic)) continue;
-      a.rejected[cx.id()] = effect_label(cx) + ": with the other effects in, the simpler rival " + effect_label(rv) +
+      if (rivals.size() == 1) {
+        // A single rival must stand on its own: significant against the model without it.
+        const std::size_t last = sw.terms.size() - 1;
+        const FitResult wo = a.fit(without(sw.terms, last), false);
+        const auto [p, test] = a.effect_test(wo, sw, rivals[0]->n_nonlinear());
+        if (!(p <= a.opt.alpha_effect) || !(sw.bic() - wo.bic() < -a.opt.min_delta_bic)) continue;
+        a.accept(*rivals[0], sw.bic() - wo.bic(), p, test);
+      } else {
+        for (const EffectSpec* rv : rivals) a.accept(*rv, 0.0, 1.0, "swap");  // tested by prune()
+      }
+      a.rejected[cx.id()] = effect_label(cx) + ": with the other effects in, the simpler " + label +
                             " explains as much (BIC " + fmt("%.1f", dbic) + " vs it, held-out " + fmt("%.4g", h_rv) +
                             " -> " + fmt("%.4g", h_cx) + ")";
       a.accepted.erase(cx.id());
-      a.accept(rv, sw.bic() - wo.bic(), p, test);
-      progress("reconcile: replaced " + cx.id() + " by its simpler rival " + rv.id());
-      a.cur = sw;
-      break;
+      progress("reconcile: replaced " + cx.id() + " by the simpler " + label);
+      a.cur = a.refine(sw);
+      return true;
     }
   }
+  return false;
 }
 
 /// Final fit with covariance, headlines with intervals, the signatures still left, the verdict.
@@ -595,7 +620,7 @@ Result reconcile(const Experiment& e, const Options& opt) {
   a.cur = a.refine(a.cur);
   admit_jointly(a);
   prune(a);
-  prefer_simpler(a);
+  for (int round = 0; round < 3 && prefer_simpler(a); ++round) prune(a);
   finalise(a, r);
   r.seconds = clock.lap();
   return r;

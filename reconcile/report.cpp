@@ -225,7 +225,13 @@ std::string report_json(const Result& r) {
   for (const auto& x : r.rejected) rej.push_back({{"name", x.name}, {"reason", x.reason}});
   j["rejected"] = rej;
   j["final"] = {{"rms", r.final_rms}, {"heldout_rms", r.final_heldout_rms}};
-  if (r.catalog.valid) j["catalog"] = catalog_json(r.catalog);
+  if (r.catalog.valid) {
+    j["catalog"] = catalog_json(r.catalog);
+    // Identifiability of K1: the twist its segment spans over the final residual RMS (below ~10 the soft start is
+    // hard to tell from the next segment).
+    if (r.catalog.segments >= 2 && r.final_rms > 0.0)
+      j["catalog"]["K1_segment_twist_over_noise"] = r.catalog.t1 / r.catalog.k1 / r.final_rms;
+  }
   j["verdict"] = r.verdict;
   return j.dump(2) + "\n";
 }

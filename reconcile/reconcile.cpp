@@ -383,46 +383,72 @@ void admit_one_at_a_time(Analysis& a) {
 /// last slope and series compliance share the straight part) may each leave the others' signatures when added alone.
 /// If located signatures remain after one-at-a-time selection, every effect the located signatures point to enters
 /// at once (the richest variant of a law), fitted term by term from the current model and then each term's
-/// nonlinear parameters searched again with the others in; the joint model is kept when it beats the current one
-/// by BIC and on the held-out block. prune() then keeps only the effects whose removal costs significantly.
+/// nonlinear parameters searched again with the others in; the joint model is kept when it lowers BIC and the
+/// held-out RMS at all (an effect may pay off only once prune() drops one it replaces). prune() then keeps only the
+/// effects whose removal costs significantly.
 void admit_jointly(Analysis& a) {
-  bool open = false;
-  for (int i = 0; i < a.m && !open; ++i) open = a.located[i] && a.significant(i, a.cur.terms);
-  if (!open) return;
-  std::vector<const EffectSpec*> add;
-  for (const auto& spec : effect_catalog(a.e.kind)) {
-    bool pointed = false;
-    for (int i = 0; i < a.m; ++i) pointed = pointed || (a.located[i] && triggers(a.sigs[i], spec.id()));
-    if (!pointed || has(a.cur.terms, spec.id())) continue;
-    // Of exclusive variants, the richest (later in the catalog) replaces a poorer one.
-    add.erase(std::remove_if(add.begin(), add.end(), [&](const EffectSpec* s) { return spec.conflicts(*s); }),
-              add.end());
-    bool richer_present = false;
-    for (const auto& t : a.cur.terms)
-      richer_present = richer_present || (spec.conflicts(*t.spec) && complexity(*t.spec) > complexity(spec));
-    if (!richer_present) add.push_back(&spec);
+  std::vector<bool> open(a.m, false);
+  bool any_open = false;
+  for (int i = 0; i < a.m; ++i) any_open = (open[i] = a.located[i] && a.significant(i, a.cur.terms)) || any_open;
+  if (!any_open) return;
+  // Two joint sets: the effects the still-open signatures point to (the poorer variant of a law kept), and every
+  // effect any located signature points to (the richest variant). The one with the lower BIC that passes is kept.
+  auto joint_set = [&](const std::vector<bool>& from, bool richest) {
+    std::vector<const EffectSpec*> add;
+    for (const auto& spec : effect_catalog(a.e.kind)) {
+      bool pointed = false;
+      for (int i = 0; i < a.m; ++i) pointed = pointed || (from[i] && triggers(a.sigs[i], spec.id()));
+      if (!pointed || has(a.cur.terms, spec.id())) continue;
+      // A variant of this law in the model: the poorer set keeps it; the richest set upgrades a poorer one.
+      bool skip = false;
+      for (const auto& t : a.cur.terms)
+        skip = skip || (spec.conflicts(*t.spec) && (!richest || complexity(*t.spec) >= complexity(spec)));
+      if (skip) continue;
+      // Variants in the list (the catalog lists the poorer first): keep the first, or replace it by the richer.
+      const auto listed = std::find_if(add.begin(), add.end(), [&](const EffectSpec* x) { return spec.conflicts(*x); });
+      if (listed == add.end()) add.push_back(&spec);
+      else if (richest) *listed = &spec;
+    }
+    return add;
+  };
+  const double h_cur = a.heldout(a.cur.terms);
+  FitResult best = a.cur;
+  std::vector<const EffectSpec*> best_add;
+  std::string best_names, failed;
+  std::vector<std::vector<const EffectSpec*>> sets{joint_set(open, false), joint_set(a.located, true)};
+  if (sets[1] == sets[0]) sets.pop_back();
+  for (const auto& add : sets) {
+    if (add.empty()) continue;
+    FitResult joint = a.cur;
+    std::string names;
+    for (const EffectSpec* s : add) {
+      joint = a.fit(with(joint.terms, s));
+      names += (names.empty() ? "" : ", ") + effect_label(*s);
+    }
+    joint = a.refine(joint);
+    const double dbic = joint.bic() - a.cur.bic();
+    const double h_joint = a.heldout(joint.terms);
+    // Any improvement admits the set: prune() then holds every effect of it to the full bar.
+    if (!(dbic < 0.0) || !(h_joint < h_cur)) {
+      failed = names + " (BIC " + fmt("%.1f", dbic) + ", held-out " + fmt("%.4g", h_cur) + " -> " + fmt("%.4g", h_joint) + ")";
+      continue;
+    }
+    if (joint.bic() < best.bic()) {
+      best = joint;
+      best_add = add;
+      best_names = names;
+    }
   }
-  if (add.empty()) return;
-  FitResult joint = a.cur;
-  std::string names;
-  for (const EffectSpec* s : add) {
-    joint = a.fit(with(joint.terms, s));
-    names += (names.empty() ? "" : ", ") + effect_label(*s);
-  }
-  joint = a.refine(joint);
-  const double dbic = joint.bic() - a.cur.bic();
-  const double h_cur = a.heldout(a.cur.terms), h_joint = a.heldout(joint.terms);
-  if (!(dbic < -a.opt.min_delta_bic) || !(h_joint < h_cur)) {
-    for (const EffectSpec* s : add)
-      if (!a.rejected.count(s->id()))
-        a.rejected[s->id()] = effect_label(*s) + ": admitted jointly with " + names + ", the model does not improve "
-                              "(BIC " + fmt("%.1f", dbic) + ", held-out " + fmt("%.4g", h_cur) + " -> " +
-                              fmt("%.4g", h_joint) + ")";
+  if (best_add.empty()) {
+    for (const auto& add : sets)
+      for (const EffectSpec* s : add)
+        if (!a.rejected.count(s->id()))
+          a.rejected[s->id()] = effect_label(*s) + ": admitted jointly, the model does not improve: " + failed;
     return;
   }
-  progress("reconcile: admitted jointly " + names + " (dBIC " + fmt("%.1f", dbic) + ")");
-  for (const EffectSpec* s : add) a.accept(*s, dbic, 1.0, "joint");
-  a.cur = joint;
+  progress("reconcile: admitted jointly " + best_names + " (dBIC " + fmt("%.1f", best.bic() - a.cur.bic()) + ")");
+  for (const EffectSpec* s : best_add) a.accept(*s, best.bic() - a.cur.bic(), 1.0, "joint");
+  a.cur = best;
 }
 
 /// Backward pruning: an effect stays only if removing it (or, for a law with variants, falling back to the poorer

@@ -92,11 +92,11 @@ TEST(ReconcileCli, ShippedSize17RecordingGivesTheCatalogBlockBesideTheCatalogRow
   EXPECT_EQ(c["segments"], 3);
   EXPECT_EQ(c["reference"]["size"], 17);
   EXPECT_EQ(c["rated_torque_Nm"], 31.0);
-  // The truth (the recording's metadata): K1 1.0e4, K2 1.4e4, K3 1.6e4 N*m/rad, 0.6 arcmin loss, 0.2 arcmin play.
+  // The truth (the recording's metadata): K1 1.0e4, K2 1.4e4, K3 1.6e4 N*m/rad, 0.6 arcmin loss, 0.12 arcmin play.
   EXPECT_NEAR(c["K1_Nm_per_rad"].get<double>(), 1.0e4, 0.15 * 1.0e4);
   EXPECT_NEAR(c["K3_Nm_per_rad"].get<double>(), 1.6e4, 0.15 * 1.6e4);
   EXPECT_NEAR(c["hysteresis_loss_arcmin"].get<double>(), 0.6, 0.2 * 0.6);
-  EXPECT_NEAR(c["play_width_arcmin"].get<double>(), 0.2, 0.2 * 0.2);
+  EXPECT_NEAR(c["play_width_arcmin"].get<double>(), 0.12, 0.2 * 0.12);
   EXPECT_GT(c["catalog_lost_motion_arcmin"].get<double>(), c["play_width_arcmin"].get<double>());
   EXPECT_NE(slurp(d / "out" / "reconcile.html").find("In catalog terms"), std::string::npos);
 }

@@ -111,8 +111,9 @@ std::vector<EffectSpec> torsion_effects() {
       const double a = e.torque_amplitude_Nm;
       // Below 0.08 A a breakpoint is a jump at zero torque: play's signature, not a soft start.
       if (breakpoints == 1) return bounds1(0.08 * a, 0.7 * a);
-      // The two breakpoints enter symmetrically (the headline sorts them), so they share one range.
-      return std::make_pair(Vec(Vec::Constant(2, 0.08 * a)), Vec(Vec::Constant(2, 0.95 * a)));
+      // The two breakpoints enter symmetrically (the headline sorts them), so they share one range. Above 0.8 A the
+      // last segment is too short to tell K3 from series compliance.
+      return std::make_pair(Vec(Vec::Constant(2, 0.08 * a)), Vec(Vec::Constant(2, 0.8 * a)));
     };
     s.columns = [](const Experiment& e, const Vec& th) {
       Mat m(e.n, th.size());

@@ -355,9 +355,12 @@ std::string report_html(const Experiment& e, const Recording& rec, const Result&
     }
   }
   h += "<p style='font-size:11px;color:#777'>Tests: signatures by GLS F-tests under the estimated AR noise "
-       "(Bonferroni over the kind's signatures); effects accepted only when significant (F-test times the number of "
-       "harmonic orders searched, or a parametric bootstrap for breakpoints and transitions), BIC lower by more than "
-       "10, held-out RMS lower, and their signature removed. Intervals: Wald, delta method.</p></body></html>\n";
+       "(Bonferroni over the kind's signatures). Effects enter one at a time (BIC lower by more than 10, held-out RMS "
+       "lower, a signature removed) or, where overlapping effects only together remove their signatures, jointly; "
+       "each is kept only if removing it costs significantly: BIC up by more than 10, a worse held-out RMS, and "
+       "significant against the noise (F-test times the number of harmonic orders searched; for breakpoints and "
+       "transitions the F-test Bonferroni-corrected for the search when decisive, else a parametric bootstrap). "
+       "Intervals: Wald, delta method.</p></body></html>\n";
   return h;
 }
 

@@ -68,6 +68,18 @@ const nlohmann::json& truth_params(const nlohmann::json& truth, const std::strin
   return none;
 }
 
+/// A size-17 torsion loop to +-31 N*m (C_tau of cases/cup_size17.toml) under 22-bit encoder noise: AR(1) 1 arcsec
+/// (phi 0.9) plus `white_sd`, quantised to 2 pi / 2^22 rad.
+SynthOptions size17_loop(double white_sd, std::uint64_t seed) {
+  SynthOptions o;
+  o.kind = Kind::Torsion;
+  o.baseline.compliance_rad_per_Nm = 1.89e-5;
+  o.torque_amplitude_Nm = 31.0;
+  o.white_sd = white_sd; o.ar1_sd = 4.85e-6; o.ar1_phi = 0.9; o.quantum = 1.498e-6;
+  o.seed = seed;
+  return o;
+}
+
 bool time_flagged(const Result& r) {
   for (const auto& u : r.unexplained)
     if (u.domain == "time") return true;
@@ -128,12 +140,7 @@ TEST(OtherStructures, RoundedStiffnessCornersStillGiveTheCatalogSlopes) {
   // shipped recordings' noise. Three straight segments cannot follow the rounded corners at 1 arcsec (the verdict
   // is partly_explained, the torque-shape signature left: printed, not asserted), but the slopes are the catalog's.
   sw::quiet_progress() = true;
-  SynthOptions o;
-  o.kind = Kind::Torsion;
-  o.baseline.compliance_rad_per_Nm = 1.89e-5;
-  o.torque_amplitude_Nm = 31.0;
-  o.white_sd = 2.42e-6; o.ar1_sd = 4.85e-6; o.ar1_phi = 0.9; o.quantum = 1.498e-6;
-  o.seed = 54;
+  SynthOptions o = size17_loop(2.42e-6, 54);
   o.effects = parse_synth_effects("stiffness_smooth:K1_Nm_per_rad=1e4,K2_Nm_per_rad=1.4e4,K3_Nm_per_rad=1.6e4,"
                                   "T1_Nm=3.9,T2_Nm=12,width=0.3,hysteresis:loss_rad=1.745e-4,transition_Nm=1.5,"
                                   "lost_motion:width_rad=5.82e-5,transition_Nm=0.4");
@@ -224,12 +231,7 @@ TEST(MultiEffect, OverlappingTorsionEffectsAreAdmittedTogetherAndNoDriftIsInvent
   // The case single-effect selection failed on: a three-segment law with series compliance and friction at high SNR
   // (each effect alone leaves the others' signatures near zero torque), AR(1) noise of 1 arcsec, 22-bit encoder.
   sw::quiet_progress() = true;
-  SynthOptions o;
-  o.kind = Kind::Torsion;
-  o.baseline.compliance_rad_per_Nm = 1.89e-5;
-  o.torque_amplitude_Nm = 31.0;
-  o.white_sd = 0.0; o.ar1_sd = 4.85e-6; o.ar1_phi = 0.9; o.quantum = 1.498e-6;
-  o.seed = 53;
+  SynthOptions o = size17_loop(0.0, 53);
   o.effects = parse_synth_effects("stiffness_nonlinearity:K1_Nm_per_rad=1e4,K2_Nm_per_rad=1.4e4,K3_Nm_per_rad=1.6e4,"
                                   "T1_Nm=3.9,T2_Nm=12,hysteresis:loss_rad=1.745e-4,transition_Nm=1.5");
   const SynthResult s = synthesize(o);

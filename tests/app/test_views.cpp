@@ -159,4 +159,22 @@ TEST(Browser, ReconcilePageRendersWithoutConsoleErrors) {
   fs::remove_all(dir);
 }
 
+TEST(Browser, RunReportRendersWithoutConsoleErrorsAndHoldsTheRunsFigures) {
+  const fs::path out = coarse_seed_run();
+  const fs::path page = out / "report.html";
+  ASSERT_TRUE(fs::exists(page));
+  std::ifstream in(page);
+  const std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (const char* must : {"<svg", "flexspline.pvd", "Not computed", "geometric angular play", "FEM neutral curve",
+                           "nominal hoop bending stress", "local hoop stress peaks"})
+    EXPECT_NE(html.find(must), std::string::npos) << must;
+  EXPECT_EQ(html.find("http://"), html.find("http://www.w3.org"));  // no network resources, only the SVG namespace
+  EXPECT_EQ(html.find("<script"), std::string::npos);
+  const fs::path png = out / "report.png";
+  const Shell r = open_in_chromium(page, png);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  expect_rendered(png);
+  EXPECT_EQ(r.output.find(":ERROR:CONSOLE"), std::string::npos) << r.output;
+}
+
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include "app/commands.hpp"
 #include "app/fem_job.hpp"
+#include "common/error.hpp"
 #include "common/progress.hpp"
 #include "fem/flexspline_analysis.hpp"
 #include "io/atomic_file.hpp"
@@ -20,7 +21,16 @@ fs::path default_out_dir(const Case& c) { return fs::path("out") / c.stem; }
 
 TetMesh mesh_for_case(const Case& c) { return mesh_flexspline(c.flexspline, c.gear, c.mesh); }
 
+void apply_solver_option(Case& c, const std::string& solver) {
+  if (solver.empty()) return;
+  c.solver.method = solver == "fourier" ? SolverMethod::Fourier : SolverMethod::Tet10;
+  if (c.solver.method == SolverMethod::Fourier && c.flexspline.teeth == TeethModel::Explicit)
+    throw InputError(c.path + ": --solver fourier needs a body of revolution; flexspline.teeth = \"explicit\" is not "
+                              "one (use teeth = \"ring\" or \"none\", or --solver tet10)");
+}
+
 FemJobResult run_fem_job(const Case& c, const fs::path& out_dir) {
+  if (c.solver.method == SolverMethod::Fourier) return run_fourier_fem_job(c, out_dir);
   const double t_start = elapsed_s();
   RunInfo run;
   run.blas = detect_blas();
@@ -74,11 +84,14 @@ FemJobResult run_fem_job(const Case& c, const fs::path& out_dir) {
 
 void add_fem_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("fem", "mesh the flexspline, solve every load case, extract phi0 and C_tau");
-  static std::string case_path, out;
+  static std::string case_path, out, solver;
   cmd->add_option("case", case_path, "case file (TOML)")->required();
   cmd->add_option("--out", out, "output directory (default out/<case stem>/)");
+  cmd->add_option("--solver", solver, "tet10 | fourier (overrides [solver] method)")
+      ->check(CLI::IsMember({"tet10", "fourier"}));
   cmd->callback([] {
-    const Case c = load_case(case_path);
+    Case c = load_case(case_path);
+    apply_solver_option(c, solver);
     progress("case:\n" + describe_case(c));
     run_fem_job(c, out.empty() ? default_out_dir(c) : fs::path(out));
   });

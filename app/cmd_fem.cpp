@@ -29,8 +29,8 @@ void apply_solver_option(Case& c, const std::string& solver) {
                               "one (use teeth = \"ring\" or \"none\", or --solver tet10)");
 }
 
-FemJobResult run_fem_job(const Case& c, const fs::path& out_dir) {
-  if (c.solver.method == SolverMethod::Fourier) return run_fourier_fem_job(c, out_dir);
+FemJobResult run_fem_job(const Case& c, const fs::path& out_dir, bool write_vtk) {
+  if (c.solver.method == SolverMethod::Fourier) return run_fourier_fem_job(c, out_dir, write_vtk);
   const double t_start = elapsed_s();
   RunInfo run;
   run.blas = detect_blas();
@@ -50,7 +50,7 @@ FemJobResult run_fem_job(const Case& c, const fs::path& out_dir) {
   job.solution = analyse_flexspline(c, mesh);
   clock.lap();
   progress("output: " + out_dir.string());
-  write_fem_vtk(out_dir, c, mesh, job.solution);
+  if (write_vtk) write_fem_vtk(out_dir, c, mesh, job.solution);
   if (job.solution.neutral_curve) write_file_atomic(out_dir / "neutral_curve.csv", neutral_curve_csv(*job.solution.neutral_curve));
   run.output_s = clock.lap();
   run.total_s = elapsed_s() - t_start;
@@ -85,7 +85,9 @@ FemJobResult run_fem_job(const Case& c, const fs::path& out_dir) {
 void add_fem_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("fem", "mesh the flexspline, solve every load case, extract phi0 and C_tau");
   static std::string case_path, out, solver;
+  static bool no_vtk = false;
   cmd->add_option("case", case_path, "case file (TOML)")->required();
+  cmd->add_flag("--no-vtk", no_vtk, "leave out flexspline.pvd and the .vtu files");
   cmd->add_option("--out", out, "output directory (default out/<case stem>/)");
   cmd->add_option("--solver", solver, "tet10 | fourier (overrides [solver] method)")
       ->check(CLI::IsMember({"tet10", "fourier"}));
@@ -93,7 +95,7 @@ void add_fem_command(CLI::App& app) {
     Case c = load_case(case_path);
     apply_solver_option(c, solver);
     progress("case:\n" + describe_case(c));
-    run_fem_job(c, out.empty() ? default_out_dir(c) : fs::path(out));
+    run_fem_job(c, out.empty() ? default_out_dir(c) : fs::path(out), !no_vtk);
   });
 }
 

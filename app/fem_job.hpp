@@ -20,8 +20,9 @@ std::filesystem::path default_out_dir(const Case& c);
 /// The mesh of the case's flexspline.
 TetMesh mesh_for_case(const Case& c);
 
-/// Meshes, solves, writes every fem output under out_dir, prints the summary (by the case's solver.method).
-FemJobResult run_fem_job(const Case& c, const std::filesystem::path& out_dir);
+/// Meshes, solves, writes every fem output under out_dir, prints the summary (by the case's solver.method);
+/// write_vtk = false leaves out the .vtu/.pvd files (sweeps).
+FemJobResult run_fem_job(const Case& c, const std::filesystem::path& out_dir, bool write_vtk = true);
 
 /// The same on the harmonic solver (solver.method = "fourier"; app/fem_fourier_job.cpp); VTU output optional.
 FemJobResult run_fourier_fem_job(const Case& c, const std::filesystem::path& out_dir, bool write_vtk = true);

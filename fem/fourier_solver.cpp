@@ -287,29 +287,39 @@ Probe probe_node(int i) {
   return p;
 }
 
-/// Amplitudes of a nodal table (n_nodes × k per harmonic and family) at a probe, summed at angle θ:
-/// the first `cos_cols` columns go with cos nθ (sym) / sin nθ (anti), the rest with sin nθ (sym) / −cos nθ (anti).
-Eigen::VectorXd sum_series(const std::vector<Eigen::MatrixXd>& sym, const std::vector<Eigen::MatrixXd>& anti,
-                           const Probe& p, double theta, int cos_cols) {
-  const Eigen::Index k = sym.empty() ? 0 : sym[0].cols();
-  Eigen::VectorXd out = Eigen::VectorXd::Zero(k);
+/// cos nθ and sin nθ for n = 0..N at one angle (the series are summed at many points of few angles).
+struct Trig {
+  std::vector<double> c, s;
+  Trig(double theta, std::size_t harmonics) : c(harmonics), s(harmonics) {
+    for (std::size_t n = 0; n < harmonics; ++n) {
+      c[n] = std::cos(static_cast<double>(n) * theta);
+      s[n] = std::sin(static_cast<double>(n) * theta);
+    }
+  }
+};
+
+/// Stress amplitudes (n_nodes × 6 per harmonic and family; see nodal_stress) at a probe, summed at an angle: the
+/// first four components go with cos nθ (sym) / sin nθ (anti), the shears with sin nθ (sym) / −cos nθ (anti).
+Eigen::Matrix<double, 6, 1> sum_stress(const std::vector<Eigen::MatrixXd>& sym, const std::vector<Eigen::MatrixXd>& anti,
+                                       const Probe& p, const Trig& trig) {
+  Eigen::Matrix<double, 6, 1> out = Eigen::Matrix<double, 6, 1>::Zero();
   for (std::size_t n = 0; n < sym.size(); ++n) {
     if (sym[n].size() == 0) continue;
-    Eigen::VectorXd as = Eigen::VectorXd::Zero(k), aa = Eigen::VectorXd::Zero(k);
+    Eigen::Matrix<double, 6, 1> as = Eigen::Matrix<double, 6, 1>::Zero(), aa = as;
     for (int j = 0; j < 6; ++j)
       if (p.weight[j] != 0) {
         as += p.weight[j] * sym[n].row(p.node[j]).transpose();
         aa += p.weight[j] * anti[n].row(p.node[j]).transpose();
       }
-    const double c = std::cos(n * theta), s = std::sin(n * theta);
-    out.head(cos_cols) += c * as.head(cos_cols) + s * aa.head(cos_cols);
-    out.tail(k - cos_cols) += s * as.tail(k - cos_cols) - c * aa.tail(k - cos_cols);
+    const double c = trig.c[n], s = trig.s[n];
+    out.head<4>() += c * as.head<4>() + s * aa.head<4>();
+    out.tail<2>() += s * as.tail<2>() - c * aa.tail<2>();
   }
   return out;
 }
 
 /// (u_r, u_θ, u_z) of a field at a probe: a, c go with cos (sym), b with sin.
-Eigen::Vector3d displacement_at(const HarmonicField& f, const Probe& p, double theta) {
+Eigen::Vector3d displacement_at(const HarmonicField& f, const Probe& p, const Trig& trig) {
   Eigen::Vector3d u = Eigen::Vector3d::Zero();
   for (std::size_t n = 0; n < f.sym.size(); ++n) {
     if (f.sym[n].size() == 0) continue;
@@ -319,12 +329,15 @@ Eigen::Vector3d displacement_at(const HarmonicField& f, const Probe& p, double t
         as += p.weight[j] * f.sym[n].row(p.node[j]);
         aa += p.weight[j] * f.anti[n].row(p.node[j]);
       }
-    const double c = std::cos(n * theta), sn = std::sin(n * theta);
+    const double c = trig.c[n], sn = trig.s[n];
     u[0] += as[0] * c + aa[0] * sn;
     u[1] += as[1] * sn - aa[1] * c;
     u[2] += as[2] * c + aa[2] * sn;
   }
   return u;
+}
+Eigen::Vector3d displacement_at(const HarmonicField& f, const Probe& p, double theta) {
+  return displacement_at(f, p, Trig(theta, f.sym.size()));
 }
 
 Eigen::Vector3d to_cartesian(const Eigen::Vector3d& cyl, double theta) {
@@ -381,7 +394,7 @@ void nodal_stress(const SectionMesh& s, const Material& m, const HarmonicField& 
 
 /// Hoop stress σ_θθ at a probe and angle from the nodal amplitudes (column 2 is σ_θ, a cos-type column).
 double hoop_at(const std::vector<Eigen::MatrixXd>& sym, const std::vector<Eigen::MatrixXd>& anti, const Probe& p,
-               double theta) {
+               const Trig& trig) {
   double v = 0;
   for (std::size_t n = 0; n < sym.size(); ++n) {
     if (sym[n].size() == 0) continue;
@@ -391,7 +404,7 @@ double hoop_at(const std::vector<Eigen::MatrixXd>& sym, const std::vector<Eigen:
         as += p.weight[j] * sym[n](p.node[j], 2);
         aa += p.weight[j] * anti[n](p.node[j], 2);
       }
-    v += as * std::cos(n * theta) + aa * std::sin(n * theta);
+    v += as * trig.c[n] + aa * trig.s[n];
   }
   return v;
 }
@@ -854,19 +867,21 @@ FourierSolution analyse_section_fourier(const Case& c, SectionMesh section, int 
     const Probe pin = probe_at(sec, {fs.hoop.inner_radius_m, z}), pout = probe_at(sec, {fs.hoop.outer_radius_m, z});
     for (int k = 0; k < kRingSamples; ++k) {
       const double t = 2 * kPi * k / kRingSamples;
-      fs.hoop.inner_Pa.push_back(hoop_at(hs, ha, pin, t));
-      fs.hoop.outer_Pa.push_back(hoop_at(hs, ha, pout, t));
+      const Trig trig(t, hs.size());
+      fs.hoop.inner_Pa.push_back(hoop_at(hs, ha, pin, trig));
+      fs.hoop.outer_Pa.push_back(hoop_at(hs, ha, pout, trig));
     }
   }
   fs.hoop.max_tensile_Pa = -1e300;
   fs.hoop.max_compressive_Pa = 1e300;
   const int stations = 4 * kRingSamples;  // 0.25°: finer than any grid the extremes could be read on
+  std::vector<Trig> trigs;
+  for (int k = 0; k < stations; ++k) trigs.emplace_back(2 * kPi * k / stations, hs.size());
   for (std::size_t i = 0; i < nn; ++i) {
     if (sec.nodes(static_cast<Eigen::Index>(i), 1) < 0.5 * f.length_m) continue;
     const Probe p = probe_node(static_cast<int>(i));
     for (int k = 0; k < stations; ++k) {
-      const double t = 2 * kPi * k / stations;
-      const double st = hoop_at(hs, ha, p, t);
+      const double st = hoop_at(hs, ha, p, trigs[k]);
       if (st > fs.hoop.max_tensile_Pa) {
         fs.hoop.max_tensile_Pa = st;
         fs.hoop.max_tensile_angle_deg = 360.0 * k / stations;
@@ -894,6 +909,8 @@ FourierSolution analyse_section_fourier(const Case& c, SectionMesh section, int 
     std::vector<int> station_of, node_of;
     out.grid = revolve_section(sec, grid_sectors, station_of, node_of);
     const Eigen::Index gn = static_cast<Eigen::Index>(out.grid.n_nodes());
+    std::vector<Trig> trigs_grid;
+    for (int k = 0; k < 2 * grid_sectors; ++k) trigs_grid.emplace_back(kPi * k / grid_sectors, static_cast<std::size_t>(N + 1));
     for (std::size_t lc = 0; lc < cases.size(); ++lc) {
       const HarmonicField& u = cases[lc].second;
       std::vector<Eigen::MatrixXd> ss, sa;
@@ -901,10 +918,11 @@ FourierSolution analyse_section_fourier(const Case& c, SectionMesh section, int 
       Eigen::VectorXd U(3 * gn);
       RowMatrixX6d S(gn, 6);
       for (Eigen::Index id = 0; id < gn; ++id) {
-        const double t = kPi * station_of[static_cast<std::size_t>(id)] / grid_sectors;
+        const int k = station_of[static_cast<std::size_t>(id)];
+        const double t = kPi * k / grid_sectors;
         const Probe p = probe_node(node_of[static_cast<std::size_t>(id)]);
-        U.segment<3>(3 * id) = to_cartesian(displacement_at(u, p, t), t);
-        const Eigen::VectorXd cyl = sum_series(ss, sa, p, t, 4);
+        U.segment<3>(3 * id) = to_cartesian(displacement_at(u, p, trigs_grid[k]), t);
+        const Eigen::Matrix<double, 6, 1> cyl = sum_stress(ss, sa, p, trigs_grid[k]);
         S.row(id) = cartesian_stress(cyl, t);
       }
       fs.cases[lc].u = U;

@@ -73,7 +73,7 @@ SweepAxis parse_set(const std::string& spec) {
   return a;
 }
 
-/// The base case's TOML with the point's values set; integers stay integers where the base had one.
+/// The base case's TOML with the point's values set; whole values stay integers where the base had an integer.
 std::string point_case_text(const toml::table& base, const std::vector<SweepAxis>& axes, const std::vector<double>& v) {
   toml::table t = base;
   for (std::size_t k = 0; k < axes.size(); ++k) {
@@ -86,12 +86,9 @@ std::string point_case_text(const toml::table& base, const std::vector<SweepAxis
       throw InputError("--set " + axes[k].name() + ": " + axes[k].table + " is not a table of the case");
     auto& tt = *table->as_table();
     const toml::node* old = tt.get(axes[k].key);
-    if (old && old->is_integer()) {
-      if (v[k] != std::round(v[k]))
-        throw InputError("--set " + axes[k].name() + ": the case's value is an integer; " + std::to_string(v[k]) +
-                         " is not (choose FROM, TO, N so every point is a whole number)");
+    if (old && old->is_integer() && v[k] == std::round(v[k])) {
       tt.insert_or_assign(axes[k].key, static_cast<int64_t>(std::llround(v[k])));
-    } else {
+    } else {  // a key that takes integers only rejects a fraction with the case parser's message
       tt.insert_or_assign(axes[k].key, v[k]);
     }
   }
@@ -325,7 +322,6 @@ void add_sweep_command(CLI::App& app) {
     }
     if (jobs <= 0) jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     const fs::path dir = out.empty() ? fs::path(default_out_dir(base_case).string() + "_sweep") : fs::path(out);
-    fs::create_directories(dir);
 
     // Points, first key slowest; each point's case is validated before anything runs.
     std::vector<Point> points;
@@ -346,6 +342,7 @@ void add_sweep_command(CLI::App& app) {
       apply_solver_option(pc, solver);
       points.push_back(std::move(p));
     }
+    fs::create_directories(dir);
     std::vector<const Point*> todo;
     std::size_t skipped = 0;
     for (const auto& p : points) {

@@ -2,6 +2,7 @@
 // backlash over a wave-generator revolution, basic (φ₀ = 0) and load-compensated (φ₀ from the FEM or --phi0).
 #include <cmath>
 #include <cstdio>
+#include <algorithm>
 #include <numbers>
 
 #include "app/backlash_job.hpp"
@@ -10,6 +11,7 @@
 #include "common/progress.hpp"
 #include "io/atomic_file.hpp"
 #include "io/case.hpp"
+#include "io/fem_output.hpp"
 
 namespace sw::app {
 
@@ -46,7 +48,10 @@ BacklashReport run_backlash_job(const Case& c, const BacklashJobOptions& o, cons
   NeutralCurve curve;
   if (o.fem_curve) {
     if (!o.fem_result) throw InputError("--curve fem needs --fem DIR/result.json (neutral_curve.csv is read beside it)");
-    curve = read_fem_neutral_curve(o.fem_result->parent_path() / "neutral_curve.csv", rm, FemLoadCase::GeneratorOnly);
+    const fs::path csv = o.fem_result->parent_path() / "neutral_curve.csv";
+    const NeutralCurveSamples s = read_neutral_curve_csv(csv);
+    curve = fit_neutral_curve(rm, s.phi_rad, s.w_wg_m, s.v_wg_m, s.mu_wg_rad,
+                              "FEM neutral curve " + csv.string() + " (generator alone)");
   } else {
     curve = generator_neutral_curve(rm, w0, *c.wave_generator);
   }
@@ -56,6 +61,8 @@ BacklashReport run_backlash_job(const Case& c, const BacklashJobOptions& o, cons
            std::to_string(r.phi0_rad) + " rad");
 
   Stopwatch clock;
+  r.geometry = check_geometry(*c.gear, curve);
+  progress("backlash: geometry check in " + std::to_string(clock.lap()) + " s");
   for (double pos : {0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 90.0}) {
     const double phi = (90.0 - pos) * kPi / 180.0;
     r.table.push_back({pos, pair_clearance(m, phi, 0.0), pair_clearance(m, phi, r.phi0_rad)});
@@ -77,18 +84,36 @@ BacklashReport run_backlash_job(const Case& c, const BacklashJobOptions& o, cons
   write_file_atomic(out_dir / "backlash.svg", backlash_svg(r));
   write_profiles_vtp(out_dir / "profiles.vtp", m, r.phi0_rad);
 
-  std::printf("backlash %s: %s\n  phi0 = %.6e rad (%s)\n", c.path.c_str(), curve.source.c_str(), r.phi0_rad,
-              r.phi0_source.c_str());
-  std::printf("  %-10s %-8s %-12s %-12s %-9s %s\n", "psi(deg)", "engaged", "j/m basic", "j/m comp", "change", "j_t1/j_t2 basic -> comp (um)");
-  for (const auto& row : r.table) {
-    const double b = row.basic.backlash_m() / r.module_m, cc = row.compensated.backlash_m() / r.module_m;
-    std::printf("  %-10.0f %-8s %-12.5f %-12.5f %+7.1f%%  %.3f/%.3f -> %.3f/%.3f%s\n", row.position_deg,
-                row.basic.engaged ? "yes" : "no", b, cc, b != 0 ? 100.0 * (cc - b) / std::abs(b) : 0.0,
-                row.basic.ccw.clearance_m * 1e6, row.basic.cw.clearance_m * 1e6, row.compensated.ccw.clearance_m * 1e6,
-                row.compensated.cw.clearance_m * 1e6, b < 0 || cc < 0 ? "  (interference)" : "");
+  constexpr double kArcmin = 180.0 / kPi * 60.0;
+  std::printf("backlash %s: %s\n", c.path.c_str(), curve.source.c_str());
+  std::printf("%s", geometry_check_text(r.geometry, r.module_m).c_str());
+  const auto& rb = r.revolution_basic;
+  std::printf("  geometric angular play of the output over a revolution: %.3f .. %.3f arcmin (teeth and rim rigid; "
+              "not the catalog's lost motion, which includes elastic twist)\n",
+              rb.angular_play_min_rad * kArcmin, rb.angular_play_max_rad * kArcmin);
+  int near_min = 1 << 30, near_max = 0;
+  for (const MeshState& st : rb.period) {
+    near_min = std::min({near_min, st.near_ccw[1], st.near_cw[1]});
+    near_max = std::max({near_max, st.near_ccw[1], st.near_cw[1]});
   }
-  std::printf("  min over engaged pairs and a revolution: basic %.5f mm (j/m %.5f), compensated %.5f mm (j/m %.5f)\n",
-              r.revolution_basic.min_m * 1e3, r.revolution_basic.min_m / r.module_m, r.revolution_compensated.min_m * 1e3,
+  std::printf("  pairs in mesh %d .. %d; pairs within 5 um of contact on one flank: %d .. %d\n", rb.engaged_pairs_min,
+              rb.engaged_pairs_max, near_min, near_max);
+  std::printf("  the paper's table (rigid teeth, rim turned rigidly by phi0 = %.6e rad, %s):\n", r.phi0_rad,
+              r.phi0_source.c_str());
+  std::printf("  %-10s %-12s %-12s %-12s %s\n", "psi(deg)", "j/m basic", "j/m comp", "play(um)", "j_t1/j_t2 basic -> comp (um)");
+  for (const auto& row : r.table) {
+    if (!row.basic.engaged) {
+      std::printf("  %-10.0f not in mesh (teeth face tip to tip: no backlash)\n", row.position_deg);
+      continue;
+    }
+    const double b = row.basic.backlash_m() / r.module_m, cc = row.compensated.backlash_m() / r.module_m;
+    std::printf("  %-10.0f %-12.5f %-12.5f %-12.3f %.3f/%.3f -> %.3f/%.3f%s\n", row.position_deg, b, cc,
+                row.basic.total_play_m() * 1e6, row.basic.ccw.clearance_m * 1e6, row.basic.cw.clearance_m * 1e6,
+                row.compensated.ccw.clearance_m * 1e6, row.compensated.cw.clearance_m * 1e6,
+                b < 0 ? "  (interference)" : cc <= 0 ? "  (loaded flank in contact)" : "");
+  }
+  std::printf("  min over pairs in mesh and a revolution: basic %.5f mm (j/m %.5f), compensated %.5f mm (j/m %.5f)\n",
+              rb.min_m * 1e3, rb.min_m / r.module_m, r.revolution_compensated.min_m * 1e3,
               r.revolution_compensated.min_m / r.module_m);
   std::printf("  wrote %s\n", out_dir.string().c_str());
   return r;

@@ -1,5 +1,5 @@
 // `strainwave dynamics CASE.toml [--out DIR] [--clearances kinematics|approximate]`: the multibody run-up and steady
-// run of issue 6. Reads the case, takes the tooth-pair clearances of the basic kinematic model (kinematics/, φ₀ = 0,
+// run. Reads the case, takes the tooth-pair clearances of the basic kinematic model (kinematics/, φ₀ = 0,
 // wave generator at 0) or the dynamics module's stand-in, integrates, checks against kinematics and statics, and
 // writes dynamics.csv, dynamics.json and dynamics.svg (atomically).
 #include <algorithm>
@@ -127,7 +127,7 @@ void run_dynamics(const std::string& case_path, std::string out_dir, const std::
 }  // namespace
 
 void add_dynamics_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("dynamics", "multibody run-up and steady run with tooth-pair contact (issue 6)");
+  auto* cmd = app.add_subcommand("dynamics", "multibody run-up and steady run with tooth-pair contact");
   auto case_path = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
   auto clearances = std::make_shared<std::string>("kinematics");

@@ -11,6 +11,7 @@
 #include "io/atomic_file.hpp"
 #include "io/case.hpp"
 #include "io/fem_output.hpp"
+#include "mesh/estimate.hpp"
 #include "mesh/flexspline.hpp"
 
 namespace sw::app {
@@ -19,7 +20,10 @@ namespace fs = std::filesystem;
 
 fs::path default_out_dir(const Case& c) { return fs::path("out") / c.stem; }
 
-TetMesh mesh_for_case(const Case& c) { return mesh_flexspline(c.flexspline, c.gear, c.mesh); }
+TetMesh mesh_for_case(const Case& c) {
+  refuse_if_too_large(estimate_model_size(c.flexspline, c.gear, c.mesh), 0.0, c.path);  // seconds, not minutes
+  return mesh_flexspline(c.flexspline, c.gear, c.mesh);
+}
 
 void apply_solver_option(Case& c, const std::string& solver) {
   if (solver.empty()) return;

@@ -1,5 +1,5 @@
-// `strainwave run CASE.toml`: the main job. fem (φ₀, C_τ, neutral curve) then backlash fed with that φ₀; both tables
-// printed, both sets of files written under one output directory.
+// `strainwave run CASE.toml [--curve fem|generator]`: the main job. fem (φ₀, C_τ, neutral curve) then backlash fed
+// with that φ₀ and, by default, the FEM's own generator-deformed neutral curve; both sets of files under one folder.
 #include <filesystem>
 
 #include "app/backlash_job.hpp"
@@ -12,8 +12,12 @@ namespace sw::app {
 
 void add_run_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("run", "fem then backlash fed with its phi0: the main job");
-  static std::string case_path, out, solver;
+  static std::string case_path, out, solver, curve = "fem";
   cmd->add_option("case", case_path, "case file (TOML)")->required();
+  cmd->add_option("--curve", curve,
+                  "neutral curve for the backlash: fem (the FEM's generator-deformed rim, default) or generator "
+                  "(the generator model's thin-ring/cam curve)")
+      ->check(CLI::IsMember({"generator", "fem"}));
   cmd->add_option("--out", out, "output directory (default out/<case stem>/)");
   cmd->add_option("--solver", solver, "tet10 | fourier (overrides [solver] method)")
       ->check(CLI::IsMember({"tet10", "fourier"}));
@@ -29,6 +33,7 @@ void add_run_command(CLI::App& app) {
     }
     BacklashJobOptions options;
     options.fem_result = fem.result_json_path;
+    options.fem_curve = curve == "fem";
     run_backlash_job(c, options, dir);
   });
 }

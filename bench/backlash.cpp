@@ -1,10 +1,10 @@
-// bench_backlash — issue 4 "Performance": a full wave-generator revolution at 0.1° steps (3600 steps) over all
+// bench_backlash — performance target: a full wave-generator revolution at 0.1° steps (3600 steps) over all
 // engaged tooth pairs, both flanks, must take < 1 s on this machine.
 //
 // Builds the backlash model as `strainwave backlash` does (app/cmd_backlash.cpp: generator_neutral_curve on
 // rim_mean_radius, make_backlash_model) and times, with wall and process CPU clocks:
 //   1. sweep_revolution(model, phi0, steps): what the app runs; it solves each distinct generator position once
-//      (the pair set repeats every circular-spline pitch 2π/z_c) — this is the issue's figure;
+//      (the pair set repeats every circular-spline pitch 2π/z_c) — this is the figure the target is about;
 //   2. a brute-force revolution: pair_clearances() at every one of the steps, no periodicity shortcut (the cost of
 //      solving every step; only with --brute, it takes ~50x longer).
 // Prints steps, distinct positions, engaged pairs per step, pairs evaluated (each = both flanks solved to 1e-12 m)
@@ -39,7 +39,7 @@ double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"bench_backlash: time a wave-generator revolution of the backlash model (issue 4)"};
+  CLI::App app{"bench_backlash: time a wave-generator revolution of the backlash model"};
   std::string case_path = std::string(SW_SOURCE_DIR) + "/cases/seed_190_192.toml";
   int steps = 3600;
   double phi0 = 0.0;
@@ -101,7 +101,7 @@ int main(int argc, char** argv) {
                   "%.2f us per pair; min backlash %.4f um  [target < 1 s: %s]\n",
                   wall, cpu, steps, pairs, pairs ? 1e6 * wall / pairs : 0.0, best * 1e6, wall < 1.0 ? "met" : "NOT met");
     }
-    std::printf("  target (issue 4): a full revolution at 0.1 deg over all engaged pairs, both flanks, < 1 s "
+    std::printf("  target: a full revolution at 0.1 deg over all engaged pairs, both flanks, < 1 s "
                 "(timings on a busy machine are noisy)\n");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_backlash: %s\n", e.what());

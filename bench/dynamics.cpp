@@ -1,4 +1,4 @@
-// bench_dynamics — issue 6 "Performance": 0.1 s of simulated time for the seed gear with all engaged tooth pairs,
+// bench_dynamics — performance target: 0.1 s of simulated time for the seed gear with all engaged tooth pairs,
 // output at 1e-5 s, must take < 10 s of wall time on this machine.
 //
 // Builds the model as `strainwave dynamics` does (app/cmd_dynamics.cpp, default options: clearances from the basic
@@ -39,7 +39,7 @@ double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"bench_dynamics: time the multibody simulation of a gear (issue 6)"};
+  CLI::App app{"bench_dynamics: time the multibody simulation of a gear"};
   std::string case_path = std::string(SW_SOURCE_DIR) + "/cases/seed_190_192.toml";
   double duration = 0.1, output_step = 1e-5;
   app.add_option("case", case_path, "case file (TOML) with [gear] and a [dynamics] table");
@@ -70,7 +70,7 @@ int main(int argc, char** argv) {
                 "integrator steps, %ld RHS, %ld Jacobians, %zu output samples  [target < 10 s: %s]\n",
                 wall, cpu, p.duration_s / wall, m.pairs.size(), s.stats.steps, s.stats.rhs_evals, s.stats.jac_evals,
                 s.time_s.size(), wall < 10.0 ? "met" : "NOT met");
-    std::printf("  target (issue 6): 0.1 s simulated, all engaged pairs, output at 1e-5 s, < 10 s "
+    std::printf("  target: 0.1 s simulated, all engaged pairs, output at 1e-5 s, < 10 s "
                 "(timings on a busy machine are noisy)\n");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_dynamics: %s\n", e.what());

@@ -2,7 +2,7 @@
 // Mesh convergence of φ₀ for any case: solves the case at its own mesh.size_mm and at sizes × ratio, × ratio², ...
 // (wall_layers as the case gives them), prints φ₀ per mesh, the observed order p from the last three, the Richardson
 // extrapolated φ₀ and each mesh's estimated discretisation error relative to it. The case's default mesh (level 0) must
-// be within 1 % of the extrapolated value (issue 3). Runs one solve at a time, BLAS threads as the environment says.
+// be within 1 % of the extrapolated value. Runs one solve at a time, BLAS threads as the environment says.
 #include <cmath>
 #include <cstdio>
 #include <vector>

@@ -1,4 +1,4 @@
-// bench_reconcile — issue 5 "Performance": reconcile on a 20,000-sample recording with the bootstrap calibration
+// bench_reconcile — performance target: reconcile on a 20,000-sample recording with the bootstrap calibration
 // must take < 30 s on this machine.
 //
 // Synthesises a torsion recording (reconcile/synth.hpp, the noise of tests/reconcile/test_identify.cpp: C_tau 5e-5
@@ -28,7 +28,7 @@ double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC
 
 int main(int argc, char** argv) {
   using namespace sw::reconcile;
-  CLI::App app{"bench_reconcile: time reconcile on a large synthetic torsion recording (issue 5)"};
+  CLI::App app{"bench_reconcile: time reconcile on a large synthetic torsion recording"};
   int samples = 20000, bootstrap = Options{}.bootstrap, seed = 7;
   double cycles = 4.0, concealment = 0.5;
   std::string effect = "hysteresis";
@@ -79,7 +79,7 @@ int main(int argc, char** argv) {
     std::printf("  truth: %s\n", nlohmann::json::parse(s.truth_json)["effects"].dump().c_str());
     if (!bootstrapped)
       std::printf("  note: no accepted effect went through the bootstrap, so this run did not time it\n");
-    std::printf("  target (issue 5): a 20,000-sample recording with the bootstrap calibration < 30 s "
+    std::printf("  target: a 20,000-sample recording with the bootstrap calibration < 30 s "
                 "(timings on a busy machine are noisy)\n");
   } catch (const std::exception& ex) {
     std::fprintf(stderr, "bench_reconcile: %s\n", ex.what());

@@ -1,5 +1,5 @@
 #pragma once
-// The case file's [dynamics] table (issue 6), SI units. Header-only and dependent on the standard library alone, so that
+// The case file's [dynamics] table, SI units. Header-only and dependent on the standard library alone, so that
 // io/case.hpp can hold it without depending on the dynamics module. Millimetre keys of the file are converted once by
 // the case parser; every key has the default written here.
 #include <optional>

@@ -1,5 +1,5 @@
 #pragma once
-// The multibody model of a strain wave gear (issue 6): three rigid bodies (wave generator, flexspline, circular spline),
+// The multibody model of a strain wave gear: three rigid bodies (wave generator, flexspline, circular spline),
 // the flexspline optionally split into its toothed rim and its output flange joined by a torsional spring 1/C_τ, and one
 // contact per tooth pair of the engagement zones. Everything here is a small value type or a free function; the time
 // integration is in dynamics/simulate.hpp.

@@ -1,5 +1,7 @@
 #pragma once
-// Gear parameters of a strain wave gear set (the case file's [gear] table), SI units.
+// Gear parameters of a strain wave gear set (the case file's [gear] table), SI units, and their validation.
+#include <string>
+
 namespace sw {
 
 struct GearParams {
@@ -10,8 +12,17 @@ struct GearParams {
   double profile_shift_flexspline = 1.52;          ///< x_f
   double profile_shift_circular = 1.57;            ///< x_c
   int cutter_teeth = 80;             ///< z_0 of the shaper cutter that generates the flexspline teeth
-  double addendum_coefficient = 1.0;       ///< h_a* (not in the case file yet: standard basic rack)
-  double tip_clearance_coefficient = 0.25; ///< c* (not in the case file yet: standard basic rack)
+  /// Tooth proportions in modules. Defaults: the ISO 53 basic rack (h_a* = 1, h_f* = 1.25). Harmonic drives use
+  /// short teeth (h_a* ≈ 0.6–0.8): the radial travel of a tooth between the axes is only 2·w0 ≈ 2·m.
+  double addendum_coefficient_flexspline = 1.0;   ///< h_a,f*: tip above the shifted reference circle
+  double addendum_coefficient_circular = 1.0;     ///< h_a,c*: tip inside the shifted reference circle
+  double dedendum_coefficient_flexspline = 1.25;  ///< h_f,f*: the shaper cutter's tip height (root follows from it)
+  double dedendum_coefficient_circular = 1.25;    ///< h_f,c*: root outside the shifted reference circle
 };
+
+/// Checks the ranges and the consistency of a gear set that can be made (tooth numbers, module, pressure angle,
+/// proportions). Throws InputError "gear.<key> = value; expectation" naming the first violated constraint; `file` is
+/// prefixed to the message when not empty.
+void validate_gear(const GearParams& g, const std::string& file = "");
 
 }  // namespace sw

@@ -42,16 +42,36 @@ double roll_at_radius(double base_radius_m, double radius_m) {
   return std::sqrt(std::max(q * q - 1.0, 0.0));
 }
 
-GearRadii gear_radii(const GearParams& g) {
-  if (g.teeth_flexspline < 3 || g.teeth_circular <= g.teeth_flexspline) {
+void validate_gear(const GearParams& g, const std::string& file) {
+  const std::string at = file.empty() ? "" : file + ": ";
+  auto fail = [&](const std::string& key, double value, const std::string& expectation) {
     std::ostringstream s;
-    s << "teeth_circular = " << g.teeth_circular << ", teeth_flexspline = " << g.teeth_flexspline
-      << "; need teeth_circular > teeth_flexspline >= 3";
-    bad_gear(s.str());
-  }
-  if (!(g.module_m > 0)) bad_gear("module_mm must be > 0");
-  if (g.cutter_teeth < 8) bad_gear("cutter_teeth = " + std::to_string(g.cutter_teeth) + "; must be >= 8");
-  const double m = g.module_m, al = g.pressure_angle_rad, ha = g.addendum_coefficient, c = g.tip_clearance_coefficient;
+    s << at << "gear." << key << " = " << value << "; " << expectation;
+    throw InputError(s.str());
+  };
+  if (!(g.module_m > 0)) fail("module_mm", g.module_m * 1e3, "must be > 0");
+  if (g.teeth_flexspline < 4) fail("teeth_flexspline", g.teeth_flexspline, "must be >= 4");
+  if (g.teeth_circular <= g.teeth_flexspline)
+    fail("teeth_circular", g.teeth_circular,
+         "must be > gear.teeth_flexspline = " + std::to_string(g.teeth_flexspline) +
+             " (the flexspline has fewer teeth than the circular spline)");
+  if ((g.teeth_circular - g.teeth_flexspline) % 2 != 0)
+    fail("teeth_circular", g.teeth_circular, "z_c - z_f must be even (a two-lobe wave generator engages two zones)");
+  const double alpha_deg = g.pressure_angle_rad * 180.0 / kPi;
+  if (!(alpha_deg > 5.0 && alpha_deg < 45.0)) fail("pressure_angle_deg", alpha_deg, "must be in (5, 45)");
+  if (g.cutter_teeth < 8) fail("cutter_teeth", g.cutter_teeth, "must be >= 8");
+  const std::pair<const char*, double> proportions[] = {
+      {"addendum_coefficient_flexspline", g.addendum_coefficient_flexspline},
+      {"addendum_coefficient_circular", g.addendum_coefficient_circular},
+      {"dedendum_coefficient_flexspline", g.dedendum_coefficient_flexspline},
+      {"dedendum_coefficient_circular", g.dedendum_coefficient_circular}};
+  for (const auto& [key, v] : proportions)
+    if (!(v > 0.1 && v < 2.0)) fail(key, v, "must be in (0.1, 2) modules");
+}
+
+GearRadii gear_radii(const GearParams& g) {
+  validate_gear(g);
+  const double m = g.module_m, al = g.pressure_angle_rad;
   GearRadii r;
   // Flexspline.
   r.pitch_f = m * g.teeth_flexspline / 2.0;
@@ -60,19 +80,20 @@ GearRadii gear_radii(const GearParams& g) {
   const double inv_w0 = involute_function(al) + 2.0 * std::tan(al) * (g.profile_shift_flexspline + x0) / (g.teeth_flexspline + z0);
   r.cutter_pressure_angle_rad = inverse_involute(inv_w0);
   r.cutter_centre_distance = m * (g.teeth_flexspline + z0) / 2.0 * std::cos(al) / std::cos(r.cutter_pressure_angle_rad);
-  const double ra0 = m * (z0 / 2.0 + ha + c + x0);
+  const double ra0 = m * (z0 / 2.0 + g.dedendum_coefficient_flexspline + x0);
   const double rb0 = m * z0 / 2.0 * std::cos(al);
   r.root_f = r.cutter_centre_distance - ra0;
-  r.tip_f = r.pitch_f + m * (ha + g.profile_shift_flexspline);
+  r.tip_f = r.pitch_f + m * (g.addendum_coefficient_flexspline + g.profile_shift_flexspline);
   const double gl = r.cutter_centre_distance * std::sin(r.cutter_pressure_angle_rad) - std::sqrt(ra0 * ra0 - rb0 * rb0);
   r.form_f = gl > 0 ? std::hypot(r.base_f, gl) : r.base_f;
   r.form_f = std::max(r.form_f, r.root_f);
   // Circular spline.
   r.pitch_c = m * g.teeth_circular / 2.0;
   r.base_c = r.pitch_c * std::cos(al);
-  r.tip_c = r.pitch_c - m * (ha - g.profile_shift_circular);
-  r.root_c = r.pitch_c + m * (ha + c + g.profile_shift_circular);
-  r.form_c = r.pitch_c + m * (ha + g.profile_shift_circular);
+  const double hac = g.addendum_coefficient_circular, hfc = g.dedendum_coefficient_circular;
+  r.tip_c = r.pitch_c - m * (hac - g.profile_shift_circular);
+  r.root_c = r.pitch_c + m * (hfc + g.profile_shift_circular);
+  r.form_c = r.pitch_c + m * (std::min(hac, hfc) + g.profile_shift_circular);
   if (r.form_f >= r.tip_f) {
     std::ostringstream s;
     s << "profile_shift_flexspline = " << g.profile_shift_flexspline << ": the involute starts at r = " << r.form_f * 1e3
@@ -136,12 +157,11 @@ Eigen::Vector2d involute_tangent(const Involute& f, double u) {
   return f.base_radius * u * Eigen::Vector2d(std::cos(t), std::sin(t));
 }
 
-double involute_signed_distance(const Involute& f, const Eigen::Vector2d& p, double* foot_u) {
+InvoluteDistance involute_signed_distance(const Involute& f, const Eigen::Vector2d& p) {
   const double R = p.norm();
   const double aR = std::acos(std::min(1.0, f.base_radius / R));
   const double arg = std::atan2(p.y(), p.x());
-  if (foot_u) *foot_u = f.epsilon - arg + aR;
-  return f.base_radius * (arg + std::tan(aR) - aR - f.epsilon);
+  return {f.base_radius * (arg + std::tan(aR) - aR - f.epsilon), f.epsilon - arg + aR};
 }
 
 std::vector<Eigen::Vector2d> flexspline_outline(const GearParams& g, int points_per_flank) {

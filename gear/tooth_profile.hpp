@@ -3,28 +3,29 @@
 // z_0 = cutter_teeth teeth and profile shift x_f) and the circular spline's internal teeth (profile shift x_c).
 // Shared by the mesh generator (explicit teeth) and the backlash model. SI units (metres, radians).
 //
-// Standard relations used (m module, α pressure angle, h_a* addendum and c* tip clearance coefficients, x profile
-// shift, inv α = tan α − α):
+// Standard relations used (m module, α pressure angle, h_a* addendum and h_f* dedendum coefficients of each gear, x
+// profile shift, inv α = tan α − α):
 //
 //   reference (pitch) radius      r   = m z / 2
 //   base radius                   r_b = r cos α
 //   pressure angle at radius R    cos α_R = r_b / R
 //   involute, roll parameter u    point at radius r_b·sqrt(1 + u²), polar angle ε − inv α_R with tan α_R = u
 //
-// Flexspline (external), shaper-cut with an unshifted cutter (x_0 = 0, tip radius r_a0 = m(z_0/2 + h_a* + c*)):
+// Flexspline (external), shaper-cut with an unshifted cutter (x_0 = 0, tip radius r_a0 = m(z_0/2 + h_f,f*)):
 //   working pressure angle of the cutting mesh    inv α_w0 = inv α + 2 tan α (x_f + x_0) / (z_f + z_0)
 //   cutting centre distance                       a_0 = m (z_f + z_0)/2 · cos α / cos α_w0
 //   root radius                                   r_rf = a_0 − r_a0
-//   tip radius (turned blank)                     r_af = r_f + m (h_a* + x_f)
+//   tip radius (turned blank)                     r_af = r_f + m (h_a,f* + x_f)
 //   start of the involute (form radius)           r_Ff = sqrt(r_bf² + g²),
 //                                                 g = a_0 sin α_w0 − sqrt(r_a0² − r_b0²)   (point where the cutter's
 //                                                 tip circle leaves the line of action; r_Ff = r_bf if g ≤ 0)
 //   tooth thickness on the reference circle       s_f = m (π/2 + 2 x_f tan α)
 // Circular spline (internal; x_c > 0 widens the tooth spaces and moves the teeth outwards):
 //   space width on the reference circle           e_c = m (π/2 + 2 x_c tan α)
-//   tip radius (innermost)                        r_ac = r_c − m (h_a* − x_c)
-//   root radius                                   r_rc = r_c + m (h_a* + c* + x_c)
-//   end of the involute (form radius)             r_Fc = r_c + m (h_a* + x_c)
+//   tip radius (innermost)                        r_ac = r_c − m (h_a,c* − x_c)
+//   root radius                                   r_rc = r_c + m (h_f,c* + x_c)
+//   end of the involute (form radius)             r_Fc = r_c + m (min(h_a,c*, h_f,c*) + x_c)   (the fillet takes the
+//                                                 depth h_f,c* − h_a,c* below the root, as the basic rack's c* does)
 // Thickness at any radius R ≥ r_b (tooth of an external gear, space of an internal gear, same formula):
 //   s(R) = 2 R (s / (2 r) + inv α − inv α_R)
 // Half-angle of a flexspline tooth (or circular-spline space) at R: θ(R) = ε − inv α_R with ε = s/(2r) + inv α.
@@ -91,11 +92,16 @@ Eigen::Vector2d involute_point(const Involute& f, double u);
 /// d/du of involute_point: r_b·u·e(ε − u) (magnitude r_b·u, zero on the base circle).
 Eigen::Vector2d involute_tangent(const Involute& f, double u);
 
+/// Distance of a point from an involute and where its foot lies.
+struct InvoluteDistance {
+  double distance_m = 0;  ///< signed, positive on the side of increasing polar angle
+  double foot_roll = 0;   ///< roll parameter u of the foot of the normal through the point
+};
+
 /// Signed distance from point p (gear frame, metres) to the untruncated ccw involute f, measured along the involute's
-/// normal through p: r_b·(arg p + inv α_p − ε), positive on the side of increasing polar angle. Exact for |p| ≥ r_b
-/// (the normal from p touches the base circle at polar angle arg p − α_p). Also returns the foot's roll parameter
-/// u = ε − arg p + α_p through `foot_u` when non-null. Precondition: |p| > r_b.
-double involute_signed_distance(const Involute& f, const Eigen::Vector2d& p, double* foot_u = nullptr);
+/// normal through p: r_b·(arg p + inv α_p − ε). Exact for |p| ≥ r_b (the normal from p touches the base circle at
+/// polar angle arg p − α_p); the foot's roll parameter is u = ε − arg p + α_p. Precondition: |p| > r_b.
+InvoluteDistance involute_signed_distance(const Involute& f, const Eigen::Vector2d& p);
 
 /// Closed counter-clockwise outline of the flexspline's toothed cross-section (z_f teeth, tooth 0 centred on +x):
 /// per tooth the cw flank from the form radius to the tip, the tip arc, the ccw flank back down, then a fillet (quarter

@@ -27,17 +27,106 @@ constexpr double kDeg = 180.0 / kPi;
 
 double change_percent(double basic, double comp) { return basic != 0 ? 100.0 * (comp - basic) / std::abs(basic) : 0.0; }
 
+constexpr double kArcmin = kDeg * 60.0;
+
 nlohmann::json pair_json(const PairClearance& p) {
+  auto side = [](const FlankClearance& c) {
+    return nlohmann::json{{"clearance_um", c.clearance_m * 1e6},
+                          {"lever_arm_mm", c.lever_arm_m * 1e3},
+                          {"nearest", std::string(part_name(c.part_f)) + " / " + part_name(c.part_c)}};
+  };
   return {{"phi_deg", p.phi_rad * kDeg},
-          {"engaged", p.engaged},
+          {"in_mesh", p.engaged},
           {"depth_mm", p.depth_m * 1e3},
           {"j_t1_mm", p.ccw.clearance_m * 1e3},
           {"j_t2_mm", p.cw.clearance_m * 1e3},
-          {"lever_arm_t1_mm", p.ccw.lever_arm_m * 1e3},
-          {"lever_arm_t2_mm", p.cw.lever_arm_m * 1e3}};
+          {"total_play_um", p.total_play_m() * 1e6},
+          {"t1", side(p.ccw)},
+          {"t2", side(p.cw)}};
+}
+
+nlohmann::json geometry_json(const GeometryCheck& g) {
+  const auto& r = g.radii;
+  nlohmann::json j = {
+      {"flexspline", {{"tip_radius_mm", r.tip_f * 1e3}, {"root_radius_mm", r.root_f * 1e3}, {"form_radius_mm", r.form_f * 1e3}}},
+      {"circular_spline", {{"tip_radius_mm", r.tip_c * 1e3}, {"root_radius_mm", r.root_c * 1e3}, {"form_radius_mm", r.form_c * 1e3}}},
+      {"w_major_axis_mm", g.w_major_m * 1e3},
+      {"w_minor_axis_mm", g.w_minor_m * 1e3},
+      {"working_depth_mm", g.working_depth_m * 1e3},
+      {"two_w0_mm", g.two_w0_m * 1e3},
+      {"minor_axis_tip_clearance_mm", g.minor_axis_tip_clearance_m * 1e3},
+      {"major_axis_tip_to_root_mm", g.major_axis_tip_root_m * 1e3},
+      {"major_axis_root_to_tip_mm", g.major_axis_root_tip_m * 1e3},
+      {"major_axis_pair", pair_json(g.major_axis)},
+      {"major_axis_play_arcmin", g.major_axis_play_rad * kArcmin},
+      {"interference_at_rest", g.interference},
+      {"smallest_clearance_um", g.worst_clearance_m * 1e6},
+      {"smallest_clearance_at", pair_json(g.worst)}};
+  if (g.interference) {
+    j["remedy"] = {{"addendum_scale_free_of_interference", g.addendum_scale_free},
+                   {"addendum_coefficient_flexspline_max", g.addendum_free_flexspline},
+                   {"addendum_coefficient_circular_max", g.addendum_free_circular},
+                   {"w0_scale_free_of_interference", {g.w0_scale_free_lo, g.w0_scale_free_hi}},
+                   {"definition", "largest common factor on both addenda, and the range of factors on the generator's "
+                                  "deformation w0, that leave no interference (0: none found)"}};
+  }
+  return j;
 }
 
 }  // namespace
+
+namespace {
+
+/// Angle of a tooth from the nearer end of the major axis, degrees, signed (counter-clockwise positive).
+double from_major_axis_deg(double phi_rad) {
+  const double a = std::abs(phi_rad) > 0.5 * kPi ? std::remainder(phi_rad - kPi, 2.0 * kPi) : phi_rad;
+  return a * kDeg;
+}
+
+}  // namespace
+
+std::string geometry_check_text(const GeometryCheck& g, double module_m) {
+  const auto& r = g.radii;
+  char buf[2048];
+  std::string out;
+  auto line = [&](const char* fmt, auto... args) {
+    std::snprintf(buf, sizeof buf, fmt, args...);
+    out += buf;
+  };
+  line("  geometry check (basic model, no load):\n");
+  line("    tip / root radius: flexspline %.4f / %.4f mm, circular spline %.4f / %.4f mm\n", r.tip_f * 1e3,
+       r.root_f * 1e3, r.tip_c * 1e3, r.root_c * 1e3);
+  line("    neutral curve w: %+.4f mm at the major axis, %+.4f mm at the minor axis\n", g.w_major_m * 1e3,
+       g.w_minor_m * 1e3);
+  line("    working depth at the major axis %.4f mm (%.2f m) against 2*w0 = %.4f mm; tips %s at the minor axis "
+       "(%+.4f mm)\n", g.working_depth_m * 1e3, g.working_depth_m / module_m, g.two_w0_m * 1e3,
+       g.minor_axis_tip_clearance_m > 0 ? "clear" : "DO NOT clear", g.minor_axis_tip_clearance_m * 1e3);
+  line("    radial clearance at the major axis: flexspline tip to circular-spline root %+.4f mm, circular-spline "
+       "tip to flexspline root %+.4f mm\n", g.major_axis_tip_root_m * 1e3, -g.major_axis_root_tip_m * 1e3);
+  line("    major-axis pair: j_t1 %.3f um, j_t2 %.3f um, dead band %.3f arcmin of output rotation\n",
+       g.major_axis.ccw.clearance_m * 1e6, g.major_axis.cw.clearance_m * 1e6, g.major_axis_play_rad * kArcmin);
+  if (!g.interference) {
+    line("    no interference at rest: smallest clearance %.3f um (pair %+.2f deg from the major axis, %s / %s)\n",
+         g.worst_clearance_m * 1e6, from_major_axis_deg(g.worst.phi_rad),
+         part_name((g.worst.ccw.clearance_m < g.worst.cw.clearance_m ? g.worst.ccw : g.worst.cw).part_f),
+         part_name((g.worst.ccw.clearance_m < g.worst.cw.clearance_m ? g.worst.ccw : g.worst.cw).part_c));
+    return out;
+  }
+  const FlankClearance& w = g.worst.ccw.clearance_m < g.worst.cw.clearance_m ? g.worst.ccw : g.worst.cw;
+  line("    INTERFERENCE at rest: %.3f um deep, pair %+.2f deg from the major axis (flexspline %s into "
+       "circular-spline %s)\n", -g.worst_clearance_m * 1e6, from_major_axis_deg(g.worst.phi_rad), part_name(w.part_f),
+       part_name(w.part_c));
+  if (g.addendum_scale_free > 0)
+    line("    remedy: addenda x %.3f or less (addendum_coefficient_flexspline <= %.3f, _circular <= %.3f)\n",
+         g.addendum_scale_free, g.addendum_free_flexspline, g.addendum_free_circular);
+  else
+    line("    remedy: no common addendum reduction down to x 0.3 removes it\n");
+  if (g.w0_scale_free_hi > 0)
+    line("    remedy: w0 between %.2f and %.2f times the case's value\n", g.w0_scale_free_lo, g.w0_scale_free_hi);
+  else
+    line("    remedy: no w0 between 0.5 and 1.5 times the case's value removes it\n");
+  return out;
+}
 
 FemCompensation read_fem_compensation(const std::filesystem::path& path) {
   std::ifstream in(path);
@@ -67,15 +156,26 @@ std::string backlash_json(const BacklashReport& r) {
   j["phi0_source"] = r.phi0_source;
   j["torque_Nm"] = r.torque_Nm;
   if (r.compliance_rad_per_Nm) j["compliance_rad_per_Nm"] = *r.compliance_rad_per_Nm;
+  j["geometry_check"] = geometry_json(r.geometry);
+  j["table_model"] = "the backlash paper's model: teeth rigid, the rim turned rigidly by phi0 (compensated); "
+                     "backlash = min(j_t1, j_t2) of the pair in the mesh zone";
   j["table"] = nlohmann::json::array();
   for (const auto& row : r.table) {
-    const double b = row.basic.backlash_m() / r.module_m, c = row.compensated.backlash_m() / r.module_m;
-    j["table"].push_back({{"position_deg", row.position_deg},
-                          {"basic_over_m", b},
-                          {"compensated_over_m", c},
-                          {"change_percent", change_percent(b, c)},
-                          {"basic", pair_json(row.basic)},
-                          {"compensated", pair_json(row.compensated)}});
+    nlohmann::json e = {{"position_deg", row.position_deg}, {"in_mesh", row.basic.engaged}};
+    if (row.basic.engaged) {
+      const double b = row.basic.backlash_m() / r.module_m, c = row.compensated.backlash_m() / r.module_m;
+      e["basic_over_m"] = b;
+      e["compensated_over_m"] = c;
+      e["change_percent"] = change_percent(b, c);
+      e["compensated_state"] = b < 0 ? "interference (basic model)" : c <= 0 ? "loaded flank in contact" : "clearance";
+    } else {
+      e["basic_over_m"] = nullptr;  // out of the mesh zone: the teeth face tip to tip, there is no backlash
+      e["compensated_over_m"] = nullptr;
+      e["compensated_state"] = "not in mesh";
+    }
+    e["basic"] = pair_json(row.basic);
+    e["compensated"] = pair_json(row.compensated);
+    j["table"].push_back(e);
   }
   const auto& rb = r.revolution_basic;
   const auto& rc = r.revolution_compensated;
@@ -83,28 +183,45 @@ std::string backlash_json(const BacklashReport& r) {
   j["min_backlash_compensated_mm"] = rc.min_m * 1e3;
   j["max_backlash_basic_mm"] = rb.max_m * 1e3;
   j["max_backlash_compensated_mm"] = rc.max_m * 1e3;
+  j["angular_play_arcmin"] = {
+      {"min", rb.angular_play_min_rad * kArcmin},
+      {"max", rb.angular_play_max_rad * kArcmin},
+      {"with_phi0", {rc.angular_play_min_rad * kArcmin, rc.angular_play_max_rad * kArcmin}},
+      {"definition", "geometric play: free rotation of the output (circular spline fixed, generator locked, teeth and "
+                     "rim rigid) from first contact one way to first contact the other, the sum of the two smallest "
+                     "closing angles over the pairs in mesh; not the catalog's lost motion, which includes the "
+                     "elastic twist at +-4 % of rated torque. A rigid turn phi0 does not change it."}};
+  nlohmann::json period = nlohmann::json::array();
+  for (const MeshState& st : rb.period)
+    period.push_back({{"wg_deg", st.wg_angle_rad * kDeg},
+                      {"pairs_in_mesh", st.engaged_pairs},
+                      {"min_backlash_um", st.min_backlash_m * 1e6},
+                      {"angular_play_arcmin", st.angular_play_rad() * kArcmin},
+                      {"closing_t1_arcmin", st.closing_ccw_rad * kArcmin},
+                      {"closing_t2_arcmin", st.closing_cw_rad * kArcmin},
+                      {"pairs_within_1_5_10_um_t1", {st.near_ccw[0], st.near_ccw[1], st.near_ccw[2]}},
+                      {"pairs_within_1_5_10_um_t2", {st.near_cw[0], st.near_cw[1], st.near_cw[2]}}});
   j["revolution"] = {{"steps", rb.wg_angle_rad.size()},
                      {"distinct_positions", rb.distinct_positions},
                      {"min_basic_at_wg_deg", rb.min_at_rad * kDeg},
                      {"min_compensated_at_wg_deg", rc.min_at_rad * kDeg},
                      {"engaged_pairs", {rb.engaged_pairs_min, rb.engaged_pairs_max}},
-                     {"definition", "min over engaged pairs (flexspline tip beyond the circular-spline tip circle) "
-                                    "of min(j_t1, j_t2), then min/max over the revolution"}};
+                     {"definition", "min over pairs in the mesh zone (flexspline tip beyond the circular-spline tip "
+                                    "circle) of min(j_t1, j_t2), then min/max over the revolution"},
+                     {"period_basic", period}};
   nlohmann::json locs = nlohmann::json::array();
-  auto add = [&](const std::vector<PairClearance>& ps, const char* which) {
-    for (const auto& p : ps)
+  for (const auto& p : r.positions_basic)
+    if (p.engaged)
       for (const auto& i : interferences(p))
-        locs.push_back({{"model", which},
-                        {"phi_deg", i.phi_rad * kDeg},
+        locs.push_back({{"phi_deg", i.phi_rad * kDeg},
                         {"position_deg", p.position_deg},
                         {"where", i.where},
-                        {"depth_mm", i.depth_m * 1e3},
+                        {"depth_um", i.depth_m * 1e6},
                         {"x_mm", i.point.x() * 1e3},
                         {"y_mm", i.point.y() * 1e3}});
-  };
-  add(r.positions_basic, "basic");
-  add(r.positions_compensated, "compensated");
-  j["interference"] = !locs.empty() || rb.min_m < 0 || rc.min_m < 0;
+  // Interference is a property of the unloaded geometry (basic model). A compensated clearance at or below zero is
+  // the loaded flank in contact, not interference.
+  j["interference"] = r.geometry.interference || !locs.empty() || rb.min_m < 0;
   j["interference_locations"] = locs;
   return j.dump(2) + "\n";
 }
@@ -112,15 +229,17 @@ std::string backlash_json(const BacklashReport& r) {
 std::string backlash_csv(const BacklashReport& r) {
   std::ostringstream s;
   s.precision(10);
-  s << "phi_deg,position_deg,engaged,depth_mm,j_t1_basic_mm,j_t2_basic_mm,j_t1_comp_mm,j_t2_comp_mm,"
-       "backlash_basic_over_m,backlash_comp_over_m,lever_arm_t1_mm,lever_arm_t2_mm\n";
+  s << "phi_deg,position_deg,in_mesh,depth_mm,j_t1_basic_mm,j_t2_basic_mm,j_t1_comp_mm,j_t2_comp_mm,"
+       "total_play_basic_mm,backlash_basic_over_m,backlash_comp_over_m,lever_arm_t1_mm,lever_arm_t2_mm\n";
   for (size_t i = 0; i < r.positions_basic.size(); ++i) {
     const auto& b = r.positions_basic[i];
     const auto& c = r.positions_compensated[i];
     s << b.phi_rad * kDeg << "," << b.position_deg << "," << (b.engaged ? 1 : 0) << "," << b.depth_m * 1e3 << ","
       << b.ccw.clearance_m * 1e3 << "," << b.cw.clearance_m * 1e3 << "," << c.ccw.clearance_m * 1e3 << ","
-      << c.cw.clearance_m * 1e3 << "," << b.backlash_m() / r.module_m << "," << c.backlash_m() / r.module_m << ","
-      << b.ccw.lever_arm_m * 1e3 << "," << b.cw.lever_arm_m * 1e3 << "\n";
+      << c.cw.clearance_m * 1e3 << "," << b.total_play_m() * 1e3 << ",";
+    if (b.engaged) s << b.backlash_m() / r.module_m << "," << c.backlash_m() / r.module_m;
+    else s << ",";  // out of the mesh zone: no backlash
+    s << "," << b.ccw.lever_arm_m * 1e3 << "," << b.cw.lever_arm_m * 1e3 << "\n";
   }
   return s.str();
 }
@@ -147,7 +266,7 @@ std::string backlash_svg(const BacklashReport& r) {
   s << "<text x='" << W / 2 << "' y='22' text-anchor='middle' font-size='16'>Backlash j/m of a tooth pair vs its "
     << "position (" << r.case_path << ")</text>\n";
   s << "<text x='" << W / 2 << "' y='42' text-anchor='middle' fill='#555'>" << r.curve_source << "; compensated: phi0 = "
-    << r.phi0_rad << " rad (" << r.phi0_source << "); j = min(j_t1, j_t2); negative = interference</text>\n";
+    << r.phi0_rad << " rad; j = min(j_t1, j_t2); compensated at or below 0 = loaded flank in contact</text>\n";
   s << "<rect x='" << L << "' y='" << T << "' width='" << W - L - R << "' height='" << H - T - B
     << "' fill='none' stroke='#333'/>\n";
   for (int d = -90; d <= 90; d += 15) {
@@ -191,7 +310,8 @@ std::string backlash_svg(const BacklashReport& r) {
     << "'>compensated (phi0)</text>\n";
   s << "<text x='" << L << "' y='" << H - 6 << "' fill='#555'>min over a revolution: basic "
     << r.revolution_basic.min_m * 1e3 << " mm, compensated " << r.revolution_compensated.min_m * 1e3
-    << " mm; only engaged positions are drawn</text>\n";
+    << " mm; geometric angular play " << r.revolution_basic.angular_play_min_rad * kArcmin << "–"
+    << r.revolution_basic.angular_play_max_rad * kArcmin << " arcmin; only pairs in mesh are drawn</text>\n";
   s << "</svg>\n";
   return s.str();
 }

@@ -39,7 +39,11 @@ struct BacklashReport {
   std::vector<BacklashTableRow> table;
   std::vector<PairClearance> positions_basic, positions_compensated;  ///< pair at φ over (−180°, 180°]
   RevolutionSweep revolution_basic, revolution_compensated;
+  GeometryCheck geometry;                       ///< the check made before the sweep (basic model)
 };
+
+/// The geometry check as printed text (several lines, each labelled), for the command's summary.
+std::string geometry_check_text(const GeometryCheck& g, double module_m);
 
 /// backlash.json text.
 std::string backlash_json(const BacklashReport& r);

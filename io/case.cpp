@@ -137,23 +137,19 @@ const toml::table* sub_table(const toml::table& root, const std::string& name, c
 
 GearParams read_gear(TableReader r) {
   GearParams g;
-  g.module_m = r.positive("module_mm", g.module_m / kMm) * kMm;
+  g.module_m = r.number("module_mm", g.module_m / kMm) * kMm;
   g.teeth_flexspline = r.integer("teeth_flexspline", g.teeth_flexspline, 4);
   g.teeth_circular = r.integer("teeth_circular", g.teeth_circular, 5);
-  const double alpha_deg = r.number("pressure_angle_deg", 20.0);
-  if (!(alpha_deg > 5.0 && alpha_deg < 45.0)) r.fail_value("pressure_angle_deg", alpha_deg, "must be in (5, 45)");
-  g.pressure_angle_rad = alpha_deg * kDeg;
+  g.pressure_angle_rad = r.number("pressure_angle_deg", g.pressure_angle_rad / kDeg) * kDeg;
   g.profile_shift_flexspline = r.number("profile_shift_flexspline", g.profile_shift_flexspline);
   g.profile_shift_circular = r.number("profile_shift_circular", g.profile_shift_circular);
   g.cutter_teeth = r.integer("cutter_teeth", g.cutter_teeth, 8);
+  g.addendum_coefficient_flexspline = r.number("addendum_coefficient_flexspline", g.addendum_coefficient_flexspline);
+  g.addendum_coefficient_circular = r.number("addendum_coefficient_circular", g.addendum_coefficient_circular);
+  g.dedendum_coefficient_flexspline = r.number("dedendum_coefficient_flexspline", g.dedendum_coefficient_flexspline);
+  g.dedendum_coefficient_circular = r.number("dedendum_coefficient_circular", g.dedendum_coefficient_circular);
   r.reject_unknown();
-  if (g.teeth_circular <= g.teeth_flexspline)
-    r.fail_value("teeth_circular", g.teeth_circular,
-                 "must be > gear.teeth_flexspline = " + std::to_string(g.teeth_flexspline) +
-                     " (the flexspline has fewer teeth than the circular spline)");
-  if ((g.teeth_circular - g.teeth_flexspline) % 2 != 0)
-    r.fail_value("teeth_circular", g.teeth_circular,
-                 "z_c - z_f must be even (a two-lobe wave generator engages two zones)");
+  validate_gear(g, r.file());  // gear/ owns the ranges and the consistency of a set that can be made
   return g;
 }
 
@@ -372,7 +368,11 @@ std::string describe_case(const Case& c) {
     s << "[gear]\nmodule_mm = " << mm(g.module_m) << "\nteeth_flexspline = " << g.teeth_flexspline
       << "\nteeth_circular = " << g.teeth_circular << "\npressure_angle_deg = " << g.pressure_angle_rad / kDeg
       << "\nprofile_shift_flexspline = " << g.profile_shift_flexspline
-      << "\nprofile_shift_circular = " << g.profile_shift_circular << "\ncutter_teeth = " << g.cutter_teeth << "\n";
+      << "\nprofile_shift_circular = " << g.profile_shift_circular << "\ncutter_teeth = " << g.cutter_teeth
+      << "\naddendum_coefficient_flexspline = " << g.addendum_coefficient_flexspline
+      << "\naddendum_coefficient_circular = " << g.addendum_coefficient_circular
+      << "\ndedendum_coefficient_flexspline = " << g.dedendum_coefficient_flexspline
+      << "\ndedendum_coefficient_circular = " << g.dedendum_coefficient_circular << "\n";
   }
   const auto& f = c.flexspline;
   const bool cup = f.shape == FlexsplineShape::Cup;

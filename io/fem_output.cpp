@@ -2,12 +2,15 @@
 
 #include <sys/resource.h>
 
+#include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <numbers>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
+#include "common/error.hpp"
 #include "fem/post.hpp"
 #include "io/vtu.hpp"
 
@@ -100,6 +103,59 @@ std::string neutral_curve_csv(const NeutralCurveSamples& nc) {
     s << line;
   }
   return s.str();
+}
+
+NeutralCurveSamples read_neutral_curve_csv(const std::filesystem::path& csv) {
+  std::ifstream in(csv);
+  const std::string file = csv.string();
+  if (!in) throw InputError(file + ": cannot open (run `strainwave fem` first, or pass the FEM output folder)");
+  const std::string expected = "phi_rad,w_wg_m,v_wg_m,mu_wg_rad,w_comb_m,v_comb_m,mu_comb_rad";
+  NeutralCurveSamples nc;
+  std::vector<double>* columns[] = {&nc.phi_rad, &nc.w_wg_m, &nc.v_wg_m, &nc.mu_wg_rad,
+                                    &nc.w_comb_m, &nc.v_comb_m, &nc.mu_comb_rad};
+  std::string line;
+  int line_no = 0;
+  bool header = false;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty()) continue;
+    if (line[0] == '#') {
+      std::istringstream meta(line.substr(1));  // "# neutral circle radius_mm R, z_mm Z"
+      std::string key, value;
+      while (meta >> key) {
+        if ((key == "radius_mm" || key == "z_mm") && meta >> value) {
+          (key == "radius_mm" ? nc.radius_m : nc.z_m) = std::strtod(value.c_str(), nullptr) * 1e-3;
+        }
+      }
+      continue;
+    }
+    if (!header) {
+      std::string cols;
+      for (char ch : line)
+        if (ch != ' ' && ch != '\t') cols += ch;
+      if (cols != expected) throw InputError(file + ":" + std::to_string(line_no) + ": header must be `" + expected + "`");
+      header = true;
+      continue;
+    }
+    std::stringstream ss(line);
+    std::string cell;
+    size_t col = 0;
+    while (std::getline(ss, cell, ',')) {
+      char* end = nullptr;
+      const double x = std::strtod(cell.c_str(), &end);
+      while (end && (*end == ' ' || *end == '\t')) ++end;
+      if (cell.empty() || end == cell.c_str() || *end != '\0' || !std::isfinite(x))
+        throw InputError(file + ":" + std::to_string(line_no) + ": column " + std::to_string(col + 1) + " = '" + cell +
+                         "'; expected a finite number");
+      if (col < 7) columns[col]->push_back(x);
+      ++col;
+    }
+    if (col != 7)
+      throw InputError(file + ":" + std::to_string(line_no) + ": " + std::to_string(col) + " values; expected 7");
+  }
+  if (!header) throw InputError(file + ": no header line; expected `" + expected + "`");
+  return nc;
 }
 
 void write_fem_vtk(const std::filesystem::path& dir, const Case& c, const TetMesh& mesh, const FlexsplineSolution& s) {

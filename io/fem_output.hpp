@@ -26,6 +26,11 @@ std::string fem_result_json(const Case& c, const TetMesh& mesh, const Flexspline
 /// neutral_curve.csv text: phi_rad,w_wg_m,v_wg_m,mu_wg_rad,w_comb_m,v_comb_m,mu_comb_rad (one row per degree).
 std::string neutral_curve_csv(const NeutralCurveSamples& nc);
 
+/// Reads neutral_curve.csv back (the inverse of neutral_curve_csv; radius_m and z_m from its comment line when
+/// present, else 0). Throws InputError naming the file and line for a missing/unknown column, a non-numeric value or
+/// a wrong number of values.
+NeutralCurveSamples read_neutral_curve_csv(const std::filesystem::path& csv);
+
 /// Writes flexspline.pvd and flexspline_<case>.vtu (displacement, stress, von Mises, cylindrical components).
 void write_fem_vtk(const std::filesystem::path& dir, const Case& c, const TetMesh& mesh, const FlexsplineSolution& s);
 

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <numbers>
 #include <sstream>
 
@@ -127,66 +126,14 @@ NeutralCurve generator_neutral_curve(double mean_radius_m, double w0_m, const Wa
   return c;
 }
 
-NeutralCurve read_fem_neutral_curve(const std::filesystem::path& csv, double mean_radius_m, FemLoadCase which) {
-  std::ifstream in(csv);
-  const std::string file = csv.string();
-  if (!in) throw InputError(file + ": cannot open (run `strainwave fem` first, or pass the FEM output folder)");
-  const std::vector<std::string> expected = {"phi_rad", "w_wg_m", "v_wg_m", "mu_wg_rad", "w_comb_m", "v_comb_m", "mu_comb_rad"};
-  std::string line;
-  int line_no = 0;
-  std::vector<std::string> header;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (line.empty() || line[0] == '#') continue;
-    std::stringstream ss(line);
-    std::string col;
-    while (std::getline(ss, col, ',')) {
-      col.erase(0, col.find_first_not_of(" \t\r"));
-      col.erase(col.find_last_not_of(" \t\r") + 1);
-      header.push_back(col);
-    }
-    break;
-  }
-  if (header != expected) {
-    std::string want;
-    for (const auto& e : expected) want += (want.empty() ? "" : ",") + e;
-    throw InputError(file + ":" + std::to_string(line_no) + ": header must be `" + want + "`");
-  }
-  const int off = which == FemLoadCase::GeneratorOnly ? 1 : 4;
-  std::vector<double> phi, w, v, mu;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (line.empty() || line == "\r" || line[0] == '#') continue;
-    std::stringstream ss(line);
-    std::string cell;
-    std::vector<double> row;
-    while (std::getline(ss, cell, ',')) {
-      char* end = nullptr;
-      const double x = std::strtod(cell.c_str(), &end);
-      while (end && (*end == ' ' || *end == '\r' || *end == '\t')) ++end;
-      if (cell.empty() || end == cell.c_str() || *end != '\0' || !std::isfinite(x)) {
-        throw InputError(file + ":" + std::to_string(line_no) + ": column " + std::to_string(row.size() + 1) + " = '" +
-                         cell + "'; expected a finite number");
-      }
-      row.push_back(x);
-    }
-    if (row.size() != expected.size()) {
-      throw InputError(file + ":" + std::to_string(line_no) + ": " + std::to_string(row.size()) + " values; expected " +
-                       std::to_string(expected.size()));
-    }
-    phi.push_back(row[0]);
-    w.push_back(row[off]);
-    v.push_back(row[off + 1]);
-    mu.push_back(row[off + 2]);
-  }
-  if (phi.size() < 360) {
-    throw InputError(file + ": " + std::to_string(phi.size()) +
-                     " rows; need at least 360 (one per degree over the full circle)");
-  }
+NeutralCurve fit_neutral_curve(double mean_radius_m, const std::vector<double>& phi, const std::vector<double>& w,
+                               const std::vector<double>& v, const std::vector<double>& mu, std::string source) {
+  if (phi.size() < 360 || w.size() != phi.size() || v.size() != phi.size() || mu.size() != phi.size())
+    throw InputError(source + ": " + std::to_string(phi.size()) +
+                     " samples; need at least 360 (one per degree over the full circle) of phi, w, v and mu");
   const double span = *std::max_element(phi.begin(), phi.end()) - *std::min_element(phi.begin(), phi.end());
-  if (span < 2.0 * kPi * (1.0 - 2.0 / phi.size()) - 1e-9) {
-    throw InputError(file + ": phi_rad spans " + std::to_string(span) + " rad; expected the full circle (2π)");
-  }
+  if (span < 2.0 * kPi * (1.0 - 2.0 / phi.size()) - 1e-9)
+    throw InputError(source + ": phi spans " + std::to_string(span) + " rad; expected the full circle (2π)");
   const int order = std::min<int>(64, static_cast<int>(phi.size()) / 2 - 1);
   Eigen::MatrixXd A(phi.size(), 2 * order + 1);
   for (size_t i = 0; i < phi.size(); ++i) {
@@ -214,7 +161,7 @@ NeutralCurve read_fem_neutral_curve(const std::filesystem::path& csv, double mea
   c.w = fit(w);
   c.v = fit(v);
   c.mu = fit(mu);
-  c.source = "fem " + file + (which == FemLoadCase::GeneratorOnly ? " (generator only)" : " (generator + torque)");
+  c.source = std::move(source);
   return c;
 }
 

@@ -11,8 +11,9 @@
 //             n = 0, 1 modes carry no load): w(φ) = C Σ_{n≥2} Σ_i P_i cos n(φ − θ_i) / (n² − 1)²; C fixed by w(0) = w0
 //             (so EI and the force magnitude drop out); v and μ as for the cam. four_force: equal forces at ±β and
 //             π ± β; two_force: at 0 and π; forces: the case's list (weights), mirrored to π + θ.
-//   fem       a least-squares Fourier fit (order ≤ 64) of the columns of neutral_curve.csv written by `strainwave fem`.
-#include <filesystem>
+//   fem       a least-squares Fourier fit (order ≤ 64) of the columns of neutral_curve.csv written by `strainwave fem`
+//             (there μ is the tangent's whole rotation (v − w')/r; the tooth placement takes its rotation from w and v
+//             alone, so every source is placed alike).
 #include <string>
 #include <vector>
 
@@ -52,13 +53,11 @@ NeutralCurve cam_neutral_curve(double mean_radius_m, double w0_m);
 /// Throws InputError if the forces give w(0) ≤ 0 (no outward bulge on the major axis) or the model has no forces.
 NeutralCurve generator_neutral_curve(double mean_radius_m, double w0_m, const WaveGeneratorParams& wg, int n_max = 400);
 
-/// Which columns of neutral_curve.csv to use.
-enum class FemLoadCase { GeneratorOnly, Combined };
-
-/// Reads neutral_curve.csv (header phi_rad,w_wg_m,v_wg_m,mu_wg_rad,w_comb_m,v_comb_m,mu_comb_rad; φ from the major
-/// axis, ≥ 1 row per degree over the full circle) and fits Fourier series of order min(64, rows/2 − 1).
-/// Throws InputError naming the file and line for a missing/unknown column, a non-numeric value or too few rows.
-NeutralCurve read_fem_neutral_curve(const std::filesystem::path& csv, double mean_radius_m, FemLoadCase which);
+/// Least-squares Fourier fit (order min(64, samples/2 − 1)) of sampled w, v, μ (metres, radians) at material angles
+/// phi (rad, ≥ 360 samples over the full circle), e.g. the FEM's neutral_curve.csv as read by io/fem_output.hpp.
+/// `source` names the data in messages and reports. Throws InputError for too few samples or a partial circle.
+NeutralCurve fit_neutral_curve(double mean_radius_m, const std::vector<double>& phi, const std::vector<double>& w,
+                               const std::vector<double>& v, const std::vector<double>& mu, std::string source);
 
 /// Mean radius of the rim's neutral layer: inner radius + rim thickness / 2 (metres).
 double rim_mean_radius(const FlexsplineParams& f);

@@ -2,6 +2,8 @@
 // text), and bad input through the CLI gives one clear line, a non-zero exit and no output files.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -40,7 +42,7 @@ fs::path fresh_dir(const std::string& name) {
   return d;
 }
 
-// The tube's TET10 torsion is exact up to geometry: 0.1 % (issue 3); reaction = applied is an identity of the discrete
+// The tube's TET10 torsion is exact up to geometry: 0.1 %; reaction = applied is an identity of the discrete
 // equations: 1e-8.
 TEST(Cases, TubeTorsionReproducesTheoryAndBalancesTorque) {
   const fs::path out = fresh_dir("tube");
@@ -77,8 +79,38 @@ TEST(Cases, SeedCupRunsFemThenBacklash) {
   // backlash used the FEM's φ₀ (C_τ·T).
   const auto b = read_json(out / "backlash.json");
   EXPECT_NEAR(b["phi0_rad"].get<double>() / j["phi0_rad"].get<double>(), 1.0, 1e-9);
+  // ... and the FEM's own generator-deformed neutral curve, and says so.
+  EXPECT_NE(b["neutral_curve"].get<std::string>().find("FEM neutral curve"), std::string::npos) << b["neutral_curve"];
   EXPECT_TRUE(fs::exists(out / "neutral_curve.csv"));
   EXPECT_TRUE(fs::exists(out / "backlash.svg"));
+  fs::remove_all(out);
+}
+
+// The seed gear set with its short teeth on the generator model's curve: no interference at rest, the smallest
+// clearance 2.9 µm, a geometric play of about 1.1 arcmin that φ₀ does not change, no backlash out of the mesh zone,
+// and the loaded flank in contact at the major axis under the FEM's φ₀ (never called interference).
+TEST(Cases, SeedGearSetHasNoInterferenceAndReportsItsPlay) {
+  const fs::path out = fresh_dir("seed_backlash");
+  const CliRun r = run("backlash --quiet cases/seed_190_192.toml --phi0 4.138e-4 --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto b = read_json(out / "backlash.json");
+  EXPECT_FALSE(b["interference"].get<bool>());
+  EXPECT_FALSE(b["geometry_check"]["interference_at_rest"].get<bool>());
+  EXPECT_NEAR(b["geometry_check"]["smallest_clearance_um"].get<double>(), 2.87, 0.05);
+  const auto& play = b["angular_play_arcmin"];
+  EXPECT_NEAR(play["min"].get<double>(), 1.095, 0.01);
+  EXPECT_NEAR(play["max"].get<double>(), 1.101, 0.01);
+  EXPECT_NEAR(play["with_phi0"][0].get<double>(), play["min"].get<double>(), 1e-6);  // 1e-9 rad = 3.4e-6 arcmin
+  EXPECT_NEAR(play["with_phi0"][1].get<double>(), play["max"].get<double>(), 1e-6);
+  for (const auto& row : b["table"]) {
+    if (row["position_deg"].get<double>() == 0.0) {
+      EXPECT_FALSE(row["in_mesh"].get<bool>());
+      EXPECT_TRUE(row["basic_over_m"].is_null());
+    }
+    if (row["position_deg"].get<double>() == 90.0)
+      EXPECT_EQ(row["compensated_state"].get<std::string>(), "loaded flank in contact");
+  }
+  EXPECT_NE(r.output.find("not the catalog's lost motion"), std::string::npos) << r.output;
   fs::remove_all(out);
 }
 
@@ -115,6 +147,33 @@ TEST(CliErrors, MissingMalformedAndInvalidCasesGiveOneLineAndNoOutput) {
   std::ofstream(dir / "fillet.toml") << "[gear]\n[flexspline]\nshape = \"cup\"\nfillet_radius_mm = 30\n"
                                         "rim_thickness_mm = 0.6425\n";
   expect_clean_failure("fem --quiet " + (dir / "fillet.toml").string(), "fillet_radius_mm = 30", dir / "out");
+  fs::remove_all(dir);
+}
+
+// A case that would never fit is refused before meshing, in seconds, with the estimate in its one line.
+TEST(CliErrors, ACaseThatWouldNeverFitIsRefusedInSecondsWithTheEstimate) {
+  const fs::path dir = fresh_dir("huge");
+  fs::create_directories(dir);
+  std::ifstream in("cases/seed_190_192.toml");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string from = "size_mm = 0.6";
+  ASSERT_NE(text.find(from), std::string::npos);
+  text.replace(text.find(from), from.size(), "size_mm = 0.05");
+  { std::ofstream(dir / "huge.toml") << text; }
+  const auto start = std::chrono::steady_clock::now();
+  const fs::path out = dir / "out";
+  const CliRun r = run("fem --quiet " + (dir / "huge.toml").string() + " --out " + out.string());
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_LT(seconds, 10.0);
+  EXPECT_NE(r.output.find("would have about"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("GB"), std::string::npos) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  // The estimate itself must say >= 100 GB: the number after "need about".
+  const size_t at = r.output.find("need about ");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  EXPECT_GE(std::stod(r.output.substr(at + 11)), 100.0) << r.output;
+  EXPECT_FALSE(fs::exists(out / "result.json"));
   fs::remove_all(dir);
 }
 

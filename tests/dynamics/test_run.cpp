@@ -1,6 +1,6 @@
-// Validation of the integrated dynamics against issue 6: steady speeds vs kinematics, mean pair forces vs quasi-static
+// Validation of the integrated dynamics: steady speeds vs kinematics, mean pair forces vs quasi-static
 // load sharing, torque and energy balances, the spectral line of a varying mesh stiffness, and the damping sweep.
-// The thresholds are the issue's acceptance limits; the measured values (printed) are orders of magnitude below them,
+// The thresholds are the acceptance limits; the measured values (printed) are orders of magnitude below them,
 // limited by the integrator's tolerances (relative 1e-8, 1e-13 rad on the deviation from kinematic motion).
 #include <algorithm>
 #include <cmath>
@@ -15,10 +15,10 @@
 using namespace sw;
 
 namespace {
-constexpr double kSpeedTolerance = 1e-4;        // issue: 0.01 % (the paper reached 0.04 %)
-constexpr double kPairForceTolerance = 1e-2;    // issue: 1 % (the paper: 1.04 %)
-constexpr double kTorqueBalanceTolerance = 1e-3;// issue: 0.1 %
-constexpr double kEnergyTolerance = 5e-3;       // issue: 0.5 % of the input work
+constexpr double kSpeedTolerance = 1e-4;        // 0.01 % (the paper reached 0.04 %)
+constexpr double kPairForceTolerance = 1e-2;    // 1 % (the paper: 1.04 %)
+constexpr double kTorqueBalanceTolerance = 1e-3;// 0.1 %
+constexpr double kEnergyTolerance = 5e-3;       // 0.5 % of the input work
 constexpr double kStiffnessVariation = 0.2;     // Δk/k0 for the spectral and damping tests
 
 DynamicsSummary run(const DynamicsModel& m, DynamicsSeries* keep = nullptr) {

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "kinematics/backlash.hpp"
@@ -162,27 +164,47 @@ TEST(Undeformed, SeedTeethOverlapTheCircularSplineAndThatIsReported) {
   EXPECT_LT(p.backlash_m(), -1e-5);
 }
 
+sw::GearParams short_teeth() {  // the seed case's proportions: h_a* = 0.7, h_f* = 0.95 on both gears
+  sw::GearParams g;
+  g.addendum_coefficient_flexspline = g.addendum_coefficient_circular = 0.7;
+  g.dedendum_coefficient_flexspline = g.dedendum_coefficient_circular = 0.95;
+  return g;
+}
+
 TEST(SeedCase, TableIsPinned) {
-  // Regression pins, j/m at the paper's positions ψ (from the minor axis; tooth at φ = 90° − ψ), basic and with the
-  // paper's φ₀ = 2.046e-4 rad. Tolerance 1e-5 (2 nm): far above solver precision, far below any real change.
+  // Regression pins of the paper's model (rigid teeth, rim turned rigidly by φ₀): j/m at the paper's positions ψ (from
+  // the minor axis; tooth at φ = 90° − ψ), basic and with the paper's φ₀ = 2.046e-4 rad, for the standard rack
+  // (h_a* = 1) and the seed case's short teeth (h_a* = 0.7). Tolerance 1e-5 (2 nm): far above solver precision, far
+  // below any real change. NaN = not in mesh (the teeth face tip to tip: no backlash).
+  const double kOut = std::nan("");
   struct Row { double psi, cam_basic, cam_comp, ring_basic, ring_comp; };
-  const Row rows[] = {
-      {0, 0.77609, 0.75638, 0.78663, 0.76720},      // out of mesh: tip faces a circular-spline tip
-      {30, -0.04808, -0.06639, -0.01425, -0.03257},  // entry: the ccw flank's tip corner cuts the next tooth
-      {45, 0.07195, 0.05354, 0.08360, 0.06516},
+  const Row standard[] = {
+      {0, kOut, kOut, kOut, kOut},
+      {30, -0.04630, -0.06460, -0.01226, -0.03058},  // entry: the tip corner cuts the next tooth (interference)
+      {45, 0.07148, 0.05306, 0.08286, 0.06443},
       {90, 0.01710, -0.00135, 0.01710, -0.00135}};  // major axis: φ₀·r ≈ 3.7 µm closes the 3.4 µm clearance
-  const auto cam = cam_model();
-  const auto ring = ring_model();
-  for (const auto& r : rows) {
-    const double phi = (90 - r.psi) * kDeg;
-    const double cb = sw::pair_clearance(cam, phi, 0).backlash_m() / 0.2e-3;
-    const double cc = sw::pair_clearance(cam, phi, 2.046e-4).backlash_m() / 0.2e-3;
-    const double rb = sw::pair_clearance(ring, phi, 0).backlash_m() / 0.2e-3;
-    const double rc = sw::pair_clearance(ring, phi, 2.046e-4).backlash_m() / 0.2e-3;
-    EXPECT_NEAR(cb, r.cam_basic, 1e-5);
-    EXPECT_NEAR(cc, r.cam_comp, 1e-5);
-    EXPECT_NEAR(rb, r.ring_basic, 1e-5);
-    EXPECT_NEAR(rc, r.ring_comp, 1e-5);
+  const Row short_rows[] = {
+      {0, kOut, kOut, kOut, kOut},
+      {30, kOut, kOut, kOut, kOut},  // short teeth: not yet in mesh at ψ = 30°,
+      {45, 0.07333, 0.05491, 0.08371, 0.06527},
+      {90, 0.01713, -0.00132, 0.01713, -0.00132}};
+  for (const auto& [gear, rows] : {std::pair{sw::GearParams{}, standard}, std::pair{short_teeth(), short_rows}}) {
+    const auto cam = cam_model(kW0, gear);
+    const auto ring = sw::make_backlash_model(gear, sw::generator_neutral_curve(kRm, kW0, sw::WaveGeneratorParams{}));
+    for (int i = 0; i < 4; ++i) {
+      const Row& r = rows[i];
+      const double phi = (90 - r.psi) * kDeg;
+      for (const auto& [m, basic, comp] : {std::tuple{&cam, r.cam_basic, r.cam_comp}, std::tuple{&ring, r.ring_basic, r.ring_comp}}) {
+        const auto b = sw::pair_clearance(*m, phi, 0), c = sw::pair_clearance(*m, phi, 2.046e-4);
+        if (std::isnan(basic)) {
+          EXPECT_FALSE(b.engaged) << r.psi;
+          continue;
+        }
+        ASSERT_TRUE(b.engaged) << r.psi;
+        EXPECT_NEAR(b.backlash_m() / 0.2e-3, basic, 1e-5) << m->curve.source << " ψ = " << r.psi;
+        EXPECT_NEAR(c.backlash_m() / 0.2e-3, comp, 1e-5) << m->curve.source << " ψ = " << r.psi;
+      }
+    }
   }
 }
 
@@ -193,6 +215,102 @@ TEST(Revolution, RepeatsEveryCircularSplinePitchAndFindsTheEntryInterference) {
   // Spot check the periodicity claim against a direct evaluation at a step that was not solved directly.
   EXPECT_NEAR(s.min_backlash_m[1234], sw::min_backlash_m(m, s.wg_angle_rad[1234], 0.0), 1e-13);
   EXPECT_LT(s.min_m, 0.0);
+}
+
+TEST(AngularPlay, IsUnchangedByARigidTurnOfTheRim) {
+  // A rigid turn φ₀ of the rim moves play from one flank to the other; the sum of the two exact closing angles (the
+  // output's free rotation) cannot change. 1e-9 rad: the closing angles are solved to 1e-13 rad.
+  const auto m = sw::make_backlash_model(short_teeth(), sw::generator_neutral_curve(kRm, kW0, sw::WaveGeneratorParams{}));
+  for (double wg : {0.0, 0.004, 0.017}) {
+    const sw::MeshState rest = sw::mesh_state(m, wg, 0.0);
+    ASSERT_GT(rest.closing_ccw_rad, 0.0);
+    ASSERT_GT(rest.closing_cw_rad, 0.0);
+    for (double phi0 : {5e-5, 2.046e-4, 4.138e-4}) {  // the last closes the loaded flank: contact, not interference
+      const sw::MeshState loaded = sw::mesh_state(m, wg, phi0);
+      EXPECT_NEAR(loaded.angular_play_rad(), rest.angular_play_rad(), 1e-9) << "wg " << wg << ", φ₀ " << phi0;
+      EXPECT_NEAR(loaded.closing_ccw_rad, rest.closing_ccw_rad - phi0, 1e-9);
+    }
+  }
+}
+
+TEST(AngularPlay, EqualsTheFirstOrderSumOfTheSmallestClosingAnglesToSecondOrder) {
+  // Independent evaluation from the clearances alone: min over pairs of j_t1/lever_t1 plus min of j_t2/|lever_t2|.
+  // The exact closing angles differ from j/lever by the flank curvature: O(j/r) relative, a few 1e-4 here; 0.5 %.
+  const auto m = sw::make_backlash_model(short_teeth(), sw::generator_neutral_curve(kRm, kW0, sw::WaveGeneratorParams{}));
+  for (double wg : {0.0, 0.009}) {
+    double a1 = 1e9, a2 = 1e9;
+    for (const auto& p : sw::pair_clearances(m, wg, 0.0, true)) {
+      if (p.ccw.lever_arm_m > 0.2 * kRm) a1 = std::min(a1, p.ccw.clearance_m / p.ccw.lever_arm_m);
+      if (-p.cw.lever_arm_m > 0.2 * kRm) a2 = std::min(a2, p.cw.clearance_m / -p.cw.lever_arm_m);
+    }
+    const sw::MeshState st = sw::mesh_state(m, wg, 0.0);
+    EXPECT_NEAR(st.angular_play_rad(), a1 + a2, 5e-3 * (a1 + a2)) << wg;
+    std::printf("wg %.3f rad: play %.6f arcmin exact, %.6f first order\n", wg, st.angular_play_rad() * 10800 / kPi,
+                (a1 + a2) * 10800 / kPi);
+  }
+}
+
+TEST(ClosingAngle, BringsTheFlankExactlyIntoContact) {
+  const auto m = sw::make_backlash_model(short_teeth(), sw::cam_neutral_curve(kRm, kW0));
+  for (double deg : {0.0, 20.0, -35.0}) {
+    const double phi = deg * kDeg;
+    const double d1 = sw::closing_angle_rad(m, phi, 0.0, sw::Flank::Ccw);
+    const double d2 = sw::closing_angle_rad(m, phi, 0.0, sw::Flank::Cw);
+    EXPECT_NEAR(sw::pair_clearance(m, phi, d1).ccw.clearance_m, 0.0, 1e-12) << deg;
+    EXPECT_NEAR(sw::pair_clearance(m, phi, -d2).cw.clearance_m, 0.0, 1e-12) << deg;
+    EXPECT_GT(sw::pair_clearance(m, phi, 0.5 * d1).ccw.clearance_m, 0.0) << deg;
+  }
+}
+
+TEST(Distance, TipLandNearerThanTheFlankGivesTheLandDistance) {
+  // A flexspline tooth turned so that its ccw tip corner sits under the middle of a circular-spline tooth's tip land,
+  // then moved radially: 3 µm inside the tip circle r_ac the gap is the radial 3 µm; 2 µm beyond it the overlap is the
+  // radial 2 µm (the flank of the circular-spline tooth is far away: a flank-only measure would overstate it).
+  // 2e-9 m: the flexspline's tip land (radius r_af about its own centre) and the circular spline's (r_ac about the
+  // axis) differ in curvature, so land points beside the corner sit up to ~1 nm nearer.
+  const auto m = cam_model(0.0, short_teeth());
+  const double zc = m.gear.teeth_circular;
+  const Eigen::Vector2d corner_f = sw::involute_point(m.flank_f, m.flank_f.u_max);
+  const double corner_angle = std::atan2(corner_f.y(), corner_f.x());
+  const double land_middle = kPi / zc;  // middle of the circular-spline tooth beyond space 0's ccw side
+  for (double gap : {3e-6, -2e-6}) {
+    sw::ToothPlacement t;
+    t.angle_rad = land_middle - corner_angle;
+    t.offset_m = (m.radii.tip_c - gap - m.radii.tip_f) * Eigen::Vector2d(std::cos(land_middle), std::sin(land_middle));
+    const auto p = sw::tooth_clearance(m, t, 0.0);
+    EXPECT_NEAR(p.ccw.clearance_m, gap, 2e-9) << gap;
+    EXPECT_NE(p.ccw.part_c, sw::ToothPart::Flank) << gap;  // the land, or its corner where the lands overlap
+  }
+}
+
+TEST(GeometryCheck, StandardTeethInterfereAndTheRemedyIsAShorterAddendum) {
+  // Seed set at w0 = m on the four-force ring: the standard rack (h_a* = 1) interferes at rest by about 28 µm (the
+  // flexspline tip land against the circular spline's tip corner, entering the mesh); the check finds the largest
+  // common addendum free of it, and the seed case's h_a* = 0.7 is free with about 3 µm to spare.
+  const auto curve = sw::generator_neutral_curve(kRm, kW0, sw::WaveGeneratorParams{});
+  const sw::GeometryCheck standard = sw::check_geometry(sw::GearParams{}, curve);
+  EXPECT_TRUE(standard.interference);
+  EXPECT_NEAR(standard.worst_clearance_m, -28.9e-6, 1.0e-6);
+  EXPECT_GT(standard.addendum_scale_free, 0.7);
+  EXPECT_LT(standard.addendum_scale_free, 0.85);
+  const sw::GeometryCheck remedied = sw::check_geometry(
+      [&] {
+        sw::GearParams g;
+        g.addendum_coefficient_flexspline = g.addendum_coefficient_circular = standard.addendum_scale_free - 0.005;
+        return g;
+      }(),
+      curve);
+  EXPECT_FALSE(remedied.interference) << remedied.worst_clearance_m;
+  const sw::GeometryCheck seed = sw::check_geometry(short_teeth(), curve);
+  EXPECT_FALSE(seed.interference);
+  EXPECT_NEAR(seed.worst_clearance_m, 2.8e-6, 0.3e-6);
+  // The dead band at the major axis: both flanks 3.43 µm at a lever of ≈ 18.4 mm → ≈ 1.3 arcmin of output rotation.
+  EXPECT_NEAR(seed.major_axis.ccw.clearance_m, seed.major_axis.cw.clearance_m, 1e-12);
+  EXPECT_NEAR(seed.major_axis_play_rad * 10800 / kPi, 1.306, 0.01);
+  // Working depth by hand: r_af = m(z_f/2 + h_a* + x_f) = 19.444 mm, r_ac = m(z_c/2 − h_a* + x_c) = 19.374 mm,
+  // r_af + w0 − r_ac = 0.270 mm against 2·w0 = 0.4 mm.
+  EXPECT_NEAR(seed.working_depth_m, 0.270e-3, 1e-12);
+  EXPECT_NEAR(seed.two_w0_m, 0.4e-3, 1e-12);
 }
 
 }  // namespace

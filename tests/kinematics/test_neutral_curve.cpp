@@ -1,4 +1,5 @@
-// Deformed neutral curve: cam closed forms, the thin-ring solution against Roark's diametral-load values, FEM CSV.
+// Deformed neutral curve: cam closed forms, the thin-ring solution against Roark's diametral-load values, the fit of
+// sampled (FEM) curves.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -6,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <vector>
 
 #include "common/error.hpp"
 #include "kinematics/neutral_curve.hpp"
@@ -52,37 +54,30 @@ TEST(RingCurve, FourForceIsInextensibleAndSymmetric) {
 }
 
 TEST(FemCurve, FitsAWellSampledCurveExactly) {
-  const auto path = std::filesystem::temp_directory_path() / "sw_test_neutral_curve.csv";
-  {
-    std::ofstream f(path);
-    f << "phi_rad,w_wg_m,v_wg_m,mu_wg_rad,w_comb_m,v_comb_m,mu_comb_rad\n";
-    f.precision(17);
-    for (int i = 0; i < 720; ++i) {
-      const double p = -kPi + 2 * kPi * i / 720;
-      const double w = kW0 * std::cos(2 * p), v = -0.5 * kW0 * std::sin(2 * p), mu = 2 * kW0 / kRm * std::sin(2 * p);
-      f << p << "," << w << "," << v << "," << mu << "," << w + 1e-6 * std::cos(p) << "," << v + 2e-6 << "," << mu << "\n";
-    }
+  std::vector<double> phi, w, v, mu;
+  for (int i = 0; i < 720; ++i) {
+    const double p = -kPi + 2 * kPi * i / 720;
+    phi.push_back(p);
+    w.push_back(kW0 * std::cos(2 * p) + 1e-6 * std::cos(p));
+    v.push_back(-0.5 * kW0 * std::sin(2 * p) + 2e-6);
+    mu.push_back(2 * kW0 / kRm * std::sin(2 * p));
   }
-  const auto c = sw::read_fem_neutral_curve(path, kRm, sw::FemLoadCase::GeneratorOnly);
-  const auto d = sw::read_fem_neutral_curve(path, kRm, sw::FemLoadCase::Combined);
-  for (double phi : {0.0, 0.3, 1.1, 2.9}) {
-    EXPECT_NEAR(c.at(phi).w_m, kW0 * std::cos(2 * phi), 1e-15);
-    EXPECT_NEAR(c.at(phi).v_m, -0.5 * kW0 * std::sin(2 * phi), 1e-15);
-    EXPECT_NEAR(d.at(phi).v_m, -0.5 * kW0 * std::sin(2 * phi) + 2e-6, 1e-15);
+  const auto c = sw::fit_neutral_curve(kRm, phi, w, v, mu, "samples");
+  for (double x : {0.0, 0.3, 1.1, 2.9}) {
+    EXPECT_NEAR(c.at(x).w_m, kW0 * std::cos(2 * x) + 1e-6 * std::cos(x), 1e-15);
+    EXPECT_NEAR(c.at(x).v_m, -0.5 * kW0 * std::sin(2 * x) + 2e-6, 1e-15);
   }
-  std::filesystem::remove(path);
 }
 
-TEST(FemCurve, RejectsAWrongHeaderNamingTheFile) {
-  const auto path = std::filesystem::temp_directory_path() / "sw_test_bad_curve.csv";
-  { std::ofstream(path) << "phi,w\n0,0\n"; }
+TEST(FemCurve, RefusesAPartialCircleNamingTheSource) {
+  std::vector<double> phi(400), zero(400, 0.0);
+  for (size_t i = 0; i < phi.size(); ++i) phi[i] = 0.5 * kPi * i / phi.size();
   try {
-    sw::read_fem_neutral_curve(path, kRm, sw::FemLoadCase::GeneratorOnly);
+    sw::fit_neutral_curve(kRm, phi, zero, zero, zero, "curve.csv");
     FAIL() << "no throw";
   } catch (const sw::InputError& e) {
-    EXPECT_NE(std::string(e.what()).find(path.string() + ":1: header must be"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("curve.csv: phi spans"), std::string::npos) << e.what();
   }
-  std::filesystem::remove(path);
 }
 
 }  // namespace

@@ -66,9 +66,9 @@ TEST(InvoluteDistance, IsTheEuclideanDistanceAlongTheNormal) {
   const Eigen::Vector2d t = sw::involute_tangent(f, u).normalized();
   const Eigen::Vector2d n(-t.y(), t.x());  // left of the tangent (u increasing = radius increasing): increasing polar angle
   for (double d : {-3e-5, -1e-6, 0.0, 2e-6, 4e-5}) {
-    double foot = 0;
-    EXPECT_NEAR(sw::involute_signed_distance(f, p + d * n, &foot), d, kGeomTol);
-    EXPECT_NEAR(foot, u, 1e-9);
+    const sw::InvoluteDistance id = sw::involute_signed_distance(f, p + d * n);
+    EXPECT_NEAR(id.distance_m, d, kGeomTol);
+    EXPECT_NEAR(id.foot_roll, u, 1e-9);
   }
 }
 
@@ -95,7 +95,7 @@ TEST(FlexsplineOutline, IsAClosedStarShapedCounterClockwiseCurveOnTheFlanks) {
     // Points on a ccw flank of some tooth lie on the involute (rotated to that tooth).
     const double k = std::round(ang / (2 * kPi / g.teeth_flexspline));
     const Eigen::Vector2d q = Eigen::Rotation2Dd(-k * 2 * kPi / g.teeth_flexspline) * a;
-    if (R > r.form_f + 1e-9 && q.y() > 0 && std::abs(sw::involute_signed_distance(f, q)) < 1e-15) ++on_flank;
+    if (R > r.form_f + 1e-9 && q.y() > 0 && std::abs(sw::involute_signed_distance(f, q).distance_m) < 1e-15) ++on_flank;
   }
   EXPECT_NEAR(turned, 2 * kPi, 1e-9);
   EXPECT_GT(area, kPi * r.root_f * r.root_f);

@@ -1,0 +1,94 @@
+#include "mesh/estimate.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include "common/error.hpp"
+#include "gear/tooth_profile.hpp"
+#include "mesh/flexspline.hpp"
+#include "mesh/shapes.hpp"
+
+namespace sw {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+// TET10 nodes per layered cell (along² × across) of a wall, measured: the seed cup (182,783 nodes at 0.6 mm, 2
+// layers) and the size-17 cup (119,688 at 0.8 mm, 1 layer) both give 11.8 (within 1 %); the structured tube mesh of
+// mesh_tube() gives 20.6 (tube_torsion.toml: 147,864 nodes).
+constexpr double kNodesPerCellCup = 11.8;
+constexpr double kNodesPerCellTube = 20.6;
+// nnz(L) ≈ c · n_eq^(4/3) for nested dissection on these thin 3-D shells, measured: seed cup c = 7.7 (3.39e8 at
+// 540,783 equations), tube 6.1, size-17 cup 5.8. The largest is used, so the estimate errs on the safe side.
+constexpr double kFactorCoefficient = 7.7;
+// Peak resident memory ≈ 1.5 × the factor's 8-byte values (seed cup: 4.09 GB for a 2.71 GB factor; tube benches
+// 0.75–1.08 × (factor + mesh)), plus ~2 kB per node for the mesh, stresses and output.
+constexpr double kPeakOverFactor = 1.5;
+constexpr double kBytesPerNode = 2048.0;
+
+/// Nodes of a wall region of volume V and thickness t meshed with the case's sizes.
+double cells(double volume_m3, double thickness_m, const MeshParams& mesh) {
+  if (volume_m3 <= 0 || thickness_m <= 0) return 0.0;
+  const WallSize w = wall_size(thickness_m, mesh);
+  return volume_m3 / (w.along_m * w.along_m * w.across_m);
+}
+
+double annulus(double r_in, double r_out, double length) { return kPi * (r_out * r_out - r_in * r_in) * length; }
+
+}  // namespace
+
+ModelSizeEstimate estimate_model_size(const FlexsplineParams& f, const std::optional<GearParams>& gear,
+                                      const MeshParams& mesh) {
+  const double ri = f.inner_radius_m, ro = ri + f.wall_thickness_m, L = f.length_m, w = f.rim_width_m;
+  const bool cup = f.shape == FlexsplineShape::Cup;
+  const double td = cup ? f.diaphragm_thickness_m : 0.0;
+  double rr = ro;
+  if (f.teeth != TeethModel::None) rr = f.teeth == TeethModel::Explicit && gear ? gear_radii(*gear).tip_f : rim_outer_radius(f, gear);
+  if (!(mesh.size_m > 0) || mesh.wall_layers < 1) return {};  // wall_size() refuses these with their own message
+  double n = cells(annulus(ri, ro, std::max(L - w - td, 0.0)), ro - ri, mesh);
+  n += f.teeth != TeethModel::None ? cells(annulus(ri, rr, w), std::max(rr - ri, 1e-9), mesh)
+                                   : cells(annulus(ri, ro, w), ro - ri, mesh);
+  if (cup) {
+    n += cells(annulus(f.boss_radius_m, ro, td), td, mesh);
+    const double sboss = 4.0 * mesh.size_m;  // the boss is meshed coarsely (mesh/flexspline.cpp)
+    n += annulus(0.0, f.boss_radius_m, 2.0 * td) / (sboss * sboss * sboss);
+  }
+  const bool plain_tube = !cup && f.teeth == TeethModel::None;
+  const double nodes = n * (plain_tube ? kNodesPerCellTube : kNodesPerCellCup);
+  ModelSizeEstimate e;
+  e.nodes = nodes;
+  e.equations = 3.0 * nodes;
+  e.factor_nnz = kFactorCoefficient * std::pow(e.equations, 4.0 / 3.0);
+  e.peak_bytes = kPeakOverFactor * 8.0 * e.factor_nnz + kBytesPerNode * nodes;
+  return e;
+}
+
+double available_memory_bytes() {
+  std::ifstream in("/proc/meminfo");
+  std::string key;
+  double kb = 0;
+  std::string unit;
+  while (in >> key >> kb >> unit)
+    if (key == "MemAvailable:") return kb * 1024.0;
+  return 0.0;
+}
+
+void refuse_if_too_large(const ModelSizeEstimate& e, double limit_bytes, const std::string& file) {
+  const bool machine = limit_bytes <= 0;
+  const double limit = machine ? available_memory_bytes() : limit_bytes;
+  if (limit <= 0 || e.peak_bytes <= limit) return;
+  char buf[512];
+  std::snprintf(buf, sizeof buf,
+                "%s: the TET10 model would have about %.3g nodes and %.3g equations and need about %.3g GB (factor "
+                "%.3g nonzeros); %s %.3g GB. Coarsen mesh.size_mm or mesh.wall_layers, use [solver] method = "
+                "\"fourier\" for a body of revolution, or raise --max-memory",
+                file.c_str(), e.nodes, e.equations, e.peak_bytes / 1e9, e.factor_nnz,
+                machine ? "this machine has" : "--max-memory allows", limit / 1e9);
+  throw InputError(buf);
+}
+
+}  // namespace sw

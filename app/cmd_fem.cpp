@@ -6,6 +6,7 @@
 
 #include "app/commands.hpp"
 #include "app/fem_job.hpp"
+#include "common/error.hpp"
 #include "common/progress.hpp"
 #include "fem/flexspline_analysis.hpp"
 #include "io/atomic_file.hpp"
@@ -25,7 +26,16 @@ TetMesh mesh_for_case(const Case& c) {
   return mesh_flexspline(c.flexspline, c.gear, c.mesh);
 }
 
-FemJobResult run_fem_job(const Case& c, const fs::path& out_dir) {
+void apply_solver_option(Case& c, const std::string& solver) {
+  if (solver.empty()) return;
+  c.solver.method = solver == "fourier" ? SolverMethod::Fourier : SolverMethod::Tet10;
+  if (c.solver.method == SolverMethod::Fourier && c.flexspline.teeth == TeethModel::Explicit)
+    throw InputError(c.path + ": --solver fourier needs a body of revolution; flexspline.teeth = \"explicit\" is not "
+                              "one (use teeth = \"ring\" or \"none\", or --solver tet10)");
+}
+
+FemJobResult run_fem_job(const Case& c, const fs::path& out_dir, bool write_vtk) {
+  if (c.solver.method == SolverMethod::Fourier) return run_fourier_fem_job(c, out_dir, write_vtk);
   const double t_start = elapsed_s();
   RunInfo run;
   run.blas = detect_blas();
@@ -45,7 +55,7 @@ FemJobResult run_fem_job(const Case& c, const fs::path& out_dir) {
   job.solution = analyse_flexspline(c, mesh);
   clock.lap();
   progress("output: " + out_dir.string());
-  write_fem_vtk(out_dir, c, mesh, job.solution);
+  if (write_vtk) write_fem_vtk(out_dir, c, mesh, job.solution);
   if (job.solution.neutral_curve) write_file_atomic(out_dir / "neutral_curve.csv", neutral_curve_csv(*job.solution.neutral_curve));
   run.output_s = clock.lap();
   run.total_s = elapsed_s() - t_start;
@@ -103,13 +113,18 @@ FemJobResult run_fem_job(const Case& c, const fs::path& out_dir) {
 
 void add_fem_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("fem", "mesh the flexspline, solve every load case, extract phi0 and C_tau");
-  static std::string case_path, out;
+  static std::string case_path, out, solver;
+  static bool no_vtk = false;
   cmd->add_option("case", case_path, "case file (TOML)")->required();
+  cmd->add_flag("--no-vtk", no_vtk, "leave out flexspline.pvd and the .vtu files");
   cmd->add_option("--out", out, "output directory (default out/<case stem>/)");
+  cmd->add_option("--solver", solver, "tet10 | fourier (overrides [solver] method)")
+      ->check(CLI::IsMember({"tet10", "fourier"}));
   cmd->callback([] {
-    const Case c = load_case(case_path);
+    Case c = load_case(case_path);
+    apply_solver_option(c, solver);
     progress("case:\n" + describe_case(c));
-    run_fem_job(c, out.empty() ? default_out_dir(c) : fs::path(out));
+    run_fem_job(c, out.empty() ? default_out_dir(c) : fs::path(out), !no_vtk);
   });
 }
 

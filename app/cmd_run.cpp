@@ -69,15 +69,18 @@ void print_summary(const Case& c, const FemJobResult& fem, const std::optional<B
 
 void add_run_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("run", "fem then backlash fed with its phi0: the main job");
-  static std::string case_path, out, curve = "fem";
+  static std::string case_path, out, solver, curve = "fem";
   cmd->add_option("case", case_path, "case file (TOML)")->required();
   cmd->add_option("--curve", curve,
                   "neutral curve for the backlash: fem (the FEM's generator-deformed rim, default) or generator "
                   "(the generator model's thin-ring/cam curve)")
       ->check(CLI::IsMember({"generator", "fem"}));
   cmd->add_option("--out", out, "output directory (default out/<case stem>/)");
+  cmd->add_option("--solver", solver, "tet10 | fourier (overrides [solver] method)")
+      ->check(CLI::IsMember({"tet10", "fourier"}));
   cmd->callback([] {
-    const Case c = load_case(case_path);
+    Case c = load_case(case_path);
+    apply_solver_option(c, solver);
     progress("case:\n" + describe_case(c));
     const std::filesystem::path dir = out.empty() ? default_out_dir(c) : std::filesystem::path(out);
     const FemJobResult fem = run_fem_job(c, dir);

@@ -71,6 +71,15 @@ struct MeshParams {
   double max_radius_edge_ratio = 2.0; ///< TetGen -q bound
 };
 
+enum class SolverMethod { Tet10, Fourier };
+
+/// How the flexspline is solved: 3-D quadratic tetrahedra (any shape), or, for a body of revolution (teeth "ring" or
+/// "none"), the meridian section with circumferential harmonics 0..harmonics (exact in θ up to that order).
+struct SolverParams {
+  SolverMethod method = SolverMethod::Tet10;
+  int harmonics = 64;  ///< fourier only: highest circumferential harmonic kept
+};
+
 /// A whole case: what to mesh, load and solve.
 struct Case {
   std::string path;      ///< the file it came from (for messages)
@@ -81,6 +90,7 @@ struct Case {
   std::optional<WaveGeneratorParams> wave_generator;
   LoadParams load;
   MeshParams mesh;
+  SolverParams solver;
   std::optional<DynamicsParams> dynamics;
 };
 

@@ -267,6 +267,15 @@ MeshParams read_mesh(TableReader r) {
   return m;
 }
 
+SolverParams read_solver(TableReader r) {
+  SolverParams s;
+  s.method = r.choice("method", "tet10", {"tet10", "fourier"}) == "fourier" ? SolverMethod::Fourier : SolverMethod::Tet10;
+  s.harmonics = r.integer("harmonics", s.harmonics, 0);
+  if (s.harmonics > 4096) r.fail_value("harmonics", s.harmonics, "must be <= 4096");
+  r.reject_unknown();
+  return s;
+}
+
 DynamicsParams read_dynamics(TableReader r) {
   DynamicsParams d;
   const std::string conf = r.choice("configuration", to_string(d.configuration),
@@ -321,12 +330,12 @@ Case parse_case(const std::string& toml_text, const std::string& path) {
   c.path = path;
   c.stem = std::filesystem::path(path).stem().string();
   static const std::set<std::string> kTables = {"gear", "flexspline", "material", "wave_generator", "load", "mesh",
-                                                "dynamics"};
+                                                "solver", "dynamics"};
   for (const auto& [key, node] : root) {
     if (!kTables.count(std::string(key.str())))
       throw InputError(path + ":" + std::to_string(node.source().begin.line) + ": [" + std::string(key.str()) +
                        "] is not a known table (allowed: [gear], [flexspline], [material], [wave_generator], "
-                       "[load], [mesh], [dynamics])");
+                       "[load], [mesh], [solver], [dynamics])");
   }
   static const toml::table kEmpty;
   auto table = [&](const char* name) -> const toml::table* { return sub_table(root, name, path); };
@@ -337,11 +346,15 @@ Case parse_case(const std::string& toml_text, const std::string& path) {
   if (auto t = table("wave_generator")) c.wave_generator = read_wave_generator(TableReader(*t, "wave_generator", path));
   c.load = read_load(TableReader(table("load") ? *table("load") : kEmpty, "load", path));
   c.mesh = read_mesh(TableReader(table("mesh") ? *table("mesh") : kEmpty, "mesh", path));
+  c.solver = read_solver(TableReader(table("solver") ? *table("solver") : kEmpty, "solver", path));
   if (auto t = table("dynamics")) c.dynamics = read_dynamics(TableReader(*t, "dynamics", path));
   if (c.flexspline.teeth != TeethModel::None && !c.gear)
     throw InputError(path + ": flexspline.teeth = \"" +
                      std::string(c.flexspline.teeth == TeethModel::Ring ? "ring" : "explicit") +
                      "\" needs a [gear] table (module and teeth), or set teeth = \"none\"");
+  if (c.solver.method == SolverMethod::Fourier && c.flexspline.teeth == TeethModel::Explicit)
+    throw InputError(path + ": solver.method = \"fourier\" needs a body of revolution; flexspline.teeth = \"explicit\" "
+                            "is not one (use teeth = \"ring\" or \"none\", or method = \"tet10\")");
   if (c.wave_generator && c.wave_generator->axial_position_m > c.flexspline.length_m)
     throw InputError(path + ": wave_generator.axial_position_mm = " +
                      format_number(c.wave_generator->axial_position_m / kMm) +
@@ -404,6 +417,8 @@ std::string describe_case(const Case& c) {
   s << "[mesh]\nsize_mm = " << mm(c.mesh.size_m) << "\nwall_layers = " << c.mesh.wall_layers
     << "\nmax_radius_edge_ratio = " << c.mesh.max_radius_edge_ratio << "\nmin_dihedral_deg = "
     << c.mesh.min_dihedral_deg << "\n";
+  s << "[solver]\nmethod = \"" << (c.solver.method == SolverMethod::Fourier ? "fourier" : "tet10") << "\"\n";
+  if (c.solver.method == SolverMethod::Fourier) s << "harmonics = " << c.solver.harmonics << "\n";
   if (c.dynamics) s << describe(*c.dynamics);
   return s.str();
 }

@@ -122,7 +122,8 @@ std::string fem_result_json(const Case& c, const TetMesh& mesh, const Flexspline
                {"min_dihedral_deg", mesh.quality.min_dihedral_deg},
                {"max_dihedral_deg", mesh.quality.max_dihedral_deg},
                {"max_radius_edge_ratio", mesh.quality.max_radius_edge_ratio}};
-  j["solver"] = {{"dofs", 3 * mesh.n_nodes()},
+  j["solver"] = {{"method", c.solver.method == SolverMethod::Fourier ? "fourier" : "tet10"},
+                 {"dofs", 3 * mesh.n_nodes()},
                  {"equations", s.factor.equations},
                  {"matrix_nnz", s.factor.matrix_nnz},
                  {"factor_nnz", s.factor.factor_nnz},

@@ -46,7 +46,20 @@ TEST(CaseFile, UnknownKeyIsRejectedWithItsPath) {
 }
 
 TEST(CaseFile, UnknownTableIsRejected) {
-  EXPECT_NE(error_of(std::string(kTube) + "[solver]\nx = 1\n").find("[solver] is not a known table"),
+  EXPECT_NE(error_of(std::string(kTube) + "[solvers]\nx = 1\n").find("[solvers] is not a known table"),
+            std::string::npos);
+}
+
+TEST(CaseFile, SolverTable) {
+  const Case c = parse_case(std::string(kTube) + "[solver]\nmethod = \"fourier\"\nharmonics = 32\n", "t.toml");
+  EXPECT_EQ(c.solver.method, SolverMethod::Fourier);
+  EXPECT_EQ(c.solver.harmonics, 32);
+  EXPECT_EQ(parse_case(kTube, "t.toml").solver.method, SolverMethod::Tet10);
+  EXPECT_NE(error_of(std::string(kTube) + "[solver]\nmethod = \"fft\"\n").find("solver.method = 'fft'; expected one of"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kTube) + "[solver]\nharmonics = -1\n").find("solver.harmonics = -1; must be >= 0"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kTube) + "[solver]\nharmonic = 8\n").find("solver.harmonic = 8; unknown key"),
             std::string::npos);
 }
 

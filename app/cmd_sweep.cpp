@@ -1,0 +1,385 @@
+// `strainwave sweep CASE.toml --set KEY=FROM:TO:N [...] [--shard K/N]`: the case over a grid of one or more keys.
+// Each point is a case file of its own (the base case with the keys set) under point_NNNN/, solved by `strainwave fem`
+// in a child process (points run in parallel, --jobs at a time), its result.json kept. A point whose result.json is
+// there for the same case text is finished and not rerun, so an interrupted sweep resumes; --shard K/N runs the points
+// i with i mod N = K − 1 only (a cluster's job array), and a call without --shard then runs what is left and merges
+// everything into sweep.csv and sweep.svg.
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+#include <toml++/toml.h>
+
+#include "app/commands.hpp"
+#include "app/fem_job.hpp"
+#include "common/error.hpp"
+#include "common/progress.hpp"
+#include "io/atomic_file.hpp"
+#include "io/case.hpp"
+
+extern char** environ;
+
+namespace sw::app {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct SweepAxis {
+  std::string table, key;  ///< "flexspline", "wall_thickness_mm"
+  std::vector<double> values;
+  std::string name() const { return table + "." + key; }
+};
+
+SweepAxis parse_set(const std::string& spec) {
+  const std::string expect = "expected TABLE.KEY=FROM:TO:N (e.g. flexspline.wall_thickness_mm=0.4:0.8:9)";
+  const auto eq = spec.find('='), dot = spec.find('.');
+  if (eq == std::string::npos || dot == std::string::npos || dot > eq) throw InputError("--set " + spec + "; " + expect);
+  SweepAxis a;
+  a.table = spec.substr(0, dot);
+  a.key = spec.substr(dot + 1, eq - dot - 1);
+  std::stringstream range(spec.substr(eq + 1));
+  std::string from_s, to_s, n_s;
+  if (!std::getline(range, from_s, ':') || !std::getline(range, to_s, ':') || !std::getline(range, n_s) ||
+      a.key.empty() || a.key.find('.') != std::string::npos)
+    throw InputError("--set " + spec + "; " + expect);
+  double from = 0, to = 0;
+  long n = 0;
+  try {
+    std::size_t used = 0;
+    from = std::stod(from_s, &used);
+    if (used != from_s.size()) throw std::invalid_argument("from");
+    to = std::stod(to_s, &used);
+    if (used != to_s.size()) throw std::invalid_argument("to");
+    n = std::stol(n_s, &used);
+    if (used != n_s.size()) throw std::invalid_argument("n");
+  } catch (const std::exception&) {
+    throw InputError("--set " + spec + "; " + expect);
+  }
+  if (n < 1 || (n == 1 && from != to))
+    throw InputError("--set " + spec + "; N = " + n_s + " must be >= 1 (N = 1 needs FROM = TO)");
+  for (long i = 0; i < n; ++i) a.values.push_back(n == 1 ? from : from + (to - from) * static_cast<double>(i) / (n - 1));
+  return a;
+}
+
+/// The base case's TOML with the point's values set; whole values stay integers where the base had an integer.
+std::string point_case_text(const toml::table& base, const std::vector<SweepAxis>& axes, const std::vector<double>& v) {
+  toml::table t = base;
+  for (std::size_t k = 0; k < axes.size(); ++k) {
+    toml::node* table = t.get(axes[k].table);
+    if (!table) {
+      t.insert(axes[k].table, toml::table{});
+      table = t.get(axes[k].table);
+    }
+    if (!table->is_table())
+      throw InputError("--set " + axes[k].name() + ": " + axes[k].table + " is not a table of the case");
+    auto& tt = *table->as_table();
+    const toml::node* old = tt.get(axes[k].key);
+    if (old && old->is_integer() && v[k] == std::round(v[k])) {
+      tt.insert_or_assign(axes[k].key, static_cast<int64_t>(std::llround(v[k])));
+    } else {  // a key that takes integers only rejects a fraction with the case parser's message
+      tt.insert_or_assign(axes[k].key, v[k]);
+    }
+  }
+  std::ostringstream s;
+  s << "# a point of a strainwave sweep (written by `strainwave sweep`)\n" << t << "\n";
+  return s.str();
+}
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  if (!in) return {};
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// A finished point: result.json parses and was made from this case text.
+bool finished(const fs::path& dir, const std::string& case_text) {
+  if (read_text(dir / "case.toml") != case_text || !fs::exists(dir / "result.json")) return false;
+  try {
+    (void)nlohmann::json::parse(read_text(dir / "result.json"));
+    return true;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+struct Point {
+  std::size_t index = 0;
+  std::vector<double> values;
+  fs::path dir;
+  std::string case_text;
+};
+
+std::string point_name(std::size_t i) {
+  char b[32];
+  std::snprintf(b, sizeof b, "point_%04zu", i);
+  return b;
+}
+
+/// Runs `strainwave fem` on every point in `todo`, `jobs` at a time; returns the points that failed.
+std::vector<const Point*> run_points(const std::vector<const Point*>& todo, int jobs, const std::string& solver) {
+  std::vector<const Point*> failed;
+  std::map<pid_t, const Point*> running;
+  const std::string self = fs::read_symlink("/proc/self/exe").string();
+  // Threads per child: the cores shared out.
+  const int cores = std::max(1u, std::thread::hardware_concurrency());
+  const std::string threads = std::to_string(std::max(1, cores / std::max(1, jobs)));
+  std::vector<std::string> env_s;
+  for (char** e = environ; *e; ++e)
+    if (std::string(*e).rfind("OPENBLAS_NUM_THREADS=", 0) != 0) env_s.emplace_back(*e);
+  env_s.push_back("OPENBLAS_NUM_THREADS=" + threads);
+  std::vector<char*> env;
+  for (auto& s : env_s) env.push_back(s.data());
+  env.push_back(nullptr);
+  std::size_t next = 0, done = 0;
+  const double t0 = elapsed_s();
+  auto wait_one = [&] {
+    int status = 0;
+    const pid_t pid = waitpid(-1, &status, 0);
+    if (pid <= 0) return;
+    const Point* p = running.at(pid);
+    running.erase(pid);
+    ++done;
+    if (!(WIFEXITED(status) && WEXITSTATUS(status) == 0)) failed.push_back(p);
+    progress("sweep: " + std::to_string(done) + "/" + std::to_string(todo.size()) + " points, " +
+             std::to_string(elapsed_s() - t0) + " s");
+  };
+  while (next < todo.size() || !running.empty()) {
+    while (next < todo.size() && static_cast<int>(running.size()) < jobs) {
+      const Point* p = todo[next++];
+      std::vector<std::string> args = {self, "fem", (p->dir / "case.toml").string(), "--out", p->dir.string(),
+                                       "--no-vtk", "--quiet"};
+      if (!solver.empty()) args.insert(args.end(), {"--solver", solver});
+      std::vector<char*> argv;
+      for (auto& a : args) argv.push_back(a.data());
+      argv.push_back(nullptr);
+      posix_spawn_file_actions_t fa;
+      posix_spawn_file_actions_init(&fa);
+      const std::string log = (p->dir / "fem.log").string();
+      posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      posix_spawn_file_actions_adddup2(&fa, 1, 2);
+      pid_t pid = 0;
+      const int rc = posix_spawn(&pid, self.c_str(), &fa, nullptr, argv.data(), env.data());
+      posix_spawn_file_actions_destroy(&fa);
+      if (rc != 0) throw std::runtime_error("cannot start " + self + " for " + p->dir.string());
+      running[pid] = p;
+    }
+    if (!running.empty()) wait_one();
+  }
+  return failed;
+}
+
+struct Column {
+  std::string name;
+  std::vector<std::string> path;  ///< in result.json
+};
+const std::vector<Column> kColumns = {
+    {"phi0_rad", {"phi0_rad"}},
+    {"compliance_rad_per_Nm", {"compliance_rad_per_Nm"}},
+    {"max_hoop_stress_Pa", {"max_hoop_stress_Pa"}},
+    {"min_hoop_stress_Pa", {"min_hoop_stress_Pa"}},
+    {"generator_force_per_point_N", {"wave_generator", "force_per_point_N"}},
+    {"generator_w0_mm", {"wave_generator", "w0_reached_mm"}},
+    {"total_s", {"timings_s", "total"}},
+};
+
+double value_at(const nlohmann::json& j, const std::vector<std::string>& path) {
+  const nlohmann::json* n = &j;
+  for (const auto& k : path) {
+    if (!n->is_object() || !n->contains(k)) return std::nan("");
+    n = &(*n)[k];
+  }
+  return n->is_number() ? n->get<double>() : std::nan("");
+}
+
+std::string sweep_csv(const std::vector<SweepAxis>& axes, const std::vector<Point>& points,
+                      const std::vector<nlohmann::json>& results) {
+  std::ostringstream s;
+  s << "point";
+  for (const auto& a : axes) s << "," << a.name();
+  for (const auto& c : kColumns) s << "," << c.name;
+  s << "\n";
+  char buf[64];
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    s << i;
+    for (double v : points[i].values) {
+      std::snprintf(buf, sizeof buf, ",%.10g", v);
+      s << buf;
+    }
+    for (const auto& c : kColumns) {
+      std::snprintf(buf, sizeof buf, ",%.9e", value_at(results[i], c.path));
+      s << buf;
+    }
+    s << "\n";
+  }
+  return s.str();
+}
+
+/// Four panels (φ₀, C_τ, max hoop stress, generator force) against the first key; one line per combination of the
+/// other keys.
+std::string sweep_svg(const std::vector<SweepAxis>& axes, const std::vector<Point>& points,
+                      const std::vector<nlohmann::json>& results) {
+  const int W = 420, H = 300, M = 60;
+  const std::vector<std::pair<std::string, std::vector<std::string>>> panels = {
+      {"phi0 (rad)", {"phi0_rad"}},
+      {"C_tau (rad/N·m)", {"compliance_rad_per_Nm"}},
+      {"max hoop stress (MPa)", {"max_hoop_stress_Pa"}},
+      {"generator force per point (N)", {"wave_generator", "force_per_point_N"}}};
+  const std::size_t per_line = axes[0].values.size(), lines = points.size() / per_line;
+  static const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e377c2"};
+  std::ostringstream s;
+  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << 2 * W << "\" height=\"" << 2 * H + 40
+    << "\" font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  s << "<text x=\"10\" y=\"20\" font-size=\"14\">sweep over " << axes[0].name();
+  for (std::size_t k = 1; k < axes.size(); ++k) s << (k == 1 ? " (lines: " : ", ") << axes[k].name();
+  s << (axes.size() > 1 ? ")" : "") << "</text>\n";
+  for (std::size_t p = 0; p < panels.size(); ++p) {
+    const double scale = p == 2 ? 1e-6 : 1.0;
+    const int ox = static_cast<int>(p % 2) * W, oy = 40 + static_cast<int>(p / 2) * H;
+    double lo = 1e300, hi = -1e300;
+    for (const auto& r : results) {
+      const double v = value_at(r, panels[p].second) * scale;
+      if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
+    }
+    const double x0 = axes[0].values.front(), x1 = axes[0].values.back();
+    s << "<text x=\"" << ox + M << "\" y=\"" << oy + 14 << "\">" << panels[p].first << "</text>\n";
+    s << "<rect x=\"" << ox + M << "\" y=\"" << oy + 20 << "\" width=\"" << W - M - 20 << "\" height=\"" << H - 70
+      << "\" fill=\"none\" stroke=\"#888\"/>\n";
+    if (!(hi >= lo)) continue;
+    if (hi == lo) hi = lo + (lo == 0 ? 1 : std::abs(lo) * 1e-3), lo -= (hi - lo);
+    auto X = [&](double x) { return ox + M + (x1 == x0 ? 0.5 : (x - x0) / (x1 - x0)) * (W - M - 20); };
+    auto Y = [&](double y) { return oy + 20 + (1 - (y - lo) / (hi - lo)) * (H - 70); };
+    char b[160];
+    std::snprintf(b, sizeof b, "<text x=\"%d\" y=\"%.1f\" text-anchor=\"end\">%.4g</text>\n", ox + M - 4, Y(hi) + 4, hi);
+    s << b;
+    std::snprintf(b, sizeof b, "<text x=\"%d\" y=\"%.1f\" text-anchor=\"end\">%.4g</text>\n", ox + M - 4, Y(lo), lo);
+    s << b;
+    std::snprintf(b, sizeof b, "<text x=\"%d\" y=\"%d\">%.4g</text><text x=\"%d\" y=\"%d\" text-anchor=\"end\">%.4g</text>\n",
+                  ox + M, oy + H - 35, x0, W + ox - 20, oy + H - 35, x1);
+    s << b;
+    for (std::size_t l = 0; l < lines; ++l) {
+      s << "<polyline fill=\"none\" stroke=\"" << kColours[l % 7] << "\" points=\"";
+      for (std::size_t i = 0; i < per_line; ++i) {
+        // Points are numbered with the first key slowest: point = i·lines + l.
+        const std::size_t idx = i * lines + l;
+        const double v = value_at(results[idx], panels[p].second) * scale;
+        if (std::isfinite(v)) {
+          std::snprintf(b, sizeof b, "%.1f,%.1f ", X(points[idx].values[0]), Y(v));
+          s << b;
+        }
+      }
+      s << "\"/>\n";
+    }
+  }
+  s << "<text x=\"10\" y=\"" << 2 * H + 30 << "\">x: " << axes[0].name() << "</text>\n</svg>\n";
+  return s.str();
+}
+
+}  // namespace
+
+void add_sweep_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("sweep", "run a case over a grid of one or more keys (sweep.csv, sweep.svg)");
+  static std::string case_path, out, shard, solver;
+  static std::vector<std::string> sets;
+  static int jobs = 0;
+  cmd->add_option("case", case_path, "case file (TOML)")->required();
+  cmd->add_option("--set", sets, "TABLE.KEY=FROM:TO:N, N values from FROM to TO (repeat for a grid)")->required();
+  cmd->add_option("--shard", shard, "K/N: run only the points i with i mod N = K - 1 (no sweep.csv)");
+  cmd->add_option("--jobs", jobs, "points at a time (default: the machine's cores)");
+  cmd->add_option("--solver", solver, "tet10 | fourier (overrides [solver] method)")
+      ->check(CLI::IsMember({"tet10", "fourier"}));
+  cmd->add_option("--out", out, "output directory (default out/<case stem>_sweep/)");
+  cmd->callback([] {
+    Case base_case = load_case(case_path);  // the base case must be valid itself
+    toml::table base;
+    try {
+      base = toml::parse_file(case_path);
+    } catch (const toml::parse_error& e) {
+      throw InputError(case_path + ": malformed TOML: " + std::string(e.description()));
+    }
+    std::vector<SweepAxis> axes;
+    for (const auto& s : sets) axes.push_back(parse_set(s));
+    int shard_k = 1, shard_n = 1;
+    if (!shard.empty()) {
+      char slash = 0;
+      std::stringstream ss(shard);
+      if (!(ss >> shard_k >> slash >> shard_n) || slash != '/' || !ss.eof() || shard_n < 1 || shard_k < 1 ||
+          shard_k > shard_n)
+        throw InputError("--shard " + shard + "; expected K/N with 1 <= K <= N (e.g. 2/8)");
+    }
+    if (jobs <= 0) jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    const fs::path dir = out.empty() ? fs::path(default_out_dir(base_case).string() + "_sweep") : fs::path(out);
+
+    // Points, first key slowest; each point's case is validated before anything runs.
+    std::vector<Point> points;
+    std::size_t total = 1;
+    for (const auto& a : axes) total *= a.values.size();
+    for (std::size_t i = 0; i < total; ++i) {
+      Point p;
+      p.index = i;
+      std::size_t rest = i;
+      p.values.resize(axes.size());
+      for (std::size_t k = axes.size(); k-- > 0;) {
+        p.values[k] = axes[k].values[rest % axes[k].values.size()];
+        rest /= axes[k].values.size();
+      }
+      p.dir = dir / point_name(i);
+      p.case_text = point_case_text(base, axes, p.values);
+      Case pc = parse_case(p.case_text, "--set (point " + std::to_string(i) + " of " + case_path + ")");
+      apply_solver_option(pc, solver);
+      points.push_back(std::move(p));
+    }
+    fs::create_directories(dir);
+    std::vector<const Point*> todo;
+    std::size_t skipped = 0;
+    for (const auto& p : points) {
+      if (static_cast<int>(p.index % static_cast<std::size_t>(shard_n)) != shard_k - 1) continue;
+      if (finished(p.dir, p.case_text)) {
+        ++skipped;
+        continue;
+      }
+      fs::create_directories(p.dir);
+      fs::remove(p.dir / "result.json");
+      write_file_atomic(p.dir / "case.toml", p.case_text);
+      todo.push_back(&p);
+    }
+    progress("sweep: " + std::to_string(points.size()) + " points, " + std::to_string(skipped) +
+             " finished before, " + std::to_string(todo.size()) + " to run, " + std::to_string(jobs) + " at a time");
+    const double t0 = elapsed_s();
+    const auto failed = run_points(todo, jobs, solver);
+    const double wall = elapsed_s() - t0;
+    if (!failed.empty()) {
+      std::string lines = read_text(failed.front()->dir / "fem.log");
+      while (!lines.empty() && lines.back() == '\n') lines.pop_back();
+      const auto last = lines.rfind('\n');
+      throw InputError("sweep: " + std::to_string(failed.size()) + " point(s) failed, e.g. " +
+                       failed.front()->dir.string() + ": " + (last == std::string::npos ? lines : lines.substr(last + 1)));
+    }
+    std::printf("sweep %s: %zu points run in %.2f s (%zu finished before)\n", case_path.c_str(), todo.size(), wall,
+                skipped);
+    if (shard_n > 1) {
+      std::printf("  shard %d/%d done; run again without --shard to merge into sweep.csv\n", shard_k, shard_n);
+      return;
+    }
+    std::vector<nlohmann::json> results;
+    for (const auto& p : points) results.push_back(nlohmann::json::parse(read_text(p.dir / "result.json")));
+    write_file_atomic(dir / "sweep.csv", sweep_csv(axes, points, results));
+    write_file_atomic(dir / "sweep.svg", sweep_svg(axes, points, results));
+    std::printf("  wrote %s (sweep.csv, sweep.svg, %zu points' result.json)\n", dir.string().c_str(), points.size());
+  });
+}
+
+}  // namespace sw::app

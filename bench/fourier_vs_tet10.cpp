@@ -1,0 +1,198 @@
+// bench_fourier_vs_tet10: one flexspline (a body of revolution: teeth "ring" or "none") through the harmonic solver
+// and the tet10 solver in one run, each converged on its own:
+//   1. DGEMM rate of the loaded BLAS (the reference for the tet10 factor's efficiency).
+//   2. fourier, harmonic convergence on the case's section: N = 8 … 128 (φ₀, w, v on the neutral circle, hoop stress),
+//      differences against the largest N.
+//   3. fourier, section convergence at the largest N: the case's mesh keys refined by 1, 2, 4 (size / k, layers × k),
+//      differences against the finest.
+//   4. tet10 at the case's mesh (and --tet10-meshes SIZE/LAYERS,...): time, factor GF and GF/s, φ₀.
+//   5. Each tet10 run against the finest fourier run: φ₀, max |Δw| and |Δv| over the neutral circle ÷ w0, the nominal
+//      hoop stress (outer wall at the minor axis, generator plane), and the speed ratio tet10 ÷ fourier, end to end
+//      (mesh + every load case + figures, no output files: both sides alike).
+// Wall clock; on a shared machine the ratio is noisy (say so with the figures).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "bench_util.hpp"
+#include "common/error.hpp"
+#include "common/progress.hpp"
+#include "dgemm.hpp"
+#include "fem/flexspline_analysis.hpp"
+#include "fem/fourier_solver.hpp"
+#include "io/case.hpp"
+
+namespace sw::bench {
+namespace {
+
+struct Figures {
+  std::string label;
+  double seconds = 0, phi0 = 0, hoop90_outer = 0, hoop_max = 0, gflop = 0, factor_s = 0;
+  long long size = 0;  // nodes (tet10) or section nodes (fourier)
+  long long equations = 0;
+  std::vector<double> w, v;
+  double w0 = 0;
+};
+
+Figures from(const FlexsplineSolution& s) {
+  Figures f;
+  f.phi0 = s.phi0_rad;
+  f.hoop90_outer = s.hoop.outer_Pa.empty() ? 0 : s.hoop.outer_Pa[90];
+  f.hoop_max = s.hoop.max_tensile_Pa;
+  f.gflop = s.factor.factor_gflop;
+  f.factor_s = s.factor.factor_s;
+  if (s.neutral_curve) {
+    f.w = s.neutral_curve->w_wg_m;
+    f.v = s.neutral_curve->v_wg_m;
+  }
+  f.w0 = s.generator_w0_m;
+  return f;
+}
+
+Figures run_fourier(Case c, int harmonics, double size_m, int layers) {
+  c.solver.method = SolverMethod::Fourier;
+  c.solver.harmonics = harmonics;
+  c.mesh.size_m = size_m;
+  c.mesh.wall_layers = layers;
+  Stopwatch clock;
+  const FourierSolution s = analyse_flexspline_fourier(c);
+  const double t = clock.lap();
+  Figures f = from(s.figures);
+  f.seconds = t;
+  f.size = static_cast<long long>(s.section.n_nodes());
+  for (const auto& h : s.harmonics) f.equations += h.equations;
+  char label[64];
+  std::snprintf(label, sizeof label, "N=%d, %.3g mm/%d", harmonics, size_m * 1e3, layers);
+  f.label = label;
+  return f;
+}
+
+Figures run_tet10(Case c, double size_m, int layers) {
+  c.solver.method = SolverMethod::Tet10;
+  c.mesh.size_m = size_m;
+  c.mesh.wall_layers = layers;
+  Stopwatch clock;
+  const TetMesh mesh = mesh_for_bench(c);
+  const FlexsplineSolution s = analyse_flexspline(c, mesh);
+  const double t = clock.lap();
+  Figures f = from(s);
+  f.seconds = t;
+  f.size = static_cast<long long>(mesh.n_nodes());
+  f.equations = s.factor.equations;
+  char label[64];
+  std::snprintf(label, sizeof label, "tet10 %.3g mm/%d", size_m * 1e3, layers);
+  f.label = label;
+  return f;
+}
+
+struct Diff {
+  double phi0 = 0, w = 0, v = 0, hoop = 0;
+};
+Diff diff(const Figures& a, const Figures& ref) {
+  Diff d;
+  d.phi0 = a.phi0 / ref.phi0 - 1;
+  const double w0 = ref.w0 > 0 ? ref.w0 : 1;
+  for (std::size_t k = 0; k < std::min(a.w.size(), ref.w.size()); ++k) {
+    d.w = std::max(d.w, std::abs(a.w[k] - ref.w[k]) / w0);
+    d.v = std::max(d.v, std::abs(a.v[k] - ref.v[k]) / w0);
+  }
+  d.hoop = ref.hoop90_outer != 0 ? a.hoop90_outer / ref.hoop90_outer - 1 : 0;
+  return d;
+}
+
+void print_row(const Figures& f, const Figures& ref) {
+  const Diff d = diff(f, ref);
+  std::printf("| %-22s | %9lld | %9lld | %8.3f | %.6e | %+9.2e | %8.2e | %8.2e | %8.1f | %+9.2e | %8.1f |\n",
+              f.label.c_str(), f.size, f.equations, f.seconds, f.phi0, d.phi0, d.w, d.v, f.hoop90_outer / 1e6, d.hoop,
+              f.hoop_max / 1e6);
+}
+
+void print_header(const char* title, const char* size_name) {
+  std::printf("\n%s\n", title);
+  std::printf("| %-22s | %9s | %9s | %8s | %-12s | %9s | %8s | %8s | %8s | %9s | %8s |\n", "run", size_name, "equations",
+              "time s", "phi0 rad", "dphi0 rel", "|dw|/w0", "|dv|/w0", "hoop90 MPa", "dhoop rel", "hoop max");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
+}
+
+int run(int argc, char** argv) {
+  CLI::App app{"bench_fourier_vs_tet10: the harmonic solver against tet10 on one case, each converged on its own"};
+  std::string case_path = "cases/seed_190_192.toml", tet10_meshes, harmonics_list = "8,16,32,64,128";
+  int dgemm_n = 2000;
+  bool skip_tet10 = false;
+  app.add_option("case", case_path, "case file (teeth ring or none)")->capture_default_str();
+  app.add_option("--harmonics", harmonics_list, "harmonic orders N to run (comma-separated); the last is the reference")
+      ->capture_default_str();
+  app.add_option("--tet10-meshes", tet10_meshes, "extra tet10 meshes SIZE_MM/LAYERS,... (the case's mesh always runs)");
+  app.add_flag("--skip-tet10", skip_tet10, "fourier tables only");
+  app.add_option("--dgemm-n", dgemm_n, "order of the DGEMM reference matrices")->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+  const Case c = load_case(case_path);
+  std::vector<int> orders;
+  {
+    std::stringstream ss(harmonics_list);
+    std::string item;
+    while (std::getline(ss, item, ',')) orders.push_back(std::stoi(item));
+  }
+  const int n_ref = orders.back();
+  std::printf("bench_fourier_vs_tet10 %s (BLAS: %s)\n", case_path.c_str(), detect_blas().description.c_str());
+  const double dgemm = dgemm_gflops(dgemm_n, 3);
+  std::printf("DGEMM %dx%d: %.1f GF/s (best of 3, same BLAS and threads, measured in this run)\n", dgemm_n, dgemm_n, dgemm);
+
+  // Section convergence at the reference N: the finest is the reference of every table.
+  std::vector<Figures> sections;
+  for (const int k : {1, 2, 4})
+    sections.push_back(run_fourier(c, n_ref, c.mesh.size_m / k, c.mesh.wall_layers * k));
+  const Figures& ref = sections.back();
+  std::vector<Figures> harmonics;
+  for (const int n : orders) harmonics.push_back(run_fourier(c, n, c.mesh.size_m, c.mesh.wall_layers));
+
+  print_header("fourier: harmonic convergence on the case's section (differences against the largest N)", "sec nodes");
+  for (const auto& f : harmonics) print_row(f, harmonics.back());
+  print_header("fourier: section convergence at the largest N (size / k, layers x k)", "sec nodes");
+  for (const auto& f : sections) print_row(f, ref);
+
+  if (!skip_tet10) {
+    std::vector<std::pair<double, int>> meshes = {{c.mesh.size_m, c.mesh.wall_layers}};
+    std::stringstream ss(tet10_meshes);
+    std::string item;
+    while (std::getline(ss, item, ',')) {
+      double size_mm = 0;
+      int layers = 0;
+      char slash = 0;
+      std::stringstream is(item);
+      if (!(is >> size_mm >> slash >> layers) || slash != '/')
+        throw InputError("--tet10-meshes: \"" + item + "\"; expected SIZE_MM/LAYERS");
+      meshes.emplace_back(size_mm * 1e-3, layers);
+    }
+    print_header("tet10 against the finest fourier run", "nodes");
+    // The fourier run the speed is quoted for: N = 64 on the case's section when it was run, else the largest N.
+    const auto it64 = std::find(orders.begin(), orders.end(), 64);
+    const Figures& fast = harmonics[it64 != orders.end() ? it64 - orders.begin() : harmonics.size() - 1];
+    for (const auto& [size, layers] : meshes) {
+      const Figures t = run_tet10(c, size, layers);
+      print_row(t, ref);
+      std::printf("  tet10 factor %.1f GF in %.2f s = %.1f GF/s = %.0f %% of DGEMM; end to end %.2f s vs fourier (%s) "
+                  "%.3f s: %.0fx\n",
+                  t.gflop, t.factor_s, t.gflop / t.factor_s, 100 * t.gflop / t.factor_s / dgemm, t.seconds,
+                  fast.label.c_str(), fast.seconds, t.seconds / fast.seconds);
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+}  // namespace sw::bench
+
+int main(int argc, char** argv) {
+  try {
+    return sw::bench::run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_fourier_vs_tet10: %s\n", e.what());
+    return 2;
+  }
+}

@@ -1,0 +1,251 @@
+#include "fem/fourier_section.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <numbers>
+
+#include <Eigen/LU>
+
+#include "common/error.hpp"
+#include "mesh/flexspline.hpp"
+#include "mesh/shapes.hpp"
+
+namespace sw {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr int kInterior = -1;  // a block side that is not on the boundary (or lies on the axis)
+
+// Boss cells over mesh.size: every boss face but the diaphragm's is clamped (as in mesh/flexspline.cpp).
+constexpr double kBossSizeFactor = 4.0;
+
+using V2 = Eigen::Vector2d;
+
+/// A structured block: a map of the unit square (u, v) onto the section, nu × nv cells, the region of its
+/// triangles and the Surface marker of each side (bottom v = 0, right u = 1, top v = 1, left u = 0).
+struct Block {
+  std::function<V2(double u, double v)> map;
+  int nu = 1, nv = 1;
+  int region = 0;
+  std::array<int, 4> marker{kInterior, kInterior, kInterior, kInterior};
+};
+
+/// Adds blocks to a section, merging the nodes that blocks share (equal up to round-off).
+class SectionBuilder {
+public:
+  void add(const Block& b) {
+    const int ni = 2 * b.nu + 1, nj = 2 * b.nv + 1;
+    std::vector<int> g(static_cast<std::size_t>(ni * nj));
+    for (int j = 0; j < nj; ++j)
+      for (int i = 0; i < ni; ++i) g[j * ni + i] = node(b.map(double(i) / (ni - 1), double(j) / (nj - 1)));
+    auto at = [&](int i, int j) { return g[j * ni + i]; };
+    for (int cj = 0; cj < b.nv; ++cj)
+      for (int ci = 0; ci < b.nu; ++ci) {
+        const int i = 2 * ci, j = 2 * cj;
+        const int a = at(i, j), bb = at(i + 2, j), c = at(i + 2, j + 2), d = at(i, j + 2);
+        const int ab = at(i + 1, j), bc = at(i + 2, j + 1), cd = at(i + 1, j + 2), da = at(i, j + 1),
+                  mid = at(i + 1, j + 1);
+        triangle({a, bb, c, ab, bc, mid}, b.region);
+        triangle({a, c, d, mid, cd, da}, b.region);
+      }
+    auto side = [&](int s, int k) -> std::array<int, 3> {  // k-th edge of side s
+      switch (s) {
+        case 0: return {at(2 * k, 0), at(2 * k + 2, 0), at(2 * k + 1, 0)};
+        case 1: return {at(ni - 1, 2 * k), at(ni - 1, 2 * k + 2), at(ni - 1, 2 * k + 1)};
+        case 2: return {at(2 * k, nj - 1), at(2 * k + 2, nj - 1), at(2 * k + 1, nj - 1)};
+        default: return {at(0, 2 * k), at(0, 2 * k + 2), at(0, 2 * k + 1)};
+      }
+    };
+    for (int s = 0; s < 4; ++s) {
+      if (b.marker[s] == kInterior) continue;
+      const int n = (s % 2 == 0) ? b.nu : b.nv;
+      for (int k = 0; k < n; ++k) mesh_.edges.push_back({side(s, k), b.marker[s]});
+    }
+  }
+
+  SectionMesh finish() {
+    mesh_.nodes.resize(static_cast<Eigen::Index>(points_.size()), 2);
+    for (std::size_t i = 0; i < points_.size(); ++i) mesh_.nodes.row(static_cast<Eigen::Index>(i)) = points_[i];
+    return std::move(mesh_);
+  }
+
+private:
+  static constexpr double kQuantum = 1e-9;  // m: nodes of different blocks closer than this are one node
+  int node(const V2& p) {
+    const long long kr = std::llround(p.x() / kQuantum), kz = std::llround(p.y() / kQuantum);
+    for (long long dr = -1; dr <= 1; ++dr)
+      for (long long dz = -1; dz <= 1; ++dz) {
+        const auto it = index_.find({kr + dr, kz + dz});
+        if (it != index_.end() && (points_[it->second] - p).norm() < kQuantum) return it->second;
+      }
+    points_.push_back(p);
+    const int id = static_cast<int>(points_.size()) - 1;
+    index_[{kr, kz}] = id;
+    return id;
+  }
+  void triangle(std::array<int, 6> t, int region) {
+    const V2 a = points_[t[0]], b = points_[t[1]], c = points_[t[2]];
+    const double area2 = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+    if (area2 < 0) t = {t[0], t[2], t[1], t[5], t[4], t[3]};
+    mesh_.triangles.push_back(t);
+    mesh_.region.push_back(region);
+  }
+  std::vector<V2> points_;
+  std::map<std::pair<long long, long long>, int> index_;
+  SectionMesh mesh_;
+};
+
+Block rectangle(double r0, double r1, double z0, double z1, int nu, int nv, int region, std::array<int, 4> marker) {
+  Block b;
+  b.map = [=](double u, double v) { return V2(r0 + u * (r1 - r0), z0 + v * (z1 - z0)); };
+  b.nu = std::max(1, nu);
+  b.nv = std::max(1, nv);
+  b.region = region;
+  b.marker = marker;
+  return b;
+}
+
+int cells(double length, double size) { return std::max(1, static_cast<int>(std::ceil(length / size - 1e-9))); }
+
+}  // namespace
+
+SectionMesh mesh_annulus_section(double r_inner_m, double r_outer_m, double length_m, int layers, int cells_along) {
+  SectionBuilder b;
+  b.add(rectangle(r_inner_m, r_outer_m, 0.0, length_m, layers, cells_along, 0,
+                  {kSurfaceClamped, kSurfaceOuter, kSurfaceOpenEnd, kSurfaceInner}));
+  return b.finish();
+}
+
+SectionMesh mesh_flexspline_section(const FlexsplineParams& f, const std::optional<GearParams>& gear,
+                                    const MeshParams& mesh, std::optional<std::pair<double, double>> band) {
+  validate_flexspline(f, gear, mesh);
+  if (f.teeth == TeethModel::Explicit)
+    throw InputError("flexspline.teeth = \"explicit\": the toothed rim is not a body of revolution; the harmonic "
+                     "solver takes teeth = \"ring\" or \"none\" (solver.method = \"tet10\" takes explicit teeth)");
+  const bool cup = f.shape == FlexsplineShape::Cup;
+  const bool rim = cup || f.teeth != TeethModel::None;
+  const double ri = f.inner_radius_m, tw = f.wall_thickness_m, ro = ri + tw, L = f.length_m;
+  const double zr = rim ? L - f.rim_width_m : L;
+  const double rr = rim ? rim_outer_radius(f, gear) : ro;
+  const double td = cup ? f.diaphragm_thickness_m : 0.0, rf = cup ? f.fillet_radius_m : 0.0;
+  const double rb = f.boss_radius_m, hb = 2.0 * td;
+
+  // Layers: the same count through every wall, so the blocks meet node to node.
+  int layers = wall_size(tw, mesh).layers;
+  if (cup) layers = std::max(layers, wall_size(td, mesh).layers);
+  const double along_wall = std::min(mesh.size_m, kMaxLayerAspect * tw / layers);
+  const double along_diaphragm = cup ? std::min(mesh.size_m, kMaxLayerAspect * td / layers) : along_wall;
+  const double across = tw / layers;
+  const int extra = rr - ro > 1e-9 ? std::max(1, static_cast<int>(std::lround((rr - ro) / across))) : 0;
+
+  SectionBuilder b;
+  // Body wall and rim: axial segments between the break lines (body start, rim shoulder, generator band edges).
+  const double z_start = cup ? td + rf : 0.0;
+  std::vector<double> breaks = {z_start, L};
+  if (rim) breaks.push_back(zr);
+  if (band)
+    for (const double z : {band->first - 0.5 * band->second, band->first + 0.5 * band->second})
+      if (z > z_start + 1e-9 && z < L - 1e-9) breaks.push_back(z);
+  std::sort(breaks.begin(), breaks.end());
+  breaks.erase(std::unique(breaks.begin(), breaks.end(), [](double a, double c) { return std::abs(a - c) < 1e-9; }),
+               breaks.end());
+  for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
+    const double z0 = breaks[k], z1 = breaks[k + 1];
+    const bool in_rim = rim && z0 >= zr - 1e-12;
+    const int n = cells(z1 - z0, along_wall);
+    const int bottom = (!cup && k == 0) ? kSurfaceClamped : kInterior;
+    const int top = k + 2 == breaks.size() ? kSurfaceOpenEnd : kInterior;
+    const int right = !in_rim ? kSurfaceOuter : extra > 0 ? kInterior : kSurfaceRimOuter;
+    b.add(rectangle(ri, ro, z0, z1, layers, n, in_rim ? 1 : 0, {bottom, right, top, kSurfaceInner}));
+    if (in_rim && extra > 0) {
+      const int shoulder = std::abs(z0 - zr) < 1e-12 ? kSurfaceRimStep : kInterior;
+      b.add(rectangle(ro, rr, z0, z1, extra, n, 1, {shoulder, kSurfaceRimOuter, top, kInterior}));
+    }
+  }
+  if (!cup) return b.finish();
+
+  // Cup: the diaphragm/wall elbow, the diaphragm, the boss.
+  if (rf > 0) {
+    // Rays from the fillet's centre O through the elbow: block 1 ends on the diaphragm's bottom z = 0, block 2 on the
+    // body's outer wall r = r_o; they meet at the ray through the outer corner (r_o, 0).
+    const V2 O(ri - rf, td + rf);
+    const double alpha_k = std::atan2(-O.y(), ro - O.x());
+    auto elbow = [&](double a0, double a1, bool to_bottom) {
+      Block e;
+      e.map = [=](double u, double v) {
+        const double a = a0 + u * (a1 - a0);
+        const V2 dir(std::cos(a), std::sin(a));
+        const double t = to_bottom ? O.y() / -dir.y() : (ro - O.x()) / dir.x();
+        const V2 inner = O + rf * dir, outer = O + t * dir;
+        return V2(inner + v * (outer - inner));
+      };
+      const double outer_len = (e.map(1, 1) - e.map(0, 1)).norm(), arc_len = rf * std::abs(a1 - a0);
+      e.nu = cells(std::max(outer_len, arc_len), std::min(along_wall, along_diaphragm));
+      e.nv = layers;
+      e.region = to_bottom ? 2 : 0;
+      e.marker = {kSurfaceDiaphragm, kInterior, to_bottom ? kSurfaceDiaphragm : kSurfaceOuter, kInterior};
+      return e;
+    };
+    b.add(elbow(-0.5 * kPi, alpha_k, true));
+    b.add(elbow(alpha_k, 0.0, false));
+  } else {
+    b.add(rectangle(ri, ro, 0.0, td, layers, layers, 2, {kSurfaceDiaphragm, kSurfaceOuter, kInterior, kInterior}));
+  }
+  const double r_dia = ri - rf;
+  b.add(rectangle(rb, r_dia, 0.0, td, cells(r_dia - rb, along_diaphragm), layers, 2,
+                  {kSurfaceDiaphragm, kInterior, kSurfaceDiaphragm, kInterior}));
+  const double s_boss = kBossSizeFactor * mesh.size_m;
+  const int n_boss = cells(rb, s_boss);
+  b.add(rectangle(0.0, rb, 0.0, td, n_boss, layers, 3, {kSurfaceClamped, kInterior, kInterior, kInterior}));
+  b.add(rectangle(0.0, rb, td, hb, n_boss, cells(hb - td, s_boss), 3,
+                  {kInterior, kSurfaceClamped, kSurfaceClamped, kInterior}));
+  return b.finish();
+}
+
+Eigen::Matrix<double, 6, 1> t6_shape(double xi, double eta) {
+  const double l1 = 1 - xi - eta, l2 = xi, l3 = eta;
+  Eigen::Matrix<double, 6, 1> N;
+  N << l1 * (2 * l1 - 1), l2 * (2 * l2 - 1), l3 * (2 * l3 - 1), 4 * l1 * l2, 4 * l2 * l3, 4 * l3 * l1;
+  return N;
+}
+
+Eigen::Matrix<double, 2, 6> t6_shape_derivatives(double xi, double eta) {
+  const double l1 = 1 - xi - eta, l2 = xi, l3 = eta;
+  Eigen::Matrix<double, 2, 6> d;
+  // d/dξ: dL1 = −1, dL2 = 1, dL3 = 0; d/dη: dL1 = −1, dL2 = 0, dL3 = 1.
+  d.row(0) << -(4 * l1 - 1), 4 * l2 - 1, 0, 4 * (l1 - l2), 4 * l3, -4 * l3;
+  d.row(1) << -(4 * l1 - 1), 0, 4 * l3 - 1, -4 * l2, 4 * l2, 4 * (l1 - l3);
+  return d;
+}
+
+std::pair<long, Eigen::Vector2d> locate_in_section(const SectionMesh& s, const Eigen::Vector2d& rz) {
+  constexpr double kTol = 1e-9;
+  for (std::size_t e = 0; e < s.triangles.size(); ++e) {
+    const auto& t = s.triangles[e];
+    Eigen::Matrix<double, 6, 2> X;
+    for (int a = 0; a < 6; ++a) X.row(a) = s.nodes.row(t[a]);
+    const Eigen::Vector2d lo = X.colwise().minCoeff().transpose(), hi = X.colwise().maxCoeff().transpose();
+    const double pad = 0.25 * (hi - lo).maxCoeff();
+    if ((rz.array() < lo.array() - pad).any() || (rz.array() > hi.array() + pad).any()) continue;
+    // Newton on the isoparametric map from the straight triangle's natural coordinates.
+    Eigen::Matrix2d A;
+    A.col(0) = (X.row(1) - X.row(0)).transpose();
+    A.col(1) = (X.row(2) - X.row(0)).transpose();
+    Eigen::Vector2d q = A.inverse() * (rz - X.row(0).transpose());
+    for (int it = 0; it < 20; ++it) {
+      const Eigen::Vector2d x = X.transpose() * t6_shape(q[0], q[1]);
+      const Eigen::Matrix2d J = (t6_shape_derivatives(q[0], q[1]) * X).transpose();  // dx/dq
+      const Eigen::Vector2d dq = J.inverse() * (rz - x);
+      q += dq;
+      if (dq.norm() < 1e-14) break;
+    }
+    if (q[0] >= -kTol && q[1] >= -kTol && q[0] + q[1] <= 1 + kTol &&
+        (X.transpose() * t6_shape(q[0], q[1]) - rz).norm() < 1e-9 * (hi - lo).maxCoeff() + 1e-15)
+      return {static_cast<long>(e), q};
+  }
+  return {-1, Eigen::Vector2d::Zero()};
+}
+
+}  // namespace sw

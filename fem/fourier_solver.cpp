@@ -1,0 +1,935 @@
+#include "fem/fourier_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <numbers>
+#include <string>
+
+#include <Eigen/LU>
+#include <Eigen/Geometry>
+#include <Eigen/Sparse>
+
+#include "common/error.hpp"
+#include "common/progress.hpp"
+#include "fem/post.hpp"
+#include "mesh/flexspline.hpp"
+
+namespace sw {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr int kRingSamples = 360;                     // 1° steps around the reading circle (as the tet10 path)
+constexpr double kPatchHalfAngle = 3.0 * kPi / 180;   // half-width of a generator force patch (as the tet10 path)
+// A harmonic whose loads are below this fraction of the largest harmonic load is zero by the load's symmetry (e.g.
+// the odd harmonics of a generator symmetric about both axes: the sum is exactly 0, the computed one round-off).
+constexpr double kNoLoad = 1e-12;
+
+using Mat6x2 = Eigen::Matrix<double, 6, 2>;
+using Mat6x18 = Eigen::Matrix<double, 6, 18>;
+using Mat18 = Eigen::Matrix<double, 18, 18>;
+
+// 7-point rule on the reference triangle, exact to degree 5 (Strang & Fix); weights sum to 1/2.
+struct TriangleRule {
+  double xi[7], eta[7], w[7];
+  TriangleRule() {
+    const double s = std::sqrt(15.0);
+    const double a1 = (6 - s) / 21, b1 = (9 + 2 * s) / 21, a2 = (6 + s) / 21, b2 = (9 - 2 * s) / 21;
+    const double w1 = (155 - s) / 2400, w2 = (155 + s) / 2400;
+    const double x[7] = {1.0 / 3, a1, b1, a1, a2, b2, a2}, y[7] = {1.0 / 3, a1, a1, b1, a2, a2, b2};
+    const double ww[7] = {9.0 / 80, w1, w1, w1, w2, w2, w2};
+    for (int k = 0; k < 7; ++k) xi[k] = x[k], eta[k] = y[k], w[k] = ww[k];
+  }
+};
+const TriangleRule kRule;
+
+// Natural coordinates of the six nodes.
+constexpr double kNodeXi[6] = {0, 1, 0, 0.5, 0.5, 0}, kNodeEta[6] = {0, 0, 1, 0, 0.5, 0.5};
+
+Mat6x2 coords(const SectionMesh& s, std::size_t e) {
+  Mat6x2 X;
+  for (int a = 0; a < 6; ++a) X.row(a) = s.nodes.row(s.triangles[e][a]);
+  return X;
+}
+
+/// Elasticity in the order (ε_r, ε_z, ε_θ, γ_rz, γ_rθ, γ_θz).
+Eigen::Matrix<double, 6, 6> elasticity(const Material& m) {
+  const double E = m.youngs_modulus_Pa, nu = m.poisson_ratio;
+  const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu)), mu = E / (2 * (1 + nu));
+  Eigen::Matrix<double, 6, 6> D = Eigen::Matrix<double, 6, 6>::Zero();
+  D.topLeftCorner<3, 3>().setConstant(lambda);
+  D.topLeftCorner<3, 3>().diagonal().array() += 2 * mu;
+  D(3, 3) = D(4, 4) = D(5, 5) = mu;
+  return D;
+}
+
+/// Strain amplitudes of harmonic n at a point: rows (ε_r, ε_z, ε_θ, γ_rz | γ_rθ, γ_θz), the first four multiplying
+/// cos nθ (sin nθ in the antisymmetric family), the last two sin nθ (−cos nθ); columns node-major (a, b, c).
+/// Also the point's radius and the Jacobian determinant.
+struct StrainPoint {
+  Mat6x18 B;
+  double r = 0, det = 0;
+};
+StrainPoint strain_matrix(const Mat6x2& X, double xi, double eta, int n) {
+  const auto N = t6_shape(xi, eta);
+  const auto dN = t6_shape_derivatives(xi, eta);
+  const Eigen::Matrix2d J = dN * X;  // rows d/dξ, d/dη; columns r, z
+  StrainPoint p;
+  p.det = J.determinant();
+  const Eigen::Matrix<double, 2, 6> G = J.inverse() * dN;  // rows d/dr, d/dz
+  p.r = N.dot(X.col(0));
+  const double ir = 1.0 / p.r;
+  p.B.setZero();
+  for (int i = 0; i < 6; ++i) {
+    const double Nr = G(0, i), Nz = G(1, i), Ni = N[i];
+    const int a = 3 * i, b = a + 1, c = a + 2;
+    p.B(0, a) = Nr;
+    p.B(1, c) = Nz;
+    p.B(2, a) = Ni * ir;
+    p.B(2, b) = n * Ni * ir;
+    p.B(3, a) = Nz;
+    p.B(3, c) = Nr;
+    p.B(4, a) = -n * Ni * ir;
+    p.B(4, b) = Nr - Ni * ir;
+    p.B(5, b) = Nz;
+    p.B(5, c) = -n * Ni * ir;
+  }
+  return p;
+}
+
+double theta_weight(int n) { return n == 0 ? 2 * kPi : kPi; }
+
+/// A load piecewise constant in θ: weight over [from, to].
+struct Window {
+  double from = 0, to = 0, weight = 1;
+};
+double cos_moment(const std::vector<Window>& ws, int n) {  // ∫ g(θ) cos nθ dθ
+  double m = 0;
+  for (const auto& w : ws) m += w.weight * (n == 0 ? w.to - w.from : (std::sin(n * w.to) - std::sin(n * w.from)) / n);
+  return m;
+}
+double sin_moment(const std::vector<Window>& ws, int n) {  // ∫ g(θ) sin nθ dθ
+  double m = 0;
+  for (const auto& w : ws) m += w.weight * (n == 0 ? 0.0 : (std::cos(n * w.from) - std::cos(n * w.to)) / n);
+  return m;
+}
+
+/// Traction t(θ, s) = g(θ)·h(s) on boundary edges: `spatial` holds ∫ h_k N_i r ds (n_nodes × 3, k = r, θ, z).
+struct LoadTerm {
+  std::vector<Window> windows;
+  Eigen::MatrixXd spatial;
+};
+
+/// ∫ h(r, z) N_i r ds over the given edges (3-point Gauss), n_nodes × 3 (cylindrical components of h).
+template <class H>
+Eigen::MatrixXd edge_integral(const SectionMesh& s, const std::vector<const SectionEdge*>& edges, H h) {
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(s.n_nodes()), 3);
+  const double g = std::sqrt(0.6), gp[3] = {-g, 0, g}, gw[3] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
+  for (const auto* e : edges) {
+    const Eigen::Vector2d x0 = s.nodes.row(e->nodes[0]), x1 = s.nodes.row(e->nodes[1]), xm = s.nodes.row(e->nodes[2]);
+    for (int k = 0; k < 3; ++k) {
+      const double t = gp[k];
+      const double N[3] = {0.5 * t * (t - 1), 0.5 * t * (t + 1), 1 - t * t};
+      const double dN[3] = {t - 0.5, t + 0.5, -2 * t};
+      const Eigen::Vector2d x = N[0] * x0 + N[1] * x1 + N[2] * xm;
+      const double ds = (dN[0] * x0 + dN[1] * x1 + dN[2] * xm).norm();
+      const Eigen::Vector3d hv = h(x);
+      for (int a = 0; a < 3; ++a) out.row(e->nodes[a]) += (gw[k] * ds * x[0] * N[a]) * hv.transpose();
+    }
+  }
+  return out;
+}
+
+std::vector<const SectionEdge*> select_edges(const SectionMesh& s, int marker,
+                                             const std::function<bool(const Eigen::Vector2d&)>& keep = {}) {
+  std::vector<const SectionEdge*> out;
+  for (const auto& e : s.edges)
+    if (e.marker == marker && (!keep || keep(s.nodes.row(e.nodes[2]).transpose()))) out.push_back(&e);
+  return out;
+}
+
+/// Generalised nodal loads of harmonic n (n_nodes × 3 per family) of a sum of terms.
+void harmonic_loads(const std::vector<LoadTerm>& terms, int n, Eigen::MatrixXd& sym, Eigen::MatrixXd& anti) {
+  for (const auto& t : terms) {
+    const double C = cos_moment(t.windows, n), S = sin_moment(t.windows, n);
+    sym.col(0) += C * t.spatial.col(0);
+    sym.col(1) += S * t.spatial.col(1);
+    sym.col(2) += C * t.spatial.col(2);
+    anti.col(0) += S * t.spatial.col(0);
+    anti.col(1) -= C * t.spatial.col(1);
+    anti.col(2) += S * t.spatial.col(2);
+  }
+}
+
+/// Moment about z (N·m) of the physical loads whose harmonic-0 antisymmetric generalised forces are F (n_nodes × 3).
+double moment_z(const SectionMesh& s, const Eigen::MatrixXd& anti0) { return -s.nodes.col(0).dot(anti0.col(1)); }
+
+/// Angles (from the major axis) and weights of the generator's point forces (the tet10 path's models).
+std::vector<WaveGeneratorForce> generator_forces(const WaveGeneratorParams& w) {
+  switch (w.model) {
+    case WaveGeneratorModel::FourForce:
+      return {{w.beta_rad, 0.5}, {-w.beta_rad, 0.5}, {kPi + w.beta_rad, 0.5}, {kPi - w.beta_rad, 0.5}};
+    case WaveGeneratorModel::TwoForce: return {{0.0, 1.0}, {kPi, 1.0}};
+    case WaveGeneratorModel::Forces: return w.forces;
+    case WaveGeneratorModel::Cam: break;
+  }
+  return {};
+}
+
+/// Equation numbers of one harmonic: −1 fixed; a dof tied to another shares its equation with sign −1.
+struct HarmonicDofs {
+  std::vector<std::int64_t> eq;
+  std::vector<double> sign;
+  std::vector<std::int64_t> node_of_eq;
+  std::int64_t n_eq = 0;
+};
+
+HarmonicDofs number_dofs(std::size_t n_nodes, int n, const std::vector<bool>& fixed, const std::vector<bool>& axis) {
+  HarmonicDofs d;
+  d.eq.assign(3 * n_nodes, -1);
+  d.sign.assign(3 * n_nodes, 1.0);
+  for (std::size_t i = 0; i < n_nodes; ++i) {
+    bool free_dof[3] = {!fixed[3 * i], !fixed[3 * i + 1], !fixed[3 * i + 2]};
+    if (axis[i]) {
+      if (n == 0) free_dof[0] = free_dof[1] = false;
+      else if (n == 1) free_dof[2] = false;  // and b = −a below
+      else free_dof[0] = free_dof[1] = free_dof[2] = false;
+    }
+    for (int k = 0; k < 3; ++k) {
+      if (!free_dof[k]) continue;
+      if (axis[i] && n == 1 && k == 1) {  // b = −a: single-valued displacement on the axis
+        if (d.eq[3 * i] >= 0) {
+          d.eq[3 * i + 1] = d.eq[3 * i];
+          d.sign[3 * i + 1] = -1.0;
+        }
+        continue;
+      }
+      d.eq[3 * i + k] = d.n_eq++;
+      d.node_of_eq.push_back(static_cast<std::int64_t>(i));
+    }
+  }
+  return d;
+}
+
+std::vector<bool> axis_nodes(const SectionMesh& s) {
+  std::vector<bool> axis(s.n_nodes());
+  for (std::size_t i = 0; i < s.n_nodes(); ++i) axis[i] = s.nodes(static_cast<Eigen::Index>(i), 0) <= 1e-12;
+  return axis;
+}
+
+/// Loads (n_nodes × 3) onto the equations, and a solution back onto every node (fixed dofs from `fixed_values`).
+Eigen::VectorXd to_equations(const HarmonicDofs& d, const Eigen::MatrixXd& F) {
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(d.n_eq);
+  for (Eigen::Index i = 0; i < F.rows(); ++i)
+    for (int k = 0; k < 3; ++k)
+      if (d.eq[3 * i + k] >= 0) b[d.eq[3 * i + k]] += d.sign[3 * i + k] * F(i, k);
+  return b;
+}
+Eigen::MatrixXd to_nodes(const HarmonicDofs& d, const Eigen::VectorXd& x, Eigen::MatrixXd fixed_values) {
+  for (Eigen::Index i = 0; i < fixed_values.rows(); ++i)
+    for (int k = 0; k < 3; ++k)
+      if (d.eq[3 * i + k] >= 0) fixed_values(i, k) = d.sign[3 * i + k] * x[d.eq[3 * i + k]];
+  return fixed_values;
+}
+
+SymmetricCsc assemble(const SectionMesh& s, const Material& m, const HarmonicDofs& d, int n,
+                      std::vector<Mat18>& element_matrices) {
+  std::vector<Eigen::Triplet<double, std::int64_t>> trip;
+  trip.reserve(s.triangles.size() * 18 * 19 / 2);
+  element_matrices.resize(s.triangles.size());
+  for (std::size_t e = 0; e < s.triangles.size(); ++e) {
+    const Mat18 Ke = harmonic_element_stiffness(coords(s, e), m, n);
+    element_matrices[e] = Ke;
+    const auto& t = s.triangles[e];
+    for (int p = 0; p < 18; ++p) {
+      const std::int64_t ip = d.eq[3 * t[p / 3] + p % 3];
+      if (ip < 0) continue;
+      const double sp = d.sign[3 * t[p / 3] + p % 3];
+      for (int q = 0; q < 18; ++q) {
+        const std::int64_t iq = d.eq[3 * t[q / 3] + q % 3];
+        if (iq < 0 || ip > iq) continue;
+        trip.emplace_back(ip, iq, sp * d.sign[3 * t[q / 3] + q % 3] * Ke(p, q));
+      }
+    }
+  }
+  Eigen::SparseMatrix<double, Eigen::ColMajor, std::int64_t> K(d.n_eq, d.n_eq);
+  K.setFromTriplets(trip.begin(), trip.end());
+  K.makeCompressed();
+  SymmetricCsc out;
+  out.n = d.n_eq;
+  out.column_start.assign(K.outerIndexPtr(), K.outerIndexPtr() + d.n_eq + 1);
+  out.row.assign(K.innerIndexPtr(), K.innerIndexPtr() + K.nonZeros());
+  out.value.assign(K.valuePtr(), K.valuePtr() + K.nonZeros());
+  return out;
+}
+
+/// Where a quantity is read: section nodes with weights (a node, or the six of a located point).
+struct Probe {
+  std::array<int, 6> node{};
+  Eigen::Matrix<double, 6, 1> weight = Eigen::Matrix<double, 6, 1>::Zero();
+};
+Probe probe_at(const SectionMesh& s, const Eigen::Vector2d& rz) {
+  const auto [e, q] = locate_in_section(s, rz);
+  if (e < 0)
+    throw InputError("the point r = " + std::to_string(rz[0] * 1e3) + " mm, z = " + std::to_string(rz[1] * 1e3) +
+                     " mm lies outside the flexspline's section");
+  Probe p;
+  p.node = s.triangles[static_cast<std::size_t>(e)];
+  p.weight = t6_shape(q[0], q[1]);
+  return p;
+}
+Probe probe_node(int i) {
+  Probe p;
+  p.node.fill(i);
+  p.weight.setZero();
+  p.weight[0] = 1;
+  return p;
+}
+
+/// cos nθ and sin nθ for n = 0..N at one angle (the series are summed at many points of few angles).
+struct Trig {
+  std::vector<double> c, s;
+  Trig(double theta, std::size_t harmonics) : c(harmonics), s(harmonics) {
+    for (std::size_t n = 0; n < harmonics; ++n) {
+      c[n] = std::cos(static_cast<double>(n) * theta);
+      s[n] = std::sin(static_cast<double>(n) * theta);
+    }
+  }
+};
+
+/// Stress amplitudes (n_nodes × 6 per harmonic and family; see nodal_stress) at a probe, summed at an angle: the
+/// first four components go with cos nθ (sym) / sin nθ (anti), the shears with sin nθ (sym) / −cos nθ (anti).
+Eigen::Matrix<double, 6, 1> sum_stress(const std::vector<Eigen::MatrixXd>& sym, const std::vector<Eigen::MatrixXd>& anti,
+                                       const Probe& p, const Trig& trig) {
+  Eigen::Matrix<double, 6, 1> out = Eigen::Matrix<double, 6, 1>::Zero();
+  for (std::size_t n = 0; n < sym.size(); ++n) {
+    if (sym[n].size() == 0) continue;
+    Eigen::Matrix<double, 6, 1> as = Eigen::Matrix<double, 6, 1>::Zero(), aa = as;
+    for (int j = 0; j < 6; ++j)
+      if (p.weight[j] != 0) {
+        as += p.weight[j] * sym[n].row(p.node[j]).transpose();
+        aa += p.weight[j] * anti[n].row(p.node[j]).transpose();
+      }
+    const double c = trig.c[n], s = trig.s[n];
+    out.head<4>() += c * as.head<4>() + s * aa.head<4>();
+    out.tail<2>() += s * as.tail<2>() - c * aa.tail<2>();
+  }
+  return out;
+}
+
+/// (u_r, u_θ, u_z) of a field at a probe: a, c go with cos (sym), b with sin.
+Eigen::Vector3d displacement_at(const HarmonicField& f, const Probe& p, const Trig& trig) {
+  Eigen::Vector3d u = Eigen::Vector3d::Zero();
+  for (std::size_t n = 0; n < f.sym.size(); ++n) {
+    if (f.sym[n].size() == 0) continue;
+    Eigen::RowVector3d as = Eigen::RowVector3d::Zero(), aa = Eigen::RowVector3d::Zero();
+    for (int j = 0; j < 6; ++j)
+      if (p.weight[j] != 0) {
+        as += p.weight[j] * f.sym[n].row(p.node[j]);
+        aa += p.weight[j] * f.anti[n].row(p.node[j]);
+      }
+    const double c = trig.c[n], sn = trig.s[n];
+    u[0] += as[0] * c + aa[0] * sn;
+    u[1] += as[1] * sn - aa[1] * c;
+    u[2] += as[2] * c + aa[2] * sn;
+  }
+  return u;
+}
+Eigen::Vector3d displacement_at(const HarmonicField& f, const Probe& p, double theta) {
+  return displacement_at(f, p, Trig(theta, f.sym.size()));
+}
+
+Eigen::Vector3d to_cartesian(const Eigen::Vector3d& cyl, double theta) {
+  const double c = std::cos(theta), s = std::sin(theta);
+  return {cyl[0] * c - cyl[1] * s, cyl[0] * s + cyl[1] * c, cyl[2]};
+}
+
+/// Nodal stress amplitudes (σ_r, σ_z, σ_θ, τ_rz | τ_rθ, τ_θz) per harmonic and family: each element's stress at its
+/// own nodes, averaged over the elements at a node weighted by their area (as the tet10 path's nodal_stress).
+/// Nodes on the axis are evaluated a hair inside their elements (the amplitudes' 1/r terms are 0/0 there).
+void nodal_stress(const SectionMesh& s, const Material& m, const HarmonicField& f, std::vector<Eigen::MatrixXd>& sym,
+                  std::vector<Eigen::MatrixXd>& anti) {
+  const auto D = elasticity(m);
+  const Eigen::Index nn = static_cast<Eigen::Index>(s.n_nodes());
+  sym.assign(f.sym.size(), Eigen::MatrixXd());
+  anti.assign(f.anti.size(), Eigen::MatrixXd());
+  Eigen::VectorXd weight = Eigen::VectorXd::Zero(nn);
+  std::vector<double> area(s.triangles.size());
+  for (std::size_t e = 0; e < s.triangles.size(); ++e) {
+    const Mat6x2 X = coords(s, e);
+    area[e] = 0;
+    for (int k = 0; k < 7; ++k) area[e] += kRule.w[k] * std::abs((t6_shape_derivatives(kRule.xi[k], kRule.eta[k]) * X).determinant());
+    for (int a = 0; a < 6; ++a) weight[s.triangles[e][a]] += area[e];
+  }
+  for (std::size_t n = 0; n < f.sym.size(); ++n) {
+    if (f.sym[n].size() == 0) continue;
+    sym[n] = Eigen::MatrixXd::Zero(nn, 6);
+    anti[n] = Eigen::MatrixXd::Zero(nn, 6);
+    for (std::size_t e = 0; e < s.triangles.size(); ++e) {
+      const Mat6x2 X = coords(s, e);
+      const auto& t = s.triangles[e];
+      Eigen::Matrix<double, 18, 1> us, ua;
+      for (int a = 0; a < 6; ++a) {
+        us.segment<3>(3 * a) = f.sym[n].row(t[a]).transpose();
+        ua.segment<3>(3 * a) = f.anti[n].row(t[a]).transpose();
+      }
+      for (int a = 0; a < 6; ++a) {
+        double xi = kNodeXi[a], eta = kNodeEta[a];
+        if (X(a, 0) <= 1e-12) {
+          xi = (1 - 1e-6) * xi + 1e-6 / 3;
+          eta = (1 - 1e-6) * eta + 1e-6 / 3;
+        }
+        const StrainPoint p = strain_matrix(X, xi, eta, static_cast<int>(n));
+        sym[n].row(t[a]) += area[e] * (D * p.B * us).transpose();
+        anti[n].row(t[a]) += area[e] * (D * p.B * ua).transpose();
+      }
+    }
+    for (Eigen::Index i = 0; i < nn; ++i) {
+      sym[n].row(i) /= weight[i];
+      anti[n].row(i) /= weight[i];
+    }
+  }
+}
+
+/// Hoop stress σ_θθ at a probe and angle from the nodal amplitudes (column 2 is σ_θ, a cos-type column).
+double hoop_at(const std::vector<Eigen::MatrixXd>& sym, const std::vector<Eigen::MatrixXd>& anti, const Probe& p,
+               const Trig& trig) {
+  double v = 0;
+  for (std::size_t n = 0; n < sym.size(); ++n) {
+    if (sym[n].size() == 0) continue;
+    double as = 0, aa = 0;
+    for (int j = 0; j < 6; ++j)
+      if (p.weight[j] != 0) {
+        as += p.weight[j] * sym[n](p.node[j], 2);
+        aa += p.weight[j] * anti[n](p.node[j], 2);
+      }
+    v += as * trig.c[n] + aa * trig.s[n];
+  }
+  return v;
+}
+
+/// Cartesian Voigt stress (xx yy zz yz xz xy) from cylindrical (σ_r, σ_z, σ_θ, τ_rz, τ_rθ, τ_θz) at angle θ.
+Eigen::Matrix<double, 1, 6> cartesian_stress(const Eigen::Matrix<double, 6, 1>& c, double theta) {
+  const double co = std::cos(theta), si = std::sin(theta);
+  const double sr = c[0], sz = c[1], st = c[2], trz = c[3], trt = c[4], ttz = c[5];
+  Eigen::Matrix<double, 1, 6> v;
+  v << sr * co * co + st * si * si - 2 * trt * si * co, sr * si * si + st * co * co + 2 * trt * si * co, sz,
+      trz * si + ttz * co, trz * co - ttz * si, (sr - st) * si * co + trt * (co * co - si * si);
+  return v;
+}
+
+/// The section revolved into TET10: nodes = every section node at 2·sectors angular stations (corners at even
+/// stations are the prisms' corners; odd stations and midside nodes give every TET10 midside node exactly), each prism
+/// (triangle × sector) split into three tets by Dompierre's rule on global corner numbers (conforming). Tets that
+/// degenerate on the axis are dropped.
+TetMesh revolve_section(const SectionMesh& s, int sectors, std::vector<int>& station_of, std::vector<int>& node_of) {
+  const int stations = 2 * sectors;
+  const long ns = static_cast<long>(s.n_nodes());
+  TetMesh g;
+  g.nodes.resize(ns * stations, 3);
+  station_of.resize(static_cast<std::size_t>(ns * stations));
+  node_of.resize(static_cast<std::size_t>(ns * stations));
+  for (int k = 0; k < stations; ++k) {
+    const double t = kPi * k / sectors;
+    for (long i = 0; i < ns; ++i) {
+      const long id = k * ns + i;
+      g.nodes.row(id) << s.nodes(i, 0) * std::cos(t), s.nodes(i, 0) * std::sin(t), s.nodes(i, 1);
+      station_of[static_cast<std::size_t>(id)] = k;
+      node_of[static_cast<std::size_t>(id)] = static_cast<int>(i);
+    }
+  }
+  std::map<std::pair<int, int>, int> mid_of_edge;  // section corner pair -> midside node
+  for (const auto& t : s.triangles)
+    for (int e = 0; e < 3; ++e) {
+      const int a = t[e], b = t[(e + 1) % 3];
+      mid_of_edge[{std::min(a, b), std::max(a, b)}] = t[3 + e];
+    }
+  auto station = [&](long id) { return static_cast<int>(id / ns); };
+  auto section_node = [&](long id) { return static_cast<int>(id % ns); };
+  auto midside = [&](long p, long q) -> int {
+    const int kp = station(p), kq = station(q), ip = section_node(p), iq = section_node(q);
+    int k;  // station of the midpoint
+    if (kp == kq) k = kp;
+    else {
+      const int lo = std::min(kp, kq), hi = std::max(kp, kq);
+      k = (hi - lo == 2) ? lo + 1 : (hi + 1) % stations;  // the wrap: stations 0 and stations − 2
+    }
+    const int m = ip == iq ? ip : mid_of_edge.at({std::min(ip, iq), std::max(ip, iq)});
+    return static_cast<int>(static_cast<long>(k) * ns + m);
+  };
+  static constexpr int kRot[6][6] = {{0, 1, 2, 3, 4, 5}, {1, 2, 0, 4, 5, 3}, {2, 0, 1, 5, 3, 4},
+                                     {3, 5, 4, 0, 2, 1}, {4, 3, 5, 1, 0, 2}, {5, 4, 3, 2, 1, 0}};
+  for (std::size_t e = 0; e < s.triangles.size(); ++e) {
+    const auto& t = s.triangles[e];
+    for (int j = 0; j < sectors; ++j) {
+      const long k0 = 2L * j, k1 = (2L * j + 2) % stations;
+      const long v[6] = {k0 * ns + t[0], k0 * ns + t[1], k0 * ns + t[2], k1 * ns + t[0], k1 * ns + t[1], k1 * ns + t[2]};
+      const int smallest = static_cast<int>(std::min_element(v, v + 6) - v);
+      long w[6];
+      for (int a = 0; a < 6; ++a) w[a] = v[kRot[smallest][a]];
+      std::array<std::array<long, 4>, 3> tets;
+      if (std::min(w[1], w[5]) < std::min(w[2], w[4]))
+        tets = {{{w[0], w[1], w[2], w[5]}, {w[0], w[1], w[5], w[4]}, {w[0], w[4], w[5], w[3]}}};
+      else
+        tets = {{{w[0], w[1], w[2], w[4]}, {w[0], w[4], w[2], w[5]}, {w[0], w[4], w[5], w[3]}}};
+      for (auto c : tets) {
+        const Eigen::Vector3d p0 = g.nodes.row(c[0]), p1 = g.nodes.row(c[1]), p2 = g.nodes.row(c[2]),
+                              p3 = g.nodes.row(c[3]);
+        double vol = (p1 - p0).cross(p2 - p0).dot(p3 - p0);
+        const double scale = std::pow((p1 - p0).norm() * (p2 - p0).norm() * (p3 - p0).norm(), 1.0);
+        if (std::abs(vol) <= 1e-9 * scale) continue;
+        if (vol < 0) std::swap(c[1], c[2]);
+        std::array<int, 10> tet;
+        for (int a = 0; a < 4; ++a) tet[a] = static_cast<int>(c[a]);
+        const int edges[6][2] = {{0, 1}, {1, 2}, {0, 2}, {0, 3}, {1, 3}, {2, 3}};
+        for (int a = 0; a < 6; ++a) tet[4 + a] = midside(c[edges[a][0]], c[edges[a][1]]);
+        g.tets.push_back(tet);
+        g.region.push_back(s.region[e]);
+      }
+    }
+  }
+  return g;
+}
+
+}  // namespace
+
+Eigen::Matrix<double, 18, 18> harmonic_element_stiffness(const Eigen::Matrix<double, 6, 2>& X, const Material& m,
+                                                         int n) {
+  const auto D = elasticity(m);
+  Mat18 K = Mat18::Zero();
+  for (int k = 0; k < 7; ++k) {
+    const StrainPoint p = strain_matrix(X, kRule.xi[k], kRule.eta[k], n);
+    K.noalias() += (kRule.w[k] * std::abs(p.det) * p.r) * (p.B.transpose() * D * p.B);
+  }
+  return theta_weight(n) * K;
+}
+
+Eigen::MatrixXd solve_harmonic(const SectionMesh& s, const Material& m, int n, const std::vector<bool>& fixed,
+                               const Eigen::MatrixXd& F) {
+  const HarmonicDofs d = number_dofs(s.n_nodes(), n, fixed, axis_nodes(s));
+  std::vector<Mat18> Ke;
+  const CholmodFactor factor(assemble(s, m, d, n, Ke), d.node_of_eq);
+  return to_nodes(d, factor.solve(to_equations(d, F)), Eigen::MatrixXd::Zero(F.rows(), 3));
+}
+
+Eigen::MatrixXd section_traction_load(const SectionMesh& s, int marker, const Eigen::Vector3d& traction) {
+  return edge_integral(s, select_edges(s, marker), [&](const Eigen::Vector2d&) { return traction; });
+}
+
+Eigen::Vector3d HarmonicField::displacement(const SectionMesh& s, long e, const Eigen::Vector2d& q,
+                                            double theta) const {
+  Probe p;
+  p.node = s.triangles[static_cast<std::size_t>(e)];
+  p.weight = t6_shape(q[0], q[1]);
+  return displacement_at(*this, p, theta);
+}
+
+HarmonicField& HarmonicField::operator+=(const HarmonicField& o) {
+  if (sym.size() < o.sym.size()) {
+    sym.resize(o.sym.size());
+    anti.resize(o.anti.size());
+  }
+  for (std::size_t n = 0; n < o.sym.size(); ++n) {
+    if (o.sym[n].size() == 0) continue;
+    if (sym[n].size() == 0) {
+      sym[n] = o.sym[n];
+      anti[n] = o.anti[n];
+    } else {
+      sym[n] += o.sym[n];
+      anti[n] += o.anti[n];
+    }
+  }
+  return *this;
+}
+
+HarmonicField HarmonicField::operator*(double k) const {
+  HarmonicField f = *this;
+  for (auto& m : f.sym) m *= k;
+  for (auto& m : f.anti) m *= k;
+  return f;
+}
+
+FourierSolution analyse_flexspline_fourier(const Case& c, int grid_sectors) {
+  Stopwatch clock;
+  std::optional<std::pair<double, double>> band;
+  if (c.wave_generator)
+    band = std::pair{c.flexspline.length_m - c.wave_generator->axial_position_m, c.wave_generator->band_width_m};
+  SectionMesh section = mesh_flexspline_section(c.flexspline, c.gear, c.mesh, band);
+  const double section_s = clock.lap();
+  FourierSolution s = analyse_section_fourier(c, std::move(section), grid_sectors);
+  s.section_s = section_s;
+  return s;
+}
+
+FourierSolution analyse_section_fourier(const Case& c, SectionMesh section, int grid_sectors) {
+  FourierSolution out;
+  out.section = std::move(section);
+  const SectionMesh& sec = out.section;
+  FlexsplineSolution& fs = out.figures;
+  const auto& f = c.flexspline;
+  const int N = c.solver.harmonics;
+  out.harmonics_kept = N;
+  const std::size_t nn = sec.n_nodes();
+  const bool plain_tube = f.shape == FlexsplineShape::Tube && f.teeth == TeethModel::None;
+  const bool cam = c.wave_generator && c.wave_generator->model == WaveGeneratorModel::Cam;
+  progress("fourier: section of " + std::to_string(nn) + " nodes, " + std::to_string(sec.triangles.size()) +
+           " quadratic triangles, harmonics 0.." + std::to_string(N));
+
+  // Supports.
+  std::vector<bool> clamped(nn, false), axis(nn, false), band_node(nn, false);
+  for (const auto& e : sec.edges)
+    if (e.marker == kSurfaceClamped)
+      for (int v : e.nodes) clamped[v] = true;
+  axis = axis_nodes(sec);
+  double z_wg = 0;
+  if (c.wave_generator) z_wg = f.length_m - c.wave_generator->axial_position_m;
+  auto in_band = [&](const Eigen::Vector2d& x) { return std::abs(x[1] - z_wg) <= 0.5 * c.wave_generator->band_width_m; };
+  if (cam) {
+    const auto band = select_edges(sec, kSurfaceInner, in_band);
+    if (band.empty())
+      throw InputError("wave_generator: no inner wall in the cam's band at z = " + std::to_string(z_wg * 1e3) +
+                       " mm; check wave_generator.axial_position_mm / band_width_mm");
+    for (const auto* e : band)
+      for (int v : e->nodes)
+        if (!clamped[v]) band_node[v] = true;
+  }
+
+  std::vector<bool> fixed(3 * nn, false);
+  for (std::size_t i = 0; i < nn; ++i) {
+    fixed[3 * i] = clamped[i] || band_node[i];
+    fixed[3 * i + 1] = fixed[3 * i + 2] = clamped[i];
+  }
+
+  // Loads: unit torque (N·m) and the unit generator (forces of total weight 1 N per unit weight).
+  std::vector<LoadTerm> torque_terms, gen_terms;
+  {
+    const bool all_round = plain_tube || c.load.torque_loading == TorqueLoading::Uniform;
+    const int marker = plain_tube ? kSurfaceOpenEnd : kSurfaceRimOuter;
+    const auto edges = select_edges(sec, marker);
+    if (edges.empty()) throw InputError("no boundary of the section carries the torque; check the flexspline keys");
+    LoadTerm t;
+    const double h = c.load.engagement_half_angle_rad;
+    if (all_round) t.windows = {{0.0, 2 * kPi, 1.0}};
+    else t.windows = {{-h, h, 1.0}, {kPi - h, kPi + h, 1.0}};
+    t.spatial = edge_integral(sec, edges, [](const Eigen::Vector2d& x) { return Eigen::Vector3d(0, x[0], 0); });
+    // Moment of the term: Σ window widths × ∫ h_θ r · r ds = cos-moment(0) × Σ_i r_i spatial_θ,i.
+    const double moment = cos_moment(t.windows, 0) * sec.nodes.col(0).dot(t.spatial.col(1));
+    t.spatial /= moment;
+    torque_terms.push_back(t);
+  }
+  if (c.wave_generator && !cam) {
+    const auto edges = select_edges(sec, kSurfaceInner, in_band);
+    if (edges.empty())
+      throw InputError("wave_generator: no inner wall under the forces at z = " + std::to_string(z_wg * 1e3) +
+                       " mm; check wave_generator.axial_position_mm / band_width_mm");
+    const Eigen::MatrixXd unit =
+        edge_integral(sec, edges, [](const Eigen::Vector2d&) { return Eigen::Vector3d(1, 0, 0); });
+    const double area = 2 * kPatchHalfAngle * unit.col(0).sum();  // Σ_i ∫ N_i r ds = ∫ r ds
+    for (const auto& force : generator_forces(*c.wave_generator)) {
+      LoadTerm t;
+      t.windows = {{force.angle_rad - kPatchHalfAngle, force.angle_rad + kPatchHalfAngle, force.weight / area}};
+      t.spatial = unit;
+      gen_terms.push_back(t);
+    }
+  }
+
+  // Per harmonic: loads, then (when loaded) numbering, assembly, factor, solve of the four columns
+  // (torque sym, torque anti, generator sym, generator anti).
+  HarmonicField torque, gen;
+  torque.sym.assign(N + 1, {});
+  torque.anti.assign(N + 1, {});
+  gen.sym.assign(N + 1, {});
+  gen.anti.assign(N + 1, {});
+  std::vector<std::array<Eigen::MatrixXd, 4>> loads(N + 1);
+  std::vector<double> norm(N + 1, 0.0);
+  double max_norm = 0;
+  for (int n = 0; n <= N; ++n) {
+    for (auto& m : loads[n]) m = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nn), 3);
+    harmonic_loads(torque_terms, n, loads[n][0], loads[n][1]);
+    harmonic_loads(gen_terms, n, loads[n][2], loads[n][3]);
+    for (const auto& m : loads[n]) norm[n] = std::max(norm[n], m.cwiseAbs().maxCoeff());
+    max_norm = std::max(max_norm, norm[n]);
+  }
+  const double w0 = cam ? *c.wave_generator->radial_deformation_m : 0.0;
+  std::vector<Eigen::MatrixXd> gen_reaction_sym(2), gen_reaction_anti(2), torque_reaction_anti0(1);
+  Stopwatch solve_clock;
+  for (int n = 0; n <= N; ++n) {
+    const bool lifted = cam && n == 2;
+    if (!lifted && !(norm[n] > kNoLoad * max_norm)) continue;
+    const HarmonicDofs d = number_dofs(nn, n, fixed, axis);
+    Stopwatch hc;
+    std::vector<Mat18> Ke;
+    const SymmetricCsc K = assemble(sec, c.material, d, n, Ke);
+    fs.assemble_s += hc.lap();
+    const CholmodFactor factor(K, d.node_of_eq);
+    HarmonicStats st;
+    st.n = n;
+    st.equations = d.n_eq;
+    st.factor_nnz = factor.stats().factor_nnz;
+    st.factor_gflop = factor.stats().factor_gflop;
+    st.factor_s = factor.stats().analyse_s + factor.stats().factor_s;
+    st.load_norm = norm[n];
+    fs.factor.equations = std::max(fs.factor.equations, d.n_eq);
+    fs.factor.matrix_nnz += static_cast<std::int64_t>(K.nnz());
+    fs.factor.factor_nnz += st.factor_nnz;
+    fs.factor.factor_gflop += st.factor_gflop;
+    fs.factor.analyse_s += factor.stats().analyse_s;
+    fs.factor.factor_s += factor.stats().factor_s;
+    fs.factor.ordering = factor.stats().ordering;
+    out.harmonics.push_back(st);
+
+    // Prescribed values (the cam's u_r = w0·cos2θ: a = w0 on the band, symmetric family of n = 2).
+    Eigen::MatrixXd prescribed_sym = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nn), 3);
+    if (lifted)
+      for (std::size_t i = 0; i < nn; ++i)
+        if (band_node[i]) prescribed_sym(static_cast<Eigen::Index>(i), 0) = w0;
+    Eigen::MatrixXd B(d.n_eq, 4);
+    for (int col = 0; col < 4; ++col) B.col(col) = to_equations(d, loads[n][col]);
+    if (lifted)
+      for (std::size_t e = 0; e < sec.triangles.size(); ++e) {
+        const auto& t = sec.triangles[e];
+        Eigen::Matrix<double, 18, 1> ue;
+        for (int a = 0; a < 6; ++a) ue.segment<3>(3 * a) = prescribed_sym.row(t[a]).transpose();
+        if (ue.isZero()) continue;
+        const Eigen::Matrix<double, 18, 1> fe = Ke[e] * ue;
+        for (int p = 0; p < 18; ++p) {
+          const std::int64_t q = d.eq[3 * t[p / 3] + p % 3];
+          if (q >= 0) B(q, 2) -= d.sign[3 * t[p / 3] + p % 3] * fe[p];
+        }
+      }
+    const Eigen::MatrixXd X = factor.solve(B);
+    Eigen::MatrixXd* targets[4] = {&torque.sym[n], &torque.anti[n], &gen.sym[n], &gen.anti[n]};
+    for (int col = 0; col < 4; ++col)
+      *targets[col] = to_nodes(d, X.col(col),
+                               col == 2 ? prescribed_sym : Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nn), 3));
+    // Internal forces K·u at every node of the harmonics that carry resultants (reactions: n = 0, 1).
+    if (n <= 1) {
+      auto internal = [&](const Eigen::MatrixXd& U) {
+        Eigen::MatrixXd R = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nn), 3);
+        for (std::size_t e = 0; e < sec.triangles.size(); ++e) {
+          const auto& t = sec.triangles[e];
+          Eigen::Matrix<double, 18, 1> ue;
+          for (int a = 0; a < 6; ++a) ue.segment<3>(3 * a) = U.row(t[a]).transpose();
+          const Eigen::Matrix<double, 18, 1> fe = Ke[e] * ue;
+          for (int a = 0; a < 6; ++a) R.row(t[a]) += fe.segment<3>(3 * a).transpose();
+        }
+        return R;
+      };
+      gen_reaction_sym[n] = internal(gen.sym[n]) - loads[n][2];
+      gen_reaction_anti[n] = internal(gen.anti[n]) - loads[n][3];
+      if (n == 0) torque_reaction_anti0[0] = internal(torque.anti[0]) - loads[0][1];
+    }
+  }
+  fs.solve_s = solve_clock.lap();
+  progress("fourier: " + std::to_string(out.harmonics.size()) + " harmonics solved, " +
+           std::to_string(fs.factor.factor_gflop) + " GF, " + std::to_string(fs.solve_s) + " s");
+
+  // φ₀: the rigid rotation of the reading ring (rim neutral circle at mid-width, or the plain tube's end face).
+  fs.reading_radius_m = neutral_radius(f);
+  fs.reading_z_m = plain_tube ? f.length_m : f.length_m - 0.5 * f.rim_width_m;
+  std::vector<std::pair<Probe, double>> ring_probes;  // (probe, radius)
+  if (plain_tube) {
+    std::vector<bool> seen(nn, false);
+    for (const auto* e : select_edges(sec, kSurfaceOpenEnd))
+      for (int v : e->nodes)
+        if (!seen[v]) {
+          seen[v] = true;
+          ring_probes.emplace_back(probe_node(v), sec.nodes(v, 0));
+        }
+  } else {
+    ring_probes.emplace_back(probe_at(sec, {fs.reading_radius_m, fs.reading_z_m}), fs.reading_radius_m);
+  }
+  auto rotation = [&](const HarmonicField& u) {
+    RowMatrixX3d P(ring_probes.size() * kRingSamples, 3), D(ring_probes.size() * kRingSamples, 3);
+    Eigen::Index row = 0;
+    for (const auto& [p, r] : ring_probes)
+      for (int k = 0; k < kRingSamples; ++k, ++row) {
+        const double t = 2 * kPi * k / kRingSamples;
+        P.row(row) << r * std::cos(t), r * std::sin(t), 0.0;
+        D.row(row) = to_cartesian(displacement_at(u, p, t), t).transpose();
+      }
+    return rigid_rotation_z(P, D);
+  };
+  fs.torque_Nm = c.load.torque_Nm;
+  fs.compliance_rad_per_Nm = rotation(torque);
+  fs.phi0_rad = fs.compliance_rad_per_Nm * fs.torque_Nm;
+  const double G = c.material.shear_modulus_Pa();
+  const double ri = f.inner_radius_m, ro = f.inner_radius_m + f.wall_thickness_m;
+  const double J = kPi / 2 * (std::pow(ro, 4) - std::pow(ri, 4));
+  const double body_start = f.shape == FlexsplineShape::Cup ? f.diaphragm_thickness_m : 0.0;
+  fs.phi0_theory_rad = fs.torque_Nm * (fs.reading_z_m - body_start) / (G * J);
+  fs.applied_torque_Nm = moment_z(sec, loads[0][1]) * fs.torque_Nm;
+  {
+    Eigen::MatrixXd R = torque_reaction_anti0[0];
+    if (R.size() == 0) R = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nn), 3);
+    for (std::size_t i = 0; i < nn; ++i)
+      if (!clamped[i]) R.row(static_cast<Eigen::Index>(i)).setZero();
+    fs.reaction_torque_Nm = moment_z(sec, R) * fs.torque_Nm;
+  }
+
+  const bool has_generator = c.wave_generator.has_value();
+  if (has_generator) {
+    const auto& w = *c.wave_generator;
+    const double z_mid = f.length_m - 0.5 * f.rim_width_m;
+    const Probe mid = probe_at(sec, {fs.reading_radius_m, z_mid});
+    const double w_unit = 0.5 * (displacement_at(gen, mid, 0.0)[0] + displacement_at(gen, mid, kPi)[0]);
+    if (!(w_unit > 0))
+      throw InputError("wave_generator: the generator does not push the major axis outward (w = " +
+                       std::to_string(w_unit) + " m per unit load); check the force angles");
+    double scale = 1.0;
+    if (!cam) {
+      double total_at_end = 0;
+      for (const auto& force : generator_forces(w))
+        if (std::abs(std::remainder(force.angle_rad, 2 * kPi)) < kPi / 2) total_at_end += force.weight;
+      scale = w.radial_deformation_m ? *w.radial_deformation_m / w_unit : w.force_N / std::max(total_at_end, 1e-300);
+      fs.generator_force_N = scale * (w.model == WaveGeneratorModel::FourForce ? 0.5 : 1.0);
+    }
+    gen = gen * scale;
+    fs.generator_w0_m = w_unit * scale;
+    // Resultant of the generator's loads on the flexspline (the cam's: its reactions on the band) from the
+    // generalised forces of harmonics 0 and 1 (see the header for the families).
+    Eigen::MatrixXd Fs0, Fs1, Fa1;
+    if (cam) {
+      auto band_only = [&](Eigen::MatrixXd R) {
+        if (R.size() == 0) return Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nn), 3).eval();
+        for (std::size_t i = 0; i < nn; ++i)
+          if (!band_node[i]) R.row(static_cast<Eigen::Index>(i)).setZero();
+        return R;
+      };
+      Fs0 = band_only(gen_reaction_sym[0]) * scale;
+      Fs1 = band_only(gen_reaction_sym[1]) * scale;
+      Fa1 = band_only(gen_reaction_anti[1]) * scale;
+    } else {
+      Fs0 = loads[0][2] * scale;
+      Fs1 = N >= 1 ? (loads[1][2] * scale).eval() : Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nn), 3).eval();
+      Fa1 = N >= 1 ? (loads[1][3] * scale).eval() : Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nn), 3).eval();
+    }
+    const Eigen::VectorXd r = sec.nodes.col(0), z = sec.nodes.col(1);
+    const double Fx = (Fs1.col(0) - Fs1.col(1)).sum(), Fy = (Fa1.col(0) - Fa1.col(1)).sum(), Fz = Fs0.col(2).sum();
+    fs.generator_net_force = Eigen::Vector3d(Fx, Fy, Fz);
+    fs.generator_net_moment = Eigen::Vector3d(r.dot(Fa1.col(2)) - z.dot(Fa1.col(0) - Fa1.col(1)),
+                                              z.dot(Fs1.col(0) - Fs1.col(1)) - r.dot(Fs1.col(2)), 0.0);
+    fs.generator_rotation_rad = rotation(gen);
+    HarmonicField comb = gen;
+    comb += torque * fs.torque_Nm;
+    const bool has_torque = fs.torque_Nm != 0.0;
+    for (const double factor_T : {0.25, 0.5, 1.0, 2.0}) {
+      const double T = factor_T * (has_torque ? fs.torque_Nm : 1.0);
+      HarmonicField u = gen;
+      u += torque * T;
+      fs.torque_sweep.emplace_back(T, (rotation(u) - fs.generator_rotation_rad) / T);
+    }
+    NeutralCurveSamples nc;
+    nc.radius_m = fs.reading_radius_m;
+    nc.z_m = z_mid;
+    auto curve = [&](const HarmonicField& u, std::vector<double>& wv, std::vector<double>& vv, std::vector<double>& mu) {
+      // dw/dθ exactly from the series: the θ-derivative of the radial amplitudes.
+      for (int k = 0; k < kRingSamples; ++k) {
+        const double t = 2 * kPi * k / kRingSamples;
+        const Eigen::Vector3d d = displacement_at(u, mid, t);
+        double dw = 0;
+        for (std::size_t n = 1; n < u.sym.size(); ++n) {
+          if (u.sym[n].size() == 0) continue;
+          double as = 0, aa = 0;
+          for (int j = 0; j < 6; ++j) {
+            as += mid.weight[j] * u.sym[n](mid.node[j], 0);
+            aa += mid.weight[j] * u.anti[n](mid.node[j], 0);
+          }
+          dw += n * (-as * std::sin(n * t) + aa * std::cos(n * t));
+        }
+        wv.push_back(d[0]);
+        vv.push_back(d[1]);
+        mu.push_back((d[1] - dw) / nc.radius_m);
+      }
+    };
+    for (int k = 0; k < kRingSamples; ++k) nc.phi_rad.push_back(2 * kPi * k / kRingSamples);
+    curve(gen, nc.w_wg_m, nc.v_wg_m, nc.mu_wg_rad);
+    curve(comb, nc.w_comb_m, nc.v_comb_m, nc.mu_comb_rad);
+    fs.neutral_curve = nc;
+  }
+  out.torque_unit = torque;
+  out.generator = gen;
+
+  // Stresses: nodal amplitudes; hoop profile and extremes of the generator case (else the torque case).
+  const HarmonicField torque_case = torque * fs.torque_Nm;
+  const HarmonicField& hoop_field = has_generator ? gen : torque_case;
+  std::vector<Eigen::MatrixXd> hs, ha;
+  nodal_stress(sec, c.material, hoop_field, hs, ha);
+  {
+    const double z = has_generator ? z_wg : fs.reading_z_m;
+    const double inset = 1e-3 * f.inner_radius_m;
+    fs.hoop.profile_z_m = z;
+    fs.hoop.inner_radius_m = f.inner_radius_m + inset;
+    fs.hoop.outer_radius_m =
+        (f.teeth == TeethModel::None ? f.inner_radius_m + f.wall_thickness_m : f.inner_radius_m + f.rim_thickness_m) -
+        inset;
+    const Probe pin = probe_at(sec, {fs.hoop.inner_radius_m, z}), pout = probe_at(sec, {fs.hoop.outer_radius_m, z});
+    for (int k = 0; k < kRingSamples; ++k) {
+      const double t = 2 * kPi * k / kRingSamples;
+      const Trig trig(t, hs.size());
+      fs.hoop.inner_Pa.push_back(hoop_at(hs, ha, pin, trig));
+      fs.hoop.outer_Pa.push_back(hoop_at(hs, ha, pout, trig));
+    }
+  }
+  fs.hoop.max_tensile_Pa = -1e300;
+  fs.hoop.max_compressive_Pa = 1e300;
+  const int stations = 4 * kRingSamples;  // 0.25°: finer than any grid the extremes could be read on
+  std::vector<Trig> trigs;
+  for (int k = 0; k < stations; ++k) trigs.emplace_back(2 * kPi * k / stations, hs.size());
+  for (std::size_t i = 0; i < nn; ++i) {
+    if (sec.nodes(static_cast<Eigen::Index>(i), 1) < 0.5 * f.length_m) continue;
+    const Probe p = probe_node(static_cast<int>(i));
+    for (int k = 0; k < stations; ++k) {
+      const double st = hoop_at(hs, ha, p, trigs[k]);
+      if (st > fs.hoop.max_tensile_Pa) {
+        fs.hoop.max_tensile_Pa = st;
+        fs.hoop.max_tensile_angle_deg = 360.0 * k / stations;
+        fs.hoop.max_tensile_z_m = sec.nodes(static_cast<Eigen::Index>(i), 1);
+      }
+      if (st < fs.hoop.max_compressive_Pa) {
+        fs.hoop.max_compressive_Pa = st;
+        fs.hoop.max_compressive_angle_deg = 360.0 * k / stations;
+        fs.hoop.max_compressive_z_m = sec.nodes(static_cast<Eigen::Index>(i), 1);
+      }
+    }
+  }
+
+  // Load cases (as the tet10 path: generator, torque, generator + torque), on the revolved grid when asked for.
+  std::vector<std::pair<std::string, HarmonicField>> cases;
+  if (has_generator) cases.emplace_back("generator", gen);
+  cases.emplace_back("torque", torque_case);
+  if (has_generator) {
+    HarmonicField comb = gen;
+    comb += torque_case;
+    cases.emplace_back("generator_torque", comb);
+  }
+  for (const auto& [name, field] : cases) fs.cases.push_back({name, {}, {}, rotation(field)});
+  if (grid_sectors > 0) {
+    std::vector<int> station_of, node_of;
+    out.grid = revolve_section(sec, grid_sectors, station_of, node_of);
+    const Eigen::Index gn = static_cast<Eigen::Index>(out.grid.n_nodes());
+    std::vector<Trig> trigs_grid;
+    for (int k = 0; k < 2 * grid_sectors; ++k) trigs_grid.emplace_back(kPi * k / grid_sectors, static_cast<std::size_t>(N + 1));
+    for (std::size_t lc = 0; lc < cases.size(); ++lc) {
+      const HarmonicField& u = cases[lc].second;
+      std::vector<Eigen::MatrixXd> ss, sa;
+      nodal_stress(sec, c.material, u, ss, sa);
+      Eigen::VectorXd U(3 * gn);
+      RowMatrixX6d S(gn, 6);
+      for (Eigen::Index id = 0; id < gn; ++id) {
+        const int k = station_of[static_cast<std::size_t>(id)];
+        const double t = kPi * k / grid_sectors;
+        const Probe p = probe_node(node_of[static_cast<std::size_t>(id)]);
+        U.segment<3>(3 * id) = to_cartesian(displacement_at(u, p, trigs_grid[k]), t);
+        const Eigen::Matrix<double, 6, 1> cyl = sum_stress(ss, sa, p, trigs_grid[k]);
+        S.row(id) = cartesian_stress(cyl, t);
+      }
+      fs.cases[lc].u = U;
+      fs.cases[lc].stress = S;
+    }
+  }
+  return out;
+}
+
+}  // namespace sw

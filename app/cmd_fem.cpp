@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "app/commands.hpp"
 #include "app/fem_job.hpp"
@@ -107,6 +108,18 @@ FemJobResult run_fem_job(const Case& c, const fs::path& out_dir, bool write_vtk)
                 s.hoop.outer_Pa[0] / 1e6, s.hoop.inner_Pa[30] / 1e6, s.hoop.outer_Pa[30] / 1e6,
                 s.hoop.inner_Pa[45] / 1e6, s.hoop.outer_Pa[45] / 1e6, s.hoop.inner_Pa[90] / 1e6,
                 s.hoop.outer_Pa[90] / 1e6);
+  if (s.fatigue) {
+    std::vector<const FatiguePoint*> points{&s.fatigue->rim};
+    if (s.fatigue->diaphragm) points.push_back(&*s.fatigue->diaphragm);
+    for (const FatiguePoint* p : points) {
+      std::printf("  fatigue over a generator revolution (%s case), %s at r = %.2f mm, z = %.2f mm: hoop %.1f ± %.1f "
+                  "MPa, meridional %.1f ± %.1f MPa",
+                  s.cases.back().name.c_str(), p->place.c_str(), p->r_m * 1e3, p->z_m * 1e3, p->hoop.mean_Pa / 1e6,
+                  p->hoop.alternating_Pa / 1e6, p->meridional.mean_Pa / 1e6, p->meridional.alternating_Pa / 1e6);
+      if (p->safety_factor > 0) std::printf(", Goodman safety factor %.2f", p->safety_factor);
+      std::printf("\n");
+    }
+  }
   std::printf("  wrote %s\n", out_dir.string().c_str());
   return job;
 }

@@ -607,6 +607,11 @@ FlexsplineSolution analyse_flexspline(const Case& c, const TetMesh& mesh) {
   // Stresses of every case; hoop stress of the generator case if any, else of the torque case.
   for (auto& lc : s.cases) lc.stress = nodal_stress(mesh, c.material, lc.u);
   s.hoop = hoop_stress(c, mesh, sampler, s.cases.front(), s.reading_z_m);
+  if (gen) {
+    const auto& w = *c.wave_generator;
+    s.fatigue = flexspline_fatigue(f, r_rim_outer, f.length_m - w.axial_position_m, w.band_width_m, c.material, sampler,
+                                   s.cases.back().stress);
+  }
   {
     const int k = static_cast<int>(std::lround(s.hoop.nominal_angle_deg));
     s.hoop.nominal_bending_Pa = 0.5 * (s.hoop.outer_Pa[k] - s.hoop.inner_Pa[k]);

@@ -29,6 +29,7 @@
 
 #include "common/params.hpp"
 #include "fem/cholmod_factor.hpp"
+#include "fem/fatigue.hpp"
 #include "fem/generator_contact.hpp"
 #include "fem/post.hpp"
 #include "mesh/tet_mesh.hpp"
@@ -117,6 +118,7 @@ struct FlexsplineSolution {
   std::vector<std::pair<double, double>> torque_sweep;  ///< (T, φ₀/T) from the combined case at several torques
   std::optional<NeutralCurveSamples> neutral_curve;     ///< when there is a generator
   std::optional<GeneratorReadout> generator;
+  std::optional<FatigueReadout> fatigue;  ///< over one generator revolution of the combined case (with a generator)
   HoopStressExtreme hoop;             ///< of the generator case if any, else of the torque case
   FactorStats factor;
   double assemble_s = 0, solve_s = 0;

@@ -186,6 +186,20 @@ Material read_material(TableReader r) {
   if (!(m.poisson_ratio > -1.0 && m.poisson_ratio < 0.5))
     r.fail_value("poisson_ratio", m.poisson_ratio, "must be in (-1, 0.5)");
   m.density_kg_m3 = r.positive("density_kg_m3", m.density_kg_m3);
+  if (auto se = r.number("fatigue_limit_MPa")) {
+    if (!(*se > 0)) r.fail_value("fatigue_limit_MPa", *se, "must be > 0");
+    m.fatigue_limit_Pa = *se * 1e6;
+  }
+  if (auto su = r.number("ultimate_strength_MPa")) {
+    if (!(*su > 0)) r.fail_value("ultimate_strength_MPa", *su, "must be > 0");
+    m.ultimate_strength_Pa = *su * 1e6;
+  }
+  if (m.fatigue_limit_Pa.has_value() != m.ultimate_strength_Pa.has_value())
+    throw InputError(r.file() + ": material.fatigue_limit_MPa and material.ultimate_strength_MPa go together (the "
+                                "Goodman line needs both)");
+  if (m.fatigue_limit_Pa && !(*m.fatigue_limit_Pa < *m.ultimate_strength_Pa))
+    r.fail_value("fatigue_limit_MPa", *m.fatigue_limit_Pa / 1e6,
+                 "must be < material.ultimate_strength_MPa = " + format_number(*m.ultimate_strength_Pa / 1e6));
   r.reject_unknown();
   return m;
 }
@@ -396,6 +410,9 @@ std::string describe_case(const Case& c) {
       << "\nfillet_radius_mm = " << mm(f.fillet_radius_m) << "\n";
   s << "[material]\nyoungs_modulus_Pa = " << c.material.youngs_modulus_Pa << "\npoisson_ratio = "
     << c.material.poisson_ratio << "\ndensity_kg_m3 = " << c.material.density_kg_m3 << "\n";
+  if (c.material.fatigue_limit_Pa)
+    s << "fatigue_limit_MPa = " << *c.material.fatigue_limit_Pa / 1e6 << "\nultimate_strength_MPa = "
+      << *c.material.ultimate_strength_Pa / 1e6 << "\n";
   if (c.wave_generator) {
     const auto& w = *c.wave_generator;
     static const char* kModels[] = {"four_force", "two_force", "forces", "cam", "rollers"};

@@ -114,6 +114,22 @@ std::string fem_result_json(const Case& c, const TetMesh& mesh, const Flexspline
       j["generator"]["stations"] = st;  // each force acts at angle and at angle + 180°
     }
   }
+  if (s.fatigue) {
+    auto point = [](const FatiguePoint& p) {
+      json o = {{"place", p.place},
+                {"r_mm", p.r_m * 1e3},
+                {"z_mm", p.z_m * 1e3},
+                {"hoop_alternating_MPa", p.hoop.alternating_Pa / 1e6},
+                {"hoop_mean_MPa", p.hoop.mean_Pa / 1e6},
+                {"meridional_alternating_MPa", p.meridional.alternating_Pa / 1e6},
+                {"meridional_mean_MPa", p.meridional.mean_Pa / 1e6}};
+      if (p.safety_factor > 0) o["goodman_safety_factor"] = p.safety_factor;
+      return o;
+    };
+    j["fatigue"] = {{"case", s.cases.back().name}, {"criterion", "Goodman per component, no credit for compressive mean"},
+                    {"rim", point(s.fatigue->rim)}};
+    if (s.fatigue->diaphragm) j["fatigue"]["diaphragm"] = point(*s.fatigue->diaphragm);
+  }
   json cases = json::array();
   for (const auto& lc : s.cases) cases.push_back({{"name", lc.name}, {"rim_rotation_rad", lc.rim_rotation_rad}});
   j["load_cases"] = cases;

@@ -116,5 +116,16 @@ TEST(CaseFile, CamProfileAndFitAreReadAndChecked) {
   EXPECT_NE(error_of(std::string(kTube) + "[wave_generator]\nfit_um = 5\n").find("fit_um"), std::string::npos);
 }
 
+TEST(CaseFile, FatigueDataComeInPairsBelowTheUltimateStrength) {
+  const std::string mat = std::string(kTube) + "[material]\n";
+  const Case c = parse_case(mat + "fatigue_limit_MPa = 500\nultimate_strength_MPa = 1100\n", "m.toml");
+  EXPECT_DOUBLE_EQ(*c.material.fatigue_limit_Pa, 500e6);
+  EXPECT_DOUBLE_EQ(*c.material.ultimate_strength_Pa, 1100e6);
+  EXPECT_NE(error_of(mat + "fatigue_limit_MPa = 500\n").find("go together"), std::string::npos);
+  EXPECT_NE(error_of(mat + "fatigue_limit_MPa = 1200\nultimate_strength_MPa = 1100\n")
+                .find("material.fatigue_limit_MPa = 1200; must be < material.ultimate_strength_MPa = 1100"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace sw

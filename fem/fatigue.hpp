@@ -33,14 +33,14 @@ StressCycle stress_cycle(const std::vector<double>& history_Pa);
 double goodman_safety_factor(const StressCycle& s, double fatigue_limit_Pa, double ultimate_strength_Pa);
 
 struct FatiguePoint {
-  std::string place;        ///< "rim bore", "rim outer surface", "diaphragm fillet", "diaphragm at the boss"
+  std::string place;        ///< "rim bore", "rim outer surface", "diaphragm fillet"
   double r_m = 0, z_m = 0;
   StressCycle hoop, meridional;
   double safety_factor = 0;  ///< min over both components; 0 without [material] fatigue data
 };
 
 /// The worst point (lowest safety factor, else largest alternating stress) of the rim (over its width, bore and outer
-/// surface) and, for a cup, of the diaphragm (its fillet to the wall and its edge at the boss), for the nodal stress
+/// surface) and, for a cup, of the diaphragm's fillet to the wall (not the clamped boss's singular corner), for the nodal stress
 /// table `stress` (n_nodes x 6) of the loaded case.
 struct FatigueReadout {
   FatiguePoint rim;

@@ -2,6 +2,8 @@
 // neutral_curve.csv and the VTK files; `strainwave run` chains fem and backlash.
 #include <cstdio>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "app/commands.hpp"
 #include "app/fem_job.hpp"
@@ -66,15 +68,39 @@ FemJobResult run_fem_job(const Case& c, const fs::path& out_dir, bool write_vtk)
               c.path.c_str(), mesh.n_nodes(), static_cast<long long>(s.factor.equations), s.factor.factor_gflop,
               s.factor.factor_s, s.factor.factor_s > 0 ? s.factor.factor_gflop / s.factor.factor_s : 0.0, run.total_s,
               run.peak_rss_bytes / 1e6);
-  std::printf("  phi0 = %.6e rad at T = %g N·m (C_tau = %.6e rad/N·m); theory T·L/(G·J) = %.6e rad (FEM/theory %.4f)\n",
-              s.phi0_rad, s.torque_Nm, s.compliance_rad_per_Nm, s.phi0_theory_rad,
-              s.phi0_theory_rad != 0 ? s.phi0_rad / s.phi0_theory_rad : 0.0);
-  std::printf("  reaction torque %.9g N·m vs applied %.9g N·m\n", s.reaction_torque_Nm, s.applied_torque_Nm);
-  if (c.wave_generator)
-    std::printf("  generator: %.4g N per force, w0 = %.4f mm, net rim rotation %.2e rad; hoop stress %+.1f MPa at "
-                "%.0f deg, %+.1f MPa at %.0f deg\n",
-                s.generator_force_N, s.generator_w0_m * 1e3, s.generator_rotation_rad, s.hoop.max_tensile_Pa / 1e6,
-                s.hoop.max_tensile_angle_deg, s.hoop.max_compressive_Pa / 1e6, s.hoop.max_compressive_angle_deg);
+  const auto& th = s.phi0_theory_cup;
+  std::printf("  phi0 = %.6e rad at T = %g N·m (C_tau = %.6e rad/N·m), over the engagement zones %.6e rad\n",
+              s.phi0_rad, s.torque_Nm, s.compliance_rad_per_Nm, s.phi0_engaged_rad);
+  std::printf("  closed form %.6e rad (FEM/closed form %.4f) = diaphragm %.4e (annular plate %.2f..%.2f mm) + body wall "
+              "%.4e (%.2f mm) + rim %.4e (%.2f mm); body wall alone T·L/(G·J) %.6e rad\n",
+              th.total_rad(), th.total_rad() != 0 ? s.phi0_rad / th.total_rad() : 0.0, th.diaphragm_rad,
+              th.diaphragm_inner_radius_m * 1e3, th.diaphragm_outer_radius_m * 1e3, th.body_rad,
+              th.body_length_m * 1e3, th.rim_rad, th.rim_length_m * 1e3, s.phi0_theory_rad);
+  std::printf("  reaction torque %.9g N·m (clamp and generator) vs applied %.9g N·m\n", s.reaction_torque_Nm,
+              s.applied_torque_Nm);
+  if (s.generator) {
+    const auto& g = *s.generator;
+    std::string zones;
+    for (const auto& [from, to] : g.zones_wg_deg) {
+      char z[64];
+      std::snprintf(z, sizeof z, "%s[%.0f, %.0f]", zones.empty() ? "" : " ", from, to);
+      zones += z;
+    }
+    std::printf("  generator (%s, %s): total radial force %.1f N, smallest contact force %.3g N, zones (deg from "
+                "the major axis) %s\n",
+                g.model.c_str(), g.unilateral ? "unilateral contact" : "the paper's given forces",
+                g.total_radial_force_N, g.min_contact_force_N, zones.c_str());
+    std::printf("  generator: w at the major axis %.4f mm, at the minor axis %.4f mm, net rim rotation %.2e rad; "
+                "it carries %.4g N·m of the torque\n",
+                g.w_major_m * 1e3, g.w_minor_m * 1e3, s.generator_rotation_rad, g.reaction_torque_Nm);
+    std::printf("  hoop stress (generator): nominal bending %+.1f MPa at the minor axis, z = %.1f mm (thin ring theory "
+                "%+.1f MPa), membrane %+.1f MPa; local peaks %+.1f MPa at %.0f deg, z = %.2f mm and %+.1f MPa at "
+                "%.0f deg, z = %.2f mm\n",
+                s.hoop.nominal_bending_Pa / 1e6, s.hoop.profile_z_m * 1e3, s.hoop.ring_theory_bending_Pa / 1e6,
+                s.hoop.nominal_membrane_Pa / 1e6, s.hoop.max_tensile_Pa / 1e6, s.hoop.max_tensile_angle_deg,
+                s.hoop.max_tensile_z_m * 1e3, s.hoop.max_compressive_Pa / 1e6, s.hoop.max_compressive_angle_deg,
+                s.hoop.max_compressive_z_m * 1e3);
+  }
   if (!s.hoop.inner_Pa.empty())
     std::printf("  hoop stress at z = %.1f mm (%s case), inner/outer wall, MPa: 0 deg %+.0f/%+.0f, 30 deg %+.0f/%+.0f, "
                 "45 deg %+.0f/%+.0f, 90 deg %+.0f/%+.0f\n",
@@ -82,6 +108,18 @@ FemJobResult run_fem_job(const Case& c, const fs::path& out_dir, bool write_vtk)
                 s.hoop.outer_Pa[0] / 1e6, s.hoop.inner_Pa[30] / 1e6, s.hoop.outer_Pa[30] / 1e6,
                 s.hoop.inner_Pa[45] / 1e6, s.hoop.outer_Pa[45] / 1e6, s.hoop.inner_Pa[90] / 1e6,
                 s.hoop.outer_Pa[90] / 1e6);
+  if (s.fatigue) {
+    std::vector<const FatiguePoint*> points{&s.fatigue->rim};
+    if (s.fatigue->diaphragm) points.push_back(&*s.fatigue->diaphragm);
+    for (const FatiguePoint* p : points) {
+      std::printf("  fatigue over a generator revolution (%s case), %s at r = %.2f mm, z = %.2f mm: hoop %.1f ± %.1f "
+                  "MPa, meridional %.1f ± %.1f MPa",
+                  s.cases.back().name.c_str(), p->place.c_str(), p->r_m * 1e3, p->z_m * 1e3, p->hoop.mean_Pa / 1e6,
+                  p->hoop.alternating_Pa / 1e6, p->meridional.mean_Pa / 1e6, p->meridional.alternating_Pa / 1e6);
+      if (p->safety_factor > 0) std::printf(", Goodman safety factor %.2f", p->safety_factor);
+      std::printf("\n");
+    }
+  }
   std::printf("  wrote %s\n", out_dir.string().c_str());
   return job;
 }

@@ -1,14 +1,71 @@
 // `strainwave run CASE.toml [--curve fem|generator]`: the main job. fem (φ₀, C_τ, neutral curve) then backlash fed
 // with that φ₀ and, by default, the FEM's own generator-deformed neutral curve; both sets of files under one folder.
+#include <cstdio>
 #include <filesystem>
+#include <numbers>
+#include <optional>
 
 #include "app/backlash_job.hpp"
 #include "app/commands.hpp"
 #include "app/fem_job.hpp"
 #include "common/progress.hpp"
+#include "io/atomic_file.hpp"
 #include "io/case.hpp"
+#include "io/report.hpp"
+#include "kinematics/neutral_curve.hpp"
 
 namespace sw::app {
+
+namespace {
+
+RunReportInputs report_inputs(const Case& c, const std::filesystem::path& dir) {
+  RunReportInputs in;
+  in.out_dir = dir;
+  in.case_path = c.path;
+  in.case_text = describe_case(c);
+  if (c.wave_generator && c.wave_generator->radial_deformation_m) {
+    const NeutralCurve theory =
+        generator_neutral_curve(rim_mean_radius(c.flexspline), *c.wave_generator->radial_deformation_m, *c.wave_generator);
+    in.theory_label = "generator model: " + theory.source;
+    for (int i = -180; i <= 180; ++i) {
+      in.theory_phi_rad.push_back(i * std::numbers::pi / 180.0);
+      in.theory_w_m.push_back(theory.w.value(in.theory_phi_rad.back()));
+    }
+  }
+  return in;
+}
+
+/// The designer's summary: every figure with what it is, and what is not computed.
+void print_summary(const Case& c, const FemJobResult& fem, const std::optional<BacklashReport>& b,
+                   const std::filesystem::path& dir) {
+  const FlexsplineSolution& s = fem.solution;
+  constexpr double kArcmin = 180.0 / std::numbers::pi * 60.0;
+  std::printf("\nsummary of %s\n", c.path.c_str());
+  std::printf("  flexspline body: wind-up phi0 %.4e rad (%.3f arcmin) at %.4g N·m; torsional stiffness of the body "
+              "alone %.4g N·m/rad\n", s.phi0_rad, s.phi0_rad * kArcmin, s.torque_Nm,
+              s.compliance_rad_per_Nm > 0 ? 1.0 / s.compliance_rad_per_Nm : 0.0);
+  std::printf("  whole drive's twist at the case torque: not computed (teeth, generator bearing and circular spline "
+              "in series are not modelled yet)\n");
+  if (b) {
+    const auto& rb = b->revolution_basic;
+    std::printf("  geometric angular play of the output: %.3f .. %.3f arcmin over a revolution (rigid teeth; not the "
+                "catalog's lost motion); interference at rest: %s\n", rb.angular_play_min_rad * kArcmin,
+                rb.angular_play_max_rad * kArcmin, b->geometry.interference ? "YES" : "none");
+    const bool point_loads = c.wave_generator->model != WaveGeneratorModel::Cam;
+    if (b->geometry.interference && point_loads && b->curve_source.find("FEM") != std::string::npos)
+      std::printf("  note: the neutral curve is the FEM's under a generator that loads the rim at points (forces or "
+                  "rollers); on a short cup they dent it locally and the rim is far from elliptic. `--curve generator` "
+                  "gives the thin-ring curve; model = \"cam\" a generator in contact over a zone\n");
+  }
+  if (s.generator)
+    std::printf("  nominal hoop bending stress %+.0f MPa (thin-ring theory %+.0f MPa); local peaks where the generator "
+                "touches %+.0f / %+.0f MPa\n", s.hoop.nominal_bending_Pa / 1e6, s.hoop.ring_theory_bending_Pa / 1e6,
+                s.hoop.max_tensile_Pa / 1e6, s.hoop.max_compressive_Pa / 1e6);
+  std::printf("  not computed: ratcheting torque, wave-generator bearing life\n");
+  std::printf("  report: %s\n", (dir / "report.html").string().c_str());
+}
+
+}  // namespace
 
 void add_run_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("run", "fem then backlash fed with its phi0: the main job");
@@ -27,14 +84,17 @@ void add_run_command(CLI::App& app) {
     progress("case:\n" + describe_case(c));
     const std::filesystem::path dir = out.empty() ? default_out_dir(c) : std::filesystem::path(out);
     const FemJobResult fem = run_fem_job(c, dir);
-    if (!c.gear || !c.wave_generator) {
-      std::printf("run: no backlash for this case (it needs [gear] and [wave_generator])\n");
-      return;
+    std::optional<BacklashReport> backlash;
+    if (c.gear && c.wave_generator && c.wave_generator->radial_deformation_m) {
+      BacklashJobOptions options;
+      options.fem_result = fem.result_json_path;
+      options.fem_curve = curve == "fem";
+      backlash = run_backlash_job(c, options, dir);
+    } else {
+      std::printf("run: no backlash for this case (it needs [gear] and [wave_generator] with radial_deformation_mm)\n");
     }
-    BacklashJobOptions options;
-    options.fem_result = fem.result_json_path;
-    options.fem_curve = curve == "fem";
-    run_backlash_job(c, options, dir);
+    write_file_atomic(dir / "report.html", run_report_html(report_inputs(c, dir)));
+    print_summary(c, fem, backlash, dir);
   });
 }
 

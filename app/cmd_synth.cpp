@@ -24,6 +24,8 @@ struct SynthArgs {
   double compliance = 0.0;
   int teeth_flexspline = 0, teeth_circular = 0;
   std::vector<std::string> effects;
+  std::string effect_list;
+  std::vector<std::string> meta;
   reconcile::SynthOptions o;
   double white = -1, ar1 = -1, quantum = -1;  // < 0: the kind's default
 };
@@ -60,12 +62,20 @@ void run_synth(SynthArgs a) {
   a.o.quantum = a.quantum >= 0 ? a.quantum : def_q;
   if (kind == Kind::Transmission && a.o.cycles == 4.0) a.o.cycles = 2.0;
   for (const auto& e : a.effects) a.o.effects.push_back(reconcile::parse_synth_effect(e));
+  if (!a.effect_list.empty())
+    for (auto& e : reconcile::parse_synth_effects(a.effect_list)) a.o.effects.push_back(std::move(e));
   const reconcile::SynthResult r = reconcile::synthesize(a.o);
   if (a.out.empty()) a.out = "out/synth_" + a.kind + ".csv";
   std::filesystem::path path(a.out);
   std::filesystem::path truth = path;
   truth.replace_extension(".truth.json");
   reconcile::Recording rec = r.recording;
+  for (const auto& m : a.meta) {
+    const auto colon = m.find('=');
+    if (colon == std::string::npos || colon == 0)
+      throw InputError("--meta = '" + m + "'; expected key=value (a metadata line '# key: value')");
+    rec.metadata.push_back({m.substr(0, colon), m.substr(colon + 1)});
+  }
   rec.metadata.push_back({"truth", truth.filename().string()});
   write_file_atomic(truth, r.truth_json);
   write_file_atomic(path, reconcile::format_recording(rec));
@@ -94,10 +104,15 @@ void add_synth_command(CLI::App& app) {
   cmd->add_option("--teeth-flexspline", a->teeth_flexspline, "transmission z_f without a case");
   cmd->add_option("--teeth-circular", a->teeth_circular, "transmission z_c without a case");
   cmd->add_option("--effect", a->effects, "hidden effect NAME[:key=value,...] (repeatable; see below)");
+  cmd->add_option("--effects", a->effect_list,
+                  "several hidden effects at once: a,b:key=value,key=value,c (an item with '=' and no ':' belongs "
+                  "to the effect before it)");
+  cmd->add_option("--meta", a->meta, "extra metadata key=value written into the recording (repeatable)");
   cmd->add_option("--concealment", a->o.concealment,
                   "rescale each effect so its RMS = this times the noise RMS (0: use the given amplitudes)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--samples", a->o.samples, "rows")->capture_default_str();
+  cmd->add_option("--period", a->o.sample_period_s, "time_s step, s (torsion, transmission)")->capture_default_str();
   cmd->add_option("--cycles", a->o.cycles, "torsion: torque cycles; transmission: output revolutions (default 2)")
       ->capture_default_str();
   cmd->add_option("--torque", a->o.torque_amplitude_Nm, "torsion amplitude / backlash top level, N*m")->capture_default_str();

@@ -233,6 +233,9 @@ int run(int argc, char** argv) {
   Case c = load_case(case_path);
   if (size_mm > 0) c.mesh.size_m = size_mm * 1e-3;
   if (layers > 0) c.mesh.wall_layers = layers;
+  // The deck holds the clamp and the torque only: compare with our torque case without a generator (with one, ours
+  // keeps the generator in place and the band is held).
+  c.wave_generator.reset();
   if (c.load.torque_Nm == 0.0) throw InputError(case_path + ": load.torque_Nm = 0; the comparison needs a torque");
   const std::string ccx = ensure_ccx();
   TempDir tmp("sw_vs_ccx_");

@@ -1,32 +1,75 @@
-# Opens a strainwave FEM result in ParaView, warps it by the displacement and colours it by hoop stress.
-# Run:  pvpython cases/view_flexspline.py out/seed_190_192 [scale] [screenshot.png]
-#   (or in the ParaView GUI: View > Python Shell > Run Script, after editing RESULT_DIR below)
-# The displacement of a flexspline is a fraction of a millimetre on a part of ~40 mm, so the warp is exaggerated
-# (default scale 20). Load case: the first dataset of flexspline.pvd (the wave generator alone when there is one).
+# Renders strainwave results with ParaView: a FEM load case warped by its displacement and coloured by a field, or the
+# tooth profiles of the backlash stage. Run with pvbatch or pvpython (scripts/pvbatch.sh sets them up headless):
+#   scripts/pvbatch.sh cases/view_flexspline.py out/seed_190_192 --case generator --field stress_hoop --png view.png
+#   scripts/pvbatch.sh cases/view_flexspline.py out/seed_190_192/profiles.vtp --png profiles.png
+# Options: --case NAME (a dataset of flexspline.pvd: generator, torque, generator_torque; default the first),
+#          --field NAME (a point field of the .vtu; stress fields are shown in MPa), --scale S (warp factor, default
+#          20: the displacement is a fraction of a millimetre on a part of ~40 mm), --png FILE, --probe FILE.json (the
+#          warped bounds and the field's range as ParaView computed them, for checks).
+# In the ParaView GUI: open flexspline.pvd, apply Warp By Vector (displacement is the active vector), colour by a field.
+import argparse
+import json
 import os
 import sys
+import xml.etree.ElementTree as ET
 
-from paraview.simple import (ColorBy, GetActiveViewOrCreate, GetColorTransferFunction, OpenDataFile, Render,
-                             ResetCamera, SaveScreenshot, Show, WarpByVector)
+from paraview.simple import (Calculator, ColorBy, GetActiveViewOrCreate, GetColorTransferFunction, OpenDataFile,
+                             Render, ResetCamera, SaveScreenshot, Show, WarpByVector)
 
-RESULT_DIR = sys.argv[1] if len(sys.argv) > 1 else "out/seed_190_192"
-SCALE = float(sys.argv[2]) if len(sys.argv) > 2 else 20.0
-SCREENSHOT = sys.argv[3] if len(sys.argv) > 3 else None
+parser = argparse.ArgumentParser(description="render a strainwave result with ParaView")
+parser.add_argument("result", help="output folder of `strainwave fem`/`run`, or a profiles.vtp")
+parser.add_argument("--case", default=None, help="load case (dataset name in flexspline.pvd)")
+parser.add_argument("--field", default="stress_hoop", help="point field to colour by")
+parser.add_argument("--scale", type=float, default=20.0, help="warp scale factor")
+parser.add_argument("--png", default=None, help="screenshot file")
+parser.add_argument("--probe", default=None, help="write bounds and field range as JSON")
+args = parser.parse_args()
 
-pvd = os.path.join(RESULT_DIR, "flexspline.pvd")
-if not os.path.exists(pvd):
-    sys.exit(f"{pvd}: not found; run `strainwave fem CASE.toml` first")
-result = OpenDataFile(pvd)
-warped = WarpByVector(Input=result)
-warped.Vectors = ["POINTS", "displacement"]
-warped.ScaleFactor = SCALE
 view = GetActiveViewOrCreate("RenderView")
-display = Show(warped, view)
-ColorBy(display, ("POINTS", "stress_hoop"))
-lut = GetColorTransferFunction("stress_hoop")
-lut.ApplyPreset("Cool to Warm", True)
-display.SetScalarBarVisibility(view, True)
+probe = {}
+if args.result.endswith(".vtp"):
+    if not os.path.exists(args.result):
+        sys.exit(f"{args.result}: not found; run `strainwave backlash CASE.toml` first")
+    profiles = OpenDataFile(args.result)
+    display = Show(profiles, view)
+    ColorBy(display, ("CELLS", "part"))
+    profiles.UpdatePipeline()
+    probe["bounds"] = list(profiles.GetDataInformation().GetBounds())
+    probe["field"] = "part"
+    probe["range"] = list(profiles.CellData["part"].GetRange())
+else:
+    pvd = os.path.join(args.result, "flexspline.pvd")
+    if not os.path.exists(pvd):
+        sys.exit(f"{pvd}: not found; run `strainwave fem CASE.toml` first")
+    datasets = {d.get("name"): d.get("file") for d in ET.parse(pvd).getroot().iter("DataSet")}
+    name = args.case or next(iter(datasets))
+    if name not in datasets:
+        sys.exit(f"{pvd}: no load case '{name}' (has: {', '.join(datasets)})")
+    result = OpenDataFile(os.path.join(args.result, datasets[name]))
+    result.UpdatePipeline()
+    if args.field not in result.PointData.keys():
+        sys.exit(f"{datasets[name]}: no point field '{args.field}' (has: {', '.join(result.PointData.keys())})")
+    warped = WarpByVector(Input=result)
+    warped.Vectors = ["POINTS", "displacement"]
+    warped.ScaleFactor = args.scale
+    shown, field = warped, args.field
+    if args.field.startswith("stress") or args.field == "von_mises":
+        field = args.field + "_MPa"
+        shown = Calculator(Input=warped, ResultArrayName=field, Function=f"{args.field}/1e6")
+    shown.UpdatePipeline()
+    display = Show(shown, view)
+    ColorBy(display, ("POINTS", field))
+    lut = GetColorTransferFunction(field)
+    lut.ApplyPreset("Cool to Warm", True)
+    display.SetScalarBarVisibility(view, True)
+    probe["case"] = name
+    probe["bounds"] = list(shown.GetDataInformation().GetBounds())
+    probe["field"] = field
+    probe["range"] = list(shown.PointData[field].GetRange())
 ResetCamera()
 Render()
-if SCREENSHOT:
-    SaveScreenshot(SCREENSHOT, view, ImageResolution=[1600, 1000])
+if args.png:
+    SaveScreenshot(args.png, view, ImageResolution=[1200, 800])
+if args.probe:
+    with open(args.probe, "w") as f:
+        json.dump(probe, f)

@@ -12,7 +12,13 @@ namespace sw {
 
 enum class FlexsplineShape { Cup, Tube };
 enum class TeethModel { None, Ring, Explicit };
-enum class WaveGeneratorModel { FourForce, TwoForce, Forces, Cam };
+/// FourForce, TwoForce, Forces: the seed paper's idealisation (given forces, no generator body). Cam, Rollers: bodies
+/// that push and never pull (frictionless unilateral contact on the generator band; rollers: rigid, at ±β from both
+/// ends of the major axis, set out so the major axis reaches w0).
+enum class WaveGeneratorModel { FourForce, TwoForce, Forces, Cam, Rollers };
+/// The cam's outer surface: polar r + w0·cos2φ (the first-order shape the linear model works in; the default) or a
+/// true ellipse of semi-axes r + w0 and r − w0 (inside the polar form by up to 1.5·w0²/r at ±45°).
+enum class CamProfile { Polar, Ellipse };
 enum class TorqueLoading { EngagementZones, Uniform };
 
 struct FlexsplineParams {
@@ -32,6 +38,8 @@ struct Material {
   double youngs_modulus_Pa = 210e9;
   double poisson_ratio = 0.3;
   double density_kg_m3 = 7850.0;
+  std::optional<double> fatigue_limit_Pa;      ///< endurance limit (fully reversed) for the Goodman safety factor
+  std::optional<double> ultimate_strength_Pa;  ///< tensile strength, the Goodman line's intercept
   double shear_modulus_Pa() const { return youngs_modulus_Pa / (2.0 * (1.0 + poisson_ratio)); }
 };
 
@@ -42,11 +50,13 @@ struct WaveGeneratorForce {
 
 struct WaveGeneratorParams {
   WaveGeneratorModel model = WaveGeneratorModel::FourForce;
-  double beta_rad = 0.5235987755982988;          ///< four_force: ±β from the major axis at both ends of it
+  double beta_rad = 0.5235987755982988;          ///< four_force, rollers: ±β from the major axis at both ends of it
   std::optional<double> radial_deformation_m;    ///< w0 at the major axis; forces are scaled to reach it
   double force_N = 100.0;                        ///< total of one end's forces when w0 is not given
   double axial_position_m = 3.0e-3;              ///< from the open end
-  double band_width_m = 4.0e-3;                  ///< cam: axial width of the generator's contact band
+  double band_width_m = 4.0e-3;                  ///< axial width of the generator's contact band
+  CamProfile cam_profile = CamProfile::Polar;    ///< cam only
+  double cam_clearance_m = 0.0;                  ///< cam only: radial fit to the bore, clearance > 0, interference < 0
   std::vector<WaveGeneratorForce> forces;        ///< model = forces
 };
 

@@ -1,12 +1,15 @@
 #include "fem/flexspline_analysis.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numbers>
 
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "fem/assembly.hpp"
 #include "fem/loads.hpp"
+#include "mesh/flexspline.hpp"
 
 namespace sw {
 namespace {
@@ -48,6 +51,7 @@ Eigen::VectorXd unit_torque_load(const Case& c, const TetMesh& mesh) {
 std::vector<WaveGeneratorForce> generator_forces(const WaveGeneratorParams& w) {
   switch (w.model) {
     case WaveGeneratorModel::FourForce:
+    case WaveGeneratorModel::Rollers:  // where the rollers touch (for ring theory)
       return {{w.beta_rad, 0.5}, {-w.beta_rad, 0.5}, {kPi + w.beta_rad, 0.5}, {kPi - w.beta_rad, 0.5}};
     case WaveGeneratorModel::TwoForce:
       return {{0.0, 1.0}, {kPi, 1.0}};
@@ -56,7 +60,7 @@ std::vector<WaveGeneratorForce> generator_forces(const WaveGeneratorParams& w) {
     case WaveGeneratorModel::Cam:
       break;
   }
-  throw std::logic_error("generator_forces: a cam prescribes a shape, it has no forces");
+  throw std::logic_error("generator_forces: a cam's forces come from its contact");
 }
 
 /// Radial outward patch loads on the inner wall, one per force, each of magnitude weight (N) as the integral of the
@@ -187,143 +191,388 @@ double neutral_radius(const FlexsplineParams& f) {
   return f.inner_radius_m + 0.5 * (f.teeth == TeethModel::None ? f.wall_thickness_m : f.rim_thickness_m);
 }
 
+namespace {
+
+/// Angular spacing of the contact stations: two element edges at the bore (a contact pressure resolved more finely
+/// than the displacement field checkerboards), at least 2° and at most 6°, dividing 180° evenly.
+double station_spacing(const Case& c) {
+  const double two_edges_deg = 2 * c.mesh.size_m / c.flexspline.inner_radius_m * 180 / kPi;
+  const double n = std::round(180.0 / std::clamp(two_edges_deg, 2.0, 6.0));
+  return kPi / n;
+}
+// A station touches when it carries force or its gap is within 0.25 % of w0 (0.5 µm at w0 = 0.2 mm: the roughness
+// of a ground bearing race, and the level at which the mesh's own asymmetry shows in the gaps).
+constexpr double kTouchingGap = 2.5e-3;
+constexpr int kSolveChunk = 24;                       // right-hand sides per CHOLMOD solve (memory: n_eq × 24 doubles)
+
+/// Supports, assembly and the one factorisation every load case uses.
+struct Equations {
+  std::vector<bool> clamped;  ///< per node
+  DofMap dofs;
+  std::unique_ptr<CholmodFactor> factor;
+  Eigen::VectorXd zeros;      ///< 3·n_nodes
+
+  /// K⁻¹·F for full-dof loads (3·n_nodes × k), in full-dof displacements.
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& loads) const {
+    Eigen::MatrixXd B(dofs.n_equations, loads.cols());
+    for (Eigen::Index j = 0; j < loads.cols(); ++j) B.col(j) = restrict_to_free(dofs, loads.col(j));
+    const Eigen::MatrixXd X = factor->solve(B);
+    Eigen::MatrixXd U(loads.rows(), loads.cols());
+    for (Eigen::Index j = 0; j < loads.cols(); ++j) U.col(j) = expand_to_full(dofs, X.col(j), zeros);
+    return U;
+  }
+};
+
+Equations assemble_and_factorise(const Case& c, const TetMesh& mesh, FlexsplineSolution& s) {
+  Equations eq;
+  eq.clamped = clamped_nodes(mesh);
+  std::vector<bool> fixed(3 * mesh.n_nodes());
+  for (std::size_t i = 0; i < mesh.n_nodes(); ++i) fixed[3 * i] = fixed[3 * i + 1] = fixed[3 * i + 2] = eq.clamped[i];
+  eq.dofs = make_dof_map(fixed);
+  eq.zeros = Eigen::VectorXd::Zero(3 * mesh.n_nodes());
+  Stopwatch clock;
+  progress("assemble: " + std::to_string(eq.dofs.n_equations) + " equations");
+  const SymmetricCsc K = assemble_stiffness(mesh, c.material, eq.dofs);
+  s.assemble_s = clock.lap();
+  progress("factorise: nnz(K) = " + std::to_string(K.nnz()));
+  eq.factor = std::make_unique<CholmodFactor>(K, equation_nodes(eq.dofs));
+  s.factor = eq.factor->stats();
+  progress("factorised: nnz(L) = " + std::to_string(static_cast<long long>(s.factor.factor_nnz)) + ", " +
+           std::to_string(s.factor.factor_gflop) + " GF in " + std::to_string(s.factor.factor_s) + " s");
+  return eq;
+}
+
+/// The generator's contact stations and what they push against.
+struct Generator {
+  bool unilateral = false;
+  BandStations stations;
+  Eigen::VectorXd obstacle;    ///< per pair: the generator surface's standoff from the bore, summed over the pair (m)
+  Eigen::VectorXd force_load;  ///< force models: the unit generator forces (3·n_nodes)
+};
+
+/// Radial standoff s(θ) of the cam's surface from the unloaded bore, and its normal's tilt ρ'/ρ.
+double cam_standoff(const WaveGeneratorParams& w, double r, double t) {
+  const double w0 = *w.radial_deformation_m;
+  if (w.cam_profile == CamProfile::Polar) return w0 * std::cos(2 * t) - w.cam_clearance_m;
+  const double a = r + w0, b = r - w0;
+  return a * b / std::hypot(b * std::cos(t), a * std::sin(t)) - r - w.cam_clearance_m;
+}
+double cam_tilt(const WaveGeneratorParams& w, double r, double t) {
+  const double h = 1e-6;
+  const double rho = r + cam_standoff(w, r, t);
+  return (cam_standoff(w, r, t + h) - cam_standoff(w, r, t - h)) / (2 * h) / rho;
+}
+
+Generator generator_of(const Case& c, const TetMesh& mesh) {
+  const auto& w = *c.wave_generator;
+  const auto& f = c.flexspline;
+  const double z = f.length_m - w.axial_position_m, r = f.inner_radius_m;
+  Generator g;
+  const double spacing = station_spacing(c);
+  std::vector<double> angles;
+  NormalTilt tilt;
+  switch (w.model) {
+    case WaveGeneratorModel::Cam:
+      g.unilateral = true;
+      for (int k = 0; k * spacing < kPi - 1e-9; ++k) angles.push_back(k * spacing);
+      tilt = [&w, r](double t) { return cam_tilt(w, r, t); };
+      break;
+    case WaveGeneratorModel::Rollers:
+      // Two pairs: β with π + β, π − β with −β. A roller's normal passes through its centre: radial where it touches.
+      g.unilateral = true;
+      angles = {w.beta_rad, kPi - w.beta_rad};
+      break;
+    default:  // the force idealisation: stations all round the band, for the torque case's radial support
+      for (int k = 0; k * spacing < kPi - 1e-9; ++k) angles.push_back(k * spacing);
+      break;
+  }
+  g.stations = band_stations(mesh, z, w.band_width_m, angles, spacing, tilt);
+  g.obstacle.resize(static_cast<Eigen::Index>(angles.size()));
+  for (std::size_t j = 0; j < angles.size(); ++j)
+    g.obstacle[j] = w.model == WaveGeneratorModel::Cam ? 2 * cam_standoff(w, r, angles[j])
+                    : w.model == WaveGeneratorModel::Rollers ? 2.0  // per metre the rollers stand out; scaled to w0
+                                                             : 0.0;
+  if (!g.unilateral) g.force_load = generator_load(c, mesh);
+  return g;
+}
+
+/// Influence matrix C = Fᵀ·K⁻¹·F of the stations (pairs × pairs, m/N), solved in chunks of right-hand sides.
+Eigen::MatrixXd influence(const Equations& eq, const BandStations& st) {
+  const Eigen::Index m = st.loads.cols();
+  Eigen::MatrixXd C(m, m);
+  for (Eigen::Index j0 = 0; j0 < m; j0 += kSolveChunk) {
+    const Eigen::Index k = std::min<Eigen::Index>(kSolveChunk, m - j0);
+    const Eigen::MatrixXd U = eq.solve(Eigen::MatrixXd(st.loads.middleCols(j0, k)));
+    C.middleCols(j0, k) = st.loads.transpose() * U;
+  }
+  return 0.5 * (C + C.transpose());  // symmetric up to round-off; make it exactly so
+}
+
+Eigen::VectorXd contact_load(const BandStations& st, const Eigen::VectorXd& p) { return st.loads * p; }
+
+/// Total radial force (N) of a full load vector: Σ f·e_r over the nodes.
+double radial_total(const TetMesh& mesh, const Eigen::VectorXd& f) {
+  double sum = 0;
+  for (std::size_t i = 0; i < mesh.n_nodes(); ++i) {
+    const double t = theta_of(mesh.nodes.row(i).transpose());
+    sum += std::cos(t) * f[3 * i] + std::sin(t) * f[3 * i + 1];
+  }
+  return sum;
+}
+
+/// Radial displacement of the neutral circle at the rim mid-width at θ, mean of θ and θ + π.
+double rim_w(const FlexsplineParams& f, const PointSampler& sampler, double radius, const Eigen::VectorXd& u,
+             double t) {
+  const double z = f.length_m - 0.5 * f.rim_width_m;
+  double sum = 0;
+  for (const double a : {t, t + kPi}) {
+    const Eigen::Vector3d d = sampler.displacement({radius * std::cos(a), radius * std::sin(a), z}, u);
+    sum += std::cos(a) * d[0] + std::sin(a) * d[1];
+  }
+  return 0.5 * sum;
+}
+
+/// Hoop stress extremes over the open half and the profile at the generator's plane.
+HoopStressExtreme hoop_stress(const Case& c, const TetMesh& mesh, const PointSampler& sampler,
+                              const LoadCaseSolution& lc, double reading_z) {
+  const auto& f = c.flexspline;
+  HoopStressExtreme h;
+  const CylindricalFields cyl = cylindrical_components(mesh, lc.u, lc.stress);
+  const double z = c.wave_generator ? f.length_m - c.wave_generator->axial_position_m : reading_z;
+  const double inset = 1e-3 * f.inner_radius_m;
+  h.profile_z_m = z;
+  h.inner_radius_m = f.inner_radius_m + inset;
+  // The wall's outer surface: the body wall (no teeth), the ring's outer radius (teeth as a ring), the root circle
+  // (explicit teeth: the tooth layer carries little hoop stress).
+  h.outer_radius_m = (f.teeth == TeethModel::None   ? f.inner_radius_m + f.wall_thickness_m
+                      : f.teeth == TeethModel::Ring ? rim_outer_radius(f, c.gear)
+                                                    : f.inner_radius_m + f.rim_thickness_m) -
+                     inset;
+  for (int k = 0; k < kRingSamples; ++k) {
+    const double t = 2 * kPi * k / kRingSamples;
+    for (const auto& [r, out] : {std::pair{h.inner_radius_m, &h.inner_Pa}, std::pair{h.outer_radius_m, &h.outer_Pa}})
+      out->push_back(sampler.interpolate(Eigen::Vector3d(r * std::cos(t), r * std::sin(t), z), cyl.s_thetatheta)[0]);
+  }
+  h.max_tensile_Pa = -1e300;
+  h.max_compressive_Pa = 1e300;
+  for (std::size_t i = 0; i < mesh.n_nodes(); ++i) {
+    if (mesh.nodes(i, 2) < 0.5 * f.length_m) continue;
+    const double st = cyl.s_thetatheta[i];
+    const double ang = std::fmod(theta_of(mesh.nodes.row(i).transpose()) * 180 / kPi + 360.0, 360.0);
+    if (st > h.max_tensile_Pa) {
+      h.max_tensile_Pa = st;
+      h.max_tensile_angle_deg = ang;
+      h.max_tensile_z_m = mesh.nodes(i, 2);
+    }
+    if (st < h.max_compressive_Pa) {
+      h.max_compressive_Pa = st;
+      h.max_compressive_angle_deg = ang;
+      h.max_compressive_z_m = mesh.nodes(i, 2);
+    }
+  }
+  return h;
+}
+
+}  // namespace
+
+CupTorsionTheory cup_torsion_theory(const FlexsplineParams& f, double rim_outer_radius_m, const Material& material,
+                                    double torque_Nm, double reading_z_m) {
+  CupTorsionTheory t;
+  const double G = material.shear_modulus_Pa(), T = torque_Nm;
+  auto J = [](double a, double b) { return kPi / 2 * (std::pow(b, 4) - std::pow(a, 4)); };
+  const double ri = f.inner_radius_m, ro = ri + f.wall_thickness_m;
+  const bool cup = f.shape == FlexsplineShape::Cup;
+  const bool plain_tube = !cup && f.teeth == TeethModel::None;
+  const double body_start = cup ? f.diaphragm_thickness_m : 0.0;
+  const double rim_start = plain_tube ? reading_z_m : std::max(body_start, f.length_m - f.rim_width_m);
+  if (cup) {
+    t.diaphragm_inner_radius_m = f.boss_radius_m;
+    t.diaphragm_outer_radius_m = 0.5 * (ri + ro);
+    t.diaphragm_rad = T / (4 * kPi * G * f.diaphragm_thickness_m) *
+                      (1 / std::pow(t.diaphragm_inner_radius_m, 2) - 1 / std::pow(t.diaphragm_outer_radius_m, 2));
+  }
+  t.body_length_m = rim_start - body_start;
+  t.body_rad = T * t.body_length_m / (G * J(ri, ro));
+  t.rim_outer_radius_m = rim_outer_radius_m;
+  t.rim_length_m = std::max(0.0, reading_z_m - rim_start);
+  if (t.rim_length_m > 0) t.rim_rad = T * t.rim_length_m / (G * J(ri, rim_outer_radius_m));
+  return t;
+}
+
+double ring_theory_bending_stress(const WaveGeneratorParams& w, double youngs_modulus_Pa, double r_mid_m,
+                                  double thickness_m, double w0_m, double at_rad) {
+  double dkappa = 0;
+  if (w.model == WaveGeneratorModel::Cam) {
+    dkappa = 3 * w0_m * std::cos(2 * at_rad) / (r_mid_m * r_mid_m);
+  } else {
+    // The forces as the FEM applies them, all harmonics n ≥ 2 (n = 0 stretches an inextensible ring not at all, n = 1
+    // is a rigid shift): w ∝ Σ F cos n(θ−α)/(n²−1)², Δκ ∝ Σ F cos n(θ−α)/(n²−1)/r²; the tail beyond n = 4000 is
+    // below 1e-4 of the sum.
+    const std::vector<WaveGeneratorForce> forces = generator_forces(w);
+    double w_at_0 = 0, k_at = 0;
+    for (int n = 2; n <= 4000; ++n) {
+      const double a = n * n - 1.0;
+      for (const auto& f : forces) {
+        w_at_0 += f.weight * std::cos(n * f.angle_rad) / (a * a);
+        k_at += f.weight * std::cos(n * (at_rad - f.angle_rad)) / a;
+      }
+    }
+    dkappa = w0_m / w_at_0 * k_at / (r_mid_m * r_mid_m);
+  }
+  return youngs_modulus_Pa * 0.5 * thickness_m * dkappa;
+}
+
 FlexsplineSolution analyse_flexspline(const Case& c, const TetMesh& mesh) {
   FlexsplineSolution s;
   const auto& f = c.flexspline;
 
-  // Supports: the clamped faces; under a cam also the radial dof of the inner wall over the generator's band, in a
-  // cylindrical frame at each of those nodes. The same supports serve every load case, so one factorisation does.
-  const bool cam = c.wave_generator && c.wave_generator->model == WaveGeneratorModel::Cam;
-  const std::vector<bool> fixed_node = clamped_nodes(mesh);
-  std::vector<bool> fixed(3 * mesh.n_nodes());
-  for (std::size_t i = 0; i < mesh.n_nodes(); ++i) fixed[3 * i] = fixed[3 * i + 1] = fixed[3 * i + 2] = fixed_node[i];
-  NodeFrames frames;
-  Eigen::VectorXd cam_shape = Eigen::VectorXd::Zero(3 * mesh.n_nodes());  // local radial values w0·cos2θ
-  std::vector<bool> band_node(mesh.n_nodes(), false);
-  if (cam) {
-    const auto& w = *c.wave_generator;
-    const double z_wg = f.length_m - w.axial_position_m;
-    const auto band = select_faces(mesh, kSurfaceInner, [&](const Eigen::Vector3d& x) {
-      return std::abs(x[2] - z_wg) <= 0.5 * w.band_width_m;
-    });
-    if (band.empty())
-      throw InputError("wave_generator: no inner-wall faces in the cam's band at z = " + std::to_string(z_wg * 1e3) +
-                       " mm; check wave_generator.axial_position_mm / band_width_mm");
-    frames.frame_of_node.assign(mesh.n_nodes(), -1);
-    for (const auto* face : band)
-      for (int v : face->nodes) {
-        if (band_node[v] || fixed_node[v]) continue;
-        band_node[v] = true;
-        const double t = theta_of(mesh.nodes.row(v).transpose());
-        Eigen::Matrix3d R;
-        R << std::cos(t), -std::sin(t), 0, std::sin(t), std::cos(t), 0, 0, 0, 1;  // columns e_r, e_θ, e_z
-        frames.frame_of_node[v] = static_cast<int>(frames.rotations.size());
-        frames.rotations.push_back(R);
-        fixed[3 * v] = true;  // local radial component
-        cam_shape[3 * v] = *w.radial_deformation_m * std::cos(2 * t);
-      }
-  }
-  const DofMap dofs = make_dof_map(fixed);
+  // Supports, assembly, factorisation: the clamp only, so one factorisation serves every load case; the generator
+  // acts through loads (forces, or contact forces found on the stations' influence coefficients).
+  const Equations eq = assemble_and_factorise(c, mesh, s);
   Stopwatch clock;
-  progress("assemble: " + std::to_string(dofs.n_equations) + " equations");
-  const SymmetricCsc K = assemble_stiffness(mesh, c.material, dofs, frames);
-  s.assemble_s = clock.lap();
-  progress("factorise: nnz(K) = " + std::to_string(K.nnz()));
-  const CholmodFactor factor(K, equation_nodes(dofs));
-  s.factor = factor.stats();
-  progress("factorised: nnz(L) = " + std::to_string(static_cast<long long>(s.factor.factor_nnz)) + ", " +
-           std::to_string(s.factor.factor_gflop) + " GF in " + std::to_string(s.factor.factor_s) + " s");
-  clock.lap();
 
-  // Right-hand sides: unit torque, and the unit generator (forces) or the cam's prescribed shape; solved together.
+  // The unit torque, and for the force models the unit generator forces.
   s.torque_Nm = c.load.torque_Nm;
-  const bool has_torque = s.torque_Nm != 0.0;
-  const bool has_generator = c.wave_generator.has_value();
+  const double T = s.torque_Nm, T_ref = T != 0.0 ? T : 1.0;  // compliance is read at T (or 1 N·m without torque)
   const Eigen::VectorXd f_torque = unit_torque_load(c, mesh);
-  Eigen::VectorXd f_gen;
-  Eigen::MatrixXd B(dofs.n_equations, has_generator ? 2 : 1);
-  B.col(0) = restrict_to_free(dofs, to_local(frames, f_torque));
-  if (has_generator) {
-    if (cam) {
-      B.col(1) = dirichlet_lift(mesh, c.material, dofs, cam_shape, frames);
-    } else {
-      f_gen = generator_load(c, mesh);
-      B.col(1) = restrict_to_free(dofs, f_gen);
-    }
-  }
-  const Eigen::MatrixXd X = factor.solve(B);
-  const Eigen::VectorXd zeros = Eigen::VectorXd::Zero(3 * mesh.n_nodes());
-  const Eigen::VectorXd u_unit_torque = to_global(frames, expand_to_full(dofs, X.col(0), zeros));
-  s.solve_s = clock.lap();
+  const std::optional<Generator> gen = c.wave_generator ? std::optional(generator_of(c, mesh)) : std::nullopt;
+  Eigen::MatrixXd loads(3 * mesh.n_nodes(), gen && !gen->unilateral ? 2 : 1);
+  loads.col(0) = f_torque;
+  if (loads.cols() == 2) loads.col(1) = gen->force_load;
+  const Eigen::MatrixXd U = eq.solve(loads);
+  const Eigen::VectorXd u_unit_torque = U.col(0);
 
   const RotationReader rotation(c, mesh);
   const PointSampler& sampler = rotation.sampler();
   s.reading_radius_m = rotation.radius();
   s.reading_z_m = rotation.z();
-
-  const double unit_rotation = rotation(u_unit_torque);
-  s.compliance_rad_per_Nm = unit_rotation;
-  s.phi0_rad = unit_rotation * s.torque_Nm;
   // Theory: T·L/(G·J) of the body wall, L from where the body wall starts (the clamp of a tube, the diaphragm's face
   // of a cup) to the reading plane.
   const double G = c.material.shear_modulus_Pa();
   const double ri = f.inner_radius_m, ro = f.inner_radius_m + f.wall_thickness_m;
   const double J = kPi / 2 * (std::pow(ro, 4) - std::pow(ri, 4));
   const double body_start = f.shape == FlexsplineShape::Cup ? f.diaphragm_thickness_m : 0.0;
-  s.phi0_theory_rad = s.torque_Nm * (s.reading_z_m - body_start) / (G * J);
+  s.phi0_theory_rad = T * (s.reading_z_m - body_start) / (G * J);
+  const double r_rim_outer = rim_outer_radius(f, c.gear);
+  s.phi0_theory_cup = cup_torsion_theory(f, r_rim_outer, c.material, T, s.reading_z_m);
 
-  // Torque balance: applied moment vs the reaction moment of the clamp (a cam's radial supports carry no moment).
-  const Eigen::VectorXd u_torque = u_unit_torque * s.torque_Nm;
-  s.applied_torque_Nm = moment_about_z(mesh, f_torque * s.torque_Nm, std::vector<bool>(mesh.n_nodes(), true));
-  const Eigen::VectorXd reactions = internal_forces(mesh, c.material, u_torque) - f_torque * s.torque_Nm;
-  s.reaction_torque_Nm = moment_about_z(mesh, reactions, fixed_node);
-
-  Eigen::VectorXd u_gen;
-  if (has_generator) {
+  // Load cases. u_gen: the generator alone; u_inc: what the torque T_ref adds with the generator in place;
+  // f_support_inc: the generator's forces on the flexspline in that increment (the torque case's support).
+  Eigen::VectorXd u_gen, u_inc = u_unit_torque * T_ref, f_support_inc = Eigen::VectorXd::Zero(3 * mesh.n_nodes());
+  Eigen::VectorXd f_gen;
+  if (gen) {
     const auto& w = *c.wave_generator;
-    const Eigen::VectorXd u_unit_gen = to_global(frames, expand_to_full(dofs, X.col(1), cam ? cam_shape : zeros));
-    // Major-axis radial displacement of the neutral circle at the rim mid-width.
-    const double z_mid = f.length_m - 0.5 * f.rim_width_m;
-    const Eigen::Vector3d a(s.reading_radius_m, 0, z_mid), b(-s.reading_radius_m, 0, z_mid);
-    const double w_unit = 0.5 * (sampler.displacement(a, u_unit_gen)[0] - sampler.displacement(b, u_unit_gen)[0]);
-    if (!(w_unit > 0))
-      throw InputError("wave_generator: the generator does not push the major axis outward (w = " +
-                       std::to_string(w_unit) + " m per unit load); check the force angles");
-    double scale = 1.0;  // a cam prescribes its shape: no scaling
-    if (!cam) {
+    GeneratorReadout gr;
+    static const char* kModels[] = {"four_force", "two_force", "forces", "cam", "rollers"};
+    gr.model = kModels[static_cast<int>(w.model)];
+    gr.unilateral = gen->unilateral;
+    gr.station_angle_rad = gen->stations.angle_rad;
+    progress("generator: influence of " + std::to_string(gen->stations.angle_rad.size()) + " contact station pairs");
+    const Eigen::MatrixXd C = influence(eq, gen->stations);
+    const Eigen::VectorXd u0_torque = gen->stations.loads.transpose() * u_unit_torque;  // per pair, unit torque
+    if (gen->unilateral) {
+      // Contact of the generator alone, of the generator with T_ref and with the sweep's torques: each a small
+      // problem on C; then one solve for the displacements of all their contact loads.
+      Eigen::VectorXd obstacle = gen->obstacle;
+      if (w.model == WaveGeneratorModel::Rollers) {
+        // Set the rollers out so the major axis reaches w0: all four touch (symmetric), so the generator case is
+        // linear in the rollers' standoff; one solve for the unit standoff gives the scale.
+        const Eigen::VectorXd u_unit =
+            eq.solve(contact_load(gen->stations, bilateral_support(C, obstacle).force_N)).col(0);
+        const double w_unit = rim_w(f, sampler, s.reading_radius_m, u_unit, 0.0);
+        if (!(w_unit > 0))
+          throw InputError("wave_generator: rollers at beta_deg = " + std::to_string(w.beta_rad * 180 / kPi) +
+                           " do not push the major axis outward; use beta_deg < 45");
+        obstacle *= *w.radial_deformation_m / w_unit;
+      }
+      const StationForces p_gen = unilateral_contact(C, obstacle);
+      gr.contact_iterations = p_gen.iterations;
+      std::vector<double> sweep_T;
+      for (const double k : {0.25, 0.5, 1.0, 2.0}) sweep_T.push_back(k * T_ref);
+      Eigen::MatrixXd contact_loads(3 * mesh.n_nodes(), 2 + sweep_T.size());
+      contact_loads.col(0) = contact_load(gen->stations, p_gen.force_N);
+      const StationForces p_comb = unilateral_contact(C, obstacle - T_ref * u0_torque);
+      contact_loads.col(1) = contact_load(gen->stations, p_comb.force_N);
+      for (std::size_t k = 0; k < sweep_T.size(); ++k)
+        contact_loads.col(2 + k) =
+            contact_load(gen->stations, unilateral_contact(C, obstacle - sweep_T[k] * u0_torque).force_N);
+      const Eigen::MatrixXd V = eq.solve(contact_loads);
+      u_gen = V.col(0);
+      f_gen = contact_loads.col(0);
+      u_inc = V.col(1) - V.col(0) + u_unit_torque * T_ref;
+      f_support_inc = contact_loads.col(1) - contact_loads.col(0);
+      const double rot_gen = rotation(u_gen);
+      for (std::size_t k = 0; k < sweep_T.size(); ++k)
+        s.torque_sweep.emplace_back(sweep_T[k],
+                                    (rotation(V.col(2 + k) + u_unit_torque * sweep_T[k]) - rot_gen) / sweep_T[k]);
+      gr.force_wg_N.assign(p_gen.force_N.data(), p_gen.force_N.data() + p_gen.force_N.size());
+      gr.force_comb_N.assign(p_comb.force_N.data(), p_comb.force_N.data() + p_comb.force_N.size());
+      const double touching_gap = kTouchingGap * *w.radial_deformation_m;
+      const double step = gen->stations.half_width_rad;  // the stations' spacing
+      gr.zones_wg_deg = contact_zones_deg(gr.station_angle_rad, touching(p_gen, touching_gap), step);
+      gr.zones_comb_deg = contact_zones_deg(gr.station_angle_rad, touching(p_comb, touching_gap), step);
+      gr.min_contact_force_N = p_gen.force_N.minCoeff();
+    } else {
+      // Force idealisation: scale to w0 (or force_N); the torque case with the band held radially at the stations.
+      const Eigen::VectorXd u_unit_gen = U.col(1);
+      const double w_unit = rim_w(f, sampler, s.reading_radius_m, u_unit_gen, 0.0);
+      if (!(w_unit > 0))
+        throw InputError("wave_generator: the generator does not push the major axis outward (w = " +
+                         std::to_string(w_unit) + " m per unit load); check the force angles");
       double total_at_end = 0;  // sum of weights near θ = 0 (one end of the major axis)
       for (const auto& force : generator_forces(w))
         if (std::abs(wrap_pi(force.angle_rad)) < kPi / 2) total_at_end += force.weight;
-      scale = w.radial_deformation_m ? *w.radial_deformation_m / w_unit : w.force_N / std::max(total_at_end, 1e-300);
+      const double scale =
+          w.radial_deformation_m ? *w.radial_deformation_m / w_unit : w.force_N / std::max(total_at_end, 1e-300);
       s.generator_force_N = scale * (w.model == WaveGeneratorModel::FourForce ? 0.5 : 1.0);
+      u_gen = u_unit_gen * scale;
+      f_gen = gen->force_load * scale;
+      const StationForces p_T = bilateral_support(C, -T_ref * u0_torque);
+      f_support_inc = contact_load(gen->stations, p_T.force_N);
+      u_inc = eq.solve(f_support_inc).col(0) + u_unit_torque * T_ref;
+      for (const double k : {0.25, 0.5, 1.0, 2.0}) s.torque_sweep.emplace_back(k * T_ref, rotation(u_inc) / T_ref);
+      gr.force_comb_N.assign(p_T.force_N.data(), p_T.force_N.data() + p_T.force_N.size());
+      double fmin = 1e300;
+      for (const auto& force : generator_forces(w)) fmin = std::min(fmin, force.weight * scale);
+      gr.min_contact_force_N = fmin;
+      for (const auto& force : generator_forces(w)) {
+        const double a = wrap_pi(force.angle_rad) * 180 / kPi, h = kPatchHalfAngle * 180 / kPi;
+        gr.zones_wg_deg.emplace_back(a - h, a + h);
+      }
     }
-    u_gen = u_unit_gen * scale;
-    if (cam) {
-      // The cam's contact forces on the flexspline: the reactions at the band nodes.
-      const Eigen::VectorXd r = internal_forces(mesh, c.material, u_gen);
-      f_gen = Eigen::VectorXd::Zero(3 * mesh.n_nodes());
-      for (std::size_t i = 0; i < mesh.n_nodes(); ++i)
-        if (band_node[i]) f_gen.segment<3>(3 * i) = r.segment<3>(3 * i);
-    } else {
-      f_gen *= scale;
-    }
-    s.generator_w0_m = w_unit * scale;
+    gr.total_radial_force_N = radial_total(mesh, f_gen);
+    gr.reaction_torque_Nm = moment_about_z(mesh, f_support_inc, std::vector<bool>(mesh.n_nodes(), true)) * (T / T_ref);
+    gr.w_major_m = rim_w(f, sampler, s.reading_radius_m, u_gen, 0.0);
+    gr.w_minor_m = rim_w(f, sampler, s.reading_radius_m, u_gen, kPi / 2);
+    s.generator_w0_m = gr.w_major_m;
     const Resultant res = load_resultant(mesh, f_gen);
     s.generator_net_force = res.force;
     s.generator_net_moment = res.moment;
     s.generator_rotation_rad = rotation(u_gen);
+    s.generator = gr;
+  } else {
+    for (const double k : {0.25, 0.5, 1.0, 2.0}) s.torque_sweep.emplace_back(k * T_ref, rotation(u_inc) / T_ref);
   }
+  s.solve_s = clock.lap();
+
+  // φ₀ and C_τ: the rotation the torque adds with the generator in place.
+  s.compliance_rad_per_Nm = rotation(u_inc) / T_ref;
+  s.phi0_rad = s.compliance_rad_per_Nm * T;
+
+  // Torque balance of the torque case: applied moment vs the clamp's reaction plus the generator's.
+  const double to_T = T / T_ref;
+  const Eigen::VectorXd u_torque = u_inc * to_T;
+  s.applied_torque_Nm = moment_about_z(mesh, f_torque * T, std::vector<bool>(mesh.n_nodes(), true));
+  const Eigen::VectorXd clamp_reactions =
+      internal_forces(mesh, c.material, u_torque) - f_torque * T - f_support_inc * to_T;
+  s.reaction_torque_Nm = moment_about_z(mesh, clamp_reactions, eq.clamped) +
+                         moment_about_z(mesh, f_support_inc * to_T, std::vector<bool>(mesh.n_nodes(), true));
 
   s.cases.push_back({"torque", u_torque, RowMatrixX6d(), s.phi0_rad});
-  if (has_generator) {
+  if (gen) {
     s.cases.insert(s.cases.begin(), {"generator", u_gen, RowMatrixX6d(), s.generator_rotation_rad});
     const Eigen::VectorXd u_comb = u_gen + u_torque;
     s.cases.push_back({"generator_torque", u_comb, RowMatrixX6d(), rotation(u_comb)});
-    // Torque sweep on the combined case: (φ(gen + T) − φ(gen)) / T must be constant (linearity).
-    for (const double factor_T : {0.25, 0.5, 1.0, 2.0}) {
-      const double T = factor_T * (has_torque ? s.torque_Nm : 1.0);
-      s.torque_sweep.emplace_back(T, (rotation(u_gen + u_unit_torque * T) - s.generator_rotation_rad) / T);
-    }
     // The deformed neutral curve at the rim mid-width for the generator and the combined case.
     NeutralCurveSamples nc;
     nc.radius_m = s.reading_radius_m;
@@ -335,41 +584,43 @@ FlexsplineSolution analyse_flexspline(const Case& c, const TetMesh& mesh) {
     s.neutral_curve = nc;
   }
 
-  // Stresses of every case; hoop extremes over the open half of the flexspline (away from the clamp's singularity).
-  for (auto& lc : s.cases) lc.stress = nodal_stress(mesh, c.material, lc.u);
-  const LoadCaseSolution& hoop_case = s.cases.front();
-  const CylindricalFields cyl = cylindrical_components(mesh, hoop_case.u, hoop_case.stress);
-  {
-    // Hoop profile at the generator plane (or the rim's mid-width), just inside both walls of the rim base.
-    const double z = c.wave_generator ? f.length_m - c.wave_generator->axial_position_m : s.reading_z_m;
-    const double inset = 1e-3 * f.inner_radius_m;
-    s.hoop.profile_z_m = z;
-    s.hoop.inner_radius_m = f.inner_radius_m + inset;
-    s.hoop.outer_radius_m = (f.teeth == TeethModel::None ? f.inner_radius_m + f.wall_thickness_m
-                                                         : f.inner_radius_m + f.rim_thickness_m) - inset;
+  // φ₀ over the engagement zones: the mean tangential displacement of the torque case on the neutral circle there.
+  if (!(f.shape == FlexsplineShape::Tube && f.teeth == TeethModel::None)) {
+    const double half = c.load.torque_loading == TorqueLoading::Uniform ? kPi : c.load.engagement_half_angle_rad;
+    const Ring ring = reading_ring(s.reading_radius_m, s.reading_z_m);
+    std::vector<double> w, v, mu;
+    curve_of(ring, sample(sampler, ring, u_torque), s.reading_radius_m, w, v, mu);
+    double sum = 0;
+    int n = 0;
     for (int k = 0; k < kRingSamples; ++k) {
       const double t = 2 * kPi * k / kRingSamples;
-      for (const auto& [r, out] : {std::pair{s.hoop.inner_radius_m, &s.hoop.inner_Pa},
-                                   std::pair{s.hoop.outer_radius_m, &s.hoop.outer_Pa}})
-        out->push_back(sampler.interpolate(Eigen::Vector3d(r * std::cos(t), r * std::sin(t), z),
-                                           cyl.s_thetatheta)[0]);
+      if (std::abs(wrap_pi(t)) <= half + 1e-9 || std::abs(wrap_pi(t - kPi)) <= half + 1e-9) {
+        sum += v[k];
+        ++n;
+      }
     }
+    s.phi0_engaged_rad = sum / n / s.reading_radius_m;
+  } else {
+    s.phi0_engaged_rad = s.phi0_rad;
   }
-  s.hoop.max_tensile_Pa = -1e300;
-  s.hoop.max_compressive_Pa = 1e300;
-  for (std::size_t i = 0; i < mesh.n_nodes(); ++i) {
-    if (mesh.nodes(i, 2) < 0.5 * f.length_m) continue;
-    const double st = cyl.s_thetatheta[i];
-    const double ang = std::fmod(theta_of(mesh.nodes.row(i).transpose()) * 180 / kPi + 360.0, 360.0);
-    if (st > s.hoop.max_tensile_Pa) {
-      s.hoop.max_tensile_Pa = st;
-      s.hoop.max_tensile_angle_deg = ang;
-      s.hoop.max_tensile_z_m = mesh.nodes(i, 2);
-    }
-    if (st < s.hoop.max_compressive_Pa) {
-      s.hoop.max_compressive_Pa = st;
-      s.hoop.max_compressive_angle_deg = ang;
-      s.hoop.max_compressive_z_m = mesh.nodes(i, 2);
+
+  // Stresses of every case; hoop stress of the generator case if any, else of the torque case.
+  for (auto& lc : s.cases) lc.stress = nodal_stress(mesh, c.material, lc.u);
+  s.hoop = hoop_stress(c, mesh, sampler, s.cases.front(), s.reading_z_m);
+  if (gen) {
+    const auto& w = *c.wave_generator;
+    s.fatigue = flexspline_fatigue(f, r_rim_outer, f.length_m - w.axial_position_m, w.band_width_m, c.material, sampler,
+                                   s.cases.back().stress);
+  }
+  {
+    const int k = static_cast<int>(std::lround(s.hoop.nominal_angle_deg));
+    s.hoop.nominal_bending_Pa = 0.5 * (s.hoop.outer_Pa[k] - s.hoop.inner_Pa[k]);
+    s.hoop.nominal_membrane_Pa = 0.5 * (s.hoop.outer_Pa[k] + s.hoop.inner_Pa[k]);
+    if (gen && s.generator) {
+      const double t_wall = s.hoop.outer_radius_m + (s.hoop.inner_radius_m - ri) - ri;  // the profile's wall
+      s.hoop.ring_theory_bending_Pa =
+          ring_theory_bending_stress(*c.wave_generator, c.material.youngs_modulus_Pa, ri + 0.5 * t_wall, t_wall,
+                                     s.generator->w_major_m, s.hoop.nominal_angle_deg * kPi / 180);
     }
   }
   return s;

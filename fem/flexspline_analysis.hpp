@@ -5,18 +5,22 @@
 // Conventions: z is the axis, the clamped end at z = 0, the open (toothed) end at z = length; θ from +x, the wave
 // generator's major axis. The torque T > 0 acts on the rim about +z; φ₀ > 0 is the rim's rotation about +z.
 //
-// Wave-generator models (forces push radially outward on the inner wall, over small patches, never at nodes):
-//  - four_force: four equal forces at θ = ±β and π ± β, i.e. ±β from the major axis at both of its ends. This is the
-//    classical four-force generator (a roller generator with two rollers each side of the major axis). The seed paper
-//    words it as "forces at β = 30° and 150° (major axis) and at 60° and 120° (minor axis)", which, read literally,
-//    puts forces on the minor axis that would push it out too and is not a two-lobe deformation; the reading ±β from
-//    the major axis is the one that produces the described pattern (tensile hoop stress near the forces, compressive
-//    at the minor axis) and is the one the issue fixes.
-//  - two_force: two forces at θ = 0 and π.
-//  - forces: the case's list of (angle from the major axis, weight).
-//  - cam: not a force model; see prescribe below (u_r = w0·cos2θ over the generator band).
-// With radial_deformation set, the forces are scaled so the neutral radius of the rim mid-width moves out by w0 at
-// the major axis (mean of θ = 0 and π); otherwise each end of the major axis carries force_N in total.
+// Wave-generator models:
+//  - cam: the generator as a body: frictionless unilateral contact between its surface (polar r + w0·cos2φ or a true
+//    ellipse, with a radial fit) and the bore over the generator's band (fem/generator_contact.hpp): it pushes where
+//    it touches and the flexspline lifts off elsewhere. The torque and combined cases keep the cam in place (contact
+//    is solved again with the torque), so a locked cam carries part of the torque through its tilted normal.
+//  - rollers: rigid rollers at ±β from both ends of the major axis, each a line contact across the band (spread over
+//    one station's hat), unilateral; set out so the major axis reaches w0. Under torque a roller may lift off.
+//  - four_force, two_force, forces: the seed paper's idealisation, radial forces over small patches of the inner
+//    wall (never at nodes). four_force: four equal forces at θ = ±β and π ± β, i.e. ±β from the major axis at both of
+//    its ends (the seed paper words it as "forces at β = 30° and 150° (major axis) and at 60° and 120° (minor axis)",
+//    which, read literally, would push the minor axis out too; the reading ±β from the major axis produces the
+//    described pattern). two_force: θ = 0 and π. forces: the case's list of (angle from the major axis, weight).
+//    With radial_deformation set, the forces are scaled so the neutral radius of the rim mid-width moves out by w0 at
+//    the major axis (mean of θ = 0 and π); otherwise each end of the major axis carries force_N in total. The paper
+//    says nothing of where such a generator touches under torque: the torque case holds the band radially at the
+//    contact stations (bilateral, the idealisation's "generator in place"), and the combined case is the sum.
 #include <optional>
 #include <string>
 #include <vector>
@@ -25,6 +29,8 @@
 
 #include "common/params.hpp"
 #include "fem/cholmod_factor.hpp"
+#include "fem/fatigue.hpp"
+#include "fem/generator_contact.hpp"
 #include "fem/post.hpp"
 #include "mesh/tet_mesh.hpp"
 
@@ -53,6 +59,45 @@ struct HoopStressExtreme {
   /// major axis): where the pattern's tension and compression sit, away from the extremes' local peaks.
   double profile_z_m = 0, inner_radius_m = 0, outer_radius_m = 0;
   std::vector<double> inner_Pa, outer_Pa;
+  /// Nominal hoop stress of the wall away from load application: at the minor axis (90° from the major axis) in the
+  /// profile's plane, split into bending (outer − inner)/2 and membrane (outer + inner)/2, and the thin
+  /// (inextensible) ring theory's bending stress there for the same w0 and the same wall (inner radius to the rim's
+  /// outer radius). The extremes above are the local peaks, where the generator touches or at the clamp side.
+  double nominal_angle_deg = 90, nominal_bending_Pa = 0, nominal_membrane_Pa = 0, ring_theory_bending_Pa = 0;
+};
+
+/// Closed form of the cup's torsional rotation at the reading plane, term by term (SI): the diaphragm as an annular
+/// plate in circumferential shear between the boss and the wall's mid-surface, φ = T/(4π·G·h)·(1/a² − 1/b²); the body
+/// wall from the diaphragm's face to the rim, T·L/(G·J); the rim from its start to the reading plane with the rim's
+/// J (inner radius to the rim's outer radius, teeth as the mesh's ring). A tube has no diaphragm term.
+struct CupTorsionTheory {
+  double diaphragm_rad = 0, body_rad = 0, rim_rad = 0;
+  double total_rad() const { return diaphragm_rad + body_rad + rim_rad; }
+  double diaphragm_inner_radius_m = 0, diaphragm_outer_radius_m = 0, body_length_m = 0, rim_length_m = 0;
+  double rim_outer_radius_m = 0;
+};
+CupTorsionTheory cup_torsion_theory(const FlexsplineParams& f, double rim_outer_radius_m, const Material& material,
+                                    double torque_Nm, double reading_z_m);
+
+/// Thin inextensible ring theory: hoop bending stress E·(t/2)·Δκ (Pa, tension on the outer fibre > 0) at angle `at_rad`
+/// from the major axis of a ring of mid radius r_mid and thickness t, deformed by the generator to w(0) = w0: a cam's
+/// w0·cos2θ gives Δκ = −(w'' + w)/r² = 3·w0·cos2θ/r²; given forces by their Fourier series.
+double ring_theory_bending_stress(const WaveGeneratorParams& w, double youngs_modulus_Pa, double r_mid_m,
+                                  double thickness_m, double w0_m, double at_rad);
+
+/// What the generator does to the flexspline: contact forces per station, zones, totals.
+struct GeneratorReadout {
+  std::string model;                      ///< case key: "cam", "four_force", ...
+  bool unilateral = false;                ///< contact (cam) or the force idealisation
+  std::vector<double> station_angle_rad;  ///< first station of each pair (the other at + π)
+  std::vector<double> force_wg_N;         ///< normal force per station, generator case (force models: empty)
+  std::vector<double> force_comb_N;       ///< per station, generator + torque (force models: the torque case's support)
+  std::vector<std::pair<double, double>> zones_wg_deg, zones_comb_deg;  ///< [from, to] from the major axis
+  double total_radial_force_N = 0;        ///< generator case, whole circumference
+  double min_contact_force_N = 0;         ///< smallest station (or point) force of the generator case
+  double reaction_torque_Nm = 0;          ///< moment about z of the generator on the flexspline in the torque case
+  double w_major_m = 0, w_minor_m = 0;    ///< generator case, neutral circle at the rim mid-width (mean of both ends)
+  int contact_iterations = 0;             ///< active-set iterations of the generator case
 };
 
 struct FlexsplineSolution {
@@ -61,8 +106,10 @@ struct FlexsplineSolution {
   double phi0_rad = 0;                ///< torque alone
   double compliance_rad_per_Nm = 0;   ///< φ₀ / T
   double phi0_theory_rad = 0;         ///< T·L/(G·J) of the body wall
+  CupTorsionTheory phi0_theory_cup;   ///< body wall + diaphragm + rim, term by term
+  double phi0_engaged_rad = 0;        ///< mean rotation of the rim's neutral circle over the engagement zones
   double applied_torque_Nm = 0;       ///< moment of the applied torque loads about z (check)
-  double reaction_torque_Nm = 0;      ///< moment about z of the support reactions (torque case)
+  double reaction_torque_Nm = 0;      ///< moment about z of the clamp's and the generator's reactions (torque case)
   double generator_rotation_rad = 0;  ///< net rim rotation of the generator-alone case (0 by symmetry)
   double generator_force_N = 0;       ///< force of each of the generator's point loads after scaling
   double generator_w0_m = 0;          ///< major-axis radial displacement reached
@@ -70,6 +117,8 @@ struct FlexsplineSolution {
   Eigen::Vector3d generator_net_moment = Eigen::Vector3d::Zero();  ///< and their moment about the origin (N·m)
   std::vector<std::pair<double, double>> torque_sweep;  ///< (T, φ₀/T) from the combined case at several torques
   std::optional<NeutralCurveSamples> neutral_curve;     ///< when there is a generator
+  std::optional<GeneratorReadout> generator;
+  std::optional<FatigueReadout> fatigue;  ///< over one generator revolution of the combined case (with a generator)
   HoopStressExtreme hoop;             ///< of the generator case if any, else of the torque case
   FactorStats factor;
   double assemble_s = 0, solve_s = 0;

@@ -75,12 +75,17 @@ std::vector<const BoundaryFace*> select_faces(const TetMesh& mesh, int marker,
 }
 
 double faces_area(const TetMesh& mesh, const std::vector<const BoundaryFace*>& faces) {
-  double area = 0;
+  return faces_integral(mesh, faces, [](const Eigen::Vector3d&) { return 1.0; });
+}
+
+double faces_integral(const TetMesh& mesh, const std::vector<const BoundaryFace*>& faces,
+                      const std::function<double(const Eigen::Vector3d&)>& field) {
+  double sum = 0;
   for (const BoundaryFace* face : faces)
-    integrate_face(mesh, *face, [&](const Eigen::Vector3d&, const Eigen::Vector3d&, const double*, double w) {
-      area += w;
+    integrate_face(mesh, *face, [&](const Eigen::Vector3d& x, const Eigen::Vector3d&, const double*, double w) {
+      sum += w * field(x);
     });
-  return area;
+  return sum;
 }
 
 Resultant load_resultant(const TetMesh& mesh, const Eigen::VectorXd& f) {

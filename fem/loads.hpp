@@ -26,6 +26,10 @@ std::vector<const BoundaryFace*> select_faces(const TetMesh& mesh, int marker,
 /// Area (m²) of the faces, from the isoparametric map.
 double faces_area(const TetMesh& mesh, const std::vector<const BoundaryFace*>& faces);
 
+/// Integral of a scalar field over the faces (same rule as traction_load, so it normalises a traction exactly).
+double faces_integral(const TetMesh& mesh, const std::vector<const BoundaryFace*>& faces,
+                      const std::function<double(const Eigen::Vector3d&)>& field);
+
 /// Resultant force (N) and moment about the origin (N·m) of a full dof load vector.
 struct Resultant {
   Eigen::Vector3d force = Eigen::Vector3d::Zero();

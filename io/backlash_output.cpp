@@ -274,7 +274,8 @@ std::string backlash_svg(const BacklashReport& r) {
     s << "<text x='" << X(d) << "' y='" << H - B + 18 << "' text-anchor='middle'>" << d << "</text>\n";
   }
   const double step = std::pow(10.0, std::floor(std::log10((ymax - ymin) / 5)));
-  for (double v = std::ceil(ymin / step) * step; v <= ymax; v += step) {
+  for (double v0 = std::ceil(ymin / step) * step; v0 <= ymax; v0 += step) {
+    const double v = std::abs(v0) < 1e-9 * step ? 0.0 : v0;
     s << "<line x1='" << L << "' y1='" << Y(v) << "' x2='" << W - R << "' y2='" << Y(v) << "' stroke='"
       << (std::abs(v) < 1e-12 ? "#000" : "#eee") << "'/>";
     s << "<text x='" << L - 6 << "' y='" << Y(v) + 4 << "' text-anchor='end'>" << v << "</text>\n";

@@ -186,18 +186,34 @@ Material read_material(TableReader r) {
   if (!(m.poisson_ratio > -1.0 && m.poisson_ratio < 0.5))
     r.fail_value("poisson_ratio", m.poisson_ratio, "must be in (-1, 0.5)");
   m.density_kg_m3 = r.positive("density_kg_m3", m.density_kg_m3);
+  if (auto se = r.number("fatigue_limit_MPa")) {
+    if (!(*se > 0)) r.fail_value("fatigue_limit_MPa", *se, "must be > 0");
+    m.fatigue_limit_Pa = *se * 1e6;
+  }
+  if (auto su = r.number("ultimate_strength_MPa")) {
+    if (!(*su > 0)) r.fail_value("ultimate_strength_MPa", *su, "must be > 0");
+    m.ultimate_strength_Pa = *su * 1e6;
+  }
+  if (m.fatigue_limit_Pa.has_value() != m.ultimate_strength_Pa.has_value())
+    throw InputError(r.file() + ": material.fatigue_limit_MPa and material.ultimate_strength_MPa go together (the "
+                                "Goodman line needs both)");
+  if (m.fatigue_limit_Pa && !(*m.fatigue_limit_Pa < *m.ultimate_strength_Pa))
+    r.fail_value("fatigue_limit_MPa", *m.fatigue_limit_Pa / 1e6,
+                 "must be < material.ultimate_strength_MPa = " + format_number(*m.ultimate_strength_Pa / 1e6));
   r.reject_unknown();
   return m;
 }
 
 WaveGeneratorParams read_wave_generator(TableReader r) {
   WaveGeneratorParams w;
-  const std::string model = r.choice("model", "four_force", {"four_force", "two_force", "forces", "cam"});
+  const std::string model = r.choice("model", "four_force", {"four_force", "two_force", "forces", "cam", "rollers"});
   w.model = model == "four_force" ? WaveGeneratorModel::FourForce
             : model == "two_force" ? WaveGeneratorModel::TwoForce
             : model == "forces"    ? WaveGeneratorModel::Forces
-                                   : WaveGeneratorModel::Cam;
-  if (w.model == WaveGeneratorModel::FourForce) {
+            : model == "cam"       ? WaveGeneratorModel::Cam
+                                   : WaveGeneratorModel::Rollers;
+  const bool body = w.model == WaveGeneratorModel::Cam || w.model == WaveGeneratorModel::Rollers;
+  if (w.model == WaveGeneratorModel::FourForce || w.model == WaveGeneratorModel::Rollers) {
     const double beta = r.number("beta_deg", 30.0);
     if (!(beta > 0.0 && beta < 90.0)) r.fail_value("beta_deg", beta, "must be in (0, 90)");
     w.beta_rad = beta * kDeg;
@@ -206,11 +222,20 @@ WaveGeneratorParams read_wave_generator(TableReader r) {
     if (!(*w0 > 0)) r.fail_value("radial_deformation_mm", *w0, "must be > 0");
     w.radial_deformation_m = *w0 * kMm;
   }
-  if (w.model != WaveGeneratorModel::Cam) w.force_N = r.positive("force_N", w.force_N);
-  if (w.model == WaveGeneratorModel::Cam && !w.radial_deformation_m)
-    throw InputError(r.file() + ": wave_generator.radial_deformation_mm is missing; model = \"cam\" prescribes it");
+  if (!body) w.force_N = r.positive("force_N", w.force_N);
+  if (body && !w.radial_deformation_m)
+    throw InputError(r.file() + ": wave_generator.radial_deformation_mm is missing; model = \"" + model +
+                     "\" is set out to reach it");
   w.axial_position_m = r.non_negative("axial_position_mm", w.axial_position_m / kMm) * kMm;
   w.band_width_m = r.positive("band_width_mm", w.band_width_m / kMm) * kMm;
+  if (w.model == WaveGeneratorModel::Cam) {
+    w.cam_profile = r.choice("profile", "polar", {"polar", "ellipse"}) == "ellipse" ? CamProfile::Ellipse
+                                                                                   : CamProfile::Polar;
+    w.cam_clearance_m = r.number("fit_um", 0.0) * 1e-6;
+    if (!(std::abs(w.cam_clearance_m) < *w.radial_deformation_m))
+      r.fail_value("fit_um", w.cam_clearance_m * 1e6,
+                   "must be smaller in size than radial_deformation_mm (a clearance > 0 or an interference < 0, µm)");
+  }
   if (w.model == WaveGeneratorModel::Forces) {
     const toml::array* list = r.array("forces");
     if (!list || list->empty())
@@ -385,14 +410,21 @@ std::string describe_case(const Case& c) {
       << "\nfillet_radius_mm = " << mm(f.fillet_radius_m) << "\n";
   s << "[material]\nyoungs_modulus_Pa = " << c.material.youngs_modulus_Pa << "\npoisson_ratio = "
     << c.material.poisson_ratio << "\ndensity_kg_m3 = " << c.material.density_kg_m3 << "\n";
+  if (c.material.fatigue_limit_Pa)
+    s << "fatigue_limit_MPa = " << *c.material.fatigue_limit_Pa / 1e6 << "\nultimate_strength_MPa = "
+      << *c.material.ultimate_strength_Pa / 1e6 << "\n";
   if (c.wave_generator) {
     const auto& w = *c.wave_generator;
-    static const char* kModels[] = {"four_force", "two_force", "forces", "cam"};
+    static const char* kModels[] = {"four_force", "two_force", "forces", "cam", "rollers"};
     s << "[wave_generator]\nmodel = \"" << kModels[static_cast<int>(w.model)] << "\"\n";
-    if (w.model == WaveGeneratorModel::FourForce) s << "beta_deg = " << w.beta_rad / kDeg << "\n";
+    if (w.model == WaveGeneratorModel::FourForce || w.model == WaveGeneratorModel::Rollers)
+      s << "beta_deg = " << w.beta_rad / kDeg << "\n";
     if (w.radial_deformation_m) s << "radial_deformation_mm = " << mm(*w.radial_deformation_m) << "\n";
     else s << "force_N = " << w.force_N << "\n";
     s << "axial_position_mm = " << mm(w.axial_position_m) << "\nband_width_mm = " << mm(w.band_width_m) << "\n";
+    if (w.model == WaveGeneratorModel::Cam)
+      s << "profile = \"" << (w.cam_profile == CamProfile::Ellipse ? "ellipse" : "polar") << "\"\nfit_um = "
+        << w.cam_clearance_m * 1e6 << "\n";
     for (const auto& force : w.forces)
       s << "forces += {angle_deg = " << force.angle_rad / kDeg << ", weight = " << force.weight << "}\n";
   }

@@ -30,6 +30,17 @@ std::string fem_result_json(const Case& c, const TetMesh& mesh, const Flexspline
   j["phi0_rad"] = s.phi0_rad;
   j["compliance_rad_per_Nm"] = s.compliance_rad_per_Nm;
   j["phi0_theory_rad"] = s.phi0_theory_rad;
+  j["phi0_theory_cup_rad"] = s.phi0_theory_cup.total_rad();
+  j["phi0_theory_cup_terms"] = {{"diaphragm_rad", s.phi0_theory_cup.diaphragm_rad},
+                                {"body_wall_rad", s.phi0_theory_cup.body_rad},
+                                {"rim_rad", s.phi0_theory_cup.rim_rad},
+                                {"diaphragm_radii_mm",
+                                 {s.phi0_theory_cup.diaphragm_inner_radius_m * 1e3,
+                                  s.phi0_theory_cup.diaphragm_outer_radius_m * 1e3}},
+                                {"body_length_mm", s.phi0_theory_cup.body_length_m * 1e3},
+                                {"rim_length_mm", s.phi0_theory_cup.rim_length_m * 1e3},
+                                {"rim_outer_radius_mm", s.phi0_theory_cup.rim_outer_radius_m * 1e3}};
+  j["phi0_engaged_rad"] = s.phi0_engaged_rad;
   j["phi0_reading"] = {{"radius_mm", s.reading_radius_m * 1e3}, {"z_mm", s.reading_z_m * 1e3}};
   j["applied_torque_Nm"] = s.applied_torque_Nm;
   j["reaction_torque_Nm"] = s.reaction_torque_Nm;
@@ -40,6 +51,17 @@ std::string fem_result_json(const Case& c, const TetMesh& mesh, const Flexspline
   j["min_hoop_stress_Pa"] = s.hoop.max_compressive_Pa;
   j["min_hoop_stress_angle_deg"] = s.hoop.max_compressive_angle_deg;
   j["hoop_stress_case"] = s.cases.front().name;
+  j["hoop_stress_MPa"] = {
+      {"nominal_bending", s.hoop.nominal_bending_Pa / 1e6},
+      {"nominal_membrane", s.hoop.nominal_membrane_Pa / 1e6},
+      {"nominal_angle_deg", s.hoop.nominal_angle_deg},
+      {"nominal_z_mm", s.hoop.profile_z_m * 1e3},
+      {"ring_theory_bending", s.hoop.ring_theory_bending_Pa / 1e6},
+      {"local_peak_tensile", s.hoop.max_tensile_Pa / 1e6},
+      {"local_peak_tensile_at", {{"angle_deg", s.hoop.max_tensile_angle_deg}, {"z_mm", s.hoop.max_tensile_z_m * 1e3}}},
+      {"local_peak_compressive", s.hoop.max_compressive_Pa / 1e6},
+      {"local_peak_compressive_at",
+       {{"angle_deg", s.hoop.max_compressive_angle_deg}, {"z_mm", s.hoop.max_compressive_z_m * 1e3}}}};
   {
     nlohmann::json profile = {{"z_mm", s.hoop.profile_z_m * 1e3},
                               {"inner_radius_mm", s.hoop.inner_radius_m * 1e3},
@@ -62,6 +84,51 @@ std::string fem_result_json(const Case& c, const TetMesh& mesh, const Flexspline
     json sweep = json::array();
     for (const auto& [T, c_tau] : s.torque_sweep) sweep.push_back({{"torque_Nm", T}, {"compliance_rad_per_Nm", c_tau}});
     j["torque_sweep"] = sweep;
+  }
+  if (s.generator) {
+    const GeneratorReadout& g = *s.generator;
+    auto zones = [](const std::vector<std::pair<double, double>>& z) {
+      json a = json::array();
+      for (const auto& [from, to] : z) a.push_back({from, to});
+      return a;
+    };
+    j["generator"] = {
+        {"model", g.model},
+        {"idealisation", g.unilateral ? "unilateral frictionless contact on the generator band"
+                                      : "the paper's given forces; torque case with the band held radially"},
+        {"total_radial_force_N", g.total_radial_force_N},
+        {"contact_zones_deg", zones(g.zones_wg_deg)},
+        {"contact_zones_with_torque_deg", zones(g.zones_comb_deg)},
+        {"min_contact_force_N", g.min_contact_force_N},
+        {"reaction_torque_Nm", g.reaction_torque_Nm},
+        {"w_major_axis_mm", g.w_major_m * 1e3},
+        {"w_minor_axis_mm", g.w_minor_m * 1e3}};
+    if (!g.station_angle_rad.empty()) {
+      json st = json::array();
+      for (std::size_t k = 0; k < g.station_angle_rad.size(); ++k) {
+        json row = {{"angle_deg", g.station_angle_rad[k] * 180 / std::numbers::pi}};
+        if (!g.force_wg_N.empty()) row["force_N"] = g.force_wg_N[k];
+        row["force_with_torque_N"] = g.force_comb_N[k];
+        st.push_back(row);
+      }
+      j["generator"]["stations"] = st;  // each force acts at angle and at angle + 180°
+    }
+  }
+  if (s.fatigue) {
+    auto point = [](const FatiguePoint& p) {
+      json o = {{"place", p.place},
+                {"r_mm", p.r_m * 1e3},
+                {"z_mm", p.z_m * 1e3},
+                {"hoop_alternating_MPa", p.hoop.alternating_Pa / 1e6},
+                {"hoop_mean_MPa", p.hoop.mean_Pa / 1e6},
+                {"meridional_alternating_MPa", p.meridional.alternating_Pa / 1e6},
+                {"meridional_mean_MPa", p.meridional.mean_Pa / 1e6}};
+      if (p.safety_factor > 0) o["goodman_safety_factor"] = p.safety_factor;
+      return o;
+    };
+    j["fatigue"] = {{"case", s.cases.back().name}, {"criterion", "Goodman per component, no credit for compressive mean"},
+                    {"rim", point(s.fatigue->rim)}};
+    if (s.fatigue->diaphragm) j["fatigue"]["diaphragm"] = point(*s.fatigue->diaphragm);
   }
   json cases = json::array();
   for (const auto& lc : s.cases) cases.push_back({{"name", lc.name}, {"rim_rotation_rad", lc.rim_rotation_rad}});

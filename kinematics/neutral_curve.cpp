@@ -84,6 +84,7 @@ NeutralCurve generator_neutral_curve(double mean_radius_m, double w0_m, const Wa
   std::ostringstream name;
   switch (wg.model) {
     case WaveGeneratorModel::FourForce:
+    case WaveGeneratorModel::Rollers:  // the ring touches the rollers at ±β: four forces
       for (double base : {0.0, kPi})
         for (double sgn : {-1.0, 1.0}) forces.push_back({base + sgn * wg.beta_rad, 1.0});
       name << "thin ring, four forces at ±" << wg.beta_rad * 180.0 / kPi << "° and 180°±" << wg.beta_rad * 180.0 / kPi << "°";

@@ -1,5 +1,6 @@
 #include "reconcile/catalog.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "reconcile/fit.hpp"
@@ -8,6 +9,12 @@ namespace sw::reconcile {
 
 Eigen::VectorXd soft_start_column(const Eigen::VectorXd& torque_Nm, double t1_Nm) {
   return torque_Nm.cwiseMax(-t1_Nm).cwiseMin(t1_Nm);
+}
+
+double segment_law_twist(double T, double k1, double k2, double k3, double t1, double t2) {
+  const double a = std::abs(T);
+  const double phi = std::min(a, t1) / k1 + std::clamp(a - t1, 0.0, t2 - t1) / k2 + std::max(a - t2, 0.0) / k3;
+  return T < 0 ? -phi : phi;
 }
 
 Eigen::VectorXd hysteresis_column(const Experiment& e, double transition_Nm) {
@@ -86,37 +93,82 @@ std::vector<EffectSpec> torsion_effects() {
     };
     v.push_back(s);
   }
-  {
+  for (int breakpoints : {1, 2}) {
+    // The catalog's segment law: one breakpoint (K1 up to T1, then K2) or two (K1, K2, K3). K of the last segment
+    // is 1 / (C_tau + the series compliance effect): the law is of the whole drive, the catalog's form.
     EffectSpec s;
     s.name = "stiffness_nonlinearity";
-    s.physics = "soft start of the torque-twist curve (progressive tooth engagement): below T1 the drive is softer "
-                "(catalog segment law, slope 1/K1 up to T1, then 1/K2)";
-    s.nonlinear_names = {"T1_Nm"};
-    s.bounds = [](const Experiment& e) {
-      return bounds1(0.08 * e.torque_amplitude_Nm, 0.6 * e.torque_amplitude_Nm);
+    s.order = breakpoints;
+    s.exclusive_variants = true;
+    s.n_linear = breakpoints;
+    s.physics = breakpoints == 1
+                    ? "soft start of the torque-twist curve (progressive tooth engagement): below T1 the drive is "
+                      "softer (catalog segment law with two slopes, K1 up to T1, then K2)"
+                    : "stiffness that grows with torque as more teeth engage: the catalog's three-segment law (K1 up "
+                      "to T1, K2 up to T2, K3 beyond)";
+    s.nonlinear_names = breakpoints == 1 ? std::vector<std::string>{"T1_Nm"} : std::vector<std::string>{"T1_Nm", "T2_Nm"};
+    s.bounds = [breakpoints](const Experiment& e) {
+      const double a = e.torque_amplitude_Nm;
+      // Below 0.08 A a breakpoint is a jump at zero torque: play's signature, not a soft start.
+      if (breakpoints == 1) return bounds1(0.08 * a, 0.7 * a);
+      // The two breakpoints enter symmetrically (the headline sorts them), so they share one range. Above 0.8 A the
+      // last segment is too short to tell K3 from series compliance.
+      return std::make_pair(Vec(Vec::Constant(2, 0.08 * a)), Vec(Vec::Constant(2, 0.8 * a)));
     };
-    s.columns = [](const Experiment& e, const Vec& th) { return col(soft_start_column(e.torque_Nm, th[0])); };
-    s.headline = [](const Experiment& e, const FitResult& f, int t) {
-      const double c2 = e.model.compliance_rad_per_Nm + added_series_compliance(f);
-      const double c1 = c2 + f.terms[t].beta[0];
-      return NamedValues{{"K1_Nm_per_rad", 1.0 / c1}, {"T1_Nm", f.terms[t].theta[0]}, {"K2_Nm_per_rad", 1.0 / c2}};
+    s.columns = [](const Experiment& e, const Vec& th) {
+      Mat m(e.n, th.size());
+      for (int j = 0; j < th.size(); ++j) m.col(j) = soft_start_column(e.torque_Nm, th[j]);
+      return m;
+    };
+    s.headline = [breakpoints](const Experiment& e, const FitResult& f, int t) {
+      const double c_last = e.model.compliance_rad_per_Nm + added_series_compliance(f);
+      const Vec& b = f.terms[t].beta;
+      const Vec& th = f.terms[t].theta;
+      if (breakpoints == 1)
+        return NamedValues{{"K1_Nm_per_rad", 1.0 / (c_last + b[0])}, {"T1_Nm", th[0]}, {"K2_Nm_per_rad", 1.0 / c_last}};
+      // The two breakpoints enter symmetrically: T1 is the lower one.
+      const int lo = th[0] <= th[1] ? 0 : 1, hi = 1 - lo;
+      const double c2 = c_last + b[hi];
+      return NamedValues{{"K1_Nm_per_rad", 1.0 / (c2 + b[lo])}, {"T1_Nm", th[lo]}, {"K2_Nm_per_rad", 1.0 / c2},
+                         {"T2_Nm", th[hi]}, {"K3_Nm_per_rad", 1.0 / c_last}};
     };
     v.push_back(s);
   }
-  {
+  for (int elements : {1, 2}) {
+    // Friction as one exponential (Dahl-type) branch transition, or two in parallel (a two-element slip model) when
+    // the branches bend in a way one transition cannot follow (Bouc-Wen-like friction, several contact zones).
     EffectSpec s;
     s.name = "hysteresis";
+    s.order = elements;
+    s.exclusive_variants = true;
+    s.n_linear = elements;
     s.physics = "friction in the tooth contacts: the loading branch lies below the unloading branch and the drive "
                 "needs some torque after each reversal before it moves the other way";
-    s.nonlinear_names = {"transition_Nm"};
-    s.bounds = [](const Experiment& e) {
-      return bounds1(0.005 * e.torque_amplitude_Nm, 0.25 * e.torque_amplitude_Nm);
+    s.nonlinear_names = elements == 1 ? std::vector<std::string>{"transition_Nm"}
+                                      : std::vector<std::string>{"transition_Nm", "transition2_Nm"};
+    s.bounds = [elements](const Experiment& e) {
+      return std::make_pair(Vec(Vec::Constant(elements, 0.005 * e.torque_amplitude_Nm)),
+                            Vec(Vec::Constant(elements, 0.25 * e.torque_amplitude_Nm)));
     };
-    s.columns = [](const Experiment& e, const Vec& th) { return col(hysteresis_column(e, th[0])); };
-    s.headline = [](const Experiment& e, const FitResult& f, int t) {
-      return NamedValues{
-          {"loss_rad", hysteresis_loss_rad(f.terms[t].beta[0], f.terms[t].theta[0], e.torque_amplitude_Nm)},
-          {"transition_Nm", f.terms[t].theta[0]}};
+    s.columns = [](const Experiment& e, const Vec& th) {
+      Mat m(e.n, th.size());
+      for (int j = 0; j < th.size(); ++j) m.col(j) = hysteresis_column(e, th[j]);
+      return m;
+    };
+    s.headline = [elements](const Experiment& e, const FitResult& f, int t) {
+      const Vec& b = f.terms[t].beta;
+      const Vec& th = f.terms[t].theta;
+      double loss = 0.0;
+      for (int j = 0; j < th.size(); ++j) loss += hysteresis_loss_rad(b[j], th[j], e.torque_amplitude_Nm);
+      NamedValues v{{"loss_rad", loss}, {"loss_arcmin", loss * kArcminPerRad}};
+      if (elements == 1) {
+        v.emplace_back("transition_Nm", th[0]);
+      } else {
+        const int lo = th[0] <= th[1] ? 0 : 1;
+        v.emplace_back("transition_Nm", th[lo]);
+        v.emplace_back("transition2_Nm", th[1 - lo]);
+      }
+      return v;
     };
     v.push_back(s);
   }
@@ -130,7 +182,8 @@ std::vector<EffectSpec> torsion_effects() {
     };
     s.columns = [](const Experiment& e, const Vec& th) { return col(lost_motion_column(e.torque_Nm, th[0])); };
     s.headline = [](const Experiment&, const FitResult& f, int t) {
-      return NamedValues{{"width_rad", f.terms[t].beta[0]}, {"transition_Nm", f.terms[t].theta[0]}};
+      return NamedValues{{"width_rad", f.terms[t].beta[0]}, {"width_arcmin", f.terms[t].beta[0] * kArcminPerRad},
+                         {"transition_Nm", f.terms[t].theta[0]}};
     };
     v.push_back(s);
   }
@@ -327,7 +380,7 @@ std::vector<SignatureSpec> torsion_signatures() {
     s.what = "residual proportional to torque (the drive is softer or stiffer than C_tau)";
     s.basis = linear;
     s.condition = none;
-    s.triggers = {"series_compliance", "stiffness_nonlinearity"};
+    s.triggers = {"series_compliance", "stiffness_nonlinearity#1", "stiffness_nonlinearity#2"};
     s.where = torque;
     s.where_unit = "N*m";
     v.push_back(s);
@@ -346,7 +399,7 @@ std::vector<SignatureSpec> torsion_signatures() {
       return m;
     };
     s.condition = linear;
-    s.triggers = {"stiffness_nonlinearity", "lost_motion"};
+    s.triggers = {"stiffness_nonlinearity#1", "stiffness_nonlinearity#2", "lost_motion"};
     s.where = torque;
     s.where_unit = "N*m";
     v.push_back(s);
@@ -363,7 +416,7 @@ std::vector<SignatureSpec> torsion_signatures() {
       return m;
     };
     s.condition = linear;
-    s.triggers = {"hysteresis"};
+    s.triggers = {"hysteresis#1", "hysteresis#2"};
     s.where = torque;
     s.where_unit = "N*m";
     v.push_back(s);
@@ -375,7 +428,7 @@ std::vector<SignatureSpec> torsion_signatures() {
     s.what = "twist jumps while the torque crosses zero";
     s.basis = [](const Experiment& e) { return col(lost_motion_column(e.torque_Nm, 0.01 * e.torque_amplitude_Nm)); };
     s.condition = linear;
-    s.triggers = {"lost_motion", "stiffness_nonlinearity"};
+    s.triggers = {"lost_motion", "stiffness_nonlinearity#1", "stiffness_nonlinearity#2"};
     s.where = torque;
     s.where_unit = "N*m";
     v.push_back(s);
@@ -504,6 +557,75 @@ Eigen::MatrixXd nuisance_columns(const Experiment& e) {
     }
     default: return Eigen::MatrixXd(e.n, 0);
   }
+}
+
+}  // namespace sw::reconcile
+
+namespace sw::reconcile {
+
+const CatalogDrive* catalog_drive(int size) {
+  // shared/reference/catalog_torsional_stiffness.md (CSF/CSG component sets, ratio >= 80; rated torque at ratio 100).
+  static const CatalogDrive table[] = {
+      {14, 2.0, 6.9, 0.47e4, 0.61e4, 0.71e4, 10.0},
+      {17, 3.9, 12.0, 1.0e4, 1.4e4, 1.6e4, 31.0},
+      {20, 7.0, 25.0, 1.6e4, 2.5e4, 2.9e4, 52.0},
+  };
+  for (const auto& d : table)
+    if (d.size == size) return &d;
+  return nullptr;
+}
+
+CatalogFigures catalog_figures(const Experiment& e, const FitResult& f) {
+  CatalogFigures c;
+  if (e.kind != Kind::Torsion) return c;
+  c.valid = true;
+  c.reference = catalog_drive(e.drive_size);
+  if (e.rated_torque_Nm > 0.0) {
+    c.rated_torque_Nm = e.rated_torque_Nm;
+    c.rated_from = "metadata rated_torque_Nm";
+  } else if (c.reference) {
+    c.rated_torque_Nm = c.reference->rated_torque_Nm;
+    c.rated_from = "catalog size " + std::to_string(c.reference->size);
+  } else {
+    c.rated_torque_Nm = e.torque_amplitude_Nm;
+    c.rated_from = "the recording's torque amplitude (no rated torque in the metadata)";
+  }
+  const double R = c.rated_torque_Nm;
+  const double c_last = e.model.compliance_rad_per_Nm + added_series_compliance(f);
+  c.k1 = c.k2 = c.k3 = 1.0 / c_last;
+  // The middle line of the loop after cycling to +-R: everything but the branch-dependent part of hysteresis.
+  std::function<double(double)> mid = [c_last](double T) { return c_last * T; };
+  for (std::size_t i = 0; i < f.terms.size(); ++i) {
+    const Term& t = f.terms[i];
+    const std::string& name = t.spec->name;
+    if (name == "stiffness_nonlinearity") {
+      const NamedValues h = t.spec->headline(e, f, static_cast<int>(i));
+      c.segments = t.spec->order + 1;
+      c.k1 = h[0].second;
+      c.t1 = h[1].second;
+      c.k2 = h[2].second;
+      if (c.segments == 3) c.t2 = h[3].second;
+      mid = [mid, b = t.beta, th = t.theta](double T) {
+        double v = mid(T);
+        for (int j = 0; j < th.size(); ++j) v += b[j] * std::clamp(T, -th[j], th[j]);
+        return v;
+      };
+    } else if (name == "hysteresis") {
+      for (int j = 0; j < t.theta.size(); ++j) {
+        const double h = t.beta[j], th = t.theta[j];
+        c.hysteresis_loss_arcmin += hysteresis_loss_rad(h, th, R) * kArcminPerRad;
+        mid = [mid, h, th, R](double T) {
+          return mid(T) + 0.5 * h * (std::exp(-(T + R) / th) - std::exp(-(R - T) / th));
+        };
+      }
+    } else if (name == "lost_motion") {
+      const double w = t.beta[0], ts = t.theta[0];
+      c.play_arcmin = w * kArcminPerRad;
+      mid = [mid, w, ts](double T) { return mid(T) + 0.5 * w * std::tanh(T / ts); };
+    }
+  }
+  c.catalog_lost_motion_arcmin = (mid(0.04 * R) - mid(-0.04 * R)) * kArcminPerRad;
+  return c;
 }
 
 }  // namespace sw::reconcile

@@ -5,6 +5,7 @@
 // Every effect is separable: its contribution to the residual (recording - baseline) is columns(theta) * beta, with
 // beta entering linearly (fitted by least squares) and theta a few bounded nonlinear parameters (breakpoints,
 // transition widths), fitted by bounded Levenberg-Marquardt from several starts.
+#include <cmath>
 #include <functional>
 #include <string>
 #include <utility>
@@ -35,8 +36,13 @@ struct EffectSpec {
   std::function<NamedValues(const Experiment&, const FitResult&, int term)> headline;
   /// Number of sibling hypotheses this one was chosen among (harmonic orders): its p-value is multiplied by it.
   int multiplicity = 1;
+  /// Variants of one law (stiffness with one or two breakpoints) exclude each other in a model; harmonic orders
+  /// of one name do not.
+  bool exclusive_variants = false;
 
   std::string id() const { return order ? name + "#" + std::to_string(order) : name; }
+  /// Same name and an exclusive family: the two cannot both be in one model.
+  bool conflicts(const EffectSpec& o) const { return exclusive_variants && o.name == name && o.id() != id(); }
   int n_nonlinear() const { return static_cast<int>(nonlinear_names.size()); }
 };
 
@@ -70,7 +76,39 @@ Eigen::MatrixXd nuisance_columns(const Experiment& e);
 // Model laws shared by synth and the fit (so a synthetic effect is exactly representable).
 
 /// Soft-start column of the catalog law: clamp(T, -T1, T1) in N*m (times the compliance step 1/K1 - 1/K2).
+/// The whole three-segment law is twist = T/K3 + (1/K2 - 1/K3) clamp(T, T2) + (1/K1 - 1/K2) clamp(T, T1).
 Eigen::VectorXd soft_start_column(const Eigen::VectorXd& torque_Nm, double t1_Nm);
+
+/// Twist of the catalog's three-segment law at torque T (odd in T), rad.
+double segment_law_twist(double torque_Nm, double k1, double k2, double k3, double t1_Nm, double t2_Nm);
+
+/// Published torsional stiffness of a catalog size (shared/reference/catalog_torsional_stiffness.md, CSF/CSG,
+/// ratio >= 80) and its rated torque at ratio 100 (CSG rating).
+struct CatalogDrive {
+  int size = 0;
+  double t1_Nm = 0, t2_Nm = 0, k1_Nm_per_rad = 0, k2_Nm_per_rad = 0, k3_Nm_per_rad = 0, rated_torque_Nm = 0;
+};
+/// The catalog row of a size; nullptr when the reference lists no stiffness for it.
+const CatalogDrive* catalog_drive(int size);
+
+/// A torsion model in the catalog's terms (the report's "catalog" block). Torques N*m, stiffness N*m/rad, angles
+/// arcmin. The catalog's lost motion is the twist between -4 % and +4 % of rated torque read on the loop's middle
+/// line: it includes elastic twist and is not the play effect `lost_motion` (width_rad).
+struct CatalogFigures {
+  bool valid = false;
+  int segments = 1;                       ///< 1: one slope (no soft start); 2: K1, K2 (T1); 3: K1, K2, K3 (T1, T2)
+  double k1 = 0, k2 = 0, k3 = 0, t1 = 0, t2 = 0;
+  double rated_torque_Nm = 0;             ///< the torque the loss and lost motion are read at
+  std::string rated_from;                 ///< "metadata rated_torque_Nm", "catalog size N", "recording amplitude"
+  double hysteresis_loss_arcmin = 0;      ///< branch gap at zero torque after cycling to +-rated
+  double play_arcmin = 0;                 ///< the play effect's width (dead band), 0 when not in the model
+  double catalog_lost_motion_arcmin = 0;  ///< twist between +-4 % rated on the middle line (includes elastic twist)
+  const CatalogDrive* reference = nullptr;///< the catalog row of the recording's size (metadata `size`), if any
+};
+/// The catalog figures of a fitted torsion model (baseline C_tau plus its effects).
+CatalogFigures catalog_figures(const Experiment& e, const FitResult& model);
+
+inline constexpr double kArcminPerRad = 10800.0 / M_PI;
 /// Friction hysteresis column (Dahl-type branch transition): -dir * (1/2 - exp(-|T - T_reversal| / T_h)), unitless
 /// (times the saturated branch gap h in rad). Loading branch below, unloading above.
 Eigen::VectorXd hysteresis_column(const Experiment& e, double transition_Nm);

@@ -123,6 +123,12 @@ Experiment make_experiment(const Recording& rec, const Baseline& base) {
       e.response_unit = "rad";
       const double range = e.torque_Nm.maxCoeff() - e.torque_Nm.minCoeff();
       if (!(range > 0.0)) throw InputError(rec.path + ": torque_Nm is constant; a torsion test must vary the torque");
+      if (const auto size = rec.meta_number("size")) e.drive_size = static_cast<int>(std::lround(*size));
+      if (const auto rated = rec.meta_number("rated_torque_Nm")) {
+        if (!(*rated > 0.0))
+          throw InputError(rec.path + ": metadata rated_torque_Nm = " + std::to_string(*rated) + "; must be > 0");
+        e.rated_torque_Nm = *rated;
+      }
       const Branches br = find_branches(e.torque_Nm, 0.02 * range);
       e.direction = br.direction;
       e.since_reversal_Nm.resize(e.n);

@@ -58,6 +58,8 @@ struct Experiment {
   Eigen::VectorXd direction;         ///< torsion: +1 while torque rises, -1 while it falls
   Eigen::VectorXd since_reversal_Nm; ///< torsion: |T - T at the last reversal|
   double torque_amplitude_Nm = 0.0;  ///< torsion: median |T| at reversals (or max |T|)
+  int drive_size = 0;                ///< torsion: metadata `size` (catalog size number), 0 when absent
+  double rated_torque_Nm = 0.0;      ///< torsion: metadata `rated_torque_Nm`, 0 when absent
   Eigen::VectorXd mesh_phase_rad;    ///< dynamics: ψ_mesh(t) of the baseline run (2π per tooth passing)
   /// dynamics: sensitivity columns of the response (mesh_force_N) from perturbed runs, per unit parameter:
   /// 0,1: Δk/k0 at phase 0 and π/2; 2: damping (per N·s/m); 3: Coulomb drag (per N·m); 4: viscous drag (per N·m·s/rad)

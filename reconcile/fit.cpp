@@ -154,23 +154,34 @@ FitResult fit_model(const Experiment& e, const Vec& y, std::vector<Term> terms, 
     std::vector<Vec> starts{theta_free};
     const Term& last = terms.back();
     const int nl = last.spec->n_nonlinear();
-    if (opt.multistart_last && nl == 1) {
+    if (opt.multistart_last && (nl == 1 || nl == 2)) {
+      // A grid over the last term's nonlinear parameters (16 points; for two, 20 x 20, or its upper triangle when
+      // they share one range and enter symmetrically), the best `starts` (+2 for two) polished by LM: breakpoint
+      // pairs have several local minima at high signal-to-noise.
       const auto [l, h] = last.spec->bounds(e);
       std::vector<std::pair<double, Vec>> scored;
-      for (double g : start_grid(l[0], h[0], 16)) {
-        Vec th = theta_free;
-        th[nfree - 1] = g;
-        scored.emplace_back(prob.solve(th).rss, th);
-      }
+      const std::vector<double> g0 = start_grid(l[0], h[0], nl == 1 ? 16 : 20);
+      const std::vector<double> g1 = nl == 2 ? start_grid(l[1], h[1], 20) : std::vector<double>{0.0};
+      const bool symmetric = nl == 2 && l[0] == l[1] && h[0] == h[1];
+      for (std::size_t i = 0; i < g0.size(); ++i)
+        for (std::size_t j = symmetric ? i + 1 : 0; j < g1.size(); ++j) {
+          Vec th = theta_free;
+          th[nfree - nl] = g0[i];
+          if (nl == 2) th[nfree - 1] = g1[j];
+          scored.emplace_back(prob.solve(th).rss, th);
+        }
       std::sort(scored.begin(), scored.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
       starts.clear();
-      for (int s = 0; s < std::min<int>(opt.starts, scored.size()); ++s) starts.push_back(scored[s].second);
+      const int keep = opt.starts + (nl == 2 && opt.starts > 1 ? 2 : 0);
+      for (int s = 0; s < std::min<int>(keep, scored.size()); ++s) starts.push_back(scored[s].second);
     }
     double best_rss = std::numeric_limits<double>::infinity();
     for (const Vec& s : starts) {
       LmFunctor functor(&prob, nfree, static_cast<int>(prob.yw.size()));
-      Eigen::NumericalDiff<LmFunctor> nd(functor);
-      Eigen::LevenbergMarquardt<Eigen::NumericalDiff<LmFunctor>> lm(nd);
+      // Central differences with a step of 1e-4 in the logistic variable: the variable projection re-solves a nearly
+      // collinear least-squares problem at each point, and the default step (1e-8) drowns in its round-off.
+      Eigen::NumericalDiff<LmFunctor, Eigen::Central> nd(functor, 1e-8);
+      Eigen::LevenbergMarquardt<Eigen::NumericalDiff<LmFunctor, Eigen::Central>> lm(nd);
       lm.setMaxfev(60 * (nfree + 1));
       Vec u = prob.u_of(s);
       lm.minimize(u);

@@ -24,24 +24,184 @@ std::string fmt(const char* f, double v) {
 
 double rms(const Vec& v) { return v.size() ? std::sqrt(v.squaredNorm() / v.size()) : 0.0; }
 
+/// Resolvable values per nonlinear parameter in the Bonferroni bound that lets a decisive F statistic stand in for
+/// the bootstrap (see Analysis::effect_test).
+constexpr double kSearchValuesPerParameter = 100.0;
+
+std::string effect_label(const EffectSpec& s) {
+  if (s.name == "stiffness_nonlinearity") return s.name + (s.order == 2 ? " (three segments)" : " (two segments)");
+  if (s.name == "hysteresis") return s.name + (s.order == 2 ? " (two friction elements)" : " (one friction element)");
+  return s.order ? s.name + " (order " + std::to_string(s.order) + ")" : s.name;
+}
+
+const EffectSpec* effect_by_id(Kind kind, const std::string& id) {
+  for (const auto& s : effect_catalog(kind))
+    if (s.id() == id) return &s;
+  return nullptr;
+}
+
+/// Complexity for parsimony between rivals: nonlinear parameters first, then linear ones.
+std::pair<int, int> complexity(const EffectSpec& s) { return {s.n_nonlinear(), s.n_linear}; }
+
+bool has(const std::vector<Term>& terms, const std::string& id) {
+  for (const auto& t : terms)
+    if (t.spec->id() == id) return true;
+  return false;
+}
+
+/// The terms with `spec` added last (theta to be searched); an exclusive variant of it already present is replaced.
+std::vector<Term> with(std::vector<Term> terms, const EffectSpec* spec) {
+  terms.erase(std::remove_if(terms.begin(), terms.end(), [&](const Term& t) { return spec->conflicts(*t.spec); }),
+              terms.end());
+  terms.push_back(Term{spec, Vec(0), Vec(0)});
+  return terms;
+}
+
+std::vector<Term> without(std::vector<Term> terms, std::size_t i) {
+  terms.erase(terms.begin() + i);
+  return terms;
+}
+
+std::string ids(const std::vector<Term>& terms) {
+  std::vector<std::string> v;
+  for (const auto& t : terms) v.push_back(t.spec->id());
+  std::sort(v.begin(), v.end());
+  std::string s;
+  for (const auto& x : v) s += x + ",";
+  return s;
+}
+
 struct SigTest {
   double p_adj = 1.0;
   Vec contribution;  // fitted basis contribution (n)
 };
 
-SigTest test_signature(const Experiment& e, const SignatureSpec& s, const Vec& y, const std::vector<Term>& terms,
-                       const ArModel& ar, const SpectralCalibration& cal, int m) {
-  const Mat base = hcat(design_matrix(e, terms), s.condition(e));
-  const Mat B = s.basis(e);
-  const Vec yw = whiten(ar, y);
-  const FTest t = calibrated_f_test(cal, whiten(ar, base), whiten(ar, B), yw);
-  SigTest out;
-  out.p_adj = std::min(1.0, t.p_value * m);
-  const Mat full = hcat(base, B);
-  const LsResult ls = least_squares(whiten(ar, full), yw);
-  out.contribution = B * ls.beta.tail(B.cols());
-  return out;
-}
+/// The state of one analysis, passed from step to step.
+struct Analysis {
+  const Experiment& e;
+  const Options& opt;
+  Vec y;                                  // recording - baseline
+  int train = 0;                          // rows fitted for the held-out score
+  const std::vector<SignatureSpec>& sigs;
+  int m = 0;                              // signatures (Bonferroni factor)
+  ArModel ar;
+  SpectralCalibration cal;
+  std::vector<bool> located;
+  std::set<std::string> candidates;       // effect ids the located signatures point to
+  FitResult cur;                          // the current model
+  std::map<std::string, std::string> rejected;        // id -> reason
+  std::map<std::string, AcceptedEffect> accepted;     // id -> test record
+  std::map<std::string, std::pair<double, std::string>> test_cache;  // "id|base ids" -> (p, test)
+  std::uint64_t salt = 0;
+
+  Analysis(const Experiment& ex, const Options& o)
+      : e(ex), opt(o), y(ex.residual()), sigs(signature_catalog(ex.kind)), m(static_cast<int>(sigs.size())) {
+    const int hold = std::max(1, static_cast<int>(std::lround(e.n * opt.heldout_fraction)));
+    train = e.n - hold;
+  }
+
+  FitResult fit(const std::vector<Term>& terms, bool multistart = true, int starts = FitOptions{}.starts) const {
+    FitOptions o;
+    o.multistart_last = multistart;
+    o.starts = starts;
+    return fit_model(e, y, terms, ar, o);
+  }
+
+  /// RMS over the held-out rows of y - model fitted on the training rows (thetas start at the given terms').
+  double heldout(const std::vector<Term>& terms) const {
+    FitOptions o;
+    o.rows = train;
+    o.multistart_last = false;
+    const FitResult f = fit_model(e, y, terms, ar, o);
+    return rms(Vec((y - f.contribution).tail(e.n - train)));
+  }
+
+  SigTest signature(int i, const std::vector<Term>& terms) const {
+    const SignatureSpec& s = sigs[i];
+    const Mat base = hcat(design_matrix(e, terms), s.condition(e));
+    const Mat B = s.basis(e);
+    const Vec yw = whiten(ar, y);
+    const FTest t = calibrated_f_test(cal, whiten(ar, base), whiten(ar, B), yw);
+    SigTest out;
+    out.p_adj = std::min(1.0, t.p_value * m);
+    const LsResult ls = least_squares(whiten(ar, hcat(base, B)), yw);
+    out.contribution = B * ls.beta.tail(B.cols());
+    return out;
+  }
+  bool significant(int i, const std::vector<Term>& terms) const {
+    return signature(i, terms).p_adj < opt.alpha_family;
+  }
+
+  /// Parametric bootstrap of the likelihood-ratio statistic of `full` (its last term searched) against `reduced`
+  /// (noise: the AR model), with an early stop once the p-value cannot reach alpha_effect.
+  double bootstrap_p(const FitResult& reduced, const FitResult& full) {
+    const double observed = reduced.n_w * std::log(reduced.rss_w / full.rss_w);
+    std::mt19937_64 rng(opt.seed * 0x9E3779B97F4A7C15ULL + ++salt);
+    std::vector<Term> full_terms = full.terms;
+    full_terms.back().theta = Vec(0);
+    int exceed = 0;
+    const int B = opt.bootstrap;
+    for (int b = 0; b < B; ++b) {
+      const Vec ystar = reduced.contribution + simulate_ar(ar, e.n, rng);
+      FitOptions o0;
+      o0.multistart_last = false;
+      const FitResult f0 = fit_model(e, ystar, reduced.terms, ar, o0);
+      FitOptions o1;
+      o1.starts = 1;  // the grid's best start only: each replicate refits the whole model
+      const FitResult f1 = fit_model(e, ystar, full_terms, ar, o1);
+      if (f0.n_w * std::log(f0.rss_w / f1.rss_w) >= observed) ++exceed;
+      if ((1.0 + exceed) / (B + 1.0) > opt.alpha_effect) return (1.0 + exceed) / (b + 2.0);
+    }
+    return (1.0 + exceed) / (B + 1.0);
+  }
+
+  /// Is the last term of `full` (its nonlinear parameters `nl_extra` more than `reduced` has) significant against
+  /// the noise? Linear: the calibrated F-test times the harmonic multiplicity. Nonlinear: the same F statistic at the
+  /// fitted breakpoints/transitions, Bonferroni-corrected for searching them (kSearchValuesPerParameter values
+  /// each); when that bound is not decisive, the parametric bootstrap of the likelihood ratio.
+  std::pair<double, std::string> effect_test(const FitResult& reduced, const FitResult& full, int nl_extra) {
+    const std::string key = full.terms.back().spec->id() + "|" + ids(reduced.terms);
+    if (const auto it = test_cache.find(key); it != test_cache.end()) return it->second;
+    const EffectSpec& spec = *full.terms.back().spec;
+    const FTest ft = calibrated_f_test(cal, whiten(ar, design_matrix(e, reduced.terms)),
+                                       whiten(ar, design_matrix(e, full.terms)), whiten(ar, y));
+    std::pair<double, std::string> out;
+    if (nl_extra <= 0) {
+      out = {std::min(1.0, ft.p_value * spec.multiplicity), "F"};
+    } else {
+      const double bound = std::min(1.0, ft.p_value * std::pow(kSearchValuesPerParameter, nl_extra));
+      out = bound <= opt.alpha_effect ? std::make_pair(bound, std::string("F, search-corrected"))
+                                      : std::make_pair(bootstrap_p(reduced, full), std::string("bootstrap"));
+      if (out.second == "bootstrap")
+        progress("reconcile: bootstrap of " + spec.id() + " against " + ids(reduced.terms) + ": p " + fmt("%.3g", out.first));
+    }
+    return test_cache[key] = out;
+  }
+
+  /// Searches each term's nonlinear parameters again with the others in (grid starts, then all polished together):
+  /// a term fitted before the others entered may sit in a local minimum they created.
+  FitResult refine(FitResult f) const {
+    for (std::size_t i = 0; i < f.terms.size(); ++i) {
+      if (f.terms[i].spec->n_nonlinear() == 0) continue;
+      std::vector<Term> order = without(f.terms, i);
+      order.push_back(f.terms[i]);
+      const FitResult g = fit(order, true, 1);
+      if (g.rss_w < f.rss_w) f = g;
+    }
+    return f;
+  }
+
+  void accept(const EffectSpec& spec, double dbic, double p, const std::string& test) {
+    AcceptedEffect a;
+    a.name = spec.name;
+    a.physics = spec.physics;
+    a.delta_bic = dbic;
+    a.p_value = p;
+    a.test = test;
+    accepted[spec.id()] = a;
+    rejected.erase(spec.id());
+  }
+};
 
 Location make_location(const Experiment& e, const SignatureSpec& s, const SigTest& t) {
   Location loc;
@@ -71,65 +231,401 @@ Location make_location(const Experiment& e, const SignatureSpec& s, const SigTes
   return loc;
 }
 
-const EffectSpec* effect_by_id(Kind kind, const std::string& id) {
-  for (const auto& s : effect_catalog(kind))
-    if (s.id() == id) return &s;
-  return nullptr;
-}
-
-std::vector<Term> with(std::vector<Term> terms, const EffectSpec* spec) {
-  terms.push_back(Term{spec, Vec(0), Vec(0)});
-  return terms;
-}
-
-/// RMS over the held-out rows of y - model fitted on the training rows (thetas start at the given terms').
-double heldout_rms(const Experiment& e, const Vec& y, const std::vector<Term>& terms, const ArModel& ar, int train,
-                   bool multistart) {
-  FitOptions o;
-  o.rows = train;
-  o.multistart_last = multistart;
-  const FitResult f = fit_model(e, y, terms, ar, o);
-  return rms(Vec((y - f.contribution).tail(e.n - train)));
-}
-
-/// Parametric bootstrap of the likelihood-ratio statistic for adding `spec` to `cur` (noise: the AR model).
-double bootstrap_p(const Experiment& e, const FitResult& cur, const FitResult& alt, const ArModel& ar,
-                   const Options& opt, std::uint64_t salt) {
-  const double observed = cur.n_w * std::log(cur.rss_w / alt.rss_w);
-  std::mt19937_64 rng(opt.seed * 0x9E3779B97F4A7C15ULL + salt);
-  int exceed = 0;
-  const int B = opt.bootstrap;
-  for (int b = 0; b < B; ++b) {
-    const Vec ystar = cur.contribution + simulate_ar(ar, e.n, rng);
-    FitOptions o0;
-    o0.multistart_last = false;
-    const FitResult f0 = fit_model(e, ystar, cur.terms, ar, o0);
-    const FitResult f1 = fit_model(e, ystar, with(cur.terms, alt.terms.back().spec), ar);
-    const double stat = f0.n_w * std::log(f0.rss_w / f1.rss_w);
-    if (stat >= observed) ++exceed;
-    // Early stop: once the p-value cannot reach alpha any more.
-    if ((1.0 + exceed) / (B + 1.0) > opt.alpha_effect) return (1.0 + exceed) / (b + 2.0);
-  }
-  return (1.0 + exceed) / (B + 1.0);
-}
-
-/// Complexity for parsimony between rivals: nonlinear parameters first, then linear ones.
-std::pair<int, int> complexity(const EffectSpec& s) { return {s.n_nonlinear(), s.n_linear}; }
-
 /// Do both effects appear among the triggers of one located signature?
-bool share_signature(const std::vector<SignatureSpec>& sigs, const std::vector<bool>& located, const EffectSpec& a,
-                     const EffectSpec& b) {
-  for (std::size_t i = 0; i < sigs.size(); ++i) {
-    if (!located[i]) continue;
-    const auto& t = sigs[i].triggers;
-    if (std::find(t.begin(), t.end(), a.id()) != t.end() && std::find(t.begin(), t.end(), b.id()) != t.end())
+bool share_signature(const Analysis& a, const EffectSpec& x, const EffectSpec& z) {
+  for (int i = 0; i < a.m; ++i) {
+    if (!a.located[i]) continue;
+    const auto& t = a.sigs[i].triggers;
+    if (std::find(t.begin(), t.end(), x.id()) != t.end() && std::find(t.begin(), t.end(), z.id()) != t.end())
       return true;
   }
   return false;
 }
 
-std::string effect_label(const EffectSpec& s) {
-  return s.order ? s.name + " (order " + std::to_string(s.order) + ")" : s.name;
+bool triggers(const SignatureSpec& s, const std::string& id) {
+  return std::find(s.triggers.begin(), s.triggers.end(), id) != s.triggers.end();
+}
+
+// ---- The steps -------------------------------------------------------------------------------------------------
+
+/// Noise model: AR fitted to the residual of a rich model (nuisance + every signature basis), so that structure the
+/// signatures can explain does not inflate the noise estimate; its level checked per frequency (calibration).
+void fit_noise(Analysis& a, Result& r) {
+  Mat rich = nuisance_columns(a.e);
+  for (const auto& s : a.sigs) rich = hcat(hcat(rich, s.basis(a.e)), s.condition(a.e));
+  a.ar = fit_ar(least_squares(rich, a.y).residual, a.opt.ar_max_order);
+  if (a.opt.spectral_half_width > 0) {
+    const Mat rich_w = whiten(a.ar, rich);
+    a.cal = spectral_calibration(rich_w, least_squares(rich_w, whiten(a.ar, a.y)).residual, a.opt.spectral_half_width);
+  }
+  r.noise = a.ar;
+  r.calibration = a.cal;
+  progress("reconcile: " + kind_name(a.e.kind) + ", " + std::to_string(a.e.n) + " samples, noise AR(" +
+           std::to_string(a.ar.order()) + ") sd " + fmt("%.3g", a.ar.process_sd));
+}
+
+/// The baseline with its nuisance columns only (offsets, scale): the starting model.
+void fit_baseline(Analysis& a, Result& r) {
+  a.cur = a.fit({});
+  r.residual_before = a.y - a.cur.contribution;
+  r.baseline_prediction = a.e.baseline + a.cur.contribution;
+  r.baseline_rms = rms(r.residual_before);
+  r.baseline_heldout_rms = a.heldout({});
+}
+
+/// Which signatures differ from noise, and the effects they point to.
+void locate(Analysis& a, Result& r) {
+  a.located.assign(a.m, false);
+  for (int i = 0; i < a.m; ++i) {
+    const SigTest t = a.signature(i, a.cur.terms);
+    if (t.p_adj < a.opt.alpha_family) {
+      a.located[i] = true;
+      r.locations.push_back(make_location(a.e, a.sigs[i], t));
+      for (const auto& id : a.sigs[i].triggers) a.candidates.insert(id);
+    }
+  }
+  r.significant = !r.locations.empty();
+  progress("reconcile: located " + std::to_string(r.locations.size()) + " significant signatures, " +
+           std::to_string(a.candidates.size()) + " candidate effects");
+}
+
+/// A complex effect that passes on its own must also beat each simpler rival of the same signature clearly (BIC and
+/// held-out), unless it removes a located signature the rival leaves. Returns the reason it loses, or "".
+std::string simpler_rival(Analysis& a, const EffectSpec& spec, const FitResult& alt, double h_alt,
+                          const std::vector<std::pair<const EffectSpec*, FitResult>>& passing) {
+  for (const auto& [rv, rv_fit] : passing) {
+    if (rv == &spec || complexity(*rv) >= complexity(spec) || !share_signature(a, *rv, spec)) continue;
+    const double dbic_rv = alt.bic() - rv_fit.bic();
+    const double h_rv = a.heldout(rv_fit.terms);
+    bool needed = false;
+    for (int i = 0; i < a.m && !needed; ++i) {
+      if (!a.located[i] || !triggers(a.sigs[i], spec.id()) || triggers(a.sigs[i], rv->id())) continue;
+      needed = a.significant(i, rv_fit.terms) && !a.significant(i, alt.terms);
+    }
+    if (!needed && (!(dbic_rv < -a.opt.min_delta_bic) || !(h_alt < h_rv)))
+      return effect_label(*rv) + " explains as much (BIC " + fmt("%.1f", dbic_rv) + " vs it, held-out " +
+             fmt("%.4g", h_rv) + " -> " + fmt("%.4g", h_alt) + ")";
+  }
+  return "";
+}
+
+/// Forward selection: one effect at a time, the best by BIC that passes every test (BIC, simpler rivals, held-out,
+/// removes a signature that points to it, significant against the noise).
+void admit_one_at_a_time(Analysis& a) {
+  const double bar = a.opt.min_delta_bic;
+  while (static_cast<int>(a.cur.terms.size()) < a.opt.max_effects) {
+    std::vector<std::pair<const EffectSpec*, FitResult>> evals;
+    for (const auto& id : a.candidates) {
+      const EffectSpec* spec = effect_by_id(a.e.kind, id);
+      if (!spec || has(a.cur.terms, id)) continue;
+      bool richer_present = false;
+      for (const auto& t : a.cur.terms)
+        richer_present = richer_present || (spec->conflicts(*t.spec) && complexity(*t.spec) > complexity(*spec));
+      if (richer_present) continue;
+      evals.emplace_back(spec, a.fit(with(a.cur.terms, spec)));
+    }
+    std::sort(evals.begin(), evals.end(), [](const auto& x, const auto& z) { return x.second.bic() < z.second.bic(); });
+    std::vector<std::pair<const EffectSpec*, FitResult>> passing;
+    for (const auto& ev : evals)
+      if (ev.second.bic() - a.cur.bic() < -bar) passing.push_back(ev);
+    bool added = false;
+    for (const auto& [spec, alt] : evals) {
+      const std::string id = spec->id(), label = effect_label(*spec);
+      const double dbic = alt.bic() - a.cur.bic();
+      if (!(dbic < -bar)) {
+        a.rejected[id] = label + ": BIC changes by " + fmt("%.1f", dbic) + " (needs < -" + fmt("%.0f", bar) + ")";
+        continue;
+      }
+      const double h_cur = a.heldout(a.cur.terms), h_alt = a.heldout(alt.terms);
+      if (const std::string rival = simpler_rival(a, *spec, alt, h_alt, passing); !rival.empty()) {
+        a.rejected[id] = label + ": the simpler rival " + rival;
+        continue;
+      }
+      if (!(h_alt < h_cur)) {
+        a.rejected[id] = label + ": held-out RMS not improved (" + fmt("%.4g", h_cur) + " -> " + fmt("%.4g", h_alt) + ")";
+        continue;
+      }
+      bool removes = false;
+      std::string left;
+      for (int i = 0; i < a.m; ++i) {
+        if (!a.located[i] || !triggers(a.sigs[i], id) || !a.significant(i, a.cur.terms)) continue;
+        const double after = a.signature(i, alt.terms).p_adj;
+        if (after >= a.opt.alpha_family) removes = true;
+        else left = a.sigs[i].name + " (p " + fmt("%.2g", after) + ")";
+      }
+      if (!removes) {
+        a.rejected[id] = label + ": " + (left.empty() ? "its signatures are already explained by other effects"
+                                                      : "alone it leaves its signature " + left);
+        continue;
+      }
+      // Against the current model (for a richer variant of a law: against the poorer one it replaces).
+      int nl_extra = spec->n_nonlinear();
+      for (const auto& t : a.cur.terms)
+        if (spec->conflicts(*t.spec)) nl_extra -= t.spec->n_nonlinear();
+      const auto [p, test] = a.effect_test(a.cur, alt, nl_extra);
+      if (!(p <= a.opt.alpha_effect)) {
+        a.rejected[id] = label + ": not significant against the estimated noise (" + test + " p = " + fmt("%.3g", p) + ")";
+        continue;
+      }
+      a.accept(*spec, dbic, p, test);
+      for (const auto& t : a.cur.terms)
+        if (spec->conflicts(*t.spec)) a.accepted.erase(t.spec->id());
+      a.cur = alt;
+      added = true;
+      progress("reconcile: accepted " + label + " (dBIC " + fmt("%.1f", dbic) + ", " + test + " p " + fmt("%.3g", p) + ")");
+      break;
+    }
+    if (!added) break;
+  }
+}
+
+/// Effects whose signatures overlap (a soft start, friction and play all bend the loop near zero torque; a law's
+/// last slope and series compliance share the straight part) may each leave the others' signatures when added alone.
+/// If located signatures remain after one-at-a-time selection, every effect the located signatures point to enters
+/// at once (the richest variant of a law), fitted term by term from the current model and then each term's
+/// nonlinear parameters searched again with the others in; the joint model is kept when it lowers BIC and the
+/// held-out RMS at all (an effect may pay off only once prune() drops one it replaces). prune() then keeps only the
+/// effects whose removal costs significantly.
+void admit_jointly(Analysis& a) {
+  std::vector<bool> open(a.m, false);
+  bool any_open = false;
+  for (int i = 0; i < a.m; ++i) any_open = (open[i] = a.located[i] && a.significant(i, a.cur.terms)) || any_open;
+  if (!any_open) return;
+  // Two joint sets: the effects the still-open signatures point to (the poorer variant of a law kept), and every
+  // effect any located signature points to (the richest variant). The one with the lower BIC that passes is kept.
+  auto joint_set = [&](const std::vector<bool>& from, bool richest) {
+    std::vector<const EffectSpec*> add;
+    for (const auto& spec : effect_catalog(a.e.kind)) {
+      bool pointed = false;
+      for (int i = 0; i < a.m; ++i) pointed = pointed || (from[i] && triggers(a.sigs[i], spec.id()));
+      if (!pointed || has(a.cur.terms, spec.id())) continue;
+      // A variant of this law in the model: the poorer set keeps it; the richest set upgrades a poorer one.
+      bool skip = false;
+      for (const auto& t : a.cur.terms)
+        skip = skip || (spec.conflicts(*t.spec) && (!richest || complexity(*t.spec) >= complexity(spec)));
+      if (skip) continue;
+      // Variants in the list (the catalog lists the poorer first): keep the first, or replace it by the richer.
+      const auto listed = std::find_if(add.begin(), add.end(), [&](const EffectSpec* x) { return spec.conflicts(*x); });
+      if (listed == add.end()) add.push_back(&spec);
+      else if (richest) *listed = &spec;
+    }
+    return add;
+  };
+  const double h_cur = a.heldout(a.cur.terms);
+  FitResult best = a.cur;
+  std::vector<const EffectSpec*> best_add;
+  std::string best_names, failed;
+  std::vector<std::vector<const EffectSpec*>> sets{joint_set(open, false), joint_set(a.located, true)};
+  if (sets[1] == sets[0]) sets.pop_back();
+  for (const auto& add : sets) {
+    if (add.empty()) continue;
+    FitResult joint = a.cur;
+    std::string names;
+    for (const EffectSpec* s : add) {
+      joint = a.fit(with(joint.terms, s));
+      names += (names.empty() ? "" : ", ") + effect_label(*s);
+    }
+    joint = a.refine(joint);
+    const double dbic = joint.bic() - a.cur.bic();
+    const double h_joint = a.heldout(joint.terms);
+    // Any improvement admits the set: prune() then holds every effect of it to the full bar.
+    if (!(dbic < 0.0) || !(h_joint < h_cur)) {
+      failed = names + " (BIC " + fmt("%.1f", dbic) + ", held-out " + fmt("%.4g", h_cur) + " -> " + fmt("%.4g", h_joint) + ")";
+      continue;
+    }
+    if (joint.bic() < best.bic()) {
+      best = joint;
+      best_add = add;
+      best_names = names;
+    }
+  }
+  if (best_add.empty()) {
+    for (const auto& add : sets)
+      for (const EffectSpec* s : add)
+        if (!a.rejected.count(s->id()))
+          a.rejected[s->id()] = effect_label(*s) + ": admitted jointly, the model does not improve: " + failed;
+    return;
+  }
+  progress("reconcile: admitted jointly " + best_names + " (dBIC " + fmt("%.1f", best.bic() - a.cur.bic()) + ")");
+  for (const EffectSpec* s : best_add) a.accept(*s, best.bic() - a.cur.bic(), 1.0, "joint");
+  a.cur = best;
+}
+
+/// Backward pruning: an effect stays only if removing it (or, for a law with variants, falling back to the poorer
+/// variant) costs significantly: BIC up by more than min_delta_bic, a worse held-out RMS, and significant against
+/// the noise. The cheapest removal that fails one of these goes first; repeat until every effect is needed.
+void prune(Analysis& a) {
+  const double bar = a.opt.min_delta_bic;
+  for (bool changed = true; changed && !a.cur.terms.empty();) {
+    changed = false;
+    struct Removal {
+      std::size_t term;
+      FitResult reduced;
+      double cost;
+      std::string why;
+    };
+    std::vector<Removal> removable;
+    const double h_cur = a.heldout(a.cur.terms);
+    for (std::size_t i = 0; i < a.cur.terms.size(); ++i) {
+      const EffectSpec& spec = *a.cur.terms[i].spec;
+      // Reductions: drop it; or replace it by a poorer exclusive variant.
+      std::vector<std::pair<FitResult, int>> reductions{{a.fit(without(a.cur.terms, i), false), spec.n_nonlinear()}};
+      for (const auto& v : effect_catalog(a.e.kind))
+        if (spec.conflicts(v) && complexity(v) < complexity(spec))
+          reductions.emplace_back(a.fit(with(without(a.cur.terms, i), &v)), spec.n_nonlinear() - v.n_nonlinear());
+      for (auto& [red, nl_extra] : reductions) {
+        const double cost = red.bic() - a.cur.bic();
+        std::string why;
+        if (!(cost > bar)) {
+          why = "BIC rises by only " + fmt("%.1f", cost);
+        } else if (const double h_red = a.heldout(red.terms); !(h_cur < h_red)) {
+          why = "held-out RMS " + fmt("%.4g", h_red) + " without it, " + fmt("%.4g", h_cur) + " with it";
+        } else {
+          // Test the term as the last one of the full model against the reduction.
+          std::vector<Term> order = without(a.cur.terms, i);
+          order.push_back(a.cur.terms[i]);
+          FitResult full = a.cur;
+          full.terms = order;
+          const auto [p, test] = a.effect_test(red, full, nl_extra);
+          if (!(p <= a.opt.alpha_effect)) why = "not significant against the estimated noise (" + test + " p = " + fmt("%.3g", p) + ")";
+          else if (red.terms.size() < a.cur.terms.size()) {
+            auto& rec = a.accepted[spec.id()];
+            rec.name = spec.name;
+            rec.physics = spec.physics;
+            rec.delta_bic = -cost;
+            rec.p_value = p;
+            rec.test = test;
+          }
+        }
+        if (!why.empty()) removable.push_back({i, red, cost, why});
+      }
+    }
+    if (removable.empty()) break;
+    const auto best = std::min_element(removable.begin(), removable.end(),
+                                       [](const Removal& x, const Removal& z) { return x.cost < z.cost; });
+    const EffectSpec& gone = *a.cur.terms[best->term].spec;
+    const EffectSpec* variant = nullptr;  // the poorer variant that replaces it, if any
+    for (const auto& t : best->reduced.terms)
+      if (gone.conflicts(*t.spec)) variant = t.spec;
+    a.rejected[gone.id()] = effect_label(gone) + ": pruned, " +
+                            (variant ? "replacing it by " + effect_label(*variant) : std::string("removing it")) +
+                            " costs nothing significant (" + best->why + ")";
+    a.accepted.erase(gone.id());
+    if (variant) a.accept(*variant, 0.0, 1.0, "pruned to");
+    progress("reconcile: pruned " + gone.id() + " (" + best->why + ")");
+    a.cur = best->reduced;
+    changed = true;
+  }
+}
+
+/// Parsimony once the model is complete: a complex term that entered because it also mimicked other effects'
+/// signatures (a three-segment law bending like play and series compliance together) is replaced by its simpler
+/// rivals -- one rival, or all the simpler effects that share a located signature with it -- when, with the other
+/// effects in, it no longer beats them clearly (BIC and held-out) and no located signature that only it explains
+/// needs it. The rivals then face prune() like every other effect. Returns whether the model changed.
+bool prefer_simpler(Analysis& a) {
+  for (std::size_t i = 0; i < a.cur.terms.size(); ++i) {
+    const EffectSpec& cx = *a.cur.terms[i].spec;
+    auto usable = [&](const EffectSpec& rv) {
+      if (complexity(rv) >= complexity(cx) || !share_signature(a, rv, cx) || has(a.cur.terms, rv.id())) return false;
+      if (rv.conflicts(cx)) return false;  // variants of one law: prune() weighed them
+      for (const auto& t : a.cur.terms)
+        if (rv.conflicts(*t.spec)) return false;
+      return true;
+    };
+    std::vector<std::vector<const EffectSpec*>> rival_sets;
+    std::vector<const EffectSpec*> all;
+    std::pair<int, int> total{0, 0};
+    for (const auto& rv : effect_catalog(a.e.kind)) {
+      if (!usable(rv)) continue;
+      rival_sets.push_back({&rv});
+      bool clash = false;
+      for (const EffectSpec* x : all) clash = clash || rv.conflicts(*x);
+      if (clash) continue;
+      all.push_back(&rv);
+      total.first += rv.n_nonlinear();
+      total.second += rv.n_linear;
+    }
+    if (all.size() > 1 && total < complexity(cx)) rival_sets.push_back(all);
+    for (const auto& rivals : rival_sets) {
+      FitResult sw = a.fit(without(a.cur.terms, i), false);
+      std::string label;
+      for (const EffectSpec* rv : rivals) {
+        sw = a.fit(with(sw.terms, rv));
+        label += (label.empty() ? "" : " + ") + effect_label(*rv);
+      }
+      const double dbic = a.cur.bic() - sw.bic();
+      const double h_cx = a.heldout(a.cur.terms), h_rv = a.heldout(sw.terms);
+      if (dbic < -a.opt.min_delta_bic && h_cx < h_rv) continue;  // the complex one is clearly better
+      bool needed = false;
+      for (int k = 0; k < a.m && !needed; ++k) {
+        if (!a.located[k] || !triggers(a.sigs[k], cx.id())) continue;
+        bool rival_points = false;
+        for (const EffectSpec* rv : rivals) rival_points = rival_points || triggers(a.sigs[k], rv->id());
+        if (!rival_points) needed = a.significant(k, sw.terms);
+      }
+      if (needed) continue;
+      if (rivals.size() == 1) {
+        // A single rival must stand on its own: significant against the model without it.
+        const std::size_t last = sw.terms.size() - 1;
+        const FitResult wo = a.fit(without(sw.terms, last), false);
+        const auto [p, test] = a.effect_test(wo, sw, rivals[0]->n_nonlinear());
+        if (!(p <= a.opt.alpha_effect) || !(sw.bic() - wo.bic() < -a.opt.min_delta_bic)) continue;
+        a.accept(*rivals[0], sw.bic() - wo.bic(), p, test);
+      } else {
+        for (const EffectSpec* rv : rivals) a.accept(*rv, 0.0, 1.0, "swap");  // tested by prune()
+      }
+      a.rejected[cx.id()] = effect_label(cx) + ": with the other effects in, the simpler " + label +
+                            " explains as much (BIC " + fmt("%.1f", dbic) + " vs it, held-out " + fmt("%.4g", h_rv) +
+                            " -> " + fmt("%.4g", h_cx) + ")";
+      a.accepted.erase(cx.id());
+      progress("reconcile: replaced " + cx.id() + " by the simpler " + label);
+      a.cur = a.refine(sw);
+      return true;
+    }
+  }
+  return false;
+}
+
+/// Final fit with covariance, headlines with intervals, the signatures still left, the verdict.
+void finalise(Analysis& a, Result& r) {
+  FitOptions o;
+  o.multistart_last = false;
+  o.covariance = true;
+  a.cur = fit_model(a.e, a.y, a.cur.terms, a.ar, o);
+  for (std::size_t i = 0; i < a.cur.terms.size(); ++i) {
+    AcceptedEffect x = a.accepted[a.cur.terms[i].spec->id()];
+    x.params = headline_with_ci(a.e, a.cur, static_cast<int>(i));
+    r.effects.push_back(x);
+  }
+  for (const auto& [id, reason] : a.rejected)
+    if (!has(a.cur.terms, id)) r.rejected.push_back({id.substr(0, id.find('#')), reason});
+  r.final_model = a.cur;
+  r.residual_after = a.y - a.cur.contribution;
+  r.final_prediction = a.e.baseline + a.cur.contribution;
+  r.final_rms = rms(r.residual_after);
+  r.final_heldout_rms = a.heldout(a.cur.terms);
+  r.catalog = catalog_figures(a.e, a.cur);
+  // A signature left after the complete model (a time drift included) is reported only if it survives that model.
+  for (int i = 0; i < a.m; ++i) {
+    const SigTest t = a.signature(i, a.cur.terms);
+    if (t.p_adj < a.opt.alpha_family) r.unexplained.push_back(make_location(a.e, a.sigs[i], t));
+  }
+  // A located signature that no effect can explain (a time drift) stands only if the complete model leaves it too.
+  r.locations.erase(std::remove_if(r.locations.begin(), r.locations.end(),
+                                   [&](const Location& l) {
+                                     for (const auto& s : a.sigs)
+                                       if (s.name == l.signature && !s.triggers.empty()) return false;
+                                     for (const auto& u : r.unexplained)
+                                       if (u.signature == l.signature) return false;
+                                     return true;
+                                   }),
+                    r.locations.end());
+  r.significant = !r.locations.empty();
+  if (r.effects.empty() && !r.significant && r.unexplained.empty()) r.verdict = "no_significant_mismatch";
+  else if (!r.effects.empty() && r.unexplained.empty()) r.verdict = "explained";
+  else r.verdict = "partly_explained";
+  r.significant = r.significant || !r.effects.empty() || !r.unexplained.empty();
 }
 
 }  // namespace
@@ -141,277 +637,17 @@ Result reconcile(const Experiment& e, const Options& opt) {
   Result r;
   r.kind = e.kind;
   r.samples = e.n;
-  const Vec y = e.residual();
-  const int hold = std::max(1, static_cast<int>(std::lround(e.n * opt.heldout_fraction)));
-  const int train = e.n - hold;
-  r.heldout_rows = hold;
-  const auto& sigs = signature_catalog(e.kind);
-  const int m = static_cast<int>(sigs.size());
-
-  // Noise model: AR fitted to the residual of a rich model (nuisance + every signature basis), so that structure the
-  // signatures can explain does not inflate the noise estimate.
-  {
-    Mat rich = nuisance_columns(e);
-    for (const auto& s : sigs) rich = hcat(hcat(rich, s.basis(e)), s.condition(e));
-    r.noise = fit_ar(least_squares(rich, y).residual, opt.ar_max_order);
-    if (opt.spectral_half_width > 0) {
-      const Mat rich_w = whiten(r.noise, rich);
-      r.calibration = spectral_calibration(rich_w, least_squares(rich_w, whiten(r.noise, y)).residual,
-                                           opt.spectral_half_width);
-    }
-  }
-  const ArModel& ar = r.noise;
-  const SpectralCalibration& cal = r.calibration;
-  progress("reconcile: " + kind_name(e.kind) + ", " + std::to_string(e.n) + " samples, noise AR(" +
-           std::to_string(ar.order()) + ") sd " + fmt("%.3g", ar.process_sd));
-
-  FitResult cur = fit_model(e, y, {}, ar);
-  r.residual_before = y - cur.contribution;
-  r.baseline_prediction = e.baseline + cur.contribution;
-  r.baseline_rms = rms(r.residual_before);
-  r.baseline_heldout_rms = heldout_rms(e, y, {}, ar, train, false);
-
-  // Locate.
-  std::set<std::string> candidates;
-  std::vector<bool> located(m, false);
-  for (int i = 0; i < m; ++i) {
-    const SigTest t = test_signature(e, sigs[i], y, cur.terms, ar, cal, m);
-    if (t.p_adj < opt.alpha_family) {
-      located[i] = true;
-      r.locations.push_back(make_location(e, sigs[i], t));
-      for (const auto& id : sigs[i].triggers) candidates.insert(id);
-    }
-  }
-  r.significant = !r.locations.empty();
-  progress("reconcile: located " + std::to_string(r.locations.size()) + " significant signatures, " +
-           std::to_string(candidates.size()) + " candidate effects");
-
-  // Forward selection with backward pruning.
-  std::map<std::string, std::string> rejected;  // id -> reason
-  std::map<std::string, AcceptedEffect> accepted_info;
-  std::uint64_t salt = 0;
-  while (static_cast<int>(cur.terms.size()) < opt.max_effects) {
-    struct Eval {
-      const EffectSpec* spec;
-      FitResult alt;
-      double dbic;
-    };
-    std::vector<Eval> evals;
-    for (const auto& id : candidates) {
-      if (cur.find(id.substr(0, id.find('#'))) >= 0) {
-        bool same = false;
-        for (const auto& t : cur.terms) same = same || t.spec->id() == id;
-        if (same) continue;
-      }
-      const EffectSpec* spec = effect_by_id(e.kind, id);
-      if (!spec) continue;
-      FitResult alt = fit_model(e, y, with(cur.terms, spec), ar);
-      evals.push_back({spec, alt, alt.bic() - cur.bic()});
-    }
-    std::sort(evals.begin(), evals.end(), [](const Eval& a, const Eval& b) { return a.dbic < b.dbic; });
-    bool added = false;
-    for (auto& ev : evals) {
-      const std::string id = ev.spec->id();
-      const std::string label = effect_label(*ev.spec);
-      if (!(ev.dbic < -opt.min_delta_bic)) {
-        rejected[id] = label + ": BIC changes by " + fmt("%.1f", ev.dbic) + " (needs < -" +
-                       fmt("%.0f", opt.min_delta_bic) + ")";
-        continue;
-      }
-      const double h_cur = heldout_rms(e, y, cur.terms, ar, train, false);
-      const double h_alt = heldout_rms(e, y, ev.alt.terms, ar, train, false);
-      // Parsimony between rivals of one signature: a more complex effect (e.g. the soft start's breakpoint) that
-      // would pass on its own must also beat each simpler rival that passes the BIC bar (e.g. plain series
-      // compliance) clearly, by BIC and on the held-out block; otherwise the simpler one is named.
-      std::string simpler;
-      for (const auto& rv : evals) {
-        if (&rv == &ev || !(rv.dbic < -opt.min_delta_bic)) continue;
-        if (complexity(*rv.spec) >= complexity(*ev.spec) || !share_signature(sigs, located, *rv.spec, *ev.spec))
-          continue;
-        const double dbic_rv = ev.alt.bic() - rv.alt.bic();
-        const double h_rv = heldout_rms(e, y, rv.alt.terms, ar, train, false);
-        // ... unless the complex one removes a located signature that only it (not the simpler one) explains.
-        bool needed = false;
-        for (int i = 0; i < m && !needed; ++i) {
-          const auto& t = sigs[i].triggers;
-          if (!located[i] || std::find(t.begin(), t.end(), id) == t.end() ||
-              std::find(t.begin(), t.end(), rv.spec->id()) != t.end())
-            continue;
-          needed = test_signature(e, sigs[i], y, rv.alt.terms, ar, cal, m).p_adj < opt.alpha_family &&
-                   test_signature(e, sigs[i], y, ev.alt.terms, ar, cal, m).p_adj >= opt.alpha_family;
-        }
-        if (!needed && (!(dbic_rv < -opt.min_delta_bic) || !(h_alt < h_rv))) {
-          simpler = effect_label(*rv.spec) + " explains as much (BIC " + fmt("%.1f", dbic_rv) + " vs it, held-out " +
-                    fmt("%.4g", h_rv) + " -> " + fmt("%.4g", h_alt) + ")";
-          break;
-        }
-      }
-      if (!simpler.empty()) {
-        rejected[id] = label + ": the simpler rival " + simpler;
-        continue;
-      }
-      if (!(h_alt < h_cur)) {
-        rejected[id] = label + ": held-out RMS not improved (" + fmt("%.4g", h_cur) + " -> " + fmt("%.4g", h_alt) + ")";
-        continue;
-      }
-      // It must remove a signature that pointed to it and is still significant under the current model.
-      bool removes = false;
-      std::string left;
-      for (int i = 0; i < m; ++i) {
-        if (!located[i]) continue;
-        if (std::find(sigs[i].triggers.begin(), sigs[i].triggers.end(), id) == sigs[i].triggers.end()) continue;
-        const double before = test_signature(e, sigs[i], y, cur.terms, ar, cal, m).p_adj;
-        if (!(before < opt.alpha_family)) continue;
-        const double after = test_signature(e, sigs[i], y, ev.alt.terms, ar, cal, m).p_adj;
-        if (after >= opt.alpha_family) removes = true;
-        else left = sigs[i].name + " (p " + fmt("%.2g", after) + ")";
-      }
-      if (!removes) {
-        rejected[id] = label + ": " + (left.empty() ? "its signatures are already explained by other effects"
-                                                    : "leaves its signature " + left);
-        continue;
-      }
-      double p = 1.0;
-      std::string test;
-      if (ev.spec->n_nonlinear() == 0) {
-        const Mat X0 = design_matrix(e, cur.terms);
-        const FTest ft =
-            calibrated_f_test(cal, whiten(ar, X0), whiten(ar, Mat(ev.spec->columns(e, Vec(0)))), whiten(ar, y));
-        p = std::min(1.0, ft.p_value * ev.spec->multiplicity);
-        test = "F";
-      } else {
-        p = bootstrap_p(e, cur, ev.alt, ar, opt, ++salt);
-        test = "bootstrap";
-      }
-      if (!(p <= opt.alpha_effect)) {
-        rejected[id] = label + ": not significant against the estimated noise (" + test + " p = " + fmt("%.3g", p) + ")";
-        continue;
-      }
-      AcceptedEffect a;
-      a.name = ev.spec->name;
-      a.physics = ev.spec->physics;
-      a.delta_bic = ev.dbic;
-      a.p_value = p;
-      a.test = test;
-      accepted_info[id] = a;
-      rejected.erase(id);
-      cur = ev.alt;
-      added = true;
-      progress("reconcile: accepted " + label + " (dBIC " + fmt("%.1f", ev.dbic) + ", " + test + " p " +
-               fmt("%.3g", p) + ")");
-      break;
-    }
-    if (!added) break;
-    // Backward: drop any earlier term the others have made redundant.
-    for (bool pruned = true; pruned && cur.terms.size() > 1;) {
-      pruned = false;
-      for (std::size_t i = 0; i + 1 < cur.terms.size(); ++i) {
-        std::vector<Term> reduced = cur.terms;
-        reduced.erase(reduced.begin() + i);
-        FitOptions o;
-        o.multistart_last = false;
-        const FitResult red = fit_model(e, y, reduced, ar, o);
-        const double dbic = cur.bic() - red.bic();
-        if (!(dbic < -opt.min_delta_bic)) {
-          const std::string id = cur.terms[i].spec->id();
-          rejected[id] = effect_label(*cur.terms[i].spec) + ": pruned, redundant once " +
-                         effect_label(*cur.terms.back().spec) + " is in the model (BIC " + fmt("%.1f", dbic) + ")";
-          accepted_info.erase(id);
-          cur = red;
-          pruned = true;
-          progress("reconcile: pruned " + id);
-          break;
-        }
-      }
-    }
-  }
-
-  // Parsimony again once the model is complete: a complex term that entered because it also mimicked another
-  // effect's signature (the soft start bending like unmodelled hysteresis) is replaced by its simpler rival when,
-  // with the other effects in, it no longer beats it clearly (BIC > min_delta_bic and held-out) and no located
-  // signature that only it explains needs it.
-  for (std::size_t i = 0; i < cur.terms.size(); ++i) {
-    const EffectSpec& cx = *cur.terms[i].spec;
-    for (const auto& rv : effect_catalog(e.kind)) {
-      if (complexity(rv) >= complexity(cx) || !share_signature(sigs, located, rv, cx)) continue;
-      bool present = false;
-      for (const auto& t : cur.terms) present = present || t.spec->id() == rv.id();
-      if (present) continue;
-      std::vector<Term> swapped = cur.terms;
-      swapped[i] = Term{&rv, Vec(0), Vec(0)};
-      FitOptions o;
-      o.multistart_last = false;
-      const FitResult sw = fit_model(e, y, swapped, ar, o);
-      const double dbic = cur.bic() - sw.bic();
-      const double h_cx = heldout_rms(e, y, cur.terms, ar, train, false);
-      const double h_rv = heldout_rms(e, y, sw.terms, ar, train, false);
-      if (dbic < -opt.min_delta_bic && h_cx < h_rv) continue;  // the complex one is clearly better
-      bool needed = false;
-      for (int k = 0; k < m && !needed; ++k) {
-        const auto& t = sigs[k].triggers;
-        if (!located[k] || std::find(t.begin(), t.end(), cx.id()) == t.end() ||
-            std::find(t.begin(), t.end(), rv.id()) != t.end())
-          continue;
-        needed = test_signature(e, sigs[k], y, sw.terms, ar, cal, m).p_adj < opt.alpha_family;
-      }
-      if (needed) continue;
-      // The simpler one must stand on its own: significant against the model without it.
-      std::vector<Term> without = sw.terms;
-      without.erase(without.begin() + i);
-      const FitResult wo = fit_model(e, y, without, ar, o);
-      double p = 1.0;
-      if (rv.n_nonlinear() == 0) {
-        const FTest ft = calibrated_f_test(cal, whiten(ar, design_matrix(e, without)),
-                                           whiten(ar, Mat(rv.columns(e, Vec(0)))), whiten(ar, y));
-        p = std::min(1.0, ft.p_value * rv.multiplicity);
-      }
-      if (!(p <= opt.alpha_effect) || !(sw.bic() - wo.bic() < -opt.min_delta_bic)) continue;
-      const std::string cx_id = cx.id();
-      rejected[cx_id] = effect_label(cx) + ": with the other effects in, the simpler rival " + effect_label(rv) +
-                        " explains as much (BIC " + fmt("%.1f", dbic) + " vs it, held-out " + fmt("%.4g", h_rv) +
-                        " -> " + fmt("%.4g", h_cx) + ")";
-      accepted_info.erase(cx_id);
-      AcceptedEffect a;
-      a.name = rv.name;
-      a.physics = rv.physics;
-      a.delta_bic = sw.bic() - wo.bic();
-      a.p_value = p;
-      a.test = "F";
-      accepted_info[rv.id()] = a;
-      rejected.erase(rv.id());
-      progress("reconcile: replaced " + cx_id + " by its simpler rival " + rv.id());
-      cur = sw;
-      break;
-    }
-  }
-
-  // Final fit with covariance, headlines with intervals.
-  {
-    FitOptions o;
-    o.multistart_last = false;
-    o.covariance = true;
-    cur = fit_model(e, y, cur.terms, ar, o);
-  }
-  for (std::size_t i = 0; i < cur.terms.size(); ++i) {
-    AcceptedEffect a = accepted_info[cur.terms[i].spec->id()];
-    a.params = headline_with_ci(e, cur, static_cast<int>(i));
-    r.effects.push_back(a);
-  }
-  for (const auto& [id, reason] : rejected) r.rejected.push_back({id.substr(0, id.find('#')), reason});
-  r.final_model = cur;
-  r.residual_after = y - cur.contribution;
-  r.final_prediction = e.baseline + cur.contribution;
-  r.final_rms = rms(r.residual_after);
-  r.final_heldout_rms = heldout_rms(e, y, cur.terms, ar, train, false);
-
-  for (int i = 0; i < m; ++i) {
-    const SigTest t = test_signature(e, sigs[i], y, cur.terms, ar, cal, m);
-    if (t.p_adj < opt.alpha_family) r.unexplained.push_back(make_location(e, sigs[i], t));
-  }
-  if (r.effects.empty() && !r.significant && r.unexplained.empty()) r.verdict = "no_significant_mismatch";
-  else if (!r.effects.empty() && r.unexplained.empty()) r.verdict = "explained";
-  else r.verdict = "partly_explained";
-  r.significant = r.significant || !r.effects.empty() || !r.unexplained.empty();
+  Analysis a(e, opt);
+  r.heldout_rows = e.n - a.train;
+  fit_noise(a, r);
+  fit_baseline(a, r);
+  locate(a, r);
+  admit_one_at_a_time(a);
+  a.cur = a.refine(a.cur);
+  admit_jointly(a);
+  prune(a);
+  for (int round = 0; round < 3 && prefer_simpler(a); ++round) prune(a);
+  finalise(a, r);
   r.seconds = clock.lap();
   return r;
 }

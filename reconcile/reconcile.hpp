@@ -1,8 +1,9 @@
 #pragma once
-// reconcile: locate -> hypothesise -> fit -> select. Given an experiment (recording + baseline), find where the
-// residual differs from noise, name the catalog effects that explain it, fit them with confidence intervals and
-// keep only those that pass every test (significance against the estimated noise, BIC, held-out block, signature
-// removed).
+// reconcile: fit the noise -> locate -> admit -> prune -> prefer simpler -> finalise. Given an experiment
+// (recording + baseline), find where the residual differs from noise, name the catalog effects that explain it (one
+// at a time, then jointly where overlapping effects only together remove their signatures), fit them with
+// confidence intervals and keep only those whose removal costs significantly (BIC, held-out block, significance
+// against the estimated noise).
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -26,7 +27,7 @@ struct Options {
   /// 0: trust the AR model's level at every frequency (anti-conservative for slow patterns under ARMA noise).
   int spectral_half_width = 20;
   std::uint64_t seed = 1;        ///< bootstrap random seed (results are reproducible)
-  int max_effects = 4;           ///< forward selection stops here
+  int max_effects = 6;           ///< forward selection stops here
 };
 
 struct Location {
@@ -71,6 +72,7 @@ struct Result {
   Eigen::VectorXd final_prediction;      ///< baseline + final model (n)
   Eigen::VectorXd baseline_prediction;   ///< baseline + nuisance fit (n)
   FitResult final_model;
+  CatalogFigures catalog;                ///< torsion: the final model in the catalog's terms
   double seconds = 0.0;
 };
 

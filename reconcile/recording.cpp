@@ -107,7 +107,9 @@ std::optional<double> Recording::meta_number(const std::string& key) const {
 Recording parse_recording(const std::string& text, const std::string& path) {
   Recording rec;
   rec.path = path;
-  std::istringstream in(text);
+  // A UTF-8 byte-order mark (spreadsheets write one when exporting CSV as UTF-8) is not part of the first line.
+  const bool bom = text.size() >= 3 && text.compare(0, 3, "\xEF\xBB\xBF") == 0;
+  std::istringstream in(bom ? text.substr(3) : text);
   std::string raw;
   int line_no = 0;
   bool have_version = false;
@@ -149,6 +151,12 @@ Recording parse_recording(const std::string& text, const std::string& path) {
         throw InputError(where(path, line_no) +
                          "kind missing; expected a '# kind: torsion|transmission|backlash|dynamics' line before the header");
       rec.kind = *kind;
+      // Spreadsheets in locales with a decimal comma export CSV separated by semicolons: name that rather than
+      // report one unknown column (a decimal comma in the values would be misread if we accepted the file).
+      if (line.find(';') != std::string::npos && line.find(',') == std::string::npos)
+        throw InputError(where(path, line_no) + "header = '" + line +
+                         "'; the columns are separated by ';' (a spreadsheet's export with a decimal comma): "
+                         "expected comma-separated columns and '.' as the decimal point");
       rec.columns = split(line, ',');
       expected = kind_columns(*kind);
       const bool with_time = kind_has_time(*kind) && !rec.columns.empty() && rec.columns[0] == "time_s";

@@ -103,6 +103,55 @@ std::string svg_plot(const std::string& title, const std::string& xlabel, const 
   return s + "</svg>";
 }
 
+nlohmann::json catalog_json(const CatalogFigures& c) {
+  nlohmann::json j = {{"segments", c.segments},
+                      {"K1_Nm_per_rad", c.k1},
+                      {"K2_Nm_per_rad", c.k2},
+                      {"K3_Nm_per_rad", c.k3},
+                      {"T1_Nm", c.t1},
+                      {"T2_Nm", c.t2},
+                      {"rated_torque_Nm", c.rated_torque_Nm},
+                      {"rated_torque_from", c.rated_from},
+                      {"hysteresis_loss_arcmin", c.hysteresis_loss_arcmin},
+                      {"play_width_arcmin", c.play_arcmin},
+                      {"catalog_lost_motion_arcmin", c.catalog_lost_motion_arcmin},
+                      {"note", "catalog_lost_motion_arcmin is the twist between -4 % and +4 % of rated torque on the "
+                               "loop's middle line (it includes elastic twist); play_width_arcmin is the dead band of "
+                               "the effect lost_motion (width_rad)"}};
+  if (c.reference)
+    j["reference"] = {{"size", c.reference->size},
+                      {"K1_Nm_per_rad", c.reference->k1_Nm_per_rad},
+                      {"K2_Nm_per_rad", c.reference->k2_Nm_per_rad},
+                      {"K3_Nm_per_rad", c.reference->k3_Nm_per_rad},
+                      {"T1_Nm", c.reference->t1_Nm},
+                      {"T2_Nm", c.reference->t2_Nm},
+                      {"rated_torque_Nm", c.reference->rated_torque_Nm},
+                      {"hysteresis_loss_max_arcmin", 1.0},
+                      {"lost_motion_max_arcmin", 1.0}};
+  return j;
+}
+
+std::string catalog_html(const CatalogFigures& c) {
+  const CatalogDrive* ref = c.reference;
+  auto row = [&](const std::string& name, double v, const std::string& catalog) {
+    return "<tr><td>" + name + "</td><td>" + num(v) + "</td><td>" + catalog + "</td></tr>";
+  };
+  std::string h = "<h2>In catalog terms</h2><table><tr><th>figure</th><th>fitted</th><th>catalog" +
+                  (ref ? " (size " + std::to_string(ref->size) + ")" : std::string()) + "</th></tr>";
+  h += row("K1 (N*m/rad)", c.k1, ref ? num(ref->k1_Nm_per_rad) : "");
+  if (c.segments >= 2) h += row("T1 (N*m)", c.t1, ref ? num(ref->t1_Nm) : "");
+  if (c.segments >= 2) h += row("K2 (N*m/rad)", c.k2, ref ? num(ref->k2_Nm_per_rad) : "");
+  if (c.segments == 3) h += row("T2 (N*m)", c.t2, ref ? num(ref->t2_Nm) : "");
+  if (c.segments == 3) h += row("K3 (N*m/rad)", c.k3, ref ? num(ref->k3_Nm_per_rad) : "");
+  h += row("hysteresis loss at +-" + num(c.rated_torque_Nm) + " N*m (arcmin)", c.hysteresis_loss_arcmin,
+           ref ? "< 1" : "");
+  h += row("lost motion, catalog: twist between +-4 % rated on the middle line, elastic twist included (arcmin)",
+           c.catalog_lost_motion_arcmin, ref ? "< 1" : "");
+  h += row("play: dead band of the effect lost_motion (arcmin)", c.play_arcmin, "");
+  h += "</table><p>Rated torque from " + esc(c.rated_from) + ".</p>";
+  return h;
+}
+
 std::vector<double> stdv(const Vec& v) { return std::vector<double>(v.data(), v.data() + v.size()); }
 
 }  // namespace
@@ -176,6 +225,13 @@ std::string report_json(const Result& r) {
   for (const auto& x : r.rejected) rej.push_back({{"name", x.name}, {"reason", x.reason}});
   j["rejected"] = rej;
   j["final"] = {{"rms", r.final_rms}, {"heldout_rms", r.final_heldout_rms}};
+  if (r.catalog.valid) {
+    j["catalog"] = catalog_json(r.catalog);
+    // Identifiability of K1: the twist its segment spans over the final residual RMS (below ~10 the soft start is
+    // hard to tell from the next segment).
+    if (r.catalog.segments >= 2 && r.final_rms > 0.0)
+      j["catalog"]["K1_segment_twist_over_noise"] = r.catalog.t1 / r.catalog.k1 / r.final_rms;
+  }
   j["verdict"] = r.verdict;
   return j.dump(2) + "\n";
 }
@@ -191,6 +247,15 @@ std::string report_summary(const Result& r) {
     s += "\n";
   }
   for (const auto& u : r.unexplained) s += "  still unexplained: " + u.description + "\n";
+  if (r.catalog.valid && !r.effects.empty()) {
+    const CatalogFigures& c = r.catalog;
+    s += "  catalog terms: K1 " + num(c.k1) + (c.segments >= 2 ? ", K2 " + num(c.k2) : std::string()) +
+         (c.segments == 3 ? ", K3 " + num(c.k3) : std::string()) + " N*m/rad";
+    if (c.segments >= 2) s += ", T1 " + num(c.t1) + (c.segments == 3 ? ", T2 " + num(c.t2) : std::string()) + " N*m";
+    s += "; hysteresis loss " + num(c.hysteresis_loss_arcmin) + " arcmin, catalog lost motion (+-4 % of " +
+         num(c.rated_torque_Nm) + " N*m, elastic twist included) " + num(c.catalog_lost_motion_arcmin) +
+         " arcmin, play " + num(c.play_arcmin) + " arcmin\n";
+  }
   s += "  residual RMS " + num(r.baseline_rms) + " -> " + num(r.final_rms) + "; held-out (last " +
        std::to_string(r.heldout_rows) + " rows) " + num(r.baseline_heldout_rms) + " -> " + num(r.final_heldout_rms) + "\n";
   return s;
@@ -237,6 +302,7 @@ std::string report_html(const Experiment& e, const Recording& rec, const Result&
     for (const auto& x : r.rejected) h += "<li>" + esc(x.reason) + "</li>";
     h += "</ul>";
   }
+  if (r.catalog.valid) h += catalog_html(r.catalog);
   h += "<h2>Fit on held-out data</h2><p>The last " + std::to_string(r.heldout_rows) +
        " rows were never used to fit the model that is scored on them.</p><table><tr><th></th><th>RMS (all)</th><th>RMS (held out)</th></tr>"
        "<tr><td>baseline</td><td>" + num(r.baseline_rms) + "</td><td>" + num(r.baseline_heldout_rms) + "</td></tr>"
@@ -260,7 +326,9 @@ std::string report_html(const Experiment& e, const Recording& rec, const Result&
                    {"baseline (offset, ratio)", "#36c", stdv(x), stdv(r.baseline_prediction - e.baseline)},
                    {"reconciled", "#c33", stdv(x), stdv(r.final_prediction - e.baseline)}});
   } else {
-    h += svg_plot("recording vs baseline vs reconciled model", xl, e.response_name,
+    h += svg_plot(e.kind == Kind::Torsion ? "torque-twist loop: recording, baseline (C_tau T) and the fitted model"
+                                          : "recording vs baseline vs reconciled model",
+                  xl, e.response_name,
                   {{"recording", "#888", stdv(x), stdv(e.measured), true},
                    {"baseline", "#36c", stdv(x), stdv(r.baseline_prediction)},
                    {"reconciled", "#c33", stdv(x), stdv(r.final_prediction)}}, shade);
@@ -287,9 +355,12 @@ std::string report_html(const Experiment& e, const Recording& rec, const Result&
     }
   }
   h += "<p style='font-size:11px;color:#777'>Tests: signatures by GLS F-tests under the estimated AR noise "
-       "(Bonferroni over the kind's signatures); effects accepted only when significant (F-test times the number of "
-       "harmonic orders searched, or a parametric bootstrap for breakpoints and transitions), BIC lower by more than "
-       "10, held-out RMS lower, and their signature removed. Intervals: Wald, delta method.</p></body></html>\n";
+       "(Bonferroni over the kind's signatures). Effects enter one at a time (BIC lower by more than 10, held-out RMS "
+       "lower, a signature removed) or, where overlapping effects only together remove their signatures, jointly; "
+       "each is kept only if removing it costs significantly: BIC up by more than 10, a worse held-out RMS, and "
+       "significant against the noise (F-test times the number of harmonic orders searched; for breakpoints and "
+       "transitions the F-test Bonferroni-corrected for the search when decisive, else a parametric bootstrap). "
+       "Intervals: Wald, delta method.</p></body></html>\n";
   return h;
 }
 

@@ -40,6 +40,8 @@ struct Shape {
   Vec column;         // contribution per unit amplitude
   double amplitude;   // the requested amplitude
   std::function<nlohmann::json(double amplitude)> headline;
+  std::string truth_name;                             // catalog name in the truth file ("": the effect's own)
+  std::function<double(double amplitude)> implied_series;  // series compliance a law implies (rad/(N*m))
 };
 
 Shape shape_of(const SynthEffect& fx, const Experiment& e) {
@@ -67,14 +69,89 @@ Shape shape_of(const SynthEffect& fx, const Experiment& e) {
       s.headline = [](double a) { return nlohmann::json{{"compliance_rad_per_Nm", a}}; };
       return s;
     }
-    if (fx.name == "stiffness_nonlinearity") {
-      check_keys(fx, {"K1_Nm_per_rad", "T1_Nm"});
-      const double t1 = get(fx, "T1_Nm", 0.3 * A);
-      s.column = soft_start_column(e.torque_Nm, t1);
-      s.amplitude = 1.0 / get(fx, "K1_Nm_per_rad", 0.5 / C) - C;  // 1/K1 - 1/K2 with K2 = 1/C_tau
-      s.headline = [t1, C](double a) {
-        return nlohmann::json{{"K1_Nm_per_rad", 1.0 / (C + a)}, {"T1_Nm", t1}, {"K2_Nm_per_rad", 1.0 / C}};
+    if (fx.name == "stiffness_nonlinearity" || fx.name == "stiffness_smooth") {
+      // The whole drive's law (catalog form: K1 up to T1, K2 up to T2, K3 beyond; two segments without T2) minus
+      // the baseline C_tau T; a last slope other than 1/C_tau is series compliance, listed in the truth as implied.
+      // stiffness_smooth rounds each corner over width * T (tanh steps of the compliance): a structure the fitter's
+      // straight segments do not have.
+      const bool smooth = fx.name == "stiffness_smooth";
+      check_keys(fx, smooth ? std::vector<std::string>{"K1_Nm_per_rad", "K2_Nm_per_rad", "K3_Nm_per_rad", "T1_Nm",
+                                                       "T2_Nm", "width"}
+                            : std::vector<std::string>{"K1_Nm_per_rad", "K2_Nm_per_rad", "K3_Nm_per_rad", "T1_Nm",
+                                                       "T2_Nm"});
+      const bool three = fx.params.count("T2_Nm") > 0;
+      const double t1 = get(fx, "T1_Nm", 0.3 * A), t2 = three ? get(fx, "T2_Nm", 0.0) : INFINITY;
+      const double k1 = get(fx, "K1_Nm_per_rad", 0.5 / C);
+      const double k2 = get(fx, "K2_Nm_per_rad", three ? 0.75 / C : 1.0 / C);
+      const double k3 = three ? get(fx, "K3_Nm_per_rad", 1.0 / C) : k2;
+      if (!(t1 > 0.0) || (three && !(t2 > t1)) || !(k1 > 0.0) || !(k2 > 0.0) || !(k3 > 0.0))
+        throw InputError("synth effect " + fx.name + ": expected 0 < T1_Nm < T2_Nm and K1, K2, K3 > 0");
+      const double w = get(fx, "width", 0.3);
+      auto smooth_twist = [=](double T) {
+        // integral of 1/K3 + (1/K2 - 1/K3) s(x, T2) + (1/K1 - 1/K2) s(x, T1), s = (1 - tanh((x - Tb) / d)) / 2
+        auto logcosh = [](double u) { return std::abs(u) + std::log1p(std::exp(-2.0 * std::abs(u))) - std::log(2.0); };
+        auto step_integral = [&](double x, double tb) {
+          if (!std::isfinite(tb)) return x;
+          const double d = w * tb;
+          return 0.5 * (x - d * logcosh((x - tb) / d) + d * logcosh(-tb / d));
+        };
+        const double x = std::abs(T);
+        const double v = x / k3 + (1.0 / k2 - 1.0 / k3) * step_integral(x, t2) + (1.0 / k1 - 1.0 / k2) * step_integral(x, t1);
+        return T < 0 ? -v : v;
       };
+      s.column.resize(e.n);
+      for (int i = 0; i < e.n; ++i) {
+        const double T = e.torque_Nm[i];
+        s.column[i] = (smooth ? smooth_twist(T) : segment_law_twist(T, k1, k2, k3, t1, std::isfinite(t2) ? t2 : 1e300)) - C * T;
+      }
+      s.amplitude = 1.0;  // a scale of every compliance step relative to C_tau
+      s.implied_series = [k3, C](double a) { return a * (1.0 / k3 - C); };
+      s.headline = [=](double a) {
+        auto K = [&](double k) { return 1.0 / (C + a * (1.0 / k - C)); };
+        nlohmann::json j = {{"K1_Nm_per_rad", K(k1)}, {"T1_Nm", t1}, {"K2_Nm_per_rad", K(k2)}};
+        if (three) j.update({{"T2_Nm", t2}, {"K3_Nm_per_rad", K(k3)}});
+        if (smooth) j["corner_width"] = w;
+        return j;
+      };
+      s.truth_name = "stiffness_nonlinearity";
+      return s;
+    }
+    if (fx.name == "friction_bouc_wen") {
+      // Bouc-Wen friction in the twist, driven by torque: dz = dT (1 - (sgn(dT z) + 1) |z|^n / 2) / T_h; the twist is
+      // -z h / 2, so the loading branch lies below. The branch gap grows with amplitude and its shape (n = 2 by
+      // default) is not the fitter's exponential. Run over the signal twice (the first pass sets the history), scaled
+      // so the gap at zero torque is loss_rad.
+      check_keys(fx, {"loss_rad", "transition_Nm", "n"});
+      const double th = get(fx, "transition_Nm", 0.05 * A), nexp = get(fx, "n", 2.0);
+      Vec z(e.n);
+      double zi = 0.0;
+      for (int pass = 0; pass < 2; ++pass)
+        for (int i = 0; i < e.n; ++i) {
+          const double dT = (e.torque_Nm[i] - e.torque_Nm[i == 0 ? e.n - 1 : i - 1]) / 50.0;
+          for (int k = 0; k < 50; ++k) {
+            const double sg = dT * zi > 0 ? 1.0 : dT * zi < 0 ? -1.0 : 0.0;
+            zi += dT / th * (1.0 - 0.5 * (sg + 1.0) * std::pow(std::abs(zi), nexp));
+          }
+          z[i] = zi;
+        }
+      const Vec col = -0.5 * z;
+      // Branch gap at zero torque, from the zero crossings (linear interpolation) after the first cycle.
+      double up = 0, down = 0;
+      int nu = 0, nd = 0;
+      for (int i = e.n / 4; i + 1 < e.n; ++i) {
+        const double a0 = e.torque_Nm[i], a1 = e.torque_Nm[i + 1];
+        if ((a0 < 0) == (a1 < 0) || a0 == a1) continue;
+        const double f = a0 / (a0 - a1), v = col[i] + f * (col[i + 1] - col[i]);
+        if (a1 > a0) { up += v; ++nu; } else { down += v; ++nd; }
+      }
+      if (nu == 0 || nd == 0) throw InputError("synth effect friction_bouc_wen: the torque must cross zero both ways");
+      const double gap = down / nd - up / nu;
+      s.column = col / gap;
+      s.amplitude = get(fx, "loss_rad", 1e-4);
+      s.headline = [th, nexp](double a) {
+        return nlohmann::json{{"loss_rad", a}, {"bouc_wen_transition_Nm", th}, {"bouc_wen_n", nexp}};
+      };
+      s.truth_name = "hysteresis";
       return s;
     }
     if (fx.name == "hysteresis") {
@@ -163,6 +240,24 @@ DynamicsEffect dynamics_effect(const SynthEffect& fx, const Baseline& b) {
 
 }  // namespace
 
+std::vector<SynthEffect> parse_synth_effects(const std::string& text) {
+  std::vector<std::string> items;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    const bool continues = item.find(':') == std::string::npos && item.find('=') != std::string::npos;
+    if (continues) {
+      if (items.empty()) throw InputError("--effects = '" + text + "'; '" + item + "' expected an effect name first");
+      items.back() += "," + item;
+    } else {
+      items.push_back(item);
+    }
+  }
+  std::vector<SynthEffect> out;
+  for (const auto& x : items) out.push_back(parse_synth_effect(x));
+  return out;
+}
+
 SynthEffect parse_synth_effect(const std::string& text) {
   SynthEffect fx;
   const auto colon = text.find(':');
@@ -188,10 +283,16 @@ SynthEffect parse_synth_effect(const std::string& text) {
 }
 
 std::string synth_effect_help() {
-  return "effects (--effect name[:key=value,...]; A = torque amplitude, C = C_tau):\n"
+  return "effects (--effect name[:key=value,...], or --effects a,b:key=value,key=value,c; A = torque amplitude,\n"
+         "C = C_tau):\n"
          "  torsion:      series_compliance:compliance_rad_per_Nm (0.25 C)\n"
-         "                stiffness_nonlinearity:K1_Nm_per_rad (0.5/C),T1_Nm (0.3 A)   [K2 = 1/C]\n"
+         "                stiffness_nonlinearity:K1_Nm_per_rad (0.5/C),T1_Nm (0.3 A),K2_Nm_per_rad (1/C)\n"
+         "                  three segments with T2_Nm: K2 default 0.75/C, K3_Nm_per_rad (1/C); a last slope other than\n"
+         "                  1/C is series compliance, listed in the truth as implied\n"
+         "                stiffness_smooth: the same keys + width (0.3): corners rounded over width*T (other structure)\n"
          "                hysteresis:loss_rad (1e-4),transition_Nm (0.05 A)\n"
+         "                friction_bouc_wen:loss_rad (1e-4),transition_Nm (0.05 A),n (2): Bouc-Wen friction, the branch\n"
+         "                  gap grows with amplitude (other structure; named hysteresis in the truth)\n"
          "                lost_motion:width_rad (1e-4),transition_Nm (0.01 A)\n"
          "  transmission: wg_harmonic:order=k,amplitude_rad (1e-5),phase_rad (0.3)\n"
          "                output_harmonic:order=k,amplitude_rad (1e-5),phase_rad (0.3)\n"
@@ -301,7 +402,7 @@ SynthResult synthesize(const SynthOptions& o) {
     cols.assign(3, std::vector<double>(n));
     for (int i = 0; i < n; ++i) {
       cols[0][i] = i * o.sample_period_s;
-      cols[1][i] = A * std::sin(2.0 * M_PI * o.cycles * i / n);
+      cols[1][i] = -A * std::cos(2.0 * M_PI * o.cycles * i / n);  // starts at a reversal, -A
     }
     rec.metadata.push_back({"torque_amplitude_Nm", std::to_string(A)});
   } else if (o.kind == Kind::Transmission) {
@@ -352,7 +453,17 @@ SynthResult synthesize(const SynthOptions& o) {
     const Vec contribution = amp * s.column;
     truth_response += contribution;
     out.effect_rms.push_back({fx.name, rms(contribution)});
-    effects.push_back({{"name", fx.name}, {"params", s.headline(amp)}, {"rms", rms(contribution)}});
+    nlohmann::json entry = {{"name", s.truth_name.empty() ? fx.name : s.truth_name}, {"params", s.headline(amp)},
+                            {"rms", rms(contribution)}};
+    if (!s.truth_name.empty()) entry["generator"] = fx.name;
+    effects.push_back(entry);
+    if (s.implied_series && std::abs(s.implied_series(amp)) > 0.0) {
+      const double c = s.implied_series(amp);
+      effects.push_back({{"name", "series_compliance"},
+                         {"params", {{"compliance_rad_per_Nm", c}}},
+                         {"rms", rms(Vec(c * e.torque_Nm))},
+                         {"implied_by", fx.name}});
+    }
   }
   std::mt19937_64 rng(o.seed);
   std::normal_distribution<double> normal(0.0, 1.0);

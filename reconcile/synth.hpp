@@ -51,6 +51,10 @@ SynthResult synthesize(const SynthOptions& options);
 /// Parses "name[:key=value,...]" ("order" is a key too). Throws InputError naming the text and the expectation.
 SynthEffect parse_synth_effect(const std::string& text);
 
+/// Parses a comma-separated list of effects, "a,b:key=value,key=value,c": an item with '=' and no ':' belongs to the
+/// effect before it.
+std::vector<SynthEffect> parse_synth_effects(const std::string& text);
+
 /// Help text listing each kind's effects, their parameters and defaults.
 std::string synth_effect_help();
 

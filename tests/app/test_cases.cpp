@@ -57,8 +57,14 @@ TEST(Cases, TubeTorsionReproducesTheoryAndBalancesTorque) {
 }
 
 // Recorded at the default mesh when the case was set up (commit log): a change beyond 1 % is a regression.
+// The size-17 value moved from 5.859514e-04 to 5.809280e-04 (−0.9 %) when the cam became a body in unilateral contact
+// (before, it prescribed u_r = w0·cos2θ at every bore node, pulling where no cam can); the seed's four-force value
+// is unchanged by holding the band radially in the torque case (the rigid rotation filters the bending it removed).
 constexpr double kSeedPhi0 = 4.138367e-04;
-constexpr double kSize17Phi0 = 5.859514e-04;
+constexpr double kSize17Phi0 = 5.809280e-04;
+// The cup's closed form (diaphragm as an annular plate + body wall + rim) against the FEM: 3 % (measured 0.7 % seed,
+// 0.4 % size 17; the closed form leaves out the fillet and the diaphragm-to-wall corner).
+constexpr double kClosedFormTol = 0.03;
 constexpr double kRegressionTol = 0.01;
 
 TEST(Cases, SeedCupRunsFemThenBacklash) {
@@ -68,6 +74,10 @@ TEST(Cases, SeedCupRunsFemThenBacklash) {
   const auto j = read_json(out / "result.json");
   EXPECT_NEAR(j["phi0_rad"].get<double>() / kSeedPhi0, 1.0, kRegressionTol);
   EXPECT_NEAR(-j["reaction_torque_Nm"].get<double>() / 44.1, 1.0, 1e-8);
+  EXPECT_NEAR(j["phi0_rad"].get<double>() / j["phi0_theory_cup_rad"].get<double>(), 1.0, kClosedFormTol);
+  EXPECT_GT(j["phi0_engaged_rad"].get<double>(), j["phi0_rad"].get<double>());
+  EXPECT_EQ(j["generator"]["model"], "four_force");
+  EXPECT_GT(j["generator"]["min_contact_force_N"].get<double>(), 0.0);
   // The generator is scaled to w0 = 0.2 mm, is self-equilibrated and does not twist the cup.
   EXPECT_NEAR(j["wave_generator"]["w0_reached_mm"].get<double>(), 0.2, 0.2e-3);
   EXPECT_LT(std::abs(j["wave_generator"]["rim_rotation_rad"].get<double>()), 1e-4 * j["phi0_rad"].get<double>());
@@ -121,7 +131,16 @@ TEST(Cases, Size17CupWithCamRuns) {
   const auto j = read_json(out / "result.json");
   EXPECT_NEAR(j["phi0_rad"].get<double>() / kSize17Phi0, 1.0, kRegressionTol);
   EXPECT_NEAR(-j["reaction_torque_Nm"].get<double>() / 31.0, 1.0, 1e-8);
-  EXPECT_NEAR(j["wave_generator"]["w0_reached_mm"].get<double>(), 0.216, 0.01 * 0.216);
+  EXPECT_NEAR(j["phi0_rad"].get<double>() / j["phi0_theory_cup_rad"].get<double>(), 1.0, kClosedFormTol);
+  // The cam sets the bore at its band; the neutral circle at the rim's mid-width, 0.3 mm further out, moves 0.9 %
+  // more (measured): 2 %.
+  EXPECT_NEAR(j["wave_generator"]["w0_reached_mm"].get<double>(), 0.216, 0.02 * 0.216);
+  // A cam only pushes; with no fit this cup conforms to it all round (gaps within 0.5 µm).
+  const auto& g = j["generator"];
+  EXPECT_EQ(g["model"], "cam");
+  EXPECT_GE(g["min_contact_force_N"].get<double>(), 0.0);
+  EXPECT_GT(g["total_radial_force_N"].get<double>(), 0.0);
+  ASSERT_FALSE(g["contact_zones_deg"].empty());
   fs::remove_all(out);
 }
 

@@ -1,10 +1,11 @@
 // Flexspline load cases on a plain clamped tube: the wave generator's loads are self-equilibrated, reach the requested
-// w0, leave no net rotation, the cam prescribes its shape exactly, and the torque case balances.
+// w0, leave no net rotation, the cam only pushes, and the torque case balances with the generator in place.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
+#include "fem/fatigue.hpp"
 #include "fem/flexspline_analysis.hpp"
 #include "fem/post.hpp"
 #include "mesh/shapes.hpp"
@@ -62,33 +63,84 @@ TEST(FourForceGenerator, LoadsAreSelfEquilibratedAndReachW0WithoutNetRotation) {
   EXPECT_LT(std::abs(s.generator_rotation_rad), 1e-4 * std::abs(s.phi0_rad));
   // The torque sweep is linear: φ/T constant.
   for (const auto& [T, c_tau] : s.torque_sweep) EXPECT_NEAR(c_tau / s.compliance_rad_per_Nm, 1.0, 1e-9) << T;
-  // Torque balance at the clamp.
+  // Torque balance: clamp plus the band's radial support (which carries no moment about z, to round-off).
   EXPECT_NEAR(-s.reaction_torque_Nm / s.applied_torque_Nm, 1.0, 1e-8);
   // Hoop stress pattern of the seed paper: tension near the forces, compression at the minor axis.
   ASSERT_TRUE(s.neutral_curve.has_value());
   EXPECT_GT(s.hoop.max_tensile_Pa, 0.0);
   EXPECT_LT(s.hoop.max_compressive_Pa, 0.0);
+  // A material point's history over one revolution is the field around its circle: at the bore in the generator's
+  // plane it matches the hoop profile (cylindrical components rotated at the nodes, then interpolated; here
+  // interpolated, then rotated at the point) within 1 % of the profile's amplitude.
+  const auto h = revolution_history(s.hoop.inner_radius_m, s.hoop.profile_z_m, 0.0, 1.0, sampler,
+                                    s.cases.front().stress);
+  ASSERT_TRUE(h.has_value());
+  double amplitude = 0;
+  for (double v : s.hoop.inner_Pa) amplitude = std::max(amplitude, std::abs(v));
+  for (int k = 0; k < 360; k += 5) EXPECT_NEAR(h->hoop_Pa[k], s.hoop.inner_Pa[k], 0.01 * amplitude) << k;
+  ASSERT_TRUE(s.fatigue.has_value());
+  EXPECT_GT(s.fatigue->rim.hoop.alternating_Pa, 0.0);
 }
 
-TEST(CamGenerator, PrescribesTheRadialShapeOverItsBandAndBalances) {
+// Goodman per component: 1/(σa/Se + σm/Su), no credit for a compressive mean.
+TEST(Fatigue, GoodmanSafetyFactorAndCycle) {
+  const StressCycle c = stress_cycle({-100e6, 300e6, 50e6});
+  EXPECT_DOUBLE_EQ(c.alternating_Pa, 200e6);
+  EXPECT_DOUBLE_EQ(c.mean_Pa, 100e6);
+  EXPECT_DOUBLE_EQ(goodman_safety_factor(c, 500e6, 1000e6), 2.0);
+  EXPECT_DOUBLE_EQ(goodman_safety_factor({200e6, -100e6}, 500e6, 1000e6), 2.5);
+}
+
+// The cam as a body in unilateral contact: it pushes only, the zone it touches is centred on the major axis and does
+// not reach the minor axis of a tube (which comes in by inextensibility, short of the cam), the bore reaches the cam at
+// the major axis, and with torque the clamp's and the generator's reactions balance the applied torque (1e-8: an
+// identity of the discrete equations, the generator's share included).
+TEST(CamGenerator, PushesOnlyTouchesAroundTheMajorAxisAndBalancesTorque) {
   const Case c = tube_with_generator(WaveGeneratorModel::Cam);
   const TetMesh m = mesh_of(c);
   const FlexsplineSolution s = analyse_flexspline(c, m);
-  const Eigen::VectorXd& u = s.cases.front().u;
-  const double z_band = c.flexspline.length_m - c.wave_generator->axial_position_m;
-  int checked = 0;
-  for (std::size_t i = 0; i < m.n_nodes(); ++i) {
-    const double x = m.nodes(i, 0), y = m.nodes(i, 1), r = std::hypot(x, y);
-    if (std::abs(r - 18.4e-3) > 1e-9 || std::abs(m.nodes(i, 2) - z_band) > 1.5e-3) continue;
-    const double t = std::atan2(y, x);
-    const double ur = (x * u[3 * i] + y * u[3 * i + 1]) / r;
-    EXPECT_NEAR(ur, 0.2e-3 * std::cos(2 * t), 1e-12);
-    ++checked;
+  ASSERT_TRUE(s.generator.has_value());
+  const GeneratorReadout& g = *s.generator;
+  EXPECT_TRUE(g.unilateral);
+  EXPECT_GE(g.min_contact_force_N, 0.0);
+  for (double f : g.force_comb_N) EXPECT_GE(f, 0.0);
+  ASSERT_EQ(g.zones_wg_deg.size(), 2u);
+  for (const auto& [from, to] : g.zones_wg_deg) {
+    const double mid = std::remainder(0.5 * (from + to) + (from > to ? 180.0 : 0.0), 180.0);
+    EXPECT_LT(std::abs(mid), 3.0) << from << " " << to;
+    EXPECT_LT(std::abs(std::remainder(to - from, 360.0)), 170.0) << from << " " << to;
   }
-  EXPECT_GT(checked, 20);
+  EXPECT_GT(g.total_radial_force_N, 0.0);
+  // The bore at the major axis sits on the cam at the band's middle (within 1 % of w0: the station enforces the
+  // band-averaged gap); the open end, 3 mm beyond the band, flares further out.
+  const PointSampler sampler(m);
+  const double zb = c.flexspline.length_m - c.wave_generator->axial_position_m, rb = c.flexspline.inner_radius_m + 1e-6;
+  const Eigen::VectorXd& u = s.cases.front().u;
+  EXPECT_NEAR(0.5 * (sampler.displacement({rb, 0, zb}, u)[0] - sampler.displacement({-rb, 0, zb}, u)[0]) / 0.2e-3,
+              1.0, 0.01);
+  EXPECT_LT(g.w_minor_m, 0.0);
   // A cam of two symmetric lobes does not twist the flexspline.
-  EXPECT_LT(std::abs(s.generator_rotation_rad), 1e-4 * std::abs(s.phi0_rad));
+  EXPECT_LT(std::abs(s.generator_rotation_rad), 1e-3 * std::abs(s.phi0_rad));
   EXPECT_NEAR(-s.reaction_torque_Nm / s.applied_torque_Nm, 1.0, 1e-8);
+  EXPECT_NE(g.reaction_torque_Nm, 0.0);
+}
+
+// Rigid rollers at ±β from both ends of the major axis: all four touch with positive force when the generator acts
+// alone (symmetric), the standoff that reaches w0 is found on the linear all-touching problem and the unilateral solve
+// keeps it (1e-6), and with torque the reactions balance (1e-8); a roller's normal is radial, so it carries no torque.
+TEST(RollerGenerator, FourRollersTouchReachW0AndBalanceTorque) {
+  Case c = tube_with_generator(WaveGeneratorModel::Rollers);
+  const TetMesh m = mesh_of(c);
+  const FlexsplineSolution s = analyse_flexspline(c, m);
+  ASSERT_TRUE(s.generator.has_value());
+  const GeneratorReadout& g = *s.generator;
+  EXPECT_EQ(g.model, "rollers");
+  EXPECT_EQ(g.zones_wg_deg.size(), 4u);
+  EXPECT_GT(g.min_contact_force_N, 0.0);
+  EXPECT_NEAR(g.w_major_m / 0.2e-3, 1.0, 1e-6);
+  for (double f : g.force_comb_N) EXPECT_GE(f, 0.0);
+  EXPECT_NEAR(-s.reaction_torque_Nm / s.applied_torque_Nm, 1.0, 1e-8);
+  EXPECT_LT(std::abs(g.reaction_torque_Nm), 1e-9 * std::abs(s.applied_torque_Nm));
 }
 
 }  // namespace

@@ -66,6 +66,8 @@ TEST(TubeTorsion, TwistMatchesTLOverGJAndReactionEqualsAppliedTorque) {
               theory, s.phi0_rad / theory - 1);
   EXPECT_NEAR(s.phi0_rad / theory, 1.0, kTorsionTol);
   EXPECT_NEAR(s.phi0_theory_rad, theory, 1e-12 * theory);
+  EXPECT_NEAR(s.phi0_theory_cup.total_rad(), theory, 1e-12 * theory);  // a plain tube: the body wall term alone
+  EXPECT_EQ(s.phi0_theory_cup.diaphragm_rad, 0.0);
   EXPECT_NEAR(s.applied_torque_Nm, 100.0, kTorqueBalanceTol * 100);
   EXPECT_NEAR(-s.reaction_torque_Nm / s.applied_torque_Nm, 1.0, kTorqueBalanceTol);
 }

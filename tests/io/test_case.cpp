@@ -104,5 +104,28 @@ TEST(CaseFile, ForcesListIsReadWithDegreesAndWeights) {
   EXPECT_DOUBLE_EQ(c.wave_generator->forces[1].weight, 1.0);
 }
 
+TEST(CaseFile, CamProfileAndFitAreReadAndChecked) {
+  const std::string cam = std::string(kTube) + "[wave_generator]\nmodel = \"cam\"\nradial_deformation_mm = 0.2\n";
+  const Case c = parse_case(cam + "profile = \"ellipse\"\nfit_um = 5\n", "c.toml");
+  EXPECT_EQ(c.wave_generator->cam_profile, CamProfile::Ellipse);
+  EXPECT_DOUBLE_EQ(c.wave_generator->cam_clearance_m, 5e-6);
+  EXPECT_EQ(parse_case(cam, "c.toml").wave_generator->cam_profile, CamProfile::Polar);  // the default
+  EXPECT_NE(error_of(cam + "fit_um = 300\n").find("wave_generator.fit_um = 300; must be smaller"), std::string::npos);
+  EXPECT_NE(error_of(cam + "profile = \"oval\"\n").find("wave_generator.profile"), std::string::npos);
+  // A force model has no cam profile.
+  EXPECT_NE(error_of(std::string(kTube) + "[wave_generator]\nfit_um = 5\n").find("fit_um"), std::string::npos);
+}
+
+TEST(CaseFile, FatigueDataComeInPairsBelowTheUltimateStrength) {
+  const std::string mat = std::string(kTube) + "[material]\n";
+  const Case c = parse_case(mat + "fatigue_limit_MPa = 500\nultimate_strength_MPa = 1100\n", "m.toml");
+  EXPECT_DOUBLE_EQ(*c.material.fatigue_limit_Pa, 500e6);
+  EXPECT_DOUBLE_EQ(*c.material.ultimate_strength_Pa, 1100e6);
+  EXPECT_NE(error_of(mat + "fatigue_limit_MPa = 500\n").find("go together"), std::string::npos);
+  EXPECT_NE(error_of(mat + "fatigue_limit_MPa = 1200\nultimate_strength_MPa = 1100\n")
+                .find("material.fatigue_limit_MPa = 1200; must be < material.ultimate_strength_MPa = 1100"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace sw

@@ -80,6 +80,40 @@ TEST(ReconcileCli, SynthDynamicsThenReconcileNamesTheDragTorque) {
   EXPECT_NEAR(got, want, 0.25 * want);
 }
 
+TEST(ReconcileCli, ShippedSize17RecordingGivesTheCatalogBlockBesideTheCatalogRow) {
+  ASSERT_TRUE(fs::exists(binary())) << binary();
+  const fs::path d = scratch("size17");
+  ASSERT_EQ(sh(binary() + " --quiet reconcile cases/cup_size17.toml cases/recordings/size17_torsion.csv "
+               "--compliance 1.89e-5 --out " + (d / "out").string() + " > /dev/null"), 0);
+  const auto j = nlohmann::json::parse(slurp(d / "out" / "reconcile.json"));
+  EXPECT_EQ(j["verdict"], "explained");
+  ASSERT_TRUE(j.contains("catalog"));
+  const auto& c = j["catalog"];
+  EXPECT_EQ(c["segments"], 3);
+  EXPECT_EQ(c["reference"]["size"], 17);
+  EXPECT_EQ(c["rated_torque_Nm"], 31.0);
+  // The truth (the recording's metadata): K1 1.0e4, K2 1.4e4, K3 1.6e4 N*m/rad, 0.6 arcmin loss, 0.12 arcmin play.
+  EXPECT_NEAR(c["K1_Nm_per_rad"].get<double>(), 1.0e4, 0.15 * 1.0e4);
+  EXPECT_NEAR(c["K3_Nm_per_rad"].get<double>(), 1.6e4, 0.15 * 1.6e4);
+  EXPECT_NEAR(c["hysteresis_loss_arcmin"].get<double>(), 0.6, 0.2 * 0.6);
+  EXPECT_NEAR(c["play_width_arcmin"].get<double>(), 0.12, 0.2 * 0.12);
+  EXPECT_GT(c["catalog_lost_motion_arcmin"].get<double>(), c["play_width_arcmin"].get<double>());
+  EXPECT_NE(slurp(d / "out" / "reconcile.html").find("In catalog terms"), std::string::npos);
+}
+
+TEST(ReconcileCli, SynthEffectsWritesSeveralEffectsWithTheirTruth) {
+  ASSERT_TRUE(fs::exists(binary())) << binary();
+  const fs::path d = scratch("effects");
+  ASSERT_EQ(sh(binary() + " --quiet synth --kind torsion --effects "
+               "series_compliance,hysteresis:loss_rad=2e-4,transition_Nm=2,lost_motion --meta size=17 --out " +
+               (d / "rec.csv").string() + " > /dev/null"), 0);
+  const auto truth = nlohmann::json::parse(slurp(d / "rec.truth.json"));
+  ASSERT_EQ(truth["effects"].size(), 3u);
+  EXPECT_EQ(truth["effects"][1]["name"], "hysteresis");
+  EXPECT_EQ(truth["effects"][1]["params"]["transition_Nm"], 2.0);
+  EXPECT_NE(slurp(d / "rec.csv").find("# size: 17\n"), std::string::npos);
+}
+
 TEST(ReconcileCli, BadRecordingFailsWithTheLineAndWritesNothing) {
   ASSERT_TRUE(fs::exists(binary())) << binary();
   const fs::path d = scratch("bad");

@@ -14,8 +14,10 @@
 #include "common/progress.hpp"
 #include "reconcile/reconcile.hpp"
 #include "reconcile/synth.hpp"
+#include "tests/reconcile/result_lookup.hpp"
 
 using namespace sw::reconcile;
+using namespace sw::reconcile::testing;
 
 namespace {
 
@@ -63,24 +65,6 @@ Outcome run(SynthOptions o) {
   return {reconcile(e), nlohmann::json::parse(s.truth_json)};
 }
 
-const AcceptedEffect* find(const Result& r, const std::string& name, int order = 0) {
-  for (const auto& e : r.effects) {
-    if (e.name != name) continue;
-    if (order == 0) return &e;
-    for (const auto& p : e.params)
-      if (p.name == "order" && std::lround(p.value) == order) return &e;
-  }
-  return nullptr;
-}
-
-double param(const AcceptedEffect& e, const std::string& name) {
-  for (const auto& p : e.params)
-    if (p.name == name) return p.value;
-  ADD_FAILURE() << "no parameter " << name;
-  return NAN;
-}
-
-double rel_err(double got, double want) { return std::abs(got - want) / std::abs(want); }
 
 std::string names(const Result& r) {
   std::string s;

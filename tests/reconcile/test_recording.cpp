@@ -96,6 +96,20 @@ TEST(RecordingParser, RejectsMissingOrUnknownKind) {
             0u);
 }
 
+TEST(RecordingParser, AcceptsAUtf8ByteOrderMark) {
+  // Spreadsheets exporting "CSV UTF-8" start the file with EF BB BF.
+  const Recording r = parse_recording(std::string("\xEF\xBB\xBF") + kGood, "rec.csv");
+  EXPECT_EQ(r.kind, Kind::Torsion);
+  ASSERT_EQ(r.rows(), 3u);
+  EXPECT_EQ(r.metadata.front().first, "strainwave-recording");
+}
+
+TEST(RecordingParser, RefusesASemicolonSeparatedFileNamingTheSeparator) {
+  const std::string msg = error_of(with_rows("time_s;torque_Nm;twist_rad", "0;0;0\n0,1;1,5;2e-5\n"));
+  EXPECT_EQ(msg.rfind("rec.csv:3: header = 'time_s;torque_Nm;twist_rad'; the columns are separated by ';'", 0), 0u)
+      << msg;
+}
+
 TEST(RecordingParser, TooFewSamplesAreRejectedByTheAnalysis) {
   const Recording r = parse_recording(kGood, "rec.csv");
   Baseline b;

@@ -1,0 +1,172 @@
+#include "fem/generator_contact.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include <Eigen/Cholesky>
+
+#include "common/error.hpp"
+#include "fem/loads.hpp"
+
+namespace sw {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+double wrap_pi(double a) { return std::remainder(a, 2 * kPi); }
+double theta_of(const Eigen::Vector3d& x) { return std::atan2(x[1], x[0]); }
+
+}  // namespace
+
+BandStations band_stations(const TetMesh& mesh, double z_m, double width_m, const std::vector<double>& angles_rad,
+                           double half_width_rad, const NormalTilt& tilt) {
+  const auto band = select_faces(mesh, kSurfaceInner, [&](const Eigen::Vector3d& x) {
+    return std::abs(x[2] - z_m) <= 0.5 * width_m;
+  });
+  if (band.empty())
+    throw InputError("wave_generator: no inner-wall faces in the generator's band at z = " + std::to_string(z_m * 1e3) +
+                     " mm; check wave_generator.axial_position_mm / band_width_mm or refine mesh.size_mm");
+  // Each face's angle and angular half-extent, to pick the faces a station's hat can reach.
+  std::vector<double> face_theta(band.size()), face_reach(band.size());
+  for (std::size_t i = 0; i < band.size(); ++i) {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (int a = 0; a < 3; ++a) c += mesh.nodes.row(band[i]->nodes[a]).transpose();
+    face_theta[i] = theta_of(c / 3);
+    for (int v : band[i]->nodes)
+      face_reach[i] = std::max(face_reach[i], std::abs(wrap_pi(theta_of(mesh.nodes.row(v).transpose()) - face_theta[i])));
+  }
+  BandStations s;
+  s.angle_rad = angles_rad;
+  s.half_width_rad = half_width_rad;
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (std::size_t j = 0; j < angles_rad.size(); ++j) {
+    Eigen::VectorXd column = Eigen::VectorXd::Zero(3 * mesh.n_nodes());
+    for (const double station : {angles_rad[j], angles_rad[j] + kPi}) {
+      std::vector<const BoundaryFace*> faces;
+      for (std::size_t i = 0; i < band.size(); ++i)
+        if (std::abs(wrap_pi(face_theta[i] - station)) <= half_width_rad + face_reach[i]) faces.push_back(band[i]);
+      auto hat = [&](const Eigen::Vector3d& x) {
+        return std::max(0.0, 1.0 - std::abs(wrap_pi(theta_of(x) - station)) / half_width_rad);
+      };
+      const double total = faces_integral(mesh, faces, hat);
+      if (!(total > 0))
+        throw InputError("wave_generator: no inner-wall faces under the contact station at " +
+                         std::to_string(station * 180 / kPi) + " deg; refine mesh.size_mm");
+      column += traction_load(mesh, faces, [&](const Eigen::Vector3d& x, const Eigen::Vector3d&) -> Eigen::Vector3d {
+        const double t = theta_of(x), k = tilt ? tilt(t) : 0.0;
+        const Eigen::Vector3d n = (Eigen::Vector3d(std::cos(t), std::sin(t), 0) -
+                                   k * Eigen::Vector3d(-std::sin(t), std::cos(t), 0)) / std::sqrt(1 + k * k);
+        return n * (hat(x) / total);
+      });
+    }
+    for (Eigen::Index i = 0; i < column.size(); ++i)
+      if (column[i] != 0.0) triplets.emplace_back(static_cast<int>(i), static_cast<int>(j), column[i]);
+  }
+  s.loads.resize(3 * static_cast<Eigen::Index>(mesh.n_nodes()), static_cast<Eigen::Index>(angles_rad.size()));
+  s.loads.setFromTriplets(triplets.begin(), triplets.end());
+  return s;
+}
+
+StationForces unilateral_contact(const Eigen::MatrixXd& C, const Eigen::VectorXd& b) {
+  const Eigen::Index n = b.size();
+  const double tol = 1e-12 * std::max(b.cwiseAbs().maxCoeff(), 1e-300);
+  Eigen::VectorXd p = Eigen::VectorXd::Zero(n);
+  std::vector<bool> active(n, false);  // stations in contact (the "passive set" of Lawson–Hanson)
+  StationForces out;
+  for (int outer = 0; outer < 4 * n + 10; ++outer) {
+    const Eigen::VectorXd w = b - C * p;  // minus the gap: positive where the generator would penetrate
+    Eigen::Index add = -1;
+    double worst = tol;
+    for (Eigen::Index i = 0; i < n; ++i)
+      if (!active[i] && w[i] > worst) worst = w[add = i];
+    if (add < 0) {
+      out.force_N = p;
+      out.gap_m = C * p - b;
+      out.iterations = outer;
+      return out;
+    }
+    active[add] = true;
+    for (bool first = true;; first = false) {
+      std::vector<Eigen::Index> idx;
+      for (Eigen::Index i = 0; i < n; ++i)
+        if (active[i]) idx.push_back(i);
+      Eigen::MatrixXd Caa(idx.size(), idx.size());
+      Eigen::VectorXd ba(idx.size());
+      for (std::size_t r = 0; r < idx.size(); ++r) {
+        ba[r] = b[idx[r]];
+        for (std::size_t c = 0; c < idx.size(); ++c) Caa(r, c) = C(idx[r], idx[c]);
+      }
+      const Eigen::VectorXd za = Caa.ldlt().solve(ba);
+      Eigen::VectorXd z = Eigen::VectorXd::Zero(n);
+      for (std::size_t r = 0; r < idx.size(); ++r) z[idx[r]] = za[r];
+      if (first && z[add] <= 0) {  // round-off: the station cannot carry load after all
+        active[add] = false;
+        out.force_N = p;
+        out.gap_m = C * p - b;
+        out.iterations = outer;
+        return out;
+      }
+      if ((za.array() > 0).all()) {
+        p = z;
+        break;
+      }
+      double alpha = 1.0;
+      for (Eigen::Index i : idx)
+        if (z[i] <= 0) alpha = std::min(alpha, p[i] / (p[i] - z[i]));
+      p += alpha * (z - p);
+      for (Eigen::Index i : idx)
+        if (p[i] <= 1e-15 * p.cwiseAbs().maxCoeff()) {
+          p[i] = 0;
+          active[i] = false;
+        }
+    }
+  }
+  throw std::runtime_error("unilateral_contact: the active-set iteration did not converge");
+}
+
+StationForces bilateral_support(const Eigen::MatrixXd& C, const Eigen::VectorXd& b) {
+  StationForces out;
+  out.force_N = C.ldlt().solve(b);
+  out.gap_m = C * out.force_N - b;
+  return out;
+}
+
+std::vector<bool> touching(const StationForces& s, double touching_gap_m) {
+  const double fmax = s.force_N.size() ? s.force_N.maxCoeff() : 0.0;
+  std::vector<bool> t(s.force_N.size());
+  for (Eigen::Index j = 0; j < s.force_N.size(); ++j)
+    t[j] = (fmax > 0 && s.force_N[j] > 1e-9 * fmax) || 0.5 * s.gap_m[j] <= touching_gap_m;
+  return t;
+}
+
+std::vector<std::pair<double, double>> contact_zones_deg(const std::vector<double>& pair_angle_rad,
+                                                          const std::vector<bool>& touching, double step_rad) {
+  // Stations over the whole circle, sorted by angle in [−180, 180).
+  std::vector<std::pair<double, bool>> st;
+  for (std::size_t j = 0; j < pair_angle_rad.size(); ++j)
+    for (const double a : {pair_angle_rad[j], pair_angle_rad[j] + kPi})
+      st.emplace_back(std::round(wrap_pi(a) * 180 / kPi * 1e6) / 1e6, touching[j]);
+  std::sort(st.begin(), st.end());
+  const std::size_t n = st.size();
+  const double step_deg = step_rad * 180 / kPi * 1.001;
+  // Station i continues the zone of station i − 1 when both touch and they are neighbours.
+  auto joins = [&](std::size_t i) {
+    const std::size_t prev = (i + n - 1) % n;
+    return st[i].second && st[prev].second &&
+           std::abs(std::remainder(st[i].first - st[prev].first, 360.0)) <= step_deg;
+  };
+  std::vector<std::pair<double, double>> zones;
+  std::size_t start = 0;  // a station that begins no zone across it, so a zone across ±180° stays whole
+  while (start < n && joins(start)) ++start;
+  if (start == n) return {{-180.0, 180.0}};
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t i = (start + k) % n;
+    if (!st[i].second) continue;
+    if (k > 0 && joins(i)) zones.back().second = st[i].first;
+    else zones.emplace_back(st[i].first, st[i].first);
+  }
+  return zones;
+}
+
+}  // namespace sw

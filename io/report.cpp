@@ -1,0 +1,223 @@
+#include "io/report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "common/error.hpp"
+#include "io/fem_output.hpp"
+#include "io/svg_plot.hpp"
+
+namespace sw {
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+constexpr double kDeg = 180.0 / std::numbers::pi;
+
+json read_json_file(const fs::path& p) {
+  std::ifstream in(p);
+  if (!in) throw InputError(p.string() + ": cannot open; the report needs the run's outputs");
+  try {
+    return json::parse(in);
+  } catch (const std::exception& e) {
+    throw InputError(p.string() + ": not valid JSON (" + std::string(e.what()) + ")");
+  }
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+double num(const json& j, const char* key, double fallback = std::nan("")) {
+  return j.contains(key) && j[key].is_number() ? j[key].get<double>() : fallback;
+}
+
+std::string fmt(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+class Table {
+ public:
+  void row(const std::string& what, const std::string& value, const std::string& note = "") {
+    s_ << "<tr><td>" << html_escape(what) << "</td><td class='v'>" << html_escape(value) << "</td><td class='n'>"
+       << html_escape(note) << "</td></tr>\n";
+  }
+  std::string html() const { return "<table>\n" + s_.str() + "</table>\n"; }
+
+ private:
+  std::ostringstream s_;
+};
+
+std::string fem_section(const json& r) {
+  Table t;
+  const double phi0 = num(r, "phi0_rad"), theory = num(r, "phi0_theory_cup_rad");
+  t.row("flexspline body wind-up φ₀ at the case torque", fmt("%.4e rad", phi0),
+        fmt("%.4g N·m; least-squares rigid rotation of the rim's neutral circle", num(r, "torque_Nm")));
+  t.row("flexspline body torsional stiffness 1/C_τ", fmt("%.4g N·m/rad", 1.0 / num(r, "compliance_rad_per_Nm")),
+        "the body alone: teeth, generator bearing and circular spline are not in it");
+  if (std::isfinite(theory))
+    t.row("closed form (body wall + diaphragm + rim)", fmt("%.4e rad", theory), fmt("FEM / closed form = %.4f", phi0 / theory));
+  if (r.contains("phi0_engaged_rad"))
+    t.row("mean rotation over the engagement zones", fmt("%.4e rad", num(r, "phi0_engaged_rad")),
+          "what the teeth in mesh turn");
+  t.row("reaction torque (clamp and generator) vs applied",
+        fmt("%.9g N·m", num(r, "reaction_torque_Nm")) + " vs " + fmt("%.9g N·m", num(r, "applied_torque_Nm")),
+        r.contains("torque_balance_error_rel") ? fmt("balance error %.1e", num(r, "torque_balance_error_rel")) : "");
+  if (r.contains("mesh"))
+    t.row("mesh", fmt("%.0f nodes, ", num(r["mesh"], "nodes")) + fmt("%.0f TET10", num(r["mesh"], "elements")),
+          fmt("smallest dihedral angle %.1f°", num(r["mesh"], "min_dihedral_deg")));
+  if (r.contains("solver"))
+    t.row("solver", fmt("%.0f equations", num(r["solver"], "equations", num(r["solver"], "dofs"))),
+          fmt("factor %.3g GF", num(r["solver"], "factor_gflop")) + fmt(" in %.1f s", num(r["timings_s"], "factor")));
+  if (r.contains("timings_s"))
+    t.row("run time, peak memory", fmt("%.1f s", num(r["timings_s"], "total")),
+          fmt("%.0f MB", num(r, "peak_rss_bytes") / 1e6));
+  if (r.contains("generator")) {
+    const json& g = r["generator"];
+    std::string zones;
+    for (const auto& z : g.value("contact_zones_deg", json::array()))
+      zones += fmt(" [%.0f°, ", z[0].get<double>()) + fmt("%.0f°]", z[1].get<double>());
+    t.row("wave generator", g.value("model", std::string("?")), g.value("idealisation", std::string("")));
+    t.row("generator: total radial force", fmt("%.1f N", num(g, "total_radial_force_N")), "contact zones:" + zones);
+    t.row("w at the major / minor axis", fmt("%+.4f mm", num(g, "w_major_axis_mm")) + " / " +
+                                             fmt("%+.4f mm", num(g, "w_minor_axis_mm")), "");
+  }
+  if (r.contains("hoop_stress_MPa")) {
+    const json& h = r["hoop_stress_MPa"];
+    t.row("nominal hoop bending stress", fmt("%+.0f MPa", num(h, "nominal_bending")),
+          fmt("away from load application, %.0f° from the major axis; ", num(h, "nominal_angle_deg")) +
+              fmt("thin-ring theory %+.0f MPa", num(h, "ring_theory_bending")));
+    t.row("local hoop stress peaks", fmt("%+.0f", num(h, "local_peak_tensile")) + fmt(" / %+.0f MPa", num(h, "local_peak_compressive")),
+          "where the generator touches: a local effect of concentrated contact, not the part's nominal stress");
+  }
+  if (r.contains("fatigue")) {
+    const json& f = r["fatigue"];
+    if (f.contains("safety_factor")) t.row("fatigue safety factor", fmt("%.2f", num(f, "safety_factor")), f.value("criterion", std::string("")));
+  }
+  return t.html();
+}
+
+std::string neutral_curve_plot(const RunReportInputs& in) {
+  const fs::path csv = in.out_dir / "neutral_curve.csv";
+  if (!fs::exists(csv)) return "";
+  const NeutralCurveSamples nc = read_neutral_curve_csv(csv);
+  LinePlot p;
+  p.title = "Radial displacement of the rim's neutral circle under the generator";
+  p.x_label = "angle from the major axis (deg)";
+  p.y_label = "w (µm)";
+  PlotSeries fem{"FEM", {}, {}, "#1f77b4"}, th{in.theory_label, {}, {}, "#d62728", true};
+  std::vector<std::pair<double, double>> pts;  // (−180°, 180°], the theory curve's range
+  for (size_t i = 0; i < nc.phi_rad.size(); ++i)
+    pts.emplace_back(std::remainder(nc.phi_rad[i], 2.0 * std::numbers::pi) * kDeg, nc.w_wg_m[i] * 1e6);
+  std::sort(pts.begin(), pts.end());
+  for (const auto& [x, y] : pts) {
+    fem.x.push_back(x);
+    fem.y.push_back(y);
+  }
+  for (size_t i = 0; i < in.theory_phi_rad.size(); ++i) {
+    th.x.push_back(in.theory_phi_rad[i] * kDeg);
+    th.y.push_back(in.theory_w_m[i] * 1e6);
+  }
+  p.series = {fem};
+  if (!th.x.empty()) p.series.push_back(th);
+  return svg_line_plot(p);
+}
+
+std::string hoop_plot(const json& r) {
+  if (!r.contains("hoop_stress_profile")) return "";
+  const json& h = r["hoop_stress_profile"];
+  LinePlot p;
+  p.title = "Hoop stress around the rim at z = " + fmt("%.1f mm", num(h, "z_mm")) + " (" +
+            r.value("hoop_stress_case", std::string("generator")) + " case)";
+  p.x_label = "angle from the major axis (deg)";
+  p.y_label = "hoop stress (MPa)";
+  PlotSeries inner{"inner wall", {}, {}, "#1f77b4", false, false}, outer{"outer wall", {}, {}, "#d62728", true, false};
+  const auto& a = h["angle_deg"];
+  for (size_t i = 0; i < a.size(); ++i) {
+    inner.x.push_back(a[i].get<double>());
+    outer.x.push_back(a[i].get<double>());
+    inner.y.push_back(h["inner_Pa"][i].get<double>() / 1e6);
+    outer.y.push_back(h["outer_Pa"][i].get<double>() / 1e6);
+  }
+  p.series = {inner, outer};
+  return svg_line_plot(p);
+}
+
+std::string backlash_section(const fs::path& dir) {
+  if (!fs::exists(dir / "backlash.json")) return "";
+  const json b = read_json_file(dir / "backlash.json");
+  std::ostringstream s;
+  s << "<h2>Backlash</h2>\n<p>Neutral curve used: " << html_escape(b.value("neutral_curve", std::string("?")))
+    << ".</p>\n";
+  Table t;
+  const json& g = b["geometry_check"];
+  t.row("interference at rest", g.value("interference_at_rest", false) ? "yes" : "no",
+        fmt("smallest clearance %.2f µm", num(g, "smallest_clearance_um")));
+  t.row("working depth at the major axis", fmt("%.3f mm", num(g, "working_depth_mm")), fmt("against 2·w0 = %.3f mm", num(g, "two_w0_mm")));
+  t.row("major-axis pair: dead band", fmt("%.3f arcmin", num(g, "major_axis_play_arcmin")), "output rotation between the two flank contacts");
+  const json& play = b["angular_play_arcmin"];
+  t.row("geometric angular play over a revolution", fmt("%.3f", num(play, "min")) + fmt(" … %.3f arcmin", num(play, "max")),
+        "teeth and rim rigid; not the catalog's lost motion, which includes elastic twist at ±4 % of rated torque");
+  t.row("smallest clearance over a revolution (basic, with φ₀)",
+        fmt("%.2f µm", num(b, "min_backlash_basic_mm") * 1e3) + fmt(" / %.2f µm", num(b, "min_backlash_compensated_mm") * 1e3),
+        "with φ₀ at or below zero: the loaded flank in contact, not interference");
+  s << t.html();
+  if (b.contains("revolution") && b["revolution"].contains("period_basic")) {
+    LinePlot p;
+    p.title = "Output's geometric angular play over one circular-spline pitch of the generator (repeats)";
+    p.x_label = "wave-generator angle (deg)";
+    p.y_label = "angular play (arcmin)";
+    PlotSeries ser{"angular play", {}, {}, "#1f77b4"};
+    for (const auto& st : b["revolution"]["period_basic"]) {
+      ser.x.push_back(st["wg_deg"].get<double>());
+      ser.y.push_back(st["angular_play_arcmin"].get<double>());
+    }
+    p.series = {ser};
+    p.zero_line = false;
+    s << "<div class='fig'>" << svg_line_plot(p) << "</div>\n";
+  }
+  if (fs::exists(dir / "backlash.svg")) s << "<div class='fig'>" << slurp(dir / "backlash.svg") << "</div>\n";
+  return s.str();
+}
+
+}  // namespace
+
+std::string run_report_html(const RunReportInputs& in) {
+  const json r = read_json_file(in.out_dir / "result.json");
+  std::ostringstream s;
+  s << "<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'><title>strainwave: "
+    << html_escape(in.case_path) << "</title>\n<style>body{font-family:sans-serif;max-width:1000px;margin:2em auto;"
+    << "color:#222}table{border-collapse:collapse;margin:1em 0}td{border-bottom:1px solid #ddd;padding:4px 10px;"
+    << "vertical-align:top}td.v{font-family:monospace;white-space:nowrap}td.n{color:#555;font-size:90%}"
+    << "pre{background:#f6f6f6;padding:1em;font-size:85%;overflow:auto}.fig{margin:1em 0}</style></head><body>\n";
+  s << "<h1>strainwave run: " << html_escape(in.case_path) << "</h1>\n";
+  s << "<h2>Flexspline (FEM)</h2>\n" << fem_section(r);
+  s << "<div class='fig'>" << neutral_curve_plot(in) << "</div>\n";
+  s << "<div class='fig'>" << hoop_plot(r) << "</div>\n";
+  s << backlash_section(in.out_dir);
+  s << "<h2>Not computed</h2>\n<ul><li>the whole drive's twist at the case torque (teeth, generator bearing, circular "
+       "spline in series with the body)</li><li>ratcheting torque</li><li>wave-generator bearing life</li></ul>\n";
+  s << "<h2>3-D results</h2>\n<p><a href='flexspline.pvd'>flexspline.pvd</a> (one .vtu per load case):";
+  for (const auto& lc : r.value("load_cases", json::array()))
+    if (lc.contains("name")) {
+      const std::string f = "flexspline_" + lc["name"].get<std::string>() + ".vtu";
+      s << " <a href='" << html_escape(f) << "'>" << html_escape(f) << "</a>";
+    }
+  s << ". In ParaView open the .pvd, apply Warp By Vector (the displacement is the active vector) and colour by "
+       "stress_hoop; or render headless:</p>\n<pre>scripts/pvbatch.sh cases/view_flexspline.py "
+    << html_escape(in.out_dir.string()) << " --case generator --field stress_hoop --png view.png</pre>\n";
+  s << "<h2>Case</h2>\n<pre>" << html_escape(in.case_text) << "</pre>\n</body></html>\n";
+  return s.str();
+}
+
+}  // namespace sw

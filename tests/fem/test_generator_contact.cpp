@@ -1,0 +1,270 @@
+// The wave generator as a body that pushes: the contact solver against brute force, a thin ring on a cam against an
+// independent ring model with membrane (EA) and bending (EI) stiffness, the bilateral limit against the prescribed
+// shape, and the cup under torque with the generator in place.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <random>
+
+#include <Eigen/Cholesky>
+
+#include "fem/assembly.hpp"
+#include "fem/cholmod_factor.hpp"
+#include "fem/flexspline_analysis.hpp"
+#include "fem/generator_contact.hpp"
+#include "fem/post.hpp"
+#include "io/case.hpp"
+#include "mesh/flexspline.hpp"
+#include "mesh/shapes.hpp"
+
+namespace sw {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+const Material kSteel{210e9, 0.3, 7850};
+
+// --- The active-set solver: its result satisfies the complementarity conditions and equals the best of all 2^n
+// active sets on small random problems. -------------------------------------------------------------------------------
+TEST(UnilateralContact, MatchesExhaustiveSearchOnSmallProblems) {
+  std::mt19937 rng(7);
+  std::normal_distribution<double> N(0, 1);
+  for (int trial = 0; trial < 50; ++trial) {
+    const int n = 6;
+    Eigen::MatrixXd A(n, n);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) A(i, j) = N(rng);
+    const Eigen::MatrixXd C = A * A.transpose() + 0.1 * Eigen::MatrixXd::Identity(n, n);
+    Eigen::VectorXd b(n);
+    for (int i = 0; i < n; ++i) b[i] = N(rng);
+    const StationForces s = unilateral_contact(C, b);
+    EXPECT_GE(s.force_N.minCoeff(), 0.0);
+    EXPECT_GE(s.gap_m.minCoeff(), -1e-10);
+    EXPECT_LT(std::abs(s.force_N.dot(s.gap_m)), 1e-10);
+    // Exhaustive: the feasible complementary point of smallest energy.
+    double best = 1e300;
+    for (int mask = 0; mask < (1 << n); ++mask) {
+      std::vector<int> idx;
+      for (int i = 0; i < n; ++i)
+        if (mask >> i & 1) idx.push_back(i);
+      Eigen::VectorXd p = Eigen::VectorXd::Zero(n);
+      if (!idx.empty()) {
+        Eigen::MatrixXd Caa(idx.size(), idx.size());
+        Eigen::VectorXd ba(idx.size());
+        for (std::size_t r = 0; r < idx.size(); ++r) {
+          ba[r] = b[idx[r]];
+          for (std::size_t c = 0; c < idx.size(); ++c) Caa(r, c) = C(idx[r], idx[c]);
+        }
+        const Eigen::VectorXd z = Caa.ldlt().solve(ba);
+        for (std::size_t r = 0; r < idx.size(); ++r) p[idx[r]] = z[r];
+      }
+      if (p.minCoeff() < 0 || (C * p - b).minCoeff() < -1e-12) continue;
+      best = std::min(best, 0.5 * p.dot(C * p) - b.dot(p));
+    }
+    EXPECT_NEAR(0.5 * s.force_N.dot(C * s.force_N) - b.dot(s.force_N), best, 1e-10 * (1 + std::abs(best)));
+  }
+}
+
+// --- A thin ring on a cam -------------------------------------------------------------------------------------------
+// Ring R = 20 mm (mid-thickness), t = b = 1 mm (plane stress, E), polar cam w0 = 0.2 mm with a radial clearance.
+// Independent model: the extensible thin ring's Green's function for a radial point force P at θ',
+//   w(θ) = P·[R/(2π·EA) + Σ_{n≥2} R³/(π·EI·(n²−1)²)·cos n(θ−θ')]
+// (the n = 0 mode stretches the ring, n ≥ 2 bend it without stretching, n = 1 is a rigid shift), point contacts every
+// 0.5°, the same complementarity conditions. A purely inextensible ring (EA → ∞) would make the n = 0 mode rigid and
+// the contact zone undetermined: EA is what sets it.
+constexpr double kR = 20e-3, kT = 1e-3, kB = 1e-3, kW0 = 0.2e-3;
+
+struct RingContact {
+  double zone_half_deg = 0;   ///< half-width of the contact zone about the major axis
+  double lobe_force_N = 0;    ///< total normal force on one lobe (θ within ±90° of the major axis)
+  double min_force_N = 0;
+};
+
+RingContact ring_model(double clearance_m) {
+  const double E = kSteel.youngs_modulus_Pa, EA = E * kB * kT, EI = E * kB * kT * kT * kT / 12;
+  const double h = 0.5 * kPi / 180;
+  const int m = static_cast<int>(std::lround(kPi / h));  // pairs θ, θ + π
+  auto g_pair = [&](double phi) {  // displacement at φ from a pair of unit forces at 0 and π
+    double w = 2 * kR / (2 * kPi * EA);
+    for (int n = 2; n <= 400; n += 2) w += 2 * kR * kR * kR / (kPi * EI * (n * n - 1.0) * (n * n - 1.0)) * std::cos(n * phi);
+    return w;
+  };
+  Eigen::MatrixXd C(m, m);
+  Eigen::VectorXd s(m);
+  for (int i = 0; i < m; ++i) {
+    s[i] = kW0 * std::cos(2 * i * h) - clearance_m;
+    for (int j = 0; j < m; ++j) C(i, j) = g_pair((i - j) * h);
+  }
+  const StationForces p = unilateral_contact(C, s);
+  RingContact r;
+  for (int i = 0; i < m; ++i) {
+    const double deg = std::remainder(i * h, kPi) * 180 / kPi;
+    if (p.force_N[i] > 1e-9 * p.force_N.maxCoeff()) r.zone_half_deg = std::max(r.zone_half_deg, std::abs(deg));
+    if (std::abs(deg) < 90) r.lobe_force_N += p.force_N[i];
+  }
+  r.min_force_N = p.force_N.minCoeff();
+  return r;
+}
+
+/// The ring meshed with TET10, held only against rigid motion (symmetric point supports), its bore's stations.
+struct RingFem {
+  TetMesh mesh;
+  DofMap dofs;
+  std::unique_ptr<CholmodFactor> factor;
+  BandStations stations;
+  Eigen::MatrixXd C;
+  Eigen::MatrixXd unit_u;  ///< full displacement of each pair's unit load
+};
+
+int nearest_node(const TetMesh& m, const Eigen::Vector3d& p) {
+  Eigen::Index best;
+  (m.nodes.rowwise() - p.transpose()).rowwise().squaredNorm().minCoeff(&best);
+  return static_cast<int>(best);
+}
+
+std::vector<bool> ring_supports(const TetMesh& m) {
+  std::vector<bool> fixed(3 * m.n_nodes(), false);
+  for (const auto& [p, dof] : std::vector<std::pair<Eigen::Vector3d, int>>{
+           {{kR, 0, kB / 2}, 1}, {{-kR, 0, kB / 2}, 1}, {{0, kR, kB / 2}, 0}, {{0, -kR, kB / 2}, 0}}) {
+    const int n = nearest_node(m, p);
+    fixed[3 * n + dof] = true;
+    fixed[3 * n + 2] = true;
+  }
+  return fixed;
+}
+
+RingFem ring_fem(const NormalTilt& tilt) {
+  RingFem r;
+  MeshParams mp;
+  mp.size_m = 0.5e-3;
+  mp.wall_layers = 2;
+  r.mesh = mesh_tube(kR - kT / 2, kR + kT / 2, kB, mp);
+  r.dofs = make_dof_map(ring_supports(r.mesh));
+  r.factor = std::make_unique<CholmodFactor>(assemble_stiffness(r.mesh, kSteel, r.dofs));
+  std::vector<double> angles;
+  for (int k = 0; k < 90; ++k) angles.push_back(k * 2 * kPi / 180);
+  r.stations = band_stations(r.mesh, kB / 2, 2 * kB, angles, 2 * kPi / 180, tilt);
+  const Eigen::Index m = r.stations.loads.cols(), n = static_cast<Eigen::Index>(3 * r.mesh.n_nodes());
+  Eigen::MatrixXd B(r.dofs.n_equations, m);
+  for (Eigen::Index j = 0; j < m; ++j) B.col(j) = restrict_to_free(r.dofs, Eigen::VectorXd(r.stations.loads.col(j)));
+  const Eigen::MatrixXd X = r.factor->solve(B);
+  r.unit_u.resize(n, m);
+  for (Eigen::Index j = 0; j < m; ++j) r.unit_u.col(j) = expand_to_full(r.dofs, X.col(j), Eigen::VectorXd::Zero(n));
+  r.C = r.stations.loads.transpose() * r.unit_u;
+  r.C = 0.5 * (r.C + r.C.transpose());
+  return r;
+}
+
+TEST(CamOnThinRing, ContactZoneAndForceMatchTheExtensibleRingModel) {
+  const RingFem fem = ring_fem({});  // radial normals: the ring model has them too
+  for (const double clearance : {0.0, 3e-6}) {
+    Eigen::VectorXd b(fem.stations.angle_rad.size());
+    for (Eigen::Index j = 0; j < b.size(); ++j) b[j] = 2 * (kW0 * std::cos(2 * fem.stations.angle_rad[j]) - clearance);
+    const StationForces p = unilateral_contact(fem.C, b);
+    double zone = 0, lobe = 0;
+    for (Eigen::Index j = 0; j < b.size(); ++j) {
+      const double deg = std::remainder(fem.stations.angle_rad[j], kPi) * 180 / kPi;
+      if (p.force_N[j] > 1e-9 * p.force_N.maxCoeff()) zone = std::max(zone, std::abs(deg));
+      if (std::abs(deg) < 90) lobe += p.force_N[j];
+      else if (std::abs(deg) == 90) lobe += 0.5 * p.force_N[j];
+    }
+    const RingContact ring = ring_model(clearance);
+    std::printf("cam on ring, clearance %.1f um: zone ±%.1f deg (ring model ±%.1f), lobe force %.2f N (ring %.2f N)\n",
+                clearance * 1e6, zone, ring.zone_half_deg, lobe, ring.lobe_force_N);
+    // Zone edge: stations every 2° (FEM) against 0.5° (ring): within 4°. Force: the ring model's O(t/R) and shear
+    // errors plus the station discretisation: 5 %.
+    EXPECT_NEAR(zone, ring.zone_half_deg, 4.0);
+    EXPECT_NEAR(lobe / ring.lobe_force_N, 1.0, 0.05);
+    EXPECT_GE(p.force_N.minCoeff(), 0.0);
+    EXPECT_GE(ring.min_force_N, 0.0);
+    EXPECT_GE(p.gap_m.minCoeff(), -1e-9 * kW0);
+  }
+}
+
+// With the contact made bilateral (every station held at the cam's shape) the result of a cam prescribing
+// u_r = w0·cos2θ at every node of the bore is recovered: the outer wall's radial displacement within 1 % of w0.
+TEST(CamOnThinRing, BilateralStationsRecoverThePrescribedShape) {
+  const RingFem fem = ring_fem({});
+  Eigen::VectorXd b(fem.stations.angle_rad.size());
+  for (Eigen::Index j = 0; j < b.size(); ++j) b[j] = 2 * kW0 * std::cos(2 * fem.stations.angle_rad[j]);
+  const StationForces p = bilateral_support(fem.C, b);
+  const Eigen::VectorXd u_st = fem.unit_u * p.force_N;
+  // The prescribed shape: the bore's radial dof fixed in a cylindrical frame at every bore node.
+  const TetMesh& m = fem.mesh;
+  std::vector<bool> fixed = ring_supports(m);
+  NodeFrames frames;
+  frames.frame_of_node.assign(m.n_nodes(), -1);
+  Eigen::VectorXd shape = Eigen::VectorXd::Zero(3 * m.n_nodes());
+  for (std::size_t i = 0; i < m.n_nodes(); ++i) {
+    const double r = std::hypot(m.nodes(i, 0), m.nodes(i, 1));
+    if (std::abs(r - (kR - kT / 2)) > 1e-9 || fixed[3 * i] || fixed[3 * i + 1]) continue;
+    const double t = std::atan2(m.nodes(i, 1), m.nodes(i, 0));
+    Eigen::Matrix3d R;
+    R << std::cos(t), -std::sin(t), 0, std::sin(t), std::cos(t), 0, 0, 0, 1;
+    frames.frame_of_node[i] = static_cast<int>(frames.rotations.size());
+    frames.rotations.push_back(R);
+    fixed[3 * i] = true;
+    shape[3 * i] = kW0 * std::cos(2 * t);
+  }
+  const DofMap dofs = make_dof_map(fixed);
+  const CholmodFactor factor(assemble_stiffness(m, kSteel, dofs, frames));
+  const Eigen::VectorXd u_pr =
+      to_global(frames, expand_to_full(dofs, factor.solve(dirichlet_lift(m, kSteel, dofs, shape, frames)), shape));
+  const PointSampler sampler(m);
+  for (const double deg : {0.0, 20.0, 45.0, 70.0, 90.0}) {
+    const double t = deg * kPi / 180, r = kR + kT / 2 - 1e-6;
+    const Eigen::Vector3d x(r * std::cos(t), r * std::sin(t), kB / 2);
+    const Eigen::Vector3d e(std::cos(t), std::sin(t), 0);
+    const double w_st = sampler.displacement(x, u_st).dot(e), w_pr = sampler.displacement(x, u_pr).dot(e);
+    EXPECT_NEAR(w_st, w_pr, 0.01 * kW0) << deg;
+  }
+}
+
+// --- The seed cup under torque with the generator in place (coarse mesh) -----------------------------------------------
+// The torque winds the rim up instead of bending it: what the torque adds to the generator case moves the rim radially
+// by less than 5 % of w0 everywhere (without the generator in place the four-force model's torque case moved it by
+// ±1.5 w0). The torque balance holds with the generator's share (1e-8), and the cup's closed form is within 3 % of
+// the FEM even on this mesh.
+void expect_rim_held(WaveGeneratorModel model, double rim_tolerance_of_w0) {
+  Case c = load_case("cases/seed_190_192.toml");
+  c.mesh.size_m = 1.2e-3;
+  c.mesh.wall_layers = 1;
+  c.wave_generator->model = model;
+  const TetMesh m = mesh_flexspline(c.flexspline, c.gear, c.mesh);
+  const FlexsplineSolution s = analyse_flexspline(c, m);
+  ASSERT_EQ(s.cases[1].name, "torque");
+  const Eigen::VectorXd& u = s.cases[1].u;
+  const double w0 = *c.wave_generator->radial_deformation_m;
+  double worst = 0, worst_deg = 0, worst_z = 0, signed_worst = 0;
+  for (std::size_t i = 0; i < m.n_nodes(); ++i) {
+    if (m.nodes(i, 2) < c.flexspline.length_m - c.flexspline.rim_width_m - 1e-9) continue;
+    const double t = std::atan2(m.nodes(i, 1), m.nodes(i, 0));
+    const double ur = std::abs(std::cos(t) * u[3 * i] + std::sin(t) * u[3 * i + 1]);
+    if (ur > worst) {
+      worst = ur;
+      signed_worst = std::cos(t) * u[3 * i] + std::sin(t) * u[3 * i + 1];
+      worst_deg = t * 180 / kPi;
+      worst_z = m.nodes(i, 2);
+    }
+  }
+  std::printf("largest radial motion %+.2f um at %.1f deg, z = %.2f mm\n", signed_worst * 1e6, worst_deg,
+              worst_z * 1e3);
+  std::printf("seed cup (coarse), %s: rim radial motion from the torque at most %.2f %% of w0; phi0 %.4e rad, "
+              "closed form %.4e rad, engaged %.4e rad; generator carries %.3g N·m\n",
+              s.generator->model.c_str(), 100 * worst / w0, s.phi0_rad, s.phi0_theory_cup.total_rad(),
+              s.phi0_engaged_rad, s.generator->reaction_torque_Nm);
+  EXPECT_LT(worst, rim_tolerance_of_w0 * w0);
+  EXPECT_NEAR(-s.reaction_torque_Nm / s.applied_torque_Nm, 1.0, 1e-8);
+  EXPECT_NEAR(s.phi0_rad / s.phi0_theory_cup.total_rad(), 1.0, 0.03);
+  for (double f : s.generator->force_comb_N)
+    if (s.generator->unilateral) EXPECT_GE(f, 0.0);
+}
+
+TEST(SeedCupUnderTorque, FourForceGeneratorHoldsTheRim) { expect_rim_held(WaveGeneratorModel::FourForce, 0.05); }
+// A cam holds the rim only inward: where the torque lifts the rim off, nothing holds it (measured: up to 9 % of w0,
+// outward, past the band's edge at the open end). The bound here is the unsupported torque case's ±1.5·w0 cut by ten.
+TEST(SeedCupUnderTorque, CamHoldsTheRimInwardOnly) { expect_rim_held(WaveGeneratorModel::Cam, 0.15); }
+
+}  // namespace
+}  // namespace sw

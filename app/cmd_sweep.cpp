@@ -232,7 +232,7 @@ std::string sweep_csv(const std::vector<SweepAxis>& axes, const std::vector<Poin
 /// other keys.
 std::string sweep_svg(const std::vector<SweepAxis>& axes, const std::vector<Point>& points,
                       const std::vector<nlohmann::json>& results) {
-  const int W = 420, H = 300, M = 60;
+  const int W = 440, H = 300, M = 80;
   const std::vector<std::pair<std::string, std::vector<std::string>>> panels = {
       {"phi0 (rad)", {"phi0_rad"}},
       {"C_tau (rad/N·m)", {"compliance_rad_per_Nm"}},
@@ -263,7 +263,7 @@ std::string sweep_svg(const std::vector<SweepAxis>& axes, const std::vector<Poin
     auto X = [&](double x) { return ox + M + (x1 == x0 ? 0.5 : (x - x0) / (x1 - x0)) * (W - M - 20); };
     auto Y = [&](double y) { return oy + 20 + (1 - (y - lo) / (hi - lo)) * (H - 70); };
     char b[160];
-    std::snprintf(b, sizeof b, "<text x=\"%d\" y=\"%.1f\" text-anchor=\"end\">%.4g</text>\n", ox + M - 4, Y(hi) + 4, hi);
+    std::snprintf(b, sizeof b, "<text x=\"%d\" y=\"%.1f\" text-anchor=\"end\">%.4g</text>\n", ox + M - 4, Y(hi) + 8, hi);
     s << b;
     std::snprintf(b, sizeof b, "<text x=\"%d\" y=\"%.1f\" text-anchor=\"end\">%.4g</text>\n", ox + M - 4, Y(lo), lo);
     s << b;

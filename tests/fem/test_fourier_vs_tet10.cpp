@@ -1,5 +1,5 @@
 // The same flexspline and loads through the tet10 solver and the harmonic solver: a long plain tube under the
-// four-force generator and under the cam, torque on the end. Coarse tet10 meshes keep the test fast (a few seconds);
+// four-force generator, torque on the end. Coarse tet10 meshes keep the test fast (a few seconds);
 // the converged comparisons (seed cup, size-17 cup, tube) are bench/fourier_vs_tet10.cpp's. Tolerances: the coarse
 // tet10 mesh's own discretisation error, measured on these meshes with a margin of about 2 (see each). The harmonic
 // solution itself is converged here: N = 64 differs from N = 256 by 2e-6·w0 on the neutral circle, the section at
@@ -79,15 +79,10 @@ TEST(FourierVsTet10, TubeFourForce) {
   EXPECT_LT(std::abs(d.hoop_rel), 0.015);
 }
 
-// Measured: φ₀ 8e-8, w 0.36 % and v 0.41 % of w0. The hoop stress is not compared here: one quadratic tet through the
-// wall does not resolve the cam's bending stress at the wall (−164 MPa against −186 MPa); with two layers (290k
-// nodes, 2.5 min, too slow for a test) the difference is 1.1 %, with w and v within 3e-4 of w0.
-TEST(FourierVsTet10, TubeCam) {
-  const Differences d = compare(tube_with_generator(WaveGeneratorModel::Cam));
-  EXPECT_LT(std::abs(d.phi0_rel), 1e-6);
-  EXPECT_LT(d.w_max, 0.008);
-  EXPECT_LT(d.v_max, 0.008);
-}
+// No cam comparison: the tet10 path's cam is a body in unilateral contact (it lifts off near the minor axis), the
+// harmonic path's is the bilateral prescription u_r = w0·cos2θ over the band (harmonic 2 exactly); they are different
+// models (9 % of w0 apart on this tube). Against the bilateral tet10 cam (before the contact model) the harmonic
+// path agreed within 0.36 % (w) and 0.41 % (v) of w0 and φ₀ 8e-8.
 
 }  // namespace
 }  // namespace sw

@@ -1,5 +1,6 @@
 // `strainwave fem CASE.toml`: mesh the flexspline, solve every load case on one factorisation, write result.json,
 // neutral_curve.csv and the VTK files; `strainwave run` chains fem and backlash.
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -13,6 +14,7 @@
 #include "io/atomic_file.hpp"
 #include "io/case.hpp"
 #include "io/fem_output.hpp"
+#include "io/inp.hpp"
 #include "mesh/estimate.hpp"
 #include "mesh/flexspline.hpp"
 
@@ -22,8 +24,20 @@ namespace fs = std::filesystem;
 
 fs::path default_out_dir(const Case& c) { return fs::path("out") / c.stem; }
 
-TetMesh mesh_for_case(const Case& c) {
-  refuse_if_too_large(estimate_model_size(c.flexspline, c.gear, c.mesh), 0.0, c.path);  // seconds, not minutes
+void add_fem_job_options(CLI::App* cmd, FemJobOptions& o) {
+  cmd->add_flag("--no-vtk", [&o](std::int64_t) { o.write_vtk = false; }, "leave out flexspline.pvd and the .vtu files");
+  cmd->add_option_function<std::string>(
+      "--export-inp", [&o](const std::string& f) { o.export_inp = f; },
+      "also write the mesh, clamp and torque loads as a CalculiX/Abaqus deck (C3D10); the generator's contact is not "
+      "in the deck");
+  cmd->add_option("--max-memory", o.max_memory_gb, "refuse a TET10 model whose estimated peak exceeds this (GB; "
+                                                   "default: the machine's available memory)")
+      ->check(CLI::PositiveNumber);
+}
+
+TetMesh mesh_for_case(const Case& c, double max_memory_gb) {
+  // Seconds, not minutes: refused from the geometry before TetGen runs.
+  refuse_if_too_large(estimate_model_size(c.flexspline, c.gear, c.mesh), max_memory_gb * 1e9, c.path);
   return mesh_flexspline(c.flexspline, c.gear, c.mesh);
 }
 
@@ -35,8 +49,12 @@ void apply_solver_option(Case& c, const std::string& solver) {
                               "one (use teeth = \"ring\" or \"none\", or --solver tet10)");
 }
 
-FemJobResult run_fem_job(const Case& c, const fs::path& out_dir, bool write_vtk) {
-  if (c.solver.method == SolverMethod::Fourier) return run_fourier_fem_job(c, out_dir, write_vtk);
+FemJobResult run_fem_job(const Case& c, const fs::path& out_dir, const FemJobOptions& options) {
+  if (c.solver.method == SolverMethod::Fourier) {
+    if (options.export_inp)
+      throw InputError("--export-inp writes a TET10 deck; it needs [solver] method = \"tet10\" (or --solver tet10)");
+    return run_fourier_fem_job(c, out_dir, options.write_vtk);
+  }
   const double t_start = elapsed_s();
   RunInfo run;
   run.blas = detect_blas();
@@ -48,7 +66,7 @@ FemJobResult run_fem_job(const Case& c, const fs::path& out_dir, bool write_vtk)
                  run.blas.description.c_str());
   Stopwatch clock;
   progress("mesh: " + c.path);
-  const TetMesh mesh = mesh_for_case(c);
+  const TetMesh mesh = mesh_for_case(c, options.max_memory_gb);
   run.mesh_s = clock.lap();
   progress("mesh: " + std::to_string(mesh.n_nodes()) + " nodes, " + std::to_string(mesh.tets.size()) +
            " TET10, min dihedral " + std::to_string(mesh.quality.min_dihedral_deg) + " deg");
@@ -56,7 +74,12 @@ FemJobResult run_fem_job(const Case& c, const fs::path& out_dir, bool write_vtk)
   job.solution = analyse_flexspline(c, mesh);
   clock.lap();
   progress("output: " + out_dir.string());
-  if (write_vtk) write_fem_vtk(out_dir, c, mesh, job.solution);
+  if (options.write_vtk) write_fem_vtk(out_dir, c, mesh, job.solution);
+  if (options.export_inp) {
+    write_inp_deck(*options.export_inp, c, mesh, clamped_nodes(mesh), torque_load_vector(c, mesh, c.load.torque_Nm),
+                   "fem --export-inp (clamp and torque only; no generator)");
+    progress("deck: " + options.export_inp->string());
+  }
   if (job.solution.neutral_curve) write_file_atomic(out_dir / "neutral_curve.csv", neutral_curve_csv(*job.solution.neutral_curve));
   run.output_s = clock.lap();
   run.total_s = elapsed_s() - t_start;
@@ -127,9 +150,9 @@ FemJobResult run_fem_job(const Case& c, const fs::path& out_dir, bool write_vtk)
 void add_fem_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("fem", "mesh the flexspline, solve every load case, extract phi0 and C_tau");
   static std::string case_path, out, solver;
-  static bool no_vtk = false;
+  static FemJobOptions options;
   cmd->add_option("case", case_path, "case file (TOML)")->required();
-  cmd->add_flag("--no-vtk", no_vtk, "leave out flexspline.pvd and the .vtu files");
+  add_fem_job_options(cmd, options);
   cmd->add_option("--out", out, "output directory (default out/<case stem>/)");
   cmd->add_option("--solver", solver, "tet10 | fourier (overrides [solver] method)")
       ->check(CLI::IsMember({"tet10", "fourier"}));
@@ -137,7 +160,7 @@ void add_fem_command(CLI::App& app) {
     Case c = load_case(case_path);
     apply_solver_option(c, solver);
     progress("case:\n" + describe_case(c));
-    run_fem_job(c, out.empty() ? default_out_dir(c) : fs::path(out), !no_vtk);
+    run_fem_job(c, out.empty() ? default_out_dir(c) : fs::path(out), options);
   });
 }
 

@@ -70,7 +70,9 @@ void print_summary(const Case& c, const FemJobResult& fem, const std::optional<B
 void add_run_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("run", "fem then backlash fed with its phi0: the main job");
   static std::string case_path, out, solver, curve = "fem";
+  static FemJobOptions fem_options;
   cmd->add_option("case", case_path, "case file (TOML)")->required();
+  add_fem_job_options(cmd, fem_options);
   cmd->add_option("--curve", curve,
                   "neutral curve for the backlash: fem (the FEM's generator-deformed rim, default) or generator "
                   "(the generator model's thin-ring/cam curve)")
@@ -83,7 +85,7 @@ void add_run_command(CLI::App& app) {
     apply_solver_option(c, solver);
     progress("case:\n" + describe_case(c));
     const std::filesystem::path dir = out.empty() ? default_out_dir(c) : std::filesystem::path(out);
-    const FemJobResult fem = run_fem_job(c, dir);
+    const FemJobResult fem = run_fem_job(c, dir, fem_options);
     std::optional<BacklashReport> backlash;
     if (c.gear && c.wave_generator && c.wave_generator->radial_deformation_m) {
       BacklashJobOptions options;

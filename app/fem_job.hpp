@@ -1,6 +1,10 @@
 #pragma once
 // The fem job shared by `strainwave fem` and `strainwave run`.
 #include <filesystem>
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
 #include <string>
 
 #include "common/params.hpp"
@@ -17,12 +21,22 @@ struct FemJobResult {
 /// out/<case stem>/
 std::filesystem::path default_out_dir(const Case& c);
 
-/// The mesh of the case's flexspline.
-TetMesh mesh_for_case(const Case& c);
+/// The fem job's command-line options, shared by `fem` and `run` (one place, one spelling).
+struct FemJobOptions {
+  bool write_vtk = true;                            ///< --no-vtk leaves out flexspline.pvd and the .vtu files
+  std::optional<std::filesystem::path> export_inp;  ///< --export-inp FILE: CalculiX/Abaqus deck of the torque case
+  double max_memory_gb = 0;                         ///< --max-memory GB; 0: the machine's available memory
+};
 
-/// Meshes, solves, writes every fem output under out_dir, prints the summary (by the case's solver.method);
-/// write_vtk = false leaves out the .vtu/.pvd files (sweeps).
-FemJobResult run_fem_job(const Case& c, const std::filesystem::path& out_dir, bool write_vtk = true);
+/// Registers --no-vtk, --export-inp and --max-memory on a subcommand.
+void add_fem_job_options(CLI::App* cmd, FemJobOptions& options);
+
+/// The mesh of the case's flexspline, refused in one line before meshing when the model's estimated peak memory
+/// exceeds max_memory_gb (0: the machine's available memory).
+TetMesh mesh_for_case(const Case& c, double max_memory_gb = 0);
+
+/// Meshes, solves, writes every fem output under out_dir, prints the summary (by the case's solver.method).
+FemJobResult run_fem_job(const Case& c, const std::filesystem::path& out_dir, const FemJobOptions& options = {});
 
 /// The same on the harmonic solver (solver.method = "fourier"; app/fem_fourier_job.cpp); VTU output optional.
 FemJobResult run_fourier_fem_job(const Case& c, const std::filesystem::path& out_dir, bool write_vtk = true);

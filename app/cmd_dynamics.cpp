@@ -63,7 +63,7 @@ void run_dynamics(const std::string& case_path, std::string out_dir, const std::
   Stopwatch total;
   const Case c = load_case(case_path);
   if (!c.gear) throw InputError(case_path + ": [gear] is missing; the dynamics needs the tooth numbers and module");
-  DynamicsParams p = c.dynamics.value_or(DynamicsParams{});
+  DynamicsParams p = c.dynamics ? *c.dynamics : DynamicsParams{};
   if (!fem_result.empty()) {
     p.flexspline_compliance_rad_per_Nm = compliance_from_fem(fem_result);
     progress("dynamics: flexspline rim and flange joined by 1/C_tau, C_tau = " +

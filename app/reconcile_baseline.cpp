@@ -136,7 +136,7 @@ reconcile::Baseline make_baseline(Kind kind, const BaselineSources& src, std::ve
       if (!c || !c->gear)
         throw InputError((c ? c->path : std::string("case")) +
                          ": [gear] missing; the dynamics baseline needs the case's gear and [dynamics] table");
-      const DynamicsParams p = c->dynamics.value_or(DynamicsParams{});
+      const DynamicsParams p = c->dynamics ? *c->dynamics : DynamicsParams{};
       if (p.stiffness_variation_N_per_m != 0.0)
         notes.push_back("the case has dynamics.stiffness_variation_N_per_m = " +
                         std::to_string(p.stiffness_variation_N_per_m) + "; the baseline uses constant mesh stiffness");

@@ -1,14 +1,16 @@
 #pragma once
 // Option structs of a case, SI units. Shared by every stage (mesh, fem, kinematics, dynamics) without depending on
 // the TOML parser, which lives in io/case.hpp and fills them.
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "dynamics/dynamics_params.hpp"  // header-only, standard library only
 #include "gear/gear.hpp"
 
 namespace sw {
+
+struct DynamicsParams;  // dynamics/dynamics_params.hpp
 
 enum class FlexsplineShape { Cup, Tube };
 enum class TeethModel { None, Ring, Explicit };
@@ -93,7 +95,9 @@ struct Case {
   LoadParams load;
   MeshParams mesh;
   SolverParams solver;
-  std::optional<DynamicsParams> dynamics;
+  /// [dynamics]: the dynamics stage's own options (dynamics/dynamics_params.hpp), null when the table is absent.
+  /// Held by pointer so that this header does not depend on a later stage.
+  std::shared_ptr<const DynamicsParams> dynamics;
 };
 
 }  // namespace sw

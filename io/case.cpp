@@ -361,7 +361,7 @@ Case parse_case(const std::string& toml_text, const std::string& path) {
   c.load = read_load(TableReader(table("load") ? *table("load") : kEmpty, "load", path));
   c.mesh = read_mesh(TableReader(table("mesh") ? *table("mesh") : kEmpty, "mesh", path));
   c.solver = read_solver(TableReader(table("solver") ? *table("solver") : kEmpty, "solver", path));
-  if (auto t = table("dynamics")) c.dynamics = read_dynamics(TableReader(*t, "dynamics", path));
+  if (auto t = table("dynamics")) c.dynamics = std::make_shared<const DynamicsParams>(read_dynamics(TableReader(*t, "dynamics", path)));
   if (c.flexspline.teeth != TeethModel::None && !c.gear)
     throw InputError(path + ": flexspline.teeth = \"" +
                      std::string(c.flexspline.teeth == TeethModel::Ring ? "ring" : "explicit") +

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "common/params.hpp"
+#include "dynamics/dynamics_params.hpp"  // [dynamics] (header-only, standard library only)
 
 namespace sw {
 

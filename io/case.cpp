@@ -1,5 +1,6 @@
 #include "io/case.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -306,9 +307,77 @@ DynamicsParams read_dynamics(TableReader r) {
   return d;
 }
 
+/// Refuses a non-ASCII character where TOML allows only keys, values and whitespace. Every case key and value is
+/// ASCII, so this loses nothing; comments and quoted strings keep theirs. The reason: toml++ 3.3 (Debian 12) asks whether
+/// such a character is whitespace, and for U+00A1..U+0499 and U+2C6E..U+3067 that question reaches TOML_UNREACHABLE,
+/// i.e. undefined behaviour (upstream marzer/tomlplusplus#190 and #295, fixed after 3.3). The same holds for the
+/// first character after a line-ending backslash in a multi-line basic string.
+void require_ascii_syntax(const std::string& text, const std::string& path) {
+  enum class In { Code, Comment, Basic, Literal, MultiBasic, MultiLiteral };
+  In in = In::Code;
+  int line = 1;
+  std::size_t line_start = 0;
+  auto non_ascii = [&](std::size_t i) { return static_cast<unsigned char>(text[i]) >= 0x80; };
+  auto fail = [&](std::size_t i) {
+    throw InputError(path + ":" + std::to_string(line) + ":" + std::to_string(i - line_start + 1) +
+                     ": malformed TOML: non-ASCII character outside a comment or string; keys and values of a case "
+                     "are ASCII");
+  };
+  auto quotes_at = [&](std::size_t i, char q) {
+    std::size_t n = 0;
+    while (i + n < text.size() && text[i + n] == q) ++n;
+    return n;
+  };
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char ch = text[i];
+    if (ch == '\n') {
+      ++line;
+      line_start = i + 1;
+      if (in == In::Comment || in == In::Basic || in == In::Literal) in = In::Code;
+      continue;
+    }
+    switch (in) {
+      case In::Code:
+        if (ch == '#') in = In::Comment;
+        else if (ch == '"' || ch == '\'') {
+          const bool multi = quotes_at(i, ch) >= 3;
+          in = ch == '"' ? (multi ? In::MultiBasic : In::Basic) : (multi ? In::MultiLiteral : In::Literal);
+          if (multi) i += 2;
+        } else if (non_ascii(i)) {
+          fail(i);
+        }
+        break;
+      case In::Comment: break;
+      case In::Basic:
+        if (ch == '\\' && i + 1 < text.size() && text[i + 1] != '\n') ++i;
+        else if (ch == '"') in = In::Code;
+        break;
+      case In::Literal:
+        if (ch == '\'') in = In::Code;
+        break;
+      case In::MultiBasic:
+      case In::MultiLiteral: {
+        const char q = in == In::MultiBasic ? '"' : '\'';
+        if (in == In::MultiBasic && ch == '\\') {
+          std::size_t j = i + 1;
+          while (j < text.size() && (text[j] == ' ' || text[j] == '\t' || text[j] == '\r' || text[j] == '\n')) ++j;
+          if (j == i + 1) ++i;  // an escape: \" \\ \n ...
+          else if (j < text.size() && non_ascii(j)) fail(i);
+        } else if (ch == q) {
+          const std::size_t n = quotes_at(i, q);  // up to two quotes before the closing three belong to the string
+          if (n >= 3) in = In::Code;
+          i += std::min<std::size_t>(n, 5) - 1;
+        }
+        break;
+      }
+    }
+  }
+}
+
 }  // namespace
 
 Case parse_case(const std::string& toml_text, const std::string& path) {
+  require_ascii_syntax(toml_text, path);
   toml::table root;
   try {
     root = toml::parse(toml_text, path);

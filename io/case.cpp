@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -318,10 +319,10 @@ void require_ascii_syntax(const std::string& text, const std::string& path) {
   int line = 1;
   std::size_t line_start = 0;
   auto non_ascii = [&](std::size_t i) { return static_cast<unsigned char>(text[i]) >= 0x80; };
-  auto fail = [&](std::size_t i) {
+  auto fail = [&](std::size_t i, const std::string& what = "non-ASCII character outside a comment or string; keys "
+                                                            "and values of a case are ASCII") {
     throw InputError(path + ":" + std::to_string(line) + ":" + std::to_string(i - line_start + 1) +
-                     ": malformed TOML: non-ASCII character outside a comment or string; keys and values of a case "
-                     "are ASCII");
+                     ": malformed TOML: " + what);
   };
   auto quotes_at = [&](std::size_t i, char q) {
     std::size_t n = 0;
@@ -335,6 +336,14 @@ void require_ascii_syntax(const std::string& text, const std::string& path) {
       line_start = i + 1;
       if (in == In::Comment || in == In::Basic || in == In::Literal) in = In::Code;
       continue;
+    }
+    // TOML allows no other control character anywhere, and toml++ does not stop at them (a NUL in a string let the
+    // scan above and the parser disagree on where the string ends).
+    const auto byte = static_cast<unsigned char>(ch);
+    if ((byte < 0x20 && ch != '\t' && ch != '\r') || byte == 0x7F) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "0x%02X", byte);
+      fail(i, "control character " + std::string(hex) + "; TOML allows only tab, CR and LF");
     }
     switch (in) {
       case In::Code:

@@ -113,6 +113,9 @@ TEST(CaseFile, NonAsciiOutsideCommentsAndStringsIsRefusedWithLineAndColumn) {
   EXPECT_NE(error_of("s = \"\"\"\\\n\xC2\xA7\"\"\"\n").find("cases/x.toml:1:8: malformed TOML: non-ASCII"),
             std::string::npos);
   EXPECT_NE(error_of(std::string(kTube) + "length_mm = 30\xC2\xA0\n").find("cases/x.toml:7:15:"), std::string::npos);
+  // A NUL inside a string, then U+01E0 after it (the fuzzer's second input): refused at the NUL.
+  EXPECT_EQ(error_of(std::string("hap=[\"\0\0[\xC7\xA0\"]", 13)),
+            "cases/x.toml:1:7: malformed TOML: control character 0x00; TOML allows only tab, CR and LF");
 }
 
 TEST(CaseFile, NonAsciiInCommentsAndStringsIsKept) {

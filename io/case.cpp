@@ -308,19 +308,17 @@ DynamicsParams read_dynamics(TableReader r) {
   return d;
 }
 
-/// Refuses a non-ASCII character where TOML allows only keys, values and whitespace. Every case key and value is
-/// ASCII, so this loses nothing; comments and quoted strings keep theirs. The reason: toml++ 3.3 (Debian 12) asks whether
-/// such a character is whitespace, and for U+00A1..U+0499 and U+2C6E..U+3067 that question reaches TOML_UNREACHABLE,
-/// i.e. undefined behaviour (upstream marzer/tomlplusplus#190 and #295, fixed after 3.3). The same holds for the
-/// first character after a line-ending backslash in a multi-line basic string.
+/// Refuses a non-ASCII character outside comments, and any control character but tab, CR and LF. Every case key and
+/// value is ASCII, so this loses nothing; comments keep their symbols. The reason: toml++ 3.3 (Debian 12) asks whether
+/// such a character is whitespace, and for U+00A1..U+0499, U+2C6E..U+3067 and U+FE7F.. that question reaches
+/// TOML_UNREACHABLE, i.e. undefined behaviour (upstream marzer/tomlplusplus#190 and #295, fixed after 3.3). Fuzzing
+/// reached it after a bare key, inside a string after a NUL and inside a literal string in an array.
 void require_ascii_syntax(const std::string& text, const std::string& path) {
   enum class In { Code, Comment, Basic, Literal, MultiBasic, MultiLiteral };
   In in = In::Code;
   int line = 1;
   std::size_t line_start = 0;
-  auto non_ascii = [&](std::size_t i) { return static_cast<unsigned char>(text[i]) >= 0x80; };
-  auto fail = [&](std::size_t i, const std::string& what = "non-ASCII character outside a comment or string; keys "
-                                                            "and values of a case are ASCII") {
+  auto fail = [&](std::size_t i, const std::string& what) {
     throw InputError(path + ":" + std::to_string(line) + ":" + std::to_string(i - line_start + 1) +
                      ": malformed TOML: " + what);
   };
@@ -337,14 +335,14 @@ void require_ascii_syntax(const std::string& text, const std::string& path) {
       if (in == In::Comment || in == In::Basic || in == In::Literal) in = In::Code;
       continue;
     }
-    // TOML allows no other control character anywhere, and toml++ does not stop at them (a NUL in a string let the
-    // scan above and the parser disagree on where the string ends).
     const auto byte = static_cast<unsigned char>(ch);
     if ((byte < 0x20 && ch != '\t' && ch != '\r') || byte == 0x7F) {
       char hex[8];
       std::snprintf(hex, sizeof hex, "0x%02X", byte);
       fail(i, "control character " + std::string(hex) + "; TOML allows only tab, CR and LF");
     }
+    if (byte >= 0x80 && in != In::Comment)
+      fail(i, "non-ASCII character outside a comment; keys and values of a case are ASCII");
     switch (in) {
       case In::Code:
         if (ch == '#') in = In::Comment;
@@ -352,8 +350,6 @@ void require_ascii_syntax(const std::string& text, const std::string& path) {
           const bool multi = quotes_at(i, ch) >= 3;
           in = ch == '"' ? (multi ? In::MultiBasic : In::Basic) : (multi ? In::MultiLiteral : In::Literal);
           if (multi) i += 2;
-        } else if (non_ascii(i)) {
-          fail(i);
         }
         break;
       case In::Comment: break;
@@ -367,11 +363,8 @@ void require_ascii_syntax(const std::string& text, const std::string& path) {
       case In::MultiBasic:
       case In::MultiLiteral: {
         const char q = in == In::MultiBasic ? '"' : '\'';
-        if (in == In::MultiBasic && ch == '\\') {
-          std::size_t j = i + 1;
-          while (j < text.size() && (text[j] == ' ' || text[j] == '\t' || text[j] == '\r' || text[j] == '\n')) ++j;
-          if (j == i + 1) ++i;  // an escape: \" \\ \n ...
-          else if (j < text.size() && non_ascii(j)) fail(i);
+        if (in == In::MultiBasic && ch == '\\' && i + 1 < text.size() && text[i + 1] != '\n') {
+          ++i;  // an escape: \" \\ ...
         } else if (ch == q) {
           const std::size_t n = quotes_at(i, q);  // up to two quotes before the closing three belong to the string
           if (n >= 3) in = In::Code;

@@ -1,8 +1,11 @@
 #include "io/case.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <numbers>
 #include <set>
 #include <sstream>
@@ -69,6 +72,7 @@ public:
     const auto v = node->value_exact<int64_t>();
     if (!v) fail(key, *node, "expected an integer");
     if (*v < at_least) fail(key, *node, "must be >= " + std::to_string(at_least));
+    if (*v > std::numeric_limits<int>::max()) fail(key, *node, "must be <= " + std::to_string(std::numeric_limits<int>::max()));
     return static_cast<int>(*v);
   }
 
@@ -329,9 +333,78 @@ DynamicsParams read_dynamics(TableReader r) {
   return d;
 }
 
+/// Refuses a non-ASCII character outside comments, and any control character but tab, CR and LF. Every case key and
+/// value is ASCII, so this loses nothing; comments keep their symbols. The reason: toml++ 3.3 (Debian 12) asks whether
+/// such a character is whitespace, and for U+00A1..U+0499, U+2C6E..U+3067 and U+FE7F.. that question reaches
+/// TOML_UNREACHABLE, i.e. undefined behaviour (upstream marzer/tomlplusplus#190 and #295, fixed after 3.3). Fuzzing
+/// reached it after a bare key, inside a string after a NUL and inside a literal string in an array.
+void require_ascii_syntax(const std::string& text, const std::string& path) {
+  enum class In { Code, Comment, Basic, Literal, MultiBasic, MultiLiteral };
+  In in = In::Code;
+  int line = 1;
+  std::size_t line_start = 0;
+  auto fail = [&](std::size_t i, const std::string& what) {
+    throw InputError(path + ":" + std::to_string(line) + ":" + std::to_string(i - line_start + 1) +
+                     ": malformed TOML: " + what);
+  };
+  auto quotes_at = [&](std::size_t i, char q) {
+    std::size_t n = 0;
+    while (i + n < text.size() && text[i + n] == q) ++n;
+    return n;
+  };
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char ch = text[i];
+    if (ch == '\n') {
+      ++line;
+      line_start = i + 1;
+      if (in == In::Comment || in == In::Basic || in == In::Literal) in = In::Code;
+      continue;
+    }
+    const auto byte = static_cast<unsigned char>(ch);
+    if ((byte < 0x20 && ch != '\t' && ch != '\r') || byte == 0x7F) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "0x%02X", byte);
+      fail(i, "control character " + std::string(hex) + "; TOML allows only tab, CR and LF");
+    }
+    if (byte >= 0x80 && in != In::Comment)
+      fail(i, "non-ASCII character outside a comment; keys and values of a case are ASCII");
+    switch (in) {
+      case In::Code:
+        if (ch == '#') in = In::Comment;
+        else if (ch == '"' || ch == '\'') {
+          const bool multi = quotes_at(i, ch) >= 3;
+          in = ch == '"' ? (multi ? In::MultiBasic : In::Basic) : (multi ? In::MultiLiteral : In::Literal);
+          if (multi) i += 2;
+        }
+        break;
+      case In::Comment: break;
+      case In::Basic:
+        if (ch == '\\' && i + 1 < text.size() && text[i + 1] != '\n') ++i;
+        else if (ch == '"') in = In::Code;
+        break;
+      case In::Literal:
+        if (ch == '\'') in = In::Code;
+        break;
+      case In::MultiBasic:
+      case In::MultiLiteral: {
+        const char q = in == In::MultiBasic ? '"' : '\'';
+        if (in == In::MultiBasic && ch == '\\' && i + 1 < text.size() && text[i + 1] != '\n') {
+          ++i;  // an escape: \" \\ ...
+        } else if (ch == q) {
+          const std::size_t n = quotes_at(i, q);  // up to two quotes before the closing three belong to the string
+          if (n >= 3) in = In::Code;
+          i += std::min<std::size_t>(n, 5) - 1;
+        }
+        break;
+      }
+    }
+  }
+}
+
 }  // namespace
 
 Case parse_case(const std::string& toml_text, const std::string& path) {
+  require_ascii_syntax(toml_text, path);
   toml::table root;
   try {
     root = toml::parse(toml_text, path);

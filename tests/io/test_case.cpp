@@ -127,5 +127,42 @@ TEST(CaseFile, FatigueDataComeInPairsBelowTheUltimateStrength) {
             std::string::npos);
 }
 
+// Found by bench/fuzz/fuzz_case: toml++ 3.3 reaches undefined behaviour (TOML_UNREACHABLE) when it tests some
+// non-ASCII characters for whitespace; the case reader refuses them outside comments first.
+TEST(CaseFile, NonAsciiOutsideCommentsIsRefusedWithLineAndColumn) {
+  EXPECT_EQ(error_of("_r\xCD\x8D"),  // U+034D after a bare key: the input the fuzzer found
+            "cases/x.toml:1:3: malformed TOML: non-ASCII character outside a comment; keys and values of a case are "
+            "ASCII");
+  // U+00A7 after a line-ending backslash in a multi-line string (upstream marzer/tomlplusplus#190).
+  EXPECT_NE(error_of("s = \"\"\"\\\n\xC2\xA7\"\"\"\n").find("cases/x.toml:2:1: malformed TOML: non-ASCII"),
+            std::string::npos);
+  // U+FE7F in a literal string inside an array (the fuzzer's third input).
+  EXPECT_NE(error_of("h= [0[['\xEF\xB9\xBF" "l\n.\n'").find("cases/x.toml:1:9: malformed TOML: non-ASCII"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kTube) + "length_mm = 30\xC2\xA0\n").find("cases/x.toml:7:15:"), std::string::npos);
+  // A NUL inside a string, then U+01E0 after it (the fuzzer's second input): refused at the NUL.
+  EXPECT_EQ(error_of(std::string("hap=[\"\0\0[\xC7\xA0\"]", 13)),
+            "cases/x.toml:1:7: malformed TOML: control character 0x00; TOML allows only tab, CR and LF");
+}
+
+TEST(CaseFile, NonAsciiInCommentsIsKept) {
+  // Comments with symbols, also after a string holding '#'; in a string value it is refused with its place.
+  const Case c = parse_case("# r + w\xE2\x82\x80\xC2\xB7" "cos2\xCF\x86\n" + std::string(kTube) +
+                                "[mesh]\n# \xC2\xB1 0.5 \xC2\xB5m\n",
+                            "t.toml");
+  EXPECT_EQ(c.flexspline.shape, FlexsplineShape::Tube);
+  const std::string e = error_of(std::string(kTube) + "[wave_generator]\nprofile = \"#\" # \xCF\x86\n");
+  EXPECT_NE(e.find("cases/x.toml:8: wave_generator.profile"), std::string::npos) << e;
+  EXPECT_NE(error_of("[flexspline]\nshape = \"tu\xCF\x86" "be\"\n").find("cases/x.toml:2:12: malformed TOML: non-ASCII"),
+            std::string::npos);
+}
+
+TEST(CaseFile, AnIntegerBeyondTheRangeOfIntIsRefusedNotWrapped) {
+  // 4294967496 = 2^32 + 200 would wrap to 200 teeth in a 32-bit int.
+  const std::string e = error_of(std::string(kTube) + "[gear]\nteeth_flexspline = 4294967496\nteeth_circular = 202\n");
+  EXPECT_NE(e.find("gear.teeth_flexspline = 4294967496; must be <= 2147483647"), std::string::npos) << e;
+}
+
 }  // namespace
+
 }  // namespace sw

@@ -14,10 +14,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string binary() {
-  const char* dir = std::getenv("SW_BUILD_DIR");
-  return (dir ? std::string(dir) : std::string("build")) + "/strainwave";
-}
+/// The strainwave binary of this build tree (compiled in, as in every CLI test: never a stale build/ elsewhere).
+std::string binary() { return SW_STRAINWAVE_BINARY; }
 
 int sh(const std::string& cmd) { return WEXITSTATUS(std::system(cmd.c_str())); }
 

@@ -9,4 +9,7 @@ if [ ! -d "$pydir/paraview" ] || ! command -v pvbatch >/dev/null || ! command -v
   echo "pvbatch.sh: ParaView is not set up; run scripts/setup.sh (it installs paraview and xvfb)" >&2
   exit 2
 fi
-PYTHONPATH="$pydir${PYTHONPATH:+:$PYTHONPATH}" exec xvfb-run -a pvbatch "$@"
+# xvfb-run -a races when two start at once (both take the same display, one aborts with "bad X server connection"):
+# one X server at a time, across processes, by a lock.
+PYTHONPATH="$pydir${PYTHONPATH:+:$PYTHONPATH}" exec flock "${TMPDIR:-/tmp}/strainwave-pvbatch.lock" \
+  xvfb-run -a pvbatch "$@"

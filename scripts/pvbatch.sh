@@ -9,7 +9,19 @@ if [ ! -d "$pydir/paraview" ] || ! command -v pvbatch >/dev/null || ! command -v
   echo "pvbatch.sh: ParaView is not set up; run scripts/setup.sh (it installs paraview and xvfb)" >&2
   exit 2
 fi
-# xvfb-run -a races when two start at once (both take the same display, one aborts with "bad X server connection"):
-# one X server at a time, across processes, by a lock.
-PYTHONPATH="$pydir${PYTHONPATH:+:$PYTHONPATH}" exec flock "${TMPDIR:-/tmp}/strainwave-pvbatch.lock" \
-  xvfb-run -a pvbatch "$@"
+# One X server at a time, across processes (a lock), with a 24-bit screen for OpenGL. Under load Xvfb sometimes is
+# not ready when pvbatch connects ("bad X server connection", SIGABRT, seen in CI): that case alone is retried.
+export PYTHONPATH="$pydir${PYTHONPATH:+:$PYTHONPATH}"
+log=$(mktemp)
+trap 'rm -f "$log"' EXIT
+for attempt in 1 2 3 4; do
+  set +e
+  flock "${TMPDIR:-/tmp}/strainwave-pvbatch.lock" xvfb-run -a -s "-screen 0 1600x1200x24" pvbatch "$@" 2> >(tee "$log" >&2)
+  rc=$?
+  set -e
+  wait  # the tee of stderr
+  grep -q "bad X server connection" "$log" || exit $rc
+  echo "pvbatch.sh: the X server was not ready (attempt $attempt); retrying" >&2
+  sleep 2
+done
+exit $rc

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -66,12 +67,16 @@ FemJobResult run_fem_job(const Case& c, const fs::path& out_dir, const FemJobOpt
                  run.blas.description.c_str());
   Stopwatch clock;
   progress("mesh: " + c.path);
-  const TetMesh mesh = mesh_for_case(c, options.max_memory_gb);
+  const auto mesh_ptr = std::make_shared<const TetMesh>(mesh_for_case(c, options.max_memory_gb));
+  const TetMesh& mesh = *mesh_ptr;
   run.mesh_s = clock.lap();
   progress("mesh: " + std::to_string(mesh.n_nodes()) + " nodes, " + std::to_string(mesh.tets.size()) +
            " TET10, min dihedral " + std::to_string(mesh.quality.min_dihedral_deg) + " deg");
   FemJobResult job;
-  job.solution = analyse_flexspline(c, mesh);
+  auto system = std::make_shared<const FlexsplineSystem>(assemble_and_factorise(c, mesh));
+  job.solution = analyse_flexspline(c, mesh, *system);
+  job.mesh = mesh_ptr;
+  job.system = system;
   clock.lap();
   progress("output: " + out_dir.string());
   if (options.write_vtk) write_fem_vtk(out_dir, c, mesh, job.solution);

@@ -1,6 +1,7 @@
 #pragma once
 // The fem job shared by `strainwave fem` and `strainwave run`.
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -16,6 +17,10 @@ namespace sw::app {
 struct FemJobResult {
   FlexsplineSolution solution;
   std::filesystem::path result_json_path;
+  /// The TET10 mesh and its factorised system, kept for the stages that solve on it again (the tooth contact);
+  /// null on the harmonic solver.
+  std::shared_ptr<const TetMesh> mesh;
+  std::shared_ptr<const FlexsplineSystem> system;
 };
 
 /// out/<case stem>/

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   sw::app::add_run_command(app);
   // Subcommands of the later modules register here (backlash, reconcile, synth, dynamics).
   sw::app::add_backlash_command(app);
+  sw::app::add_contact_command(app);
   sw::app::add_dynamics_command(app);
   sw::app::add_reconcile_command(app);
   sw::app::add_synth_command(app);

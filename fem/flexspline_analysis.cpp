@@ -16,7 +16,6 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 constexpr int kRingSamples = 360;                     // 1° steps around the reading circle
-constexpr double kPatchHalfAngle = 3.0 * kPi / 180;   // half-width of a generator force patch
 
 double wrap_pi(double a) { return std::remainder(a, 2 * kPi); }
 double theta_of(const Eigen::Vector3d& x) { return std::atan2(x[1], x[0]); }
@@ -45,47 +44,6 @@ Eigen::VectorXd unit_torque_load(const Case& c, const TetMesh& mesh) {
     return std::abs(wrap_pi(t)) <= half || std::abs(wrap_pi(t - kPi)) <= half;
   };
   return torque_load(mesh, select_faces(mesh, kSurfaceRimOuter, in_zone), 1.0, "the rim's engagement zones");
-}
-
-/// Angles (from the major axis) and weights of the generator's point forces.
-std::vector<WaveGeneratorForce> generator_forces(const WaveGeneratorParams& w) {
-  switch (w.model) {
-    case WaveGeneratorModel::FourForce:
-    case WaveGeneratorModel::Rollers:  // where the rollers touch (for ring theory)
-      return {{w.beta_rad, 0.5}, {-w.beta_rad, 0.5}, {kPi + w.beta_rad, 0.5}, {kPi - w.beta_rad, 0.5}};
-    case WaveGeneratorModel::TwoForce:
-      return {{0.0, 1.0}, {kPi, 1.0}};
-    case WaveGeneratorModel::Forces:
-      return w.forces;
-    case WaveGeneratorModel::Cam:
-      break;
-  }
-  throw std::logic_error("generator_forces: a cam's forces come from its contact");
-}
-
-/// Radial outward patch loads on the inner wall, one per force, each of magnitude weight (N) as the integral of the
-/// pressure over its patch.
-Eigen::VectorXd generator_load(const Case& c, const TetMesh& mesh) {
-  const auto& w = *c.wave_generator;
-  const double z_wg = c.flexspline.length_m - w.axial_position_m;
-  Eigen::VectorXd f = Eigen::VectorXd::Zero(3 * mesh.n_nodes());
-  for (const auto& force : generator_forces(w)) {
-    auto in_patch = [&](const Eigen::Vector3d& x) {
-      return std::abs(wrap_pi(theta_of(x) - force.angle_rad)) <= kPatchHalfAngle &&
-             std::abs(x[2] - z_wg) <= 0.5 * w.band_width_m;
-    };
-    const auto faces = select_faces(mesh, kSurfaceInner, in_patch);
-    if (faces.empty())
-      throw InputError("wave_generator: no inner-wall faces under the force at " +
-                       std::to_string(force.angle_rad * 180 / kPi) + " deg, z = " + std::to_string(z_wg * 1e3) +
-                       " mm; check wave_generator.axial_position_mm / band_width_mm or refine mesh.size_mm");
-    const double area = faces_area(mesh, faces);
-    f += traction_load(mesh, faces, [&](const Eigen::Vector3d& x, const Eigen::Vector3d&) -> Eigen::Vector3d {
-      const double r = std::hypot(x[0], x[1]);
-      return Eigen::Vector3d(x[0] / r, x[1] / r, 0.0) * (force.weight / area);
-    });
-  }
-  return f;
 }
 
 struct Ring {
@@ -193,121 +151,9 @@ double neutral_radius(const FlexsplineParams& f) {
 
 namespace {
 
-/// Angular spacing of the contact stations: two element edges at the bore (a contact pressure resolved more finely
-/// than the displacement field checkerboards), at least 2° and at most 6°, dividing 180° evenly.
-double station_spacing(const Case& c) {
-  const double two_edges_deg = 2 * c.mesh.size_m / c.flexspline.inner_radius_m * 180 / kPi;
-  const double n = std::round(180.0 / std::clamp(two_edges_deg, 2.0, 6.0));
-  return kPi / n;
-}
 // A station touches when it carries force or its gap is within 0.25 % of w0 (0.5 µm at w0 = 0.2 mm: the roughness
 // of a ground bearing race, and the level at which the mesh's own asymmetry shows in the gaps).
 constexpr double kTouchingGap = 2.5e-3;
-constexpr int kSolveChunk = 24;                       // right-hand sides per CHOLMOD solve (memory: n_eq × 24 doubles)
-
-/// Supports, assembly and the one factorisation every load case uses.
-struct Equations {
-  std::vector<bool> clamped;  ///< per node
-  DofMap dofs;
-  std::unique_ptr<CholmodFactor> factor;
-  Eigen::VectorXd zeros;      ///< 3·n_nodes
-
-  /// K⁻¹·F for full-dof loads (3·n_nodes × k), in full-dof displacements.
-  Eigen::MatrixXd solve(const Eigen::MatrixXd& loads) const {
-    Eigen::MatrixXd B(dofs.n_equations, loads.cols());
-    for (Eigen::Index j = 0; j < loads.cols(); ++j) B.col(j) = restrict_to_free(dofs, loads.col(j));
-    const Eigen::MatrixXd X = factor->solve(B);
-    Eigen::MatrixXd U(loads.rows(), loads.cols());
-    for (Eigen::Index j = 0; j < loads.cols(); ++j) U.col(j) = expand_to_full(dofs, X.col(j), zeros);
-    return U;
-  }
-};
-
-Equations assemble_and_factorise(const Case& c, const TetMesh& mesh, FlexsplineSolution& s) {
-  Equations eq;
-  eq.clamped = clamped_nodes(mesh);
-  std::vector<bool> fixed(3 * mesh.n_nodes());
-  for (std::size_t i = 0; i < mesh.n_nodes(); ++i) fixed[3 * i] = fixed[3 * i + 1] = fixed[3 * i + 2] = eq.clamped[i];
-  eq.dofs = make_dof_map(fixed);
-  eq.zeros = Eigen::VectorXd::Zero(3 * mesh.n_nodes());
-  Stopwatch clock;
-  progress("assemble: " + std::to_string(eq.dofs.n_equations) + " equations");
-  const SymmetricCsc K = assemble_stiffness(mesh, c.material, eq.dofs);
-  s.assemble_s = clock.lap();
-  progress("factorise: nnz(K) = " + std::to_string(K.nnz()));
-  eq.factor = std::make_unique<CholmodFactor>(K, equation_nodes(eq.dofs));
-  s.factor = eq.factor->stats();
-  progress("factorised: nnz(L) = " + std::to_string(static_cast<long long>(s.factor.factor_nnz)) + ", " +
-           std::to_string(s.factor.factor_gflop) + " GF in " + std::to_string(s.factor.factor_s) + " s");
-  return eq;
-}
-
-/// The generator's contact stations and what they push against.
-struct Generator {
-  bool unilateral = false;
-  BandStations stations;
-  Eigen::VectorXd obstacle;    ///< per pair: the generator surface's standoff from the bore, summed over the pair (m)
-  Eigen::VectorXd force_load;  ///< force models: the unit generator forces (3·n_nodes)
-};
-
-/// Radial standoff s(θ) of the cam's surface from the unloaded bore, and its normal's tilt ρ'/ρ.
-double cam_standoff(const WaveGeneratorParams& w, double r, double t) {
-  const double w0 = *w.radial_deformation_m;
-  if (w.cam_profile == CamProfile::Polar) return w0 * std::cos(2 * t) - w.cam_clearance_m;
-  const double a = r + w0, b = r - w0;
-  return a * b / std::hypot(b * std::cos(t), a * std::sin(t)) - r - w.cam_clearance_m;
-}
-double cam_tilt(const WaveGeneratorParams& w, double r, double t) {
-  const double h = 1e-6;
-  const double rho = r + cam_standoff(w, r, t);
-  return (cam_standoff(w, r, t + h) - cam_standoff(w, r, t - h)) / (2 * h) / rho;
-}
-
-Generator generator_of(const Case& c, const TetMesh& mesh) {
-  const auto& w = *c.wave_generator;
-  const auto& f = c.flexspline;
-  const double z = f.length_m - w.axial_position_m, r = f.inner_radius_m;
-  Generator g;
-  const double spacing = station_spacing(c);
-  std::vector<double> angles;
-  NormalTilt tilt;
-  switch (w.model) {
-    case WaveGeneratorModel::Cam:
-      g.unilateral = true;
-      for (int k = 0; k * spacing < kPi - 1e-9; ++k) angles.push_back(k * spacing);
-      tilt = [&w, r](double t) { return cam_tilt(w, r, t); };
-      break;
-    case WaveGeneratorModel::Rollers:
-      // Two pairs: β with π + β, π − β with −β. A roller's normal passes through its centre: radial where it touches.
-      g.unilateral = true;
-      angles = {w.beta_rad, kPi - w.beta_rad};
-      break;
-    default:  // the force idealisation: stations all round the band, for the torque case's radial support
-      for (int k = 0; k * spacing < kPi - 1e-9; ++k) angles.push_back(k * spacing);
-      break;
-  }
-  g.stations = band_stations(mesh, z, w.band_width_m, angles, spacing, tilt);
-  g.obstacle.resize(static_cast<Eigen::Index>(angles.size()));
-  for (std::size_t j = 0; j < angles.size(); ++j)
-    g.obstacle[j] = w.model == WaveGeneratorModel::Cam ? 2 * cam_standoff(w, r, angles[j])
-                    : w.model == WaveGeneratorModel::Rollers ? 2.0  // per metre the rollers stand out; scaled to w0
-                                                             : 0.0;
-  if (!g.unilateral) g.force_load = generator_load(c, mesh);
-  return g;
-}
-
-/// Influence matrix C = Fᵀ·K⁻¹·F of the stations (pairs × pairs, m/N), solved in chunks of right-hand sides.
-Eigen::MatrixXd influence(const Equations& eq, const BandStations& st) {
-  const Eigen::Index m = st.loads.cols();
-  Eigen::MatrixXd C(m, m);
-  for (Eigen::Index j0 = 0; j0 < m; j0 += kSolveChunk) {
-    const Eigen::Index k = std::min<Eigen::Index>(kSolveChunk, m - j0);
-    const Eigen::MatrixXd U = eq.solve(Eigen::MatrixXd(st.loads.middleCols(j0, k)));
-    C.middleCols(j0, k) = st.loads.transpose() * U;
-  }
-  return 0.5 * (C + C.transpose());  // symmetric up to round-off; make it exactly so
-}
-
 Eigen::VectorXd contact_load(const BandStations& st, const Eigen::VectorXd& p) { return st.loads * p; }
 
 /// Total radial force (N) of a full load vector: Σ f·e_r over the nodes.
@@ -423,19 +269,22 @@ double ring_theory_bending_stress(const WaveGeneratorParams& w, double youngs_mo
 }
 
 FlexsplineSolution analyse_flexspline(const Case& c, const TetMesh& mesh) {
+  return analyse_flexspline(c, mesh, assemble_and_factorise(c, mesh));
+}
+
+FlexsplineSolution analyse_flexspline(const Case& c, const TetMesh& mesh, const FlexsplineSystem& eq) {
   FlexsplineSolution s;
   const auto& f = c.flexspline;
-
-  // Supports, assembly, factorisation: the clamp only, so one factorisation serves every load case; the generator
-  // acts through loads (forces, or contact forces found on the stations' influence coefficients).
-  const Equations eq = assemble_and_factorise(c, mesh, s);
+  s.factor = eq.factor->stats();
+  s.assemble_s = eq.assemble_s;
   Stopwatch clock;
 
   // The unit torque, and for the force models the unit generator forces.
   s.torque_Nm = c.load.torque_Nm;
   const double T = s.torque_Nm, T_ref = T != 0.0 ? T : 1.0;  // compliance is read at T (or 1 N·m without torque)
   const Eigen::VectorXd f_torque = unit_torque_load(c, mesh);
-  const std::optional<Generator> gen = c.wave_generator ? std::optional(generator_of(c, mesh)) : std::nullopt;
+  const std::optional<GeneratorStations> gen =
+      c.wave_generator ? std::optional(generator_stations(c, mesh)) : std::nullopt;
   Eigen::MatrixXd loads(3 * mesh.n_nodes(), gen && !gen->unilateral ? 2 : 1);
   loads.col(0) = f_torque;
   if (loads.cols() == 2) loads.col(1) = gen->force_load;
@@ -468,12 +317,12 @@ FlexsplineSolution analyse_flexspline(const Case& c, const TetMesh& mesh) {
     gr.unilateral = gen->unilateral;
     gr.station_angle_rad = gen->stations.angle_rad;
     progress("generator: influence of " + std::to_string(gen->stations.angle_rad.size()) + " contact station pairs");
-    const Eigen::MatrixXd C = influence(eq, gen->stations);
+    const Eigen::MatrixXd C = eq.influence(gen->stations.loads);
     const Eigen::VectorXd u0_torque = gen->stations.loads.transpose() * u_unit_torque;  // per pair, unit torque
     if (gen->unilateral) {
       // Contact of the generator alone, of the generator with T_ref and with the sweep's torques: each a small
       // problem on C; then one solve for the displacements of all their contact loads.
-      Eigen::VectorXd obstacle = gen->obstacle;
+      Eigen::VectorXd obstacle = gen->obstacle_m;
       if (w.model == WaveGeneratorModel::Rollers) {
         // Set the rollers out so the major axis reaches w0: all four touch (symmetric), so the generator case is
         // linear in the rollers' standoff; one solve for the unit standoff gives the scale.
@@ -485,6 +334,7 @@ FlexsplineSolution analyse_flexspline(const Case& c, const TetMesh& mesh) {
                            " do not push the major axis outward; use beta_deg < 45");
         obstacle *= *w.radial_deformation_m / w_unit;
       }
+      gr.obstacle_m = obstacle;
       const StationForces p_gen = unilateral_contact(C, obstacle);
       gr.contact_iterations = p_gen.iterations;
       std::vector<double> sweep_T;
@@ -536,7 +386,7 @@ FlexsplineSolution analyse_flexspline(const Case& c, const TetMesh& mesh) {
       for (const auto& force : generator_forces(w)) fmin = std::min(fmin, force.weight * scale);
       gr.min_contact_force_N = fmin;
       for (const auto& force : generator_forces(w)) {
-        const double a = wrap_pi(force.angle_rad) * 180 / kPi, h = kPatchHalfAngle * 180 / kPi;
+        const double a = wrap_pi(force.angle_rad) * 180 / kPi, h = kGeneratorPatchHalfAngle_rad * 180 / kPi;
         gr.zones_wg_deg.emplace_back(a - h, a + h);
       }
     }

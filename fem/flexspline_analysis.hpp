@@ -30,6 +30,7 @@
 #include "common/params.hpp"
 #include "fem/cholmod_factor.hpp"
 #include "fem/fatigue.hpp"
+#include "fem/flexspline_system.hpp"
 #include "fem/generator_contact.hpp"
 #include "fem/post.hpp"
 #include "mesh/tet_mesh.hpp"
@@ -98,6 +99,7 @@ struct GeneratorReadout {
   double reaction_torque_Nm = 0;          ///< moment about z of the generator on the flexspline in the torque case
   double w_major_m = 0, w_minor_m = 0;    ///< generator case, neutral circle at the rim mid-width (mean of both ends)
   int contact_iterations = 0;             ///< active-set iterations of the generator case
+  Eigen::VectorXd obstacle_m;             ///< unilateral: the standoff each station pair pushes against (m, summed)
 };
 
 struct FlexsplineSolution {
@@ -142,5 +144,7 @@ double reading_rotation(const Case& c, const TetMesh& mesh, const Eigen::VectorX
 /// Solves every load case of the flexspline on one factorisation and extracts φ₀, C_τ, the neutral curve and
 /// stresses. The mesh must come from mesh_flexspline for the same parameters.
 FlexsplineSolution analyse_flexspline(const Case& c, const TetMesh& mesh);
+/// The same on a system already factorised for this case and mesh (kept for later stages, e.g. the tooth contact).
+FlexsplineSolution analyse_flexspline(const Case& c, const TetMesh& mesh, const FlexsplineSystem& system);
 
 }  // namespace sw

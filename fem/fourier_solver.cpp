@@ -13,6 +13,7 @@
 
 #include "common/error.hpp"
 #include "common/progress.hpp"
+#include "fem/flexspline_system.hpp"
 #include "fem/post.hpp"
 #include "mesh/flexspline.hpp"
 
@@ -21,7 +22,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 constexpr int kRingSamples = 360;                     // 1° steps around the reading circle (as the tet10 path)
-constexpr double kPatchHalfAngle = 3.0 * kPi / 180;   // half-width of a generator force patch (as the tet10 path)
+constexpr double kPatchHalfAngle = kGeneratorPatchHalfAngle_rad;  // as the tet10 path
 // A harmonic whose loads are below this fraction of the largest harmonic load is zero by the load's symmetry (e.g.
 // the odd harmonics of a generator symmetric about both axes: the sum is exactly 0, the computed one round-off).
 constexpr double kNoLoad = 1e-12;
@@ -164,18 +165,6 @@ void harmonic_loads(const std::vector<LoadTerm>& terms, int n, Eigen::MatrixXd& 
 
 /// Moment about z (N·m) of the physical loads whose harmonic-0 antisymmetric generalised forces are F (n_nodes × 3).
 double moment_z(const SectionMesh& s, const Eigen::MatrixXd& anti0) { return -s.nodes.col(0).dot(anti0.col(1)); }
-
-/// Angles (from the major axis) and weights of the generator's point forces (the tet10 path's models).
-std::vector<WaveGeneratorForce> generator_forces(const WaveGeneratorParams& w) {
-  switch (w.model) {
-    case WaveGeneratorModel::FourForce:
-      return {{w.beta_rad, 0.5}, {-w.beta_rad, 0.5}, {kPi + w.beta_rad, 0.5}, {kPi - w.beta_rad, 0.5}};
-    case WaveGeneratorModel::TwoForce: return {{0.0, 1.0}, {kPi, 1.0}};
-    case WaveGeneratorModel::Forces: return w.forces;
-    case WaveGeneratorModel::Cam: break;
-  }
-  return {};
-}
 
 /// Equation numbers of one harmonic: −1 fixed; a dof tied to another shares its equation with sign −1.
 struct HarmonicDofs {

@@ -1,0 +1,15 @@
+#pragma once
+// The contact job shared by `strainwave contact` and `strainwave run`: the loaded tooth contact on the FEM's own
+// system, its outputs and summary.
+#include <filesystem>
+
+#include "app/fem_job.hpp"
+#include "contact/loaded_contact.hpp"
+
+namespace sw::app {
+
+/// Runs the contact analysis on the fem job's mesh and system, writes contact.json, torque_twist.csv and contact.svg
+/// under out_dir, prints the summary. The fem job must have kept its system (TET10).
+ContactAnalysis run_contact_job(const Case& c, const FemJobResult& fem, const std::filesystem::path& out_dir);
+
+}  // namespace sw::app

@@ -1,0 +1,338 @@
+#include "contact/loaded_contact.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <string>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Geometry>
+#include <Eigen/SparseCore>
+
+#include "common/error.hpp"
+#include "common/progress.hpp"
+#include "contact/contact_problem.hpp"
+#include "fem/assembly.hpp"
+#include "fem/loads.hpp"
+#include "fem/post.hpp"
+#include "kinematics/neutral_curve.hpp"
+
+namespace sw {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+/// Flanks that need a larger rigid turn to close than the first one plus this many times the body's twist at rated
+/// torque stay out (the twist at rated torque is checked against the limit afterwards).
+constexpr double kReachFactor = 10.0;
+
+double wrap_pi(double a) { return std::remainder(a, 2 * kPi); }
+double theta_of(const Eigen::Vector3d& x) { return std::atan2(x[1], x[0]); }
+
+/// Load patterns of the flanks on the rim's outer surface: a linear hat one tooth pitch wide about the contact's
+/// polar angle (and its half-turn partner's), uniform across the face, along the force the circular spline puts on
+/// the flexspline tooth (−normal), with the tangential part scaled so the moment about the axis is exactly the
+/// geometric one (the ring's surface and the contact point differ slightly in radius).
+class FlankLoads {
+public:
+  FlankLoads(const TetMesh& mesh, double pitch_rad) : mesh_(mesh), half_(pitch_rad) {
+    faces_ = select_faces(mesh, kSurfaceRimOuter);
+    if (faces_.empty()) throw InputError("contact: the flexspline mesh has no toothed rim surface");
+    for (const auto* f : faces_) {
+      Eigen::Vector3d c = Eigen::Vector3d::Zero();
+      for (int a = 0; a < 3; ++a) c += mesh.nodes.row(f->nodes[a]).transpose();
+      const double t = theta_of(c / 3);
+      double reach = 0;
+      for (int v : f->nodes) reach = std::max(reach, std::abs(wrap_pi(theta_of(mesh.nodes.row(v).transpose()) - t)));
+      theta_.push_back(t);
+      reach_.push_back(reach);
+    }
+  }
+  /// 1 N along `force_dir` (2-D, frame of the generator) at each station; moment about z forced to `moment_Nm`.
+  Eigen::VectorXd pattern(const std::vector<double>& stations, const Eigen::Vector2d& force_dir, double moment_Nm) const {
+    const std::vector<bool> all(mesh_.n_nodes(), true);
+    Eigen::VectorXd radial = Eigen::VectorXd::Zero(3 * mesh_.n_nodes()), tangential = radial;
+    double fr = 0, ft = 0;
+    for (const double s : stations) {
+      std::vector<const BoundaryFace*> faces;
+      for (std::size_t i = 0; i < faces_.size(); ++i)
+        if (std::abs(wrap_pi(theta_[i] - s)) <= half_ + reach_[i]) faces.push_back(faces_[i]);
+      auto hat = [&](const Eigen::Vector3d& x) {
+        return std::max(0.0, 1.0 - std::abs(wrap_pi(theta_of(x) - s)) / half_);
+      };
+      const double total = faces_integral(mesh_, faces, hat);
+      if (!(total > 0)) throw InputError("contact: no rim faces under the tooth at " + std::to_string(s * 180 / kPi) +
+                                         " deg; refine mesh.size_mm");
+      // Components in the station's local frame (the same for the partner at s + π, by symmetry).
+      fr = force_dir.dot(Eigen::Vector2d(std::cos(s), std::sin(s)));
+      ft = force_dir.dot(Eigen::Vector2d(-std::sin(s), std::cos(s)));
+      radial += traction_load(mesh_, faces, [&](const Eigen::Vector3d& x, const Eigen::Vector3d&) -> Eigen::Vector3d {
+        const double t = theta_of(x);
+        return Eigen::Vector3d(std::cos(t), std::sin(t), 0) * (hat(x) / total);
+      });
+      tangential += traction_load(mesh_, faces, [&](const Eigen::Vector3d& x, const Eigen::Vector3d&) -> Eigen::Vector3d {
+        const double t = theta_of(x);
+        return Eigen::Vector3d(-std::sin(t), std::cos(t), 0) * (hat(x) / total);
+      });
+    }
+    (void)ft;
+    const double m_r = moment_about_z(mesh_, radial, all), m_t = moment_about_z(mesh_, tangential, all);
+    return fr * radial + (moment_Nm - fr * m_r) / m_t * tangential;
+  }
+
+private:
+  const TetMesh& mesh_;
+  double half_;
+  std::vector<const BoundaryFace*> faces_;
+  std::vector<double> theta_, reach_;
+};
+
+Eigen::SparseMatrix<double> sparse_columns(const std::vector<Eigen::VectorXd>& cols, const Eigen::SparseMatrix<double>& more) {
+  std::vector<Eigen::Triplet<double>> t;
+  for (std::size_t j = 0; j < cols.size(); ++j)
+    for (Eigen::Index i = 0; i < cols[j].size(); ++i)
+      if (cols[j][i] != 0.0) t.emplace_back(static_cast<int>(i), static_cast<int>(j), cols[j][i]);
+  for (Eigen::Index j = 0; j < more.outerSize(); ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(more, j); it; ++it)
+      t.emplace_back(static_cast<int>(it.row()), static_cast<int>(cols.size() + j), it.value());
+  Eigen::SparseMatrix<double> L(more.rows() ? more.rows() : (cols.empty() ? 0 : cols[0].size()),
+                                static_cast<Eigen::Index>(cols.size()) + more.cols());
+  L.setFromTriplets(t.begin(), t.end());
+  return L;
+}
+
+}  // namespace
+
+ContactAnalysis analyse_contact(const Case& c, const TetMesh& mesh, const FlexsplineSystem& sys,
+                                const FlexsplineSolution& fem, const ContactOptions& opt) {
+  if (!c.gear || !c.wave_generator)
+    throw InputError(c.path + ": contact needs [gear] and [wave_generator]");
+  if (c.flexspline.teeth != TeethModel::Ring)
+    throw InputError(c.path + ": contact needs flexspline.teeth = \"ring\" (the teeth's own compliance is added in "
+                              "series; explicit teeth would count it twice)");
+  if (!fem.neutral_curve) throw InputError(c.path + ": contact needs the FEM's generator-deformed neutral curve");
+  if (!(opt.rated_torque_Nm > 0)) throw InputError(c.path + ": contact needs a rated torque > 0");
+  const GearParams& g = *c.gear;
+  const auto& w = *c.wave_generator;
+  Stopwatch clock;
+  ContactAnalysis out;
+  out.rated_torque_Nm = opt.rated_torque_Nm;
+
+  // The gear on the rim as the generator leaves it.
+  const NeutralCurveSamples& nc = *fem.neutral_curve;
+  const NeutralCurve curve = fit_neutral_curve(nc.radius_m, nc.phi_rad, nc.w_wg_m, nc.v_wg_m, nc.mu_wg_rad, "FEM");
+  const BacklashModel model = make_backlash_model(g, curve);
+  out.half_turn_pairs = g.teeth_flexspline % 2 == 0;
+  const double n_teeth = out.half_turn_pairs ? 2.0 : 1.0;  // teeth per unknown
+
+  // The flanks that can close: within reach of the first one on their side.
+  double first_closing[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  for (int k = 0; k < g.teeth_flexspline; ++k) {
+    const double phi = tooth_material_angle(g, k, opt.wg_angle_rad);
+    if (!pair_clearance(model, phi, 0.0).engaged) continue;
+    for (const Flank side : {Flank::Ccw, Flank::Cw})
+      first_closing[side == Flank::Cw] = std::min(first_closing[side == Flank::Cw], closing_angle_rad(model, phi, 0.0, side));
+  }
+  const double reach = kReachFactor * std::abs(fem.compliance_rad_per_Nm) * opt.rated_torque_Nm;
+  out.reach_rad = reach;
+  std::vector<Eigen::VectorXd> columns;
+  std::vector<double> q_flank;
+  const FlankLoads loads(mesh, 2 * kPi / g.teeth_flexspline);
+  for (int k = 0; k < g.teeth_flexspline; ++k) {
+    const double phi = tooth_material_angle(g, k, opt.wg_angle_rad);
+    if (out.half_turn_pairs && !(phi > -kPi / 2 && phi <= kPi / 2)) continue;
+    const PairClearance pc = pair_clearance(model, phi, 0.0);
+    if (!pc.engaged) continue;
+    const ToothPlacement place = place_tooth(curve, phi, 0.0);
+    for (const Flank side : {Flank::Ccw, Flank::Cw}) {
+      const double delta = closing_angle_rad(model, phi, 0.0, side);
+      if (!std::isfinite(delta) || delta > first_closing[side == Flank::Cw] + reach) continue;
+      const FlankClearance& fc = side == Flank::Ccw ? pc.ccw : pc.cw;
+      if (side == Flank::Ccw ? !(fc.lever_arm_m > 0) : !(fc.lever_arm_m < 0)) continue;
+      FlankContact f;
+      f.tooth = k;
+      f.phi_rad = phi;
+      f.flank = side;
+      f.closing_angle_rad = delta;
+      f.lever_m = fc.lever_arm_m;
+      const Eigen::Vector2d local = Eigen::Rotation2Dd(-place.angle_rad) * (fc.point_f - place.offset_m);
+      f.contact_radius_m = local.norm();
+      f.compliance_m_per_N = opt.series.tooth_pair_m_per_N ? opt.series.tooth_pair_m_per_N(f.contact_radius_m) : 0.0;
+      const double s = std::atan2(fc.point_f.y(), fc.point_f.x());
+      std::vector<double> stations{s};
+      if (out.half_turn_pairs) stations.push_back(s + kPi);
+      columns.push_back(loads.pattern(stations, -fc.normal, -n_teeth * f.lever_m));
+      q_flank.push_back(n_teeth * std::abs(f.lever_m) * delta);
+      out.flanks.push_back(f);
+    }
+  }
+  if (out.flanks.empty()) throw InputError(c.path + ": contact: no tooth flank in the mesh zone can close");
+  out.min_closing_rad = std::min(first_closing[0], first_closing[1]);
+  for (const auto& f : out.flanks) out.overlap_at_rest_m = std::max(out.overlap_at_rest_m, -std::abs(f.lever_m) * f.closing_angle_rad);
+  const auto nf = static_cast<Eigen::Index>(out.flanks.size());
+
+  // The generator's stations, and the influence coefficients of every pattern.
+  const GeneratorStations gen = generator_stations(c, mesh);
+  const bool unilateral = gen.unilateral;
+  const Eigen::SparseMatrix<double> L = sparse_columns(columns, gen.stations.loads);
+  const auto nb = gen.stations.loads.cols();
+  progress("contact: influence of " + std::to_string(nf) + " flank patterns and " + std::to_string(nb) +
+           " generator stations");
+  const Eigen::MatrixXd A_body = sys.influence(L);
+  out.influence_s = clock.lap();
+  Eigen::VectorXd lambda(nf + nb);
+  const std::vector<bool> all(mesh.n_nodes(), true);
+  for (Eigen::Index j = 0; j < nf + nb; ++j) lambda[j] = -moment_about_z(mesh, Eigen::VectorXd(L.col(j)), all);
+
+  // The contact problem. Unilateral generator: flanks and stations together, the stations' gaps against the
+  // generator's surface, the flanks' gaps measured in the generator's state (p0). Force idealisation: the band held
+  // radially (bilateral), eliminated.
+  ContactProblem P;
+  Eigen::VectorXd p0, obstacle;
+  Eigen::MatrixXd band_solve;  // force idealisation: x_b = band_solve · x_f
+  if (unilateral) {
+    obstacle = fem.generator->obstacle_m;
+    p0 = unilateral_contact(A_body.bottomRightCorner(nb, nb), obstacle).force_N;
+    P.A = A_body;
+    P.q.resize(nf + nb);
+    P.q.head(nf) = Eigen::Map<const Eigen::VectorXd>(q_flank.data(), nf) - A_body.topRightCorner(nf, nb) * p0;
+    P.q.tail(nb) = -obstacle;
+    P.lambda = lambda;
+    out.generator_support = "the generator's contact (" + fem.generator->model + ", unilateral) in the same problem";
+  } else {
+    const Eigen::LDLT<Eigen::MatrixXd> bb(A_body.bottomRightCorner(nb, nb));
+    band_solve = -bb.solve(A_body.bottomLeftCorner(nb, nf));
+    P.A = A_body.topLeftCorner(nf, nf) + A_body.topRightCorner(nf, nb) * band_solve;
+    P.A = 0.5 * (P.A + P.A.transpose()).eval();
+    P.q = Eigen::Map<const Eigen::VectorXd>(q_flank.data(), nf);
+    P.lambda = lambda.head(nf);
+    out.generator_support = "the band held radially at the stations (the paper's given-force idealisation)";
+  }
+  const Eigen::MatrixXd A_noseries = P.A;
+  for (Eigen::Index i = 0; i < nf; ++i) P.A(i, i) += n_teeth * out.flanks[i].compliance_m_per_N;
+  out.unknowns = static_cast<int>(P.q.size());
+
+  // Bearing balls in series with the stations (unilateral generators): the secant of the Hertzian approach from the
+  // generator's state, iterated to a fixed point.
+  const bool bearing = unilateral && opt.series.bearing_approach_m && opt.series.bearing_balls > 0;
+  const double ball_per_N = bearing ? 2 * kPi / (opt.series.bearing_balls * gen.stations.half_width_rad) : 0.0;
+  auto approach = [&](double p) { return 2 * opt.series.bearing_approach_m(std::max(p, 0.0) * ball_per_N); };
+  Eigen::VectorXd bearing_c = Eigen::VectorXd::Zero(nb);
+  auto solve_step = [&](double T) {
+    if (!bearing) return solve_contact(P, T);
+    ContactProblem Pb = P;
+    const double p_ref = std::max(p0.maxCoeff(), 1.0);
+    for (Eigen::Index k = 0; k < nb; ++k) {  // start: the tangent at the preload (finite where it is zero)
+      const double pk = std::max(p0[k], 1e-3 * p_ref), h = 1e-4 * pk;
+      bearing_c[k] = (approach(pk + h) - approach(pk - h)) / (2 * h);
+    }
+    ContactSolution s;
+    for (int it = 0; it < 60; ++it) {
+      for (Eigen::Index k = 0; k < nb; ++k) {
+        Pb.A(nf + k, nf + k) = P.A(nf + k, nf + k) + bearing_c[k];
+        Pb.q[nf + k] = P.q[nf + k] - bearing_c[k] * p0[k];
+      }
+      s = solve_contact(Pb, T);
+      double change = 0;
+      for (Eigen::Index k = 0; k < nb; ++k) {
+        const double x = s.force_N[nf + k], d = x - p0[k];
+        const double c_new = std::abs(d) > 1e-9 * p_ref ? (approach(x) - approach(p0[k])) / d : bearing_c[k];
+        change = std::max(change, std::abs(c_new - bearing_c[k]) / std::max(std::abs(c_new), 1e-300));
+        bearing_c[k] = c_new;
+      }
+      if (change < 1e-10) break;
+    }
+    return s;
+  };
+
+  // Torque steps from −rated to +rated, the two limits at zero (a drive with play jumps there).
+  const int N = std::max(1, opt.steps);
+  const double T_R = opt.rated_torque_Nm;
+  std::vector<double> torques;
+  for (int s = -N; s <= N; ++s) {
+    if (s == 0) {
+      torques.push_back(-1e-6 * T_R);
+      torques.push_back(1e-6 * T_R);
+    } else {
+      torques.push_back(T_R * s / N);
+    }
+  }
+  ContactSolution at_rated;
+  for (const double T : torques) {
+    const ContactSolution s = solve_step(T);
+    TorqueStep st;
+    st.torque_Nm = T;
+    st.twist_rad = s.twist_rad + opt.series.circular_spline_rad_per_Nm * T;
+    st.flank_force_N.assign(s.force_N.data(), s.force_N.data() + nf);
+    if (unilateral) st.station_force_N.assign(s.force_N.data() + nf, s.force_N.data() + nf + nb);
+    for (Eigen::Index i = 0; i < nf; ++i)
+      if (s.force_N[i] > 0) {
+        st.pairs_in_contact += static_cast<int>(n_teeth);
+        st.max_pair_force_N = std::max(st.max_pair_force_N, s.force_N[i]);
+      }
+    st.balance_error_rel = std::abs(P.lambda.dot(s.force_N) - T) / std::abs(T);
+    out.torque_balance_error_rel = std::max(out.torque_balance_error_rel, st.balance_error_rel);
+    out.steps.push_back(st);
+    out.curve.torque_Nm.push_back(st.torque_Nm);
+    out.curve.twist_rad.push_back(st.twist_rad);
+    if (T == torques.back()) at_rated = s;
+  }
+  // The limits at zero stand for T = 0 from either side.
+  for (std::size_t i = 0; i < out.steps.size(); ++i)
+    if (std::abs(out.steps[i].torque_Nm) < 1e-3 * T_R) out.curve.torque_Nm[i] = out.steps[i].torque_Nm = 0.0;
+  out.contact_s = clock.lap();
+  // Every flank left out must stay open: the twist never reaches its closing angle.
+  const double twist_max = std::max(std::abs(out.curve.twist_rad.front()), std::abs(out.curve.twist_rad.back()));
+  if (twist_max > std::min(first_closing[0], first_closing[1]) + reach)
+    throw std::runtime_error("contact: the twist at rated torque reaches flanks left out of the problem; widen the reach");
+  out.play_rad = out.curve.twist_rad[N + 1] - out.curve.twist_rad[N];
+  out.lost_motion_rad = lost_motion_rad(out.curve, T_R);
+  out.catalog = opt.catalog_t1_Nm > 0 && opt.catalog_t2_Nm > opt.catalog_t1_Nm && opt.catalog_t2_Nm < T_R
+                    ? segment_law(out.curve, opt.catalog_t1_Nm, opt.catalog_t2_Nm, T_R)
+                    : fitted_segment_law(out.curve, T_R);
+
+  // Split of the twist at rated torque: the tangent line there (active set fixed) by energy, the intercept is
+  // engagement.
+  {
+    std::vector<Eigen::Index> S;
+    for (Eigen::Index i = 0; i < at_rated.force_N.size(); ++i)
+      if (at_rated.force_N[i] > 0) S.push_back(i);
+    const auto n = static_cast<Eigen::Index>(S.size());
+    Eigen::MatrixXd M(n, n), Mb(n, n);
+    Eigen::VectorXd l(n), teeth(n), brg(n);
+    for (Eigen::Index r = 0; r < n; ++r) {
+      l[r] = P.lambda[S[r]];
+      teeth[r] = S[r] < nf ? n_teeth * out.flanks[S[r]].compliance_m_per_N : 0.0;
+      brg[r] = S[r] >= nf && bearing ? bearing_c[S[r] - nf] : 0.0;
+      for (Eigen::Index q = 0; q < n; ++q) Mb(r, q) = A_noseries(S[r], S[q]);
+    }
+    M = Mb;
+    M.diagonal() += teeth + brg;
+    const Eigen::VectorXd Ml = M.ldlt().solve(l);
+    const double C_t = 1.0 / l.dot(Ml);
+    const Eigen::VectorXd dz = Ml * C_t;
+    const double total = out.curve.twist_rad.back();
+    out.split.body = dz.dot(Mb * dz) * T_R / total;
+    out.split.teeth = dz.cwiseProduct(teeth).dot(dz) * T_R / total;
+    out.split.generator = dz.cwiseProduct(brg).dot(dz) * T_R / total;
+    out.split.circular_spline = opt.series.circular_spline_rad_per_Nm * T_R / total;
+    out.split.engagement =
+        1.0 - out.split.body - out.split.teeth - out.split.generator - out.split.circular_spline;
+  }
+
+  // Independent check at +rated: the contact forces as nodal loads on the FEM, the clamp's reaction moment.
+  {
+    Eigen::VectorXd x(nf + nb);
+    if (unilateral) x = at_rated.force_N - (Eigen::VectorXd(nf + nb) << Eigen::VectorXd::Zero(nf), p0).finished();
+    else x << at_rated.force_N, band_solve * at_rated.force_N;
+    const Eigen::VectorXd f = L * x;
+    const Eigen::VectorXd u = sys.solve(f).col(0);
+    const Eigen::VectorXd reactions = internal_forces(mesh, c.material, u) - f;
+    out.fem_reaction_torque_Nm = moment_about_z(mesh, reactions, sys.clamped);
+  }
+  progress("contact: " + std::to_string(torques.size()) + " torque steps on " + std::to_string(out.unknowns) +
+           " contacts in " + std::to_string(out.contact_s) + " s");
+  return out;
+}
+
+}  // namespace sw

@@ -1,0 +1,166 @@
+#include "fem/flexspline_system.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "common/error.hpp"
+#include "common/progress.hpp"
+#include "fem/flexspline_analysis.hpp"
+#include "fem/loads.hpp"
+
+namespace sw {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr int kSolveChunk = 24;  // right-hand sides per CHOLMOD solve (memory: n_eq × 24 doubles)
+double wrap_pi(double a) { return std::remainder(a, 2 * kPi); }
+double theta_of(const Eigen::Vector3d& x) { return std::atan2(x[1], x[0]); }
+
+/// Angles (from the major axis) and weights of the generator's point forces.
+}  // namespace
+
+std::vector<WaveGeneratorForce> generator_forces(const WaveGeneratorParams& w) {
+  switch (w.model) {
+    case WaveGeneratorModel::FourForce:
+    case WaveGeneratorModel::Rollers:  // where the rollers touch (for ring theory)
+      return {{w.beta_rad, 0.5}, {-w.beta_rad, 0.5}, {kPi + w.beta_rad, 0.5}, {kPi - w.beta_rad, 0.5}};
+    case WaveGeneratorModel::TwoForce:
+      return {{0.0, 1.0}, {kPi, 1.0}};
+    case WaveGeneratorModel::Forces:
+      return w.forces;
+    case WaveGeneratorModel::Cam:
+      break;
+  }
+  throw std::logic_error("generator_forces: a cam's forces come from its contact");
+}
+
+namespace {
+
+/// Radial outward patch loads on the inner wall, one per force, each of magnitude weight (N) as the integral of the
+/// pressure over its patch.
+Eigen::VectorXd generator_load(const Case& c, const TetMesh& mesh) {
+  const auto& w = *c.wave_generator;
+  const double z_wg = c.flexspline.length_m - w.axial_position_m;
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(3 * mesh.n_nodes());
+  for (const auto& force : generator_forces(w)) {
+    auto in_patch = [&](const Eigen::Vector3d& x) {
+      return std::abs(wrap_pi(theta_of(x) - force.angle_rad)) <= kGeneratorPatchHalfAngle_rad &&
+             std::abs(x[2] - z_wg) <= 0.5 * w.band_width_m;
+    };
+    const auto faces = select_faces(mesh, kSurfaceInner, in_patch);
+    if (faces.empty())
+      throw InputError("wave_generator: no inner-wall faces under the force at " +
+                       std::to_string(force.angle_rad * 180 / kPi) + " deg, z = " + std::to_string(z_wg * 1e3) +
+                       " mm; check wave_generator.axial_position_mm / band_width_mm or refine mesh.size_mm");
+    const double area = faces_area(mesh, faces);
+    f += traction_load(mesh, faces, [&](const Eigen::Vector3d& x, const Eigen::Vector3d&) -> Eigen::Vector3d {
+      const double r = std::hypot(x[0], x[1]);
+      return Eigen::Vector3d(x[0] / r, x[1] / r, 0.0) * (force.weight / area);
+    });
+  }
+  return f;
+}
+
+/// Angular spacing of the contact stations: two element edges at the bore (a contact pressure resolved more finely
+/// than the displacement field checkerboards), at least 2° and at most 6°, dividing 180° evenly.
+double station_spacing(const Case& c) {
+  const double two_edges_deg = 2 * c.mesh.size_m / c.flexspline.inner_radius_m * 180 / kPi;
+  const double n = std::round(180.0 / std::clamp(two_edges_deg, 2.0, 6.0));
+  return kPi / n;
+}
+
+
+}  // namespace
+
+Eigen::MatrixXd FlexsplineSystem::solve(const Eigen::MatrixXd& loads) const {
+  Eigen::MatrixXd B(dofs.n_equations, loads.cols());
+  for (Eigen::Index j = 0; j < loads.cols(); ++j) B.col(j) = restrict_to_free(dofs, loads.col(j));
+  const Eigen::MatrixXd X = factor->solve(B);
+  const Eigen::VectorXd zeros = Eigen::VectorXd::Zero(loads.rows());
+  Eigen::MatrixXd U(loads.rows(), loads.cols());
+  for (Eigen::Index j = 0; j < loads.cols(); ++j) U.col(j) = expand_to_full(dofs, X.col(j), zeros);
+  return U;
+}
+
+Eigen::MatrixXd FlexsplineSystem::influence(const Eigen::SparseMatrix<double>& loads) const {
+  const Eigen::Index m = loads.cols();
+  Eigen::MatrixXd C(m, m);
+  for (Eigen::Index j0 = 0; j0 < m; j0 += kSolveChunk) {
+    const Eigen::Index k = std::min<Eigen::Index>(kSolveChunk, m - j0);
+    const Eigen::MatrixXd U = solve(Eigen::MatrixXd(loads.middleCols(j0, k)));
+    C.middleCols(j0, k) = loads.transpose() * U;
+  }
+  return 0.5 * (C + C.transpose());  // symmetric up to round-off; make it exactly so
+}
+
+FlexsplineSystem assemble_and_factorise(const Case& c, const TetMesh& mesh) {
+  FlexsplineSystem eq;
+  eq.clamped = clamped_nodes(mesh);
+  std::vector<bool> fixed(3 * mesh.n_nodes());
+  for (std::size_t i = 0; i < mesh.n_nodes(); ++i) fixed[3 * i] = fixed[3 * i + 1] = fixed[3 * i + 2] = eq.clamped[i];
+  eq.dofs = make_dof_map(fixed);
+  Stopwatch clock;
+  progress("assemble: " + std::to_string(eq.dofs.n_equations) + " equations");
+  const SymmetricCsc K = assemble_stiffness(mesh, c.material, eq.dofs);
+  eq.assemble_s = clock.lap();
+  progress("factorise: nnz(K) = " + std::to_string(K.nnz()));
+  eq.factor = std::make_unique<CholmodFactor>(K, equation_nodes(eq.dofs));
+  const FactorStats& st = eq.factor->stats();
+  progress("factorised: nnz(L) = " + std::to_string(static_cast<long long>(st.factor_nnz)) + ", " +
+           std::to_string(st.factor_gflop) + " GF in " + std::to_string(st.factor_s) + " s");
+  return eq;
+}
+
+double cam_standoff(const WaveGeneratorParams& w, double r, double t) {
+  const double w0 = *w.radial_deformation_m;
+  if (w.cam_profile == CamProfile::Polar) return w0 * std::cos(2 * t) - w.cam_clearance_m;
+  const double a = r + w0, b = r - w0;
+  return a * b / std::hypot(b * std::cos(t), a * std::sin(t)) - r - w.cam_clearance_m;
+}
+namespace {
+/// The cam normal's tilt ρ'/ρ.
+double cam_tilt(const WaveGeneratorParams& w, double r, double t) {
+  const double h = 1e-6;
+  const double rho = r + cam_standoff(w, r, t);
+  return (cam_standoff(w, r, t + h) - cam_standoff(w, r, t - h)) / (2 * h) / rho;
+}
+
+}  // namespace
+
+GeneratorStations generator_stations(const Case& c, const TetMesh& mesh) {
+  const auto& w = *c.wave_generator;
+  const auto& f = c.flexspline;
+  const double z = f.length_m - w.axial_position_m, r = f.inner_radius_m;
+  GeneratorStations g;
+  const double spacing = station_spacing(c);
+  std::vector<double> angles;
+  NormalTilt tilt;
+  switch (w.model) {
+    case WaveGeneratorModel::Cam:
+      g.unilateral = true;
+      for (int k = 0; k * spacing < kPi - 1e-9; ++k) angles.push_back(k * spacing);
+      tilt = [&w, r](double t) { return cam_tilt(w, r, t); };
+      break;
+    case WaveGeneratorModel::Rollers:
+      // Two pairs: β with π + β, π − β with −β. A roller's normal passes through its centre: radial where it touches.
+      g.unilateral = true;
+      angles = {w.beta_rad, kPi - w.beta_rad};
+      break;
+    default:  // the force idealisation: stations all round the band, for the torque case's radial support
+      for (int k = 0; k * spacing < kPi - 1e-9; ++k) angles.push_back(k * spacing);
+      break;
+  }
+  g.stations = band_stations(mesh, z, w.band_width_m, angles, spacing, tilt);
+  g.obstacle_m.resize(static_cast<Eigen::Index>(angles.size()));
+  for (std::size_t j = 0; j < angles.size(); ++j)
+    g.obstacle_m[j] = w.model == WaveGeneratorModel::Cam ? 2 * cam_standoff(w, r, angles[j])
+                    : w.model == WaveGeneratorModel::Rollers ? 2.0  // per metre the rollers stand out; scaled to w0
+                                                             : 0.0;
+  if (!g.unilateral) g.force_load = generator_load(c, mesh);
+  return g;
+}
+
+
+}  // namespace sw

@@ -1,0 +1,57 @@
+#pragma once
+// The flexspline's equations, kept for every stage that needs "solve with this right-hand side": the clamp's
+// supports, the stiffness factorised once by CHOLMOD, and the wave generator's contact stations on the bore. The FEM
+// load cases (fem/flexspline_analysis.hpp) and the loaded tooth contact (contact/) both work on one such system.
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include "common/params.hpp"
+#include "fem/assembly.hpp"
+#include "fem/cholmod_factor.hpp"
+#include "fem/generator_contact.hpp"
+#include "mesh/tet_mesh.hpp"
+
+namespace sw {
+
+struct FlexsplineSystem {
+  std::vector<bool> clamped;  ///< per node: on a kSurfaceClamped face
+  DofMap dofs;
+  std::unique_ptr<CholmodFactor> factor;
+  double assemble_s = 0;
+
+  /// K⁻¹·F for full-dof loads (3·n_nodes × k), as full-dof displacements (zero on the clamp).
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& loads) const;
+  /// Influence matrix Lᵀ·K⁻¹·L of load patterns L (3·n_nodes × m): the work-conjugate displacement of each pattern
+  /// under a unit amount of each other (m × m, symmetric positive definite), solved in chunks of right-hand sides.
+  Eigen::MatrixXd influence(const Eigen::SparseMatrix<double>& loads) const;
+};
+
+/// Supports (every node on a kSurfaceClamped face), assembly and the one factorisation (progress on stderr).
+FlexsplineSystem assemble_and_factorise(const Case& c, const TetMesh& mesh);
+
+/// The wave generator as the solver sees it: contact stations on the bore over the generator's band and what they
+/// push against (a cam's or the rollers' standoff), or, for the force idealisation, the unit forces and stations that
+/// hold the band radially under torque.
+struct GeneratorStations {
+  bool unilateral = false;     ///< cam, rollers: contact that pushes and never pulls
+  BandStations stations;
+  Eigen::VectorXd obstacle_m;  ///< per pair: the generator surface's standoff from the bore, summed over the pair (m;
+                               ///< rollers: per metre of set-out, scaled to w0 by the analysis)
+  Eigen::VectorXd force_load;  ///< force models: the unit generator forces (3·n_nodes)
+};
+GeneratorStations generator_stations(const Case& c, const TetMesh& mesh);
+
+/// Angles (from the major axis) and weights of the force idealisation's point forces (four_force, two_force, forces;
+/// rollers: where the rollers touch). Not for a cam, whose forces come from its contact.
+std::vector<WaveGeneratorForce> generator_forces(const WaveGeneratorParams& w);
+
+/// Half-width of each of the force idealisation's patches on the bore (rad).
+inline constexpr double kGeneratorPatchHalfAngle_rad = 3.0 * 3.141592653589793 / 180;
+
+/// Radial standoff s(θ) of the cam's surface from the unloaded bore of radius r at angle θ from the major axis.
+double cam_standoff(const WaveGeneratorParams& w, double r_m, double theta_rad);
+
+}  // namespace sw

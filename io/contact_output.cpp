@@ -1,0 +1,147 @@
+#include "io/contact_output.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "io/svg_plot.hpp"
+
+namespace sw {
+namespace {
+
+constexpr double kArcmin = 10800.0 / std::numbers::pi;
+
+double law_twist(const CatalogLaw& k, double T) {
+  const double a = std::abs(T);
+  const double t = std::min(a, k.t1_Nm) / k.k1_Nm_per_rad +
+                   std::clamp(a - k.t1_Nm, 0.0, k.t2_Nm - k.t1_Nm) / k.k2_Nm_per_rad +
+                   std::max(0.0, a - k.t2_Nm) / k.k3_Nm_per_rad;
+  return T < 0 ? -t : t;
+}
+
+}  // namespace
+
+std::string contact_json(const ContactAnalysis& a, const std::string& case_path,
+                         const std::optional<CatalogLaw>& reference) {
+  using nlohmann::json;
+  json j;
+  j["case"] = case_path;
+  j["rated_torque_Nm"] = a.rated_torque_Nm;
+  json tt = json::array();
+  for (const auto& s : a.steps)
+    tt.push_back({{"torque_Nm", s.torque_Nm}, {"twist_rad", s.twist_rad}, {"pairs_in_contact", s.pairs_in_contact},
+                  {"max_pair_force_N", s.max_pair_force_N}});
+  j["torque_twist"] = tt;
+  const SegmentLaw& k = a.catalog;
+  j["catalog"] = {{"T1_Nm", k.t1_Nm}, {"T2_Nm", k.t2_Nm}, {"K1_Nm_per_rad", k.k1_Nm_per_rad},
+                  {"K2_Nm_per_rad", k.k2_Nm_per_rad}, {"K3_Nm_per_rad", k.k3_Nm_per_rad},
+                  {"breakpoints", k.breakpoints_fitted ? "fitted to the curve" : "the catalog's T1 and T2"}};
+  if (reference)
+    j["catalog_reference"] = {{"size", reference->size},
+                              {"T1_Nm", reference->t1_Nm},
+                              {"T2_Nm", reference->t2_Nm},
+                              {"K1_Nm_per_rad", reference->k1_Nm_per_rad},
+                              {"K2_Nm_per_rad", reference->k2_Nm_per_rad},
+                              {"K3_Nm_per_rad", reference->k3_Nm_per_rad},
+                              {"twist_at_T1_rad", law_twist(*reference, reference->t1_Nm)},
+                              {"twist_at_T2_rad", law_twist(*reference, reference->t2_Nm)},
+                              {"twist_at_rated_rad", law_twist(*reference, a.rated_torque_Nm)}};
+  j["lost_motion_arcmin"] = a.lost_motion_rad * kArcmin;
+  j["play_arcmin"] = a.play_rad * kArcmin;
+  j["overlap_at_rest_um"] = a.overlap_at_rest_m * 1e6;
+  j["min_closing_angle_arcmin"] = a.min_closing_rad * kArcmin;
+  j["twist_at_rated_arcmin"] = a.curve.twist_rad.back() * kArcmin;
+  j["torque_balance_error_rel"] = a.torque_balance_error_rel;
+  j["fem_reaction_torque_Nm"] = a.fem_reaction_torque_Nm;
+  j["compliance_split"] = {{"engagement", a.split.engagement}, {"body", a.split.body}, {"teeth", a.split.teeth},
+                           {"generator", a.split.generator}, {"circular_spline", a.split.circular_spline}};
+  j["generator_support"] = a.generator_support;
+  j["half_turn_pairs"] = a.half_turn_pairs;
+  json flanks = json::array();
+  const TorqueStep& neg = a.steps.front();
+  const TorqueStep& pos = a.steps.back();
+  for (std::size_t i = 0; i < a.flanks.size(); ++i) {
+    const auto& f = a.flanks[i];
+    flanks.push_back({{"tooth", f.tooth},
+                      {"angle_deg", f.phi_rad * 180 / std::numbers::pi},
+                      {"flank", f.flank == Flank::Ccw ? "ccw" : "cw"},
+                      {"closing_angle_rad", f.closing_angle_rad},
+                      {"lever_m", f.lever_m},
+                      {"contact_radius_m", f.contact_radius_m},
+                      {"tooth_pair_compliance_m_per_N", f.compliance_m_per_N},
+                      {"force_at_plus_rated_N", pos.flank_force_N[i]},
+                      {"force_at_minus_rated_N", neg.flank_force_N[i]}});
+  }
+  j["flanks"] = flanks;
+  j["timings_s"] = {{"influence", a.influence_s}, {"contact", a.contact_s}};
+  j["unknowns"] = a.unknowns;
+  return j.dump(2) + "\n";
+}
+
+std::string torque_twist_csv(const ContactAnalysis& a) {
+  std::ostringstream s;
+  s << "torque_Nm,twist_rad,twist_arcmin,pairs_in_contact,max_pair_force_N\n";
+  char line[160];
+  for (const auto& t : a.steps) {
+    std::snprintf(line, sizeof line, "%.9g,%.9e,%.6f,%d,%.6g\n", t.torque_Nm, t.twist_rad, t.twist_rad * kArcmin,
+                  t.pairs_in_contact, t.max_pair_force_N);
+    s << line;
+  }
+  return s.str();
+}
+
+std::string contact_svg(const ContactAnalysis& a, const std::optional<CatalogLaw>& reference) {
+  LinePlot tt;
+  tt.title = "torque–twist of the drive (generator locked, output turned against the circular spline)";
+  tt.x_label = "torque (N·m)";
+  tt.y_label = "twist (arcmin)";
+  PlotSeries curve{"computed", {}, {}, "#1f77b4"};
+  for (std::size_t i = 0; i < a.steps.size(); ++i) {
+    curve.x.push_back(a.steps[i].torque_Nm);
+    curve.y.push_back(a.steps[i].twist_rad * kArcmin);
+  }
+  tt.series.push_back(curve);
+  PlotSeries law{"three segments of the computed curve", {}, {}, "#2ca02c", true};
+  PlotSeries cat{"catalog", {}, {}, "#d62728", true};
+  for (int i = -100; i <= 100; ++i) {
+    const double T = a.rated_torque_Nm * i / 100.0;
+    law.x.push_back(T);
+    law.y.push_back((T < 0 ? -1 : 1) * a.catalog.twist_rad(std::abs(T)) * kArcmin);
+    if (reference) {
+      cat.x.push_back(T);
+      cat.y.push_back(law_twist(*reference, T) * kArcmin);
+    }
+  }
+  tt.series.push_back(law);
+  if (reference) {
+    cat.label = "catalog size " + std::to_string(reference->size);
+    tt.series.push_back(cat);
+  }
+  LinePlot pf;
+  pf.title = "force on each flank at ± rated torque (both teeth of a half-turn pair alike)";
+  pf.x_label = "tooth angle from the major axis (deg)";
+  pf.y_label = "flank force (N)";
+  PlotSeries plus{"+rated, ccw flanks", {}, {}, "#1f77b4", false, true};
+  PlotSeries minus{"−rated, cw flanks", {}, {}, "#ff7f0e", false, true};
+  for (std::size_t i = 0; i < a.flanks.size(); ++i) {
+    const double deg = a.flanks[i].phi_rad * 180 / std::numbers::pi;
+    if (a.flanks[i].flank == Flank::Ccw) {
+      plus.x.push_back(deg);
+      plus.y.push_back(a.steps.back().flank_force_N[i]);
+    } else {
+      minus.x.push_back(deg);
+      minus.y.push_back(a.steps.front().flank_force_N[i]);
+    }
+  }
+  pf.series = {plus, minus};
+  const std::string top = svg_line_plot(tt), bottom = svg_line_plot(pf);
+  std::ostringstream s;
+  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << tt.width << "\" height=\"" << tt.height + pf.height
+    << "\">\n<g>" << top << "</g>\n<g transform=\"translate(0," << tt.height << ")\">" << bottom << "</g>\n</svg>\n";
+  return s.str();
+}
+
+}  // namespace sw

@@ -1,0 +1,160 @@
+// The contact problem against cases solvable by hand, and the catalog readings of a torque–twist curve.
+#include <cmath>
+
+#include <Eigen/LU>
+#include <gtest/gtest.h>
+
+#include "common/error.hpp"
+#include "contact/contact_problem.hpp"
+#include "contact/torque_twist.hpp"
+
+namespace sw {
+namespace {
+
+// Independent springs (diagonal A = 1/k), gaps g, arms r: a pair i carries F_i = k_i·(r_i·ψ − g_i) when positive;
+// T = Σ r_i·F_i fixes ψ. Two pairs, both closed: ψ = (T + Σ r k g)/(Σ r² k).
+TEST(ContactProblem, TwoSpringsWithGapsClosedForm) {
+  ContactProblem p;
+  const double k1 = 2e8, k2 = 1e8, g1 = 1e-6, g2 = 3e-6, r = 0.02;
+  p.A = Eigen::Vector2d(1 / k1, 1 / k2).asDiagonal();
+  p.q = Eigen::Vector2d(g1, g2);
+  p.lambda = Eigen::Vector2d(r, r);
+  const double T = 20.0;
+  const double psi = (T + r * (k1 * g1 + k2 * g2)) / (r * r * (k1 + k2));
+  ASSERT_GT(r * psi, g2);  // both closed at this torque (the test's premise)
+  const ContactSolution s = solve_contact(p, T);
+  EXPECT_NEAR(s.twist_rad, psi, 1e-12 * psi);
+  EXPECT_NEAR(s.force_N[0], k1 * (r * psi - g1), 1e-9 * T / r);
+  EXPECT_NEAR(s.force_N[1], k2 * (r * psi - g2), 1e-9 * T / r);
+  EXPECT_NEAR(p.lambda.dot(s.force_N), T, 1e-12 * T);
+}
+
+// A third pair whose gap the twist never reaches stays open with zero force and a positive gap.
+TEST(ContactProblem, PairThatMustStayOpen) {
+  ContactProblem p;
+  const double k = 1e8, r = 0.02;
+  p.A = Eigen::Vector3d(1 / k, 1 / k, 1 / k).asDiagonal();
+  p.q = Eigen::Vector3d(0.0, 1e-6, 50e-6);
+  p.lambda = Eigen::Vector3d(r, r, r);
+  const double T = 10.0;
+  const ContactSolution s = solve_contact(p, T);
+  const double psi = (T + r * k * 1e-6) / (2 * r * r * k);  // pairs 0 and 1 closed
+  EXPECT_NEAR(s.twist_rad, psi, 1e-12 * psi);
+  EXPECT_EQ(s.force_N[2], 0.0);
+  EXPECT_NEAR(s.gap_m[2], 50e-6 - r * psi, 1e-15);
+  EXPECT_GT(s.gap_m[2], 0.0);
+  EXPECT_EQ(s.in_contact(), 2);
+}
+
+// Coupled compliance (a full A): against the brute-force answer, enumerating every active set and keeping the one
+// that satisfies all Signorini conditions.
+TEST(ContactProblem, CoupledMatchesEnumeration) {
+  const int n = 5;
+  Eigen::MatrixXd B = Eigen::MatrixXd::Random(n, n);
+  ContactProblem p;
+  p.A = (B * B.transpose() + n * Eigen::MatrixXd::Identity(n, n)) * 1e-9;
+  p.q = (Eigen::VectorXd::Random(n).array() + 1.0).matrix() * 2e-6;
+  p.lambda = Eigen::VectorXd::Constant(n, 0.02);
+  p.lambda[1] = -0.02;  // a flank of the other side
+  const double T = 5.0;
+  const ContactSolution s = solve_contact(p, T);
+  int valid = 0;
+  for (int mask = 1; mask < (1 << n); ++mask) {
+    std::vector<int> S;
+    for (int i = 0; i < n; ++i)
+      if (mask >> i & 1) S.push_back(i);
+    const int m = static_cast<int>(S.size());
+    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(m + 1, m + 1);
+    Eigen::VectorXd rhs(m + 1);
+    for (int a = 0; a < m; ++a) {
+      for (int b = 0; b < m; ++b) K(a, b) = p.A(S[a], S[b]);
+      K(a, m) = -p.lambda[S[a]];
+      K(m, a) = p.lambda[S[a]];
+      rhs[a] = -p.q[S[a]];
+    }
+    rhs[m] = T;
+    const Eigen::VectorXd z = K.fullPivLu().solve(rhs);
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+    for (int a = 0; a < m; ++a) x[S[a]] = z[a];
+    const Eigen::VectorXd gap = p.A * x + p.q - z[m] * p.lambda;
+    if ((x.array() >= -1e-12).all() && (gap.array() >= -1e-15).all()) {
+      ++valid;
+      EXPECT_NEAR(s.twist_rad, z[m], 1e-10 * std::abs(z[m]));
+      EXPECT_LT((s.force_N - x).cwiseAbs().maxCoeff(), 1e-8 * T / 0.02);
+    }
+  }
+  EXPECT_EQ(valid, 1);  // a convex problem: exactly one active set satisfies the conditions
+}
+
+// Reversal symmetry: mirrored flanks (λ → −λ, same gaps) give the mirrored answer.
+TEST(ContactProblem, ReversalSymmetry) {
+  ContactProblem p;
+  p.A = Eigen::Matrix4d::Identity() * 1e-8;
+  p.A(0, 2) = p.A(2, 0) = 2e-9;
+  p.A(1, 3) = p.A(3, 1) = 2e-9;
+  p.q = Eigen::Vector4d(1e-6, 1e-6, 4e-6, 4e-6);
+  p.lambda = Eigen::Vector4d(0.02, -0.02, 0.02, -0.02);
+  const ContactSolution plus = solve_contact(p, 30.0), minus = solve_contact(p, -30.0);
+  EXPECT_NEAR(plus.twist_rad, -minus.twist_rad, 1e-14);
+  EXPECT_NEAR(plus.force_N[0], minus.force_N[1], 1e-9);
+  EXPECT_NEAR(plus.force_N[2], minus.force_N[3], 1e-9);
+  EXPECT_EQ(plus.force_N[1], 0.0);
+}
+
+TEST(ContactProblem, NoFlankForTheTorqueIsRefused) {
+  ContactProblem p;
+  p.A = Eigen::Matrix2d::Identity() * 1e-8;
+  p.q = Eigen::Vector2d(1e-6, 1e-6);
+  p.lambda = Eigen::Vector2d(0.02, 0.03);
+  EXPECT_THROW(solve_contact(p, -1.0), InputError);
+}
+
+// With no clearance and no friction the drive is linear: the catalog's lost motion is the elastic twist between
+// ±4 % of rated torque, 2·0.04·T_R/K.
+TEST(TorqueTwist, LostMotionOfALinearDriveIsElastic) {
+  const double K = 1.4e4, T_R = 31.0;
+  TorqueTwist c;
+  for (int i = -20; i <= 20; ++i) {
+    c.torque_Nm.push_back(T_R * i / 20);
+    c.twist_rad.push_back(T_R * i / 20 / K);
+  }
+  EXPECT_NEAR(lost_motion_rad(c, T_R), 2 * 0.04 * T_R / K, 1e-12);
+  const SegmentLaw law = segment_law(c, 3.9, 12.0, T_R);
+  EXPECT_NEAR(law.k1_Nm_per_rad, K, 1e-6 * K);
+  EXPECT_NEAR(law.k3_Nm_per_rad, K, 1e-6 * K);
+}
+
+// A curve built from a three-segment law with play: the secants at the law's own breakpoints return its stiffnesses,
+// the fit finds breakpoints near them, and lost motion holds the play.
+TEST(TorqueTwist, SegmentLawRecoveredWithPlay) {
+  SegmentLaw truth;
+  truth.t1_Nm = 3.9;
+  truth.t2_Nm = 12;
+  truth.k1_Nm_per_rad = 1.0e4;
+  truth.k2_Nm_per_rad = 1.4e4;
+  truth.k3_Nm_per_rad = 1.6e4;
+  const double T_R = 31, play = 2e-4;
+  TorqueTwist c;
+  for (int i = -310; i <= 310; ++i) {
+    const double T = 0.1 * i;
+    if (i == 0) {
+      c.torque_Nm.insert(c.torque_Nm.end(), {0.0, 0.0});
+      c.twist_rad.insert(c.twist_rad.end(), {-play / 2, play / 2});
+      continue;
+    }
+    c.torque_Nm.push_back(T);
+    c.twist_rad.push_back((T > 0 ? 1 : -1) * (play / 2 + truth.twist_rad(std::abs(T))));
+  }
+  const SegmentLaw at_catalog = segment_law(c, 3.9, 12, T_R);
+  // The play sits in the first segment's secant: K1 = T1/(φ_law(T1) + play/2).
+  EXPECT_NEAR(at_catalog.k1_Nm_per_rad, 3.9 / (3.9 / 1e4 + play / 2), 1e-6 * 1e4);
+  EXPECT_NEAR(at_catalog.k2_Nm_per_rad, 1.4e4, 1e-6 * 1.4e4);
+  EXPECT_NEAR(at_catalog.k3_Nm_per_rad, 1.6e4, 1e-6 * 1.6e4);
+  EXPECT_NEAR(lost_motion_rad(c, T_R), play + 2 * 0.04 * T_R / 1e4, 1e-9);
+  const SegmentLaw fit = fitted_segment_law(c, T_R);
+  EXPECT_TRUE(fit.breakpoints_fitted);
+  EXPECT_NEAR(fit.k3_Nm_per_rad, 1.6e4, 0.05 * 1.6e4);
+}
+
+}  // namespace
+}  // namespace sw

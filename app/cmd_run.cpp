@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "app/backlash_job.hpp"
+#include "app/contact_job.hpp"
 #include "app/commands.hpp"
 #include "app/fem_job.hpp"
 #include "common/progress.hpp"
@@ -37,15 +38,24 @@ RunReportInputs report_inputs(const Case& c, const std::filesystem::path& dir) {
 
 /// The designer's summary: every figure with what it is, and what is not computed.
 void print_summary(const Case& c, const FemJobResult& fem, const std::optional<BacklashReport>& b,
-                   const std::filesystem::path& dir) {
+                   const std::optional<ContactAnalysis>& contact, const std::filesystem::path& dir) {
   const FlexsplineSolution& s = fem.solution;
   constexpr double kArcmin = 180.0 / std::numbers::pi * 60.0;
   std::printf("\nsummary of %s\n", c.path.c_str());
   std::printf("  flexspline body: wind-up phi0 %.4e rad (%.3f arcmin) at %.4g N·m; torsional stiffness of the body "
               "alone %.4g N·m/rad\n", s.phi0_rad, s.phi0_rad * kArcmin, s.torque_Nm,
               s.compliance_rad_per_Nm > 0 ? 1.0 / s.compliance_rad_per_Nm : 0.0);
-  std::printf("  whole drive's twist at the case torque: not computed (teeth, generator bearing and circular spline "
-              "in series are not modelled yet)\n");
+  if (contact) {
+    const ContactAnalysis& a = *contact;
+    std::printf("  whole drive (generator locked): twist %.3f arcmin at rated torque %.4g N·m, K1 %.4g and K3 %.4g "
+                "N·m/rad, lost motion %.3f arcmin (±4 %% of rated, elastic twist included)%s\n",
+                a.curve.twist_rad.back() * kArcmin, a.rated_torque_Nm, a.catalog.k1_Nm_per_rad,
+                a.catalog.k3_Nm_per_rad, a.lost_motion_rad * kArcmin,
+                a.overlap_at_rest_m > 0 ? "; the teeth overlap at rest: part of it is a preload from interference" : "");
+  } else {
+    std::printf("  whole drive's twist: not computed (the loaded tooth contact needs [gear], [wave_generator], teeth = "
+                "\"ring\" and the tet10 solver)\n");
+  }
   if (b) {
     const auto& rb = b->revolution_basic;
     std::printf("  geometric angular play of the output: %.3f .. %.3f arcmin over a revolution (rigid teeth; not the "
@@ -68,7 +78,7 @@ void print_summary(const Case& c, const FemJobResult& fem, const std::optional<B
 }  // namespace
 
 void add_run_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("run", "fem then backlash fed with its phi0: the main job");
+  auto* cmd = app.add_subcommand("run", "fem, backlash fed with its phi0, then the loaded tooth contact: the main job");
   static std::string case_path, out, solver, curve = "fem";
   static FemJobOptions fem_options;
   cmd->add_option("case", case_path, "case file (TOML)")->required();
@@ -95,8 +105,10 @@ void add_run_command(CLI::App& app) {
     } else {
       std::printf("run: no backlash for this case (it needs [gear] and [wave_generator] with radial_deformation_mm)\n");
     }
+    std::optional<ContactAnalysis> contact;
+    if (backlash && fem.system && c.flexspline.teeth == TeethModel::Ring) contact = run_contact_job(c, fem, dir);
     write_file_atomic(dir / "report.html", run_report_html(report_inputs(c, dir)));
-    print_summary(c, fem, backlash, dir);
+    print_summary(c, fem, backlash, contact, dir);
   });
 }
 

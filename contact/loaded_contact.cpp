@@ -327,6 +327,8 @@ ContactAnalysis analyse_contact(const Case& c, const TetMesh& mesh, const Flexsp
     else x << at_rated.force_N, band_solve * at_rated.force_N;
     const Eigen::VectorXd f = L * x;
     const Eigen::VectorXd u = sys.solve(f).col(0);
+    const Eigen::VectorXd d_direct = L.transpose() * u, d_influence = A_body * x;
+    out.superposition_error_rel = (d_direct - d_influence).cwiseAbs().maxCoeff() / d_direct.cwiseAbs().maxCoeff();
     const Eigen::VectorXd reactions = internal_forces(mesh, c.material, u) - f;
     out.fem_reaction_torque_Nm = moment_about_z(mesh, reactions, sys.clamped);
   }

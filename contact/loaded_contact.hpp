@@ -92,6 +92,9 @@ struct ContactAnalysis {
   ComplianceSplit split;
   double torque_balance_error_rel = 0;  ///< worst over the steps
   double fem_reaction_torque_Nm = 0;    ///< at +rated: the clamp's reaction to the contact forces in a direct FEM solve
+  /// at +rated: the contacts' displacements from the influence coefficients against the direct FEM solve with the same
+  /// nodal forces (largest difference over the largest displacement)
+  double superposition_error_rel = 0;
   double influence_s = 0, contact_s = 0;
   int unknowns = 0;
   double reach_rad = 0;  ///< flanks closing this much later than the first on their side were left out

@@ -190,6 +190,39 @@ std::string backlash_section(const fs::path& dir) {
   return s.str();
 }
 
+std::string contact_section(const fs::path& dir) {
+  if (!fs::exists(dir / "contact.json")) return "";
+  const json a = read_json_file(dir / "contact.json");
+  std::ostringstream s;
+  s << "<h2>Whole drive under load (tooth contact)</h2>\n<p>Generator locked, the output turned against the circular "
+       "spline; "
+    << html_escape(a.value("generator_support", std::string())) << ". No friction: loading and unloading coincide.</p>\n";
+  Table t;
+  const json& k = a["catalog"];
+  t.row("twist at rated torque", fmt("%.3f arcmin", num(a, "twist_at_rated_arcmin")),
+        fmt("at %.4g N·m", num(a, "rated_torque_Nm")));
+  t.row("three segments", fmt("K1 %.4g", num(k, "K1_Nm_per_rad")) + fmt(", K2 %.4g", num(k, "K2_Nm_per_rad")) +
+        fmt(", K3 %.4g N·m/rad", num(k, "K3_Nm_per_rad")),
+        fmt("T1 %.3g N·m", num(k, "T1_Nm")) + fmt(", T2 %.3g N·m (", num(k, "T2_Nm")) +
+            k.value("breakpoints", std::string()) + ")");
+  t.row("lost motion", fmt("%.3f arcmin", num(a, "lost_motion_arcmin")),
+        "twist between ±4 % of rated torque on the middle line (includes the elastic twist)");
+  t.row("play", fmt("%.3f arcmin", num(a, "play_arcmin")), "jump of the curve at zero torque");
+  if (num(a, "overlap_at_rest_um") > 0)
+    t.row("overlap at rest", fmt("%.2f µm", num(a, "overlap_at_rest_um")),
+          "the teeth overlap on the FEM's neutral curve: part of the curve is a preload from that interference");
+  const json& sp = a["compliance_split"];
+  t.row("twist at rated, by part", fmt("body %.0f %%", 100 * num(sp, "body")) + fmt(", teeth %.0f %%", 100 * num(sp, "teeth")) +
+        fmt(", generator %.0f %%", 100 * num(sp, "generator")) + fmt(", circular spline %.0f %%", 100 * num(sp, "circular_spline")) +
+        fmt(", engagement %.0f %%", 100 * num(sp, "engagement")),
+        "the tangent at rated torque split by energy; its intercept is the engagement (play, pairs engaging)");
+  t.row("checks", fmt("balance %.1e", num(a, "torque_balance_error_rel")),
+        fmt("clamp reaction in a direct FEM solve %.6g N·m", num(a, "fem_reaction_torque_Nm")));
+  s << t.html();
+  if (fs::exists(dir / "contact.svg")) s << "<div class='fig'>" << slurp(dir / "contact.svg") << "</div>\n";
+  return s.str();
+}
+
 }  // namespace
 
 std::string run_report_html(const RunReportInputs& in) {
@@ -205,8 +238,13 @@ std::string run_report_html(const RunReportInputs& in) {
   s << "<div class='fig'>" << neutral_curve_plot(in) << "</div>\n";
   s << "<div class='fig'>" << hoop_plot(r) << "</div>\n";
   s << backlash_section(in.out_dir);
-  s << "<h2>Not computed</h2>\n<ul><li>the whole drive's twist at the case torque (teeth, generator bearing, circular "
-       "spline in series with the body)</li><li>ratcheting torque</li><li>wave-generator bearing life</li></ul>\n";
+  s << contact_section(in.out_dir);
+  s << "<h2>Not computed</h2>\n<ul>";
+  if (!fs::exists(in.out_dir / "contact.json"))
+    s << "<li>the whole drive's twist (the tooth contact needs [gear], [wave_generator], teeth = \"ring\" and the tet10 "
+         "solver)</li>";
+  s << "<li>friction in the tooth contacts (hysteresis)</li><li>ratcheting torque</li><li>wave-generator bearing "
+       "life</li></ul>\n";
   s << "<h2>3-D results</h2>\n<p><a href='flexspline.pvd'>flexspline.pvd</a> (one .vtu per load case):";
   for (const auto& lc : r.value("load_cases", json::array()))
     if (lc.contains("name")) {

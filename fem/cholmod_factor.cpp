@@ -1,3 +1,4 @@
+#include <optional>
 #include "fem/cholmod_factor.hpp"
 
 #include <cholmod.h>
@@ -206,6 +207,27 @@ Eigen::MatrixXd CholmodFactor::solve(const Eigen::MatrixXd& B) const {
   Eigen::MatrixXd X = Eigen::Map<Eigen::MatrixXd>(static_cast<double*>(x->x), B.rows(), B.cols());
   cholmod_l_free_dense(&x, &c);
   return X;
+}
+
+std::optional<Eigen::MatrixXd> CholmodFactor::forward_solve(const Eigen::MatrixXd& B) const {
+  if (!impl_->factor->is_ll) return std::nullopt;
+  cholmod_common& c = impl_->common;
+  cholmod_dense b{};
+  b.nrow = static_cast<size_t>(B.rows());
+  b.ncol = static_cast<size_t>(B.cols());
+  b.nzmax = b.nrow * b.ncol;
+  b.d = b.nrow;
+  b.x = const_cast<double*>(B.data());
+  b.xtype = CHOLMOD_REAL;
+  b.dtype = CHOLMOD_DOUBLE;
+  cholmod_dense* pb = cholmod_l_solve(CHOLMOD_P, impl_->factor, &b, &c);
+  if (!pb) throw InputError(status_sentence(c, impl_->stats.equations));
+  cholmod_dense* y = cholmod_l_solve(CHOLMOD_L, impl_->factor, pb, &c);
+  cholmod_l_free_dense(&pb, &c);
+  if (!y) throw InputError(status_sentence(c, impl_->stats.equations));
+  Eigen::MatrixXd Y = Eigen::Map<Eigen::MatrixXd>(static_cast<double*>(y->x), B.rows(), B.cols());
+  cholmod_l_free_dense(&y, &c);
+  return Y;
 }
 
 const FactorStats& CholmodFactor::stats() const { return impl_->stats; }

@@ -2,6 +2,7 @@
 // Sparse Cholesky by CHOLMOD (supernodal, ordering as CHOLMOD chooses: AMD or METIS), factorised once and reused for
 // every right-hand side. CHOLMOD stays out of this header (pimpl).
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <Eigen/Core>
@@ -45,6 +46,10 @@ public:
 
   /// Solves K·X = B for all columns of B at once (n x k).
   Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
+
+  /// Y = L⁻¹·P·B, half of a solve: for K = Pᵀ·L·Lᵀ·P, Bᵀ·K⁻¹·B = Yᵀ·Y (influence matrices at half the cost).
+  /// Empty when the factor is not LLᵀ (a simplicial LDLᵀ).
+  std::optional<Eigen::MatrixXd> forward_solve(const Eigen::MatrixXd& B) const;
 
   const FactorStats& stats() const;
 

@@ -86,6 +86,24 @@ Eigen::MatrixXd FlexsplineSystem::solve(const Eigen::MatrixXd& loads) const {
 
 Eigen::MatrixXd FlexsplineSystem::influence(const Eigen::SparseMatrix<double>& loads) const {
   const Eigen::Index m = loads.cols();
+  // Half solves (Yᵀ·Y with Y = L⁻¹·P·B) when the factor is LLᵀ and Y fits in 2 GB; else full solves.
+  if (static_cast<double>(m) * dofs.n_equations * 8 < 2e9) {
+    Eigen::MatrixXd Y(dofs.n_equations, m);
+    bool half = true;
+    for (Eigen::Index j0 = 0; j0 < m && half; j0 += kSolveChunk) {
+      const Eigen::Index k = std::min<Eigen::Index>(kSolveChunk, m - j0);
+      Eigen::MatrixXd B(dofs.n_equations, k);
+      for (Eigen::Index j = 0; j < k; ++j) B.col(j) = restrict_to_free(dofs, Eigen::VectorXd(loads.col(j0 + j)));
+      auto y = factor->forward_solve(B);
+      if (!y) half = false;
+      else Y.middleCols(j0, k) = *y;
+    }
+    if (half) {
+      Eigen::MatrixXd C = Eigen::MatrixXd::Zero(m, m);
+      C.selfadjointView<Eigen::Lower>().rankUpdate(Y.transpose());
+      return C.selfadjointView<Eigen::Lower>();
+    }
+  }
   Eigen::MatrixXd C(m, m);
   for (Eigen::Index j0 = 0; j0 < m; j0 += kSolveChunk) {
     const Eigen::Index k = std::min<Eigen::Index>(kSolveChunk, m - j0);

@@ -197,7 +197,12 @@ ContactAnalysis analyse_contact(const Case& c, const TetMesh& mesh, const Flexsp
     P.q.resize(nf + nb);
     P.q.head(nf) = Eigen::Map<const Eigen::VectorXd>(q_flank.data(), nf) - A_body.topRightCorner(nf, nb) * p0;
     P.q.tail(nb) = -obstacle;
+    // A turn of the output leaves the stations' gaps alone: the flexspline turns on the generator's bearing while
+    // the deformation wave stays with the cam. (In the linear model a rigid turn would also turn the wave, and a
+    // non-circular cam would then hold the output back with a stiffness it does not have.) The stations' forces still
+    // have a moment about the axis through the cam's tilted normal: the locked generator's share of the torque.
     P.lambda = lambda;
+    P.lambda.tail(nb).setZero();
     out.generator_support = "the generator's contact (" + fem.generator->model + ", unilateral) in the same problem";
   } else {
     const Eigen::LDLT<Eigen::MatrixXd> bb(A_body.bottomRightCorner(nb, nb));
@@ -258,8 +263,18 @@ ContactAnalysis analyse_contact(const Case& c, const TetMesh& mesh, const Flexsp
     }
   }
   ContactSolution at_rated;
+  double flanks_torque_at_rated = T_R;
   for (const double T : torques) {
-    const ContactSolution s = solve_step(T);
+    // The output's torque is what the flanks carry plus the locked generator's share (λ with the stations' moment
+    // arms): find the flanks' torque that gives T (the share is about 1/ratio, so a few fixed-point steps).
+    ContactSolution s;
+    double T_flanks = T;
+    for (int it = 0; it < 50; ++it) {
+      s = solve_step(T_flanks);
+      const double T_out = lambda.head(s.force_N.size()).dot(s.force_N);
+      if (std::abs(T_out - T) <= 1e-13 * std::abs(T)) break;
+      T_flanks *= T / T_out;
+    }
     TorqueStep st;
     st.torque_Nm = T;
     st.twist_rad = s.twist_rad + opt.series.circular_spline_rad_per_Nm * T;
@@ -270,12 +285,15 @@ ContactAnalysis analyse_contact(const Case& c, const TetMesh& mesh, const Flexsp
         st.pairs_in_contact += static_cast<int>(n_teeth);
         st.max_pair_force_N = std::max(st.max_pair_force_N, s.force_N[i]);
       }
-    st.balance_error_rel = std::abs(P.lambda.dot(s.force_N) - T) / std::abs(T);
+    st.balance_error_rel = std::abs(lambda.head(s.force_N.size()).dot(s.force_N) - T) / std::abs(T);
     out.torque_balance_error_rel = std::max(out.torque_balance_error_rel, st.balance_error_rel);
     out.steps.push_back(st);
     out.curve.torque_Nm.push_back(st.torque_Nm);
     out.curve.twist_rad.push_back(st.twist_rad);
-    if (T == torques.back()) at_rated = s;
+    if (T == torques.back()) {
+      at_rated = s;
+      flanks_torque_at_rated = T_flanks;
+    }
   }
   // The limits at zero stand for T = 0 from either side.
   for (std::size_t i = 0; i < out.steps.size(); ++i)
@@ -311,10 +329,10 @@ ContactAnalysis analyse_contact(const Case& c, const TetMesh& mesh, const Flexsp
     const Eigen::VectorXd Ml = M.ldlt().solve(l);
     const double C_t = 1.0 / l.dot(Ml);
     const Eigen::VectorXd dz = Ml * C_t;
-    const double total = out.curve.twist_rad.back();
-    out.split.body = dz.dot(Mb * dz) * T_R / total;
-    out.split.teeth = dz.cwiseProduct(teeth).dot(dz) * T_R / total;
-    out.split.generator = dz.cwiseProduct(brg).dot(dz) * T_R / total;
+    const double total = out.curve.twist_rad.back(), T_fl = flanks_torque_at_rated;
+    out.split.body = dz.dot(Mb * dz) * T_fl / total;
+    out.split.teeth = dz.cwiseProduct(teeth).dot(dz) * T_fl / total;
+    out.split.generator = dz.cwiseProduct(brg).dot(dz) * T_fl / total;
     out.split.circular_spline = opt.series.circular_spline_rad_per_Nm * T_R / total;
     out.split.engagement =
         1.0 - out.split.body - out.split.teeth - out.split.generator - out.split.circular_spline;
@@ -323,7 +341,7 @@ ContactAnalysis analyse_contact(const Case& c, const TetMesh& mesh, const Flexsp
   // Independent check at +rated: the contact forces as nodal loads on the FEM, the clamp's reaction moment.
   {
     Eigen::VectorXd x(nf + nb);
-    if (unilateral) x = at_rated.force_N - (Eigen::VectorXd(nf + nb) << Eigen::VectorXd::Zero(nf), p0).finished();
+    if (unilateral) x = at_rated.force_N;  // the whole loaded state, the generator's preload included
     else x << at_rated.force_N, band_solve * at_rated.force_N;
     const Eigen::VectorXd f = L * x;
     const Eigen::VectorXd u = sys.solve(f).col(0);

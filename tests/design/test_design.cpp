@@ -37,7 +37,7 @@ TEST(Catalog, HoldsTheReferenceRowsWithPitchDiameters) {
 // circle on the rim) and the bearing's, and the basic geometry check on the cam curve finds no interference at rest
 // and the tips passing at the minor axis. Same rule set for all: nothing here depends on the size.
 TEST(Design, EveryWrittenCaseLoadsValidatesAndHasNoInterferenceAtRest) {
-  for (const int size : {14, 17, 20, 25, 32}) {
+  for (const int size : {8, 14, 17, 20, 25, 32, 65}) {  // the accepted range's ends and the catalog sizes
     for (const int ratio : {50, 80, 100, 120, 160}) {
       const CupDesign d = design_cup(size, ratio);
       const Case c = parse_case(design_case_toml(d), "design.toml");

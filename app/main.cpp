@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   sw::app::add_reconcile_command(app);
   sw::app::add_synth_command(app);
   sw::app::add_sweep_command(app);
+  sw::app::add_design_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

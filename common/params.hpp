@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "contact/circular_spline.hpp"    // CircularSplineParams (standard library and gear/gear.hpp only)
+#include "contact/generator_bearing.hpp"  // GeneratorBearing (standard library only)
 #include "gear/gear.hpp"
 
 namespace sw {
@@ -60,12 +62,18 @@ struct WaveGeneratorParams {
   CamProfile cam_profile = CamProfile::Polar;    ///< cam only
   double cam_clearance_m = 0.0;                  ///< cam only: radial fit to the bore, clearance > 0, interference < 0
   std::vector<WaveGeneratorForce> forces;        ///< model = forces
+  /// The ball bearing between the cam and the flexspline (contact/generator_bearing.hpp); absent: a rigid generator.
+  std::optional<GeneratorBearing> bearing;
 };
 
 struct LoadParams {
   double torque_Nm = 0.0;
   TorqueLoading torque_loading = TorqueLoading::EngagementZones;
   double engagement_half_angle_rad = 0.3490658503988659;  ///< ± around each end of the major axis (20°)
+  /// The torque the contact stage loads to, both ways (N·m): the case's key, else the catalog's rated torque of
+  /// [catalog] size; absent when neither gives one.
+  std::optional<double> rated_torque_Nm;
+  std::string rated_torque_from;  ///< "the case file" or "catalog size N" (empty when absent)
 };
 
 struct MeshParams {
@@ -95,6 +103,10 @@ struct Case {
   LoadParams load;
   MeshParams mesh;
   SolverParams solver;
+  /// [catalog] size: the catalog size the case stands for (a row of design/catalog.hpp).
+  std::optional<int> catalog_size;
+  /// [circular_spline]: the given keys, else the defaults of contact/circular_spline.hpp; absent without [gear].
+  std::optional<CircularSplineParams> circular_spline;
   /// [dynamics]: the dynamics stage's own options (dynamics/dynamics_params.hpp), null when the table is absent.
   /// Held by pointer so that this header does not depend on a later stage.
   std::shared_ptr<const DynamicsParams> dynamics;

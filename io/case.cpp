@@ -13,6 +13,8 @@
 #include <toml++/toml.h>
 
 #include "common/error.hpp"
+#include "design/catalog.hpp"
+#include "gear/tooth_profile.hpp"
 
 namespace sw {
 namespace {
@@ -95,6 +97,15 @@ public:
     if (!node) return nullptr;
     if (!node->is_array()) fail(key, *node, "expected an array of tables");
     return node->as_array();
+  }
+
+  /// An inline table {key = value, ...} (nullptr when absent).
+  const toml::table* table(const std::string& key) {
+    used_.insert(key);
+    const toml::node* node = table_.get(key);
+    if (!node) return nullptr;
+    if (!node->is_table()) fail(key, *node, "expected a table {key = value, ...}");
+    return node->as_table();
   }
 
   [[noreturn]] void fail_value(const std::string& key, double value, const std::string& expectation) const {
@@ -208,7 +219,26 @@ Material read_material(TableReader r) {
   return m;
 }
 
-WaveGeneratorParams read_wave_generator(TableReader r) {
+/// wave_generator.bearing = {balls, ball_diameter_mm, inner_groove_conformity, outer_groove_conformity}; the pitch
+/// radius follows from the flexspline's bore (contact/generator_bearing.hpp), and the bearing checks itself.
+GeneratorBearing read_bearing(TableReader r, double bore_radius_m) {
+  GeneratorBearing b;
+  b.balls = r.integer("balls", 0, 3);
+  const std::optional<double> ball = r.number("ball_diameter_mm");
+  if (b.balls == 0 || !ball)
+    throw InputError(r.file() + ": " + r.name() + "." + (b.balls == 0 ? "balls" : "ball_diameter_mm") +
+                     " is missing; a bearing needs balls and ball_diameter_mm");
+  if (!(*ball > 0)) r.fail_value("ball_diameter_mm", *ball, "must be > 0");
+  b.ball_diameter_m = *ball * kMm;
+  b.inner_groove_conformity = r.number("inner_groove_conformity", b.inner_groove_conformity);
+  b.outer_groove_conformity = r.number("outer_groove_conformity", b.outer_groove_conformity);
+  r.reject_unknown();
+  b.pitch_radius_m = bearing_pitch_radius_m(bore_radius_m, b.ball_diameter_m);
+  validate_generator_bearing(b, r.file());
+  return b;
+}
+
+WaveGeneratorParams read_wave_generator(TableReader r, double bore_radius_m) {
   WaveGeneratorParams w;
   const std::string model = r.choice("model", "four_force", {"four_force", "two_force", "forces", "cam", "rollers"});
   w.model = model == "four_force" ? WaveGeneratorModel::FourForce
@@ -256,6 +286,8 @@ WaveGeneratorParams read_wave_generator(TableReader r) {
       w.forces.push_back(force);
     }
   }
+  if (const toml::table* t = r.table("bearing"))
+    w.bearing = read_bearing(TableReader(*t, r.name() + ".bearing", r.file()), bore_radius_m);
   r.reject_unknown();
   return w;
 }
@@ -268,6 +300,11 @@ LoadParams read_load(TableReader r) {
   const double half = r.number("engagement_half_angle_deg", 20.0);
   if (!(half > 0.0 && half <= 90.0)) r.fail_value("engagement_half_angle_deg", half, "must be in (0, 90]");
   l.engagement_half_angle_rad = half * kDeg;
+  if (auto rated = r.number("rated_torque_Nm")) {
+    if (!(*rated > 0)) r.fail_value("rated_torque_Nm", *rated, "must be > 0 (the torque the drive is loaded to, both ways)");
+    l.rated_torque_Nm = *rated;
+    l.rated_torque_from = "the case file";
+  }
   r.reject_unknown();
   return l;
 }
@@ -292,6 +329,27 @@ SolverParams read_solver(TableReader r) {
   if (s.harmonics > 4096) r.fail_value("harmonics", s.harmonics, "must be <= 4096");
   r.reject_unknown();
   return s;
+}
+
+/// [catalog] size: a size of design/catalog.hpp's table.
+int read_catalog(TableReader r) {
+  const int size = r.integer("size", 0, 1);
+  r.reject_unknown();
+  if (size == 0) throw InputError(r.file() + ": catalog.size is missing; [catalog] names a catalog size (" +
+                                  catalog_sizes_text() + ")");
+  if (!catalog_drive(size))
+    r.fail_value("size", size, "must be a listed catalog size (" + catalog_sizes_text() + ")");
+  return size;
+}
+
+/// [circular_spline] (optional keys over the design rule's defaults, contact/circular_spline.hpp).
+CircularSplineParams read_circular_spline(TableReader r, const GearParams& gear, double face_width_m) {
+  CircularSplineParams c = default_circular_spline(gear, face_width_m);
+  c.outer_radius_m = r.positive("outer_radius_mm", c.outer_radius_m / kMm) * kMm;
+  c.width_m = r.positive("width_mm", c.width_m / kMm) * kMm;
+  r.reject_unknown();
+  validate_circular_spline(c, gear_radii(gear).root_c, r.file());
+  return c;
 }
 
 DynamicsParams read_dynamics(TableReader r) {
@@ -417,12 +475,12 @@ Case parse_case(const std::string& toml_text, const std::string& path) {
   c.path = path;
   c.stem = std::filesystem::path(path).stem().string();
   static const std::set<std::string> kTables = {"gear", "flexspline", "material", "wave_generator", "load", "mesh",
-                                                "solver", "dynamics"};
+                                                "solver", "catalog", "circular_spline", "dynamics"};
   for (const auto& [key, node] : root) {
     if (!kTables.count(std::string(key.str())))
       throw InputError(path + ":" + std::to_string(node.source().begin.line) + ": [" + std::string(key.str()) +
                        "] is not a known table (allowed: [gear], [flexspline], [material], [wave_generator], "
-                       "[load], [mesh], [solver], [dynamics])");
+                       "[load], [mesh], [solver], [catalog], [circular_spline], [dynamics])");
   }
   static const toml::table kEmpty;
   auto table = [&](const char* name) -> const toml::table* { return sub_table(root, name, path); };
@@ -430,10 +488,22 @@ Case parse_case(const std::string& toml_text, const std::string& path) {
   if (!table("flexspline")) throw InputError(path + ": [flexspline] is missing; every case describes its flexspline");
   c.flexspline = read_flexspline(TableReader(*table("flexspline"), "flexspline", path));
   c.material = read_material(TableReader(table("material") ? *table("material") : kEmpty, "material", path));
-  if (auto t = table("wave_generator")) c.wave_generator = read_wave_generator(TableReader(*t, "wave_generator", path));
+  if (auto t = table("wave_generator"))
+    c.wave_generator = read_wave_generator(TableReader(*t, "wave_generator", path), c.flexspline.inner_radius_m);
   c.load = read_load(TableReader(table("load") ? *table("load") : kEmpty, "load", path));
   c.mesh = read_mesh(TableReader(table("mesh") ? *table("mesh") : kEmpty, "mesh", path));
   c.solver = read_solver(TableReader(table("solver") ? *table("solver") : kEmpty, "solver", path));
+  if (auto t = table("catalog")) c.catalog_size = read_catalog(TableReader(*t, "catalog", path));
+  if (!c.load.rated_torque_Nm && c.catalog_size && catalog_drive(*c.catalog_size)->has_rated_torque()) {
+    c.load.rated_torque_Nm = catalog_drive(*c.catalog_size)->rated_torque_Nm;
+    c.load.rated_torque_from = "catalog size " + std::to_string(*c.catalog_size);
+  }
+  if (c.gear)
+    c.circular_spline = read_circular_spline(
+        TableReader(table("circular_spline") ? *table("circular_spline") : kEmpty, "circular_spline", path), *c.gear,
+        c.flexspline.rim_width_m);
+  else if (table("circular_spline"))
+    throw InputError(path + ": [circular_spline] needs a [gear] table (its root circle comes from the teeth)");
   if (auto t = table("dynamics")) c.dynamics = std::make_shared<const DynamicsParams>(read_dynamics(TableReader(*t, "dynamics", path)));
   if (c.flexspline.teeth != TeethModel::None && !c.gear)
     throw InputError(path + ": flexspline.teeth = \"" +
@@ -500,10 +570,23 @@ std::string describe_case(const Case& c) {
         << w.cam_clearance_m * 1e6 << "\n";
     for (const auto& force : w.forces)
       s << "forces += {angle_deg = " << force.angle_rad / kDeg << ", weight = " << force.weight << "}\n";
+    if (w.bearing)
+      s << "bearing = {balls = " << w.bearing->balls << ", ball_diameter_mm = " << mm(w.bearing->ball_diameter_m)
+        << ", inner_groove_conformity = " << w.bearing->inner_groove_conformity
+        << ", outer_groove_conformity = " << w.bearing->outer_groove_conformity << "}  # pitch radius "
+        << mm(w.bearing->pitch_radius_m) << " mm from the bore\n";
+    else
+      s << "# no bearing: the generator is rigid\n";
   }
   s << "[load]\ntorque_Nm = " << c.load.torque_Nm << "\ntorque_loading = \""
     << (c.load.torque_loading == TorqueLoading::Uniform ? "uniform" : "engagement_zones")
     << "\"\nengagement_half_angle_deg = " << c.load.engagement_half_angle_rad / kDeg << "\n";
+  if (c.load.rated_torque_Nm)
+    s << "rated_torque_Nm = " << *c.load.rated_torque_Nm << "  # from " << c.load.rated_torque_from << "\n";
+  if (c.catalog_size) s << "[catalog]\nsize = " << *c.catalog_size << "\n";
+  if (c.circular_spline)
+    s << "[circular_spline]\nouter_radius_mm = " << mm(c.circular_spline->outer_radius_m)
+      << "\nwidth_mm = " << mm(c.circular_spline->width_m) << "\n";
   s << "[mesh]\nsize_mm = " << mm(c.mesh.size_m) << "\nwall_layers = " << c.mesh.wall_layers
     << "\nmax_radius_edge_ratio = " << c.mesh.max_radius_edge_ratio << "\nmin_dihedral_deg = "
     << c.mesh.min_dihedral_deg << "\n";

@@ -563,23 +563,16 @@ Eigen::MatrixXd nuisance_columns(const Experiment& e) {
 
 namespace sw::reconcile {
 
-const CatalogDrive* catalog_drive(int size) {
-  // shared/reference/catalog_torsional_stiffness.md (CSF/CSG component sets, ratio >= 80; rated torque at ratio 100).
-  static const CatalogDrive table[] = {
-      {14, 2.0, 6.9, 0.47e4, 0.61e4, 0.71e4, 10.0},
-      {17, 3.9, 12.0, 1.0e4, 1.4e4, 1.6e4, 31.0},
-      {20, 7.0, 25.0, 1.6e4, 2.5e4, 2.9e4, 52.0},
-  };
-  for (const auto& d : table)
-    if (d.size == size) return &d;
-  return nullptr;
+const CatalogDrive* catalog_stiffness(int size) {
+  const CatalogDrive* d = catalog_drive(size);
+  return d && d->has_stiffness() ? d : nullptr;
 }
 
 CatalogFigures catalog_figures(const Experiment& e, const FitResult& f) {
   CatalogFigures c;
   if (e.kind != Kind::Torsion) return c;
   c.valid = true;
-  c.reference = catalog_drive(e.drive_size);
+  c.reference = catalog_stiffness(e.drive_size);
   if (e.rated_torque_Nm > 0.0) {
     c.rated_torque_Nm = e.rated_torque_Nm;
     c.rated_from = "metadata rated_torque_Nm";

@@ -13,6 +13,7 @@
 
 #include <Eigen/Dense>
 
+#include "design/catalog.hpp"
 #include "reconcile/experiment.hpp"
 
 namespace sw::reconcile {
@@ -82,14 +83,8 @@ Eigen::VectorXd soft_start_column(const Eigen::VectorXd& torque_Nm, double t1_Nm
 /// Twist of the catalog's three-segment law at torque T (odd in T), rad.
 double segment_law_twist(double torque_Nm, double k1, double k2, double k3, double t1_Nm, double t2_Nm);
 
-/// Published torsional stiffness of a catalog size (shared/reference/catalog_torsional_stiffness.md, CSF/CSG,
-/// ratio >= 80) and its rated torque at ratio 100 (CSG rating).
-struct CatalogDrive {
-  int size = 0;
-  double t1_Nm = 0, t2_Nm = 0, k1_Nm_per_rad = 0, k2_Nm_per_rad = 0, k3_Nm_per_rad = 0, rated_torque_Nm = 0;
-};
-/// The catalog row of a size; nullptr when the reference lists no stiffness for it.
-const CatalogDrive* catalog_drive(int size);
+/// The catalog row of a recording's size when it lists the size's stiffness (design/catalog.hpp); nullptr otherwise.
+const CatalogDrive* catalog_stiffness(int size);
 
 /// A torsion model in the catalog's terms (the report's "catalog" block). Torques N*m, stiffness N*m/rad, angles
 /// arcmin. The catalog's lost motion is the twist between -4 % and +4 % of rated torque read on the loop's middle

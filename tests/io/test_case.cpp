@@ -163,6 +163,95 @@ TEST(CaseFile, AnIntegerBeyondTheRangeOfIntIsRefusedNotWrapped) {
   EXPECT_NE(e.find("gear.teeth_flexspline = 4294967496; must be <= 2147483647"), std::string::npos) << e;
 }
 
+
+// A cup with teeth (the seed's gear set), for the keys that need [gear].
+constexpr const char* kCup = "[gear]\n[flexspline]\nshape = \"cup\"\nrim_thickness_mm = 0.7025\n";
+
+TEST(CaseFile, RatedTorqueFromTheCaseOrTheCatalogSize) {
+  const Case own = parse_case(std::string(kTube) + "[load]\nrated_torque_Nm = 44.1\n", "t.toml");
+  EXPECT_DOUBLE_EQ(*own.load.rated_torque_Nm, 44.1);
+  EXPECT_FALSE(parse_case(kTube, "t.toml").load.rated_torque_Nm.has_value());
+  const Case cat = parse_case(std::string(kTube) + "[catalog]\nsize = 17\n", "t.toml");
+  EXPECT_EQ(*cat.catalog_size, 17);
+  EXPECT_DOUBLE_EQ(*cat.load.rated_torque_Nm, 31.0);  // the catalog's rated torque when the case gives none
+  EXPECT_NE(describe_case(cat).find("rated_torque_Nm = 31  # from catalog size 17"), std::string::npos)
+      << describe_case(cat);
+  EXPECT_NE(describe_case(cat).find("[catalog]\nsize = 17\n"), std::string::npos);
+  // The case's own value wins over the catalog's.
+  EXPECT_DOUBLE_EQ(*parse_case(std::string(kTube) + "[load]\nrated_torque_Nm = 20\n[catalog]\nsize = 17\n", "t.toml")
+                        .load.rated_torque_Nm,
+                   20.0);
+  // Size 32 is listed without a rated torque: none is made up.
+  EXPECT_FALSE(parse_case(std::string(kTube) + "[catalog]\nsize = 32\n", "t.toml").load.rated_torque_Nm.has_value());
+  EXPECT_NE(error_of(std::string(kTube) + "[load]\nrated_torque_Nm = -3\n").find("load.rated_torque_Nm = -3; must be > 0"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kTube) + "[catalog]\nsize = 18\n")
+                .find("catalog.size = 18; must be a listed catalog size (14, 17, 20, 25, 32)"),
+            std::string::npos)
+      << error_of(std::string(kTube) + "[catalog]\nsize = 18\n");
+  EXPECT_NE(error_of(std::string(kTube) + "[catalog]\n").find("catalog.size is missing"), std::string::npos);
+  EXPECT_NE(error_of(std::string(kTube) + "[catalog]\nsize = 17\nratio = 100\n").find("catalog.ratio = 100; unknown key"),
+            std::string::npos);
+}
+
+TEST(CaseFile, GeneratorBearingIsReadCheckedAndPrinted) {
+  const std::string wg = std::string(kTube) + "[wave_generator]\nmodel = \"cam\"\nradial_deformation_mm = 0.2\n";
+  const Case c = parse_case(wg + "bearing = { balls = 23, ball_diameter_mm = 3.969, inner_groove_conformity = 0.515 }\n",
+                            "b.toml");
+  ASSERT_TRUE(c.wave_generator->bearing.has_value());
+  const GeneratorBearing& b = *c.wave_generator->bearing;
+  EXPECT_EQ(b.balls, 23);
+  EXPECT_DOUBLE_EQ(b.ball_diameter_m, 3.969e-3);
+  EXPECT_DOUBLE_EQ(b.inner_groove_conformity, 0.515);
+  EXPECT_DOUBLE_EQ(b.outer_groove_conformity, 0.53);  // the default
+  EXPECT_NEAR(b.pitch_radius_m, 18.5e-3 - 0.75 * 3.969e-3, 1e-15);  // from the bore (inner_radius_mm = 18.5)
+  EXPECT_NE(describe_case(c).find("bearing = {balls = 23, ball_diameter_mm = 3.969, inner_groove_conformity = 0.515, "
+                                  "outer_groove_conformity = 0.53}"),
+            std::string::npos)
+      << describe_case(c);
+  EXPECT_FALSE(parse_case(wg, "b.toml").wave_generator->bearing.has_value());  // absent: a rigid generator
+  EXPECT_NE(describe_case(parse_case(wg, "b.toml")).find("# no bearing: the generator is rigid"), std::string::npos);
+  EXPECT_NE(error_of(wg + "bearing = { balls = 23 }\n").find("wave_generator.bearing.ball_diameter_mm is missing"),
+            std::string::npos);
+  EXPECT_NE(error_of(wg + "bearing = { ball_diameter_mm = 4 }\n").find("wave_generator.bearing.balls is missing"),
+            std::string::npos);
+  EXPECT_NE(error_of(wg + "bearing = { balls = 23, ball_diameter_mm = 3.969, outer_groove_conformity = 0.45 }\n")
+                .find("cases/x.toml: wave_generator.bearing.outer_groove_conformity = 0.45; must be in (0.5, 1)"),
+            std::string::npos)
+      << error_of(wg + "bearing = { balls = 23, ball_diameter_mm = 3.969, outer_groove_conformity = 0.45 }\n");
+  EXPECT_NE(error_of(wg + "bearing = { balls = 40, ball_diameter_mm = 3.969 }\n").find("wave_generator.bearing.balls = 40"),
+            std::string::npos);
+  EXPECT_NE(error_of(wg + "bearing = { balls = 23, ball_diameter_mm = -1 }\n")
+                .find("wave_generator.bearing.ball_diameter_mm = -1; must be > 0"),
+            std::string::npos);
+  EXPECT_NE(error_of(wg + "bearing = { balls = 23, ball_diameter_mm = 3.969, width_mm = 7 }\n")
+                .find("wave_generator.bearing.width_mm = 7; unknown key"),
+            std::string::npos);
+  EXPECT_NE(error_of(wg + "bearing = 3\n").find("wave_generator.bearing = 3; expected a table"), std::string::npos);
+}
+
+TEST(CaseFile, CircularSplineDefaultsToTheDesignRuleAndIsChecked) {
+  const Case c = parse_case(kCup, "c.toml");
+  ASSERT_TRUE(c.circular_spline.has_value());
+  EXPECT_NEAR(c.circular_spline->outer_radius_m, 0.7 * 192 * 0.2e-3, 1e-15);  // 1.4 × the pitch diameter z_c·m
+  EXPECT_DOUBLE_EQ(c.circular_spline->width_m, c.flexspline.rim_width_m);
+  const Case given = parse_case(std::string(kCup) + "[circular_spline]\nouter_radius_mm = 30\nwidth_mm = 8\n", "c.toml");
+  EXPECT_DOUBLE_EQ(given.circular_spline->outer_radius_m, 30e-3);
+  EXPECT_DOUBLE_EQ(given.circular_spline->width_m, 8e-3);
+  EXPECT_NE(describe_case(given).find("[circular_spline]\nouter_radius_mm = 30\nwidth_mm = 8\n"), std::string::npos);
+  EXPECT_FALSE(parse_case(kTube, "t.toml").circular_spline.has_value());  // no teeth, no circular spline
+  EXPECT_NE(error_of(std::string(kTube) + "[circular_spline]\nwidth_mm = 8\n").find("[circular_spline] needs a [gear]"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kCup) + "[circular_spline]\nouter_radius_mm = 15\n")
+                .find("cases/x.toml: circular_spline.outer_radius_mm = 15; must be > the circular spline's root radius"),
+            std::string::npos)
+      << error_of(std::string(kCup) + "[circular_spline]\nouter_radius_mm = 15\n");
+  EXPECT_NE(error_of(std::string(kCup) + "[circular_spline]\nwidth_mm = 0\n").find("circular_spline.width_mm = 0; must be > 0"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kCup) + "[circular_spline]\nbolts = 6\n").find("circular_spline.bolts = 6; unknown key"),
+            std::string::npos);
+}
+
 }  // namespace
 
 }  // namespace sw

@@ -1,0 +1,59 @@
+// `strainwave design --size N [--ratio R] [--out CASE.toml]`: a cup-type case for a catalog size from the one set of
+// proportions in design/proportions.hpp. The text is read back by the case reader and the flexspline checked before
+// anything is written; --out is written atomically, without it the case goes to stdout.
+#include <cstdio>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "app/commands.hpp"
+#include "common/error.hpp"
+#include "design/proportions.hpp"
+#include "io/atomic_file.hpp"
+#include "io/case.hpp"
+#include "mesh/flexspline.hpp"
+
+namespace sw::app {
+namespace {
+
+/// A whole decimal integer, or InputError naming the option.
+int parse_int(const std::string& option, const std::string& text) {
+  std::size_t used = 0;
+  int v = 0;
+  try {
+    v = std::stoi(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (text.empty() || used != text.size())
+    throw InputError(option + " " + text + "; expected an integer");
+  return v;
+}
+
+}  // namespace
+
+void add_design_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("design", "write a cup-type case for a catalog size from documented proportions");
+  static std::string size, ratio = "100", out;
+  cmd->add_option("--size", size, "catalog size: the pitch diameter in tenths of an inch (8-65; 14, 17, 20 have "
+                                  "published stiffness)")->required();
+  cmd->add_option("--ratio", ratio, "reduction ratio z_f/(z_c - z_f), 50-160 (default 100)");
+  cmd->add_option("--out", out, "case file to write (default: print to stdout)");
+  cmd->callback([] {
+    const CupDesign d = design_cup(parse_int("--size", size), parse_int("--ratio", ratio));
+    const std::string text = design_case_toml(d);
+    const std::string name = out.empty() ? "cup_size" + std::to_string(d.size) + ".toml" : out;
+    const Case c = parse_case(text, name);  // the written case must load and validate as any other
+    validate_flexspline(c.flexspline, c.gear, c.mesh);
+    if (out.empty()) {
+      std::fputs(text.c_str(), stdout);
+      return;
+    }
+    write_file_atomic(out, text);
+    std::printf("design: size %d, ratio %d: d = %.4g mm, m = %.4g mm, z_f/z_c = %d/%d, rated torque %.4g N m -> %s\n",
+                d.size, d.ratio, d.pitch_diameter_m * 1e3, d.gear.module_m * 1e3, d.gear.teeth_flexspline,
+                d.gear.teeth_circular, d.rated_torque_Nm, out.c_str());
+  });
+}
+
+}  // namespace sw::app

@@ -1,0 +1,30 @@
+#include "design/catalog.hpp"
+
+namespace sw {
+
+const std::vector<CatalogDrive>& catalog_drives() {
+  // shared/reference/catalog_torsional_stiffness.md: CSF/CSG component sets, ratio >= 80; rated torque at ratio 100
+  // (CSG). Sizes 25 and 32: pitch diameter and T1, T2 only (size 25 also its rated torque); no stiffness.
+  static const std::vector<CatalogDrive> table = {
+      {14, 35.6e-3, 2.0, 6.9, 0.47e4, 0.61e4, 0.71e4, 10.0},
+      {17, 43.2e-3, 3.9, 12.0, 1.0e4, 1.4e4, 1.6e4, 31.0},
+      {20, 50.8e-3, 7.0, 25.0, 1.6e4, 2.5e4, 2.9e4, 52.0},
+      {25, 63.5e-3, 14.0, 48.0, 0.0, 0.0, 0.0, 87.0},
+      {32, 81.3e-3, 29.0, 108.0, 0.0, 0.0, 0.0, 0.0},
+  };
+  return table;
+}
+
+const CatalogDrive* catalog_drive(int size) {
+  for (const auto& d : catalog_drives())
+    if (d.size == size) return &d;
+  return nullptr;
+}
+
+std::string catalog_sizes_text() {
+  std::string s;
+  for (const auto& d : catalog_drives()) s += (s.empty() ? "" : ", ") + std::to_string(d.size);
+  return s;
+}
+
+}  // namespace sw

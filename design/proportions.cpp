@@ -1,0 +1,205 @@
+#include "design/proportions.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <sstream>
+
+#include "common/error.hpp"
+#include "design/catalog.hpp"
+#include "gear/tooth_profile.hpp"
+
+namespace sw {
+namespace {
+
+// ---- The rules. Every one is a fixed number for every size and ratio; `d` is the pitch diameter, `m` the module.
+// Sources:
+//  [Musser]   C. W. Musser, "Strain wave gearing", US patent 2,906,143 (1959): two lobes, a tooth difference of two,
+//             the flexspline's radial deflection at the major axis half the tooth difference in modules: w0 = m.
+//  [Ivanov]   M. N. Ivanov, "Volnovye zubchatye peredachi" (Wave gear drives), Vysshaya shkola, Moscow 1981: the
+//             steel flexspline's design recommendations as usually quoted: rim under the teeth 0.01–0.015·d, body
+//             wall thinner than the rim (0.6–0.9 of it), toothed face width 0.15–0.2·d.
+//  [ISO 53]   the basic rack: h_a* = 1, h_f* = 1.25 (c* = 0.25), α = 20°.
+//  [Seed]     the backlash paper's gear set (shared/seeds/backlash_fem_paper.txt): z = 190/192, m = 0.2 mm,
+//             x_f = 1.52, x_c = 1.57 (x_c − x_f = 0.05), shaper cutter z_0 = 80; this tool's seed case shortens its
+//             teeth to h_a* = 0.7 after the geometry check (cases/seed_190_192.toml).
+//  [Harris]   T. A. Harris, M. N. Kotzalas, Rolling Bearing Analysis, 5th ed., ch. 2: deep-groove groove conformity
+//             0.515–0.53 (inner race closer than outer).
+//  [ISO 6336] ISO 6336-3 tooth-root stress σ_F ∝ F_t/(b·m) = 2T/(d·b·m): with b, m ∝ d the torque capacity of
+//             geometrically similar gears grows as d³.
+//  [Estimate] our reading of the CSF/CSG component sets' published outline dimensions, not the maker's drawing.
+constexpr double kMmPerSize = 2.54;              // the size number is the pitch diameter in tenths of an inch
+constexpr double kPressureAngleDeg = 20.0;       // [ISO 53]
+constexpr double kShiftFlexspline = 1.52;        // [Seed] x_f
+constexpr double kShiftDifference = 0.05;        // [Seed] x_c − x_f: the clearance the two spaces leave
+constexpr int kCutterTeeth = 80;                 // [Seed] z_0 of the shaper cutter
+constexpr double kAddendum = 0.7;                // short teeth on both gears: working depth 1.4·m < 2·w0 = 2·m, the
+                                                 // tips pass at the minor axis ([Seed] case; the geometry check)
+constexpr double kTipClearance = 0.25;           // [ISO 53] c*: h_f* = h_a* + c*
+constexpr double kW0PerModule = 1.0;             // [Musser] w0 = m·(z_c − z_f)/2
+constexpr double kRimPerD = 0.014;               // [Ivanov] rim under the teeth, within 0.01–0.015·d
+constexpr double kWallPerRim = 0.7;              // [Ivanov] body wall, within 0.6–0.9 of the rim
+constexpr double kFaceWidthPerD = 0.15;          // [Ivanov] toothed rim width, 0.15–0.2·d
+constexpr double kLengthPerD = 0.6;              // [Estimate] the short cup of the CSF/CSG generation, L ≈ 0.6·d
+                                                 // (Ivanov's older recommendation: L ≥ 0.8·d)
+constexpr double kDiaphragmPerRim = 2.0;         // [Estimate] diaphragm twice the rim: a plate that carries the
+                                                 // torque to the boss in shear
+constexpr double kBossPerD = 0.2;                // [Estimate] hub (boss) radius 0.2·d
+constexpr double kFilletPerWall = 2.5;           // [Estimate] diaphragm-to-wall fillet 2.5 walls
+constexpr double kBandPerFaceWidth = 0.65;       // [Estimate] generator band (the bearing's outer ring) under the
+                                                 // toothed rim, centred on it
+constexpr double kBallPerD = 0.09;               // [Estimate] ball diameter ≈ 0.09·d, rounded to 1/64 inch (ISO 3290
+                                                 // grade balls in inch sizes): size 17 → 5/32" = 3.969 mm
+constexpr double kBallPitchPerBall = 1.2;        // [Estimate] ball spacing on the pitch circle ≥ 1.2·D (cage bars)
+constexpr double kInnerConformity = 0.52, kOuterConformity = 0.53;  // [Harris]
+constexpr double kMeshPerD = 1.0 / 54.0;         // element size d/54 (0.8 mm at size 17): same element count at every
+                                                 // size, meshes and solves in well under a minute
+
+std::string num(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.9g", v);
+  return b;
+}
+
+}  // namespace
+
+CupDesign design_cup(int size, int ratio) {
+  if (size < kDesignSizeMin || size > kDesignSizeMax)
+    throw InputError("--size " + std::to_string(size) + "; must be an integer in [" + std::to_string(kDesignSizeMin) +
+                     ", " + std::to_string(kDesignSizeMax) + "] (the pitch diameter in tenths of an inch)");
+  if (ratio < kDesignRatioMin || ratio > kDesignRatioMax)
+    throw InputError("--ratio " + std::to_string(ratio) + "; must be an integer in [" +
+                     std::to_string(kDesignRatioMin) + ", " + std::to_string(kDesignRatioMax) +
+                     "] (z_f = 2 x ratio teeth, z_c = z_f + 2; the short-tooth rule is verified in that range)");
+  CupDesign c;
+  c.size = size;
+  c.ratio = ratio;
+  const double d = size * kMmPerSize * 1e-3;
+  c.pitch_diameter_m = d;
+
+  GearParams& g = c.gear;
+  g.teeth_flexspline = 2 * ratio;  // ratio = z_f / (z_c − z_f) with z_c − z_f = 2
+  g.teeth_circular = g.teeth_flexspline + 2;
+  g.module_m = d / g.teeth_flexspline;
+  g.pressure_angle_rad = kPressureAngleDeg * std::numbers::pi / 180.0;
+  g.profile_shift_flexspline = kShiftFlexspline;
+  g.profile_shift_circular = kShiftFlexspline + kShiftDifference;
+  g.cutter_teeth = kCutterTeeth;
+  g.addendum_coefficient_flexspline = g.addendum_coefficient_circular = kAddendum;
+  g.dedendum_coefficient_flexspline = g.dedendum_coefficient_circular = kAddendum + kTipClearance;
+  const GearRadii radii = gear_radii(g);
+
+  FlexsplineParams& f = c.flexspline;
+  f.shape = FlexsplineShape::Cup;
+  f.teeth = TeethModel::Ring;
+  f.rim_thickness_m = kRimPerD * d;
+  f.inner_radius_m = radii.root_f - f.rim_thickness_m;  // the root circle is the rim's outside, exactly
+  f.wall_thickness_m = kWallPerRim * f.rim_thickness_m;
+  f.rim_width_m = kFaceWidthPerD * d;
+  f.length_m = kLengthPerD * d;
+  f.diaphragm_thickness_m = kDiaphragmPerRim * f.rim_thickness_m;
+  f.boss_radius_m = kBossPerD * d;
+  f.fillet_radius_m = kFilletPerWall * f.wall_thickness_m;
+
+  c.material.fatigue_limit_Pa = 500e6;  // typical Ni-Cr-Mo flexspline steel, as the other cases
+  c.material.ultimate_strength_Pa = 1100e6;
+
+  WaveGeneratorParams& w = c.wave_generator;
+  w.model = WaveGeneratorModel::Cam;
+  w.radial_deformation_m = kW0PerModule * g.module_m * (g.teeth_circular - g.teeth_flexspline) / 2.0;
+  w.axial_position_m = 0.5 * f.rim_width_m;
+  w.band_width_m = kBandPerFaceWidth * f.rim_width_m;
+  GeneratorBearing b;
+  const double inch64 = 25.4e-3 / 64.0;
+  b.ball_diameter_m = std::max(1.0, std::round(kBallPerD * d / inch64)) * inch64;
+  b.pitch_radius_m = bearing_pitch_radius_m(f.inner_radius_m, b.ball_diameter_m);
+  b.balls = static_cast<int>(std::floor(2.0 * std::numbers::pi * b.pitch_radius_m / (kBallPitchPerBall * b.ball_diameter_m)));
+  b.inner_groove_conformity = kInnerConformity;
+  b.outer_groove_conformity = kOuterConformity;
+  w.bearing = b;
+
+  c.circular_spline = default_circular_spline(g, f.rim_width_m);
+
+  if (const CatalogDrive* row = catalog_drive(size); row && row->has_rated_torque()) {
+    c.rated_torque_Nm = row->rated_torque_Nm;
+    c.rated_torque_from = "catalog size " + std::to_string(size) + " (CSG rating at ratio 100)";
+  } else {
+    // [ISO 6336] d³ scaling from the listed size with a rated torque nearest in diameter.
+    const CatalogDrive* ref = nullptr;
+    for (const auto& r : catalog_drives())
+      if (r.has_rated_torque() && (!ref || std::abs(r.pitch_diameter_m - d) < std::abs(ref->pitch_diameter_m - d)))
+        ref = &r;
+    c.rated_torque_Nm = ref->rated_torque_Nm * std::pow(d / (ref->size * kMmPerSize * 1e-3), 3);
+    c.rated_torque_from = "catalog size " + std::to_string(ref->size) + " scaled by (d/d_" +
+                          std::to_string(ref->size) + ")^3 (tooth-root stress, ISO 6336-3)";
+  }
+
+  c.mesh.size_m = kMeshPerD * d;
+  c.mesh.wall_layers = 1;
+  return c;
+}
+
+std::string design_case_toml(const CupDesign& c) {
+  const auto mm = [](double m) { return num(m * 1e3); };
+  const GearParams& g = c.gear;
+  const FlexsplineParams& f = c.flexspline;
+  const WaveGeneratorParams& w = c.wave_generator;
+  const GeneratorBearing& b = *w.bearing;
+  std::ostringstream s;
+  s << "# Cup-type strain wave gear of catalog size " << c.size << ", ratio " << c.ratio << ": written by `strainwave design --size "
+    << c.size << " --ratio " << c.ratio << "`.\n"
+    << "# One set of proportions for every size (design/proportions.cpp), all lengths multiples of the pitch diameter\n"
+    << "# d = size x 2.54 mm = " << mm(c.pitch_diameter_m) << " mm; nothing tuned per size. Where each comes from:\n"
+    << "# - teeth: z_f = 2 x ratio = " << g.teeth_flexspline << ", z_c = z_f + 2 (two lobes, tooth difference two: Musser, US 2,906,143),\n"
+    << "#   module d/z_f = " << mm(g.module_m) << " mm, 20 deg involute (ISO 53), profile shift x_f = " << num(kShiftFlexspline)
+    << ", x_c = x_f + " << num(kShiftDifference) << " and shaper cutter\n"
+    << "#   z_0 = " << kCutterTeeth << " (the backlash paper's set), short teeth h_a* = " << num(kAddendum)
+    << " on both gears (working depth 1.4 modules < 2 w0), h_f* = h_a* + 0.25 (ISO 53 c*).\n"
+    << "# - w0 = m (Musser: half the tooth difference in modules).\n"
+    << "# - rim under the teeth " << num(kRimPerD) << " d, body wall " << num(kWallPerRim) << " x rim, toothed face width "
+    << num(kFaceWidthPerD) << " d (Ivanov, Wave gear drives, 1981: 0.01-0.015 d,\n"
+    << "#   0.6-0.9 x rim, 0.15-0.2 d); the rim's outside is the teeth's root circle.\n"
+    << "# - estimates from the CSF/CSG component sets' outline (not the maker's drawing): cup length " << num(kLengthPerD)
+    << " d, diaphragm " << num(kDiaphragmPerRim) << " x rim,\n"
+    << "#   boss radius " << num(kBossPerD) << " d, fillet " << num(kFilletPerWall) << " x wall, generator band "
+    << num(kBandPerFaceWidth) << " x face width under the rim, ball diameter " << num(kBallPerD) << " d in 1/64\"\n"
+    << "#   steps, balls at >= " << num(kBallPitchPerBall) << " D on the pitch circle, circular spline outer diameter "
+    << num(kCircularSplineOuterDiameterPerPitchDiameter) << " x its pitch diameter.\n"
+    << "# - groove conformity 0.52 inner / 0.53 outer (Harris & Kotzalas, Rolling Bearing Analysis, ch. 2).\n"
+    << "# - rated torque " << num(c.rated_torque_Nm) << " N m: " << c.rated_torque_from << ".\n"
+    << "# Supports: the boss clamped; the cam pushes the bore over its band; the torque on the rim's engagement zones.\n"
+    << "# Run: build/strainwave run CASE.toml (fem, backlash, contact)\n";
+  s << "[gear]\nmodule_mm = " << mm(g.module_m) << "\nteeth_flexspline = " << g.teeth_flexspline
+    << "\nteeth_circular = " << g.teeth_circular << "\npressure_angle_deg = " << num(kPressureAngleDeg)
+    << "\nprofile_shift_flexspline = " << num(g.profile_shift_flexspline)
+    << "\nprofile_shift_circular = " << num(g.profile_shift_circular) << "\ncutter_teeth = " << g.cutter_teeth
+    << "\naddendum_coefficient_flexspline = " << num(g.addendum_coefficient_flexspline)
+    << "\naddendum_coefficient_circular = " << num(g.addendum_coefficient_circular)
+    << "\ndedendum_coefficient_flexspline = " << num(g.dedendum_coefficient_flexspline)
+    << "\ndedendum_coefficient_circular = " << num(g.dedendum_coefficient_circular) << "\n\n";
+  s << "[flexspline]\nshape = \"cup\"\ninner_radius_mm = " << mm(f.inner_radius_m)
+    << "\nwall_thickness_mm = " << mm(f.wall_thickness_m) << "\nlength_mm = " << mm(f.length_m)
+    << "\nrim_width_mm = " << mm(f.rim_width_m) << "\nrim_thickness_mm = " << mm(f.rim_thickness_m)
+    << "\nteeth = \"ring\"\ndiaphragm_thickness_mm = " << mm(f.diaphragm_thickness_m)
+    << "\nboss_radius_mm = " << mm(f.boss_radius_m) << "\nfillet_radius_mm = " << mm(f.fillet_radius_m) << "\n\n";
+  s << "[material]\nyoungs_modulus_Pa = " << num(c.material.youngs_modulus_Pa) << "\npoisson_ratio = "
+    << num(c.material.poisson_ratio) << "\ndensity_kg_m3 = " << num(c.material.density_kg_m3)
+    << "\n# Fatigue (Goodman): typical values for a quenched and tempered Ni-Cr-Mo flexspline steel, not a certificate.\n"
+    << "fatigue_limit_MPa = " << num(*c.material.fatigue_limit_Pa / 1e6) << "\nultimate_strength_MPa = "
+    << num(*c.material.ultimate_strength_Pa / 1e6) << "\n\n";
+  s << "[wave_generator]\nmodel = \"cam\"\nradial_deformation_mm = " << mm(*w.radial_deformation_m)
+    << "\naxial_position_mm = " << mm(w.axial_position_m) << "\nband_width_mm = " << mm(w.band_width_m)
+    << "\nprofile = \"polar\"\nfit_um = 0.0\n"
+    << "bearing = { balls = " << b.balls << ", ball_diameter_mm = " << mm(b.ball_diameter_m)
+    << ", inner_groove_conformity = " << num(b.inner_groove_conformity)
+    << ", outer_groove_conformity = " << num(b.outer_groove_conformity) << " }\n\n";
+  s << "[load]\ntorque_Nm = " << num(c.rated_torque_Nm) << "\nrated_torque_Nm = " << num(c.rated_torque_Nm) << "\n\n";
+  s << "[circular_spline]\nouter_radius_mm = " << mm(c.circular_spline.outer_radius_m)
+    << "\nwidth_mm = " << mm(c.circular_spline.width_m) << "\n\n";
+  if (catalog_drive(c.size)) s << "[catalog]\nsize = " << c.size << "\n\n";
+  s << "[mesh]\nsize_mm = " << mm(c.mesh.size_m) << "\nwall_layers = " << c.mesh.wall_layers << "\n";
+  return s.str();
+}
+
+}  // namespace sw

@@ -1,0 +1,99 @@
+// Catalog sizes and `strainwave design`'s proportions: the table is the reference's, and every written case loads,
+// validates and has no interference at rest on the cam curve, for sizes 14..32 at ratios 50..160, from one rule set.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "common/error.hpp"
+#include "design/catalog.hpp"
+#include "design/proportions.hpp"
+#include "io/case.hpp"
+#include "kinematics/backlash.hpp"
+#include "kinematics/neutral_curve.hpp"
+#include "mesh/flexspline.hpp"
+
+namespace sw {
+namespace {
+
+TEST(Catalog, HoldsTheReferenceRowsWithPitchDiameters) {
+  ASSERT_EQ(catalog_drives().size(), 5u);
+  const CatalogDrive* s17 = catalog_drive(17);
+  ASSERT_NE(s17, nullptr);
+  EXPECT_DOUBLE_EQ(s17->k2_Nm_per_rad, 1.4e4);
+  EXPECT_DOUBLE_EQ(s17->rated_torque_Nm, 31.0);
+  // The reference's check: size 17 at T2 = 12 N·m gives 3.9/1.0e4 + 8.1/1.4e4 = 9.69e-4 rad.
+  EXPECT_NEAR(s17->t1_Nm / s17->k1_Nm_per_rad + (s17->t2_Nm - s17->t1_Nm) / s17->k2_Nm_per_rad, 9.69e-4, 0.005e-4);
+  for (const auto& d : catalog_drives())  // the size number is the pitch diameter in tenths of an inch (0.1 mm)
+    EXPECT_NEAR(d.pitch_diameter_m, d.size * 2.54e-3, 0.06e-3) << d.size;
+  EXPECT_FALSE(catalog_drive(25)->has_stiffness());
+  EXPECT_TRUE(catalog_drive(25)->has_rated_torque());
+  EXPECT_FALSE(catalog_drive(32)->has_rated_torque());
+  EXPECT_EQ(catalog_drive(18), nullptr);
+  EXPECT_EQ(catalog_sizes_text(), "14, 17, 20, 25, 32");
+}
+
+// The case written for every size and ratio loads through the case reader, passes the flexspline validation (root
+// circle on the rim) and the bearing's, and the basic geometry check on the cam curve finds no interference at rest
+// and the tips passing at the minor axis. Same rule set for all: nothing here depends on the size.
+TEST(Design, EveryWrittenCaseLoadsValidatesAndHasNoInterferenceAtRest) {
+  for (const int size : {8, 14, 17, 20, 25, 32, 65}) {  // the accepted range's ends and the catalog sizes
+    for (const int ratio : {50, 80, 100, 120, 160}) {
+      const CupDesign d = design_cup(size, ratio);
+      const Case c = parse_case(design_case_toml(d), "design.toml");
+      SCOPED_TRACE("size " + std::to_string(size) + " ratio " + std::to_string(ratio));
+      ASSERT_TRUE(c.gear && c.wave_generator && c.wave_generator->bearing && c.circular_spline);
+      EXPECT_NO_THROW(validate_flexspline(c.flexspline, c.gear, c.mesh));
+      EXPECT_EQ(c.gear->teeth_flexspline, 2 * ratio);
+      EXPECT_EQ(c.gear->teeth_circular, 2 * ratio + 2);
+      EXPECT_NEAR(c.gear->module_m * c.gear->teeth_flexspline / (size * 2.54e-3), 1.0, 1e-8);  // 9 digits in the text
+      EXPECT_NEAR(*c.wave_generator->radial_deformation_m, c.gear->module_m, 1e-9);
+      EXPECT_EQ(c.catalog_size.has_value(), catalog_drive(size) != nullptr);
+      ASSERT_TRUE(c.load.rated_torque_Nm.has_value());
+      if (catalog_drive(size) && catalog_drive(size)->has_rated_torque())
+        EXPECT_DOUBLE_EQ(*c.load.rated_torque_Nm, catalog_drive(size)->rated_torque_Nm);
+      const GeometryCheck g = check_geometry(
+          *c.gear, cam_neutral_curve(rim_mean_radius(c.flexspline), *c.wave_generator->radial_deformation_m));
+      EXPECT_FALSE(g.interference) << "worst clearance " << g.worst_clearance_m * 1e6 << " um";
+      EXPECT_GT(g.worst_clearance_m, 0.0);
+      EXPECT_LT(g.working_depth_m, g.two_w0_m);
+      EXPECT_GT(g.minor_axis_tip_clearance_m, 0.0);
+      if (size == 17)
+        std::printf("[design] ratio %d: smallest clearance at rest %.3f m (module), working depth %.3f m\n", ratio,
+                    g.worst_clearance_m / c.gear->module_m, g.working_depth_m / c.gear->module_m);
+    }
+  }
+}
+
+TEST(Design, RatedTorqueOfAnUnlistedSizeScalesWithTheCubeOfTheDiameter) {
+  const CupDesign d32 = design_cup(32, 100), d40 = design_cup(40, 100);
+  // Size 32 has no rated torque in the reference: from size 25's 87 N·m by (32/25)³.
+  EXPECT_NEAR(d32.rated_torque_Nm, 87.0 * std::pow(32.0 / 25.0, 3), 1e-9);
+  EXPECT_NEAR(d40.rated_torque_Nm, 87.0 * std::pow(40.0 / 25.0, 3), 1e-9);
+  EXPECT_NE(d32.rated_torque_from.find("ISO 6336"), std::string::npos);
+}
+
+TEST(Design, ProportionsScaleWithThePitchDiameter) {
+  const CupDesign a = design_cup(14, 100), b = design_cup(28, 100);
+  EXPECT_NEAR(b.flexspline.inner_radius_m / a.flexspline.inner_radius_m, 2.0, 1e-12);
+  EXPECT_NEAR(b.flexspline.length_m / a.flexspline.length_m, 2.0, 1e-12);
+  EXPECT_NEAR(b.flexspline.wall_thickness_m / a.flexspline.wall_thickness_m, 2.0, 1e-12);
+  EXPECT_NEAR(b.mesh.size_m / a.mesh.size_m, 2.0, 1e-12);
+}
+
+TEST(Design, BadSizeOrRatioIsOneClearLine) {
+  auto error_of = [](int size, int ratio) {
+    try {
+      design_cup(size, ratio);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(error_of(7, 100).rfind("--size 7; must be an integer in [8, 65]", 0), 0u) << error_of(7, 100);
+  EXPECT_EQ(error_of(17, 30).rfind("--ratio 30; must be an integer in [50, 160]", 0), 0u) << error_of(17, 30);
+  EXPECT_EQ(error_of(17, 161).rfind("--ratio 161;", 0), 0u);
+}
+
+}  // namespace
+}  // namespace sw

@@ -45,7 +45,7 @@ inline constexpr double kOuterRingWallPerBallDiameter = 0.25;
 /// r_p = r_bore − (0.25 + 0.5)·D. The cam's radius under the inner ring follows (r_p − D/2 − the inner ring's wall).
 double bearing_pitch_radius_m(double bore_radius_m, double ball_diameter_m);
 
-/// Checks the bearing (balls ≥ 3, D > 0, 0.5 < f < 1 for both races, pitch radius > D/2 so the inner race exists,
+/// Checks the bearing (balls ≥ 3, D > 0, 0.5 < f < 1 for both races, pitch radius > D so the inner race exists,
 /// balls fit on the pitch circle: z·D < 2π·r_p, E > 0, −1 < ν < 0.5). Throws InputError naming the key in mm, e.g.
 /// "wave_generator.bearing.inner_groove_conformity = 0.49; must be in (0.5, 1) ...", prefixed by `file` if not empty.
 void validate_generator_bearing(const GeneratorBearing& b, const std::string& file = "");

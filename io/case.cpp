@@ -348,7 +348,13 @@ CircularSplineParams read_circular_spline(TableReader r, const GearParams& gear,
   c.outer_radius_m = r.positive("outer_radius_mm", c.outer_radius_m / kMm) * kMm;
   c.width_m = r.positive("width_mm", c.width_m / kMm) * kMm;
   r.reject_unknown();
-  validate_circular_spline(c, gear_radii(gear).root_c, r.file());
+  double root_m = 0;
+  try {
+    root_m = gear_radii(gear).root_c;
+  } catch (const InputError& e) {  // a set that cannot be cut: say which file
+    throw InputError(r.file() + ": " + e.what());
+  }
+  validate_circular_spline(c, root_m, r.file());
   return c;
 }
 

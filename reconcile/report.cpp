@@ -152,6 +152,20 @@ std::string catalog_html(const CatalogFigures& c) {
   return h;
 }
 
+/// The baseline in words, for the page.
+std::string baseline_description(const Experiment& e) {
+  const std::string model = baseline_model(e);
+  std::string d;
+  if (model == "fem") d = "C_tau T, the flexspline body's torsional compliance (C_tau = " + num(e.model.compliance_rad_per_Nm) + " rad/(N*m))";
+  else if (model == "contact") d = "the drive's torque-twist curve from the loaded tooth contact (middle line of its loop)";
+  else if (model == "curve") d = "a torque-twist curve";
+  else if (model == "ideal_ratio") d = "the ideal ratio, output = -wg (z_c - z_f)/z_f";
+  else if (model == "kinematic") d = "the basic kinematic backlash model (phi0 = 0)";
+  else if (model == "dynamics_model") d = "the dynamics model with constant mesh stiffness";
+  else d = model;
+  return d + (e.model.source.empty() ? "" : ", from " + e.model.source);
+}
+
 std::vector<double> stdv(const Vec& v) { return std::vector<double>(v.data(), v.data() + v.size()); }
 
 }  // namespace
@@ -197,7 +211,8 @@ std::string report_json(const Result& r) {
   nlohmann::json j;
   j["kind"] = kind_name(r.kind);
   j["samples"] = r.samples;
-  j["baseline"] = {{"rms", r.baseline_rms}, {"heldout_rms", r.baseline_heldout_rms}};
+  j["baseline"] = {{"model", r.baseline_model}, {"rms", r.baseline_rms}, {"heldout_rms", r.baseline_heldout_rms}};
+  if (!r.baseline_source.empty()) j["baseline"]["source"] = r.baseline_source;
   nlohmann::json locs = nlohmann::json::array();
   for (const auto& l : r.locations) locs.push_back(location_json(l));
   for (const auto& l : r.unexplained) {
@@ -237,7 +252,8 @@ std::string report_json(const Result& r) {
 }
 
 std::string report_summary(const Result& r) {
-  std::string s = "reconcile (" + kind_name(r.kind) + ", " + std::to_string(r.samples) + " samples): " + r.verdict + "\n";
+  std::string s = "reconcile (" + kind_name(r.kind) + ", " + std::to_string(r.samples) + " samples, baseline " +
+                  r.baseline_model + "): " + r.verdict + "\n";
   for (const auto& l : r.locations) s += "  mismatch in " + l.domain + " (p " + num(l.p_value, "%.2g") + "): " + l.description + "\n";
   for (const auto& e : r.effects) {
     s += "  missing physics: " + e.name + " (dBIC " + num(e.delta_bic, "%.1f") + ", p " + num(e.p_value, "%.2g") + ")\n   ";
@@ -268,6 +284,7 @@ std::string report_html(const Experiment& e, const Recording& rec, const Result&
                   ".v{font-size:20px;font-weight:bold}</style></head><body>";
   h += "<h1>Reconcile: " + esc(rec.path) + "</h1>";
   h += "<p class='v'>Verdict: " + esc(r.verdict) + "</p>";
+  h += "<p>Baseline: " + esc(baseline_description(e)) + "</p>";
   for (const auto& n : notes) h += "<p style='color:#a40'>Note: " + esc(n) + "</p>";
   h += "<h2>Recording</h2><table>";
   for (const auto& [k, v] : rec.metadata) h += "<tr><td>" + esc(k) + "</td><td>" + esc(v) + "</td></tr>";
@@ -326,7 +343,9 @@ std::string report_html(const Experiment& e, const Recording& rec, const Result&
                    {"baseline (offset, ratio)", "#36c", stdv(x), stdv(r.baseline_prediction - e.baseline)},
                    {"reconciled", "#c33", stdv(x), stdv(r.final_prediction - e.baseline)}});
   } else {
-    h += svg_plot(e.kind == Kind::Torsion ? "torque-twist loop: recording, baseline (C_tau T) and the fitted model"
+    h += svg_plot(e.kind == Kind::Torsion ? "torque-twist loop: recording, baseline (" +
+                                                (e.model.twist_rad ? std::string("torque-twist curve") : "C_tau T") +
+                                                ") and the fitted model"
                                           : "recording vs baseline vs reconciled model",
                   xl, e.response_name,
                   {{"recording", "#888", stdv(x), stdv(e.measured), true},

@@ -12,6 +12,7 @@
 
 #include "app/commands.hpp"
 #include "app/reconcile_baseline.hpp"
+#include "common/error.hpp"
 #include "common/progress.hpp"
 #include "io/atomic_file.hpp"
 #include "io/case.hpp"
@@ -33,11 +34,16 @@ void run_reconcile(const ReconcileArgs& a) {
   BaselineSources src;
   src.case_file = c;
   src.torsion = parse_torsion_baseline(a.baseline);
+  if (!a.contact.empty() && src.torsion != TorsionBaseline::Contact)
+    throw InputError("--contact " + a.contact + ": the torque-twist curve is read only with --baseline contact");
   src.fem_result = a.fem;
   src.contact_result = a.contact.empty() ? "out/" + c.stem + "/contact.json" : a.contact;
   if (a.compliance > 0.0) src.compliance = a.compliance;
   src.recording = &rec;
   std::vector<std::string> notes;
+  if (src.torsion == TorsionBaseline::Contact && rec.kind != reconcile::Kind::Torsion)
+    notes.push_back("--baseline contact applies to torsion recordings; this one is " + reconcile::kind_name(rec.kind) +
+                    " and keeps its own baseline");
   const reconcile::Baseline base = make_baseline(rec.kind, src, notes);
   for (const auto& n : notes) progress("reconcile: " + n);
   const reconcile::Experiment e = reconcile::make_experiment(rec, base);

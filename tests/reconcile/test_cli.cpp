@@ -231,6 +231,11 @@ TEST(ReconcileContactBaseline, MissingCurveOrTorqueBeyondItIsOneLineAndWritesNot
   EXPECT_NE(r.err.find("rec.csv: torque_Nm spans [-40, 40] N*m but the torque-twist curve of " +
                        (d / "contact.json").string() + " covers [-31, 31] N*m"), std::string::npos) << r.output;
   EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  // A curve given without --baseline contact would be silently unused: refused.
+  r = run_strainwave("--quiet reconcile " + (d / "contact_case.toml").string() + " " + (d / "rec.csv").string() +
+                     " --contact " + (d / "contact.json").string() + " --out " + (d / "out").string());
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("the torque-twist curve is read only with --baseline contact"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(d / "out" / "reconcile.json"));
   EXPECT_FALSE(fs::exists(d / "out" / "reconcile.html"));
 }

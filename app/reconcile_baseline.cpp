@@ -76,6 +76,8 @@ void contact_baseline(const BaselineSources& src, reconcile::Baseline& b, std::v
                       num(lo) + ", " + num(hi) + "] N*m by less than " + num(100 * kCurveEndTolerance) +
                       " % of rated torque; its end segments are extended there");
   }
+  if (src.compliance || !src.fem_result.empty())
+    notes.push_back("C_tau (--fem, --compliance) is not used: the torsion baseline is the contact curve");
   b.model = "contact";
   b.source = src.contact_result;
   b.twist_rad = [curve, tol](double T) { return twist_at(curve, T, tol); };

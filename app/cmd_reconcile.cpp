@@ -1,6 +1,8 @@
-// `strainwave reconcile CASE.toml RECORDING.csv [--fem DIR/result.json] [--compliance C] [--out DIR]`: compare a
-// recording with the simulation, locate the mismatch, name and fit the missing physics, and prove the improvement on
-// held-out data (issue 5). Writes reconcile.json and reconcile.html atomically; prints the verdict.
+// `strainwave reconcile CASE.toml RECORDING.csv [--fem DIR/result.json] [--compliance C]
+// [--baseline fem|contact [--contact DIR/contact.json]] [--out DIR]`: compare a recording with the simulation, locate
+// the mismatch, name and fit the missing physics, and prove the improvement on held-out data. A torsion recording is
+// held against C_tau T of the flexspline body (fem) or against the drive's torque-twist curve from the loaded tooth
+// contact (contact). Writes reconcile.json and reconcile.html atomically; prints the verdict.
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -10,6 +12,7 @@
 
 #include "app/commands.hpp"
 #include "app/reconcile_baseline.hpp"
+#include "common/error.hpp"
 #include "common/progress.hpp"
 #include "io/atomic_file.hpp"
 #include "io/case.hpp"
@@ -20,7 +23,7 @@ namespace sw::app {
 namespace {
 
 struct ReconcileArgs {
-  std::string case_path, recording_path, fem, out;
+  std::string case_path, recording_path, fem, out, baseline = "fem", contact;
   double compliance = 0.0;
   reconcile::Options options;
 };
@@ -30,10 +33,17 @@ void run_reconcile(const ReconcileArgs& a) {
   const reconcile::Recording rec = reconcile::load_recording(a.recording_path);
   BaselineSources src;
   src.case_file = c;
+  src.torsion = parse_torsion_baseline(a.baseline);
+  if (!a.contact.empty() && src.torsion != TorsionBaseline::Contact)
+    throw InputError("--contact " + a.contact + ": the torque-twist curve is read only with --baseline contact");
   src.fem_result = a.fem;
+  src.contact_result = a.contact.empty() ? "out/" + c.stem + "/contact.json" : a.contact;
   if (a.compliance > 0.0) src.compliance = a.compliance;
   src.recording = &rec;
   std::vector<std::string> notes;
+  if (src.torsion == TorsionBaseline::Contact && rec.kind != reconcile::Kind::Torsion)
+    notes.push_back("--baseline contact applies to torsion recordings; this one is " + reconcile::kind_name(rec.kind) +
+                    " and keeps its own baseline");
   const reconcile::Baseline base = make_baseline(rec.kind, src, notes);
   for (const auto& n : notes) progress("reconcile: " + n);
   const reconcile::Experiment e = reconcile::make_experiment(rec, base);
@@ -62,6 +72,11 @@ void add_reconcile_command(CLI::App& app) {
       ->required();
   cmd->add_option("--fem", a->fem, "FEM result.json (torsion: C_tau = compliance_rad_per_Nm)");
   cmd->add_option("--compliance", a->compliance, "torsion: C_tau in rad/(N*m), overrides --fem")->check(CLI::PositiveNumber);
+  cmd->add_option("--baseline", a->baseline,
+                  "torsion: what the recording is held against: fem (C_tau T of the flexspline body) or contact (the "
+                  "drive's torque-twist curve of `strainwave contact`)")
+      ->capture_default_str()->check(CLI::IsMember({"fem", "contact"}));
+  cmd->add_option("--contact", a->contact, "contact.json for --baseline contact (default out/<case stem>/contact.json)");
   cmd->add_option("--out", a->out, "output directory (default out/<case stem>/)");
   cmd->add_option("--bootstrap", a->options.bootstrap, "parametric bootstrap replicates for breakpoint/transition effects")
       ->capture_default_str()->check(CLI::Range(19, 100000));

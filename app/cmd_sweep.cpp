@@ -27,6 +27,7 @@
 #include "common/progress.hpp"
 #include "io/atomic_file.hpp"
 #include "io/case.hpp"
+#include "io/svg_plot.hpp"
 
 extern char** environ;
 
@@ -232,60 +233,50 @@ std::string sweep_csv(const std::vector<SweepAxis>& axes, const std::vector<Poin
 /// other keys.
 std::string sweep_svg(const std::vector<SweepAxis>& axes, const std::vector<Point>& points,
                       const std::vector<nlohmann::json>& results) {
-  const int W = 440, H = 300, M = 80;
-  const std::vector<std::pair<std::string, std::vector<std::string>>> panels = {
-      {"phi0 (rad)", {"phi0_rad"}},
-      {"C_tau (rad/N·m)", {"compliance_rad_per_Nm"}},
-      {"max hoop stress (MPa)", {"max_hoop_stress_Pa"}},
-      {"generator force per point (N)", {"wave_generator", "force_per_point_N"}}};
-  const std::size_t per_line = axes[0].values.size(), lines = points.size() / per_line;
+  struct Panel {
+    std::string title;
+    std::vector<std::string> path;  ///< in result.json
+    double scale;                   ///< to the unit in the title
+  };
+  const std::vector<Panel> panels = {{"φ₀ (rad)", {"phi0_rad"}, 1.0},
+                                     {"C_τ (rad/(N·m))", {"compliance_rad_per_Nm"}, 1.0},
+                                     {"max hoop stress (MPa)", {"max_hoop_stress_Pa"}, 1e-6},
+                                     {"generator force per point (N)", {"wave_generator", "force_per_point_N"}, 1.0}};
   static const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e377c2"};
-  std::ostringstream s;
-  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << 2 * W << "\" height=\"" << 2 * H + 40
-    << "\" font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  s << "<text x=\"10\" y=\"20\" font-size=\"14\">sweep over " << axes[0].name();
-  for (std::size_t k = 1; k < axes.size(); ++k) s << (k == 1 ? " (lines: " : ", ") << axes[k].name();
-  s << (axes.size() > 1 ? ")" : "") << "</text>\n";
-  for (std::size_t p = 0; p < panels.size(); ++p) {
-    const double scale = p == 2 ? 1e-6 : 1.0;
-    const int ox = static_cast<int>(p % 2) * W, oy = 40 + static_cast<int>(p / 2) * H;
-    double lo = 1e300, hi = -1e300;
-    for (const auto& r : results) {
-      const double v = value_at(r, panels[p].second) * scale;
-      if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
-    }
-    const double x0 = axes[0].values.front(), x1 = axes[0].values.back();
-    s << "<text x=\"" << ox + M << "\" y=\"" << oy + 14 << "\">" << panels[p].first << "</text>\n";
-    s << "<rect x=\"" << ox + M << "\" y=\"" << oy + 20 << "\" width=\"" << W - M - 20 << "\" height=\"" << H - 70
-      << "\" fill=\"none\" stroke=\"#888\"/>\n";
-    if (!(hi >= lo)) continue;
-    if (hi == lo) hi = lo + (lo == 0 ? 1 : std::abs(lo) * 1e-3), lo -= (hi - lo);
-    auto X = [&](double x) { return ox + M + (x1 == x0 ? 0.5 : (x - x0) / (x1 - x0)) * (W - M - 20); };
-    auto Y = [&](double y) { return oy + 20 + (1 - (y - lo) / (hi - lo)) * (H - 70); };
-    char b[160];
-    std::snprintf(b, sizeof b, "<text x=\"%d\" y=\"%.1f\" text-anchor=\"end\">%.4g</text>\n", ox + M - 4, Y(hi) + 8, hi);
-    s << b;
-    std::snprintf(b, sizeof b, "<text x=\"%d\" y=\"%.1f\" text-anchor=\"end\">%.4g</text>\n", ox + M - 4, Y(lo), lo);
-    s << b;
-    std::snprintf(b, sizeof b, "<text x=\"%d\" y=\"%d\">%.4g</text><text x=\"%d\" y=\"%d\" text-anchor=\"end\">%.4g</text>\n",
-                  ox + M, oy + H - 35, x0, W + ox - 20, oy + H - 35, x1);
-    s << b;
+  const std::size_t per_line = axes[0].values.size(), lines = points.size() / per_line;
+  Figure f;
+  std::string head = "sweep over " + axes[0].name();
+  for (std::size_t k = 1; k < axes.size(); ++k) head += (k == 1 ? " (lines: " : ", ") + axes[k].name();
+  f.header = {head + (axes.size() > 1 ? ")" : "")};
+  f.columns = 2;
+  for (const auto& panel : panels) {
+    LinePlot p;
+    p.title = panel.title;
+    p.x_label = axes[0].name();
+    p.y_label = panel.title;
+    p.width = 440;
+    p.height = 300;
+    p.zero_line = false;
     for (std::size_t l = 0; l < lines; ++l) {
-      s << "<polyline fill=\"none\" stroke=\"" << kColours[l % 7] << "\" points=\"";
+      PlotSeries s;
+      s.colour = kColours[l % 7];
+      s.line_width = 1.5;
+      for (std::size_t k = 1; k < axes.size(); ++k) {  // the other keys' values on this line (point l: i = 0)
+        char v[64];
+        std::snprintf(v, sizeof v, "%s = %.4g", axes[k].name().c_str(), points[l].values[k]);
+        s.label += (k == 1 ? "" : ", ") + std::string(v);
+      }
       for (std::size_t i = 0; i < per_line; ++i) {
         // Points are numbered with the first key slowest: point = i·lines + l.
         const std::size_t idx = i * lines + l;
-        const double v = value_at(results[idx], panels[p].second) * scale;
-        if (std::isfinite(v)) {
-          std::snprintf(b, sizeof b, "%.1f,%.1f ", X(points[idx].values[0]), Y(v));
-          s << b;
-        }
+        s.x.push_back(points[idx].values[0]);
+        s.y.push_back(value_at(results[idx], panel.path) * panel.scale);
       }
-      s << "\"/>\n";
+      p.series.push_back(s);
     }
+    f.panels.push_back(p);
   }
-  s << "<text x=\"10\" y=\"" << 2 * H + 30 << "\">x: " << axes[0].name() << "</text>\n</svg>\n";
-  return s.str();
+  return svg_figure(f);
 }
 
 }  // namespace

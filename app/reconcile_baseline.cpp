@@ -1,6 +1,8 @@
 #include "app/reconcile_baseline.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <limits>
 
@@ -12,6 +14,7 @@
 #include "dynamics/kinematic_pairs.hpp"
 #include "kinematics/backlash.hpp"
 #include "kinematics/neutral_curve.hpp"
+#include "io/contact_curve.hpp"
 
 namespace sw::app {
 
@@ -35,6 +38,60 @@ double compliance_from_fem(const std::string& path) {
   return c;
 }
 
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+/// Slope (rad per N*m) of the polyline's first or last segment with a torque step.
+double end_slope(const TorqueTwistCurve& c, bool top) {
+  const auto& t = c.torque_Nm;
+  std::size_t a = 0;
+  if (top) {
+    a = t.size() - 2;
+    while (t[a] == t.back()) --a;
+  } else {
+    while (t[a + 1] == t.front()) ++a;
+  }
+  return (c.twist_rad[a + 1] - c.twist_rad[a]) / (t[a + 1] - t[a]);
+}
+
+/// The torsion baseline from the contact stage's torque-twist curve: its loop's middle line, checked to cover the
+/// recording's torque range.
+void contact_baseline(const BaselineSources& src, reconcile::Baseline& b, std::vector<std::string>& notes) {
+  const TorqueTwistCurve curve = read_torque_twist(src.contact_result);
+  const double lo = curve.torque_Nm.front(), hi = curve.torque_Nm.back();
+  const double tol = kCurveEndTolerance * curve.rated_torque_Nm;
+  const std::vector<double>* torque = src.recording ? src.recording->column("torque_Nm") : nullptr;
+  if (torque && !torque->empty()) {
+    const auto [tmin, tmax] = std::minmax_element(torque->begin(), torque->end());
+    if (*tmin < lo - tol || *tmax > hi + tol)
+      throw InputError(src.recording->path + ": torque_Nm spans [" + num(*tmin) + ", " + num(*tmax) +
+                       "] N*m but the torque-twist curve of " + src.contact_result + " covers [" + num(lo) + ", " +
+                       num(hi) + "] N*m (rated " + num(curve.rated_torque_Nm) +
+                       " N*m); the curve is not extrapolated: record within it, or compare with --baseline fem");
+    if (*tmin < lo || *tmax > hi)
+      notes.push_back("the recording's torque [" + num(*tmin) + ", " + num(*tmax) + "] N*m passes the curve's ends [" +
+                      num(lo) + ", " + num(hi) + "] N*m by less than " + num(100 * kCurveEndTolerance) +
+                      " % of rated torque; its end segments are extended there");
+  }
+  if (src.compliance || !src.fem_result.empty())
+    notes.push_back("C_tau (--fem, --compliance) is not used: the torsion baseline is the contact curve");
+  b.model = "contact";
+  b.source = src.contact_result;
+  b.twist_rad = [curve, tol](double T) { return twist_at(curve, T, tol); };
+  b.compliance_rad_per_Nm = 0.5 * (end_slope(curve, false) + end_slope(curve, true));
+  if (!(b.compliance_rad_per_Nm > 0.0))
+    throw InputError(src.contact_result + ": torque_twist: the curve's end slopes give " +
+                     num(b.compliance_rad_per_Nm) + " rad/(N*m); twist must rise with torque");
+  b.curve_t1_Nm = curve.catalog_t1_Nm;
+  b.curve_t2_Nm = curve.catalog_t2_Nm;
+  notes.push_back("torsion baseline: the drive's torque-twist curve of " + src.contact_result + " (middle line, " +
+                  std::to_string(curve.torque_Nm.size()) + " points over [" + num(lo) + ", " + num(hi) +
+                  "] N*m; end slope " + num(b.compliance_rad_per_Nm) + " rad/(N*m))");
+}
+
 std::optional<int> meta_int(const reconcile::Recording* r, const std::string& key) {
   if (!r) return std::nullopt;
   const auto v = r->meta_number(key);
@@ -43,6 +100,13 @@ std::optional<int> meta_int(const reconcile::Recording* r, const std::string& ke
 }
 
 }  // namespace
+
+TorsionBaseline parse_torsion_baseline(const std::string& text) {
+  if (text == "fem") return TorsionBaseline::Fem;
+  if (text == "contact") return TorsionBaseline::Contact;
+  throw InputError("--baseline = '" + text + "'; expected fem (C_tau T of the flexspline body) or contact (the "
+                   "drive's torque-twist curve from contact.json)");
+}
 
 reconcile::Baseline dynamics_baseline(const DynamicsModel& model) {
   reconcile::Baseline b;
@@ -102,11 +166,17 @@ reconcile::Baseline make_baseline(Kind kind, const BaselineSources& src, std::ve
   }
   switch (kind) {
     case Kind::Torsion:
+      if (src.torsion == TorsionBaseline::Contact) {
+        contact_baseline(src, b, notes);
+        break;
+      }
+      b.model = "fem";
       if (src.compliance) {
         b.compliance_rad_per_Nm = *src.compliance;
         notes.push_back("C_tau = " + std::to_string(*src.compliance) + " rad/(N*m) from --compliance");
       } else if (!src.fem_result.empty()) {
         b.compliance_rad_per_Nm = compliance_from_fem(src.fem_result);
+        b.source = src.fem_result;
         notes.push_back("C_tau from " + src.fem_result);
       } else {
         throw InputError("--fem: missing; a torsion baseline needs C_tau: give --fem DIR/result.json (from "

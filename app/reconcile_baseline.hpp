@@ -12,16 +12,29 @@
 
 namespace sw::app {
 
+/// What a torsion recording is held against: the flexspline body alone (C_tau T, from the FEM) or the whole drive's
+/// torque-twist curve from the loaded tooth contact (contact.json).
+enum class TorsionBaseline { Fem, Contact };
+
+/// "fem" or "contact"; throws InputError naming `--baseline` otherwise.
+TorsionBaseline parse_torsion_baseline(const std::string& text);
+
 struct BaselineSources {
   std::optional<Case> case_file;           ///< the case, when given
+  TorsionBaseline torsion = TorsionBaseline::Fem;
   std::string fem_result;                  ///< path of result.json ("" if none)
   std::optional<double> compliance;        ///< --compliance overrides the FEM result
+  std::string contact_result;              ///< path of contact.json (torsion, TorsionBaseline::Contact)
   const reconcile::Recording* recording = nullptr;  ///< metadata used where the case is silent
 };
 
 /// The dynamics baseline of a model (its run with a variation, f_m, c0, steady output speed); the model's own
 /// stiffness variation should be 0 (constant mesh stiffness).
 reconcile::Baseline dynamics_baseline(const DynamicsModel& model);
+
+/// A torque beyond the contact curve by at most this fraction of its rated torque (a torque sensor's overshoot at the
+/// turning points) is read on the extended end segment, and said so in the notes; further out is an error.
+inline constexpr double kCurveEndTolerance = 0.01;
 
 /// Builds the baseline of `kind`. `notes` receives case/metadata disagreements and where each number came from.
 reconcile::Baseline make_baseline(reconcile::Kind kind, const BaselineSources& src, std::vector<std::string>& notes);

@@ -17,6 +17,7 @@
 
 #include "common/error.hpp"
 #include "io/atomic_file.hpp"
+#include "io/svg_plot.hpp"
 
 namespace sw {
 
@@ -245,76 +246,56 @@ std::string backlash_csv(const BacklashReport& r) {
 }
 
 std::string backlash_svg(const BacklashReport& r) {
-  const double W = 900, H = 520, L = 80, R = 30, T = 60, B = 70;
-  double ymin = 0, ymax = 0;
-  for (const auto* v : {&r.positions_basic, &r.positions_compensated})
-    for (const auto& p : *v)
-      if (p.engaged && std::abs(p.phi_rad) <= kPi / 2) {
-        ymin = std::min(ymin, p.backlash_m() / r.module_m);
-        ymax = std::max(ymax, p.backlash_m() / r.module_m);
-      }
-  if (ymax <= ymin) ymax = ymin + 1;
-  const double pad = 0.05 * (ymax - ymin);
-  ymin -= pad;
-  ymax += pad;
-  auto X = [&](double deg) { return L + (deg + 90.0) / 180.0 * (W - L - R); };
-  auto Y = [&](double v) { return T + (ymax - v) / (ymax - ymin) * (H - T - B); };
-  std::ostringstream s;
-  s.precision(6);
-  s << "<svg xmlns='http://www.w3.org/2000/svg' width='" << W << "' height='" << H << "' font-family='sans-serif' "
-    << "font-size='13'>\n<rect width='100%' height='100%' fill='white'/>\n";
-  s << "<text x='" << W / 2 << "' y='22' text-anchor='middle' font-size='16'>Backlash j/m of a tooth pair vs its "
-    << "position (" << r.case_path << ")</text>\n";
-  s << "<text x='" << W / 2 << "' y='42' text-anchor='middle' fill='#555'>" << r.curve_source << "; compensated: phi0 = "
-    << r.phi0_rad << " rad; j = min(j_t1, j_t2); compensated at or below 0 = loaded flank in contact</text>\n";
-  s << "<rect x='" << L << "' y='" << T << "' width='" << W - L - R << "' height='" << H - T - B
-    << "' fill='none' stroke='#333'/>\n";
-  for (int d = -90; d <= 90; d += 15) {
-    s << "<line x1='" << X(d) << "' y1='" << T << "' x2='" << X(d) << "' y2='" << H - B << "' stroke='#eee'/>";
-    s << "<text x='" << X(d) << "' y='" << H - B + 18 << "' text-anchor='middle'>" << d << "</text>\n";
-  }
-  const double step = std::pow(10.0, std::floor(std::log10((ymax - ymin) / 5)));
-  for (double v0 = std::ceil(ymin / step) * step; v0 <= ymax; v0 += step) {
-    const double v = std::abs(v0) < 1e-9 * step ? 0.0 : v0;
-    s << "<line x1='" << L << "' y1='" << Y(v) << "' x2='" << W - R << "' y2='" << Y(v) << "' stroke='"
-      << (std::abs(v) < 1e-12 ? "#000" : "#eee") << "'/>";
-    s << "<text x='" << L - 6 << "' y='" << Y(v) + 4 << "' text-anchor='end'>" << v << "</text>\n";
-  }
-  s << "<text x='" << (L + W - R) / 2 << "' y='" << H - 25 << "' text-anchor='middle'>material angle of the tooth "
-    << "from the major axis, deg (0 = major axis, ±90 = minor axis; table position = 90 − |angle|)</text>\n";
-  s << "<text transform='translate(20," << (T + H - B) / 2 << ") rotate(-90)' text-anchor='middle'>j / m</text>\n";
-  auto curve = [&](const std::vector<PairClearance>& ps, const char* colour, const char* dash) {
-    std::string d;
-    bool pen = false;
+  // The pairs in mesh over a half revolution, −90° to +90° from the major axis; a gap where a pair is out of mesh.
+  auto curve = [&](const std::vector<PairClearance>& ps, const char* label, const char* colour, bool dashed) {
+    PlotSeries s;
+    s.label = label;
+    s.colour = colour;
+    s.dashed = dashed;
+    s.line_width = 2;
     for (const auto& p : ps) {
-      if (!p.engaged || std::abs(p.phi_rad) > kPi / 2) { pen = false; continue; }
-      std::ostringstream q;
-      q << (pen ? " L" : " M") << X(p.phi_rad * kDeg) << "," << Y(p.backlash_m() / r.module_m);
-      d += q.str();
-      pen = true;
+      if (std::abs(p.phi_rad) > kPi / 2) continue;
+      s.x.push_back(p.phi_rad * kDeg);
+      s.y.push_back(p.engaged ? p.backlash_m() / r.module_m : NAN);
     }
-    s << "<path d='" << d << "' fill='none' stroke='" << colour << "' stroke-width='2' stroke-dasharray='" << dash
-      << "'/>\n";
+    return s;
   };
-  curve(r.positions_basic, "#1f77b4", "none");
-  curve(r.positions_compensated, "#d62728", "6,4");
-  for (const auto& row : r.table) {
-    const double deg = 90.0 - row.position_deg;
-    for (const auto& [p, col] : {std::pair{&row.basic, "#1f77b4"}, std::pair{&row.compensated, "#d62728"}})
-      if (p->engaged) s << "<circle cx='" << X(deg) << "' cy='" << Y(p->backlash_m() / r.module_m) << "' r='4' fill='" << col << "'/>\n";
+  LinePlot p;
+  p.title = "Backlash j/m of a tooth pair vs its position";
+  p.x_label = "material angle of the tooth from the major axis (deg); 0 = major axis, ±90 = minor axis; table "
+              "position = 90 − |angle|";
+  p.y_label = "j / m";
+  p.width = 900;
+  p.height = 460;
+  p.x_range = {-90.0, 90.0};
+  p.series = {curve(r.positions_basic, "basic (phi0 = 0)", "#1f77b4", false),
+              curve(r.positions_compensated, "compensated (phi0)", "#d62728", true)};
+  // The table's positions as dots on both curves.
+  for (const auto& [which, colour] : {std::pair{0, "#1f77b4"}, std::pair{1, "#d62728"}}) {
+    PlotSeries dots;
+    dots.colour = colour;
+    dots.markers = true;
+    dots.marker_radius = 4;
+    for (const auto& row : r.table) {
+      const PairClearance& c = which == 0 ? row.basic : row.compensated;
+      if (!c.engaged) continue;
+      dots.x.push_back(90.0 - row.position_deg);
+      dots.y.push_back(c.backlash_m() / r.module_m);
+    }
+    p.series.push_back(dots);
   }
-  s << "<rect x='" << W - R - 250 << "' y='" << T + 8 << "' width='240' height='48' fill='white' stroke='#999'/>\n";
-  s << "<line x1='" << W - R - 240 << "' y1='" << T + 24 << "' x2='" << W - R - 200 << "' y2='" << T + 24
-    << "' stroke='#1f77b4' stroke-width='2'/><text x='" << W - R - 192 << "' y='" << T + 28 << "'>basic (phi0 = 0)</text>\n";
-  s << "<line x1='" << W - R - 240 << "' y1='" << T + 44 << "' x2='" << W - R - 200 << "' y2='" << T + 44
-    << "' stroke='#d62728' stroke-width='2' stroke-dasharray='6,4'/><text x='" << W - R - 192 << "' y='" << T + 48
-    << "'>compensated (phi0)</text>\n";
-  s << "<text x='" << L << "' y='" << H - 6 << "' fill='#555'>min over a revolution: basic "
-    << r.revolution_basic.min_m * 1e3 << " mm, compensated " << r.revolution_compensated.min_m * 1e3
-    << " mm; geometric angular play " << r.revolution_basic.angular_play_min_rad * kArcmin << "–"
-    << r.revolution_basic.angular_play_max_rad * kArcmin << " arcmin; only pairs in mesh are drawn</text>\n";
-  s << "</svg>\n";
-  return s.str();
+  std::ostringstream head, foot;
+  head << r.curve_source << "; compensated: phi0 = " << r.phi0_rad
+       << " rad; j = min(j_t1, j_t2); compensated at or below 0 = loaded flank in contact";
+  foot << "min over a revolution: basic " << r.revolution_basic.min_m * 1e3 << " mm, compensated "
+       << r.revolution_compensated.min_m * 1e3 << " mm; geometric angular play "
+       << r.revolution_basic.angular_play_min_rad * kArcmin << "–" << r.revolution_basic.angular_play_max_rad * kArcmin
+       << " arcmin; only pairs in mesh are drawn";
+  Figure f;
+  f.header = {"Backlash of " + r.case_path, head.str()};
+  f.panels = {p};
+  f.footer = {foot.str()};
+  return svg_figure(f);
 }
 
 void write_profiles_vtp(const std::filesystem::path& path, const BacklashModel& m, double phi0_rad) {

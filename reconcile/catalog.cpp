@@ -377,7 +377,7 @@ std::vector<SignatureSpec> torsion_signatures() {
     SignatureSpec s;
     s.name = "torque_linear";
     s.domain = "torque";
-    s.what = "residual proportional to torque (the drive is softer or stiffer than C_tau)";
+    s.what = "residual proportional to torque (the drive is softer or stiffer than the baseline)";
     s.basis = linear;
     s.condition = none;
     s.triggers = {"series_compliance", "stiffness_nonlinearity#1", "stiffness_nonlinearity#2"};
@@ -584,14 +584,20 @@ CatalogFigures catalog_figures(const Experiment& e, const FitResult& f) {
     c.rated_from = "the recording's torque amplitude (no rated torque in the metadata)";
   }
   const double R = c.rated_torque_Nm;
-  const double c_last = e.model.compliance_rad_per_Nm + added_series_compliance(f);
+  const double c_series = added_series_compliance(f);
+  const double c_last = e.model.compliance_rad_per_Nm + c_series;
   c.k1 = c.k2 = c.k3 = 1.0 / c_last;
-  // The middle line of the loop after cycling to +-R: everything but the branch-dependent part of hysteresis.
+  // The middle line of the loop after cycling to +-R: everything but the branch-dependent part of hysteresis. A
+  // curve baseline (the contact stage's) is its own middle line.
   std::function<double(double)> mid = [c_last](double T) { return c_last * T; };
+  if (e.model.twist_rad)
+    mid = [curve = e.model.twist_rad, c_series](double T) { return curve(T) + c_series * T; };
+  bool stiffness_effect = false;
   for (std::size_t i = 0; i < f.terms.size(); ++i) {
     const Term& t = f.terms[i];
     const std::string& name = t.spec->name;
     if (name == "stiffness_nonlinearity") {
+      stiffness_effect = true;
       const NamedValues h = t.spec->headline(e, f, static_cast<int>(i));
       c.segments = t.spec->order + 1;
       c.k1 = h[0].second;
@@ -618,6 +624,19 @@ CatalogFigures catalog_figures(const Experiment& e, const FitResult& f) {
     }
   }
   c.catalog_lost_motion_arcmin = (mid(0.04 * R) - mid(-0.04 * R)) * kArcminPerRad;
+  const double t1 = e.model.curve_t1_Nm, t2 = e.model.curve_t2_Nm, top = e.torque_amplitude_Nm;
+  if (e.model.twist_rad && !stiffness_effect && t1 > 0.0 && t2 > t1 && top > t2) {
+    // The curve's own three segments (with the series compliance, if named) as segment secants, as catalogs read
+    // them: K1 over 0..T1, K2 over T1..T2, K3 over T2 to the top of the recorded range. Friction and play are not
+    // stiffness: they stay out, as they stay out of the stiffness effect's slopes.
+    auto twist = [&](double T) { return 0.5 * (e.model.twist_rad(T) - e.model.twist_rad(-T)) + c_series * T; };
+    c.segments = 3;
+    c.t1 = t1;
+    c.t2 = t2;
+    c.k1 = t1 / twist(t1);
+    c.k2 = (t2 - t1) / (twist(t2) - twist(t1));
+    c.k3 = (top - t2) / (twist(top) - twist(t2));
+  }
   return c;
 }
 

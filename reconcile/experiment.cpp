@@ -118,7 +118,12 @@ Experiment make_experiment(const Recording& rec, const Baseline& base) {
                          "; a torsion baseline needs C_tau > 0 (give --fem DIR/result.json or --compliance)");
       e.torque_Nm = to_vec(*rec.column("torque_Nm"));
       e.measured = to_vec(*rec.column("twist_rad"));
-      e.baseline = base.compliance_rad_per_Nm * e.torque_Nm;
+      if (base.twist_rad) {
+        e.baseline.resize(e.n);
+        for (int i = 0; i < e.n; ++i) e.baseline[i] = base.twist_rad(e.torque_Nm[i]);
+      } else {
+        e.baseline = base.compliance_rad_per_Nm * e.torque_Nm;
+      }
       e.response_name = "twist_rad";
       e.response_unit = "rad";
       const double range = e.torque_Nm.maxCoeff() - e.torque_Nm.minCoeff();

@@ -28,7 +28,18 @@ struct DynamicsRun {
 
 /// What the current simulation predicts, per kind. Only the fields of the recording's kind are used.
 struct Baseline {
-  double compliance_rad_per_Nm = 0.0;  ///< torsion: C_tau of the flexspline body (twist = C_tau * T)
+  /// What the baseline is ("fem": C_tau T of the flexspline body; "contact": the drive's torque-twist curve; other
+  /// kinds: "ideal_ratio", "kinematic", "dynamics_model"; empty: the kind's only one) and where it was read.
+  std::string model, source;
+  /// torsion: C_tau of the flexspline body (twist = C_tau * T); with `twist_rad` the curve's slope at its ends (the
+  /// last segment's compliance, 1/K3 of the model), which the stiffness headlines are read against.
+  double compliance_rad_per_Nm = 0.0;
+  /// torsion: the baseline twist (rad) at a torque when it is a curve (the contact stage's torque-twist curve, its
+  /// loop's middle line); empty: C_tau * T. May throw InputError for a torque beyond the curve.
+  std::function<double(double torque_Nm)> twist_rad;
+  /// torsion with `twist_rad`: the curve's catalog breakpoints T1 < T2 (N*m; 0: none), where the catalog figures read
+  /// K1, K2, K3 as segment secants when no stiffness effect replaces them.
+  double curve_t1_Nm = 0.0, curve_t2_Nm = 0.0;
   int teeth_flexspline = 0;            ///< transmission: z_f
   int teeth_circular = 0;              ///< transmission: z_c (output = -wg * (z_c - z_f) / z_f)
   double pitch_radius_m = 0.0;         ///< backlash: flexspline pitch radius (load_torsion converts phi0 to um)

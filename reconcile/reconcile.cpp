@@ -630,6 +630,17 @@ void finalise(Analysis& a, Result& r) {
 
 }  // namespace
 
+std::string baseline_model(const Experiment& e) {
+  if (!e.model.model.empty()) return e.model.model;
+  switch (e.kind) {
+    case Kind::Torsion: return e.model.twist_rad ? "curve" : "fem";
+    case Kind::Transmission: return "ideal_ratio";
+    case Kind::Backlash: return "kinematic";
+    case Kind::Dynamics: return "dynamics_model";
+  }
+  return "";
+}
+
 int signature_count(Kind kind) { return static_cast<int>(signature_catalog(kind).size()); }
 
 Result reconcile(const Experiment& e, const Options& opt) {
@@ -637,6 +648,8 @@ Result reconcile(const Experiment& e, const Options& opt) {
   Result r;
   r.kind = e.kind;
   r.samples = e.n;
+  r.baseline_model = baseline_model(e);
+  r.baseline_source = e.model.source;
   Analysis a(e, opt);
   r.heldout_rows = e.n - a.train;
   fit_noise(a, r);

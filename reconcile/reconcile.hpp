@@ -56,6 +56,8 @@ struct Rejected {
 struct Result {
   Kind kind = Kind::Torsion;
   int samples = 0;
+  std::string baseline_model;            ///< what the recording was held against (baseline_model())
+  std::string baseline_source;           ///< where the baseline was read ("" when given directly)
   int heldout_rows = 0;                  ///< the last rows, never used to fit what is scored on them
   double baseline_rms = 0.0, baseline_heldout_rms = 0.0;
   double final_rms = 0.0, final_heldout_rms = 0.0;
@@ -78,6 +80,10 @@ struct Result {
 
 /// Runs the whole analysis. Deterministic for a given options.seed.
 Result reconcile(const Experiment& e, const Options& options = {});
+
+/// The name of the experiment's baseline: Baseline::model, or by kind (torsion "fem" for C_tau T, "curve" for a
+/// torque-twist curve; "ideal_ratio", "kinematic", "dynamics_model").
+std::string baseline_model(const Experiment& e);
 
 /// Number of locations/unexplained signatures tested for a kind (the Bonferroni factor).
 int signature_count(Kind kind);

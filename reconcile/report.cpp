@@ -7,6 +7,7 @@
 #include <fftw3.h>
 #include <nlohmann/json.hpp>
 
+#include "io/svg_plot.hpp"
 #include "reconcile/catalog.hpp"
 
 namespace sw::reconcile {
@@ -21,86 +22,48 @@ std::string num(double v, const char* f = "%.4g") {
   return buf;
 }
 
-std::string esc(const std::string& s) {
-  std::string o;
-  for (char c : s) {
-    if (c == '<') o += "&lt;";
-    else if (c == '>') o += "&gt;";
-    else if (c == '&') o += "&amp;";
-    else if (c == '"') o += "&quot;";
-    else o += c;
-  }
-  return o;
-}
-
 nlohmann::json location_json(const Location& l) {
   return {{"domain", l.domain}, {"description", l.description}, {"p_value", l.p_value}};
 }
 
-/// A line/point plot as inline SVG. Series: (label, colour, x, y, as points?). Shaded x-ranges.
-struct Series {
-  std::string label, colour;
-  std::vector<double> x, y;
-  bool points = false;
+/// The response as people read it: angles in arcmin, the rest as recorded.
+struct Display {
+  double scale = 1.0;
+  std::string label;  ///< e.g. "twist (arcmin)"
 };
 
-std::string svg_plot(const std::string& title, const std::string& xlabel, const std::string& ylabel,
-                     const std::vector<Series>& series, const std::vector<std::pair<double, double>>& shade = {}) {
-  const double W = 760, H = 300, L = 70, R = 20, T = 30, B = 45;
-  double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
-  for (const auto& s : series)
-    for (std::size_t i = 0; i < s.x.size(); ++i) {
-      if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
-      x0 = std::min(x0, s.x[i]); x1 = std::max(x1, s.x[i]);
-      y0 = std::min(y0, s.y[i]); y1 = std::max(y1, s.y[i]);
-    }
-  if (!(x1 > x0)) { x0 -= 1; x1 += 1; }
-  if (!(y1 > y0)) { y0 -= 1; y1 += 1; }
-  const double pad = 0.05 * (y1 - y0);
-  y0 -= pad; y1 += pad;
-  auto px = [&](double x) { return L + (x - x0) / (x1 - x0) * (W - L - R); };
-  auto py = [&](double y) { return H - B - (y - y0) / (y1 - y0) * (H - T - B); };
-  std::string s = "<svg xmlns='http://www.w3.org/2000/svg' width='" + num(W) + "' height='" + num(H) +
-                  "' style='background:#fff;border:1px solid #ccc'>";
-  s += "<text x='" + num(L) + "' y='18' font-size='14' font-weight='bold'>" + esc(title) + "</text>";
-  for (const auto& [a, b] : shade) {
-    const double xa = px(std::max(a, x0)), xb = px(std::min(b, x1));
-    s += "<rect x='" + num(std::min(xa, xb)) + "' y='" + num(T) + "' width='" + num(std::max(2.0, std::abs(xb - xa))) +
-         "' height='" + num(H - T - B) + "' fill='#fd6' opacity='0.35'/>";
-  }
-  s += "<rect x='" + num(L) + "' y='" + num(T) + "' width='" + num(W - L - R) + "' height='" + num(H - T - B) +
-       "' fill='none' stroke='#333'/>";
-  for (int i = 0; i <= 4; ++i) {
-    const double xv = x0 + (x1 - x0) * i / 4.0, yv = y0 + (y1 - y0) * i / 4.0;
-    s += "<text x='" + num(px(xv)) + "' y='" + num(H - B + 15) + "' font-size='10' text-anchor='middle'>" +
-         num(xv, "%.3g") + "</text>";
-    s += "<text x='" + num(L - 4) + "' y='" + num(py(yv) + 3) + "' font-size='10' text-anchor='end'>" +
-         num(yv, "%.3g") + "</text>";
-  }
-  s += "<text x='" + num((L + W - R) / 2) + "' y='" + num(H - 8) + "' font-size='12' text-anchor='middle'>" +
-       esc(xlabel) + "</text>";
-  s += "<text x='14' y='" + num((T + H - B) / 2) + "' font-size='12' text-anchor='middle' transform='rotate(-90 14 " +
-       num((T + H - B) / 2) + ")'>" + esc(ylabel) + "</text>";
-  int legend = 0;
-  for (const auto& ser : series) {
-    const std::size_t n = ser.x.size();
-    const std::size_t stride = std::max<std::size_t>(1, n / 1500);  // keep the page small
-    if (ser.points) {
-      for (std::size_t i = 0; i < n; i += stride)
-        s += "<circle cx='" + num(px(ser.x[i]), "%.1f") + "' cy='" + num(py(ser.y[i]), "%.1f") + "' r='1.2' fill='" +
-             ser.colour + "' opacity='0.5'/>";
-    } else {
-      s += "<polyline fill='none' stroke='" + ser.colour + "' stroke-width='1.2' points='";
-      for (std::size_t i = 0; i < n; i += stride)
-        s += num(px(ser.x[i]), "%.1f") + "," + num(py(ser.y[i]), "%.1f") + " ";
-      s += "'/>";
-    }
-    s += "<rect x='" + num(W - R - 200) + "' y='" + num(T + 6 + 14 * legend) + "' width='10' height='10' fill='" +
-         ser.colour + "'/><text x='" + num(W - R - 185) + "' y='" + num(T + 15 + 14 * legend) +
-         "' font-size='11'>" + esc(ser.label) + "</text>";
-    ++legend;
-  }
-  return s + "</svg>";
+Display display_of(const Experiment& e) {
+  std::string name = e.response_name.substr(0, e.response_name.rfind('_'));
+  std::replace(name.begin(), name.end(), '_', ' ');
+  if (e.response_unit == "rad") return {kArcminPerRad, name + " (arcmin)"};
+  return {1.0, name + " (" + (e.response_unit == "um" ? std::string("µm") : e.response_unit) + ")"};
+}
+
+/// A series of the page's plots: a line, or the recording's samples as faint dots.
+PlotSeries series(const std::string& label, const std::string& colour, const Vec& x, const Vec& y, double scale,
+                  bool samples = false) {
+  PlotSeries s;
+  s.label = label;
+  s.colour = colour;
+  s.x.assign(x.data(), x.data() + x.size());
+  for (Eigen::Index i = 0; i < y.size(); ++i) s.y.push_back(scale * y[i]);
+  s.markers = samples;
+  s.marker_radius = 1.2;
+  s.opacity = samples ? 0.5 : 1.0;
+  s.line_width = 1.2;
+  return s;
+}
+
+std::string plot(const std::string& title, const std::string& x_label, const std::string& y_label,
+                 std::vector<PlotSeries> lines, const std::vector<std::pair<double, double>>& bands = {}) {
+  LinePlot p;
+  p.title = title;
+  p.x_label = x_label;
+  p.y_label = y_label;
+  p.series = std::move(lines);
+  p.height = 300;
+  p.x_bands = bands;
+  return svg_line_plot(p);
 }
 
 nlohmann::json catalog_json(const CatalogFigures& c) {
@@ -148,11 +111,24 @@ std::string catalog_html(const CatalogFigures& c) {
   h += row("lost motion, catalog: twist between +-4 % rated on the middle line, elastic twist included (arcmin)",
            c.catalog_lost_motion_arcmin, ref ? "< 1" : "");
   h += row("play: dead band of the effect lost_motion (arcmin)", c.play_arcmin, "");
-  h += "</table><p>Rated torque from " + esc(c.rated_from) + ".</p>";
+  h += "</table><p>Rated torque from " + html_escape(c.rated_from) + ".</p>";
   return h;
 }
 
-std::vector<double> stdv(const Vec& v) { return std::vector<double>(v.data(), v.data() + v.size()); }
+/// The baseline in words, for the page.
+std::string baseline_description(const Experiment& e) {
+  const std::string model = baseline_model(e);
+  std::string d;
+  if (model == "fem") d = "C_tau T, the flexspline body's torsional compliance (C_tau = " + num(e.model.compliance_rad_per_Nm) + " rad/(N*m))";
+  else if (model == "contact") d = "the drive's torque-twist curve from the loaded tooth contact (middle line of its loop)";
+  else if (model == "curve") d = "a torque-twist curve";
+  else if (model == "ideal_ratio") d = "the ideal ratio, output = -wg (z_c - z_f)/z_f";
+  else if (model == "kinematic") d = "the basic kinematic backlash model (phi0 = 0)";
+  else if (model == "dynamics_model") d = "the dynamics model with constant mesh stiffness";
+  else d = model;
+  return d + (e.model.source.empty() ? "" : ", from " + e.model.source);
+}
+
 
 }  // namespace
 
@@ -197,7 +173,8 @@ std::string report_json(const Result& r) {
   nlohmann::json j;
   j["kind"] = kind_name(r.kind);
   j["samples"] = r.samples;
-  j["baseline"] = {{"rms", r.baseline_rms}, {"heldout_rms", r.baseline_heldout_rms}};
+  j["baseline"] = {{"model", r.baseline_model}, {"rms", r.baseline_rms}, {"heldout_rms", r.baseline_heldout_rms}};
+  if (!r.baseline_source.empty()) j["baseline"]["source"] = r.baseline_source;
   nlohmann::json locs = nlohmann::json::array();
   for (const auto& l : r.locations) locs.push_back(location_json(l));
   for (const auto& l : r.unexplained) {
@@ -237,7 +214,8 @@ std::string report_json(const Result& r) {
 }
 
 std::string report_summary(const Result& r) {
-  std::string s = "reconcile (" + kind_name(r.kind) + ", " + std::to_string(r.samples) + " samples): " + r.verdict + "\n";
+  std::string s = "reconcile (" + kind_name(r.kind) + ", " + std::to_string(r.samples) + " samples, baseline " +
+                  r.baseline_model + "): " + r.verdict + "\n";
   for (const auto& l : r.locations) s += "  mismatch in " + l.domain + " (p " + num(l.p_value, "%.2g") + "): " + l.description + "\n";
   for (const auto& e : r.effects) {
     s += "  missing physics: " + e.name + " (dBIC " + num(e.delta_bic, "%.1f") + ", p " + num(e.p_value, "%.2g") + ")\n   ";
@@ -262,15 +240,16 @@ std::string report_summary(const Result& r) {
 }
 
 std::string report_html(const Experiment& e, const Recording& rec, const Result& r, const std::vector<std::string>& notes) {
-  std::string h = "<!DOCTYPE html><html><head><meta charset='utf-8'><title>strainwave reconcile: " + esc(rec.path) +
+  std::string h = "<!DOCTYPE html><html><head><meta charset='utf-8'><title>strainwave reconcile: " + html_escape(rec.path) +
                   "</title><style>body{font-family:sans-serif;max-width:820px;margin:2em auto;color:#222}"
                   "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:3px 8px;font-size:13px}"
                   ".v{font-size:20px;font-weight:bold}</style></head><body>";
-  h += "<h1>Reconcile: " + esc(rec.path) + "</h1>";
-  h += "<p class='v'>Verdict: " + esc(r.verdict) + "</p>";
-  for (const auto& n : notes) h += "<p style='color:#a40'>Note: " + esc(n) + "</p>";
+  h += "<h1>Reconcile: " + html_escape(rec.path) + "</h1>";
+  h += "<p class='v'>Verdict: " + html_escape(r.verdict) + "</p>";
+  h += "<p>Baseline: " + html_escape(baseline_description(e)) + "</p>";
+  for (const auto& n : notes) h += "<p style='color:#a40'>Note: " + html_escape(n) + "</p>";
   h += "<h2>Recording</h2><table>";
-  for (const auto& [k, v] : rec.metadata) h += "<tr><td>" + esc(k) + "</td><td>" + esc(v) + "</td></tr>";
+  for (const auto& [k, v] : rec.metadata) h += "<tr><td>" + html_escape(k) + "</td><td>" + html_escape(v) + "</td></tr>";
   h += "<tr><td>samples</td><td>" + std::to_string(r.samples) + "</td></tr>";
   h += "<tr><td>noise model (estimated)</td><td>AR(" + std::to_string(r.noise.order()) + "), sd " +
        num(r.noise.process_sd) + " " + e.response_unit + ", innovation sd " + num(r.noise.innovation_sd) + "</td></tr></table>";
@@ -280,26 +259,26 @@ std::string report_html(const Experiment& e, const Recording& rec, const Result&
   else {
     h += "<table><tr><th>domain</th><th>what</th><th>p (Bonferroni)</th></tr>";
     for (const auto& l : r.locations)
-      h += "<tr><td>" + esc(l.domain) + "</td><td>" + esc(l.description) + "</td><td>" + num(l.p_value, "%.2g") + "</td></tr>";
+      h += "<tr><td>" + html_escape(l.domain) + "</td><td>" + html_escape(l.description) + "</td><td>" + num(l.p_value, "%.2g") + "</td></tr>";
     h += "</table>";
   }
   h += "<h2>Missing physics</h2>";
   if (r.effects.empty()) h += "<p>No catalog effect passed every test.</p>";
   for (const auto& f : r.effects) {
-    h += "<h3>" + esc(f.name) + "</h3><p>" + esc(f.physics) + "</p><table><tr><th>parameter</th><th>value</th><th>95 % interval</th></tr>";
+    h += "<h3>" + html_escape(f.name) + "</h3><p>" + html_escape(f.physics) + "</p><table><tr><th>parameter</th><th>value</th><th>95 % interval</th></tr>";
     for (const auto& p : f.params)
-      h += "<tr><td>" + esc(p.name) + "</td><td>" + num(p.value) + "</td><td>" +
+      h += "<tr><td>" + html_escape(p.name) + "</td><td>" + num(p.value) + "</td><td>" +
            (p.name == "order" ? std::string("exact") : "[" + num(p.lo) + ", " + num(p.hi) + "]") + "</td></tr>";
-    h += "</table><p>BIC change " + num(f.delta_bic, "%.1f") + ", p = " + num(f.p_value, "%.3g") + " (" + esc(f.test) + ")</p>";
+    h += "</table><p>BIC change " + num(f.delta_bic, "%.1f") + ", p = " + num(f.p_value, "%.3g") + " (" + html_escape(f.test) + ")</p>";
   }
   if (!r.unexplained.empty()) {
     h += "<p><b>Still unexplained:</b></p><ul>";
-    for (const auto& u : r.unexplained) h += "<li>" + esc(u.description) + " (p " + num(u.p_value, "%.2g") + ")</li>";
+    for (const auto& u : r.unexplained) h += "<li>" + html_escape(u.description) + " (p " + num(u.p_value, "%.2g") + ")</li>";
     h += "</ul>";
   }
   if (!r.rejected.empty()) {
     h += "<h3>Considered and rejected</h3><ul>";
-    for (const auto& x : r.rejected) h += "<li>" + esc(x.reason) + "</li>";
+    for (const auto& x : r.rejected) h += "<li>" + html_escape(x.reason) + "</li>";
     h += "</ul>";
   }
   if (r.catalog.valid) h += catalog_html(r.catalog);
@@ -309,50 +288,54 @@ std::string report_html(const Experiment& e, const Recording& rec, const Result&
        "<tr><td>reconciled</td><td>" + num(r.final_rms) + "</td><td>" + num(r.final_heldout_rms) + "</td></tr></table>";
 
   // Plots.
+  const Display d = display_of(e);
   Vec x;
   std::string xl;
-  if (e.kind == Kind::Torsion) { x = e.torque_Nm; xl = "torque (N*m)"; }
-  else if (e.kind == Kind::Transmission) { x = e.wg_angle_rad * (180.0 / M_PI); xl = "wave-generator angle (deg)"; }
+  if (e.kind == Kind::Torsion) { x = e.torque_Nm; xl = "torque (N·m)"; }
   else if (e.kind == Kind::Dynamics) { x = e.time; xl = "time (s)"; }
   else { x = e.wg_angle_rad * (180.0 / M_PI); xl = "wave-generator angle (deg)"; }
   std::vector<std::pair<double, double>> shade;
   for (const auto& l : r.locations)
-    if (l.has_range && (e.kind == Kind::Torsion ? l.domain != "time" : false)) shade.emplace_back(l.lo, l.hi);
+    if (l.has_range && e.kind == Kind::Torsion && l.domain != "time") shade.emplace_back(l.lo, l.hi);
   h += "<h2>Plots</h2>";
   if (e.kind == Kind::Transmission) {
     // Transmission: the ideal line hides everything; show the transmission error instead.
-    h += svg_plot("transmission error: recording and models minus the ideal ratio", xl, e.response_name,
-                  {{"recording - ideal", "#888", stdv(x), stdv(e.measured - e.baseline), true},
-                   {"baseline (offset, ratio)", "#36c", stdv(x), stdv(r.baseline_prediction - e.baseline)},
-                   {"reconciled", "#c33", stdv(x), stdv(r.final_prediction - e.baseline)}});
+    h += plot("transmission error: recording and models minus the ideal ratio", xl, d.label,
+              {series("recording - ideal", "#888", x, e.measured - e.baseline, d.scale, true),
+               series("baseline (offset, ratio)", "#36c", x, r.baseline_prediction - e.baseline, d.scale),
+               series("reconciled", "#c33", x, r.final_prediction - e.baseline, d.scale)});
   } else {
-    h += svg_plot(e.kind == Kind::Torsion ? "torque-twist loop: recording, baseline (C_tau T) and the fitted model"
-                                          : "recording vs baseline vs reconciled model",
-                  xl, e.response_name,
-                  {{"recording", "#888", stdv(x), stdv(e.measured), true},
-                   {"baseline", "#36c", stdv(x), stdv(r.baseline_prediction)},
-                   {"reconciled", "#c33", stdv(x), stdv(r.final_prediction)}}, shade);
+    h += plot(e.kind == Kind::Torsion ? "torque-twist loop: recording, baseline (" +
+                                            (e.model.twist_rad ? std::string("torque-twist curve") : "C_tau T") +
+                                            ") and the fitted model"
+                                      : "recording vs baseline vs reconciled model",
+              xl, d.label,
+              {series("recording", "#888", x, e.measured, d.scale, true),
+               series("baseline", "#36c", x, r.baseline_prediction, d.scale),
+               series("reconciled", "#c33", x, r.final_prediction, d.scale)},
+              shade);
   }
-  h += "<br>" + svg_plot("residual before (baseline) and after (reconciled); shaded: located region", xl,
-                         e.response_name, {{"before", "#36c", stdv(x), stdv(r.residual_before), true},
-                                           {"after", "#c33", stdv(x), stdv(r.residual_after), true}}, shade);
-  h += "<br>" + svg_plot("residual over the recording (time order)", e.has_time ? "time (s)" : "row", e.response_name,
-                         {{"before", "#36c", stdv(e.time), stdv(r.residual_before)},
-                          {"after", "#c33", stdv(e.time), stdv(r.residual_after)}});
+  h += "<br>" + plot("residual before (baseline) and after (reconciled); shaded: located region", xl, d.label,
+                     {series("before", "#36c", x, r.residual_before, d.scale, true),
+                      series("after", "#c33", x, r.residual_after, d.scale, true)},
+                     shade);
+  h += "<br>" + plot("residual over the recording (time order)", e.has_time ? "time (s)" : "row", d.label,
+                     {series("before", "#36c", e.time, r.residual_before, d.scale),
+                      series("after", "#c33", e.time, r.residual_after, d.scale)});
   if (e.kind != Kind::Torsion && e.kind != Kind::Dynamics) {
-    const Spectrum a = order_spectrum(e.wg_angle_rad, r.residual_before, 6.0);
-    const Spectrum b = order_spectrum(e.wg_angle_rad, r.residual_after, 6.0);
-    h += "<br>" + svg_plot("residual spectrum in wave-generator orders", "order (per wave-generator revolution)",
-                           "amplitude (" + e.response_unit + ")",
-                           {{"before", "#36c", a.order, a.amplitude}, {"after", "#c33", b.order, b.amplitude}});
-    if (e.kind == Kind::Transmission) {
-      const Vec out_angle = -e.output_angle_rad;
-      const Spectrum c = order_spectrum(out_angle, r.residual_before, 6.0);
-      const Spectrum d = order_spectrum(out_angle, r.residual_after, 6.0);
-      h += "<br>" + svg_plot("residual spectrum in output orders", "order (per output revolution)",
-                             "amplitude (" + e.response_unit + ")",
-                             {{"before", "#36c", c.order, c.amplitude}, {"after", "#c33", d.order, d.amplitude}});
-    }
+    auto spectrum_plot = [&](const std::string& title, const std::string& axis, const Vec& angle) {
+      const Spectrum a = order_spectrum(angle, r.residual_before, 6.0);
+      const Spectrum b = order_spectrum(angle, r.residual_after, 6.0);
+      auto ser = [&](const std::string& label, const std::string& colour, const Spectrum& sp) {
+        return series(label, colour, Eigen::Map<const Vec>(sp.order.data(), sp.order.size()),
+                      Eigen::Map<const Vec>(sp.amplitude.data(), sp.amplitude.size()), d.scale);
+      };
+      return "<br>" + plot(title, axis, "amplitude: " + d.label, {ser("before", "#36c", a), ser("after", "#c33", b)});
+    };
+    h += spectrum_plot("residual spectrum in wave-generator orders", "order (per wave-generator revolution)",
+                       e.wg_angle_rad);
+    if (e.kind == Kind::Transmission)
+      h += spectrum_plot("residual spectrum in output orders", "order (per output revolution)", -e.output_angle_rad);
   }
   h += "<p style='font-size:11px;color:#777'>Tests: signatures by GLS F-tests under the estimated AR noise "
        "(Bonferroni over the kind's signatures). Effects enter one at a time (BIC lower by more than 10, held-out RMS "

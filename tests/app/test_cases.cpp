@@ -16,28 +16,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/cli.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
-
-struct CliRun {
-  int exit_code;
-  std::string output;  // stdout + stderr
-};
-
-CliRun run(const std::string& args) {
-  const fs::path log = fs::temp_directory_path() / ("sw_cli_" + std::to_string(::getpid()) + ".log");
-  const int status = std::system((std::string(SW_STRAINWAVE_BINARY) + " " + args + " > " + log.string() + " 2>&1").c_str());
-  std::ifstream in(log);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  fs::remove(log);
-  return {WEXITSTATUS(status), text};
-}
-
-nlohmann::json read_json(const fs::path& p) {
-  std::ifstream in(p);
-  return nlohmann::json::parse(in);
-}
+using namespace sw::testing;
 
 fs::path fresh_dir(const std::string& name) {
   const fs::path d = fs::temp_directory_path() / ("sw_case_" + name + "_" + std::to_string(::getpid()));
@@ -49,7 +33,7 @@ fs::path fresh_dir(const std::string& name) {
 // equations: 1e-8.
 TEST(Cases, TubeTorsionReproducesTheoryAndBalancesTorque) {
   const fs::path out = fresh_dir("tube");
-  const CliRun r = run("fem --quiet cases/tube_torsion.toml --out " + out.string());
+  const CommandRun r = run_strainwave("fem --quiet cases/tube_torsion.toml --out " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto j = read_json(out / "result.json");
   EXPECT_NEAR(j["phi0_rad"].get<double>() / j["phi0_theory_rad"].get<double>(), 1.0, 1e-3);
@@ -74,7 +58,7 @@ constexpr double kRegressionTol = 0.01;
 
 TEST(Cases, SeedCupRunsFemThenBacklashThenContact) {
   const fs::path out = fresh_dir("seed");
-  const CliRun r = run("run --quiet cases/seed_190_192.toml --out " + out.string());
+  const CommandRun r = run_strainwave("run --quiet cases/seed_190_192.toml --out " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto j = read_json(out / "result.json");
   EXPECT_NEAR(j["phi0_rad"].get<double>() / kSeedPhi0, 1.0, kRegressionTol);
@@ -125,7 +109,7 @@ TEST(Cases, SeedCupRunsFemThenBacklashThenContact) {
 // and the loaded flank in contact at the major axis under the FEM's φ₀ (never called interference).
 TEST(Cases, SeedGearSetHasNoInterferenceAndReportsItsPlay) {
   const fs::path out = fresh_dir("seed_backlash");
-  const CliRun r = run("backlash --quiet cases/seed_190_192.toml --phi0 4.138e-4 --out " + out.string());
+  const CommandRun r = run_strainwave("backlash --quiet cases/seed_190_192.toml --phi0 4.138e-4 --out " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto b = read_json(out / "backlash.json");
   EXPECT_FALSE(b["interference"].get<bool>());
@@ -150,7 +134,7 @@ TEST(Cases, SeedGearSetHasNoInterferenceAndReportsItsPlay) {
 
 TEST(Cases, Size17CupWithCamRuns) {
   const fs::path out = fresh_dir("s17");
-  const CliRun r = run("fem --quiet cases/cup_size17.toml --out " + out.string());
+  const CommandRun r = run_strainwave("fem --quiet cases/cup_size17.toml --out " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto j = read_json(out / "result.json");
   EXPECT_NEAR(j["phi0_rad"].get<double>() / kSize17Phi0, 1.0, kRegressionTol);
@@ -173,7 +157,7 @@ TEST(Cases, Size17CupWithCamRuns) {
 TEST(Design, WritesTheShippedCaseAndRefusesBadSizesWithOneLine) {
   const fs::path dir = fresh_dir("design");
   fs::create_directories(dir);
-  const CliRun ok = run("design --size 17 --ratio 100 --out " + (dir / "s17.toml").string());
+  const CommandRun ok = run_strainwave("design --size 17 --ratio 100 --out " + (dir / "s17.toml").string());
   ASSERT_EQ(ok.exit_code, 0) << ok.output;
   auto slurp = [](const fs::path& p) {
     std::ifstream in(p);
@@ -181,7 +165,7 @@ TEST(Design, WritesTheShippedCaseAndRefusesBadSizesWithOneLine) {
   };
   EXPECT_EQ(slurp(dir / "s17.toml"), slurp("cases/cup_size17.toml"));
   for (const char* s : {"14", "20"}) {
-    const CliRun r = run(std::string("design --size ") + s + " --out " + (dir / "s.toml").string());
+    const CommandRun r = run_strainwave(std::string("design --size ") + s + " --out " + (dir / "s.toml").string());
     ASSERT_EQ(r.exit_code, 0) << r.output;
     EXPECT_EQ(slurp(dir / "s.toml"), slurp(std::string("cases/cup_size") + s + ".toml")) << s;
   }
@@ -189,7 +173,7 @@ TEST(Design, WritesTheShippedCaseAndRefusesBadSizesWithOneLine) {
            {"--size 7", "--size 7; must be an integer in [8, 65]"},
            {"--size 17x", "--size 17x; expected an integer"},
            {"--size 17 --ratio 40", "--ratio 40; must be an integer in [50, 160]"}}) {
-    const CliRun r = run("design " + args + " --out " + (dir / "bad.toml").string());
+    const CommandRun r = run_strainwave("design " + args + " --out " + (dir / "bad.toml").string());
     EXPECT_NE(r.exit_code, 0) << args;
     EXPECT_NE(r.output.find(expected), std::string::npos) << r.output;
     EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
@@ -206,7 +190,7 @@ class DesignedSize : public ::testing::TestWithParam<int> {};
 TEST_P(DesignedSize, IsTheSize17CupScaled) {
   const int size = GetParam();
   const fs::path out = fresh_dir("s" + std::to_string(size));
-  const CliRun r = run("fem --quiet cases/cup_size" + std::to_string(size) + ".toml --out " + out.string());
+  const CommandRun r = run_strainwave("fem --quiet cases/cup_size" + std::to_string(size) + ".toml --out " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto j = read_json(out / "result.json");
   const double rated = size == 14 ? 10.0 : 52.0;  // catalog rated torques (CSG, ratio 100)
@@ -220,7 +204,7 @@ TEST_P(DesignedSize, IsTheSize17CupScaled) {
 INSTANTIATE_TEST_SUITE_P(Cases, DesignedSize, ::testing::Values(14, 20));
 
 void expect_clean_failure(const std::string& args, const std::string& expected, const fs::path& out) {
-  const CliRun r = run(args + " --out " + out.string());
+  const CommandRun r = run_strainwave(args + " --out " + out.string());
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.output.find(expected), std::string::npos) << r.output;
   EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;  // one line
@@ -256,7 +240,7 @@ TEST(CliErrors, ACaseThatWouldNeverFitIsRefusedInSecondsWithTheEstimate) {
   { std::ofstream(dir / "huge.toml") << text; }
   const auto start = std::chrono::steady_clock::now();
   const fs::path out = dir / "out";
-  const CliRun r = run("fem --quiet " + (dir / "huge.toml").string() + " --out " + out.string());
+  const CommandRun r = run_strainwave("fem --quiet " + (dir / "huge.toml").string() + " --out " + out.string());
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_NE(r.exit_code, 0);
   EXPECT_LT(seconds, 10.0);

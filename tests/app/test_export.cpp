@@ -13,20 +13,12 @@
 #include "io/case.hpp"
 #include "io/inp.hpp"
 #include "mesh/flexspline.hpp"
+#include "tests/cli.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
-
-int sh(const std::string& cmd) {
-  const int rc = std::system(cmd.c_str());
-  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-}
-
-nlohmann::json read_json(const fs::path& p) {
-  std::ifstream in(p);
-  return nlohmann::json::parse(in);
-}
+using namespace sw::testing;
 
 /// A copy of a shipped case with some lines replaced, in a fresh folder.
 fs::path variant(const std::string& name, const std::string& base,
@@ -48,11 +40,12 @@ TEST(ExportInp, CalculixSolvesTheDeckToOurPhi0) {
   const fs::path dir = variant("tube", "cases/tube_torsion.toml",
                                {{"size_mm = 1.5", "size_mm = 2.0"}, {"wall_layers = 2", "wall_layers = 1"},
                                 {"length_mm = 30.0", "length_mm = 10.0"}});
-  const std::string bin = SW_STRAINWAVE_BINARY;
-  ASSERT_EQ(sh(bin + " --quiet fem " + (dir / "tube.toml").string() + " --no-vtk --export-inp " +
-               (dir / "job.inp").string() + " --out " + (dir / "out").string() + " > /dev/null"), 0);
+  const std::string bin = strainwave_binary();
+  const CommandRun fem = run_shell(bin + " --quiet fem " + (dir / "tube.toml").string() + " --no-vtk --export-inp " +
+                                   (dir / "job.inp").string() + " --out " + (dir / "out").string());
+  ASSERT_EQ(fem.exit_code, 0) << fem.output;
   ASSERT_TRUE(fs::exists(dir / "job.inp"));
-  ASSERT_EQ(sh("cd " + dir.string() + " && OMP_NUM_THREADS=1 ccx -i job > ccx.log 2>&1"), 0)
+  ASSERT_EQ(run_shell("cd " + dir.string() + " && OMP_NUM_THREADS=1 ccx -i job > ccx.log 2>&1").exit_code, 0)
       << "ccx failed; see " << (dir / "ccx.log");
   // φ₀ from ccx's displacements, read on our own (deterministic) mesh of the same case.
   const sw::Case c = sw::load_case((dir / "tube.toml").string());
@@ -68,10 +61,12 @@ TEST(ExportInp, CalculixSolvesTheDeckToOurPhi0) {
 TEST(Determinism, TheSameCaseTwiceGivesTheSameResultApartFromTimingsAndMemory) {
   const fs::path dir = variant("seed", "cases/seed_190_192.toml",
                                {{"size_mm = 0.6", "size_mm = 1.2"}, {"wall_layers = 2", "wall_layers = 1"}});
-  const std::string bin = SW_STRAINWAVE_BINARY;
-  for (const char* run : {"a", "b"})
-    ASSERT_EQ(sh(bin + " --quiet fem " + (dir / "seed.toml").string() + " --no-vtk --out " + (dir / run).string() +
-                 " > /dev/null"), 0);
+  const std::string bin = strainwave_binary();
+  for (const char* run : {"a", "b"}) {
+    const CommandRun r = run_shell(bin + " --quiet fem " + (dir / "seed.toml").string() + " --no-vtk --out " +
+                                   (dir / run).string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+  }
   auto strip = [](nlohmann::json j) {
     j.erase("timings_s");
     j.erase("peak_rss_bytes");

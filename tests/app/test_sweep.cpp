@@ -11,28 +11,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/cli.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
-
-struct CliRun {
-  int exit_code;
-  std::string output;  // stdout + stderr
-};
-
-CliRun run(const std::string& args) {
-  const fs::path log = fs::temp_directory_path() / ("sw_sweep_" + std::to_string(::getpid()) + ".log");
-  const int status = std::system((std::string(SW_STRAINWAVE_BINARY) + " " + args + " > " + log.string() + " 2>&1").c_str());
-  std::ifstream in(log);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  fs::remove(log);
-  return {WEXITSTATUS(status), text};
-}
-
-nlohmann::json read_json(const fs::path& p) {
-  std::ifstream in(p);
-  return nlohmann::json::parse(in);
-}
+using namespace sw::testing;
 
 // A small tube with a cam generator on the harmonic solver: a fraction of a second a point.
 std::string tube_case(double wall_mm, double torque_Nm) {
@@ -60,7 +44,7 @@ void write(const fs::path& p, const std::string& text) { std::ofstream(p) << tex
 TEST(Sweep, GridEqualsSingleRuns) {
   const fs::path d = fresh_dir("grid");
   write(d / "base.toml", tube_case(1.0, 10.0));
-  const CliRun r = run("sweep --quiet " + (d / "base.toml").string() +
+  const CommandRun r = run_strainwave("sweep --quiet " + (d / "base.toml").string() +
                        " --set flexspline.wall_thickness_mm=0.8:1.2:3 --set load.torque_Nm=10:30:3 --out " +
                        (d / "sweep").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -74,7 +58,7 @@ TEST(Sweep, GridEqualsSingleRuns) {
       ASSERT_TRUE(std::getline(csv, line));
       const std::string single = "single_" + std::to_string(i);
       write(d / (single + ".toml"), tube_case(wall, torque));
-      const CliRun s = run("fem --quiet --no-vtk " + (d / (single + ".toml")).string() + " --out " + (d / single).string());
+      const CommandRun s = run_strainwave("fem --quiet --no-vtk " + (d / (single + ".toml")).string() + " --out " + (d / single).string());
       ASSERT_EQ(s.exit_code, 0) << s.output;
       const auto a = read_json(d / single / "result.json");
       char point[32];
@@ -105,22 +89,22 @@ TEST(Sweep, ResumesAndMergesShards) {
   write(d / "base.toml", tube_case(1.0, 10.0));
   const std::string sweep =
       "sweep " + (d / "base.toml").string() + " --set flexspline.wall_thickness_mm=0.8:1.2:5 --out " + (d / "s").string();
-  CliRun r = run(sweep + " --shard 1/2");
+  CommandRun r = run_strainwave(sweep + " --shard 1/2");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("3 points run"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(d / "s" / "sweep.csv"));
-  r = run(sweep);
+  r = run_strainwave(sweep);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("2 points run"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("3 finished before"), std::string::npos) << r.output;
   const auto before = read_json(d / "s" / "point_0002" / "result.json");
   fs::remove(d / "s" / "point_0002" / "result.json");
-  r = run(sweep);
+  r = run_strainwave(sweep);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("1 points run"), std::string::npos) << r.output;
   EXPECT_EQ(read_json(d / "s" / "point_0002" / "result.json")["phi0_rad"], before["phi0_rad"]);
   write(d / "base.toml", tube_case(1.0, 20.0));  // every point's case changes
-  r = run(sweep);
+  r = run_strainwave(sweep);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("5 points run"), std::string::npos) << r.output;
   fs::remove_all(d);
@@ -136,7 +120,7 @@ TEST(Sweep, BadInputIsOneLine) {
         {" --set flexspline.wall_thicknes_mm=0.8:1.2:3", "wall_thicknes_mm"},
         {" --set flexspline.wall_thickness_mm=-1:1.2:3", "wall_thickness_mm"},
         {" --set flexspline.wall_thickness_mm=0.8:1.2:3 --shard 3/2", "--shard 3/2"}}) {
-    const CliRun r = run(base + args);
+    const CommandRun r = run_strainwave(base + args);
     EXPECT_EQ(r.exit_code, 2) << args << ": " << r.output;
     EXPECT_NE(r.output.find(expect), std::string::npos) << args << ": " << r.output;
     EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;

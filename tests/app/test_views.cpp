@@ -18,23 +18,12 @@
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
+#include "tests/cli.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
-
-struct Shell {
-  int exit_code;
-  std::string output;
-};
-
-Shell sh(const std::string& cmd) {
-  const fs::path log = fs::temp_directory_path() / ("sw_view_" + std::to_string(::getpid()) + ".log");
-  const int status = std::system((cmd + " > " + log.string() + " 2>&1").c_str());
-  std::ifstream in(log);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  fs::remove(log);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text};
-}
+using namespace sw::testing;
 
 /// A coarse seed cup run once for every test here (fem + backlash): the shipped case at 1.2 mm, one wall layer.
 const fs::path& coarse_seed_run() {
@@ -48,7 +37,7 @@ const fs::path& coarse_seed_run() {
                                    {"wall_layers = 2", "wall_layers = 1"}})
       text.replace(text.find(from), from.size(), to);
     { std::ofstream(dir / "seed_coarse.toml") << text; }
-    const Shell r = sh(std::string(SW_STRAINWAVE_BINARY) + " run --quiet " + (dir / "seed_coarse.toml").string() +
+    const CommandRun r = run_shell(strainwave_binary() + " run --quiet " + (dir / "seed_coarse.toml").string() +
                      " --out " + (dir / "out").string());
     EXPECT_EQ(r.exit_code, 0) << r.output;
     return dir / "out";
@@ -66,7 +55,7 @@ TEST(ParaView, RendersTheWarpedGeneratorCaseAndComputesWhatTheFileHolds) {
   const fs::path out = coarse_seed_run();
   const fs::path png = out / "generator.png", probe = out / "generator_probe.json";
   const double scale = 20.0;
-  const Shell r = sh("scripts/pvbatch.sh cases/view_flexspline.py " + out.string() +
+  const CommandRun r = run_shell("scripts/pvbatch.sh cases/view_flexspline.py " + out.string() +
                    " --case generator --field stress_hoop --scale 20 --png " + png.string() + " --probe " +
                    probe.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -108,7 +97,7 @@ TEST(ParaView, RendersTheWarpedGeneratorCaseAndComputesWhatTheFileHolds) {
 TEST(ParaView, RendersTheToothProfiles) {
   const fs::path out = coarse_seed_run();
   const fs::path png = out / "profiles.png", probe = out / "profiles_probe.json";
-  const Shell r = sh("scripts/pvbatch.sh cases/view_flexspline.py " + (out / "profiles.vtp").string() + " --png " +
+  const CommandRun r = run_shell("scripts/pvbatch.sh cases/view_flexspline.py " + (out / "profiles.vtp").string() + " --png " +
                    png.string() + " --probe " + probe.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   expect_rendered(png);
@@ -121,13 +110,13 @@ TEST(ParaView, RendersTheToothProfiles) {
 
 TEST(ParaView, ScriptRefusesAnUnknownLoadCaseByName) {
   const fs::path out = coarse_seed_run();
-  const Shell r = sh("scripts/pvbatch.sh cases/view_flexspline.py " + out.string() + " --case nonsense");
+  const CommandRun r = run_shell("scripts/pvbatch.sh cases/view_flexspline.py " + out.string() + " --case nonsense");
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.output.find("no load case 'nonsense'"), std::string::npos) << r.output;
 }
 
 /// Opens a page in headless Chromium, takes a screenshot, returns Chromium's log (console messages included).
-Shell open_in_chromium(const fs::path& page, const fs::path& png) {
+CommandRun open_in_chromium(const fs::path& page, const fs::path& png) {
   const fs::path profile = fs::temp_directory_path() / ("sw_chromium_" + std::to_string(::getpid()));
   fs::remove_all(profile);
   const std::string cmd =
@@ -135,7 +124,7 @@ Shell open_in_chromium(const fs::path& page, const fs::path& png) {
       "--disable-background-networking --disable-component-update --disable-sync --user-data-dir=" + profile.string() +
       " --enable-logging=stderr --v=0 --window-size=1200,1600 --screenshot=" + png.string() + " file://" +
       fs::absolute(page).string();
-  Shell r = sh(cmd);
+  CommandRun r = run_shell(cmd);
   fs::remove_all(profile);
   return r;
 }
@@ -144,14 +133,14 @@ TEST(Browser, ReconcilePageRendersWithoutConsoleErrors) {
   const fs::path dir = fs::temp_directory_path() / ("sw_browser_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
-  const std::string bin = SW_STRAINWAVE_BINARY;
-  ASSERT_EQ(sh(bin + " --quiet synth --kind transmission --case cases/seed_190_192.toml --effect wg_harmonic:order=2 "
+  const std::string bin = strainwave_binary();
+  ASSERT_EQ(run_shell(bin + " --quiet synth --kind transmission --case cases/seed_190_192.toml --effect wg_harmonic:order=2 "
                      "--concealment 1 --seed 5 --out " + (dir / "rec.csv").string()).exit_code, 0);
-  const Shell rec = sh(bin + " --quiet reconcile cases/seed_190_192.toml " + (dir / "rec.csv").string() + " --out " +
+  const CommandRun rec = run_shell(bin + " --quiet reconcile cases/seed_190_192.toml " + (dir / "rec.csv").string() + " --out " +
                      (dir / "out").string());
   ASSERT_EQ(rec.exit_code, 0) << rec.output;
   const fs::path png = dir / "reconcile.png";
-  const Shell r = open_in_chromium(dir / "out" / "reconcile.html", png);
+  const CommandRun r = open_in_chromium(dir / "out" / "reconcile.html", png);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   expect_rendered(png);
   EXPECT_EQ(r.output.find("Uncaught"), std::string::npos) << r.output;
@@ -171,7 +160,7 @@ TEST(Browser, RunReportRendersWithoutConsoleErrorsAndHoldsTheRunsFigures) {
   EXPECT_EQ(html.find("http://"), html.find("http://www.w3.org"));  // no network resources, only the SVG namespace
   EXPECT_EQ(html.find("<script"), std::string::npos);
   const fs::path png = out / "report.png";
-  const Shell r = open_in_chromium(page, png);
+  const CommandRun r = open_in_chromium(page, png);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   expect_rendered(png);
   EXPECT_EQ(r.output.find(":ERROR:CONSOLE"), std::string::npos) << r.output;

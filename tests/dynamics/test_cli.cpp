@@ -7,23 +7,13 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "tests/cli.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-/// The strainwave binary of this build tree (its path is compiled in: ctest's ENVIRONMENT property is not relied on).
-std::string binary() { return SW_STRAINWAVE_BINARY; }
-
-/// Runs a command, returns its exit code; stdout+stderr into `log`.
-int run(const std::string& cmd, const fs::path& log) {
-  const int rc = std::system((cmd + " > " + log.string() + " 2>&1").c_str());
-  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
+using namespace sw::testing;
 
 constexpr double kSpeedTolerance = 1e-4;      // 0.01 %: steady speeds against the kinematic ratios
 constexpr double kPairForceTolerance = 1e-2;  // 1 %: mean pair forces against quasi-static sharing
@@ -35,11 +25,10 @@ constexpr double kEnergyTolerance = 5e-3;     // 0.5 %: energy balance
 TEST(DynamicsCli, SmallGearCaseRunsAndMeetsItsTolerances) {
   const fs::path out = fs::temp_directory_path() / "sw_test_dynamics_cli";
   fs::remove_all(out);
-  const int rc = run(binary() + " --quiet dynamics cases/mbd_26_28.toml --out " + out.string(), out.string() + ".log");
-  const std::string log = slurp(out.string() + ".log");
-  ASSERT_EQ(rc, 0) << log;
+  const CommandRun r = run_strainwave("--quiet dynamics cases/mbd_26_28.toml --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
   for (const char* f : {"dynamics.csv", "dynamics.json", "dynamics.svg"}) EXPECT_TRUE(fs::exists(out / f)) << f;
-  const auto j = nlohmann::json::parse(slurp(out / "dynamics.json"));
+  const auto j = nlohmann::json::parse(read_text(out / "dynamics.json"));
   for (const auto& s : j.at("speeds")) EXPECT_LT(s.at("error_rel").get<double>(), kSpeedTolerance) << s.dump();
   EXPECT_LT(j.at("max_pair_force_error_rel").get<double>(), kPairForceTolerance);
   EXPECT_LT(j.at("torque_balance_error_rel").get<double>(), kTorqueTolerance);
@@ -48,7 +37,7 @@ TEST(DynamicsCli, SmallGearCaseRunsAndMeetsItsTolerances) {
   // Flexspline: −(z_c − z_f)/z_f · 1000 rpm.
   EXPECT_NEAR(j.at("speeds").at(1).at("theory_rpm").get<double>(), -2.0 / 26.0 * 1000.0, 1e-9);
   // The CSV has one row per 1e-5 s over 0.1 s plus its header.
-  const std::string csv = slurp(out / "dynamics.csv");
+  const std::string csv = read_text(out / "dynamics.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 10002);
   fs::remove_all(out);
 }
@@ -58,11 +47,10 @@ TEST(DynamicsCli, BadCaseFailsWithOneLineAndWritesNothing) {
   fs::remove_all(dir);
   fs::create_directories(dir);
   std::ofstream(dir / "nogear.toml") << "[flexspline]\nshape = \"tube\"\nteeth = \"none\"\n";
-  const int rc = run(binary() + " --quiet dynamics " + (dir / "nogear.toml").string() + " --out " +
-                         (dir / "out").string(), dir / "log");
-  const std::string log = slurp(dir / "log");
-  EXPECT_NE(rc, 0);
-  EXPECT_NE(log.find("[gear]"), std::string::npos) << log;
+  const CommandRun r =
+      run_strainwave("--quiet dynamics " + (dir / "nogear.toml").string() + " --out " + (dir / "out").string());
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("[gear]"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir / "out" / "dynamics.json"));
   fs::remove_all(dir);
 }
@@ -84,10 +72,10 @@ TEST(DynamicsCli, SeedGearRunsEndToEndOnKinematicClearances) {
          "axial_position_mm = 3.0\n[load]\ntorque_Nm = 44.1\n";
   for (const std::string policy : {"preload", "drop"}) {
     const fs::path out = dir / policy;
-    const int rc = run(binary() + " --quiet dynamics " + (dir / "seed.toml").string() + " --interference " + policy +
-                           " --out " + out.string(), dir / "log");
-    ASSERT_EQ(rc, 0) << slurp(dir / "log");
-    const auto j = nlohmann::json::parse(slurp(out / "dynamics.json"));
+    const CommandRun r = run_strainwave("--quiet dynamics " + (dir / "seed.toml").string() + " --interference " +
+                                        policy + " --out " + out.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const auto j = nlohmann::json::parse(read_text(out / "dynamics.json"));
     for (const auto& s : j.at("speeds")) EXPECT_LT(s.at("error_rel").get<double>(), kSpeedTolerance) << s.dump();
     EXPECT_LT(j.at("max_pair_force_error_rel").get<double>(), kPairForceTolerance) << policy;
     EXPECT_LT(j.at("torque_balance_error_rel").get<double>(), kTorqueTolerance) << policy;

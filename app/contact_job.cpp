@@ -1,5 +1,7 @@
 #include "app/contact_job.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <numbers>
 #include <optional>
@@ -8,6 +10,10 @@
 #include "common/progress.hpp"
 #include "io/atomic_file.hpp"
 #include "io/contact_output.hpp"
+#include "contact/circular_spline.hpp"
+#include "contact/generator_bearing.hpp"
+#include "design/catalog.hpp"
+#include "gear/tooth_profile.hpp"
 
 namespace sw::app {
 namespace {
@@ -15,9 +21,19 @@ namespace {
 constexpr double kArcmin = 10800.0 / std::numbers::pi;
 
 /// What acts in series with the body, from the case.
-SeriesParts series_parts(const Case&) {
+SeriesParts series_parts(const Case& c) {
   SeriesParts s;
   s.teeth_source = "rigid teeth";
+  if (c.wave_generator && c.wave_generator->bearing) {
+    const GeneratorBearing b = *c.wave_generator->bearing;
+    // Hertz: the contact ellipse's shape does not depend on the load, so δ = δ(1 N)·Q^(2/3) exactly.
+    const double unit = ball_approach_m(b, 1.0);
+    s.bearing_approach_m = [unit](double ball_load_N) { return unit * std::cbrt(ball_load_N * ball_load_N); };
+    s.bearing_balls = b.balls;
+  }
+  if (c.circular_spline && c.gear)
+    s.circular_spline_rad_per_Nm = circular_spline_compliance_rad_per_Nm(
+        *c.circular_spline, gear_radii(*c.gear).root_c, c.material.shear_modulus_Pa());
   return s;
 }
 
@@ -27,9 +43,15 @@ ContactAnalysis run_contact_job(const Case& c, const FemJobResult& fem, const st
   if (!fem.system || !fem.mesh)
     throw InputError(c.path + ": contact solves on the TET10 model (solver.method = \"tet10\")");
   ContactOptions o;
-  o.rated_torque_Nm = c.load.torque_Nm;
+  o.rated_torque_Nm = c.load.rated_torque_Nm.value_or(c.load.torque_Nm);
   o.series = series_parts(c);
-  const std::optional<CatalogLaw> reference;
+  std::optional<CatalogLaw> reference;
+  if (c.catalog_size)
+    if (const CatalogDrive* d = catalog_drive(*c.catalog_size); d && d->has_stiffness()) {
+      reference = CatalogLaw{d->size, d->t1_Nm, d->t2_Nm, d->k1_Nm_per_rad, d->k2_Nm_per_rad, d->k3_Nm_per_rad};
+      o.catalog_t1_Nm = d->t1_Nm;
+      o.catalog_t2_Nm = d->t2_Nm;
+    }
   const ContactAnalysis a = analyse_contact(c, *fem.mesh, *fem.system, fem.solution, o);
   write_file_atomic(dir / "contact.json", contact_json(a, c.path, reference));
   write_file_atomic(dir / "torque_twist.csv", torque_twist_csv(a));
@@ -44,6 +66,21 @@ ContactAnalysis run_contact_job(const Case& c, const FemJobResult& fem, const st
   std::printf("  three segments (%s): T1 %.3g N·m, T2 %.3g N·m, K1 %.4g, K2 %.4g, K3 %.4g N·m/rad\n",
               a.catalog.breakpoints_fitted ? "breakpoints fitted" : "the catalog's breakpoints", a.catalog.t1_Nm,
               a.catalog.t2_Nm, a.catalog.k1_Nm_per_rad, a.catalog.k2_Nm_per_rad, a.catalog.k3_Nm_per_rad);
+  if (reference) {
+    const auto law = [&](double T) {
+      return (std::min(T, reference->t1_Nm) / reference->k1_Nm_per_rad +
+              std::clamp(T - reference->t1_Nm, 0.0, reference->t2_Nm - reference->t1_Nm) / reference->k2_Nm_per_rad +
+              std::max(0.0, T - reference->t2_Nm) / reference->k3_Nm_per_rad);
+    };
+    std::printf("  against catalog size %d: twist at T1 %.3g N·m %.3f vs %.3f arcmin, at T2 %.3g N·m %.3f vs %.3f "
+                "arcmin, at rated %.4g N·m %.3f vs %.3f arcmin (computed vs catalog); K1/K2/K3 %.3g/%.3g/%.3g vs "
+                "%.3g/%.3g/%.3g N·m/rad\n",
+                reference->size, reference->t1_Nm, twist_at(a.curve, reference->t1_Nm) * kArcmin,
+                law(reference->t1_Nm) * kArcmin, reference->t2_Nm, twist_at(a.curve, reference->t2_Nm) * kArcmin,
+                law(reference->t2_Nm) * kArcmin, a.rated_torque_Nm, a.curve.twist_rad.back() * kArcmin,
+                law(a.rated_torque_Nm) * kArcmin, a.catalog.k1_Nm_per_rad, a.catalog.k2_Nm_per_rad,
+                a.catalog.k3_Nm_per_rad, reference->k1_Nm_per_rad, reference->k2_Nm_per_rad, reference->k3_Nm_per_rad);
+  }
   std::printf("  lost motion (twist between ±4 %% of rated, middle line) %.3f arcmin; play (dead band at zero torque) "
               "%.3f arcmin\n", a.lost_motion_rad * kArcmin, a.play_rad * kArcmin);
   std::printf("  twist at rated: engagement %.1f %%, body %.1f %%, teeth %.1f %%, generator bearing %.1f %%, circular "

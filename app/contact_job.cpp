@@ -14,6 +14,7 @@
 #include "contact/generator_bearing.hpp"
 #include "design/catalog.hpp"
 #include "gear/tooth_profile.hpp"
+#include "gear/tooth_stiffness.hpp"
 
 namespace sw::app {
 namespace {
@@ -24,6 +25,19 @@ constexpr double kArcmin = 10800.0 / std::numbers::pi;
 SeriesParts series_parts(const Case& c) {
   SeriesParts s;
   s.teeth_source = "rigid teeth";
+  if (c.gear) {
+    // The tooth pair's own compliance per unit face width (bending, foundation, flattening of both teeth; analytic,
+    // gear/tooth_stiffness.hpp) over the rim's width, at the flank's contact radius (kept on the active flank).
+    const GearParams g = *c.gear;
+    const Material m = c.material;
+    const GearRadii radii = gear_radii(g);
+    const double width = c.flexspline.rim_width_m, bore = c.flexspline.inner_radius_m;
+    s.tooth_pair_m_per_N = [=](double r) {
+      return tooth_pair_compliance(g, m, std::clamp(r, radii.form_f, radii.tip_f), kReferenceLineLoad_N_per_m, bore)
+                 .total() / width;
+    };
+    s.teeth_source = "tooth pair compliance (analytic: beam over the real outline, Sainsot foundation, Weber flattening)";
+  }
   if (c.wave_generator && c.wave_generator->bearing) {
     const GeneratorBearing b = *c.wave_generator->bearing;
     // Hertz: the contact ellipse's shape does not depend on the load, so δ = δ(1 N)·Q^(2/3) exactly.

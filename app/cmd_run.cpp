@@ -106,7 +106,7 @@ void add_run_command(CLI::App& app) {
       std::printf("run: no backlash for this case (it needs [gear] and [wave_generator] with radial_deformation_mm)\n");
     }
     std::optional<ContactAnalysis> contact;
-    if (backlash && fem.system && c.flexspline.teeth == TeethModel::Ring) contact = run_contact_job(c, fem, dir);
+    if (backlash && fem.system && c.flexspline.teeth != TeethModel::Explicit) contact = run_contact_job(c, fem, dir);
     write_file_atomic(dir / "report.html", run_report_html(report_inputs(c, dir)));
     print_summary(c, fem, backlash, contact, dir);
   });

@@ -107,9 +107,9 @@ ContactAnalysis analyse_contact(const Case& c, const TetMesh& mesh, const Flexsp
                                 const FlexsplineSolution& fem, const ContactOptions& opt) {
   if (!c.gear || !c.wave_generator)
     throw InputError(c.path + ": contact needs [gear] and [wave_generator]");
-  if (c.flexspline.teeth != TeethModel::Ring)
-    throw InputError(c.path + ": contact needs flexspline.teeth = \"ring\" (the teeth's own compliance is added in "
-                              "series; explicit teeth would count it twice)");
+  if (c.flexspline.teeth == TeethModel::Explicit)
+    throw InputError(c.path + ": contact needs flexspline.teeth = \"ring\" or \"none\" (the teeth's own compliance is "
+                              "added in series; explicit teeth would count it twice)");
   if (!fem.neutral_curve) throw InputError(c.path + ": contact needs the FEM's generator-deformed neutral curve");
   if (!(opt.rated_torque_Nm > 0)) throw InputError(c.path + ": contact needs a rated torque > 0");
   const GearParams& g = *c.gear;

@@ -92,7 +92,10 @@ CupDesign design_cup(int size, int ratio) {
 
   FlexsplineParams& f = c.flexspline;
   f.shape = FlexsplineShape::Cup;
-  f.teeth = TeethModel::Ring;
+  // The rim alone, its outside the teeth's root circle: the teeth are the contact stage's, in series, built in at the
+  // root. A ring smearing half the tooth layer would over-state the rim's hoop bending (((t + h/2)/t)³ ≈ 2× here),
+  // which is what the tooth loads bend locally; teeth separated by spaces carry almost no hoop or torsional shear.
+  f.teeth = TeethModel::None;
   f.rim_thickness_m = kRimPerD * d;
   f.inner_radius_m = radii.root_f - f.rim_thickness_m;  // the root circle is the rim's outside, exactly
   f.wall_thickness_m = kWallPerRim * f.rim_thickness_m;
@@ -159,7 +162,8 @@ std::string design_case_toml(const CupDesign& c) {
     << "# - w0 = m (Musser: half the tooth difference in modules).\n"
     << "# - rim under the teeth " << num(kRimPerD) << " d, body wall " << num(kWallPerRim) << " x rim, toothed face width "
     << num(kFaceWidthPerD) << " d (Ivanov, Wave gear drives, 1981: 0.01-0.015 d,\n"
-    << "#   0.6-0.9 x rim, 0.15-0.2 d); the rim's outside is the teeth's root circle.\n"
+    << "#   0.6-0.9 x rim, 0.15-0.2 d); the rim's outside is the teeth's root circle. The FEM holds the rim alone\n"
+    << "#   (teeth = \"none\"): the teeth are the contact stage's tooth-pair compliance, built in at the root.\n"
     << "# - estimates from the CSF/CSG component sets' outline (not the maker's drawing): cup length " << num(kLengthPerD)
     << " d, diaphragm " << num(kDiaphragmPerRim) << " x rim,\n"
     << "#   boss radius " << num(kBossPerD) << " d, fillet " << num(kFilletPerWall) << " x wall, generator band "
@@ -181,7 +185,7 @@ std::string design_case_toml(const CupDesign& c) {
   s << "[flexspline]\nshape = \"cup\"\ninner_radius_mm = " << mm(f.inner_radius_m)
     << "\nwall_thickness_mm = " << mm(f.wall_thickness_m) << "\nlength_mm = " << mm(f.length_m)
     << "\nrim_width_mm = " << mm(f.rim_width_m) << "\nrim_thickness_mm = " << mm(f.rim_thickness_m)
-    << "\nteeth = \"ring\"\ndiaphragm_thickness_mm = " << mm(f.diaphragm_thickness_m)
+    << "\nteeth = \"none\"   # the rim alone; the teeth act in series (contact)\ndiaphragm_thickness_mm = " << mm(f.diaphragm_thickness_m)
     << "\nboss_radius_mm = " << mm(f.boss_radius_m) << "\nfillet_radius_mm = " << mm(f.fillet_radius_m) << "\n\n";
   s << "[material]\nyoungs_modulus_Pa = " << num(c.material.youngs_modulus_Pa) << "\npoisson_ratio = "
     << num(c.material.poisson_ratio) << "\ndensity_kg_m3 = " << num(c.material.density_kg_m3)

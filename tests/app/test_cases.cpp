@@ -50,11 +50,14 @@ TEST(Cases, TubeTorsionReproducesTheoryAndBalancesTorque) {
 // Then to 5.782905e-04 (−0.45 %) when cup_size17.toml was rewritten by `strainwave design` (d = 43.18 mm, wall
 // 0.423 mm, rim 0.605 mm, L = 25.9 mm, the proportions of design/proportions.cpp instead of hand estimates).
 constexpr double kSeedPhi0 = 4.138367e-04;
-constexpr double kSize17Phi0 = 5.782905e-04;
+// Then to 5.835060e-04 (+0.9 %) when the designed cups became the rim alone (teeth = "none": the teeth act in series
+// in the contact stage; a ring smearing half the tooth layer over-states the rim's hoop bending about 2×).
+constexpr double kSize17Phi0 = 5.835060e-04;
 // The cup's closed form (diaphragm as an annular plate + body wall + rim) against the FEM: 3 % (measured 0.7 % seed,
 // 0.4 % size 17; the closed form leaves out the fillet and the diaphragm-to-wall corner).
 constexpr double kClosedFormTol = 0.03;
 constexpr double kRegressionTol = 0.01;
+constexpr double kArcmin = 10800.0 / M_PI;
 
 TEST(Cases, SeedCupRunsFemThenBacklashThenContact) {
   const fs::path out = fresh_dir("seed");
@@ -132,26 +135,6 @@ TEST(Cases, SeedGearSetHasNoInterferenceAndReportsItsPlay) {
   fs::remove_all(out);
 }
 
-TEST(Cases, Size17CupWithCamRuns) {
-  const fs::path out = fresh_dir("s17");
-  const CommandRun r = run_strainwave("fem --quiet cases/cup_size17.toml --out " + out.string());
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  const auto j = read_json(out / "result.json");
-  EXPECT_NEAR(j["phi0_rad"].get<double>() / kSize17Phi0, 1.0, kRegressionTol);
-  EXPECT_NEAR(-j["reaction_torque_Nm"].get<double>() / 31.0, 1.0, 1e-8);
-  EXPECT_NEAR(j["phi0_rad"].get<double>() / j["phi0_theory_cup_rad"].get<double>(), 1.0, kClosedFormTol);
-  // The cam sets the bore at its band; the neutral circle at the rim's mid-width, 0.3 mm further out, moves 0.9 %
-  // more (measured): 2 %.
-  EXPECT_NEAR(j["wave_generator"]["w0_reached_mm"].get<double>(), 0.2159, 0.02 * 0.2159);
-  // A cam only pushes; with no fit this cup conforms to it all round (gaps within 0.5 µm).
-  const auto& g = j["generator"];
-  EXPECT_EQ(g["model"], "cam");
-  EXPECT_GE(g["min_contact_force_N"].get<double>(), 0.0);
-  EXPECT_GT(g["total_radial_force_N"].get<double>(), 0.0);
-  ASSERT_FALSE(g["contact_zones_deg"].empty());
-  fs::remove_all(out);
-}
-
 // `strainwave design` writes the shipped size-17 case byte for byte (the case in cases/ is the rule set's, not edited
 // by hand), atomically to --out; bad sizes and ratios give one line, a non-zero exit and no file.
 TEST(Design, WritesTheShippedCaseAndRefusesBadSizesWithOneLine) {
@@ -182,26 +165,69 @@ TEST(Design, WritesTheShippedCaseAndRefusesBadSizesWithOneLine) {
   fs::remove_all(dir);
 }
 
-// Sizes 14 and 20 are the size-17 cup scaled by d (one rule set, `strainwave design`): the meshes are the same up to
-// scale, so C_τ·d³ equals size 17's (torsion of similar bodies: φ/T ∝ 1/(G·d³)); measured within 1.2e-5 (size 14) and
-// 2e-7 (size 20: TetGen placed 28 more nodes), asserted to 1e-4. Plus torque balance and the closed form.
-class DesignedSize : public ::testing::TestWithParam<int> {};
+// Sizes 14, 17 and 20 are one rule set (`strainwave design`) scaled by d: the meshes are the same up to scale, so
+// C_τ·d³ is the same for all (torsion of similar bodies: φ/T ∝ 1/(G·d³)); measured within 1.2e-5, asserted to 1e-4.
+// Plus torque balance and the closed form. Then the whole drive (`contact`): the torque balances (flank moments and
+// the clamp's reaction), no overlap at rest, and the twist at the catalog's T1, T2 and rated torque, pinned to what
+// the model gives today (2 %) and printed against the catalog's three-segment law. Measured (computed vs catalog,
+// arcmin): size 14 1.140/1.463, 2.566/4.224, 3.458/5.725 (−22, −39, −40 %); size 17 1.187/1.341, 2.510/3.330,
+// 5.363/7.412 (−11, −25, −28 %); size 20 1.245/1.504, 3.057/3.979, 5.487/7.180 (−17, −23, −24 %). The model is
+// stiffer than the catalog; the soft start (K1) holds the play of 1.03 arcmin the profile shifts leave.
+struct SizeFigures {
+  int size;
+  double rated_Nm, twist_t1_arcmin, twist_t2_arcmin, twist_rated_arcmin;
+};
+class DesignedSize : public ::testing::TestWithParam<SizeFigures> {};
 
-TEST_P(DesignedSize, IsTheSize17CupScaled) {
-  const int size = GetParam();
-  const fs::path out = fresh_dir("s" + std::to_string(size));
-  const CommandRun r = run_strainwave("fem --quiet cases/cup_size" + std::to_string(size) + ".toml --out " + out.string());
+TEST_P(DesignedSize, IsTheSize17CupScaledAndItsTwistIsPinned) {
+  const SizeFigures p = GetParam();
+  const fs::path out = fresh_dir("s" + std::to_string(p.size));
+  const CommandRun r = run_strainwave("contact --quiet --no-vtk cases/cup_size" + std::to_string(p.size) +
+                                      ".toml --out " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto j = read_json(out / "result.json");
-  const double rated = size == 14 ? 10.0 : 52.0;  // catalog rated torques (CSG, ratio 100)
-  EXPECT_NEAR(-j["reaction_torque_Nm"].get<double>() / rated, 1.0, 1e-8);
+  EXPECT_NEAR(-j["reaction_torque_Nm"].get<double>() / p.rated_Nm, 1.0, 1e-8);
   EXPECT_NEAR(j["phi0_rad"].get<double>() / j["phi0_theory_cup_rad"].get<double>(), 1.0, kClosedFormTol);
-  const double d = size * 2.54, d17 = 17 * 2.54;
+  const double d = p.size * 2.54, d17 = 17 * 2.54;
   EXPECT_NEAR(j["compliance_rad_per_Nm"].get<double>() * std::pow(d / d17, 3) / (kSize17Phi0 / 31.0), 1.0, 1e-4);
+  if (p.size == 17) EXPECT_NEAR(j["phi0_rad"].get<double>() / kSize17Phi0, 1.0, kRegressionTol);
+  // The cam sets the bore at its band; the neutral circle at the rim's mid-width moves about 1 % more: 2 %.
+  const double m = 0.2159 * p.size / 17;
+  EXPECT_NEAR(j["wave_generator"]["w0_reached_mm"].get<double>(), m, 0.02 * m);
+  // A cam only pushes.
+  const auto& g = j["generator"];
+  EXPECT_EQ(g["model"], "cam");
+  EXPECT_GE(g["min_contact_force_N"].get<double>(), 0.0);
+  EXPECT_GT(g["total_radial_force_N"].get<double>(), 0.0);
+  ASSERT_FALSE(g["contact_zones_deg"].empty());
+  const auto k = read_json(out / "contact.json");
+  EXPECT_LT(k["torque_balance_error_rel"].get<double>(), 1e-6);
+  EXPECT_NEAR(k["fem_reaction_torque_Nm"].get<double>() / p.rated_Nm, 1.0, 1e-6);
+  EXPECT_EQ(k["overlap_at_rest_um"].get<double>(), 0.0);
+  const auto& ref = k["catalog_reference"];
+  ASSERT_EQ(ref["size"].get<int>(), p.size);
+  // The computed curve at the catalog's breakpoints (the catalog block's secants are read there).
+  const double t1 = ref["T1_Nm"].get<double>(), t2 = ref["T2_Nm"].get<double>();
+  const auto& cat = k["catalog"];
+  ASSERT_NEAR(cat["T1_Nm"].get<double>(), t1, 1e-12);
+  const double k1 = cat["K1_Nm_per_rad"].get<double>(), k2 = cat["K2_Nm_per_rad"].get<double>();
+  const double at_t1 = t1 / k1 * kArcmin, at_t2 = at_t1 + (t2 - t1) / k2 * kArcmin;
+  const double at_rated = k["twist_at_rated_arcmin"].get<double>();
+  std::printf("size %d: twist at T1 %.3f arcmin (catalog %.3f), at T2 %.3f (catalog %.3f), at rated %.3f (catalog "
+              "%.3f); lost motion %.3f arcmin, play %.3f arcmin\n",
+              p.size, at_t1, ref["twist_at_T1_rad"].get<double>() * kArcmin, at_t2,
+              ref["twist_at_T2_rad"].get<double>() * kArcmin, at_rated,
+              ref["twist_at_rated_rad"].get<double>() * kArcmin, k["lost_motion_arcmin"].get<double>(),
+              k["play_arcmin"].get<double>());
+  EXPECT_NEAR(at_t1 / p.twist_t1_arcmin, 1.0, 0.02);
+  EXPECT_NEAR(at_t2 / p.twist_t2_arcmin, 1.0, 0.02);
+  EXPECT_NEAR(at_rated / p.twist_rated_arcmin, 1.0, 0.02);
   fs::remove_all(out);
 }
 
-INSTANTIATE_TEST_SUITE_P(Cases, DesignedSize, ::testing::Values(14, 20));
+INSTANTIATE_TEST_SUITE_P(Cases, DesignedSize,
+                         ::testing::Values(SizeFigures{14, 10, 1.140, 2.566, 3.458}, SizeFigures{17, 31, 1.187, 2.510, 5.363},
+                                           SizeFigures{20, 52, 1.245, 3.057, 5.487}));
 
 void expect_clean_failure(const std::string& args, const std::string& expected, const fs::path& out) {
   const CommandRun r = run_strainwave(args + " --out " + out.string());

@@ -192,8 +192,9 @@ CholmodFactor::CholmodFactor(const SymmetricCsc& K, const std::vector<std::int64
 
 CholmodFactor::~CholmodFactor() = default;
 
-Eigen::MatrixXd CholmodFactor::solve(const Eigen::MatrixXd& B) const {
-  cholmod_common& c = impl_->common;
+namespace {
+/// A cholmod_dense view of an Eigen matrix (no copy; CHOLMOD only reads it).
+cholmod_dense dense_view(const Eigen::MatrixXd& B) {
   cholmod_dense b{};
   b.nrow = static_cast<size_t>(B.rows());
   b.ncol = static_cast<size_t>(B.cols());
@@ -202,6 +203,13 @@ Eigen::MatrixXd CholmodFactor::solve(const Eigen::MatrixXd& B) const {
   b.x = const_cast<double*>(B.data());
   b.xtype = CHOLMOD_REAL;
   b.dtype = CHOLMOD_DOUBLE;
+  return b;
+}
+}  // namespace
+
+Eigen::MatrixXd CholmodFactor::solve(const Eigen::MatrixXd& B) const {
+  cholmod_common& c = impl_->common;
+  cholmod_dense b = dense_view(B);
   cholmod_dense* x = cholmod_l_solve(CHOLMOD_A, impl_->factor, &b, &c);
   if (!x) throw InputError(status_sentence(c, impl_->stats.equations));
   Eigen::MatrixXd X = Eigen::Map<Eigen::MatrixXd>(static_cast<double*>(x->x), B.rows(), B.cols());
@@ -212,14 +220,7 @@ Eigen::MatrixXd CholmodFactor::solve(const Eigen::MatrixXd& B) const {
 std::optional<Eigen::MatrixXd> CholmodFactor::forward_solve(const Eigen::MatrixXd& B) const {
   if (!impl_->factor->is_ll) return std::nullopt;
   cholmod_common& c = impl_->common;
-  cholmod_dense b{};
-  b.nrow = static_cast<size_t>(B.rows());
-  b.ncol = static_cast<size_t>(B.cols());
-  b.nzmax = b.nrow * b.ncol;
-  b.d = b.nrow;
-  b.x = const_cast<double*>(B.data());
-  b.xtype = CHOLMOD_REAL;
-  b.dtype = CHOLMOD_DOUBLE;
+  cholmod_dense b = dense_view(B);
   cholmod_dense* pb = cholmod_l_solve(CHOLMOD_P, impl_->factor, &b, &c);
   if (!pb) throw InputError(status_sentence(c, impl_->stats.equations));
   cholmod_dense* y = cholmod_l_solve(CHOLMOD_L, impl_->factor, pb, &c);

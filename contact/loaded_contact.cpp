@@ -22,9 +22,6 @@ namespace sw {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-/// Flanks that need a larger rigid turn to close than the first one plus this many times the body's twist at rated
-/// torque stay out (the twist at rated torque is checked against the limit afterwards).
-constexpr double kReachFactor = 10.0;
 
 double wrap_pi(double a) { return std::remainder(a, 2 * kPi); }
 double theta_of(const Eigen::Vector3d& x) { return std::atan2(x[1], x[0]); }
@@ -103,8 +100,10 @@ Eigen::SparseMatrix<double> sparse_columns(const std::vector<Eigen::VectorXd>& c
 
 }  // namespace
 
-ContactAnalysis analyse_contact(const Case& c, const TetMesh& mesh, const FlexsplineSystem& sys,
-                                const FlexsplineSolution& fem, const ContactOptions& opt) {
+namespace {
+
+ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const FlexsplineSystem& sys,
+                                    const FlexsplineSolution& fem, const ContactOptions& opt, double reach_factor) {
   if (!c.gear || !c.wave_generator)
     throw InputError(c.path + ": contact needs [gear] and [wave_generator]");
   if (c.flexspline.teeth == TeethModel::Explicit)
@@ -133,7 +132,7 @@ ContactAnalysis analyse_contact(const Case& c, const TetMesh& mesh, const Flexsp
     for (const Flank side : {Flank::Ccw, Flank::Cw})
       first_closing[side == Flank::Cw] = std::min(first_closing[side == Flank::Cw], closing_angle_rad(model, phi, 0.0, side));
   }
-  const double reach = kReachFactor * std::abs(fem.compliance_rad_per_Nm) * opt.rated_torque_Nm;
+  const double reach = reach_factor * std::abs(fem.compliance_rad_per_Nm) * opt.rated_torque_Nm;
   out.reach_rad = reach;
   std::vector<Eigen::VectorXd> columns;
   std::vector<double> q_flank;
@@ -301,8 +300,10 @@ ContactAnalysis analyse_contact(const Case& c, const TetMesh& mesh, const Flexsp
   out.contact_s = clock.lap();
   // Every flank left out must stay open: the twist never reaches its closing angle.
   const double twist_max = std::max(std::abs(out.curve.twist_rad.front()), std::abs(out.curve.twist_rad.back()));
-  if (twist_max > std::min(first_closing[0], first_closing[1]) + reach)
-    throw std::runtime_error("contact: the twist at rated torque reaches flanks left out of the problem; widen the reach");
+  if (twist_max > std::min(first_closing[0], first_closing[1]) + reach) {
+    progress("contact: the twist reaches flanks left out; again with twice the reach");
+    return analyse_within_reach(c, mesh, sys, fem, opt, 2 * reach_factor);
+  }
   out.play_rad = out.curve.twist_rad[N + 1] - out.curve.twist_rad[N];
   out.lost_motion_rad = lost_motion_rad(out.curve, T_R);
   out.catalog = opt.catalog_t1_Nm > 0 && opt.catalog_t2_Nm > opt.catalog_t1_Nm && opt.catalog_t2_Nm < T_R
@@ -353,6 +354,13 @@ ContactAnalysis analyse_contact(const Case& c, const TetMesh& mesh, const Flexsp
   progress("contact: " + std::to_string(torques.size()) + " torque steps on " + std::to_string(out.unknowns) +
            " contacts in " + std::to_string(out.contact_s) + " s");
   return out;
+}
+
+}  // namespace
+
+ContactAnalysis analyse_contact(const Case& c, const TetMesh& mesh, const FlexsplineSystem& sys,
+                                const FlexsplineSolution& fem, const ContactOptions& opt) {
+  return analyse_within_reach(c, mesh, sys, fem, opt, opt.reach_factor);
 }
 
 }  // namespace sw

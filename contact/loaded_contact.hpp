@@ -49,6 +49,9 @@ struct ContactOptions {
   int steps = 20;              ///< torque steps each way (beyond the two limits at zero)
   double wg_angle_rad = 0;     ///< where the generator is locked (0: a flexspline tooth on the major axis)
   SeriesParts series;
+  /// Flanks closing more than this many body twists at rated torque (C_τ·T_R) after the first stay out; doubled until
+  /// the twist at rated torque stays short of them.
+  double reach_factor = 3.0;
   /// Catalog breakpoints (T1, T2) to read K1..K3 at; 0: fitted to the curve.
   double catalog_t1_Nm = 0, catalog_t2_Nm = 0;
 };

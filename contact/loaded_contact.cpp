@@ -176,7 +176,7 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
   const Eigen::SparseMatrix<double> L = sparse_columns(columns, gen.stations.loads);
   const auto nb = gen.stations.loads.cols();
   progress("contact: influence of " + std::to_string(nf) + " flank patterns and " + std::to_string(nb) +
-           " generator stations");
+           " generator stations (patterns built in " + std::to_string(clock.lap()) + " s)");
   const Eigen::MatrixXd A_body = sys.influence(L);
   out.influence_s = clock.lap();
   Eigen::VectorXd lambda(nf + nb);

@@ -21,6 +21,7 @@ void add_contact_command(CLI::App& app) {
   cmd->callback([] {
     Case c = load_case(case_path);
     apply_solver_option(c, "tet10");
+    check_contact_case(c);  // before any work: nothing is written for a case contact cannot take
     progress("case:\n" + describe_case(c));
     const std::filesystem::path dir = out.empty() ? default_out_dir(c) : std::filesystem::path(out);
     const FemJobResult fem = run_fem_job(c, dir, fem_options);

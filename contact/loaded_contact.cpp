@@ -104,11 +104,7 @@ namespace {
 
 ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const FlexsplineSystem& sys,
                                     const FlexsplineSolution& fem, const ContactOptions& opt, double reach_factor) {
-  if (!c.gear || !c.wave_generator)
-    throw InputError(c.path + ": contact needs [gear] and [wave_generator]");
-  if (c.flexspline.teeth == TeethModel::Explicit)
-    throw InputError(c.path + ": contact needs flexspline.teeth = \"ring\" or \"none\" (the teeth's own compliance is "
-                              "added in series; explicit teeth would count it twice)");
+  check_contact_case(c);
   if (!fem.neutral_curve) throw InputError(c.path + ": contact needs the FEM's generator-deformed neutral curve");
   if (!(opt.rated_torque_Nm > 0)) throw InputError(c.path + ": contact needs a rated torque > 0");
   const GearParams& g = *c.gear;
@@ -357,6 +353,18 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
 }
 
 }  // namespace
+
+void check_contact_case(const Case& c) {
+  if (!c.gear) throw InputError(c.path + ": contact needs a [gear] table (the teeth that carry the torque)");
+  if (!c.wave_generator || !c.wave_generator->radial_deformation_m)
+    throw InputError(c.path + ": contact needs [wave_generator] with radial_deformation_mm (the mesh zones' shape)");
+  if (c.flexspline.teeth == TeethModel::Explicit)
+    throw InputError(c.path + ": contact needs flexspline.teeth = \"ring\" or \"none\" (the teeth's own compliance is "
+                              "added in series; explicit teeth would count it twice)");
+  if (c.solver.method != SolverMethod::Tet10)
+    throw InputError(c.path + ": contact solves on the TET10 model; solver.method = \"fourier\" has no factor to reuse "
+                              "(use --solver tet10)");
+}
 
 ContactAnalysis analyse_contact(const Case& c, const TetMesh& mesh, const FlexsplineSystem& sys,
                                 const FlexsplineSolution& fem, const ContactOptions& opt) {

@@ -105,6 +105,10 @@ struct ContactAnalysis {
   double overlap_at_rest_m = 0;  ///< largest overlap at rest along a contact normal (0: none)
 };
 
+/// Checks that the case can be analysed (a [gear], a [wave_generator] with radial_deformation_mm, teeth "ring" or
+/// "none", the tet10 solver) before any work is done. Throws InputError naming the file and what is missing.
+void check_contact_case(const Case& c);
+
 /// The contact analysis of a case with [gear], [wave_generator] and teeth = "ring", on the system its FEM solution
 /// came from. Throws InputError for a case it cannot handle (no gear, explicit teeth, no flank in the mesh zone).
 ContactAnalysis analyse_contact(const Case& c, const TetMesh& mesh, const FlexsplineSystem& system,

@@ -257,6 +257,14 @@ TEST(CliErrors, MissingMalformedAndInvalidCasesGiveOneLineAndNoOutput) {
   fs::remove_all(dir);
 }
 
+// contact on a case it cannot take: one line before any work, nothing written.
+TEST(CliErrors, ContactOnACaseWithoutTeethIsRefusedBeforeTheFem) {
+  const fs::path dir = fresh_dir("contact_bad");
+  expect_clean_failure("contact --quiet cases/tube_torsion.toml", "contact needs a [gear] table", dir / "out");
+  EXPECT_FALSE(fs::exists(dir / "out"));
+  fs::remove_all(dir);
+}
+
 // A case that would never fit is refused before meshing, in seconds, with the estimate in its one line.
 TEST(CliErrors, ACaseThatWouldNeverFitIsRefusedInSecondsWithTheEstimate) {
   const fs::path dir = fresh_dir("huge");

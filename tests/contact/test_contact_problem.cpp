@@ -124,6 +124,29 @@ TEST(TorqueTwist, LostMotionOfALinearDriveIsElastic) {
   EXPECT_NEAR(law.k3_Nm_per_rad, K, 1e-6 * K);
 }
 
+// No clearance (q = 0), no friction: the contact problem is linear in T (the active set does not change with |T|), so
+// the curve it gives has no jump and the catalog's lost motion is the elastic twist 2·0.04·T_R/K, K its slope.
+TEST(TorqueTwist, ContactWithoutClearanceGivesElasticLostMotion) {
+  const int n = 6;
+  Eigen::MatrixXd B = Eigen::MatrixXd::Random(n, n);
+  ContactProblem p;
+  p.A = (B * B.transpose() + n * Eigen::MatrixXd::Identity(n, n)) * 1e-9;
+  p.q = Eigen::VectorXd::Zero(n);
+  p.lambda.resize(n);
+  p.lambda << 0.02, -0.02, 0.021, -0.019, 0.018, -0.022;  // both flanks of three teeth
+  const double T_R = 31;
+  TorqueTwist c;
+  for (int i = -20; i <= 20; ++i) {
+    const double T = i == 0 ? 1e-9 : T_R * i / 20;
+    c.torque_Nm.push_back(i == 0 ? 0.0 : T);
+    c.twist_rad.push_back(solve_contact(p, T).twist_rad);
+  }
+  const double K_plus = T_R / c.twist_rad.back(), K_minus = -T_R / c.twist_rad.front();
+  const double expected = 0.04 * T_R / K_plus + 0.04 * T_R / K_minus;
+  EXPECT_NEAR(lost_motion_rad(c, T_R) / expected, 1.0, 1e-9);
+  EXPECT_NEAR(c.twist_rad[20], 0.0, 1e-12);  // no dead band
+}
+
 // A curve built from a three-segment law with play: the secants at the law's own breakpoints return its stiffnesses,
 // the fit finds breakpoints near them, and lost motion holds the play.
 TEST(TorqueTwist, SegmentLawRecoveredWithPlay) {

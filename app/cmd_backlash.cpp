@@ -138,7 +138,7 @@ void add_backlash_command(CLI::App& app) {
     if (phi0_opt->count() > 0) o.phi0_rad = phi0;
     o.fem_curve = curve == "fem";
     o.revolution_steps = steps;
-    run_backlash_job(c, o, out.empty() ? fs::path("out") / c.stem : fs::path(out));
+    run_backlash_job(c, o, out.empty() ? default_out_dir(c) : fs::path(out));
   });
 }
 

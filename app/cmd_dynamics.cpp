@@ -69,7 +69,7 @@ void run_dynamics(const std::string& case_path, std::string out_dir, const std::
     progress("dynamics: flexspline rim and flange joined by 1/C_tau, C_tau = " +
              std::to_string(p.flexspline_compliance_rad_per_Nm) + " rad/(N m) from " + fem_result);
   }
-  if (out_dir.empty()) out_dir = "out/" + c.stem;
+  if (out_dir.empty()) out_dir = default_out_dir(c).string();
   progress("case:\n" + describe(p));
   std::vector<ToothPair> pairs;
   std::string source;

@@ -37,7 +37,7 @@ void run_reconcile(const ReconcileArgs& a) {
   if (!a.contact.empty() && src.torsion != TorsionBaseline::Contact)
     throw InputError("--contact " + a.contact + ": the torque-twist curve is read only with --baseline contact");
   src.fem_result = a.fem;
-  src.contact_result = a.contact.empty() ? "out/" + c.stem + "/contact.json" : a.contact;
+  src.contact_result = a.contact.empty() ? (default_out_dir(c) / "contact.json").string() : a.contact;
   if (a.compliance > 0.0) src.compliance = a.compliance;
   src.recording = &rec;
   std::vector<std::string> notes;
@@ -48,7 +48,7 @@ void run_reconcile(const ReconcileArgs& a) {
   for (const auto& n : notes) progress("reconcile: " + n);
   const reconcile::Experiment e = reconcile::make_experiment(rec, base);
   const reconcile::Result r = reconcile::reconcile(e, a.options);
-  const std::filesystem::path dir(a.out.empty() ? "out/" + c.stem : a.out);
+  const std::filesystem::path dir = a.out.empty() ? default_out_dir(c) : std::filesystem::path(a.out);
   const std::string json = reconcile::report_json(r);
   const std::string html = reconcile::report_html(e, rec, r, notes);
   write_file_atomic(dir / "reconcile.json", json);

@@ -1,8 +1,15 @@
 #pragma once
 // Each subcommand of `strainwave` lives in its own app/cmd_<name>.cpp and registers itself on the CLI11 app here.
+#include <filesystem>
+
 #include <CLI/CLI.hpp>
 
+#include "common/params.hpp"
+
 namespace sw::app {
+
+/// Where every command writes when --out is not given: out/<case file stem>/.
+std::filesystem::path default_out_dir(const Case& c);
 
 void add_fem_command(CLI::App& app);
 void add_run_command(CLI::App& app);

@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
+#include "app/commands.hpp"
 #include "common/params.hpp"
 #include "fem/flexspline_analysis.hpp"
 #include "mesh/tet_mesh.hpp"
@@ -23,8 +24,6 @@ struct FemJobResult {
   std::shared_ptr<const FlexsplineSystem> system;
 };
 
-/// out/<case stem>/
-std::filesystem::path default_out_dir(const Case& c);
 
 /// The fem job's command-line options, shared by `fem` and `run` (one place, one spelling).
 struct FemJobOptions {

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.hpp"
+#include "io/fem_output.hpp"
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "dynamics/analysis.hpp"
@@ -28,20 +29,7 @@ namespace sw::app {
 namespace {
 
 /// C_τ from `strainwave fem`'s result.json (key compliance_rad_per_Nm).
-double compliance_from_fem(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot be read; give the result.json written by `strainwave fem`");
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(in);
-  } catch (const std::exception& e) {
-    throw InputError(path + ": not valid JSON (" + e.what() + ")");
-  }
-  if (!j.contains("compliance_rad_per_Nm") || !j["compliance_rad_per_Nm"].is_number() ||
-      !(j["compliance_rad_per_Nm"].get<double>() > 0))
-    throw InputError(path + ": compliance_rad_per_Nm is missing or not > 0; expected the FEM's C_tau in rad/(N m)");
-  return j["compliance_rad_per_Nm"].get<double>();
-}
+double compliance_from_fem(const std::string& path) { return read_fem_compliance(path); }
 
 /// What to do with a flank whose clearance at rest is negative (interference in the basic kinematic model):
 /// "preload" keeps it (contact force at rest), "clip" sets the clearance to 0, "drop" removes the pair.

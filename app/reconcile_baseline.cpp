@@ -15,6 +15,7 @@
 #include "kinematics/backlash.hpp"
 #include "kinematics/neutral_curve.hpp"
 #include "io/contact_curve.hpp"
+#include "io/fem_output.hpp"
 
 namespace sw::app {
 
@@ -22,21 +23,7 @@ using reconcile::Kind;
 
 namespace {
 
-double compliance_from_fem(const std::string& path) {
-  std::ifstream f(path);
-  if (!f) throw InputError(path + ": cannot be read; give the FEM result.json written by `strainwave fem`");
-  nlohmann::json j;
-  try {
-    f >> j;
-  } catch (const std::exception& e) {
-    throw InputError(path + ": not valid JSON (" + std::string(e.what()) + ")");
-  }
-  if (!j.contains("compliance_rad_per_Nm") || !j["compliance_rad_per_Nm"].is_number())
-    throw InputError(path + ": compliance_rad_per_Nm missing or not a number; expected the FEM result of `strainwave fem`");
-  const double c = j["compliance_rad_per_Nm"].get<double>();
-  if (!(c > 0.0)) throw InputError(path + ": compliance_rad_per_Nm = " + std::to_string(c) + "; must be > 0");
-  return c;
-}
+double compliance_from_fem(const std::string& path) { return read_fem_compliance(path); }
 
 std::string num(double v) {
   char buf[32];

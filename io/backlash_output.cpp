@@ -129,25 +129,6 @@ std::string geometry_check_text(const GeometryCheck& g, double module_m) {
   return out;
 }
 
-FemCompensation read_fem_compensation(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  const std::string file = path.string();
-  if (!in) throw InputError(file + ": cannot open; run `strainwave fem CASE.toml` first or pass --phi0 RAD");
-  nlohmann::json j;
-  try {
-    in >> j;
-  } catch (const std::exception& e) {
-    throw InputError(file + ": not valid JSON (" + std::string(e.what()) + ")");
-  }
-  if (!j.is_object() || !j.contains("phi0_rad") || !j["phi0_rad"].is_number())
-    throw InputError(file + ": phi0_rad is missing or not a number; expected the result.json of `strainwave fem`");
-  FemCompensation c;
-  c.phi0_rad = j["phi0_rad"].get<double>();
-  if (j.contains("compliance_rad_per_Nm") && j["compliance_rad_per_Nm"].is_number())
-    c.compliance_rad_per_Nm = j["compliance_rad_per_Nm"].get<double>();
-  return c;
-}
-
 std::string backlash_json(const BacklashReport& r) {
   nlohmann::json j;
   j["case"] = r.case_path;

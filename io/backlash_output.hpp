@@ -11,16 +11,6 @@
 
 namespace sw {
 
-/// The keys of result.json the backlash model uses.
-struct FemCompensation {
-  double phi0_rad = 0;                          ///< φ₀ at the FEM case's torque
-  std::optional<double> compliance_rad_per_Nm;  ///< C_τ, when present
-};
-
-/// Reads phi0_rad (required) and compliance_rad_per_Nm (optional) from result.json. Throws InputError naming the
-/// file and key when the file is missing, not JSON, or phi0_rad is absent or not a number.
-FemCompensation read_fem_compensation(const std::filesystem::path& result_json);
-
 /// One row of the paper's table.
 struct BacklashTableRow {
   double position_deg = 0;  ///< from the minor axis (tooth at φ = 90° − position)

@@ -249,4 +249,42 @@ void write_fem_vtk(const std::filesystem::path& dir, const Case& c, const TetMes
   write_pvd(dir / "flexspline.pvd", datasets);
 }
 
+namespace {
+/// result.json as a JSON object, or one InputError line naming the file.
+nlohmann::json read_fem_result_json(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  const std::string file = path.string();
+  if (!in) throw InputError(file + ": cannot open; give the result.json written by `strainwave fem CASE.toml`");
+  nlohmann::json j;
+  try {
+    in >> j;
+  } catch (const std::exception& e) {
+    throw InputError(file + ": not valid JSON (" + std::string(e.what()) + ")");
+  }
+  if (!j.is_object()) throw InputError(file + ": not a JSON object; expected the result.json of `strainwave fem`");
+  return j;
+}
+}  // namespace
+
+FemCompensation read_fem_compensation(const std::filesystem::path& path) {
+  const nlohmann::json j = read_fem_result_json(path);
+  const std::string file = path.string();
+  if (!j.contains("phi0_rad") || !j["phi0_rad"].is_number())
+    throw InputError(file + ": phi0_rad is missing or not a number; expected the result.json of `strainwave fem`");
+  FemCompensation c;
+  c.phi0_rad = j["phi0_rad"].get<double>();
+  if (j.contains("compliance_rad_per_Nm") && j["compliance_rad_per_Nm"].is_number())
+    c.compliance_rad_per_Nm = j["compliance_rad_per_Nm"].get<double>();
+  return c;
+}
+
+double read_fem_compliance(const std::filesystem::path& path) {
+  const nlohmann::json j = read_fem_result_json(path);
+  if (!j.contains("compliance_rad_per_Nm") || !j["compliance_rad_per_Nm"].is_number() ||
+      !(j["compliance_rad_per_Nm"].get<double>() > 0))
+    throw InputError(path.string() + ": compliance_rad_per_Nm is missing or not > 0; expected the FEM's C_tau in "
+                                     "rad/(N m)");
+  return j["compliance_rad_per_Nm"].get<double>();
+}
+
 }  // namespace sw

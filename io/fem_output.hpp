@@ -2,6 +2,7 @@
 // Writes what `strainwave fem` produces: result.json (keys in SPEC.md), neutral_curve.csv (for the kinematics module),
 // flexspline.pvd with one .vtu per load case.
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "common/params.hpp"
@@ -22,6 +23,19 @@ long peak_rss_bytes();
 
 /// result.json text for the solution.
 std::string fem_result_json(const Case& c, const TetMesh& mesh, const FlexsplineSolution& s, const RunInfo& run);
+
+/// The keys of result.json the later stages read (backlash, dynamics, reconcile): the one reader of the file.
+struct FemCompensation {
+  double phi0_rad = 0;                          ///< φ₀ at the FEM case's torque
+  std::optional<double> compliance_rad_per_Nm;  ///< C_τ, when present
+};
+
+/// Reads phi0_rad (required) and compliance_rad_per_Nm (optional) from result.json. Throws InputError naming the
+/// file and key when the file is missing, not JSON, or phi0_rad is absent or not a number.
+FemCompensation read_fem_compensation(const std::filesystem::path& result_json);
+
+/// C_τ from result.json, required and > 0 (dynamics, reconcile). Throws InputError naming the file and the key.
+double read_fem_compliance(const std::filesystem::path& result_json);
 
 /// neutral_curve.csv text: phi_rad,w_wg_m,v_wg_m,mu_wg_rad,w_comb_m,v_comb_m,mu_comb_rad (one row per degree).
 std::string neutral_curve_csv(const NeutralCurveSamples& nc);

@@ -4,7 +4,7 @@
 
 #include "bench/fuzz/fuzz_file.hpp"
 #include "common/error.hpp"
-#include "io/backlash_output.hpp"
+#include "io/fem_output.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const auto path = sw::fuzz::write_input(data, size, "result.json");

@@ -11,6 +11,8 @@
 #include <tetgen.h>
 
 #include <cerrno>
+#include <csignal>
+#include <sys/time.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -155,7 +157,12 @@ bool read_all(int fd, T* data, std::size_t count) {
 // again in ~tetgenmesh() while the thrown int unwinds, so a failing run crashes the process instead of reaching a
 // catch. Running it in a forked child keeps that crash away from the caller; tetgen_terminate.cpp replaces
 // terminatetetgen() so the child exits with status kExitBase + TetGen's code where the library calls it.
-[[noreturn]] void tetgen_child(const Plc& plc, const std::string& switches, int fd) {
+[[noreturn]] void tetgen_child(const Plc& plc, const std::string& switches, double time_limit_s, int fd) {
+  // The budget: SIGALRM (default action: terminate) ends the child when TetGen runs past it.
+  itimerval limit{};
+  limit.it_value.tv_sec = static_cast<time_t>(time_limit_s);
+  limit.it_value.tv_usec = static_cast<suseconds_t>((time_limit_s - std::floor(time_limit_s)) * 1e6);
+  ::setitimer(ITIMER_REAL, &limit, nullptr);
   tetgenio in, out;
   fill_input(plc, in);
   try {
@@ -183,7 +190,8 @@ bool read_all(int fd, T* data, std::size_t count) {
   ::_exit(0);
 }
 
-RawTetgenOutput run_tetgen_isolated(const Plc& plc, const std::string& switches, const std::string& request) {
+RawTetgenOutput run_tetgen_isolated(const Plc& plc, const std::string& switches, double time_limit_s,
+                                    const std::string& request) {
   int fds[2];
   if (::pipe(fds) != 0) throw InputError("mesh: " + request + ": cannot create a pipe for the TetGen process");
   std::fflush(nullptr);
@@ -191,7 +199,7 @@ RawTetgenOutput run_tetgen_isolated(const Plc& plc, const std::string& switches,
   if (pid < 0) throw InputError("mesh: " + request + ": cannot fork the TetGen process");
   if (pid == 0) {
     ::close(fds[0]);
-    tetgen_child(plc, switches, fds[1]);
+    tetgen_child(plc, switches, time_limit_s, fds[1]);
   }
   ::close(fds[1]);
   RawTetgenOutput out;
@@ -220,6 +228,13 @@ RawTetgenOutput run_tetgen_isolated(const Plc& plc, const std::string& switches,
   std::string why;
   if (WIFEXITED(status) && WEXITSTATUS(status) > detail::tetgen_exit_base())
     why = tetgen_failure(WEXITSTATUS(status) - detail::tetgen_exit_base());
+  else if (WIFSIGNALED(status) && WTERMSIG(status) == SIGALRM)
+  {
+    char budget[32];
+    std::snprintf(budget, sizeof budget, "%g", time_limit_s);
+    why = std::string("TetGen did not finish within its budget of ") + budget +
+          " s (it stalls on some inputs and has no limit of its own)";
+  }
   else if (WIFSIGNALED(status))
     why = "TetGen crashed (signal " + std::to_string(WTERMSIG(status)) +
           "), which TetGen 1.5 does after rejecting an input (intersecting facets or a too-small feature)";
@@ -244,7 +259,7 @@ TetMesh tetrahedralize_plc(const Plc& plc, const TetgenOptions& options) {
   if (plc.points.size() < 4 || plc.facets.size() < 4)
     throw InputError("mesh: " + request + "; a closed PLC needs at least 4 points and 4 facets");
 
-  const RawTetgenOutput out = run_tetgen_isolated(plc, switches, request);
+  const RawTetgenOutput out = run_tetgen_isolated(plc, switches, options.time_limit_s, request);
   if (out.n_tets == 0)
     throw InputError("mesh: " + request + " produced no tetrahedra; is the boundary closed?");
 

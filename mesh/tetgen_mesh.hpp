@@ -39,6 +39,9 @@ struct TetgenOptions {
   double min_dihedral_deg = 0.0;       ///< -q/<angle> (0 = TetGen default)
   double max_volume_m3 = 0.0;          ///< global tet volume bound (-a<v>), 0 = none; region bounds apply in addition
   bool preserve_boundary = false;      ///< -Y: no Steiner points on boundary facets
+  /// Wall-clock budget of the TetGen run (s). TetGen 1.5 has no limit of its own and stalls on some inputs; the run
+  /// is stopped and reported in one line when it is exceeded.
+  double time_limit_s = 600.0;
 };
 
 /// Meshes the PLC into a TET10 TetMesh: nodes n x 3 (m), tets in VTK quadratic-tetra order with positive corner

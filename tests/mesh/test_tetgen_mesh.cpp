@@ -145,5 +145,20 @@ TEST(TetgenMesh, TetgenFailureBecomesInputErrorSayingWhatWasAsked) {
   }
 }
 
+// A run past its wall-clock budget is stopped and reported in one line (TetGen itself has no limit).
+TEST(TetgenMesh, ARunPastItsBudgetStopsWithOneLine) {
+  TetgenOptions o;
+  o.max_volume_m3 = kA * kB * kC / 2e6;  // about 10^7 tetrahedra: far beyond 50 ms
+  o.time_limit_s = 0.05;
+  try {
+    tetrahedralize_plc(split_box(0, 0), o);
+    FAIL() << "no exception";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("did not finish within its budget of 0.05"), std::string::npos) << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << "one line";
+  }
+}
+
 }  // namespace
 }  // namespace sw

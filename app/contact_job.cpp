@@ -81,11 +81,8 @@ ContactAnalysis run_contact_job(const Case& c, const FemJobResult& fem, const st
               a.catalog.breakpoints_fitted ? "breakpoints fitted" : "the catalog's breakpoints", a.catalog.t1_Nm,
               a.catalog.t2_Nm, a.catalog.k1_Nm_per_rad, a.catalog.k2_Nm_per_rad, a.catalog.k3_Nm_per_rad);
   if (reference) {
-    const auto law = [&](double T) {
-      return (std::min(T, reference->t1_Nm) / reference->k1_Nm_per_rad +
-              std::clamp(T - reference->t1_Nm, 0.0, reference->t2_Nm - reference->t1_Nm) / reference->k2_Nm_per_rad +
-              std::max(0.0, T - reference->t2_Nm) / reference->k3_Nm_per_rad);
-    };
+    const SegmentLaw catalog = reference->law();
+    const auto law = [&](double T) { return catalog.twist_rad(T); };
     std::printf("  against catalog size %d: twist at T1 %.3g N·m %.3f vs %.3f arcmin, at T2 %.3g N·m %.3f vs %.3f "
                 "arcmin, at rated %.4g N·m %.3f vs %.3f arcmin (computed vs catalog); K1/K2/K3 %.3g/%.3g/%.3g vs "
                 "%.3g/%.3g/%.3g N·m/rad\n",

@@ -49,7 +49,7 @@ public:
   Eigen::VectorXd pattern(const std::vector<double>& stations, const Eigen::Vector2d& force_dir, double moment_Nm) const {
     const std::vector<bool> all(mesh_.n_nodes(), true);
     Eigen::VectorXd radial = Eigen::VectorXd::Zero(3 * mesh_.n_nodes()), tangential = radial;
-    double fr = 0, ft = 0;
+    double fr = 0;
     for (const double s : stations) {
       std::vector<const BoundaryFace*> faces;
       for (std::size_t i = 0; i < faces_.size(); ++i)
@@ -60,9 +60,9 @@ public:
       const double total = faces_integral(mesh_, faces, hat);
       if (!(total > 0)) throw InputError("contact: no rim faces under the tooth at " + std::to_string(s * 180 / kPi) +
                                          " deg; refine mesh.size_mm");
-      // Components in the station's local frame (the same for the partner at s + π, by symmetry).
+      // The radial component in the station's frame (the same for the partner at s + π, by symmetry); the tangential
+      // one follows from the moment below.
       fr = force_dir.dot(Eigen::Vector2d(std::cos(s), std::sin(s)));
-      ft = force_dir.dot(Eigen::Vector2d(-std::sin(s), std::cos(s)));
       radial += traction_load(mesh_, faces, [&](const Eigen::Vector3d& x, const Eigen::Vector3d&) -> Eigen::Vector3d {
         const double t = theta_of(x);
         return Eigen::Vector3d(std::cos(t), std::sin(t), 0) * (hat(x) / total);
@@ -72,7 +72,6 @@ public:
         return Eigen::Vector3d(-std::sin(t), std::cos(t), 0) * (hat(x) / total);
       });
     }
-    (void)ft;
     const double m_r = moment_about_z(mesh_, radial, all), m_t = moment_about_z(mesh_, tangential, all);
     return fr * radial + (moment_Nm - fr * m_r) / m_t * tangential;
   }

@@ -35,8 +35,9 @@ double lost_motion_rad(const TorqueTwist& c, double T_R, double fraction) {
 }
 
 double SegmentLaw::twist_rad(double T) const {
-  const double a = std::min(T, t1_Nm), b = std::clamp(T - t1_Nm, 0.0, t2_Nm - t1_Nm), d = std::max(0.0, T - t2_Nm);
-  return a / k1_Nm_per_rad + b / k2_Nm_per_rad + d / k3_Nm_per_rad;
+  const double m = std::abs(T);
+  const double a = std::min(m, t1_Nm), b = std::clamp(m - t1_Nm, 0.0, t2_Nm - t1_Nm), d = std::max(0.0, m - t2_Nm);
+  return std::copysign(a / k1_Nm_per_rad + b / k2_Nm_per_rad + d / k3_Nm_per_rad, T);
 }
 
 namespace {

@@ -25,7 +25,7 @@ double lost_motion_rad(const TorqueTwist& c, double rated_torque_Nm, double frac
 struct SegmentLaw {
   double t1_Nm = 0, t2_Nm = 0, k1_Nm_per_rad = 0, k2_Nm_per_rad = 0, k3_Nm_per_rad = 0;
   bool breakpoints_fitted = false;  ///< T1, T2 chosen to fit the curve (no catalog size named)
-  /// φ of the law at T ≥ 0.
+  /// φ of the law at T, odd in T (the mirror image for negative torque, as catalogs draw it).
   double twist_rad(double torque_Nm) const;
 };
 SegmentLaw segment_law(const TorqueTwist& c, double t1_Nm, double t2_Nm, double rated_torque_Nm);

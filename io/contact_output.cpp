@@ -14,13 +14,7 @@ namespace {
 
 constexpr double kArcmin = 10800.0 / std::numbers::pi;
 
-double law_twist(const CatalogLaw& k, double T) {
-  const double a = std::abs(T);
-  const double t = std::min(a, k.t1_Nm) / k.k1_Nm_per_rad +
-                   std::clamp(a - k.t1_Nm, 0.0, k.t2_Nm - k.t1_Nm) / k.k2_Nm_per_rad +
-                   std::max(0.0, a - k.t2_Nm) / k.k3_Nm_per_rad;
-  return T < 0 ? -t : t;
-}
+double law_twist(const CatalogLaw& k, double T) { return k.law().twist_rad(T); }
 
 }  // namespace
 
@@ -109,7 +103,7 @@ std::string contact_svg(const ContactAnalysis& a, const std::optional<CatalogLaw
   for (int i = -100; i <= 100; ++i) {
     const double T = a.rated_torque_Nm * i / 100.0;
     law.x.push_back(T);
-    law.y.push_back((T < 0 ? -1 : 1) * a.catalog.twist_rad(std::abs(T)) * kArcmin);
+    law.y.push_back(a.catalog.twist_rad(T) * kArcmin);
     if (reference) {
       cat.x.push_back(T);
       cat.y.push_back(law_twist(*reference, T) * kArcmin);

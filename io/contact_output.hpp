@@ -12,6 +12,7 @@ namespace sw {
 struct CatalogLaw {
   int size = 0;
   double t1_Nm = 0, t2_Nm = 0, k1_Nm_per_rad = 0, k2_Nm_per_rad = 0, k3_Nm_per_rad = 0;
+  SegmentLaw law() const { return {t1_Nm, t2_Nm, k1_Nm_per_rad, k2_Nm_per_rad, k3_Nm_per_rad}; }
 };
 
 /// contact.json text. `reference`: the catalog's law of the case's size, if any.

@@ -258,6 +258,17 @@ TEST(CliErrors, MissingMalformedAndInvalidCasesGiveOneLineAndNoOutput) {
 }
 
 // contact on a case it cannot take: one line before any work, nothing written.
+// A bad command-line value is one line too (the parser's own message, no second "Run with --help" line).
+TEST(CliErrors, BadCommandLineValuesGiveOneLineAndNoOutput) {
+  const fs::path dir = fresh_dir("bad_cli");
+  expect_clean_failure("fem --quiet cases/tube_torsion.toml --max-memory abc", "--max-memory: Value abc is not a positive number",
+                       dir / "out");
+  expect_clean_failure("backlash --quiet cases/seed_190_192.toml --steps 0", "--steps: Value 0 not in range",
+                       dir / "out");
+  EXPECT_FALSE(fs::exists(dir / "out"));
+  fs::remove_all(dir);
+}
+
 TEST(CliErrors, ContactOnACaseWithoutTeethIsRefusedBeforeTheFem) {
   const fs::path dir = fresh_dir("contact_bad");
   expect_clean_failure("contact --quiet cases/tube_torsion.toml", "contact needs a [gear] table", dir / "out");

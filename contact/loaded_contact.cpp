@@ -170,8 +170,9 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
   const bool unilateral = gen.unilateral;
   const Eigen::SparseMatrix<double> L = sparse_columns(columns, gen.stations.loads);
   const auto nb = gen.stations.loads.cols();
+  out.setup_s = clock.lap();
   progress("contact: influence of " + std::to_string(nf) + " flank patterns and " + std::to_string(nb) +
-           " generator stations (patterns built in " + std::to_string(clock.lap()) + " s)");
+           " generator stations");
   const Eigen::MatrixXd A_body = sys.influence(L);
   out.influence_s = clock.lap();
   Eigen::VectorXd lambda(nf + nb);
@@ -346,6 +347,7 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
     const Eigen::VectorXd reactions = internal_forces(mesh, c.material, u) - f;
     out.fem_reaction_torque_Nm = moment_about_z(mesh, reactions, sys.clamped);
   }
+  out.check_s = clock.lap();
   progress("contact: " + std::to_string(torques.size()) + " torque steps on " + std::to_string(out.unknowns) +
            " contacts in " + std::to_string(out.contact_s) + " s");
   return out;

@@ -98,7 +98,8 @@ struct ContactAnalysis {
   /// at +rated: the contacts' displacements from the influence coefficients against the direct FEM solve with the same
   /// nodal forces (largest difference over the largest displacement)
   double superposition_error_rel = 0;
-  double influence_s = 0, contact_s = 0;
+  /// Wall clock: building the patterns and gaps, the influence coefficients, the torque steps, the independent check.
+  double setup_s = 0, influence_s = 0, contact_s = 0, check_s = 0;
   int unknowns = 0;
   double reach_rad = 0;  ///< flanks closing this much later than the first on their side were left out
   double min_closing_rad = 0;  ///< smallest closing angle at rest over both sides (< 0: the teeth overlap at rest)

@@ -15,9 +15,6 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 constexpr int kSolveChunk = 24;  // right-hand sides per CHOLMOD solve (memory: n_eq × 24 doubles)
-// Half solves for influence matrices: more right-hand sides per call keep the supernodal triangular solve in BLAS-3
-// (Y, n_eq × m, is held anyway).
-constexpr int kHalfSolveChunk = 128;
 double wrap_pi(double a) { return std::remainder(a, 2 * kPi); }
 double theta_of(const Eigen::Vector3d& x) { return std::atan2(x[1], x[0]); }
 
@@ -89,21 +86,18 @@ Eigen::MatrixXd FlexsplineSystem::solve(const Eigen::MatrixXd& loads) const {
 
 Eigen::MatrixXd FlexsplineSystem::influence(const Eigen::SparseMatrix<double>& loads) const {
   const Eigen::Index m = loads.cols();
-  // Half solves (Yᵀ·Y with Y = L⁻¹·P·B) when the factor is LLᵀ and Y fits in 2 GB; else full solves.
+  // Half solves on the patterns' paths (Yᵀ·Y with Y = L⁻¹·P·B) when Y fits in 2 GB; else full solves in chunks.
   if (static_cast<double>(m) * dofs.n_equations * 8 < 2e9) {
-    Eigen::MatrixXd Y(dofs.n_equations, m);
-    bool half = true;
-    for (Eigen::Index j0 = 0; j0 < m && half; j0 += kHalfSolveChunk) {
-      const Eigen::Index k = std::min<Eigen::Index>(kHalfSolveChunk, m - j0);
-      Eigen::MatrixXd B(dofs.n_equations, k);
-      for (Eigen::Index j = 0; j < k; ++j) B.col(j) = restrict_to_free(dofs, Eigen::VectorXd(loads.col(j0 + j)));
-      auto y = factor->forward_solve(B);
-      if (!y) half = false;
-      else Y.middleCols(j0, k) = *y;
-    }
-    if (half) {
+    std::vector<Eigen::Triplet<double>> entries;
+    entries.reserve(static_cast<std::size_t>(loads.nonZeros()));
+    for (Eigen::Index j = 0; j < m; ++j)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(loads, j); it; ++it)
+        if (const std::int64_t q = dofs.equation[it.row()]; q >= 0) entries.emplace_back(q, j, it.value());
+    Eigen::SparseMatrix<double> B(dofs.n_equations, m);
+    B.setFromTriplets(entries.begin(), entries.end());
+    if (const auto Y = factor->forward_solve(B)) {
       Eigen::MatrixXd C = Eigen::MatrixXd::Zero(m, m);
-      C.selfadjointView<Eigen::Lower>().rankUpdate(Y.transpose());
+      C.selfadjointView<Eigen::Lower>().rankUpdate(Y->transpose());
       return C.selfadjointView<Eigen::Lower>();
     }
   }

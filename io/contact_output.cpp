@@ -70,7 +70,7 @@ std::string contact_json(const ContactAnalysis& a, const std::string& case_path,
                       {"force_at_minus_rated_N", neg.flank_force_N[i]}});
   }
   j["flanks"] = flanks;
-  j["timings_s"] = {{"influence", a.influence_s}, {"contact", a.contact_s}};
+  j["timings_s"] = {{"setup", a.setup_s}, {"influence", a.influence_s}, {"contact", a.contact_s}, {"check", a.check_s}};
   j["unknowns"] = a.unknowns;
   return j.dump(2) + "\n";
 }

@@ -149,6 +149,8 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
       f.flank = side;
       f.closing_angle_rad = delta;
       f.lever_m = fc.lever_arm_m;
+      f.part_f = fc.part_f;
+      f.part_c = fc.part_c;
       const Eigen::Vector2d local = Eigen::Rotation2Dd(-place.angle_rad) * (fc.point_f - place.offset_m);
       f.contact_radius_m = local.norm();
       f.compliance_m_per_N = opt.series.tooth_pair_m_per_N ? opt.series.tooth_pair_m_per_N(f.contact_radius_m) : 0.0;

@@ -65,6 +65,7 @@ struct FlankContact {
   double lever_m = 0;          ///< signed moment arm (> 0 ccw: closed by a positive turn)
   double contact_radius_m = 0;  ///< on the flexspline tooth, its own frame
   double compliance_m_per_N = 0;  ///< the tooth pair's own (series)
+  ToothPart part_f = ToothPart::Flank, part_c = ToothPart::Flank;  ///< where the teeth touch (flank, tip corner)
 };
 
 struct TorqueStep {

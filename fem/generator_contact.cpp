@@ -27,15 +27,7 @@ BandStations band_stations(const TetMesh& mesh, double z_m, double width_m, cons
   if (band.empty())
     throw InputError("wave_generator: no inner-wall faces in the generator's band at z = " + std::to_string(z_m * 1e3) +
                      " mm; check wave_generator.axial_position_mm / band_width_mm or refine mesh.size_mm");
-  // Each face's angle and angular half-extent, to pick the faces a station's hat can reach.
-  std::vector<double> face_theta(band.size()), face_reach(band.size());
-  for (std::size_t i = 0; i < band.size(); ++i) {
-    Eigen::Vector3d c = Eigen::Vector3d::Zero();
-    for (int a = 0; a < 3; ++a) c += mesh.nodes.row(band[i]->nodes[a]).transpose();
-    face_theta[i] = theta_of(c / 3);
-    for (int v : band[i]->nodes)
-      face_reach[i] = std::max(face_reach[i], std::abs(wrap_pi(theta_of(mesh.nodes.row(v).transpose()) - face_theta[i])));
-  }
+  const AngularHats hats(mesh, band);
   BandStations s;
   s.angle_rad = angles_rad;
   s.half_width_rad = half_width_rad;
@@ -43,22 +35,15 @@ BandStations band_stations(const TetMesh& mesh, double z_m, double width_m, cons
   for (std::size_t j = 0; j < angles_rad.size(); ++j) {
     Eigen::VectorXd column = Eigen::VectorXd::Zero(3 * mesh.n_nodes());
     for (const double station : {angles_rad[j], angles_rad[j] + kPi}) {
-      std::vector<const BoundaryFace*> faces;
-      for (std::size_t i = 0; i < band.size(); ++i)
-        if (std::abs(wrap_pi(face_theta[i] - station)) <= half_width_rad + face_reach[i]) faces.push_back(band[i]);
-      auto hat = [&](const Eigen::Vector3d& x) {
-        return std::max(0.0, 1.0 - std::abs(wrap_pi(theta_of(x) - station)) / half_width_rad);
-      };
-      const double total = faces_integral(mesh, faces, hat);
-      if (!(total > 0))
+      const Eigen::VectorXd f = hats.load(station, half_width_rad, [&](double t) -> Eigen::Vector3d {
+        const double k = tilt ? tilt(t) : 0.0;
+        return (Eigen::Vector3d(std::cos(t), std::sin(t), 0) - k * Eigen::Vector3d(-std::sin(t), std::cos(t), 0)) /
+               std::sqrt(1 + k * k);
+      });
+      if (f.size() == 0)
         throw InputError("wave_generator: no inner-wall faces under the contact station at " +
                          std::to_string(station * 180 / kPi) + " deg; refine mesh.size_mm");
-      column += traction_load(mesh, faces, [&](const Eigen::Vector3d& x, const Eigen::Vector3d&) -> Eigen::Vector3d {
-        const double t = theta_of(x), k = tilt ? tilt(t) : 0.0;
-        const Eigen::Vector3d n = (Eigen::Vector3d(std::cos(t), std::sin(t), 0) -
-                                   k * Eigen::Vector3d(-std::sin(t), std::cos(t), 0)) / std::sqrt(1 + k * k);
-        return n * (hat(x) / total);
-      });
+      column += f;
     }
     for (Eigen::Index i = 0; i < column.size(); ++i)
       if (column[i] != 0.0) triplets.emplace_back(static_cast<int>(i), static_cast<int>(j), column[i]);

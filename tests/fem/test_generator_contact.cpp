@@ -396,6 +396,31 @@ TEST(SeedCupCamBearing, BoreFollowsTheCamLessTheBallApproach) {
   EXPECT_NEAR(stiff.generator->w_major_m, rigid.generator->w_major_m, 1e-5 * rigid.generator->w_major_m);
   EXPECT_NEAR(stiff.phi0_rad, rigid.phi0_rad, 1e-5 * rigid.phi0_rad);
   EXPECT_NEAR(-balls.reaction_torque_Nm / balls.applied_torque_Nm, 1.0, 1e-8);
+
+  // The forces along the zone about the major axis (stations from −90° to +90°, each pair's partner standing for the
+  // negative angles): with the balls in series they fall off smoothly from the major axis, one hump, no station left
+  // empty inside the zone. A rigid cam conforms to the bore there to nanometres, and a zigzag of station forces moves
+  // the bore by nanometres only, so its forces alternate from station to station (printed, not a result).
+  auto turns = [&](const std::vector<double>& f) {
+    std::vector<double> seq;
+    const std::size_t n = f.size();
+    for (std::size_t k = n / 2; k < n; ++k) seq.push_back(f[k]);  // θ + π ∈ [−90°, 0): the pair's partner
+    for (std::size_t k = 0; k < n / 2; ++k) seq.push_back(f[k]);
+    int changes = 0, holes = 0;
+    double last = 0;
+    for (std::size_t i = 1; i < seq.size(); ++i) {
+      if (seq[i] <= 0 && seq[i - 1] > 0 && i + 1 < seq.size() && seq[i + 1] > 0) ++holes;
+      if (!(seq[i] > 0 && seq[i - 1] > 0)) continue;
+      const double d = seq[i] - seq[i - 1];
+      if (last != 0 && d * last < 0) ++changes;
+      last = d;
+    }
+    return changes + holes;
+  };
+  std::printf("turns of the station forces along the zone: with balls %d, rigid cam %d\n", turns(g.force_wg_N),
+              turns(rigid.generator->force_wg_N));
+  EXPECT_LE(turns(g.force_wg_N), 1);
+  EXPECT_LE(turns(g.force_comb_N), 1);
 }
 
 // A listed cam sampled every 5° from the polar form is that cam on the FEM too: the same zones, total force and w at

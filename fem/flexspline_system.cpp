@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <string>
 
 #include "common/error.hpp"
 #include "common/progress.hpp"
+#include "fem/cam_profile.hpp"
 #include "fem/flexspline_analysis.hpp"
 #include "fem/loads.hpp"
 
@@ -128,21 +130,7 @@ FlexsplineSystem assemble_and_factorise(const Case& c, const TetMesh& mesh) {
   return eq;
 }
 
-double cam_standoff(const WaveGeneratorParams& w, double r, double t) {
-  const double w0 = *w.radial_deformation_m;
-  if (w.cam_profile == CamProfile::Polar) return w0 * std::cos(2 * t) - w.cam_clearance_m;
-  const double a = r + w0, b = r - w0;
-  return a * b / std::hypot(b * std::cos(t), a * std::sin(t)) - r - w.cam_clearance_m;
-}
-namespace {
-/// The cam normal's tilt ρ'/ρ.
-double cam_tilt(const WaveGeneratorParams& w, double r, double t) {
-  const double h = 1e-6;
-  const double rho = r + cam_standoff(w, r, t);
-  return (cam_standoff(w, r, t + h) - cam_standoff(w, r, t - h)) / (2 * h) / rho;
-}
-
-}  // namespace
+double cam_standoff(const WaveGeneratorParams& w, double r, double t) { return CamSurface(w, r).standoff_m(t); }
 
 GeneratorStations generator_stations(const Case& c, const TetMesh& mesh) {
   const auto& w = *c.wave_generator;
@@ -152,11 +140,12 @@ GeneratorStations generator_stations(const Case& c, const TetMesh& mesh) {
   const double spacing = station_spacing(c);
   std::vector<double> angles;
   NormalTilt tilt;
+  const auto cam = w.model == WaveGeneratorModel::Cam ? std::make_shared<const CamSurface>(w, r) : nullptr;
   switch (w.model) {
     case WaveGeneratorModel::Cam:
       g.unilateral = true;
       for (int k = 0; k * spacing < kPi - 1e-9; ++k) angles.push_back(k * spacing);
-      tilt = [&w, r](double t) { return cam_tilt(w, r, t); };
+      tilt = [cam](double t) { return cam->tilt(t); };
       break;
     case WaveGeneratorModel::Rollers:
       // Two pairs: β with π + β, π − β with −β. A roller's normal passes through its centre: radial where it touches.
@@ -170,7 +159,7 @@ GeneratorStations generator_stations(const Case& c, const TetMesh& mesh) {
   g.stations = band_stations(mesh, z, w.band_width_m, angles, spacing, tilt);
   g.obstacle_m.resize(static_cast<Eigen::Index>(angles.size()));
   for (std::size_t j = 0; j < angles.size(); ++j)
-    g.obstacle_m[j] = w.model == WaveGeneratorModel::Cam ? 2 * cam_standoff(w, r, angles[j])
+    g.obstacle_m[j] = w.model == WaveGeneratorModel::Cam ? 2 * cam->standoff_m(angles[j])
                     : w.model == WaveGeneratorModel::Rollers ? 2.0  // per metre the rollers stand out; scaled to w0
                                                              : 0.0;
   if (!g.unilateral) g.force_load = generator_load(c, mesh);

@@ -110,6 +110,53 @@ StationForces unilateral_contact(const Eigen::MatrixXd& C, const Eigen::VectorXd
   throw std::runtime_error("unilateral_contact: the active-set iteration did not converge");
 }
 
+StationForces generator_contact(const Eigen::MatrixXd& C, const Eigen::VectorXd& b, double band_turn_ext_rad,
+                                const GeneratorContactModel& model) {
+  const bool turn = model.turn_gap_m_per_rad.size() > 0;
+  const bool series = static_cast<bool>(model.approach_m);
+  if (!turn && !series) return unilateral_contact(C, b);
+  const Eigen::Index n = b.size();
+  Eigen::VectorXd m = turn ? model.turn_gap_m_per_rad : Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd h = turn ? model.band_turn_rad_per_N : Eigen::VectorXd::Zero(n);
+  auto approach = [&](double p) { return series ? model.approach_m(std::max(p, 0.0)) : 0.0; };
+  Eigen::VectorXd c = Eigen::VectorXd::Zero(n);  // secant compliance in series, per pair
+  StationForces s;
+  Eigen::VectorXd p = Eigen::VectorXd::Zero(n);
+  for (int it = 1; it <= 200; ++it) {
+    const double chi = band_turn_ext_rad + h.dot(p);
+    Eigen::MatrixXd Ce = C;
+    Ce.diagonal() += c;
+    s = unilateral_contact(Ce, b + m * chi);
+    const double change = (s.force_N - p).cwiseAbs().maxCoeff();
+    p = s.force_N;
+    const double p_max = std::max(p.maxCoeff(), 1e-300);
+    // The secant a(p)/p, from a floor where a station carries nothing (a(p)/p grows without bound as p → 0).
+    for (Eigen::Index k = 0; k < n && series; ++k) {
+      const double pk = std::max(p[k], 1e-9 * p_max);
+      c[k] = approach(pk) / pk;
+    }
+    s.iterations = it;
+    if (it > 1 && change <= 1e-12 * p_max) break;
+    if (it == 200) throw std::runtime_error("generator_contact: the series compliance did not converge");
+  }
+  s.gap_m = C * p - m * (band_turn_ext_rad + h.dot(p)) - b;
+  for (Eigen::Index k = 0; k < n; ++k) s.gap_m[k] += approach(p[k]);
+  return s;
+}
+
+double ball_load_N(const GeneratorBearing& bearing, double spacing_rad, double station_force_N) {
+  return station_force_N * 2 * kPi / (bearing.balls * spacing_rad);
+}
+
+std::function<double(double)> bearing_pair_approach(const GeneratorBearing& bearing, double spacing_rad) {
+  const double unit = ball_approach_m(bearing, 1.0);  // δ(1 N): the contact ellipse's shape does not depend on Q
+  const double per_N = ball_load_N(bearing, spacing_rad, 1.0);
+  return [unit, per_N](double p) {
+    const double Q = std::max(p, 0.0) * per_N;
+    return 2 * unit * std::cbrt(Q * Q);
+  };
+}
+
 StationForces bilateral_support(const Eigen::MatrixXd& C, const Eigen::VectorXd& b) {
   StationForces out;
   out.force_N = C.ldlt().solve(b);

@@ -103,6 +103,10 @@ std::string fem_result_json(const Case& c, const TetMesh& mesh, const Flexspline
         {"reaction_torque_Nm", g.reaction_torque_Nm},
         {"w_major_axis_mm", g.w_major_m * 1e3},
         {"w_minor_axis_mm", g.w_minor_m * 1e3}};
+    if (g.bearing_max_ball_load_N > 0) {
+      j["generator"]["bearing_max_ball_load_N"] = g.bearing_max_ball_load_N;
+      j["generator"]["bearing_max_approach_um"] = g.bearing_max_approach_m * 1e6;
+    }
     if (!g.station_angle_rad.empty()) {
       json st = json::array();
       for (std::size_t k = 0; k < g.station_angle_rad.size(); ++k) {

@@ -95,6 +95,9 @@ struct SteadyState {
 /// key, the value and the constraint ("cases/x.toml: dynamics.damping_Ns_per_m = -1; must be >= 0").
 void validate(const DynamicsParams& p, const std::string& where);
 
+/// The moving pairs' own constraints (rim = "fem": no separate C_τ, m1 = 1; pair_stiffness = "teeth": m1 = 1).
+void validate_moving(const DynamicsParams& p, const std::string& where);
+
 /// A model from case values: inertias from the geometry, the given tooth pairs. Throws InputError (via validate()).
 DynamicsModel make_model(const GearParams& gear, const FlexsplineParams& fs, bool cup, const Material& mat,
                          const DynamicsParams& p, std::vector<ToothPair> pairs, const std::string& where);

@@ -48,6 +48,7 @@ std::vector<double> lowpass_fir(int ov) {
 /// Everything computed from (t, y): used by the right-hand side and by the output sampling alike.
 struct Snapshot {
   std::array<double, kBodyCount> theta{}, omega{};
+  double travel_torque = 0.0;  ///< M_σ: torque of the teeth's travel (moving pairs)
   double mesh_torque = 0.0, total_force = 0.0, drive_torque = 0.0, load_torque = 0.0, stiffness = 0.0;
   double kinetic = 0.0, potential = 0.0;
   double p_in = 0.0, p_out = 0.0, p_diss = 0.0, p_param = 0.0;
@@ -177,7 +178,8 @@ public:
       s.kinetic += 0.5 * inertia_[b] * s.omega[b] * s.omega[b];  // merged rim has zero inertia here
     }
     for (int b : free_) s.accel_dev[b] = (Q[b] + T[b]) / inertia_[b] - ratio_[b] * Alpha;
-    s.mesh_torque = M;
+    s.mesh_torque = M + M_sigma;  // what the mesh takes off the flexspline (Q_f = −M − M_σ)
+    s.travel_torque = M_sigma;
     s.total_force = total;
     s.stiffness = k;
     s.potential = U;
@@ -373,13 +375,14 @@ DynamicsSeries simulate(const DynamicsModel& m) {
   out.per_tooth = static_cast<bool>(m.moving);
   // fine records of the filtered signals
   std::vector<std::vector<double>> pair(np);
-  std::vector<double> torque, total, drive, deflection, te;
+  std::vector<double> torque, total, drive, deflection, te, travel;
   Snapshot s = ev.make_snapshot();
   const int o = idx(ev.steady().output);
   auto record = [&](long i, double t) {
     ev.evaluate(t, yv, s);
     for (std::size_t k = 0; k < np; ++k) pair[k].push_back(s.pair_force[k]);
     torque.push_back(s.mesh_torque);
+    travel.push_back(s.travel_torque);
     total.push_back(s.total_force);
     drive.push_back(s.drive_torque);
     deflection.push_back(s.deflection);
@@ -431,6 +434,7 @@ DynamicsSeries simulate(const DynamicsModel& m) {
   out.pair_force_N.resize(np);
   for (std::size_t k = 0; k < np; ++k) out.pair_force_N[k] = decimate(pair[k]);
   out.mesh_torque_Nm = decimate(torque);
+  out.travel_torque_Nm = decimate(travel);
   out.total_force_N = decimate(total);
   out.drive_torque_Nm = decimate(drive);
   out.deflection_rad = decimate(deflection);

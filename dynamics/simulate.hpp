@@ -42,7 +42,9 @@ struct DynamicsSeries {
   std::array<std::vector<double>, kBodyCount> angle_rad;   ///< per BodyId (rim = flange when rigid)
   std::array<std::vector<double>, kBodyCount> speed_rad_s;
   std::vector<std::vector<double>> pair_force_N;           ///< [pair][sample], signed (drive flank positive)
-  std::vector<double> mesh_torque_Nm;     ///< M = Σ F_i·arm_i, the torque the mesh takes off the flexspline rim
+  std::vector<double> mesh_torque_Nm;     ///< M = Σ F_i·arm_i (+ M_σ, moving pairs), the torque the mesh takes off the flexspline rim
+  /// Moving pairs: M_σ = ∂U/∂(θ_w − θ_f) side of the mesh torque, the torque of the teeth's travel (in mesh_torque_Nm).
+  std::vector<double> travel_torque_Nm;
   std::vector<double> total_force_N;      ///< Σ |F_i|, the total meshing force
   std::vector<double> drive_torque_Nm;    ///< torque the drive applies to the driven body
   std::vector<double> load_torque_Nm;     ///< applied load on the output body (signed)

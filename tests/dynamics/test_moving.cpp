@@ -99,7 +99,40 @@ TEST(MovingMesh, SlowRunReproducesTheLoadedContactAtEveryGeneratorAngle) {
   DynamicsModel m = model_of(k.c, p);
   m.moving = std::make_shared<MovingMesh>(fem_coupled_mesh(k.c, k.mesh, k.system, k.fem, teeth, 44.1, 4, 4));
   const DynamicsSeries s = simulate(m);
+  for (const auto& ph : m.moving->phases) {
+    int missing = 0;
+    for (int nx : ph.next) missing += nx < 0;
+    std::printf("phase %.4f: %zu flanks, %d not in the next phase\n", ph.shift_rad, ph.key.size(), missing);
+  }
+  std::printf("energy balance %.3e (input %.4g J, dissipated %.4g J)\n", s.energy.error_rel(), s.energy.input_J, s.energy.dissipated_J);
   const int period = m.moving->key_period();
+  {
+    double jump = 0, at = 0;
+    int tooth_j = -1;
+    for (int t = 0; t < period; ++t)
+      for (std::size_t j = 60; j < s.time_s.size(); ++j) {
+        const double a0 = s.pair_force_N[t][j - 1], a1 = s.pair_force_N[t][j];
+        if ((a0 == 0) != (a1 == 0) && std::max(std::abs(a0), std::abs(a1)) > jump) {
+          jump = std::max(std::abs(a0), std::abs(a1));
+          at = s.time_s[j];
+          tooth_j = t;
+        }
+      }
+    std::printf("largest force at a flank's entry or exit %.1f N (tooth %d, t = %.4f s)\n", jump, tooth_j, at);
+    const std::size_t jj = std::lround(at / p.output_step_s);
+    for (std::size_t j : {jj - 1, jj}) {
+      const double sg = s.angle_rad[0][j] - s.angle_rad[2][j];
+      const double phi = std::remainder(2 * kPi * tooth_j / 190 - sg, kPi);
+      std::printf("  sample %zu: sigma %.5f (phase %.3f of a pitch), phi %.5f deg, force %.1f\n", j, sg,
+                  std::fmod(sg, 2 * kPi / 190) / (2 * kPi / 190), phi * 180 / kPi, s.pair_force_N[tooth_j][j]);
+    }
+    const FlankTable& tb = m.moving->table;
+    for (int side = 0; side < 2; ++side)
+      for (int j = 1; j < tb.size(); ++j)
+        if (std::isnan(tb.q_m[side][j]) != std::isnan(tb.q_m[side][j - 1]))
+          std::printf("  table side %d validity edge at %.4f deg, q %.3e %.3e\n", side,
+                      (tb.phi_start_rad + j * tb.step_rad) * 180 / kPi, tb.q_m[side][j - 1], tb.q_m[side][j]);
+  }
   double worst_force = 0, worst_twist = 0;
   for (int j : {80, 103, 150}) {
     const double sigma = s.angle_rad[0][j] - s.angle_rad[2][j];
@@ -109,7 +142,8 @@ TEST(MovingMesh, SlowRunReproducesTheLoadedContactAtEveryGeneratorAngle) {
     o.wg_angle_rad = contact_wg_angle_rad(*k.c.gear, sigma);
     o.series.tooth_pair_m_per_N = teeth;
     const ContactAnalysis a = analyse_contact(k.c, k.mesh, k.system, k.fem, o);
-    const ContactSolution qs = solve_contact(a.problem, s.mesh_torque_Nm[j]);
+    const double flank_torque = s.mesh_torque_Nm[j] - s.travel_torque_Nm[j];  // Σ λ_i x_i
+    const ContactSolution qs = solve_contact(a.problem, flank_torque);
     std::vector<double> tooth(period, 0.0);
     for (std::size_t i = 0; i < a.flanks.size(); ++i)
       tooth[a.flanks[i].tooth % period] += (a.flanks[i].flank == Flank::Ccw ? 1 : -1) * qs.force_N[i];
@@ -121,7 +155,7 @@ TEST(MovingMesh, SlowRunReproducesTheLoadedContactAtEveryGeneratorAngle) {
     const double twist_err = std::abs(s.deflection_rad[j] / qs.twist_rad - 1);
     std::printf("t = %.4f s, sigma %.5f rad (%.2f pitches): flank torque %.3f N·m, %d flanks in contact (loaded "
                 "contact %d), largest force %.1f N; force error %.2e of it, deflection %.4e vs %.4e rad (%.2e)\n",
-                s.time_s[j], sigma, sigma / (2 * kPi / 190), s.mesh_torque_Nm[j], int(s.flanks_in_contact[j]),
+                s.time_s[j], sigma, sigma / (2 * kPi / 190), flank_torque, int(s.flanks_in_contact[j]),
                 2 * int((qs.force_N.head(a.flanks.size()).array() > 0).count()), fmax, err / fmax, s.deflection_rad[j], qs.twist_rad, twist_err);
     worst_force = std::max(worst_force, err / fmax);
     worst_twist = std::max(worst_twist, twist_err);
@@ -165,6 +199,28 @@ TEST(MovingMesh, ConstantStiffnessPutsTheStrongestLinesAtTheMeshFrequencyFrozenP
   const double order = r.te_lines[1].frequency_Hz / fm;
   EXPECT_NEAR(order, std::round(order), r.te_spectrum.resolution_Hz / fm);
   EXPECT_TRUE(f.lines.empty() || f.lines[0].amplitude_N < 1e-3 * r.lines[0].amplitude_N);
+}
+
+// The seed gear's moving pairs on a rigid rim with the tooth-pair compliance, 1000 rpm, 100 N·m: the teeth's travel
+// torque M_σ closes the energy balance (input = output + dissipated + kinetic + potential) and the torque balance
+// (mean of Σλx + M_σ = load) over whole mesh periods.
+TEST(MovingMesh, EnergyAndTorqueBalanceWithTravellingTeeth) {
+  Case c = load_case("cases/seed_190_192.toml");
+  DynamicsParams p = *c.dynamics;
+  p.duration_s = 0.03;
+  p.steady_from_s = 0.022;
+  DynamicsModel m = model_of(c, p);
+  const NeutralCurve curve = generator_neutral_curve(rim_mean_radius(c.flexspline), case_radial_deformation_m(c),
+                                                     *c.wave_generator);
+  m.moving = std::make_shared<MovingMesh>(rigid_rim_mesh(*c.gear, curve, teeth_of(c), 16));
+  const DynamicsSeries s = simulate(m);
+  const DynamicsSummary r = summarize(m, s);
+  std::printf("energy %.2e, torque %.2e, speeds %.2e; deflection %.4f..%.4f mrad, largest force %.1f N, %g..%g flanks\n",
+              r.energy_error_rel, r.torque_balance_error_rel, r.max_speed_error_rel, r.deflection_min_rad * 1e3,
+              r.deflection_max_rad * 1e3, r.max_pair_force_N, r.flanks_in_contact_min, r.flanks_in_contact_max);
+  EXPECT_LT(r.energy_error_rel, 5e-3);
+  EXPECT_LT(r.torque_balance_error_rel, 1e-3);
+  EXPECT_LT(r.max_speed_error_rel, 1e-4);
 }
 
 }  // namespace

@@ -39,7 +39,9 @@ struct DynamicsParams {
   PairStiffness pair_stiffness = PairStiffness::Teeth;  ///< key `pair_stiffness` = "teeth" | "constant" (moving pairs)
   RimCoupling rim = RimCoupling::Fem;                   ///< key `rim` = "fem" | "rigid" (moving pairs)
   int compliance_phases = 4;   ///< rim = "fem": generator phases per tooth pitch at which the body compliance is solved
-  int oversampling = 8;        ///< the solution is sampled this many times per output step, low-passed and decimated
+  /// The solution is sampled this many times per output step, low-passed and decimated (1: plain samples, which alias
+  /// whatever lies above the output's Nyquist frequency; the cases set 8).
+  int oversampling = 1;
 
   double drive_speed_rpm = 1000.0;     ///< final speed of the driven body, > 0
   double drive_ramp_start_s = 0.0;     ///< ramp from 0 ...

@@ -201,6 +201,38 @@ TEST(MovingMesh, ConstantStiffnessPutsTheStrongestLinesAtTheMeshFrequencyFrozenP
   EXPECT_TRUE(f.lines.empty() || f.lines[0].amplitude_N < 1e-3 * r.lines[0].amplitude_N);
 }
 
+// An odd tooth count (the 26/28 case with z_f = 25, z_c = 27): the two zones are half a pitch apart, so the f_m
+// component of the total force and of the transmission error cancels and the fundamental is 2·f_m; the three
+// strongest lines sit at even mesh orders.
+TEST(MovingMesh, OddToothCountPutsTheFundamentalAtTwiceTheMeshFrequency) {
+  Case c = load_case("cases/mbd_26_28.toml");
+  GearParams g = *c.gear;
+  g.teeth_flexspline = 25;
+  g.teeth_circular = 27;
+  c.gear = g;
+  DynamicsParams p = *c.dynamics;
+  DynamicsModel m = model_of(c, p);
+  const NeutralCurve curve = generator_neutral_curve(rim_mean_radius(c.flexspline), case_radial_deformation_m(c),
+                                                     *c.wave_generator);
+  m.moving = std::make_shared<MovingMesh>(rigid_rim_mesh(g, curve, {}, 16));
+  const DynamicsSummary r = summarize(m, simulate(m));
+  const double fm = r.theory.mesh_frequency_Hz;
+  ASSERT_NEAR(fm, 27 * 1000 / 60.0, 1e-9);
+  ASSERT_GE(r.lines.size(), 3u);
+  ASSERT_GE(r.te_lines.size(), 3u);
+  std::printf("z_f = 25: force lines %.2f, %.2f, %.2f Hz (f_m %.2f Hz), first %.3g N, %.1f dB above the floor\n",
+              r.lines[0].frequency_Hz, r.lines[1].frequency_Hz, r.lines[2].frequency_Hz, fm, r.lines[0].amplitude_N,
+              20 * std::log10(r.lines[0].amplitude_N / r.noise_floor_N));
+  EXPECT_NEAR(r.lines[0].frequency_Hz, 2 * fm, r.spectrum.resolution_Hz);
+  EXPECT_NEAR(r.te_lines[0].frequency_Hz, 2 * fm, r.te_spectrum.resolution_Hz);
+  for (int i = 0; i < 3; ++i) {
+    const double order = r.lines[i].frequency_Hz / fm, te_order = r.te_lines[i].frequency_Hz / fm;
+    EXPECT_NEAR(order, 2 * std::round(order / 2), r.spectrum.resolution_Hz / fm) << i;
+    EXPECT_NEAR(te_order, 2 * std::round(te_order / 2), r.te_spectrum.resolution_Hz / fm) << i;
+  }
+  EXPECT_GT(r.lines[0].amplitude_N, 10 * r.noise_floor_N);
+}
+
 // The seed gear's moving pairs on a rigid rim with the tooth-pair compliance, 1000 rpm, 100 N·m: the teeth's travel
 // torque M_σ closes the energy balance (input = output + dissipated + kinetic + potential) and the torque balance
 // (mean of Σλx + M_σ = load) over whole mesh periods.

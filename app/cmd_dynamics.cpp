@@ -14,6 +14,9 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.hpp"
+#include "app/contact_job.hpp"
+#include "app/fem_job.hpp"
+#include "dynamics/moving_mesh_build.hpp"
 #include "io/fem_output.hpp"
 #include "common/error.hpp"
 #include "common/progress.hpp"
@@ -46,12 +49,37 @@ std::vector<ToothPair> treat_interference(std::vector<ToothPair> pairs, const st
   return out;
 }
 
+/// The moving mesh of the case: a rigid rim on the case's generator curve, or the rim coupled through the FEM's body.
+std::shared_ptr<const MovingMesh> moving_mesh(const Case& c, const DynamicsParams& p, const std::string& out_dir) {
+  const ToothCompliance teeth =
+      p.pair_stiffness == PairStiffness::Teeth ? series_parts(c).tooth_pair_m_per_N : ToothCompliance{};
+  if (p.rim == RimCoupling::Rigid) {
+    const double rm = rim_mean_radius(c.flexspline), w0 = case_radial_deformation_m(c);
+    const NeutralCurve curve =
+        c.wave_generator ? generator_neutral_curve(rm, w0, *c.wave_generator) : cam_neutral_curve(rm, w0);
+    return std::make_shared<MovingMesh>(rigid_rim_mesh(*c.gear, curve, teeth, 16));
+  }
+  check_contact_case(c);
+  FemJobOptions o;
+  o.write_vtk = false;
+  const FemJobResult fem = run_fem_job(c, out_dir, o);
+  if (!fem.mesh || !fem.system) throw InputError(c.path + ": rim = \"fem\" needs the TET10 solver (solver.method)");
+  const double rated = c.load.rated_torque_Nm.value_or(c.load.torque_Nm);
+  return std::make_shared<MovingMesh>(
+      fem_coupled_mesh(c, *fem.mesh, *fem.system, fem.solution, teeth, rated, p.compliance_phases, 4));
+}
+
 void run_dynamics(const std::string& case_path, std::string out_dir, const std::string& clearances,
-                  const std::string& fem_result, const std::string& interference) {
+                  const std::string& fem_result, const std::string& interference, const std::string& pairs_option,
+                  const std::string& rim_option) {
   Stopwatch total;
   const Case c = load_case(case_path);
   if (!c.gear) throw InputError(case_path + ": [gear] is missing; the dynamics needs the tooth numbers and module");
   DynamicsParams p = c.dynamics ? *c.dynamics : DynamicsParams{};
+  if (!pairs_option.empty()) p.pair_motion = pairs_option == "moving" ? PairMotion::Moving : PairMotion::Frozen;
+  if (!rim_option.empty()) p.rim = rim_option == "fem" ? RimCoupling::Fem : RimCoupling::Rigid;
+  const bool moving = p.pair_motion == PairMotion::Moving;
+  if (moving) validate_moving(p, case_path);
   if (!fem_result.empty()) {
     p.flexspline_compliance_rad_per_Nm = compliance_from_fem(fem_result);
     progress("dynamics: flexspline rim and flange joined by 1/C_tau, C_tau = " +
@@ -80,8 +108,14 @@ void run_dynamics(const std::string& case_path, std::string out_dir, const std::
     pairs = treat_interference(std::move(pairs), interference);
     source += ", interference: " + interference;
   }
-  const DynamicsModel m = make_model(*c.gear, c.flexspline, c.flexspline.shape == FlexsplineShape::Cup, c.material, p,
-                                     std::move(pairs), case_path);
+  DynamicsModel m = make_model(*c.gear, c.flexspline, c.flexspline.shape == FlexsplineShape::Cup, c.material, p,
+                               std::move(pairs), case_path);
+  if (moving) {
+    if (out_dir.empty()) out_dir = default_out_dir(c).string();
+    m.moving = moving_mesh(c, p, out_dir);
+    m.pairs.clear();
+    source = m.moving->source;
+  }
   progress("dynamics: " + std::string(to_string(p.configuration)) + ", " + std::to_string(m.pairs.size()) +
            " tooth pairs (" + source + "), " + std::to_string(std::lround(p.duration_s / p.output_step_s)) +
            " output steps");
@@ -99,8 +133,8 @@ void run_dynamics(const std::string& case_path, std::string out_dir, const std::
   info.total_time_s = total.lap();
   write_file_atomic(dir / "dynamics.json", dynamics_json(m, s, r, info));
   write_file_atomic(dir / "dynamics.svg", dynamics_svg(m, s, r, info));
-  std::printf("dynamics %s (%s, %d/%d teeth, %zu pairs): %.3g s simulated in %.3g s (real-time factor %.3g)\n",
-              case_path.c_str(), to_string(p.configuration), m.teeth_flexspline, m.teeth_circular, m.pairs.size(),
+  std::printf("dynamics %s (%s, %d/%d teeth, %s): %.3g s simulated in %.3g s (real-time factor %.3g)\n",
+              case_path.c_str(), to_string(p.configuration), m.teeth_flexspline, m.teeth_circular, source.c_str(),
               p.duration_s, info.simulate_time_s, p.duration_s / info.simulate_time_s);
   for (const auto& sc : r.speeds)
     std::printf("  speed %-16s %12.6f rpm (theory %12.6f, error %.2e)\n", sc.body.c_str(), sc.simulated_rpm,
@@ -109,6 +143,19 @@ void run_dynamics(const std::string& case_path, std::string out_dir, const std::
               r.max_pair_force_error_rel, r.torque_balance_error_rel, r.energy_error_rel);
   std::printf("  mesh frequency %.2f Hz; strongest line %s\n", r.theory.mesh_frequency_Hz,
               r.lines.empty() ? "none" : (std::to_string(r.lines[0].frequency_Hz) + " Hz").c_str());
+  std::printf("  steady window: mesh deflection %.4g to %.4g mrad, largest flank force %.4g N, %g to %g flanks in contact, "
+              "transmission error %.4g µrad peak to peak\n", r.deflection_min_rad * 1e3, r.deflection_max_rad * 1e3,
+              r.max_pair_force_N, r.flanks_in_contact_min, r.flanks_in_contact_max, r.te_peak_to_peak_rad * 1e6);
+  const double fm = r.theory.mesh_frequency_Hz, fg = r.generator_frequency_Hz;
+  for (std::size_t i = 0; i < std::min<std::size_t>(3, r.lines.size()); ++i)
+    std::printf("  force line %zu: %.2f Hz (mesh order %.3f, generator order %.2f), %.4g N, %.1f dB above the floor "
+                "%.3g N\n", i + 1, r.lines[i].frequency_Hz, r.lines[i].frequency_Hz / fm, r.lines[i].frequency_Hz / fg,
+                r.lines[i].amplitude_N, 20 * std::log10(r.lines[i].amplitude_N / r.noise_floor_N), r.noise_floor_N);
+  for (std::size_t i = 0; i < std::min<std::size_t>(3, r.te_lines.size()); ++i)
+    std::printf("  transmission-error line %zu: %.2f Hz (mesh order %.3f, generator order %.2f), %.4g µrad, %.1f dB "
+                "above the floor\n", i + 1, r.te_lines[i].frequency_Hz, r.te_lines[i].frequency_Hz / fm,
+                r.te_lines[i].frequency_Hz / fg, r.te_lines[i].amplitude_N * 1e6,
+                20 * std::log10(r.te_lines[i].amplitude_N / r.te_noise_floor_rad));
   std::printf("  wrote %s/dynamics.{csv,json,svg}\n", out_dir.c_str());
 }
 
@@ -130,7 +177,13 @@ void add_dynamics_command(CLI::App& app) {
   cmd->add_option("--interference", *interference,
                   "flanks with negative clearance at rest: preload (keep, default) | clip (clearance 0) | drop (pair)")
       ->check(CLI::IsMember({"preload", "clip", "drop"}));
-  cmd->callback([=] { run_dynamics(*case_path, *out, *clearances, *fem, *interference); });
+  auto pairs = std::make_shared<std::string>();
+  cmd->add_option("--pairs", *pairs, "tooth pairs: moving (travel through the mesh) | frozen (generator angle 0); "
+                                     "overrides dynamics.pairs")->check(CLI::IsMember({"moving", "frozen"}));
+  auto rim = std::make_shared<std::string>();
+  cmd->add_option("--rim", *rim, "moving pairs joined through the flexspline body (fem) or independent (rigid); "
+                                 "overrides dynamics.rim")->check(CLI::IsMember({"fem", "rigid"}));
+  cmd->callback([=] { run_dynamics(*case_path, *out, *clearances, *fem, *interference, *pairs, *rim); });
 }
 
 }  // namespace sw::app

@@ -21,7 +21,8 @@ namespace {
 
 constexpr double kArcmin = 10800.0 / std::numbers::pi;
 
-/// What acts in series with the body, from the case.
+}  // namespace
+
 SeriesParts series_parts(const Case& c) {
   SeriesParts s;
   s.teeth_source = "rigid teeth";
@@ -50,8 +51,6 @@ SeriesParts series_parts(const Case& c) {
         *c.circular_spline, gear_radii(*c.gear).root_c, c.material.shear_modulus_Pa());
   return s;
 }
-
-}  // namespace
 
 ContactAnalysis run_contact_job(const Case& c, const FemJobResult& fem, const std::filesystem::path& dir) {
   if (!fem.system || !fem.mesh)

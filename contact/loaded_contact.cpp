@@ -194,6 +194,7 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
   const Eigen::MatrixXd A_noseries = P.A;
   for (Eigen::Index i = 0; i < nf; ++i) P.A(i, i) += n_teeth * out.flanks[i].compliance_m_per_N;
   out.unknowns = static_cast<int>(P.q.size());
+  out.problem = P;
 
   // Bearing balls in series with the stations (unilateral generators): the secant of the Hertzian approach from the
   // generator's state, iterated to a fixed point.

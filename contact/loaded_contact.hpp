@@ -25,6 +25,7 @@
 #include <Eigen/Core>
 
 #include "common/params.hpp"
+#include "contact/contact_problem.hpp"
 #include "contact/torque_twist.hpp"
 #include "fem/flexspline_analysis.hpp"
 #include "fem/flexspline_system.hpp"
@@ -105,6 +106,10 @@ struct ContactAnalysis {
   double reach_rad = 0;  ///< flanks closing this much later than the first on their side were left out
   double min_closing_rad = 0;  ///< smallest closing angle at rest over both sides (< 0: the teeth overlap at rest)
   double overlap_at_rest_m = 0;  ///< largest overlap at rest along a contact normal (0: none)
+  /// The problem solved at every step: flanks (in the order of `flanks`), then the generator's stations when they are
+  /// unilateral (their λ 0, their gap the FEM's obstacle); the tooth pairs' compliance on the diagonal, the bearing's
+  /// secant not. For the multibody model, which moves the teeth through it.
+  ContactProblem problem;
 };
 
 /// Checks that the case can be analysed (a [gear], a [wave_generator] with radial_deformation_mm, teeth "ring" or

@@ -64,6 +64,15 @@ std::vector<SpectralLine> spectral_lines(const Spectrum& s, double fmin, int max
   return lines;
 }
 
+double noise_floor(const Spectrum& s, double fmin) {
+  std::vector<double> a;
+  for (std::size_t k = 0; k < s.amplitude_N.size(); ++k)
+    if (s.frequency_Hz[k] >= fmin) a.push_back(s.amplitude_N[k]);
+  if (a.empty()) return 0.0;
+  std::nth_element(a.begin(), a.begin() + a.size() / 2, a.end());
+  return a[a.size() / 2];
+}
+
 DynamicsSummary summarize(const DynamicsModel& m, const DynamicsSeries& s) {
   const auto& p = m.params;
   DynamicsSummary r;
@@ -95,25 +104,31 @@ DynamicsSummary summarize(const DynamicsModel& m, const DynamicsSeries& s) {
     r.speeds.push_back(c);
   }
 
-  const LoadSharing qs = quasi_static_load_sharing(m.pairs, p, r.theory.mesh_torque_Nm);
-  double qs_max = 0.0;
-  for (double f : qs.force_N) qs_max = std::max(qs_max, std::abs(f));
-  r.mesh_torque_Nm = 0.0;
-  for (std::size_t i = 0; i < m.pairs.size(); ++i) {
-    PairForceCheck c;
-    c.pair = int(i) + 1;
-    c.angle_deg = m.pairs[i].angle_rad * 180.0 / std::numbers::pi;
+  if (s.per_tooth) {  // moving pairs: the mesh torque's mean (pair forces are checked against loaded contact)
     double sum = 0.0;
-    for (std::size_t j = i0; j <= i1; ++j) sum += s.pair_force_N[i][j];
-    c.mean_N = sum / double(i1 - i0 + 1);
-    c.arm_m = c.mean_N >= 0.0 ? m.pairs[i].arm_m() : m.pairs[i].coast_arm();
-    c.quasi_static_N = qs.force_N[i];
-    const bool loaded = std::abs(c.quasi_static_N) > 1e-9 * qs_max;
-    c.error_rel = std::abs(c.mean_N - c.quasi_static_N) /
-                  (loaded ? std::abs(c.quasi_static_N) : std::max(qs_max, kForceFloor_N));
-    if (loaded) r.max_pair_force_error_rel = std::max(r.max_pair_force_error_rel, c.error_rel);
-    r.mesh_torque_Nm += c.mean_N * c.arm_m;
-    r.pair_forces.push_back(c);
+    for (std::size_t j = i0; j <= i1; ++j) sum += s.mesh_torque_Nm[j];
+    r.mesh_torque_Nm = sum / double(i1 - i0 + 1);
+  } else {
+    const LoadSharing qs = quasi_static_load_sharing(m.pairs, p, r.theory.mesh_torque_Nm);
+    double qs_max = 0.0;
+    for (double f : qs.force_N) qs_max = std::max(qs_max, std::abs(f));
+    r.mesh_torque_Nm = 0.0;
+    for (std::size_t i = 0; i < m.pairs.size(); ++i) {
+      PairForceCheck c;
+      c.pair = int(i) + 1;
+      c.angle_deg = m.pairs[i].angle_rad * 180.0 / std::numbers::pi;
+      double sum = 0.0;
+      for (std::size_t j = i0; j <= i1; ++j) sum += s.pair_force_N[i][j];
+      c.mean_N = sum / double(i1 - i0 + 1);
+      c.arm_m = c.mean_N >= 0.0 ? m.pairs[i].arm_m() : m.pairs[i].coast_arm();
+      c.quasi_static_N = qs.force_N[i];
+      const bool loaded = std::abs(c.quasi_static_N) > 1e-9 * qs_max;
+      c.error_rel = std::abs(c.mean_N - c.quasi_static_N) /
+                    (loaded ? std::abs(c.quasi_static_N) : std::max(qs_max, kForceFloor_N));
+      if (loaded) r.max_pair_force_error_rel = std::max(r.max_pair_force_error_rel, c.error_rel);
+      r.mesh_torque_Nm += c.mean_N * c.arm_m;
+      r.pair_forces.push_back(c);
+    }
   }
   r.torque_balance_error_rel = std::abs(r.mesh_torque_Nm - r.theory.mesh_torque_Nm) /
                                std::max(std::abs(r.theory.mesh_torque_Nm), kTorqueFloor_Nm);
@@ -132,6 +147,19 @@ DynamicsSummary summarize(const DynamicsModel& m, const DynamicsSeries& s) {
   r.spectrum = amplitude_spectrum(window, p.output_step_s);
   // Lines below two bins are the Hann window's own leakage of the removed mean and of slow drifts.
   r.lines = spectral_lines(r.spectrum, 2.5 * r.spectrum.resolution_Hz, kLines);
+  r.noise_floor_N = noise_floor(r.spectrum, 2.5 * r.spectrum.resolution_Hz);
+  std::vector<double> te(s.transmission_error_rad.begin() + i0, s.transmission_error_rad.begin() + i1);
+  r.te_spectrum = amplitude_spectrum(te, p.output_step_s);
+  r.te_lines = spectral_lines(r.te_spectrum, 2.5 * r.te_spectrum.resolution_Hz, kLines);
+  r.te_noise_floor_rad = noise_floor(r.te_spectrum, 2.5 * r.te_spectrum.resolution_Hz);
+  r.generator_frequency_Hz = r.theory.mesh_frequency_Hz / m.teeth_flexspline;
+  r.deflection_min_rad = *std::min_element(s.deflection_rad.begin() + i0, s.deflection_rad.begin() + i1 + 1);
+  r.deflection_max_rad = *std::max_element(s.deflection_rad.begin() + i0, s.deflection_rad.begin() + i1 + 1);
+  r.max_pair_force_N = *std::max_element(s.max_pair_force_N.begin() + i0, s.max_pair_force_N.begin() + i1 + 1);
+  r.flanks_in_contact_min = *std::min_element(s.flanks_in_contact.begin() + i0, s.flanks_in_contact.begin() + i1 + 1);
+  r.flanks_in_contact_max = *std::max_element(s.flanks_in_contact.begin() + i0, s.flanks_in_contact.begin() + i1 + 1);
+  const auto te_mm = std::minmax_element(s.transmission_error_rad.begin() + i0, s.transmission_error_rad.begin() + i1 + 1);
+  r.te_peak_to_peak_rad = *te_mm.second - *te_mm.first;
   return r;
 }
 

@@ -49,7 +49,20 @@ struct DynamicsSummary {
   double force_fluctuation_N = 0.0;         ///< standard deviation of the total meshing force in the steady window
   Spectrum spectrum;                        ///< of the total meshing force in the steady window
   std::vector<SpectralLine> lines;          ///< strongest first
+  double noise_floor_N = 0.0;               ///< median amplitude of the force spectrum above 2.5 bins
+  Spectrum te_spectrum;                     ///< of the transmission error (rad) in the steady window
+  std::vector<SpectralLine> te_lines;       ///< strongest first
+  double te_noise_floor_rad = 0.0;
+  double generator_frequency_Hz = 0.0;      ///< |n_w − n_f|/60: a flexspline tooth's turn relative to the generator
+  // over the steady window (whole mesh periods)
+  double deflection_min_rad = 0.0, deflection_max_rad = 0.0;  ///< mesh deflection e
+  double max_pair_force_N = 0.0;            ///< largest flank force
+  double flanks_in_contact_min = 0.0, flanks_in_contact_max = 0.0;
+  double te_peak_to_peak_rad = 0.0;
 };
+
+/// Median amplitude of the bins at or above min_frequency_Hz: the floor against which the lines stand.
+double noise_floor(const Spectrum& s, double min_frequency_Hz);
 
 /// Amplitude spectrum of a uniformly sampled signal (dt [s]): mean removed, periodic Hann window, FFTW r2c; a sinusoid
 /// of amplitude A on a bin shows A exactly. Precondition: ≥ 8 samples.

@@ -21,9 +21,27 @@ enum class DynamicsConfiguration { CsFixed, FsFixed, WgFixed, AllFree };
 ///          t1 the midpoint): C¹ continuous. Cubic: the multibody codes' STEP, Δ²(3 - 2Δ).
 enum class RampShape { Paper, Cubic };
 
+/// How the tooth pairs move. Moving: every tooth travels through the mesh with the generator's rotation relative to the
+/// flexspline (clearances from the backlash module at the tooth's current angle). Frozen: the pairs of generator angle
+/// 0 stay where they are (the passing of teeth only through the optional k(t)); kept for comparison.
+enum class PairMotion { Moving, Frozen };
+/// Stiffness of a moving pair. Teeth: the loaded contact's tooth-pair compliance (bending, foundation and flattening of
+/// both teeth at the contact radius, gear/tooth_stiffness.hpp; linear). Constant: the paper's k·δ^m1 with k(t).
+enum class PairStiffness { Teeth, Constant };
+/// What joins the moving pairs. Fem: the flexspline body's condensed compliance of the loaded contact (the pairs and
+/// the generator's stations coupled through the rim; the body's torsion is in it). Rigid: independent pairs.
+enum class RimCoupling { Fem, Rigid };
+
 struct DynamicsParams {
   DynamicsConfiguration configuration = DynamicsConfiguration::CsFixed;  ///< key `configuration`
   RampShape ramp_shape = RampShape::Paper;                               ///< key `ramp` = "paper" | "cubic"
+  PairMotion pair_motion = PairMotion::Moving;          ///< key `pairs` = "moving" | "frozen"
+  PairStiffness pair_stiffness = PairStiffness::Teeth;  ///< key `pair_stiffness` = "teeth" | "constant" (moving pairs)
+  RimCoupling rim = RimCoupling::Fem;                   ///< key `rim` = "fem" | "rigid" (moving pairs)
+  int compliance_phases = 4;   ///< rim = "fem": generator phases per tooth pitch at which the body compliance is solved
+  /// The solution is sampled this many times per output step, low-passed and decimated (1: plain samples, which alias
+  /// whatever lies above the output's Nyquist frequency; the cases set 8).
+  int oversampling = 1;
 
   double drive_speed_rpm = 1000.0;     ///< final speed of the driven body, > 0
   double drive_ramp_start_s = 0.0;     ///< ramp from 0 ...
@@ -76,6 +94,9 @@ inline const char* to_string(DynamicsConfiguration c) {
 }
 
 inline const char* to_string(RampShape r) { return r == RampShape::Paper ? "paper" : "cubic"; }
+inline const char* to_string(PairMotion m) { return m == PairMotion::Moving ? "moving" : "frozen"; }
+inline const char* to_string(PairStiffness k) { return k == PairStiffness::Teeth ? "teeth" : "constant"; }
+inline const char* to_string(RimCoupling r) { return r == RimCoupling::Fem ? "fem" : "rigid"; }
 
 /// Inverse of to_string(); nullopt for an unknown spelling (the parser names the allowed ones).
 inline std::optional<DynamicsConfiguration> parse_configuration(const std::string& s) {
@@ -98,6 +119,11 @@ inline std::string describe(const DynamicsParams& p) {
   o << "[dynamics]\n"
     << "configuration = \"" << to_string(p.configuration) << "\"\n"
     << "ramp = \"" << to_string(p.ramp_shape) << "\"\n"
+    << "pairs = \"" << to_string(p.pair_motion) << "\"\n"
+    << "pair_stiffness = \"" << to_string(p.pair_stiffness) << "\"\n"
+    << "rim = \"" << to_string(p.rim) << "\"\n"
+    << "compliance_phases = " << p.compliance_phases << "\n"
+    << "oversampling = " << p.oversampling << "\n"
     << "drive_speed_rpm = " << p.drive_speed_rpm << "\n"
     << "drive_ramp_start_s = " << p.drive_ramp_start_s << "\n"
     << "drive_ramp_end_s = " << p.drive_ramp_end_s << "\n"

@@ -232,6 +232,22 @@ void validate(const DynamicsParams& p, const std::string& w) {
   require(p.relative_tolerance > 0 && p.relative_tolerance < 1e-2, w, "relative_tolerance", p.relative_tolerance,
           "must be in (0, 1e-2)");
   require(p.absolute_tolerance_rad > 0, w, "absolute_tolerance_rad", p.absolute_tolerance_rad, "must be > 0");
+  require(p.compliance_phases >= 1, w, "compliance_phases", p.compliance_phases, "must be >= 1");
+  require(p.oversampling >= 1, w, "oversampling", p.oversampling, "must be >= 1");
+
+}
+
+void validate_moving(const DynamicsParams& p, const std::string& w) {
+  if (p.rim == RimCoupling::Fem) {
+    require(p.flexspline_compliance_rad_per_Nm == 0, w, "flexspline_compliance_rad_per_Nm",
+            p.flexspline_compliance_rad_per_Nm,
+            "must be 0 with rim = \"fem\" (the body's torsion is in the rim's compliance; it would count twice)");
+    require(p.exponent_stiffness == 1, w, "exponent_stiffness", p.exponent_stiffness,
+            "must be 1 with rim = \"fem\" (pairs coupled through the rim form a linear complementarity problem)");
+  }
+  if (p.pair_stiffness == PairStiffness::Teeth)
+    require(p.exponent_stiffness == 1, w, "exponent_stiffness", p.exponent_stiffness,
+            "must be 1 with pair_stiffness = \"teeth\" (the tooth-pair compliance is linear)");
 }
 
 DynamicsModel make_model(const GearParams& gear, const FlexsplineParams& fs, bool cup, const Material& mat,

@@ -28,11 +28,13 @@
 // (= z_c·|ω_c − ω_w|/2π by the relation above); both engagement zones are in phase when z_f is even:
 //     f_m = z_f·|n_f − n_w|/60 Hz (speeds in rpm): cs_fixed z_c·n_w/60, fs_fixed z_f·n_w/60, wg_fixed z_f·n_f/60.
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "common/params.hpp"
 #include "dynamics/dynamics_params.hpp"
+#include "dynamics/moving_mesh.hpp"
 #include "gear/gear.hpp"
 
 namespace sw {
@@ -70,7 +72,9 @@ struct DynamicsModel {
   int teeth_flexspline = 190;   ///< z_f
   int teeth_circular = 192;     ///< z_c > z_f
   BodyInertias inertia;
-  std::vector<ToothPair> pairs;
+  std::vector<ToothPair> pairs;    ///< frozen pairs (pairs = "frozen")
+  /// Moving pairs (pairs = "moving"): the teeth travel through the mesh; `pairs` is then not used.
+  std::shared_ptr<const MovingMesh> moving;
 };
 
 enum class BodyRole { Fixed, Driven, Free, MergedIntoFlange };
@@ -90,6 +94,9 @@ struct SteadyState {
 /// Checks every [dynamics] value against its documented range; throws InputError naming `where` (the case file), the
 /// key, the value and the constraint ("cases/x.toml: dynamics.damping_Ns_per_m = -1; must be >= 0").
 void validate(const DynamicsParams& p, const std::string& where);
+
+/// The moving pairs' own constraints (rim = "fem": no separate C_τ, m1 = 1; pair_stiffness = "teeth": m1 = 1).
+void validate_moving(const DynamicsParams& p, const std::string& where);
 
 /// A model from case values: inertias from the geometry, the given tooth pairs. Throws InputError (via validate()).
 DynamicsModel make_model(const GearParams& gear, const FlexsplineParams& fs, bool cup, const Material& mat,

@@ -63,15 +63,18 @@ std::string dynamics_csv(const DynamicsModel& m, const DynamicsSeries& s) {
   const auto bodies = reported_bodies(m);
   out += "time_s";
   for (BodyId b : bodies) out += std::string(",") + body_name(b) + "_speed_rpm";
-  for (std::size_t i = 0; i < m.pairs.size(); ++i) out += ",pair_" + std::to_string(i + 1) + "_force_N";
-  out += ",total_force_N,mesh_torque_Nm,drive_torque_Nm,load_torque_Nm,stiffness_N_per_m\n";
-  out.reserve(s.time_s.size() * (16 * (bodies.size() + m.pairs.size() + 6)));
+  for (std::size_t i = 0; i < s.pair_force_N.size(); ++i)
+    out += s.per_tooth ? ",tooth_" + std::to_string(i) + "_force_N" : ",pair_" + std::to_string(i + 1) + "_force_N";
+  out += ",total_force_N,mesh_torque_Nm,drive_torque_Nm,load_torque_Nm,stiffness_N_per_m,mesh_deflection_rad,"
+         "transmission_error_rad,flanks_in_contact,max_pair_force_N\n";
+  out.reserve(s.time_s.size() * (16 * (bodies.size() + s.pair_force_N.size() + 10)));
   for (std::size_t j = 0; j < s.time_s.size(); ++j) {
     append(out, s.time_s[j]);
     for (BodyId b : bodies) { out += ','; append(out, s.speed_rad_s[int(b)][j] * kRpmPerRadS); }
     for (const auto& f : s.pair_force_N) { out += ','; append(out, f[j]); }
     for (const auto* v : {&s.total_force_N, &s.mesh_torque_Nm, &s.drive_torque_Nm, &s.load_torque_Nm,
-                          &s.stiffness_N_per_m}) {
+                          &s.stiffness_N_per_m, &s.deflection_rad, &s.transmission_error_rad, &s.flanks_in_contact,
+                          &s.max_pair_force_N}) {
       out += ',';
       append(out, (*v)[j]);
     }
@@ -142,6 +145,26 @@ std::string dynamics_json(const DynamicsModel& m, const DynamicsSeries& s, const
   j["spectral_lines"] = json::array();
   for (const auto& l : r.lines) j["spectral_lines"].push_back({{"frequency_Hz", l.frequency_Hz}, {"amplitude_N", l.amplitude_N}});
   j["steady_window_s"] = {r.window_start_s, p.duration_s};
+  j["pairs"] = m.moving ? "moving" : "frozen";
+  j["mesh_deflection_rad"] = {{"min", r.deflection_min_rad}, {"max", r.deflection_max_rad}};
+  j["max_pair_force_N"] = r.max_pair_force_N;
+  j["flanks_in_contact"] = {{"min", r.flanks_in_contact_min}, {"max", r.flanks_in_contact_max}};
+  j["transmission_error_peak_to_peak_rad"] = r.te_peak_to_peak_rad;
+  j["generator_frequency_Hz"] = r.generator_frequency_Hz;
+  j["force_noise_floor_N"] = r.noise_floor_N;
+  j["transmission_error_noise_floor_rad"] = r.te_noise_floor_rad;
+  const double fm = r.theory.mesh_frequency_Hz, fg = r.generator_frequency_Hz;
+  auto orders = [&](const std::vector<SpectralLine>& lines) {
+    json a = json::array();
+    for (const auto& l : lines)
+      a.push_back({{"frequency_Hz", l.frequency_Hz}, {"amplitude", l.amplitude_N},
+                   {"mesh_order", fm > 0 ? l.frequency_Hz / fm : 0.0}, {"generator_order", fg > 0 ? l.frequency_Hz / fg : 0.0}});
+    return a;
+  };
+  j["force_lines_in_orders"] = orders(r.lines);
+  j["transmission_error_lines_in_orders"] = orders(r.te_lines);
+  j["output_sampling"] = {{"oversampling", p.oversampling},
+                          {"filter", "Blackman-windowed sinc, flat to 0.4/output_step_s, >= 74 dB from 0.5/output_step_s"}};
   j["clearance_source"] = info.clearance_source;
   json inertia;
   for (int b = 0; b < kBodyCount; ++b) inertia[body_name(BodyId(b))] = m.inertia.kgm2[b];
@@ -223,7 +246,26 @@ std::string dynamics_svg(const DynamicsModel& m, const DynamicsSeries& s, const 
                                  fmt(std::round(r.pair_forces[i].angle_deg * 10) / 10) + "°: mean " +
                                  fmt(std::round(r.pair_forces[i].mean_N)) + " N"));
   }
-  fig.panels.push_back(pf);
+  if (s.per_tooth) {  // moving pairs: every tooth's force as it travels through the zones
+    for (std::size_t i = 0; i < s.pair_force_N.size(); ++i)
+      pf.series.push_back(line(t, s.pair_force_N[i], i % 8 == 0 ? kColors[(i / 8) % 8] : "#bbb", i % 8 == 0 ? 1.2 : 0.6,
+                               i % 8 == 0 && i < 32 ? "tooth " + std::to_string(i) : ""));
+    pf.title = "Tooth forces (signed: ccw flank positive), " + std::to_string(s.pair_force_N.size()) + " teeth travelling";
+    LinePlot te = panel("Transmission error (output angle minus the kinematic one) and flanks in contact", "time (s)",
+                        "transmission error (µrad)");
+    te.x_range = {0.0, tmax};
+    std::vector<double> y(t.size());
+    for (std::size_t j = 0; j < t.size(); ++j) y[j] = s.transmission_error_rad[j] * 1e6;
+    te.series.push_back(line(t, y, "#2ca02c", 1.2, "transmission error"));
+    fig.panels.push_back(te);
+    LinePlot nc = panel("Tooth flanks in contact", "time (s)", "flanks");
+    nc.x_range = {0.0, tmax};
+    nc.series.push_back(line(t, s.flanks_in_contact, "#9467bd", 1.2));
+    fig.panels.insert(fig.panels.end() - 1, pf);
+    fig.panels.push_back(nc);
+  } else {
+    fig.panels.push_back(pf);
+  }
 
   // 3. Total meshing force.
   LinePlot tf = panel("Total meshing force Σ|F_i| (mean in the steady window " + fmt(std::round(r.mean_total_force_N)) +

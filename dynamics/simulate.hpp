@@ -29,17 +29,33 @@ struct SolverStats {
   long steps = 0, rhs_evals = 0, jac_evals = 0, error_test_fails = 0, newton_fails = 0;
 };
 
-/// Samples every output_step_s from 0 to duration_s (inclusive).
+/// Samples every output_step_s from 0 to duration_s (inclusive). The solution is sampled `oversampling` times per
+/// output step (CVODE's interpolant, every force evaluated there) and the force-like signals (pair forces, total force,
+/// mesh torque, drive torque, mesh deflection, transmission error) pass a linear-phase low-pass FIR (Blackman-windowed
+/// sinc, unit DC gain, flat within 2e-4 to 0.4/output_step_s, at least 74 dB down from the output's Nyquist frequency
+/// 0.5/output_step_s) before they are decimated: contact forces have kinks, whose content above the output's Nyquist
+/// frequency would otherwise fold into the spectra. Content above the fine sampling's own Nyquist frequency
+/// (oversampling·0.5/output_step_s) is not filtered; the kinks' spectrum falls as 1/f² there.
+/// Angles, speeds, the number of flanks in contact and k(t) are plain samples.
 struct DynamicsSeries {
   std::vector<double> time_s;
   std::array<std::vector<double>, kBodyCount> angle_rad;   ///< per BodyId (rim = flange when rigid)
   std::array<std::vector<double>, kBodyCount> speed_rad_s;
   std::vector<std::vector<double>> pair_force_N;           ///< [pair][sample], signed (drive flank positive)
-  std::vector<double> mesh_torque_Nm;     ///< M = Σ F_i·arm_i, the torque the mesh takes off the flexspline rim
+  std::vector<double> mesh_torque_Nm;     ///< M = Σ F_i·arm_i (+ M_σ, moving pairs), the torque the mesh takes off the flexspline rim
+  /// Moving pairs: M_σ = ∂U/∂(θ_w − θ_f) side of the mesh torque, the torque of the teeth's travel (in mesh_torque_Nm).
+  std::vector<double> travel_torque_Nm;
   std::vector<double> total_force_N;      ///< Σ |F_i|, the total meshing force
   std::vector<double> drive_torque_Nm;    ///< torque the drive applies to the driven body
   std::vector<double> load_torque_Nm;     ///< applied load on the output body (signed)
   std::vector<double> stiffness_N_per_m;  ///< k(t)
+  std::vector<double> deflection_rad;     ///< mesh deflection e
+  /// Transmission error: the output body's angle minus the ideal (kinematic) one, rad.
+  std::vector<double> transmission_error_rad;
+  std::vector<double> flanks_in_contact;  ///< moving pairs: tooth flanks carrying force
+  std::vector<double> max_pair_force_N;   ///< largest flank force
+  /// Moving pairs: pair_force_N is per flexspline tooth ([tooth mod teeth per unknown][sample], ccw flank positive).
+  bool per_tooth = false;
   EnergyBalance energy;
   SolverStats stats;
 };

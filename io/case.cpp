@@ -407,6 +407,12 @@ DynamicsParams read_dynamics(TableReader r) {
                                     {"cs_fixed", "fs_fixed", "wg_fixed", "all_free"});
   d.configuration = *parse_configuration(conf);
   d.ramp_shape = *parse_ramp_shape(r.choice("ramp", "paper", {"paper", "cubic"}));
+  d.pair_motion = r.choice("pairs", "moving", {"moving", "frozen"}) == "moving" ? PairMotion::Moving : PairMotion::Frozen;
+  d.pair_stiffness =
+      r.choice("pair_stiffness", "teeth", {"teeth", "constant"}) == "teeth" ? PairStiffness::Teeth : PairStiffness::Constant;
+  d.rim = r.choice("rim", "fem", {"fem", "rigid"}) == "fem" ? RimCoupling::Fem : RimCoupling::Rigid;
+  d.compliance_phases = r.integer("compliance_phases", d.compliance_phases, 1);
+  d.oversampling = r.integer("oversampling", d.oversampling, 1);
   d.drive_speed_rpm = r.positive("drive_speed_rpm", d.drive_speed_rpm);
   d.drive_ramp_start_s = r.non_negative("drive_ramp_start_s", d.drive_ramp_start_s);
   d.drive_ramp_end_s = r.positive("drive_ramp_end_s", d.drive_ramp_end_s);

@@ -25,7 +25,7 @@ constexpr double kEnergyTolerance = 5e-3;     // 0.5 %: energy balance
 TEST(DynamicsCli, SmallGearCaseRunsAndMeetsItsTolerances) {
   const fs::path out = fs::temp_directory_path() / "sw_test_dynamics_cli";
   fs::remove_all(out);
-  const CommandRun r = run_strainwave("--quiet dynamics cases/mbd_26_28.toml --out " + out.string());
+  const CommandRun r = run_strainwave("--quiet dynamics cases/mbd_26_28.toml --pairs frozen --out " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   for (const char* f : {"dynamics.csv", "dynamics.json", "dynamics.svg"}) EXPECT_TRUE(fs::exists(out / f)) << f;
   const auto j = nlohmann::json::parse(read_text(out / "dynamics.json"));
@@ -72,7 +72,7 @@ TEST(DynamicsCli, SeedGearRunsEndToEndOnKinematicClearances) {
          "axial_position_mm = 3.0\n[load]\ntorque_Nm = 44.1\n";
   for (const std::string policy : {"preload", "drop"}) {
     const fs::path out = dir / policy;
-    const CommandRun r = run_strainwave("--quiet dynamics " + (dir / "seed.toml").string() + " --interference " +
+    const CommandRun r = run_strainwave("--quiet dynamics " + (dir / "seed.toml").string() + " --pairs frozen --interference " +
                                         policy + " --out " + out.string());
     ASSERT_EQ(r.exit_code, 0) << r.output;
     const auto j = nlohmann::json::parse(read_text(out / "dynamics.json"));

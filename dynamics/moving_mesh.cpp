@@ -1,0 +1,206 @@
+#include "dynamics/moving_mesh.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <string>
+
+#include <Eigen/Cholesky>
+
+#include "common/error.hpp"
+
+namespace sw {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+/// φ wrapped to (−π, π], or to (−π/2, π/2] when one unknown stands for a tooth and its half-turn partner.
+double wrap_phi(double phi, int teeth_per_unknown) {
+  const double period = 2 * kPi / teeth_per_unknown;
+  return phi - period * std::ceil(phi / period - 0.5);
+}
+
+struct TableValue {
+  double q, dq_dphi, lambda, dlambda_dphi, compliance, dcompliance_dphi;
+};
+
+/// Linear interpolation of the table; false where the flank cannot close on either grid angle.
+bool lookup(const FlankTable& t, int side, double phi, TableValue& v) {
+  const double u = (phi - t.phi_start_rad) / t.step_rad;
+  const int j = static_cast<int>(std::floor(u));
+  if (j < 0 || j + 1 >= t.size()) return false;
+  const double a = u - j;
+  const auto& q = t.q_m[side];
+  const auto& l = t.lambda_m[side];
+  const auto& c = t.compliance_m_per_N[side];
+  if (std::isnan(q[j]) || std::isnan(q[j + 1])) return false;
+  v.q = (1 - a) * q[j] + a * q[j + 1];
+  v.dq_dphi = (q[j + 1] - q[j]) / t.step_rad;
+  v.lambda = (1 - a) * l[j] + a * l[j + 1];
+  v.dlambda_dphi = (l[j + 1] - l[j]) / t.step_rad;
+  v.compliance = (1 - a) * c[j] + a * c[j + 1];
+  v.dcompliance_dphi = (c[j + 1] - c[j]) / t.step_rad;
+  return true;
+}
+
+}  // namespace
+
+FlankTable make_flank_table(double phi_start, double phi_end, double step, int teeth_per_unknown,
+                            const std::function<bool(double, int, double&, double&, double&)>& flank,
+                            const std::function<double(double)>& tooth_compliance) {
+  FlankTable t;
+  t.phi_start_rad = phi_start;
+  t.step_rad = step;
+  const int n = static_cast<int>(std::ceil((phi_end - phi_start) / step)) + 1;
+  for (int side = 0; side < 2; ++side) {
+    t.q_m[side].assign(n, kNaN);
+    t.lambda_m[side].assign(n, kNaN);
+    t.compliance_m_per_N[side].assign(n, kNaN);
+  }
+  for (int j = 0; j < n; ++j)
+    for (int side = 0; side < 2; ++side) {
+      double q = 0, lever = 0, radius = 0;
+      if (!flank(phi_start + j * step, side, q, lever, radius)) continue;
+      t.q_m[side][j] = teeth_per_unknown * q;
+      t.lambda_m[side][j] = teeth_per_unknown * lever;
+      t.compliance_m_per_N[side][j] = tooth_compliance ? teeth_per_unknown * tooth_compliance(radius) : 0.0;
+    }
+  return t;
+}
+
+void mesh_instant(const MovingMesh& m, double sigma, MeshInstant& out) {
+  out.tooth.clear();
+  out.side.clear();
+  const int period = m.key_period();
+  const double p = m.pitch_rad;
+  const double turns = std::floor(sigma / p);
+  const double r = sigma - turns * p;
+  const int shift = static_cast<int>(std::fmod(turns, period) + period) % period;  // teeth renamed by whole pitches
+  std::vector<TableValue> values;
+  std::vector<int> rows, cols_next;  // coupled: flank rows in phase s and in the next phase
+  auto add = [&](int tooth, int side, double phi) {
+    TableValue v;
+    if (!lookup(m.table, side, wrap_phi(phi, m.teeth_per_unknown), v)) return false;
+    out.tooth.push_back(tooth);
+    out.side.push_back(side);
+    values.push_back(v);
+    return true;
+  };
+  int s = 0, s1 = 0;
+  double a = 0;
+  if (!m.coupled()) {
+    for (int k = 0; k < period; ++k)
+      for (int side = 0; side < 2; ++side) add(k, side, 2 * kPi * k / m.teeth_flexspline - sigma);
+  } else {
+    const int S = static_cast<int>(m.phases.size());
+    const double h = p / S;
+    s = std::min(static_cast<int>(std::floor(r / h)), S - 1);
+    s1 = (s + 1) % S;
+    a = (r - m.phases[s].shift_rad) / h;
+    const MeshPhase& ph = m.phases[s];
+    for (std::size_t i = 0; i < ph.key.size(); ++i) {
+      if (ph.next[i] < 0) continue;
+      if (add((ph.key[i] + shift) % period, ph.side[i], ph.phi_rad[i] - (r - ph.shift_rad))) {
+        rows.push_back(static_cast<int>(i));
+        cols_next.push_back(ph.next[i]);
+      }
+    }
+  }
+  const int nf = static_cast<int>(values.size());
+  out.q.resize(nf);
+  out.dq.resize(nf);
+  out.lambda.resize(nf);
+  out.dlambda.resize(nf);
+  out.compliance.resize(nf);
+  out.dcompliance.resize(nf);
+  for (int i = 0; i < nf; ++i) {
+    const TableValue& v = values[i];
+    out.q[i] = v.q;
+    out.dq[i] = -v.dq_dphi;  // φ = 2πk/z_f − σ
+    out.lambda[i] = v.lambda;
+    out.dlambda[i] = -v.dlambda_dphi;
+    out.compliance[i] = v.compliance;
+    out.dcompliance[i] = -v.dcompliance_dphi;
+  }
+  if (!m.coupled()) {
+    out.A.resize(0, 0);
+    out.dA.resize(0, 0);
+    return;
+  }
+  const MeshPhase& P0 = m.phases[s];
+  const MeshPhase& P1 = m.phases[s1];
+  const int nb = static_cast<int>(m.station_q.size());
+  const int n0 = static_cast<int>(P0.key.size()), n1 = static_cast<int>(P1.key.size());
+  const double h = p / m.phases.size();
+  auto i0 = [&](int k) { return k < nf ? rows[k] : n0 + (k - nf); };
+  auto i1 = [&](int k) { return k < nf ? cols_next[k] : n1 + (k - nf); };
+  const int n = nf + nb;
+  out.A.resize(n, n);
+  out.dA.resize(n, n);
+  for (int c = 0; c < n; ++c)
+    for (int rr = 0; rr < n; ++rr) {
+      const double x0 = P0.A_body(i0(rr), i0(c)), x1 = P1.A_body(i1(rr), i1(c));
+      out.A(rr, c) = (1 - a) * x0 + a * x1;
+      out.dA(rr, c) = (x1 - x0) / h;
+    }
+  for (int k = 0; k < nf; ++k) {
+    const double c0 = P0.q_correction[rows[k]], c1 = P1.q_correction[cols_next[k]];
+    out.q[k] += (1 - a) * c0 + a * c1;
+    out.dq[k] += (c1 - c0) / h;
+  }
+}
+
+int solve_lcp(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& x, std::vector<char>& active) {
+  const int n = static_cast<int>(b.size());
+  active.resize(n, 0);
+  x = Eigen::VectorXd::Zero(n);
+  if (n == 0) return 0;
+  const double scale = std::max(b.cwiseAbs().maxCoeff(), 1e-300);
+  const double tol_w = 1e-12 * scale;
+  int best = n + 1, backups = 3;
+  Eigen::VectorXd w(n);
+  std::vector<int> F;
+  for (int it = 1; it <= 10 * n + 50; ++it) {
+    F.clear();
+    for (int i = 0; i < n; ++i)
+      if (active[i]) F.push_back(i);
+    const int nF = static_cast<int>(F.size());
+    x.setZero();
+    if (nF > 0) {
+      Eigen::MatrixXd AF(nF, nF);
+      Eigen::VectorXd bF(nF);
+      for (int c = 0; c < nF; ++c) {
+        bF[c] = -b[F[c]];
+        for (int r = 0; r < nF; ++r) AF(r, c) = A(F[r], F[c]);
+      }
+      const Eigen::VectorXd xF = AF.llt().solve(bF);
+      for (int c = 0; c < nF; ++c) x[F[c]] = xF[c];
+    }
+    w.noalias() = A * x + b;
+    std::vector<int> bad;
+    for (int i = 0; i < n; ++i)
+      if ((active[i] && x[i] < 0) || (!active[i] && w[i] < -tol_w)) bad.push_back(i);
+    if (bad.empty()) {
+      for (int i = 0; i < n; ++i)
+        if (!active[i]) x[i] = 0;
+      return it;
+    }
+    const int ninf = static_cast<int>(bad.size());
+    if (ninf < best) {
+      best = ninf;
+      backups = 3;
+      for (int i : bad) active[i] = !active[i];
+    } else if (backups > 0) {
+      --backups;
+      for (int i : bad) active[i] = !active[i];
+    } else {
+      active[bad.back()] = !active[bad.back()];  // Murty: the largest index, finite for a P-matrix
+    }
+  }
+  throw InputError("dynamics: the tooth contact problem (" + std::to_string(n) +
+                   " contacts) did not converge; check the contact stiffness and the clearances");
+}
+
+}  // namespace sw

@@ -1,0 +1,79 @@
+#pragma once
+// The mesh as the teeth travel through it: every flexspline tooth's angle relative to the wave generator follows the
+// generator's rotation, so pairs enter the engagement zones, carry load and leave.
+//
+// Generator angle relative to the flexspline σ = θ_w − θ_f (rad); tooth k sits at the material angle
+// φ_k = 2πk/z_f − σ from the major axis (kinematics/backlash.hpp, tooth_material_angle with σ = wg·z_c/z_f).
+// Each flank unknown i (both teeth of a half-turn pair when z_f is even, as in contact/) has, as functions of σ:
+//   gap at zero mesh deflection q_i (m, × teeth per unknown), moment arm λ_i (m, × teeth per unknown): the flank's
+//   approach is λ_i·e − q_i for a mesh deflection e (contact/README.md's g = q − λψ + A·x with ψ = e);
+//   the tooth pair's own compliance c_i (m/N, × teeth per unknown) from gear/tooth_stiffness at the contact radius.
+// These come from a table over φ (the backlash module's exact closing angle and lever arm of both flanks, on the
+// neutral curve the table was built on), sampled every pitch/(phases·table_per_phase) and interpolated linearly.
+//
+// Coupling through the rim (optional): the loaded-contact problem's body compliance A (flanks and the generator's
+// stations, contact/loaded_contact.hpp's ContactAnalysis::problem) at `phases` generator phases over one tooth pitch.
+// Between phases every entry is interpolated linearly in σ; a shift by one pitch renames tooth k as tooth k − 1, so
+// the phases cover every angle. The same flank must be in both neighbouring phases, else it is left out over that
+// sub-interval (it is then beyond the problem's reach: far from closing).
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace sw {
+
+/// The flank geometry over φ, one row per grid angle φ_j = phi_start + j·step; NaN where the flank cannot close.
+struct FlankTable {
+  double phi_start_rad = 0, step_rad = 0;
+  std::vector<double> q_m[2], lambda_m[2], compliance_m_per_N[2];  ///< [side: 0 ccw (λ > 0), 1 cw (λ < 0)][j]
+  int size() const { return static_cast<int>(q_m[0].size()); }
+};
+
+/// The loaded-contact problem at one generator phase (flank unknowns, then stations).
+struct MeshPhase {
+  double shift_rad = 0;          ///< σ of this phase, in [0, pitch)
+  std::vector<int> key, side;    ///< per flank: tooth index (mod teeth per period), side 0 ccw / 1 cw
+  std::vector<double> phi_rad;   ///< per flank: material angle at shift_rad
+  std::vector<int> next;         ///< per flank: the same flank's index in the next phase (−1: not there)
+  Eigen::MatrixXd A_body;        ///< body compliance (m/N, series parts excluded), flanks then stations
+  Eigen::VectorXd q_correction;  ///< per flank: the problem's gap minus the table's (the generator's own state)
+};
+
+struct MovingMesh {
+  int teeth_flexspline = 0;
+  int teeth_per_unknown = 1;     ///< 2 when z_f is even (the half-turn symmetry), as in contact/
+  double pitch_rad = 0;          ///< 2π/z_f
+  FlankTable table;
+  std::vector<MeshPhase> phases;  ///< empty: a rigid rim (independent pairs)
+  Eigen::VectorXd station_q;      ///< gaps of the generator's unilateral stations (constant in the generator frame)
+  std::string source;             ///< for reports: where the clearances and the compliance come from
+  bool coupled() const { return !phases.empty(); }
+  int key_period() const { return teeth_flexspline / teeth_per_unknown; }
+};
+
+/// The flank problem at one generator angle σ relative to the flexspline.
+struct MeshInstant {
+  std::vector<int> tooth, side;       ///< per flank: tooth index (mod key_period), side
+  Eigen::VectorXd q, dq, lambda, dlambda, compliance, dcompliance;  ///< per flank; d/dσ
+  Eigen::MatrixXd A, dA;              ///< body compliance and d/dσ, flanks then stations (empty: rigid rim)
+  int flanks() const { return static_cast<int>(q.size()); }
+};
+
+/// Flank geometry over φ from gap/lever functions (kinematics) sampled on a grid of `step_rad` covering `phi_range`.
+/// `flank(phi, side, q, lambda, contact_radius)` returns false where the flank cannot close.
+FlankTable make_flank_table(double phi_start_rad, double phi_end_rad, double step_rad, int teeth_per_unknown,
+                            const std::function<bool(double, int, double&, double&, double&)>& flank,
+                            const std::function<double(double)>& tooth_compliance_m_per_N);
+
+/// The problem at σ (rad). Fills `out` (reused between calls).
+void mesh_instant(const MovingMesh& m, double sigma_rad, MeshInstant& out);
+
+/// Linear complementarity x ≥ 0, w = A·x + b ≥ 0, x·w = 0 for symmetric positive definite A: block principal pivoting
+/// (Júdice and Pires 1994) with Murty's single pivot as the safeguard, started from `active` (updated). Written here
+/// because it is one small dense problem per right-hand side with a warm start, which no Debian library offers.
+/// Returns the iterations; throws InputError when it does not converge.
+int solve_lcp(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& x, std::vector<char>& active);
+
+}  // namespace sw

@@ -1,0 +1,138 @@
+#include "dynamics/moving_mesh_build.hpp"
+
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <string>
+#include <utility>
+
+#include <Eigen/Geometry>
+
+#include "common/error.hpp"
+#include "common/progress.hpp"
+#include "contact/loaded_contact.hpp"
+#include "kinematics/backlash.hpp"
+
+namespace sw {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+/// The backlash module's view of one flank: gap |ℓ|·δ at zero deflection, signed lever ℓ, contact radius on the
+/// flexspline tooth; false where it cannot close (out of the zone, never closing, or closing the other way), exactly
+/// the selection of contact/loaded_contact.cpp.
+struct FlankGeometry {
+  const BacklashModel& model;
+  const NeutralCurve& curve;
+  double cached_phi = std::numeric_limits<double>::quiet_NaN();
+  PairClearance pc;
+  bool operator()(double phi, int side, double& q, double& lever, double& radius) {
+    if (phi != cached_phi) {
+      pc = pair_clearance(model, phi, 0.0);
+      cached_phi = phi;
+    }
+    if (!pc.engaged) return false;
+    const Flank f = side == 0 ? Flank::Ccw : Flank::Cw;
+    const double delta = closing_angle_rad(model, phi, 0.0, f);
+    const FlankClearance& fc = side == 0 ? pc.ccw : pc.cw;
+    if (!std::isfinite(delta) || (side == 0 ? !(fc.lever_arm_m > 0) : !(fc.lever_arm_m < 0))) return false;
+    const ToothPlacement place = place_tooth(curve, phi, 0.0);
+    radius = (Eigen::Rotation2Dd(-place.angle_rad) * (fc.point_f - place.offset_m)).norm();
+    lever = fc.lever_arm_m;
+    q = std::abs(lever) * delta;
+    return true;
+  }
+};
+
+FlankTable table_on(const GearParams& g, const NeutralCurve& curve, const ToothCompliance& teeth, double step) {
+  const BacklashModel model = make_backlash_model(g, curve);
+  const int per = g.teeth_flexspline % 2 == 0 ? 2 : 1;
+  const double half = kPi / per;
+  const int n = static_cast<int>(std::ceil(half / step)) + 1;  // grid j·step, j = −n … n: phases fall on it
+  FlankGeometry geo{model, curve};
+  return make_flank_table(-n * step, n * step, step, per, std::ref(geo), teeth);
+}
+
+}  // namespace
+
+double contact_wg_angle_rad(const GearParams& g, double sigma) {
+  return sigma * g.teeth_flexspline / g.teeth_circular;
+}
+
+MovingMesh rigid_rim_mesh(const GearParams& g, const NeutralCurve& curve, const ToothCompliance& teeth,
+                          int samples_per_pitch) {
+  MovingMesh m;
+  m.teeth_flexspline = g.teeth_flexspline;
+  m.teeth_per_unknown = g.teeth_flexspline % 2 == 0 ? 2 : 1;
+  m.pitch_rad = 2 * kPi / g.teeth_flexspline;
+  m.table = table_on(g, curve, teeth, m.pitch_rad / samples_per_pitch);
+  m.source = "moving pairs on a rigid rim (backlash module's clearances every pitch/" +
+             std::to_string(samples_per_pitch) + ")";
+  return m;
+}
+
+MovingMesh fem_coupled_mesh(const Case& c, const TetMesh& mesh, const FlexsplineSystem& system,
+                            const FlexsplineSolution& fem, const ToothCompliance& teeth, double rated_torque_Nm,
+                            int phases, int table_per_phase, double reach_factor) {
+  check_contact_case(c);
+  if (!fem.neutral_curve) throw InputError(c.path + ": the moving mesh needs the FEM's generator-deformed neutral curve");
+  if (phases < 1 || table_per_phase < 1) throw InputError("dynamics: phases and table samples must be >= 1");
+  const GearParams& g = *c.gear;
+  MovingMesh m;
+  m.teeth_flexspline = g.teeth_flexspline;
+  m.teeth_per_unknown = g.teeth_flexspline % 2 == 0 ? 2 : 1;
+  m.pitch_rad = 2 * kPi / g.teeth_flexspline;
+  const NeutralCurveSamples& nc = *fem.neutral_curve;
+  const NeutralCurve curve = fit_neutral_curve(nc.radius_m, nc.phi_rad, nc.w_wg_m, nc.v_wg_m, nc.mu_wg_rad, "FEM");
+  m.table = table_on(g, curve, teeth, m.pitch_rad / (phases * table_per_phase));
+  const int period = m.key_period();
+  for (int s = 0; s < phases; ++s) {
+    MeshPhase ph;
+    ph.shift_rad = s * m.pitch_rad / phases;
+    ContactOptions o;
+    o.rated_torque_Nm = rated_torque_Nm;
+    o.steps = 1;
+    o.wg_angle_rad = contact_wg_angle_rad(g, ph.shift_rad);
+    o.reach_factor = reach_factor;  // body only: the teeth come from the table, the generator bearing is not modelled
+    progress("dynamics: loaded-contact problem at generator phase " + std::to_string(s + 1) + "/" +
+             std::to_string(phases));
+    const ContactAnalysis a = analyse_contact(c, mesh, system, fem, o);
+    const auto nf = static_cast<Eigen::Index>(a.flanks.size());
+    ph.A_body = a.problem.A;
+    ph.q_correction.resize(nf);
+    for (Eigen::Index i = 0; i < nf; ++i) {
+      const FlankContact& f = a.flanks[i];
+      ph.key.push_back(f.tooth % period);
+      ph.side.push_back(f.flank == Flank::Ccw ? 0 : 1);
+      ph.phi_rad.push_back(f.phi_rad);
+      // The table's gap at this very grid angle; the difference is the generator's own state (A·p0).
+      const int j = static_cast<int>(std::lround((f.phi_rad - m.table.phi_start_rad) / m.table.step_rad));
+      const double q_table = m.table.q_m[ph.side.back()].at(j);
+      if (std::isnan(q_table) || std::abs(m.table.phi_start_rad + j * m.table.step_rad - f.phi_rad) > 1e-9 * m.pitch_rad)
+        throw InputError("dynamics: flank of tooth " + std::to_string(f.tooth) + " off the clearance table's grid");
+      ph.q_correction[i] = a.problem.q[i] - q_table;
+    }
+    if (s == 0) m.station_q = a.problem.q.tail(a.problem.q.size() - nf);
+    else if (a.problem.q.size() - nf != m.station_q.size())
+      throw InputError("dynamics: the generator's stations differ between phases");
+    m.phases.push_back(std::move(ph));
+  }
+  // Each flank's index in the next phase; past the last phase, tooth k is where tooth k − 1 was at the first.
+  for (int s = 0; s < phases; ++s) {
+    const MeshPhase& nxt = m.phases[(s + 1) % phases];
+    std::map<std::pair<int, int>, int> where;
+    for (std::size_t i = 0; i < nxt.key.size(); ++i) where[{nxt.key[i], nxt.side[i]}] = static_cast<int>(i);
+    MeshPhase& ph = m.phases[s];
+    for (std::size_t i = 0; i < ph.key.size(); ++i) {
+      const int key = s + 1 < phases ? ph.key[i] : (ph.key[i] - 1 + period) % period;
+      const auto it = where.find({key, ph.side[i]});
+      ph.next.push_back(it == where.end() ? -1 : it->second);
+    }
+  }
+  m.source = "moving pairs coupled through the rim (loaded-contact body compliance at " + std::to_string(phases) +
+             " phases per pitch, interpolated; clearances on the FEM's neutral curve every pitch/" +
+             std::to_string(phases * table_per_phase) + ")";
+  return m;
+}
+
+}  // namespace sw

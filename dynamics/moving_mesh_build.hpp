@@ -1,0 +1,34 @@
+#pragma once
+// Building the moving mesh of dynamics/moving_mesh.hpp from a case: the flank table from the backlash module, and,
+// for a rim coupled through the flexspline's body, the loaded-contact problem at a few generator phases over one pitch.
+#include <functional>
+
+#include "common/params.hpp"
+#include "dynamics/moving_mesh.hpp"
+#include "fem/flexspline_analysis.hpp"
+#include "fem/flexspline_system.hpp"
+#include "kinematics/neutral_curve.hpp"
+#include "mesh/tet_mesh.hpp"
+
+namespace sw {
+
+/// Tooth-pair compliance (m/N over the face width) at a contact radius on the flexspline tooth; empty: rigid teeth.
+using ToothCompliance = std::function<double(double contact_radius_m)>;
+
+/// Independent pairs on a rigid rim: the flank table on `curve` (e.g. the case's generator curve), sampled every
+/// pitch/samples_per_pitch over the whole circle (half of it when z_f is even).
+MovingMesh rigid_rim_mesh(const GearParams& gear, const NeutralCurve& curve, const ToothCompliance& teeth,
+                          int samples_per_pitch);
+
+/// Pairs coupled through the rim: the loaded contact's problem (contact/loaded_contact.hpp, every flank that can close
+/// within reach_factor body twists at rated torque, the generator's stations when unilateral) at `phases` generator
+/// phases over one pitch, and the flank table on the FEM's generator-deformed neutral curve, sampled every
+/// pitch/(phases·table_per_phase) so that the phases fall on its grid.
+MovingMesh fem_coupled_mesh(const Case& c, const TetMesh& mesh, const FlexsplineSystem& system,
+                            const FlexsplineSolution& fem, const ToothCompliance& teeth, double rated_torque_Nm,
+                            int phases, int table_per_phase, double reach_factor = 12.0);
+
+/// The generator angle `wg_angle_rad` of contact/ (against the fixed circular spline) for σ = θ_w − θ_f.
+double contact_wg_angle_rad(const GearParams& gear, double sigma_rad);
+
+}  // namespace sw

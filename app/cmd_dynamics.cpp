@@ -66,7 +66,8 @@ std::shared_ptr<const MovingMesh> moving_mesh(const Case& c, const DynamicsParam
   if (!fem.mesh || !fem.system) throw InputError(c.path + ": rim = \"fem\" needs the TET10 solver (solver.method)");
   const double rated = c.load.rated_torque_Nm.value_or(c.load.torque_Nm);
   return std::make_shared<MovingMesh>(
-      fem_coupled_mesh(c, *fem.mesh, *fem.system, fem.solution, teeth, rated, p.compliance_phases, 4));
+      fem_coupled_mesh(c, *fem.mesh, *fem.system, fem.solution, teeth, rated, p.compliance_phases,
+                       std::max(1, 16 / p.compliance_phases)));  // the flank table every pitch/16
 }
 
 void run_dynamics(const std::string& case_path, std::string out_dir, const std::string& clearances,

@@ -38,7 +38,8 @@ struct DynamicsParams {
   PairMotion pair_motion = PairMotion::Moving;          ///< key `pairs` = "moving" | "frozen"
   PairStiffness pair_stiffness = PairStiffness::Teeth;  ///< key `pair_stiffness` = "teeth" | "constant" (moving pairs)
   RimCoupling rim = RimCoupling::Fem;                   ///< key `rim` = "fem" | "rigid" (moving pairs)
-  int compliance_phases = 4;   ///< rim = "fem": generator phases per tooth pitch at which the body compliance is solved
+  int compliance_phases = 8;   ///< rim = "fem": generator phases per tooth pitch at which the body compliance is solved
+                               ///< (8: the slow run meets the loaded contact within 1 %; 4 gave 1.03 %)
   /// The solution is sampled this many times per output step, low-passed and decimated (1: plain samples, which alias
   /// whatever lies above the output's Nyquist frequency; the cases set 8).
   int oversampling = 1;

@@ -97,7 +97,7 @@ TEST(MovingMesh, SlowRunReproducesTheLoadedContactAtEveryGeneratorAngle) {
   p.damping_Ns_per_m = 100;  // small: its force c·q′·σ̇ stays below 1e-3 of the elastic one
   p.oversampling = 1;  // plain samples: the comparison is of the model, not of the output filter
   DynamicsModel m = model_of(k.c, p);
-  m.moving = std::make_shared<MovingMesh>(fem_coupled_mesh(k.c, k.mesh, k.system, k.fem, teeth, 44.1, 4, 4));
+  m.moving = std::make_shared<MovingMesh>(fem_coupled_mesh(k.c, k.mesh, k.system, k.fem, teeth, 44.1, 8, 2));
   const DynamicsSeries s = simulate(m);
   for (const auto& ph : m.moving->phases) {
     int missing = 0;

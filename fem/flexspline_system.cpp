@@ -66,16 +66,13 @@ Eigen::VectorXd generator_load(const Case& c, const TetMesh& mesh) {
   return f;
 }
 
-/// Angular spacing of the contact stations: two element edges at the bore (a contact pressure resolved more finely
-/// than the displacement field checkerboards), at least 2° and at most 6°, dividing 180° evenly.
+}  // namespace
+
 double station_spacing(const Case& c) {
   const double two_edges_deg = 2 * c.mesh.size_m / c.flexspline.inner_radius_m * 180 / kPi;
   const double n = std::round(180.0 / std::clamp(two_edges_deg, 2.0, 6.0));
   return kPi / n;
 }
-
-
-}  // namespace
 
 Eigen::MatrixXd FlexsplineSystem::solve(const Eigen::MatrixXd& loads) const {
   Eigen::MatrixXd B(dofs.n_equations, loads.cols());
@@ -140,15 +137,11 @@ double cam_standoff(const WaveGeneratorParams& w, double r, double t) {
   const double a = r + w0, b = r - w0;
   return a * b / std::hypot(b * std::cos(t), a * std::sin(t)) - r - w.cam_clearance_m;
 }
-namespace {
-/// The cam normal's tilt ρ'/ρ.
 double cam_tilt(const WaveGeneratorParams& w, double r, double t) {
   const double h = 1e-6;
   const double rho = r + cam_standoff(w, r, t);
   return (cam_standoff(w, r, t + h) - cam_standoff(w, r, t - h)) / (2 * h) / rho;
 }
-
-}  // namespace
 
 GeneratorStations generator_stations(const Case& c, const TetMesh& mesh) {
   const auto& w = *c.wave_generator;

@@ -357,14 +357,44 @@ Eigen::MatrixXd to_nodes(const HarmonicDofs& d, const Eigen::VectorXd& x, Eigen:
   return fixed_values;
 }
 
-SymmetricCsc assemble(const SectionMesh& s, const Material& m, const HarmonicDofs& d, int n,
-                      std::vector<Mat18>& element_matrices) {
+/// The element stiffness as a polynomial in the harmonic: B = B₀ + n·B₁, so ∫BᵀDB r dA = K₀ + n·K₁ + n²·K₂; integrated
+/// once per element, each harmonic's matrix is a sum (the integration was most of a harmonic's cost).
+struct ElementPolynomial {
+  Mat18 k0, k1, k2;
+  Mat18 at(int n) const { return theta_weight(n) * (k0 + n * k1 + (static_cast<double>(n) * n) * k2); }
+};
+ElementPolynomial element_polynomial(const Mat6x2& X, const Eigen::Matrix<double, 6, 6>& D) {
+  ElementPolynomial p;
+  p.k0.setZero();
+  p.k1.setZero();
+  p.k2.setZero();
+  for (int k = 0; k < 7; ++k) {
+    const StrainPoint a = strain_matrix(X, kRule.xi[k], kRule.eta[k], 0);
+    const StrainPoint b = strain_matrix(X, kRule.xi[k], kRule.eta[k], 1);
+    const Mat6x18 B0 = a.B, B1 = b.B - a.B;
+    const double w = kRule.w[k] * std::abs(a.det) * a.r;
+    const Mat6x18 DB0 = D * B0, DB1 = D * B1;
+    p.k0.noalias() += w * (B0.transpose() * DB0);
+    const Mat18 cross = B0.transpose() * DB1;
+    p.k1.noalias() += w * (cross + cross.transpose());
+    p.k2.noalias() += w * (B1.transpose() * DB1);
+  }
+  return p;
+}
+std::vector<ElementPolynomial> element_polynomials(const SectionMesh& s, const Material& m) {
+  const auto D = elasticity(m);
+  std::vector<ElementPolynomial> out(s.triangles.size());
+  for (std::size_t e = 0; e < s.triangles.size(); ++e) out[e] = element_polynomial(coords(s, e), D);
+  return out;
+}
+
+/// Σ_e of an element quantity (18 × 18 per element) on the equations of a numbering, upper triangle.
+template <class ElementMatrix>
+SymmetricCsc assemble(const SectionMesh& s, const HarmonicDofs& d, ElementMatrix element) {
   std::vector<Eigen::Triplet<double, std::int64_t>> trip;
   trip.reserve(s.triangles.size() * 18 * 19 / 2);
-  element_matrices.resize(s.triangles.size());
   for (std::size_t e = 0; e < s.triangles.size(); ++e) {
-    const Mat18 Ke = harmonic_element_stiffness(coords(s, e), m, n);
-    element_matrices[e] = Ke;
+    const Mat18& Ke = element(e);
     const auto& t = s.triangles[e];
     for (int p = 0; p < 18; ++p) {
       const std::int64_t ip = d.eq[3 * t[p / 3] + p % 3];
@@ -386,6 +416,28 @@ SymmetricCsc assemble(const SectionMesh& s, const Material& m, const HarmonicDof
   out.row.assign(K.innerIndexPtr(), K.innerIndexPtr() + K.nonZeros());
   out.value.assign(K.valuePtr(), K.valuePtr() + K.nonZeros());
   return out;
+}
+
+/// The global K₀, K₁, K₂ of one numbering (the harmonics with the same axis conditions, n ≥ 2, share one): each
+/// harmonic's matrix is w_n·(K₀ + n·K₁ + n²·K₂) on one pattern, O(nnz) per harmonic.
+struct GlobalPolynomial {
+  HarmonicDofs dofs;
+  SymmetricCsc k0;
+  std::vector<double> v1, v2;
+  SymmetricCsc at(int n) const {
+    SymmetricCsc K = k0;
+    const double w = theta_weight(n), nn = static_cast<double>(n) * n;
+    for (std::size_t i = 0; i < K.value.size(); ++i) K.value[i] = w * (k0.value[i] + n * v1[i] + nn * v2[i]);
+    return K;
+  }
+};
+GlobalPolynomial assemble_polynomial(const SectionMesh& s, const std::vector<ElementPolynomial>& poly, HarmonicDofs d) {
+  GlobalPolynomial g;
+  g.k0 = assemble(s, d, [&](std::size_t e) -> const Mat18& { return poly[e].k0; });
+  g.v1 = assemble(s, d, [&](std::size_t e) -> const Mat18& { return poly[e].k1; }).value;
+  g.v2 = assemble(s, d, [&](std::size_t e) -> const Mat18& { return poly[e].k2; }).value;
+  g.dofs = std::move(d);
+  return g;
 }
 
 /// Where a quantity is read: section nodes with weights (a node, or the six of a located point).
@@ -632,8 +684,7 @@ Eigen::Matrix<double, 18, 18> harmonic_element_stiffness(const Eigen::Matrix<dou
 Eigen::MatrixXd solve_harmonic(const SectionMesh& s, const Material& m, int n, const std::vector<bool>& fixed,
                                const Eigen::MatrixXd& F) {
   const HarmonicDofs d = number_dofs(s.n_nodes(), n, fixed, axis_nodes(s));
-  std::vector<Mat18> Ke;
-  const CholmodFactor factor(assemble(s, m, d, n, Ke), d.node_of_eq);
+  const CholmodFactor factor(assemble_polynomial(s, element_polynomials(s, m), d).at(n), d.node_of_eq);
   return to_nodes(d, factor.solve(to_equations(d, F)), Eigen::MatrixXd::Zero(F.rows(), 3));
 }
 
@@ -766,14 +817,16 @@ FourierSolution analyse_section_fourier(const Case& c, SectionMesh section, int 
     if (stations) norm[n] = std::max(norm[n], stations->load_norm(n));
     max_norm = std::max(max_norm, norm[n]);
   }
-  std::array<std::vector<Mat18>, 2> Ke_low;  // element matrices of n = 0, 1 (reactions)
   Stopwatch solve_clock;
+  const std::vector<ElementPolynomial> poly = element_polynomials(sec, c.material);
+  std::array<std::optional<GlobalPolynomial>, 3> numbering;  // n = 0, n = 1, n ≥ 2 (the axis conditions)
   for (int n = 0; n <= N; ++n) {
     if (!(norm[n] > kNoLoad * max_norm)) continue;
-    const HarmonicDofs d = number_dofs(nn, n, fixed, axis);
     Stopwatch hc;
-    std::vector<Mat18> Ke;
-    const SymmetricCsc K = assemble(sec, c.material, d, n, Ke);
+    auto& g = numbering[std::min(n, 2)];
+    if (!g) g = assemble_polynomial(sec, poly, number_dofs(nn, n, fixed, axis));
+    const HarmonicDofs& d = g->dofs;
+    const SymmetricCsc K = g->at(n);
     fs.assemble_s += hc.lap();
     const CholmodFactor factor(K, d.node_of_eq);
     HarmonicStats st;
@@ -803,21 +856,22 @@ FourierSolution analyse_section_fourier(const Case& c, SectionMesh section, int 
     const Eigen::MatrixXd zero = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nn), 3);
     Eigen::MatrixXd* targets[6] = {&torque.sym[n], &torque.anti[n], &force_gen.sym[n], &force_gen.anti[n], &Ur[n], &Ut[n]};
     for (int col = 0; col < cols; ++col) *targets[col] = to_nodes(d, X.col(col), zero);
-    if (n <= 1) Ke_low[n] = std::move(Ke);
   }
   fs.solve_s = solve_clock.lap();
   progress("fourier: " + std::to_string(out.harmonics.size()) + " harmonics solved, " +
-           std::to_string(fs.factor.factor_gflop) + " GF, " + std::to_string(fs.solve_s) + " s");
+           std::to_string(fs.factor.factor_gflop) + " GF, " + std::to_string(fs.solve_s) + " s (assembly " +
+           std::to_string(fs.assemble_s) + " s, factor " + std::to_string(fs.factor.analyse_s + fs.factor.factor_s) +
+           " s)");
 
   // Internal forces K·u of harmonic n (0 or 1) of one family's amplitudes.
   auto internal = [&](int n, const Eigen::MatrixXd& U) {
     Eigen::MatrixXd R = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nn), 3);
-    if (U.size() == 0 || Ke_low[n].empty()) return R;
+    if (U.size() == 0) return R;
     for (std::size_t e = 0; e < sec.triangles.size(); ++e) {
       const auto& t = sec.triangles[e];
       Eigen::Matrix<double, 18, 1> ue;
       for (int a = 0; a < 6; ++a) ue.segment<3>(3 * a) = U.row(t[a]).transpose();
-      const Eigen::Matrix<double, 18, 1> fe = Ke_low[n][e] * ue;
+      const Eigen::Matrix<double, 18, 1> fe = poly[e].at(n) * ue;
       for (int a = 0; a < 6; ++a) R.row(t[a]) += fe.segment<3>(3 * a).transpose();
     }
     return R;

@@ -1,22 +1,76 @@
-// `strainwave contact CASE.toml`: the FEM of the flexspline, then the loaded tooth contact on its system: how the
-// teeth share the torque and the drive's torque–twist curve from −rated to +rated torque.
+// `strainwave contact CASE.toml [--fem DIR/result.json]`: the FEM of the flexspline, then the loaded tooth contact on
+// its system: how the teeth share the torque and the drive's torque–twist curve from −rated to +rated torque.
 #include <filesystem>
+#include <memory>
+#include <optional>
 
 #include "app/commands.hpp"
 #include "app/contact_job.hpp"
 #include "app/fem_job.hpp"
+#include "common/error.hpp"
 #include "common/progress.hpp"
 #include "io/case.hpp"
+#include "io/fem_output.hpp"
 
 namespace sw::app {
+namespace {
+
+const char* generator_model_name(WaveGeneratorModel m) {
+  switch (m) {
+    case WaveGeneratorModel::FourForce: return "four_force";
+    case WaveGeneratorModel::TwoForce: return "two_force";
+    case WaveGeneratorModel::Forces: return "forces";
+    case WaveGeneratorModel::Cam: return "cam";
+    case WaveGeneratorModel::Rollers: return "rollers";
+  }
+  return "?";
+}
+
+/// The FEM of an earlier run of the same case (--fem): the model is meshed and factorised again (the influence
+/// coefficients need the factor, which no file carries) and must have as many equations as that run's; the
+/// generator-deformed neutral curve and C_τ are read back instead of solving the load cases again.
+FemJobResult fem_from_run(const Case& c, const std::filesystem::path& result_json, double max_memory_gb) {
+  const FemRunForContact run = read_fem_run_for_contact(result_json);
+  const WaveGeneratorParams& w = *c.wave_generator;
+  const std::string model = generator_model_name(w.model);
+  if (run.generator_model != model)
+    throw InputError(result_json.string() + ": made with generator.model = \"" + run.generator_model + "\", " +
+                     c.path + " has \"" + model + "\"; run `strainwave fem` on this case again");
+  if (w.model == WaveGeneratorModel::Rollers)
+    throw InputError(c.path + ": --fem cannot take rollers (their set-out comes from the FEM's generator case); run "
+                              "contact without --fem");
+  progress("mesh: " + c.path + " (the model of " + result_json.string() + ")");
+  auto mesh = std::make_shared<const TetMesh>(mesh_for_case(c, max_memory_gb));
+  auto system = std::make_shared<const FlexsplineSystem>(assemble_and_factorise(c, *mesh));
+  if (system->dofs.n_equations != run.equations)
+    throw InputError(result_json.string() + ": made from a model of " + std::to_string(run.equations) +
+                     " equations, " + c.path + " gives " + std::to_string(system->dofs.n_equations) +
+                     "; run `strainwave fem` on this case again or leave out --fem");
+  FemJobResult job;
+  job.result_json_path = result_json;
+  job.solution.compliance_rad_per_Nm = run.compliance_rad_per_Nm;
+  job.solution.neutral_curve = run.neutral_curve;
+  GeneratorReadout g;
+  g.model = model;
+  g.unilateral = w.model == WaveGeneratorModel::Cam;
+  if (g.unilateral) g.obstacle_m = generator_stations(c, *mesh).obstacle_m;
+  job.solution.generator = g;
+  job.mesh = mesh;
+  job.system = system;
+  return job;
+}
+
+}  // namespace
 
 void add_contact_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("contact", "loaded tooth contact: load sharing, the drive's torque-twist curve, "
                                             "lost motion");
-  static std::string case_path, out;
+  static std::string case_path, out, fem_json;
   static FemJobOptions fem_options;
   cmd->add_option("case", case_path, "case file (TOML)")->required();
   add_fem_job_options(cmd, fem_options);
+  cmd->add_option("--fem", fem_json, "result.json of an earlier `fem` run of this case: its neutral curve and C_tau "
+                                     "are used and its load cases not solved again (the model is still factorised)");
   cmd->add_option("--out", out, "output directory (default out/<case stem>/)");
   cmd->callback([] {
     Case c = load_case(case_path);
@@ -24,7 +78,8 @@ void add_contact_command(CLI::App& app) {
     check_contact_case(c);  // before any work: nothing is written for a case contact cannot take
     progress("case:\n" + describe_case(c));
     const std::filesystem::path dir = out.empty() ? default_out_dir(c) : std::filesystem::path(out);
-    const FemJobResult fem = run_fem_job(c, dir, fem_options);
+    const FemJobResult fem = fem_json.empty() ? run_fem_job(c, dir, fem_options)
+                                              : fem_from_run(c, fem_json, fem_options.max_memory_gb);
     run_contact_job(c, fem, dir);
   });
 }

@@ -121,6 +121,9 @@ FemJobResult run_fem_job(const Case& c, const fs::path& out_dir, const FemJobOpt
     std::printf("  generator: w at the major axis %.4f mm, at the minor axis %.4f mm, net rim rotation %.2e rad; "
                 "it carries %.4g N·m of the torque\n",
                 g.w_major_m * 1e3, g.w_minor_m * 1e3, s.generator_rotation_rad, g.reaction_torque_Nm);
+    if (g.bearing_max_ball_load_N > 0)
+      std::printf("  generator bearing in series: largest ball load %.0f N, its Hertzian approach %.2f um\n",
+                  g.bearing_max_ball_load_N, g.bearing_max_approach_m * 1e6);
     std::printf("  hoop stress (generator): nominal bending %+.1f MPa at the minor axis, z = %.1f mm (thin ring theory "
                 "%+.1f MPa), membrane %+.1f MPa; local peaks %+.1f MPa at %.0f deg, z = %.2f mm and %+.1f MPa at "
                 "%.0f deg, z = %.2f mm\n",

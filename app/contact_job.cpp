@@ -71,12 +71,17 @@ ContactAnalysis run_contact_job(const Case& c, const FemJobResult& fem, const st
   write_file_atomic(dir / "torque_twist.csv", torque_twist_csv(a));
   write_file_atomic(dir / "contact.svg", contact_svg(a, reference));
   const TorqueStep& r = a.steps.back();
+  std::size_t top = 0;  // the flank carrying the largest force at +rated, where it is and what touches
+  for (std::size_t i = 0; i < a.flanks.size(); ++i)
+    if (r.flank_force_N[i] > r.flank_force_N[top]) top = i;
+  const FlankContact& tf = a.flanks[top];
   std::printf("contact %s: %d contacts (%zu flanks%s, generator: %s), %zu torque steps in %.2f s (influence %.2f s)\n",
               c.path.c_str(), a.unknowns, a.flanks.size(), a.half_turn_pairs ? " × 2 teeth" : "",
               a.generator_support.c_str(), a.steps.size(), a.contact_s, a.influence_s);
-  std::printf("  twist at rated torque %.4g N·m: %.3f arcmin; %d flanks in contact, largest flank force %.1f N; "
-              "teeth: %s\n", a.rated_torque_Nm, r.twist_rad * kArcmin, r.pairs_in_contact, r.max_pair_force_N,
-              o.series.teeth_source.c_str());
+  std::printf("  twist at rated torque %.4g N·m: %.3f arcmin; %d flanks in contact, largest flank force %.1f N at "
+              "%.1f deg (the flexspline's %s on the circular spline's %s); teeth: %s\n", a.rated_torque_Nm,
+              r.twist_rad * kArcmin, r.pairs_in_contact, r.max_pair_force_N, tf.phi_rad * 180 / std::numbers::pi,
+              part_name(tf.part_f), part_name(tf.part_c), o.series.teeth_source.c_str());
   std::printf("  three segments (%s): T1 %.3g N·m, T2 %.3g N·m, K1 %.4g, K2 %.4g, K3 %.4g N·m/rad\n",
               a.catalog.breakpoints_fitted ? "breakpoints fitted" : "the catalog's breakpoints", a.catalog.t1_Nm,
               a.catalog.t2_Nm, a.catalog.k1_Nm_per_rad, a.catalog.k2_Nm_per_rad, a.catalog.k3_Nm_per_rad);

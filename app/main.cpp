@@ -2,6 +2,7 @@
 // app/cmd_*.cpp, runs the chosen one, and turns every error into one line on stderr and a non-zero exit.
 #include <cstdio>
 #include <exception>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
@@ -26,8 +27,16 @@ int main(int argc, char** argv) {
   sw::app::add_design_command(app);
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
+  } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {  // one line, as for every other bad input (CLI11's own adds a second)
+    std::string what = e.what();
+    if (const auto big = what.find(" not in range 0.000000 to 1797"); big != std::string::npos)
+      what = what.substr(0, big) + " is not a positive number";  // CLI11's PositiveNumber spells out DBL_MAX
+    std::fprintf(stderr, "strainwave: error: %s (strainwave --help)\n", what.c_str());
+    return 2;
   } catch (const sw::InputError& e) {
     std::fprintf(stderr, "strainwave: error: %s\n", e.what());
     return 2;

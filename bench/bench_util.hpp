@@ -3,6 +3,7 @@
 // a scratch directory that cleans up after itself, the process's current resident set.
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -42,6 +43,13 @@ private:
   std::filesystem::path path_;
   bool keep_ = false;
 };
+
+/// CPU time of this process on all its threads (s): on a shared machine, what a phase cost regardless of waiting.
+inline double process_cpu_s() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
 
 /// Current resident set size of this process (bytes), from /proc/self/status (0 if unavailable).
 inline long current_rss_bytes() {

@@ -5,7 +5,8 @@
 # Options: --case NAME (a dataset of flexspline.pvd: generator, torque, generator_torque; default the first),
 #          --field NAME (a point field of the .vtu; stress fields are shown in MPa), --scale S (warp factor, default
 #          20: the displacement is a fraction of a millimetre on a part of ~40 mm), --png FILE, --probe FILE.json (the
-#          warped bounds and the field's range as ParaView computed them, for checks).
+#          warped bounds and the field's range as ParaView computed them, for checks). Profiles are shown zoomed on
+#          the mesh zone at the major axis (+x, teeth pointing up), where the teeth are visible; --whole shows the gear.
 # In the ParaView GUI: open flexspline.pvd, apply Warp By Vector (displacement is the active vector), colour by a field.
 import argparse
 import json
@@ -23,6 +24,7 @@ parser.add_argument("--field", default="stress_hoop", help="point field to colou
 parser.add_argument("--scale", type=float, default=20.0, help="warp scale factor")
 parser.add_argument("--png", default=None, help="screenshot file")
 parser.add_argument("--probe", default=None, help="write bounds and field range as JSON")
+parser.add_argument("--whole", action="store_true", help="profiles: the whole gear instead of the major axis's mesh zone")
 args = parser.parse_args()
 
 view = GetActiveViewOrCreate("RenderView")
@@ -67,6 +69,14 @@ else:
     probe["field"] = field
     probe["range"] = list(shown.PointData[field].GetRange())
 ResetCamera()
+if args.result.endswith(".vtp") and not args.whole:
+    # The teeth are a hairline on the whole gear: look at the major axis (+x) over about ±3.5°, teeth pointing up.
+    r = probe["bounds"][1]
+    view.CameraParallelProjection = 1
+    view.CameraFocalPoint = [0.985 * r, 0.0, 0.0]
+    view.CameraPosition = [0.985 * r, 0.0, 10.0 * r]
+    view.CameraViewUp = [1.0, 0.0, 0.0]
+    view.CameraParallelScale = 0.06 * r / 1.5  # half the height of a 3:2 picture showing ±0.06 r across
 Render()
 if args.png:
     SaveScreenshot(args.png, view, ImageResolution=[1200, 800])

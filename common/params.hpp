@@ -20,9 +20,10 @@ enum class TeethModel { None, Ring, Explicit };
 /// that push and never pull (frictionless unilateral contact on the generator band; rollers: rigid, at ±β from both
 /// ends of the major axis, set out so the major axis reaches w0).
 enum class WaveGeneratorModel { FourForce, TwoForce, Forces, Cam, Rollers };
-/// The cam's outer surface: polar r + w0·cos2φ (the first-order shape the linear model works in; the default) or a
-/// true ellipse of semi-axes r + w0 and r − w0 (inside the polar form by up to 1.5·w0²/r at ±45°).
-enum class CamProfile { Polar, Ellipse };
+/// The cam's outer surface: polar r + w0·cos2φ (the first-order shape the linear model works in; the default), a
+/// true ellipse of semi-axes r + w0 and r − w0 (inside the polar form by up to 1.5·w0²/r at ±45°), or a list of radii
+/// against angle over a half turn (fem/cam_profile.hpp).
+enum class CamProfile { Polar, Ellipse, List };
 enum class TorqueLoading { EngagementZones, Uniform };
 
 struct FlexsplineParams {
@@ -52,6 +53,13 @@ struct WaveGeneratorForce {
   double weight = 1.0;
 };
 
+/// A point of a listed cam: the radius of the generator's surface that touches the bore, at an angle from the major
+/// axis.
+struct CamPoint {
+  double angle_rad = 0.0;
+  double radius_m = 0.0;
+};
+
 struct WaveGeneratorParams {
   WaveGeneratorModel model = WaveGeneratorModel::FourForce;
   double beta_rad = 0.5235987755982988;          ///< four_force, rollers: ±β from the major axis at both ends of it
@@ -61,6 +69,7 @@ struct WaveGeneratorParams {
   double band_width_m = 4.0e-3;                  ///< axial width of the generator's contact band
   CamProfile cam_profile = CamProfile::Polar;    ///< cam only
   double cam_clearance_m = 0.0;                  ///< cam only: radial fit to the bore, clearance > 0, interference < 0
+  std::vector<CamPoint> cam_points;              ///< cam_profile = List: angles in [0, π), increasing
   std::vector<WaveGeneratorForce> forces;        ///< model = forces
   /// The ball bearing between the cam and the flexspline (contact/generator_bearing.hpp); absent: a rigid generator.
   std::optional<GeneratorBearing> bearing;

@@ -32,55 +32,36 @@ double theta_of(const Eigen::Vector3d& x) { return std::atan2(x[1], x[0]); }
 /// geometric one (the ring's surface and the contact point differ slightly in radius).
 class FlankLoads {
 public:
-  FlankLoads(const TetMesh& mesh, double pitch_rad) : mesh_(mesh), half_(pitch_rad) {
-    faces_ = select_faces(mesh, kSurfaceRimOuter);
-    if (faces_.empty()) throw InputError("contact: the flexspline mesh has no toothed rim surface");
-    for (const auto* f : faces_) {
-      Eigen::Vector3d c = Eigen::Vector3d::Zero();
-      for (int a = 0; a < 3; ++a) c += mesh.nodes.row(f->nodes[a]).transpose();
-      const double t = theta_of(c / 3);
-      double reach = 0;
-      for (int v : f->nodes) reach = std::max(reach, std::abs(wrap_pi(theta_of(mesh.nodes.row(v).transpose()) - t)));
-      theta_.push_back(t);
-      reach_.push_back(reach);
-    }
-  }
+  FlankLoads(const TetMesh& mesh, double pitch_rad) : mesh_(mesh), half_(pitch_rad), hats_(mesh, rim(mesh)) {}
   /// 1 N along `force_dir` (2-D, frame of the generator) at each station; moment about z forced to `moment_Nm`.
   Eigen::VectorXd pattern(const std::vector<double>& stations, const Eigen::Vector2d& force_dir, double moment_Nm) const {
     const std::vector<bool> all(mesh_.n_nodes(), true);
     Eigen::VectorXd radial = Eigen::VectorXd::Zero(3 * mesh_.n_nodes()), tangential = radial;
     double fr = 0;
     for (const double s : stations) {
-      std::vector<const BoundaryFace*> faces;
-      for (std::size_t i = 0; i < faces_.size(); ++i)
-        if (std::abs(wrap_pi(theta_[i] - s)) <= half_ + reach_[i]) faces.push_back(faces_[i]);
-      auto hat = [&](const Eigen::Vector3d& x) {
-        return std::max(0.0, 1.0 - std::abs(wrap_pi(theta_of(x) - s)) / half_);
-      };
-      const double total = faces_integral(mesh_, faces, hat);
-      if (!(total > 0)) throw InputError("contact: no rim faces under the tooth at " + std::to_string(s * 180 / kPi) +
-                                         " deg; refine mesh.size_mm");
+      const Eigen::VectorXd r = hats_.load(s, half_, [](double t) { return Eigen::Vector3d(std::cos(t), std::sin(t), 0); });
+      if (r.size() == 0)
+        throw InputError("contact: no rim faces under the tooth at " + std::to_string(s * 180 / kPi) +
+                         " deg; refine mesh.size_mm");
+      radial += r;
+      tangential += hats_.load(s, half_, [](double t) { return Eigen::Vector3d(-std::sin(t), std::cos(t), 0); });
       // The radial component in the station's frame (the same for the partner at s + π, by symmetry); the tangential
       // one follows from the moment below.
       fr = force_dir.dot(Eigen::Vector2d(std::cos(s), std::sin(s)));
-      radial += traction_load(mesh_, faces, [&](const Eigen::Vector3d& x, const Eigen::Vector3d&) -> Eigen::Vector3d {
-        const double t = theta_of(x);
-        return Eigen::Vector3d(std::cos(t), std::sin(t), 0) * (hat(x) / total);
-      });
-      tangential += traction_load(mesh_, faces, [&](const Eigen::Vector3d& x, const Eigen::Vector3d&) -> Eigen::Vector3d {
-        const double t = theta_of(x);
-        return Eigen::Vector3d(-std::sin(t), std::cos(t), 0) * (hat(x) / total);
-      });
     }
     const double m_r = moment_about_z(mesh_, radial, all), m_t = moment_about_z(mesh_, tangential, all);
     return fr * radial + (moment_Nm - fr * m_r) / m_t * tangential;
   }
 
 private:
+  static std::vector<const BoundaryFace*> rim(const TetMesh& mesh) {
+    auto faces = select_faces(mesh, kSurfaceRimOuter);
+    if (faces.empty()) throw InputError("contact: the flexspline mesh has no toothed rim surface");
+    return faces;
+  }
   const TetMesh& mesh_;
   double half_;
-  std::vector<const BoundaryFace*> faces_;
-  std::vector<double> theta_, reach_;
+  AngularHats hats_;
 };
 
 Eigen::SparseMatrix<double> sparse_columns(const std::vector<Eigen::VectorXd>& cols, const Eigen::SparseMatrix<double>& more) {
@@ -149,6 +130,8 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
       f.flank = side;
       f.closing_angle_rad = delta;
       f.lever_m = fc.lever_arm_m;
+      f.part_f = fc.part_f;
+      f.part_c = fc.part_c;
       const Eigen::Vector2d local = Eigen::Rotation2Dd(-place.angle_rad) * (fc.point_f - place.offset_m);
       f.contact_radius_m = local.norm();
       f.compliance_m_per_N = opt.series.tooth_pair_m_per_N ? opt.series.tooth_pair_m_per_N(f.contact_radius_m) : 0.0;
@@ -170,8 +153,9 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
   const bool unilateral = gen.unilateral;
   const Eigen::SparseMatrix<double> L = sparse_columns(columns, gen.stations.loads);
   const auto nb = gen.stations.loads.cols();
+  out.setup_s = clock.lap();
   progress("contact: influence of " + std::to_string(nf) + " flank patterns and " + std::to_string(nb) +
-           " generator stations (patterns built in " + std::to_string(clock.lap()) + " s)");
+           " generator stations");
   const Eigen::MatrixXd A_body = sys.influence(L);
   out.influence_s = clock.lap();
   Eigen::VectorXd lambda(nf + nb);
@@ -346,6 +330,7 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
     const Eigen::VectorXd reactions = internal_forces(mesh, c.material, u) - f;
     out.fem_reaction_torque_Nm = moment_about_z(mesh, reactions, sys.clamped);
   }
+  out.check_s = clock.lap();
   progress("contact: " + std::to_string(torques.size()) + " torque steps on " + std::to_string(out.unknowns) +
            " contacts in " + std::to_string(out.contact_s) + " s");
   return out;

@@ -65,6 +65,7 @@ struct FlankContact {
   double lever_m = 0;          ///< signed moment arm (> 0 ccw: closed by a positive turn)
   double contact_radius_m = 0;  ///< on the flexspline tooth, its own frame
   double compliance_m_per_N = 0;  ///< the tooth pair's own (series)
+  ToothPart part_f = ToothPart::Flank, part_c = ToothPart::Flank;  ///< where the teeth touch (flank, tip corner)
 };
 
 struct TorqueStep {
@@ -98,7 +99,8 @@ struct ContactAnalysis {
   /// at +rated: the contacts' displacements from the influence coefficients against the direct FEM solve with the same
   /// nodal forces (largest difference over the largest displacement)
   double superposition_error_rel = 0;
-  double influence_s = 0, contact_s = 0;
+  /// Wall clock: building the patterns and gaps, the influence coefficients, the torque steps, the independent check.
+  double setup_s = 0, influence_s = 0, contact_s = 0, check_s = 0;
   int unknowns = 0;
   double reach_rad = 0;  ///< flanks closing this much later than the first on their side were left out
   double min_closing_rad = 0;  ///< smallest closing angle at rest over both sides (< 0: the teeth overlap at rest)

@@ -217,17 +217,78 @@ Eigen::MatrixXd CholmodFactor::solve(const Eigen::MatrixXd& B) const {
   return X;
 }
 
-std::optional<Eigen::MatrixXd> CholmodFactor::forward_solve(const Eigen::MatrixXd& B) const {
-  if (!impl_->factor->is_ll) return std::nullopt;
-  cholmod_common& c = impl_->common;
-  cholmod_dense b = dense_view(B);
-  cholmod_dense* pb = cholmod_l_solve(CHOLMOD_P, impl_->factor, &b, &c);
-  if (!pb) throw InputError(status_sentence(c, impl_->stats.equations));
-  cholmod_dense* y = cholmod_l_solve(CHOLMOD_L, impl_->factor, pb, &c);
-  cholmod_l_free_dense(&pb, &c);
-  if (!y) throw InputError(status_sentence(c, impl_->stats.equations));
-  Eigen::MatrixXd Y = Eigen::Map<Eigen::MatrixXd>(static_cast<double*>(y->x), B.rows(), B.cols());
-  cholmod_l_free_dense(&y, &c);
+namespace {
+extern "C" {
+void dtrsm_(const char* side, const char* uplo, const char* transa, const char* diag, const int* m, const int* n,
+            const double* alpha, const double* a, const int* lda, double* b, const int* ldb, std::size_t, std::size_t,
+            std::size_t, std::size_t);
+void dgemm_(const char* transa, const char* transb, const int* m, const int* n, const int* k, const double* alpha,
+            const double* a, const int* lda, const double* b, const int* ldb, const double* beta, double* c,
+            const int* ldc, std::size_t, std::size_t);
+}
+}  // namespace
+
+// Written here rather than taken from CHOLMOD: its dense solve runs every supernode for every column, and its
+// sparse-set solve (cholmod_solve2 with Bset) is for one column. Load patterns for influence coefficients are local
+// (a tooth's flank, a generator station), so each column's forward substitution only reaches the supernodes on the
+// path from its rows to the root of the supernodal elimination tree (Gilbert and Peierls's reachability); grouping the
+// columns that share a supernode keeps each step a BLAS-3 triangular solve and product.
+std::optional<Eigen::MatrixXd> CholmodFactor::forward_solve(const Eigen::SparseMatrix<double>& B) const {
+  const cholmod_factor* L = impl_->factor;
+  if (!L->is_ll || !L->is_super || L->itype != CHOLMOD_LONG) return std::nullopt;
+  const auto n = static_cast<std::int64_t>(L->n);
+  if (B.rows() != n) throw std::logic_error("forward_solve: right-hand side has the wrong number of rows");
+  const auto* perm = static_cast<const std::int64_t*>(L->Perm);
+  const auto* super = static_cast<const std::int64_t*>(L->super);
+  const auto* pi = static_cast<const std::int64_t*>(L->pi);
+  const auto* px = static_cast<const std::int64_t*>(L->px);
+  const auto* srow = static_cast<const std::int64_t*>(L->s);
+  const auto* lx = static_cast<const double*>(L->x);
+  const auto nsuper = static_cast<std::int64_t>(L->nsuper);
+
+  std::vector<std::int64_t> position(n), supernode_of(n), parent(nsuper, -1);
+  for (std::int64_t k = 0; k < n; ++k) position[perm ? perm[k] : k] = k;
+  for (std::int64_t sn = 0; sn < nsuper; ++sn)
+    for (std::int64_t k = super[sn]; k < super[sn + 1]; ++k) supernode_of[k] = sn;
+  for (std::int64_t sn = 0; sn < nsuper; ++sn) {
+    const std::int64_t ncol = super[sn + 1] - super[sn], nrow = pi[sn + 1] - pi[sn];
+    if (nrow > ncol) parent[sn] = supernode_of[srow[pi[sn] + ncol]];  // the first row below the diagonal block
+  }
+  // P·B scattered into Y; each column marks the supernodes on its paths (a parent is numbered after its children).
+  const Eigen::Index m = B.cols();
+  Eigen::MatrixXd Y = Eigen::MatrixXd::Zero(n, m);
+  std::vector<std::vector<int>> columns(nsuper);
+  std::vector<Eigen::Index> mark(nsuper, -1);
+  for (Eigen::Index j = 0; j < m; ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(B, j); it; ++it) {
+      const std::int64_t k = position[it.row()];
+      Y(k, j) = it.value();
+      for (std::int64_t sn = supernode_of[k]; sn >= 0 && mark[sn] != j; sn = parent[sn]) {
+        mark[sn] = j;
+        columns[sn].push_back(static_cast<int>(j));
+      }
+    }
+  std::vector<double> X, W;
+  const double one = 1, zero = 0;
+  for (std::int64_t sn = 0; sn < nsuper; ++sn) {
+    const auto& cols = columns[sn];
+    if (cols.empty()) continue;
+    const int ncol = static_cast<int>(super[sn + 1] - super[sn]), nrow = static_cast<int>(pi[sn + 1] - pi[sn]);
+    const int nrhs = static_cast<int>(cols.size()), nbelow = nrow - ncol;
+    const double* Ls = lx + px[sn];
+    const std::int64_t* rows = srow + pi[sn];
+    X.resize(static_cast<std::size_t>(ncol) * nrhs);
+    for (int c = 0; c < nrhs; ++c)
+      for (int i = 0; i < ncol; ++i) X[static_cast<std::size_t>(c) * ncol + i] = Y(super[sn] + i, cols[c]);
+    dtrsm_("L", "L", "N", "N", &ncol, &nrhs, &one, Ls, &nrow, X.data(), &ncol, 1, 1, 1, 1);
+    for (int c = 0; c < nrhs; ++c)
+      for (int i = 0; i < ncol; ++i) Y(super[sn] + i, cols[c]) = X[static_cast<std::size_t>(c) * ncol + i];
+    if (nbelow == 0) continue;
+    W.resize(static_cast<std::size_t>(nbelow) * nrhs);
+    dgemm_("N", "N", &nbelow, &nrhs, &ncol, &one, Ls + ncol, &nrow, X.data(), &ncol, &zero, W.data(), &nbelow, 1, 1);
+    for (int c = 0; c < nrhs; ++c)
+      for (int i = 0; i < nbelow; ++i) Y(rows[ncol + i], cols[c]) -= W[static_cast<std::size_t>(c) * nbelow + i];
+  }
   return Y;
 }
 

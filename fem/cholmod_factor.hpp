@@ -6,6 +6,7 @@
 #include <string>
 
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 
 #include "fem/assembly.hpp"
 
@@ -47,9 +48,11 @@ public:
   /// Solves K·X = B for all columns of B at once (n x k).
   Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
 
-  /// Y = L⁻¹·P·B, half of a solve: for K = Pᵀ·L·Lᵀ·P, Bᵀ·K⁻¹·B = Yᵀ·Y (influence matrices at half the cost).
-  /// Empty when the factor is not LLᵀ (a simplicial LDLᵀ).
-  std::optional<Eigen::MatrixXd> forward_solve(const Eigen::MatrixXd& B) const;
+  /// Y = L⁻¹·P·B for a sparse B (n x k), half of a solve: for K = Pᵀ·L·Lᵀ·P, Bᵀ·K⁻¹·B = Yᵀ·Y (influence matrices
+  /// at half the cost). Only the supernodes on the paths from B's nonzero rows up the elimination tree are touched,
+  /// each with only the columns whose path passes through it; Y's rows are in the factor's (permuted) order and zero
+  /// off those paths. Empty when the factor is not a supernodal LLᵀ.
+  std::optional<Eigen::MatrixXd> forward_solve(const Eigen::SparseMatrix<double>& B) const;
 
   const FactorStats& stats() const;
 

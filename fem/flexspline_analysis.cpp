@@ -31,6 +31,16 @@ Eigen::VectorXd torque_load(const TetMesh& mesh, const std::vector<const Boundar
   return unit * (torque_Nm / moment_about_z(mesh, unit, all));
 }
 
+/// A unit moment about z of tangential traction ∝ r·e_θ on the generator band's bore: its work-conjugate displacement
+/// is the band's mean turn (exactly χ for a rigid turn χ).
+Eigen::VectorXd band_turn_load(const Case& c, const TetMesh& mesh) {
+  const auto& w = *c.wave_generator;
+  const double z = c.flexspline.length_m - w.axial_position_m;
+  return torque_load(mesh, select_faces(mesh, kSurfaceInner, [&](const Eigen::Vector3d& x) {
+                       return std::abs(x[2] - z) <= 0.5 * w.band_width_m;
+                     }), 1.0, "the generator band");
+}
+
 /// Unit-torque tangential traction on the rim, or the exact torsion shear on the open end of a plain tube.
 Eigen::VectorXd unit_torque_load(const Case& c, const TetMesh& mesh) {
   const auto& f = c.flexspline;
@@ -285,9 +295,9 @@ FlexsplineSolution analyse_flexspline(const Case& c, const TetMesh& mesh, const 
   const Eigen::VectorXd f_torque = unit_torque_load(c, mesh);
   const std::optional<GeneratorStations> gen =
       c.wave_generator ? std::optional(generator_stations(c, mesh)) : std::nullopt;
-  Eigen::MatrixXd loads(3 * mesh.n_nodes(), gen && !gen->unilateral ? 2 : 1);
+  Eigen::MatrixXd loads(3 * mesh.n_nodes(), gen ? 2 : 1);
   loads.col(0) = f_torque;
-  if (loads.cols() == 2) loads.col(1) = gen->force_load;
+  if (gen) loads.col(1) = gen->unilateral ? band_turn_load(c, mesh) : gen->force_load;
   const Eigen::MatrixXd U = eq.solve(loads);
   const Eigen::VectorXd u_unit_torque = U.col(0);
 
@@ -335,17 +345,30 @@ FlexsplineSolution analyse_flexspline(const Case& c, const TetMesh& mesh, const 
         obstacle *= *w.radial_deformation_m / w_unit;
       }
       gr.obstacle_m = obstacle;
-      const StationForces p_gen = unilateral_contact(C, obstacle);
+      // The wave stays with the generator (the gaps ignore the band's turn), and the bearing in series (a cam's).
+      GeneratorContactModel model;
+      const std::vector<bool> all(mesh.n_nodes(), true);
+      model.turn_gap_m_per_rad.resize(C.rows());
+      for (Eigen::Index k = 0; k < C.rows(); ++k)
+        model.turn_gap_m_per_rad[k] = moment_about_z(mesh, Eigen::VectorXd(gen->stations.loads.col(k)), all);
+      model.band_turn_rad_per_N = gen->stations.loads.transpose() * U.col(1);
+      const double band_turn_per_T = loads.col(1).dot(u_unit_torque);  // rad per N·m of the torque
+      if (w.model == WaveGeneratorModel::Cam && w.bearing)
+        model.approach_m = bearing_pair_approach(*w.bearing, gen->stations.half_width_rad);
+      auto contact = [&](double torque) {
+        return generator_contact(C, obstacle - torque * u0_torque, torque * band_turn_per_T, model);
+      };
+      const StationForces p_gen = contact(0.0);
       gr.contact_iterations = p_gen.iterations;
       std::vector<double> sweep_T;
       for (const double k : {0.25, 0.5, 1.0, 2.0}) sweep_T.push_back(k * T_ref);
       Eigen::MatrixXd contact_loads(3 * mesh.n_nodes(), 2 + sweep_T.size());
       contact_loads.col(0) = contact_load(gen->stations, p_gen.force_N);
-      const StationForces p_comb = unilateral_contact(C, obstacle - T_ref * u0_torque);
+      const StationForces p_comb = contact(T_ref);
       contact_loads.col(1) = contact_load(gen->stations, p_comb.force_N);
       for (std::size_t k = 0; k < sweep_T.size(); ++k)
         contact_loads.col(2 + k) =
-            contact_load(gen->stations, unilateral_contact(C, obstacle - sweep_T[k] * u0_torque).force_N);
+            contact_load(gen->stations, contact(sweep_T[k]).force_N);
       const Eigen::MatrixXd V = eq.solve(contact_loads);
       u_gen = V.col(0);
       f_gen = contact_loads.col(0);
@@ -362,9 +385,14 @@ FlexsplineSolution analyse_flexspline(const Case& c, const TetMesh& mesh, const 
       gr.zones_wg_deg = contact_zones_deg(gr.station_angle_rad, touching(p_gen, touching_gap), step);
       gr.zones_comb_deg = contact_zones_deg(gr.station_angle_rad, touching(p_comb, touching_gap), step);
       gr.min_contact_force_N = p_gen.force_N.minCoeff();
+      if (model.approach_m) {
+        const double p_max = std::max(p_gen.force_N.maxCoeff(), p_comb.force_N.maxCoeff());
+        gr.bearing_max_ball_load_N = ball_load_N(*w.bearing, gen->stations.half_width_rad, p_max);
+        gr.bearing_max_approach_m = 0.5 * model.approach_m(p_max);
+      }
     } else {
       // Force idealisation: scale to w0 (or force_N); the torque case with the band held radially at the stations.
-      const Eigen::VectorXd u_unit_gen = U.col(1);
+      const Eigen::VectorXd u_unit_gen = U.col(1);  // the unit generator forces
       const double w_unit = rim_w(f, sampler, s.reading_radius_m, u_unit_gen, 0.0);
       if (!(w_unit > 0))
         throw InputError("wave_generator: the generator does not push the major axis outward (w = " +

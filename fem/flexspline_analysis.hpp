@@ -98,7 +98,9 @@ struct GeneratorReadout {
   double min_contact_force_N = 0;         ///< smallest station (or point) force of the generator case
   double reaction_torque_Nm = 0;          ///< moment about z of the generator on the flexspline in the torque case
   double w_major_m = 0, w_minor_m = 0;    ///< generator case, neutral circle at the rim mid-width (mean of both ends)
-  int contact_iterations = 0;             ///< active-set iterations of the generator case
+  int contact_iterations = 0;             ///< outer iterations of the generator case (bearing secant, band turn)
+  double bearing_max_ball_load_N = 0;     ///< cam with a bearing: the largest ball load (generator or combined case)
+  double bearing_max_approach_m = 0;      ///< and its Hertzian approach δ_i + δ_o
   Eigen::VectorXd obstacle_m;             ///< unilateral: the standoff each station pair pushes against (m, summed)
 };
 

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <string>
 
 #include "common/error.hpp"
 #include "common/progress.hpp"
+#include "fem/cam_profile.hpp"
 #include "fem/flexspline_analysis.hpp"
 #include "fem/loads.hpp"
 
@@ -15,9 +17,6 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 constexpr int kSolveChunk = 24;  // right-hand sides per CHOLMOD solve (memory: n_eq × 24 doubles)
-// Half solves for influence matrices: more right-hand sides per call keep the supernodal triangular solve in BLAS-3
-// (Y, n_eq × m, is held anyway).
-constexpr int kHalfSolveChunk = 128;
 double wrap_pi(double a) { return std::remainder(a, 2 * kPi); }
 double theta_of(const Eigen::Vector3d& x) { return std::atan2(x[1], x[0]); }
 
@@ -86,21 +85,18 @@ Eigen::MatrixXd FlexsplineSystem::solve(const Eigen::MatrixXd& loads) const {
 
 Eigen::MatrixXd FlexsplineSystem::influence(const Eigen::SparseMatrix<double>& loads) const {
   const Eigen::Index m = loads.cols();
-  // Half solves (Yᵀ·Y with Y = L⁻¹·P·B) when the factor is LLᵀ and Y fits in 2 GB; else full solves.
+  // Half solves on the patterns' paths (Yᵀ·Y with Y = L⁻¹·P·B) when Y fits in 2 GB; else full solves in chunks.
   if (static_cast<double>(m) * dofs.n_equations * 8 < 2e9) {
-    Eigen::MatrixXd Y(dofs.n_equations, m);
-    bool half = true;
-    for (Eigen::Index j0 = 0; j0 < m && half; j0 += kHalfSolveChunk) {
-      const Eigen::Index k = std::min<Eigen::Index>(kHalfSolveChunk, m - j0);
-      Eigen::MatrixXd B(dofs.n_equations, k);
-      for (Eigen::Index j = 0; j < k; ++j) B.col(j) = restrict_to_free(dofs, Eigen::VectorXd(loads.col(j0 + j)));
-      auto y = factor->forward_solve(B);
-      if (!y) half = false;
-      else Y.middleCols(j0, k) = *y;
-    }
-    if (half) {
+    std::vector<Eigen::Triplet<double>> entries;
+    entries.reserve(static_cast<std::size_t>(loads.nonZeros()));
+    for (Eigen::Index j = 0; j < m; ++j)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(loads, j); it; ++it)
+        if (const std::int64_t q = dofs.equation[it.row()]; q >= 0) entries.emplace_back(q, j, it.value());
+    Eigen::SparseMatrix<double> B(dofs.n_equations, m);
+    B.setFromTriplets(entries.begin(), entries.end());
+    if (const auto Y = factor->forward_solve(B)) {
       Eigen::MatrixXd C = Eigen::MatrixXd::Zero(m, m);
-      C.selfadjointView<Eigen::Lower>().rankUpdate(Y.transpose());
+      C.selfadjointView<Eigen::Lower>().rankUpdate(Y->transpose());
       return C.selfadjointView<Eigen::Lower>();
     }
   }
@@ -131,17 +127,7 @@ FlexsplineSystem assemble_and_factorise(const Case& c, const TetMesh& mesh) {
   return eq;
 }
 
-double cam_standoff(const WaveGeneratorParams& w, double r, double t) {
-  const double w0 = *w.radial_deformation_m;
-  if (w.cam_profile == CamProfile::Polar) return w0 * std::cos(2 * t) - w.cam_clearance_m;
-  const double a = r + w0, b = r - w0;
-  return a * b / std::hypot(b * std::cos(t), a * std::sin(t)) - r - w.cam_clearance_m;
-}
-double cam_tilt(const WaveGeneratorParams& w, double r, double t) {
-  const double h = 1e-6;
-  const double rho = r + cam_standoff(w, r, t);
-  return (cam_standoff(w, r, t + h) - cam_standoff(w, r, t - h)) / (2 * h) / rho;
-}
+double cam_standoff(const WaveGeneratorParams& w, double r, double t) { return CamSurface(w, r).standoff_m(t); }
 
 GeneratorStations generator_stations(const Case& c, const TetMesh& mesh) {
   const auto& w = *c.wave_generator;
@@ -151,11 +137,12 @@ GeneratorStations generator_stations(const Case& c, const TetMesh& mesh) {
   const double spacing = station_spacing(c);
   std::vector<double> angles;
   NormalTilt tilt;
+  const auto cam = w.model == WaveGeneratorModel::Cam ? std::make_shared<const CamSurface>(w, r) : nullptr;
   switch (w.model) {
     case WaveGeneratorModel::Cam:
       g.unilateral = true;
       for (int k = 0; k * spacing < kPi - 1e-9; ++k) angles.push_back(k * spacing);
-      tilt = [&w, r](double t) { return cam_tilt(w, r, t); };
+      tilt = [cam](double t) { return cam->tilt(t); };
       break;
     case WaveGeneratorModel::Rollers:
       // Two pairs: β with π + β, π − β with −β. A roller's normal passes through its centre: radial where it touches.
@@ -169,7 +156,7 @@ GeneratorStations generator_stations(const Case& c, const TetMesh& mesh) {
   g.stations = band_stations(mesh, z, w.band_width_m, angles, spacing, tilt);
   g.obstacle_m.resize(static_cast<Eigen::Index>(angles.size()));
   for (std::size_t j = 0; j < angles.size(); ++j)
-    g.obstacle_m[j] = w.model == WaveGeneratorModel::Cam ? 2 * cam_standoff(w, r, angles[j])
+    g.obstacle_m[j] = w.model == WaveGeneratorModel::Cam ? 2 * cam->standoff_m(angles[j])
                     : w.model == WaveGeneratorModel::Rollers ? 2.0  // per metre the rollers stand out; scaled to w0
                                                              : 0.0;
   if (!g.unilateral) g.force_load = generator_load(c, mesh);

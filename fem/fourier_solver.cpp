@@ -14,6 +14,7 @@
 
 #include "common/error.hpp"
 #include "common/progress.hpp"
+#include "fem/cam_profile.hpp"
 #include "fem/flexspline_system.hpp"
 #include "fem/post.hpp"
 #include "mesh/flexspline.hpp"
@@ -253,17 +254,19 @@ HarmonicStations harmonic_stations(const Case& c, const Eigen::VectorXd& S, int 
   const int pairs = std::min(static_cast<int>(std::lround(kPi / station_spacing(c))), N / 2);
   const double spacing = kPi / pairs;
   h.half_width_rad = spacing;
+  std::optional<CamSurface> cam;
+  if (w.model == WaveGeneratorModel::Cam) cam.emplace(w, r);
   std::function<double(double)> tilt = [](double) { return 0.0; };
   if (w.model == WaveGeneratorModel::Rollers) {
     h.angle_rad = {w.beta_rad, kPi - w.beta_rad};
   } else {
     for (int k = 0; k < pairs; ++k) h.angle_rad.push_back(k * spacing);
-    if (w.model == WaveGeneratorModel::Cam) tilt = [&w, r](double t) { return cam_tilt(w, r, t); };
+    if (cam) tilt = [&cam](double t) { return cam->tilt(t); };
   }
   const Eigen::Index m = static_cast<Eigen::Index>(h.angle_rad.size());
   h.obstacle_m.resize(m);
   for (Eigen::Index j = 0; j < m; ++j)
-    h.obstacle_m[j] = w.model == WaveGeneratorModel::Cam       ? 2 * cam_standoff(w, r, h.angle_rad[j])
+    h.obstacle_m[j] = w.model == WaveGeneratorModel::Cam       ? 2 * cam->standoff_m(h.angle_rad[j])
                       : w.model == WaveGeneratorModel::Rollers ? 2.0  // per metre the rollers stand out; scaled to w0
                                                                : 0.0;
   h.phi_sym.assign(N + 1, Eigen::MatrixXd::Zero(m, 2));
@@ -779,6 +782,7 @@ FourierSolution analyse_section_fourier(const Case& c, SectionMesh section, int 
     torque_terms.push_back(t);
   }
   std::optional<HarmonicStations> stations;
+  Eigen::MatrixXd turn_load_anti0;  // the band's unit turn moment, harmonic 0 (contact models)
   if (c.wave_generator) {
     const auto edges = select_edges(sec, kSurfaceInner, in_band);
     if (edges.empty())
@@ -787,6 +791,17 @@ FourierSolution analyse_section_fourier(const Case& c, SectionMesh section, int 
     const Eigen::MatrixXd unit =
         edge_integral(sec, edges, [](const Eigen::Vector2d&) { return Eigen::Vector3d(1, 0, 0); });
     stations = harmonic_stations(c, unit.col(0), N);
+    if (stations->unilateral) {
+      // A unit moment about z of tangential traction ∝ r·e_θ on the band (harmonic 0): its work-conjugate displacement
+      // is the band's mean turn (as the tet10 path's band_turn_load).
+      LoadTerm t;
+      t.windows = {{0.0, 2 * kPi, 1.0}};
+      t.spatial = edge_integral(sec, edges, [](const Eigen::Vector2d& x) { return Eigen::Vector3d(0, x[0], 0); });
+      t.spatial /= cos_moment(t.windows, 0) * sec.nodes.col(0).dot(t.spatial.col(1));
+      Eigen::MatrixXd sym0 = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nn), 3);
+      turn_load_anti0 = sym0;
+      harmonic_loads({t}, 0, sym0, turn_load_anti0);
+    }
     if (!stations->unilateral) {
       const double area = 2 * kPatchHalfAngle * unit.col(0).sum();  // Σ_i ∫ N_i r ds = ∫ r ds
       for (const auto& force : generator_forces(*c.wave_generator)) {
@@ -806,6 +821,7 @@ FourierSolution analyse_section_fourier(const Case& c, SectionMesh section, int 
     h->anti.assign(N + 1, {});
   }
   std::vector<Eigen::MatrixXd> Ur(N + 1), Ut(N + 1);
+  Eigen::MatrixXd turn_anti0;  // amplitudes of the band's unit turn moment (harmonic 0, antisymmetric family)
   std::vector<std::array<Eigen::MatrixXd, 4>> loads(N + 1);
   std::vector<double> norm(N + 1, 0.0);
   double max_norm = 0;
@@ -845,16 +861,19 @@ FourierSolution analyse_section_fourier(const Case& c, SectionMesh section, int 
     fs.factor.ordering = factor.stats().ordering;
     out.harmonics.push_back(st);
 
-    const int cols = stations ? 6 : 4;
+    const bool turn = n == 0 && turn_load_anti0.size() != 0;
+    const int cols = stations ? (turn ? 7 : 6) : 4;
     Eigen::MatrixXd B(d.n_eq, cols);
     for (int col = 0; col < 4; ++col) B.col(col) = to_equations(d, loads[n][col]);
     if (stations) {
       B.col(4) = to_equations(d, stations->unit(0));
       B.col(5) = to_equations(d, stations->unit(1));
     }
+    if (turn) B.col(6) = to_equations(d, turn_load_anti0);
     const Eigen::MatrixXd X = factor.solve(B);
     const Eigen::MatrixXd zero = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nn), 3);
-    Eigen::MatrixXd* targets[6] = {&torque.sym[n], &torque.anti[n], &force_gen.sym[n], &force_gen.anti[n], &Ur[n], &Ut[n]};
+    Eigen::MatrixXd* targets[7] = {&torque.sym[n],     &torque.anti[n], &force_gen.sym[n], &force_gen.anti[n],
+                                   &Ur[n],             &Ut[n],          &turn_anti0};
     for (int col = 0; col < cols; ++col) *targets[col] = to_nodes(d, X.col(col), zero);
   }
   fs.solve_s = solve_clock.lap();
@@ -949,8 +968,30 @@ FourierSolution analyse_section_fourier(const Case& c, SectionMesh section, int 
         obstacle *= *w.radial_deformation_m / w_unit;
       }
       gr.obstacle_m = obstacle;
-      const StationForces s_gen = unilateral_contact(C, obstacle);
-      const StationForces s_comb = unilateral_contact(C, obstacle - T_ref * u0_torque);
+      // As the tet10 path: the wave stays with the generator (the gaps ignore the band's turn), and the bearing in
+      // series (a cam's).
+      GeneratorContactModel model;
+      const Eigen::Index pairs = C.rows();
+      model.turn_gap_m_per_rad.resize(pairs);
+      for (Eigen::Index j = 0; j < pairs; ++j) {
+        Eigen::MatrixXd ls = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nn), 3), la = ls;
+        hs.loads(Eigen::VectorXd::Unit(pairs, j), 0, ls, la);
+        model.turn_gap_m_per_rad[j] = moment_z(sec, la);
+      }
+      HarmonicField turn_field;
+      turn_field.sym.assign(N + 1, {});
+      turn_field.anti.assign(N + 1, {});
+      turn_field.sym[0] = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nn), 3);
+      turn_field.anti[0] = turn_anti0;
+      model.band_turn_rad_per_N = hs.project(turn_field);
+      const double band_turn_per_T = (turn_load_anti0.array() * torque.anti[0].array()).sum();
+      if (w.model == WaveGeneratorModel::Cam && w.bearing)
+        model.approach_m = bearing_pair_approach(*w.bearing, hs.half_width_rad);
+      auto contact = [&](double torque_Nm) {
+        return generator_contact(C, obstacle - torque_Nm * u0_torque, torque_Nm * band_turn_per_T, model);
+      };
+      const StationForces s_gen = contact(0.0);
+      const StationForces s_comb = contact(T_ref);
       gr.contact_iterations = s_gen.iterations;
       p_gen = s_gen.force_N;
       gen = field(p_gen);
@@ -958,7 +999,7 @@ FourierSolution analyse_section_fourier(const Case& c, SectionMesh section, int 
       const double rot_gen = rotation(gen);
       for (const double k : {0.25, 0.5, 1.0, 2.0}) {
         const double Tk = k * T_ref;
-        HarmonicField u = field(unilateral_contact(C, obstacle - Tk * u0_torque).force_N);
+        HarmonicField u = field(contact(Tk).force_N);
         u += torque * Tk;
         fs.torque_sweep.emplace_back(Tk, (rotation(u) - rot_gen) / Tk);
       }

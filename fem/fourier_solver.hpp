@@ -11,8 +11,9 @@
 //
 // Loads are expanded exactly in θ (patches and zones are piecewise constant in θ, integrated in closed form) and
 // integrated over the section's boundary edges with 3 Gauss points; what is truncated is the series at N, nothing
-// else. The generator models (the cam and rollers in unilateral contact on the band's stations, the force models
-// with the torque case held radially at them), torque loadings, supports and the figures read from the solution are
+// else. The generator models (the cam and rollers in unilateral contact on the band's stations, with the bearing in
+// series and the gaps blind to the band's turn as fem/generator_contact.hpp's model; the force models with the torque
+// case held radially at them), torque loadings, supports and the figures read from the solution are
 // those of fem/flexspline_analysis.hpp (same conventions; see there), with these differences: the four-force patches
 // are exactly ±3° × the band on the inner wall (the section has node lines at the band's edges); the stations are
 // the tet10 path's but at most N/2 pairs (a hat of half-width Δ needs harmonics up to 2π/Δ), and their influence

@@ -27,15 +27,7 @@ BandStations band_stations(const TetMesh& mesh, double z_m, double width_m, cons
   if (band.empty())
     throw InputError("wave_generator: no inner-wall faces in the generator's band at z = " + std::to_string(z_m * 1e3) +
                      " mm; check wave_generator.axial_position_mm / band_width_mm or refine mesh.size_mm");
-  // Each face's angle and angular half-extent, to pick the faces a station's hat can reach.
-  std::vector<double> face_theta(band.size()), face_reach(band.size());
-  for (std::size_t i = 0; i < band.size(); ++i) {
-    Eigen::Vector3d c = Eigen::Vector3d::Zero();
-    for (int a = 0; a < 3; ++a) c += mesh.nodes.row(band[i]->nodes[a]).transpose();
-    face_theta[i] = theta_of(c / 3);
-    for (int v : band[i]->nodes)
-      face_reach[i] = std::max(face_reach[i], std::abs(wrap_pi(theta_of(mesh.nodes.row(v).transpose()) - face_theta[i])));
-  }
+  const AngularHats hats(mesh, band);
   BandStations s;
   s.angle_rad = angles_rad;
   s.half_width_rad = half_width_rad;
@@ -43,22 +35,15 @@ BandStations band_stations(const TetMesh& mesh, double z_m, double width_m, cons
   for (std::size_t j = 0; j < angles_rad.size(); ++j) {
     Eigen::VectorXd column = Eigen::VectorXd::Zero(3 * mesh.n_nodes());
     for (const double station : {angles_rad[j], angles_rad[j] + kPi}) {
-      std::vector<const BoundaryFace*> faces;
-      for (std::size_t i = 0; i < band.size(); ++i)
-        if (std::abs(wrap_pi(face_theta[i] - station)) <= half_width_rad + face_reach[i]) faces.push_back(band[i]);
-      auto hat = [&](const Eigen::Vector3d& x) {
-        return std::max(0.0, 1.0 - std::abs(wrap_pi(theta_of(x) - station)) / half_width_rad);
-      };
-      const double total = faces_integral(mesh, faces, hat);
-      if (!(total > 0))
+      const Eigen::VectorXd f = hats.load(station, half_width_rad, [&](double t) -> Eigen::Vector3d {
+        const double k = tilt ? tilt(t) : 0.0;
+        return (Eigen::Vector3d(std::cos(t), std::sin(t), 0) - k * Eigen::Vector3d(-std::sin(t), std::cos(t), 0)) /
+               std::sqrt(1 + k * k);
+      });
+      if (f.size() == 0)
         throw InputError("wave_generator: no inner-wall faces under the contact station at " +
                          std::to_string(station * 180 / kPi) + " deg; refine mesh.size_mm");
-      column += traction_load(mesh, faces, [&](const Eigen::Vector3d& x, const Eigen::Vector3d&) -> Eigen::Vector3d {
-        const double t = theta_of(x), k = tilt ? tilt(t) : 0.0;
-        const Eigen::Vector3d n = (Eigen::Vector3d(std::cos(t), std::sin(t), 0) -
-                                   k * Eigen::Vector3d(-std::sin(t), std::cos(t), 0)) / std::sqrt(1 + k * k);
-        return n * (hat(x) / total);
-      });
+      column += f;
     }
     for (Eigen::Index i = 0; i < column.size(); ++i)
       if (column[i] != 0.0) triplets.emplace_back(static_cast<int>(i), static_cast<int>(j), column[i]);
@@ -123,6 +108,53 @@ StationForces unilateral_contact(const Eigen::MatrixXd& C, const Eigen::VectorXd
     }
   }
   throw std::runtime_error("unilateral_contact: the active-set iteration did not converge");
+}
+
+StationForces generator_contact(const Eigen::MatrixXd& C, const Eigen::VectorXd& b, double band_turn_ext_rad,
+                                const GeneratorContactModel& model) {
+  const bool turn = model.turn_gap_m_per_rad.size() > 0;
+  const bool series = static_cast<bool>(model.approach_m);
+  if (!turn && !series) return unilateral_contact(C, b);
+  const Eigen::Index n = b.size();
+  Eigen::VectorXd m = turn ? model.turn_gap_m_per_rad : Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd h = turn ? model.band_turn_rad_per_N : Eigen::VectorXd::Zero(n);
+  auto approach = [&](double p) { return series ? model.approach_m(std::max(p, 0.0)) : 0.0; };
+  Eigen::VectorXd c = Eigen::VectorXd::Zero(n);  // secant compliance in series, per pair
+  StationForces s;
+  Eigen::VectorXd p = Eigen::VectorXd::Zero(n);
+  for (int it = 1; it <= 200; ++it) {
+    const double chi = band_turn_ext_rad + h.dot(p);
+    Eigen::MatrixXd Ce = C;
+    Ce.diagonal() += c;
+    s = unilateral_contact(Ce, b + m * chi);
+    const double change = (s.force_N - p).cwiseAbs().maxCoeff();
+    p = s.force_N;
+    const double p_max = std::max(p.maxCoeff(), 1e-300);
+    // The secant a(p)/p, from a floor where a station carries nothing (a(p)/p grows without bound as p → 0).
+    for (Eigen::Index k = 0; k < n && series; ++k) {
+      const double pk = std::max(p[k], 1e-9 * p_max);
+      c[k] = approach(pk) / pk;
+    }
+    s.iterations = it;
+    if (it > 1 && change <= 1e-12 * p_max) break;
+    if (it == 200) throw std::runtime_error("generator_contact: the series compliance did not converge");
+  }
+  s.gap_m = C * p - m * (band_turn_ext_rad + h.dot(p)) - b;
+  for (Eigen::Index k = 0; k < n; ++k) s.gap_m[k] += approach(p[k]);
+  return s;
+}
+
+double ball_load_N(const GeneratorBearing& bearing, double spacing_rad, double station_force_N) {
+  return station_force_N * 2 * kPi / (bearing.balls * spacing_rad);
+}
+
+std::function<double(double)> bearing_pair_approach(const GeneratorBearing& bearing, double spacing_rad) {
+  const double unit = ball_approach_m(bearing, 1.0);  // δ(1 N): the contact ellipse's shape does not depend on Q
+  const double per_N = ball_load_N(bearing, spacing_rad, 1.0);
+  return [unit, per_N](double p) {
+    const double Q = std::max(p, 0.0) * per_N;
+    return 2 * unit * std::cbrt(Q * Q);
+  };
 }
 
 StationForces bilateral_support(const Eigen::MatrixXd& C, const Eigen::VectorXd& b) {

@@ -19,6 +19,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
+#include "contact/generator_bearing.hpp"
 #include "mesh/tet_mesh.hpp"
 
 namespace sw {
@@ -50,6 +51,35 @@ struct StationForces {
 /// Solved exactly (to round-off) as min ½pᵀCp − bᵀp over p ≥ 0 by the Lawson–Hanson active-set method; written
 /// here because Eigen 3.4 (Debian 12) has no NNLS and the problem is small and dense (≤ 180 unknowns).
 StationForces unilateral_contact(const Eigen::MatrixXd& C, const Eigen::VectorXd& b);
+
+/// What the generator's contact has beyond the bare gaps of `unilateral_contact`:
+///  - a compliance in series at each station (the generator bearing's balls): the pair's radial approach a(p) under
+///    the pair's station force p (m, both stations summed; a(0) = 0, increasing), so gap = C·p + a(p) − b;
+///  - the wave stays with the generator: the flexspline turns on the bearing, so a rigid turn χ of the band about the
+///    axis leaves the gaps alone. In the linear model a turn moves each pair's normal displacement by m·χ (m = the
+///    moment about z of the pair's unit load, non-zero where the normal is tilted): that part is taken out,
+///    gap = C·p − m·χ + … with χ = χ_ext + h·p the band's turn (h: the band's turn per unit force of each pair).
+///    Without it a locked non-circular cam would hold the rim's turn back with a stiffness it does not have.
+struct GeneratorContactModel {
+  std::function<double(double station_force_N)> approach_m;  ///< empty: a rigid generator
+  Eigen::VectorXd turn_gap_m_per_rad;                        ///< m (empty: the gaps follow the band's turn)
+  Eigen::VectorXd band_turn_rad_per_N;                       ///< h
+};
+
+/// The generator's contact with `model`: p ≥ 0, gap ≥ 0, p·gap = 0 with gap = C·p + a(p) − m·(χ_ext + h·p) − b.
+/// Solved as a sequence of exact `unilateral_contact` problems: the series compliance on the secant a(p)/p (the
+/// Kačanov iteration, monotone for a compliance a(p)/p that falls with p, as Hertz's p^(2/3) does) and the band's turn
+/// from the last forces, to a relative change of the forces below 1e-12. Without a bearing and without m it is
+/// `unilateral_contact(C, b)` exactly. `gap_m` is the full gap; `iterations` counts the outer steps.
+StationForces generator_contact(const Eigen::MatrixXd& C, const Eigen::VectorXd& b, double band_turn_ext_rad,
+                                const GeneratorContactModel& model);
+
+/// The pair's approach of a ball bearing between the generator and the bore: the pressure of stations `spacing_rad`
+/// apart smeared over the balls (ball load Q = p·2π/(balls·spacing), an idealisation: the balls are discrete),
+/// 2·δ(Q) for the pair, δ = δ(1 N)·Q^(2/3) (contact/generator_bearing.hpp, Hertz).
+std::function<double(double)> bearing_pair_approach(const GeneratorBearing& bearing, double spacing_rad);
+/// Ball load (N) of a station force (N) for stations `spacing_rad` apart.
+double ball_load_N(const GeneratorBearing& bearing, double spacing_rad, double station_force_N);
 
 /// Bilateral support: C·p = b (forces of either sign).
 StationForces bilateral_support(const Eigen::MatrixXd& C, const Eigen::VectorXd& b);

@@ -1,6 +1,8 @@
 #include "fem/loads.hpp"
 
 #include <array>
+#include <cmath>
+#include <numbers>
 
 #include <Eigen/Geometry>
 
@@ -96,6 +98,39 @@ Resultant load_resultant(const TetMesh& mesh, const Eigen::VectorXd& f) {
     r.moment += mesh.nodes.row(i).transpose().cross(fi);
   }
   return r;
+}
+
+namespace {
+double wrap_pi(double a) { return std::remainder(a, 2 * std::numbers::pi); }
+double theta_of(const Eigen::Vector3d& x) { return std::atan2(x[1], x[0]); }
+}  // namespace
+
+AngularHats::AngularHats(const TetMesh& mesh, std::vector<const BoundaryFace*> faces)
+    : mesh_(mesh), faces_(std::move(faces)) {
+  for (const auto* f : faces_) {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (int a = 0; a < 3; ++a) c += mesh.nodes.row(f->nodes[a]).transpose();
+    const double t = theta_of(c / 3);
+    double reach = 0;
+    for (int v : f->nodes) reach = std::max(reach, std::abs(wrap_pi(theta_of(mesh.nodes.row(v).transpose()) - t)));
+    theta_.push_back(t);
+    reach_.push_back(reach);
+  }
+}
+
+Eigen::VectorXd AngularHats::load(double station_rad, double half_width_rad,
+                                  const std::function<Eigen::Vector3d(double)>& direction) const {
+  std::vector<const BoundaryFace*> under;
+  for (std::size_t i = 0; i < faces_.size(); ++i)
+    if (std::abs(wrap_pi(theta_[i] - station_rad)) <= half_width_rad + reach_[i]) under.push_back(faces_[i]);
+  auto hat = [&](const Eigen::Vector3d& x) {
+    return std::max(0.0, 1.0 - std::abs(wrap_pi(theta_of(x) - station_rad)) / half_width_rad);
+  };
+  const double total = faces_integral(mesh_, under, hat);
+  if (!(total > 0)) return {};
+  return traction_load(mesh_, under, [&](const Eigen::Vector3d& x, const Eigen::Vector3d&) -> Eigen::Vector3d {
+    return direction(theta_of(x)) * (hat(x) / total);
+  });
 }
 
 }  // namespace sw

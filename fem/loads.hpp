@@ -30,6 +30,24 @@ double faces_area(const TetMesh& mesh, const std::vector<const BoundaryFace*>& f
 double faces_integral(const TetMesh& mesh, const std::vector<const BoundaryFace*>& faces,
                       const std::function<double(const Eigen::Vector3d&)>& field);
 
+/// Loads spread over part of a surface by a linear hat in the polar angle θ about the axis z: 1 at a station, 0 at
+/// ±half-width, normalised so the hat integrates to one over the faces it reaches. The faces are indexed by angle once,
+/// so each station only integrates the faces its hat can reach. Serves the generator's stations on the bore and the
+/// tooth flanks' patterns on the rim.
+class AngularHats {
+public:
+  AngularHats(const TetMesh& mesh, std::vector<const BoundaryFace*> faces);
+  /// Nodal loads (3·n_nodes) of the traction direction(θ)·hat(θ)/∫hat; its resultant is 1 N along a uniform
+  /// direction. Empty (size 0) when no face lies under the hat.
+  Eigen::VectorXd load(double station_rad, double half_width_rad,
+                       const std::function<Eigen::Vector3d(double theta_rad)>& direction) const;
+
+private:
+  const TetMesh& mesh_;
+  std::vector<const BoundaryFace*> faces_;
+  std::vector<double> theta_, reach_;  ///< per face: centroid angle, largest angular distance of its corners from it
+};
+
 /// Resultant force (N) and moment about the origin (N·m) of a full dof load vector.
 struct Resultant {
   Eigen::Vector3d force = Eigen::Vector3d::Zero();

@@ -14,6 +14,7 @@
 
 #include "common/error.hpp"
 #include "design/catalog.hpp"
+#include "fem/cam_profile.hpp"
 #include "gear/tooth_profile.hpp"
 
 namespace sw {
@@ -238,6 +239,49 @@ GeneratorBearing read_bearing(TableReader r, double bore_radius_m) {
   return b;
 }
 
+/// profile = "polar" | "ellipse" | "list"; a list's points profile_points = [{angle_deg, radius_mm}, ...] over a half
+/// turn from the major axis (increasing in [0, 180), 4 or more) set w0 = radius at 0° − bore radius, which a given
+/// radial_deformation_mm must match.
+void read_cam_profile(TableReader& r, WaveGeneratorParams& w, double bore_radius_m) {
+  const std::string profile = r.choice("profile", "polar", {"polar", "ellipse", "list"});
+  w.cam_profile = profile == "ellipse" ? CamProfile::Ellipse : profile == "list" ? CamProfile::List : CamProfile::Polar;
+  const toml::array* list = r.array("profile_points");
+  if (w.cam_profile != CamProfile::List) {
+    if (list) r.fail("profile_points", *list, "is for profile = \"list\" only");
+    return;
+  }
+  if (!list || list->size() < 4)
+    throw InputError(r.file() + ": wave_generator.profile_points is missing or has fewer than 4 points; profile = "
+                                "\"list\" needs [{angle_deg = 0, radius_mm = ...}, ...] over a half turn (0 to < 180)");
+  for (std::size_t i = 0; i < list->size(); ++i) {
+    const toml::table* t = list->get(i)->as_table();
+    if (!t) r.fail("profile_points", *list->get(i), "expected tables {angle_deg = ..., radius_mm = ...}");
+    TableReader p(*t, r.name() + ".profile_points[" + std::to_string(i) + "]", r.file());
+    CamPoint point;
+    const auto angle = p.number("angle_deg");
+    const auto radius = p.number("radius_mm");
+    if (!angle || !radius)
+      throw InputError(r.file() + ": " + p.name() + " needs angle_deg and radius_mm");
+    if (!(*angle >= 0 && *angle < 180)) p.fail_value("angle_deg", *angle, "must be in [0, 180) (a half turn from the major axis)");
+    if (!w.cam_points.empty() && !(*angle * kDeg > w.cam_points.back().angle_rad))
+      p.fail_value("angle_deg", *angle, "must be larger than the point before's (increasing angles)");
+    if (!(*radius > 0)) p.fail_value("radius_mm", *radius, "must be > 0");
+    p.reject_unknown();
+    point.angle_rad = *angle * kDeg;
+    point.radius_m = *radius * kMm;
+    w.cam_points.push_back(point);
+  }
+  const double w0 = cam_list_w0_m(w.cam_points, bore_radius_m);
+  if (!(w0 > 0))
+    throw InputError(r.file() + ": wave_generator.profile_points: the radius at 0 deg (" + format_number((bore_radius_m + w0) / kMm) +
+                     " mm) must exceed the bore radius " + format_number(bore_radius_m / kMm) + " mm (w0 > 0)");
+  if (const auto given = r.number("radial_deformation_mm"); given && std::abs(*given * kMm - w0) > 1e-7 * kMm)
+    r.fail_value("radial_deformation_mm", *given,
+                 "must match the listed cam's radius at 0 deg less the bore radius, " + format_number(w0 / kMm) +
+                     " mm (or be left out)");
+  w.radial_deformation_m = w0;
+}
+
 WaveGeneratorParams read_wave_generator(TableReader r, double bore_radius_m) {
   WaveGeneratorParams w;
   const std::string model = r.choice("model", "four_force", {"four_force", "two_force", "forces", "cam", "rollers"});
@@ -257,14 +301,13 @@ WaveGeneratorParams read_wave_generator(TableReader r, double bore_radius_m) {
     w.radial_deformation_m = *w0 * kMm;
   }
   if (!body) w.force_N = r.positive("force_N", w.force_N);
+  if (w.model == WaveGeneratorModel::Cam) read_cam_profile(r, w, bore_radius_m);
   if (body && !w.radial_deformation_m)
     throw InputError(r.file() + ": wave_generator.radial_deformation_mm is missing; model = \"" + model +
                      "\" is set out to reach it");
   w.axial_position_m = r.non_negative("axial_position_mm", w.axial_position_m / kMm) * kMm;
   w.band_width_m = r.positive("band_width_mm", w.band_width_m / kMm) * kMm;
   if (w.model == WaveGeneratorModel::Cam) {
-    w.cam_profile = r.choice("profile", "polar", {"polar", "ellipse"}) == "ellipse" ? CamProfile::Ellipse
-                                                                                   : CamProfile::Polar;
     w.cam_clearance_m = r.number("fit_um", 0.0) * 1e-6;
     if (!(std::abs(w.cam_clearance_m) < *w.radial_deformation_m))
       r.fail_value("fit_um", w.cam_clearance_m * 1e6,
@@ -571,9 +614,18 @@ std::string describe_case(const Case& c) {
     if (w.radial_deformation_m) s << "radial_deformation_mm = " << mm(*w.radial_deformation_m) << "\n";
     else s << "force_N = " << w.force_N << "\n";
     s << "axial_position_mm = " << mm(w.axial_position_m) << "\nband_width_mm = " << mm(w.band_width_m) << "\n";
-    if (w.model == WaveGeneratorModel::Cam)
-      s << "profile = \"" << (w.cam_profile == CamProfile::Ellipse ? "ellipse" : "polar") << "\"\nfit_um = "
-        << w.cam_clearance_m * 1e6 << "\n";
+    if (w.model == WaveGeneratorModel::Cam) {
+      static const char* kProfiles[] = {"polar", "ellipse", "list"};
+      s << "profile = \"" << kProfiles[static_cast<int>(w.cam_profile)] << "\"\nfit_um = " << w.cam_clearance_m * 1e6
+        << "\n";
+      if (!w.cam_points.empty()) {
+        s << "profile_points = [";
+        for (std::size_t i = 0; i < w.cam_points.size(); ++i)
+          s << (i ? ",\n  " : "\n  ") << "{angle_deg = " << w.cam_points[i].angle_rad / kDeg
+            << ", radius_mm = " << mm(w.cam_points[i].radius_m) << "}";
+        s << "]\n";
+      }
+    }
     for (const auto& force : w.forces)
       s << "forces += {angle_deg = " << force.angle_rad / kDeg << ", weight = " << force.weight << "}\n";
     if (w.bearing)

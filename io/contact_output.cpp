@@ -62,6 +62,7 @@ std::string contact_json(const ContactAnalysis& a, const std::string& case_path,
     flanks.push_back({{"tooth", f.tooth},
                       {"angle_deg", f.phi_rad * 180 / std::numbers::pi},
                       {"flank", f.flank == Flank::Ccw ? "ccw" : "cw"},
+                      {"touching", std::string(part_name(f.part_f)) + " on " + part_name(f.part_c)},
                       {"closing_angle_rad", f.closing_angle_rad},
                       {"lever_m", f.lever_m},
                       {"contact_radius_m", f.contact_radius_m},
@@ -70,7 +71,7 @@ std::string contact_json(const ContactAnalysis& a, const std::string& case_path,
                       {"force_at_minus_rated_N", neg.flank_force_N[i]}});
   }
   j["flanks"] = flanks;
-  j["timings_s"] = {{"influence", a.influence_s}, {"contact", a.contact_s}};
+  j["timings_s"] = {{"setup", a.setup_s}, {"influence", a.influence_s}, {"contact", a.contact_s}, {"check", a.check_s}};
   j["unknowns"] = a.unknowns;
   return j.dump(2) + "\n";
 }

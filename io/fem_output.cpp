@@ -103,6 +103,10 @@ std::string fem_result_json(const Case& c, const TetMesh& mesh, const Flexspline
         {"reaction_torque_Nm", g.reaction_torque_Nm},
         {"w_major_axis_mm", g.w_major_m * 1e3},
         {"w_minor_axis_mm", g.w_minor_m * 1e3}};
+    if (g.bearing_max_ball_load_N > 0) {
+      j["generator"]["bearing_max_ball_load_N"] = g.bearing_max_ball_load_N;
+      j["generator"]["bearing_max_approach_um"] = g.bearing_max_approach_m * 1e6;
+    }
     if (!g.station_angle_rad.empty()) {
       json st = json::array();
       for (std::size_t k = 0; k < g.station_angle_rad.size(); ++k) {
@@ -276,6 +280,25 @@ FemCompensation read_fem_compensation(const std::filesystem::path& path) {
   if (j.contains("compliance_rad_per_Nm") && j["compliance_rad_per_Nm"].is_number())
     c.compliance_rad_per_Nm = j["compliance_rad_per_Nm"].get<double>();
   return c;
+}
+
+FemRunForContact read_fem_run_for_contact(const std::filesystem::path& path) {
+  const nlohmann::json j = read_fem_result_json(path);
+  const std::string file = path.string();
+  FemRunForContact r;
+  r.compliance_rad_per_Nm = read_fem_compliance(path);
+  const auto& solver = j.contains("solver") ? j["solver"] : nlohmann::json();
+  if (!solver.is_object() || solver.value("method", "") != "tet10" || !solver.contains("equations") ||
+      !solver["equations"].is_number_integer())
+    throw InputError(file + ": solver.equations is missing or solver.method is not \"tet10\"; the tooth contact "
+                            "needs the result of a TET10 run");
+  r.equations = solver["equations"].get<std::int64_t>();
+  const auto& gen = j.contains("generator") ? j["generator"] : nlohmann::json();
+  if (!gen.is_object() || !gen.contains("model") || !gen["model"].is_string())
+    throw InputError(file + ": generator.model is missing; the tooth contact needs a run with a [wave_generator]");
+  r.generator_model = gen["model"].get<std::string>();
+  r.neutral_curve = read_neutral_curve_csv(path.parent_path() / "neutral_curve.csv");
+  return r;
 }
 
 double read_fem_compliance(const std::filesystem::path& path) {

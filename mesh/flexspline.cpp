@@ -7,6 +7,7 @@
 
 #include "common/error.hpp"
 #include "gear/tooth_profile.hpp"
+#include "mesh/estimate.hpp"
 #include "mesh/revolve.hpp"
 #include "mesh/shapes.hpp"
 
@@ -316,11 +317,14 @@ TetMesh mesh_flexspline(const FlexsplineParams& f, const std::optional<GearParam
     b.line(V2(0, hb), V2(0, 0), kSurfaceOther, sboss);  // the axis: sweeps nothing
     b.region(0.5 * rb, 0.5 * hb, 3, sboss);
   }
-  if (!teeth) return mesh_revolved(b.p, mesh);
+  // TetGen's node budget: as many added points as the estimate's TET10 nodes, about 7× the corner points expected
+  // (the estimate is within a few per cent on the cases), so only a refinement that runs away is stopped.
+  const auto budget = static_cast<std::int64_t>(std::ceil(estimate_model_size(f, gear, mesh).nodes)) + 1000;
+  if (!teeth) return mesh_revolved(b.p, mesh, budget);
   RevolvedPlc revolved = revolve_profile(b.p);
   std::vector<ProfileSurface> surfaces = b.p.surfaces;
   add_toothed_prism(revolved, surfaces, *teeth, f);
-  return mesh_revolved_plc(revolved, surfaces, mesh);
+  return mesh_revolved_plc(revolved, surfaces, mesh, budget);
 }
 
 }  // namespace sw

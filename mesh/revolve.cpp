@@ -296,12 +296,12 @@ RevolvedPlc revolve_profile(const RevolvedProfile& profile) {
   return out;
 }
 
-TetMesh mesh_revolved(const RevolvedProfile& profile, const MeshParams& params) {
-  return mesh_revolved_plc(revolve_profile(profile), profile.surfaces, params);
+TetMesh mesh_revolved(const RevolvedProfile& profile, const MeshParams& params, std::int64_t max_added_points) {
+  return mesh_revolved_plc(revolve_profile(profile), profile.surfaces, params, max_added_points);
 }
 
 TetMesh mesh_revolved_plc(const RevolvedPlc& revolved, const std::vector<ProfileSurface>& surfaces,
-                          const MeshParams& params) {
+                          const MeshParams& params, std::int64_t max_added_points) {
   const Plc& plc = revolved.plc;
   const auto& verts = revolved.vertex_rz;
   const auto& count = revolved.count;
@@ -311,6 +311,7 @@ TetMesh mesh_revolved_plc(const RevolvedPlc& revolved, const std::vector<Profile
   options.max_radius_edge_ratio = params.max_radius_edge_ratio;
   options.min_dihedral_deg = params.min_dihedral_deg;
   options.preserve_boundary = true;  // the swept surfaces are already meshed: keep their nodes on the true surfaces
+  options.max_added_points = max_added_points;
   TetMesh mesh = tetrahedralize_plc(plc, options);
 
   std::vector<int> face_surface(mesh.faces.size());

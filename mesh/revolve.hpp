@@ -77,14 +77,15 @@ RevolvedPlc revolve_profile(const RevolvedProfile& profile);
 /// Meshes a revolved PLC, possibly extended by the caller (points appended after the revolved ones, facets with
 /// markers = index + 1 into `surfaces`, which extends profile.surfaces; Kind::Fixed surfaces are not projected),
 /// then projects the curved-surface nodes and the ring chords' midside nodes and sets the surface markers.
+/// `max_added_points` is TetGen's node budget (TetgenOptions; 0 = none).
 TetMesh mesh_revolved_plc(const RevolvedPlc& revolved, const std::vector<ProfileSurface>& surfaces,
-                          const MeshParams& mesh);
+                          const MeshParams& mesh, std::int64_t max_added_points = 0);
 
 /// Meshes the revolved profile: each non-horizontal edge is split into sub-segments of at most its size and swept
 /// as planar trapezoids over N angular steps (N per ring group, from the smallest size on it and its largest radius,
 /// a multiple of 8 so the axes x, y are node planes); horizontal edges become planar annulus / disc facets. Each
 /// region's tet volume is bounded by that of a regular tet of its size. Nodes on curved surfaces are then projected
 /// (project_boundary) and the faces get the surface markers. Quality from `mesh`.
-TetMesh mesh_revolved(const RevolvedProfile& profile, const MeshParams& mesh);
+TetMesh mesh_revolved(const RevolvedProfile& profile, const MeshParams& mesh, std::int64_t max_added_points = 0);
 
 }  // namespace sw

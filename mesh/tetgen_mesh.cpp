@@ -115,6 +115,7 @@ std::string switches_for(const Plc& plc, const TetgenOptions& o) {
     s += buf;
   }
   if (o.preserve_boundary) s += "Y";
+  if (o.max_added_points > 0) s += "S" + std::to_string(o.max_added_points);
   return s;
 }
 
@@ -262,6 +263,15 @@ TetMesh tetrahedralize_plc(const Plc& plc, const TetgenOptions& options) {
   const RawTetgenOutput out = run_tetgen_isolated(plc, switches, options.time_limit_s, request);
   if (out.n_tets == 0)
     throw InputError("mesh: " + request + " produced no tetrahedra; is the boundary closed?");
+  if (options.max_added_points > 0) {
+    std::vector<bool> corner(out.n_points, false);
+    for (int t = 0; t < out.n_tets; ++t)
+      for (int k = 0; k < 4; ++k) corner[out.tets[10 * static_cast<std::size_t>(t) + k]] = true;
+    const auto added = std::count(corner.begin(), corner.end(), true) - static_cast<std::int64_t>(plc.points.size());
+    if (added >= options.max_added_points)
+      throw InputError("mesh: " + request + " reached its node budget of " + std::to_string(options.max_added_points) +
+                       " added points, far beyond the model-size estimate; coarsen mesh.size_mm or check the geometry");
+  }
 
   TetMesh mesh;
   mesh.nodes.resize(out.n_points, 3);

@@ -42,6 +42,9 @@ struct TetgenOptions {
   /// Wall-clock budget of the TetGen run (s). TetGen 1.5 has no limit of its own and stalls on some inputs; the run
   /// is stopped and reported in one line when it is exceeded.
   double time_limit_s = 600.0;
+  /// Node budget: the points TetGen may add to the PLC's (-S), 0 = none. A run that reaches it is refused in one line
+  /// (TetGen would stop refining there and return a mesh short of its quality and size bounds).
+  std::int64_t max_added_points = 0;
 };
 
 /// Meshes the PLC into a TET10 TetMesh: nodes n x 3 (m), tets in VTK quadratic-tetra order with positive corner

@@ -109,6 +109,52 @@ TEST(Cases, SeedCupRunsFemThenBacklashThenContact) {
   fs::remove_all(out);
 }
 
+/// The seed case on a coarse mesh (mesh.size_mm as given, one wall layer), written into dir.
+fs::path coarse_seed(const fs::path& dir, const std::string& size_mm) {
+  std::ifstream in("cases/seed_190_192.toml");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"size_mm = 0.6", "size_mm = " + size_mm},
+                                 {"wall_layers = 2", "wall_layers = 1"}})
+    text.replace(text.find(from), from.size(), to);
+  fs::create_directories(dir);
+  const fs::path path = dir / ("seed_" + size_mm + ".toml");
+  std::ofstream(path) << text;
+  return path;
+}
+
+// contact --fem takes the neutral curve and C_τ of an earlier fem run of the same case instead of solving the load
+// cases again: the same curve as contact alone (to the 10 digits of neutral_curve.csv); a result of another model is
+// refused in one line and nothing is written.
+TEST(Cases, ContactFromAnEarlierFemRunGivesTheSameCurve) {
+  const fs::path dir = fresh_dir("contact_fem");
+  const fs::path coarse = coarse_seed(dir, "1.2");
+  ASSERT_EQ(run_strainwave("fem --quiet --no-vtk " + coarse.string() + " --out " + (dir / "fem").string()).exit_code, 0);
+  const CommandRun alone = run_strainwave("contact --quiet --no-vtk " + coarse.string() + " --out " + (dir / "alone").string());
+  ASSERT_EQ(alone.exit_code, 0) << alone.output;
+  const CommandRun reuse = run_strainwave("contact --quiet " + coarse.string() + " --fem " +
+                                          (dir / "fem" / "result.json").string() + " --out " + (dir / "reuse").string());
+  ASSERT_EQ(reuse.exit_code, 0) << reuse.output;
+  EXPECT_FALSE(fs::exists(dir / "reuse" / "result.json"));  // the load cases were not solved again
+  const auto a = read_json(dir / "alone" / "contact.json"), b = read_json(dir / "reuse" / "contact.json");
+  ASSERT_EQ(a["torque_twist"].size(), b["torque_twist"].size());
+  for (std::size_t i = 0; i < a["torque_twist"].size(); ++i)
+    EXPECT_NEAR(b["torque_twist"][i]["twist_rad"].get<double>(), a["torque_twist"][i]["twist_rad"].get<double>(),
+                1e-6 * std::abs(a["torque_twist"].back()["twist_rad"].get<double>()));
+  const fs::path other = coarse_seed(dir, "1.4");
+  const CommandRun wrong = run_strainwave("contact --quiet " + other.string() + " --fem " +
+                                          (dir / "fem" / "result.json").string() + " --out " + (dir / "wrong").string());
+  EXPECT_NE(wrong.exit_code, 0);
+  EXPECT_NE(wrong.output.find("equations"), std::string::npos) << wrong.output;
+  EXPECT_EQ(std::count(wrong.output.begin(), wrong.output.end(), '\n'), 1) << wrong.output;
+  EXPECT_FALSE(fs::exists(dir / "wrong"));
+  const CommandRun tube = run_strainwave("contact --quiet " + coarse.string() + " --fem cases/no_such/result.json --out " +
+                                         (dir / "none").string());
+  EXPECT_NE(tube.exit_code, 0);
+  EXPECT_NE(tube.output.find("cases/no_such/result.json: cannot open"), std::string::npos) << tube.output;
+  EXPECT_FALSE(fs::exists(dir / "none"));
+  fs::remove_all(dir);
+}
+
 // The seed gear set with its short teeth on the generator model's (cam) curve: no interference at rest, the smallest
 // clearance 2.6 µm, a geometric play of about 1.01 arcmin that φ₀ does not change, no backlash out of the mesh zone,
 // and the loaded flank in contact at the major axis under the FEM's φ₀ (never called interference).
@@ -258,6 +304,17 @@ TEST(CliErrors, MissingMalformedAndInvalidCasesGiveOneLineAndNoOutput) {
 }
 
 // contact on a case it cannot take: one line before any work, nothing written.
+// A bad command-line value is one line too (the parser's own message, no second "Run with --help" line).
+TEST(CliErrors, BadCommandLineValuesGiveOneLineAndNoOutput) {
+  const fs::path dir = fresh_dir("bad_cli");
+  expect_clean_failure("fem --quiet cases/tube_torsion.toml --max-memory abc", "--max-memory: Value abc is not a positive number",
+                       dir / "out");
+  expect_clean_failure("backlash --quiet cases/seed_190_192.toml --steps 0", "--steps: Value 0 not in range",
+                       dir / "out");
+  EXPECT_FALSE(fs::exists(dir / "out"));
+  fs::remove_all(dir);
+}
+
 TEST(CliErrors, ContactOnACaseWithoutTeethIsRefusedBeforeTheFem) {
   const fs::path dir = fresh_dir("contact_bad");
   expect_clean_failure("contact --quiet cases/tube_torsion.toml", "contact needs a [gear] table", dir / "out");

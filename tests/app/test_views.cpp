@@ -45,10 +45,11 @@ const fs::path& coarse_seed_run() {
   return out;
 }
 
-/// PNG written and not blank: a real render of a 1200 x 800 view is tens of kB; a blank one compresses to ~5 kB.
+/// PNG written and not blank: a real render of a 1200 x 800 view is 17 kB (a few tooth outlines) to tens of kB; a
+/// blank one (background and orientation axes) compresses to ~5 kB.
 void expect_rendered(const fs::path& png) {
   ASSERT_TRUE(fs::exists(png));
-  EXPECT_GT(fs::file_size(png), 20000u) << png;
+  EXPECT_GT(fs::file_size(png), 12000u) << png;
 }
 
 TEST(ParaView, RendersTheWarpedGeneratorCaseAndComputesWhatTheFileHolds) {

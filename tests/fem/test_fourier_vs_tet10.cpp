@@ -96,7 +96,7 @@ TEST(FourierVsTet10, TubeCam) {
     std::printf("  zone %zu: tet10 [%g, %g], fourier [%g, %g] deg\n", k, k < d.zones_t.size() ? d.zones_t[k].first : 0,
                 k < d.zones_t.size() ? d.zones_t[k].second : 0, k < d.zones_f.size() ? d.zones_f[k].first : 0,
                 k < d.zones_f.size() ? d.zones_f[k].second : 0);
-  // Measured: φ₀ 1.6e-7, w 0.43 % and v 0.06 % of w0, total radial force 0.45 %, the same zones (±54° about both
+  // Measured: φ₀ 9e-8, w 0.43 % and v 0.06 % of w0, total radial force 0.45 %, the same zones (±54° about both
   // ends of the major axis), nominal hoop stress 1.6 % (the tet10 wall is one quadratic layer here; 0.7 % under the
   // four-force patches above).
   EXPECT_LT(std::abs(d.phi0_rel), 1e-6);

@@ -1,6 +1,8 @@
 // Case files: the values arrive in SI, and every kind of bad input is one clear line naming file, key and value.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "common/error.hpp"
 #include "io/case.hpp"
 
@@ -114,6 +116,39 @@ TEST(CaseFile, CamProfileAndFitAreReadAndChecked) {
   EXPECT_NE(error_of(cam + "profile = \"oval\"\n").find("wave_generator.profile"), std::string::npos);
   // A force model has no cam profile.
   EXPECT_NE(error_of(std::string(kTube) + "[wave_generator]\nfit_um = 5\n").find("fit_um"), std::string::npos);
+}
+
+// A listed cam: radius against angle over a half turn; w0 is the radius at 0° less the bore (18.5 mm here), a given
+// radial_deformation_mm must match it; bad lists give one line naming the point.
+TEST(CaseFile, CamProfileListIsReadAndChecked) {
+  const std::string cam = std::string(kTube) + "[wave_generator]\nmodel = \"cam\"\nprofile = \"list\"\n";
+  std::string points = "profile_points = [";
+  for (int deg = 0; deg < 180; deg += 15)
+    points += (deg ? ", " : "") + std::string("{angle_deg = ") + std::to_string(deg) + ", radius_mm = " +
+              std::to_string(18.5 + 0.2 * std::cos(2 * deg * 3.14159265358979 / 180)) + "}";
+  points += "]\n";
+  const Case c = parse_case(cam + points, "c.toml");
+  EXPECT_EQ(c.wave_generator->cam_profile, CamProfile::List);
+  ASSERT_EQ(c.wave_generator->cam_points.size(), 12u);
+  EXPECT_NEAR(c.wave_generator->cam_points[1].angle_rad, 15 * 3.14159265358979 / 180, 1e-12);
+  EXPECT_NEAR(*c.wave_generator->radial_deformation_m, 0.2e-3, 1e-9);  // the listed point at 0° (to print precision)
+  // What describe_case prints reads back to the same list.
+  const std::string text = describe_case(c);
+  ASSERT_NE(text.find("profile_points = ["), std::string::npos);
+  EXPECT_NO_THROW(parse_case(cam + points + "radial_deformation_mm = 0.2\n", "c.toml"));
+  EXPECT_NE(error_of(cam + points + "radial_deformation_mm = 0.25\n").find("must match the listed cam"),
+            std::string::npos);
+  EXPECT_NE(error_of(cam + "profile_points = [{angle_deg = 0, radius_mm = 18.7}]\n").find("fewer than 4 points"),
+            std::string::npos);
+  std::string backwards = points;
+  backwards.replace(backwards.find("angle_deg = 15"), 14, "angle_deg = -5");
+  EXPECT_NE(error_of(cam + backwards).find("profile_points[1].angle_deg = -5; must be in [0, 180)"), std::string::npos);
+  std::string repeated = points;
+  repeated.replace(repeated.find("angle_deg = 30"), 14, "angle_deg = 15");
+  EXPECT_NE(error_of(cam + repeated).find("profile_points[2].angle_deg = 15; must be larger"), std::string::npos);
+  EXPECT_NE(error_of(std::string(kTube) + "[wave_generator]\nmodel = \"cam\"\nradial_deformation_mm = 0.2\n" + points)
+                .find("is for profile = \"list\" only"),
+            std::string::npos);
 }
 
 TEST(CaseFile, FatigueDataComeInPairsBelowTheUltimateStrength) {

@@ -160,5 +160,23 @@ TEST(TetgenMesh, ARunPastItsBudgetStopsWithOneLine) {
   }
 }
 
+// A run that reaches its node budget (points TetGen may add) is refused in one line instead of returning a mesh
+// short of its bounds; below the budget the same run meshes.
+TEST(TetgenMesh, ARunReachingItsNodeBudgetStopsWithOneLine) {
+  TetgenOptions o;
+  o.max_volume_m3 = kA * kB * kC / 2e4;  // about 10^5 tetrahedra, some 2·10^4 added points
+  o.max_added_points = 500;
+  try {
+    tetrahedralize_plc(split_box(0, 0), o);
+    FAIL() << "no exception";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("reached its node budget of 500 added points"), std::string::npos) << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << "one line";
+  }
+  o.max_added_points = 1000000;
+  EXPECT_GT(tetrahedralize_plc(split_box(0, 0), o).tets.size(), 10000u);
+}
+
 }  // namespace
 }  // namespace sw

@@ -192,7 +192,7 @@ const std::vector<Column> kColumns = {
     {"compliance_rad_per_Nm", {"compliance_rad_per_Nm"}},
     {"max_hoop_stress_Pa", {"max_hoop_stress_Pa"}},
     {"min_hoop_stress_Pa", {"min_hoop_stress_Pa"}},
-    {"generator_force_per_point_N", {"wave_generator", "force_per_point_N"}},
+    {"generator_total_radial_force_N", {"generator", "total_radial_force_N"}},  // any model (a cam has no points)
     {"generator_w0_mm", {"wave_generator", "w0_reached_mm"}},
     {"total_s", {"timings_s", "total"}},
 };
@@ -241,7 +241,7 @@ std::string sweep_svg(const std::vector<SweepAxis>& axes, const std::vector<Poin
   const std::vector<Panel> panels = {{"φ₀ (rad)", {"phi0_rad"}, 1.0},
                                      {"C_τ (rad/(N·m))", {"compliance_rad_per_Nm"}, 1.0},
                                      {"max hoop stress (MPa)", {"max_hoop_stress_Pa"}, 1e-6},
-                                     {"generator force per point (N)", {"wave_generator", "force_per_point_N"}, 1.0}};
+                                     {"generator radial force (N)", {"generator", "total_radial_force_N"}, 1.0}};
   static const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e377c2"};
   const std::size_t per_line = axes[0].values.size(), lines = points.size() / per_line;
   Figure f;

@@ -65,16 +65,13 @@ Eigen::VectorXd generator_load(const Case& c, const TetMesh& mesh) {
   return f;
 }
 
-/// Angular spacing of the contact stations: two element edges at the bore (a contact pressure resolved more finely
-/// than the displacement field checkerboards), at least 2° and at most 6°, dividing 180° evenly.
+}  // namespace
+
 double station_spacing(const Case& c) {
   const double two_edges_deg = 2 * c.mesh.size_m / c.flexspline.inner_radius_m * 180 / kPi;
   const double n = std::round(180.0 / std::clamp(two_edges_deg, 2.0, 6.0));
   return kPi / n;
 }
-
-
-}  // namespace
 
 Eigen::MatrixXd FlexsplineSystem::solve(const Eigen::MatrixXd& loads) const {
   Eigen::MatrixXd B(dofs.n_equations, loads.cols());

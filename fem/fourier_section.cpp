@@ -30,16 +30,39 @@ struct Block {
   int nu = 1, nv = 1;
   int region = 0;
   std::array<int, 4> marker{kInterior, kInterior, kInterior, kInterior};
+  std::vector<double> us, vs;  ///< cell corners in u and v (nu + 1, nv + 1 values from 0 to 1); empty: uniform
 };
+
+/// Cell corners 0..1 of `n` uniform cells whose first (`at_start`) and/or last (`at_end`) cell is split geometrically
+/// into `levels` + 1 cells, each half the next: a graded (geometric) refinement toward a singular corner.
+std::vector<double> graded(int n, int levels, bool at_start, bool at_end) {
+  std::vector<double> x;
+  const double h = 1.0 / n;
+  x.push_back(0.0);
+  if (at_start)
+    for (int j = levels; j >= 1; --j) x.push_back(h * std::ldexp(1.0, -j));
+  for (int k = 1; k < n; ++k) x.push_back(k * h);
+  if (at_end)
+    for (int j = 1; j <= levels; ++j) x.push_back(1.0 - h * std::ldexp(1.0, -j));
+  x.push_back(1.0);
+  std::sort(x.begin(), x.end());
+  x.erase(std::unique(x.begin(), x.end(), [](double a, double b) { return std::abs(a - b) < 1e-12; }), x.end());
+  return x;
+}
 
 /// Adds blocks to a section, merging the nodes that blocks share (equal up to round-off).
 class SectionBuilder {
 public:
   void add(const Block& b) {
     const int ni = 2 * b.nu + 1, nj = 2 * b.nv + 1;
+    // Node parameters: cell corners (graded or uniform), midside nodes halfway between them.
+    auto param = [](const std::vector<double>& corners, int n, int i) {
+      auto corner = [&](int k) { return corners.empty() ? double(k) / n : corners[static_cast<std::size_t>(k)]; };
+      return i % 2 == 0 ? corner(i / 2) : 0.5 * (corner(i / 2) + corner(i / 2 + 1));
+    };
     std::vector<int> g(static_cast<std::size_t>(ni * nj));
     for (int j = 0; j < nj; ++j)
-      for (int i = 0; i < ni; ++i) g[j * ni + i] = node(b.map(double(i) / (ni - 1), double(j) / (nj - 1)));
+      for (int i = 0; i < ni; ++i) g[j * ni + i] = node(b.map(param(b.us, b.nu, i), param(b.vs, b.nv, j)));
     auto at = [&](int i, int j) { return g[j * ni + i]; };
     for (int cj = 0; cj < b.nv; ++cj)
       for (int ci = 0; ci < b.nu; ++ci) {
@@ -109,6 +132,13 @@ Block rectangle(double r0, double r1, double z0, double z1, int nu, int nv, int 
 
 int cells(double length, double size) { return std::max(1, static_cast<int>(std::ceil(length / size - 1e-9))); }
 
+/// A block whose u (v) cell corners are `us` (`vs`).
+Block graded_block(Block b, std::vector<double> us, std::vector<double> vs) {
+  if (!us.empty()) b.nu = static_cast<int>(us.size()) - 1, b.us = std::move(us);
+  if (!vs.empty()) b.nv = static_cast<int>(vs.size()) - 1, b.vs = std::move(vs);
+  return b;
+}
+
 }  // namespace
 
 SectionMesh mesh_annulus_section(double r_inner_m, double r_outer_m, double length_m, int layers, int cells_along) {
@@ -139,6 +169,13 @@ SectionMesh mesh_flexspline_section(const FlexsplineParams& f, const std::option
   const double along_diaphragm = cup ? std::min(mesh.size_m, kMaxLayerAspect * td / layers) : along_wall;
   const double across = tw / layers;
   const int extra = rr - ro > 1e-9 ? std::max(1, static_cast<int>(std::lround((rr - ro) / across))) : 0;
+  // The cup's boss/diaphragm junction is singular: at r = r_boss the clamped boss meets the free diaphragm faces, at
+  // z = 0 on a straight line (clamped → free) and at z = t_d in a 270° corner (φ₀ converges as h^0.6 on uniform
+  // sections). The cells at the junction are split geometrically (halving) toward it, in r in the diaphragm and the
+  // boss, in z through every wall's layers (the layers are shared by all walls, so their outermost layers are thin
+  // everywhere) and in the boss above the diaphragm. Levels: 2 + log2(layers), so the corner cell shrinks as h².
+  const int levels = cup ? 2 + static_cast<int>(std::ceil(std::log2(static_cast<double>(layers)))) : 0;
+  const std::vector<double> lay = graded(layers, levels, true, true);
 
   SectionBuilder b;
   // Body wall and rim: axial segments between the break lines (body start, rim shoulder, generator band edges).
@@ -158,7 +195,7 @@ SectionMesh mesh_flexspline_section(const FlexsplineParams& f, const std::option
     const int bottom = (!cup && k == 0) ? kSurfaceClamped : kInterior;
     const int top = k + 2 == breaks.size() ? kSurfaceOpenEnd : kInterior;
     const int right = !in_rim ? kSurfaceOuter : extra > 0 ? kInterior : kSurfaceRimOuter;
-    b.add(rectangle(ri, ro, z0, z1, layers, n, in_rim ? 1 : 0, {bottom, right, top, kSurfaceInner}));
+    b.add(graded_block(rectangle(ri, ro, z0, z1, layers, n, in_rim ? 1 : 0, {bottom, right, top, kSurfaceInner}), lay, {}));
     if (in_rim && extra > 0) {
       const int shoulder = std::abs(z0 - zr) < 1e-12 ? kSurfaceRimStep : kInterior;
       b.add(rectangle(ro, rr, z0, z1, extra, n, 1, {shoulder, kSurfaceRimOuter, top, kInterior}));
@@ -188,19 +225,20 @@ SectionMesh mesh_flexspline_section(const FlexsplineParams& f, const std::option
       e.marker = {kSurfaceDiaphragm, kInterior, to_bottom ? kSurfaceDiaphragm : kSurfaceOuter, kInterior};
       return e;
     };
-    b.add(elbow(-0.5 * kPi, alpha_k, true));
-    b.add(elbow(alpha_k, 0.0, false));
+    b.add(graded_block(elbow(-0.5 * kPi, alpha_k, true), {}, lay));
+    b.add(graded_block(elbow(alpha_k, 0.0, false), {}, lay));
   } else {
-    b.add(rectangle(ri, ro, 0.0, td, layers, layers, 2, {kSurfaceDiaphragm, kSurfaceOuter, kInterior, kInterior}));
+    b.add(graded_block(rectangle(ri, ro, 0.0, td, layers, layers, 2, {kSurfaceDiaphragm, kSurfaceOuter, kInterior, kInterior}),
+                       lay, lay));
   }
   const double r_dia = ri - rf;
-  b.add(rectangle(rb, r_dia, 0.0, td, cells(r_dia - rb, along_diaphragm), layers, 2,
-                  {kSurfaceDiaphragm, kInterior, kSurfaceDiaphragm, kInterior}));
+  b.add(graded_block(rectangle(rb, r_dia, 0.0, td, 1, 1, 2, {kSurfaceDiaphragm, kInterior, kSurfaceDiaphragm, kInterior}),
+                     graded(cells(r_dia - rb, along_diaphragm), levels, true, false), lay));
   const double s_boss = kBossSizeFactor * mesh.size_m;
-  const int n_boss = cells(rb, s_boss);
-  b.add(rectangle(0.0, rb, 0.0, td, n_boss, layers, 3, {kSurfaceClamped, kInterior, kInterior, kInterior}));
-  b.add(rectangle(0.0, rb, td, hb, n_boss, cells(hb - td, s_boss), 3,
-                  {kInterior, kSurfaceClamped, kSurfaceClamped, kInterior}));
+  const std::vector<double> boss_r = graded(cells(rb, s_boss), levels, false, true);
+  b.add(graded_block(rectangle(0.0, rb, 0.0, td, 1, 1, 3, {kSurfaceClamped, kInterior, kInterior, kInterior}), boss_r, lay));
+  b.add(graded_block(rectangle(0.0, rb, td, hb, 1, 1, 3, {kInterior, kSurfaceClamped, kSurfaceClamped, kInterior}), boss_r,
+                     graded(cells(hb - td, s_boss), levels, true, false)));
   return b.finish();
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <optional>
 #include <numbers>
 #include <string>
 
@@ -13,6 +14,7 @@
 
 #include "common/error.hpp"
 #include "common/progress.hpp"
+#include "fem/cam_profile.hpp"
 #include "fem/flexspline_system.hpp"
 #include "fem/post.hpp"
 #include "mesh/flexspline.hpp"
@@ -163,6 +165,142 @@ void harmonic_loads(const std::vector<LoadTerm>& terms, int n, Eigen::MatrixXd& 
   }
 }
 
+// A station touches when it carries force or its gap is within 0.25 % of w0 (as the tet10 path).
+constexpr double kTouchingGap = 2.5e-3;
+
+/// The wave generator's contact stations (fem/flexspline_system.hpp's generator_stations) in the harmonic basis.
+/// Station pair j's unit load, 1 N of normal force spread by the hat at θ_j and at θ_j + π, uniform across the band,
+/// has the generalised loads of harmonic n
+///   symmetric family: Φs(j,0)·E_r + Φs(j,1)·E_θ,   antisymmetric family: Φa(j,0)·E_r + Φa(j,1)·E_θ,
+/// with E_r = (S, 0, 0), E_θ = (0, S, 0), S_i = ∫ N_i r ds over the band's inner-wall edges, and Φ the θ moments of
+/// the hat times the normal's components (Φs = (∫g_r cos nθ, ∫g_θ sin nθ), Φa = (∫g_r sin nθ, −∫g_θ cos nθ), g the
+/// traction per unit S). So every station's load of a harmonic lies in the span of E_r and E_θ: two solves per
+/// harmonic, U_r = K_n⁻¹E_r and U_θ = K_n⁻¹E_θ, give the whole influence matrix (exact up to the truncation at N)
+///   C = Σ_n Φs_n·G_n·Φs_nᵀ + Φa_n·G_n·Φa_nᵀ,   G_n(a, b) = E_aᵀ·U_b,
+/// and the displacement of any station forces p is Σ_n (Φs_nᵀp)·(U_r, U_θ) per family.
+struct HarmonicStations {
+  bool unilateral = false;
+  std::vector<double> angle_rad;      ///< first station of each pair (the other at + π)
+  double half_width_rad = 0;          ///< of each station's hat (the stations' spacing)
+  Eigen::VectorXd obstacle_m;         ///< per pair, as GeneratorStations::obstacle_m
+  Eigen::VectorXd S;                  ///< n_nodes
+  std::vector<Eigen::MatrixXd> phi_sym, phi_anti;  ///< per harmonic: pairs × 2
+
+  Eigen::MatrixXd unit(int component) const {
+    Eigen::MatrixXd E = Eigen::MatrixXd::Zero(S.size(), 3);
+    E.col(component) = S;
+    return E;
+  }
+  double load_norm(int n) const {
+    return std::max(phi_sym[n].cwiseAbs().maxCoeff(), phi_anti[n].cwiseAbs().maxCoeff()) * S.cwiseAbs().maxCoeff();
+  }
+  /// (E_rᵀu, E_θᵀu) of amplitudes u (n_nodes × 3).
+  Eigen::Vector2d moments(const Eigen::MatrixXd& u) const { return {S.dot(u.col(0)), S.dot(u.col(1))}; }
+  Eigen::MatrixXd influence(const std::vector<Eigen::MatrixXd>& Ur, const std::vector<Eigen::MatrixXd>& Ut) const {
+    const Eigen::Index m = static_cast<Eigen::Index>(angle_rad.size());
+    Eigen::MatrixXd C = Eigen::MatrixXd::Zero(m, m);
+    for (std::size_t n = 0; n < Ur.size(); ++n) {
+      if (Ur[n].size() == 0) continue;
+      Eigen::Matrix2d G;
+      G.col(0) = moments(Ur[n]);
+      G.col(1) = moments(Ut[n]);
+      C.noalias() += phi_sym[n] * G * phi_sym[n].transpose() + phi_anti[n] * G * phi_anti[n].transpose();
+    }
+    return 0.5 * (C + C.transpose());  // symmetric up to round-off (G_n is); make it exactly so
+  }
+  /// Work-conjugate displacement of each pair (f_jᵀu) in a field.
+  Eigen::VectorXd project(const HarmonicField& u) const {
+    Eigen::VectorXd v = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(angle_rad.size()));
+    for (std::size_t n = 0; n < u.sym.size(); ++n)
+      if (u.sym[n].size() != 0) v += phi_sym[n] * moments(u.sym[n]) + phi_anti[n] * moments(u.anti[n]);
+    return v;
+  }
+  HarmonicField field(const Eigen::VectorXd& p, const std::vector<Eigen::MatrixXd>& Ur,
+                      const std::vector<Eigen::MatrixXd>& Ut) const {
+    HarmonicField h;
+    h.sym.assign(Ur.size(), {});
+    h.anti.assign(Ur.size(), {});
+    for (std::size_t n = 0; n < Ur.size(); ++n) {
+      if (Ur[n].size() == 0) continue;
+      const Eigen::Vector2d s = phi_sym[n].transpose() * p, a = phi_anti[n].transpose() * p;
+      h.sym[n] = s[0] * Ur[n] + s[1] * Ut[n];
+      h.anti[n] = a[0] * Ur[n] + a[1] * Ut[n];
+    }
+    return h;
+  }
+  /// Adds the generalised loads of harmonic n of station forces p to sym, anti (n_nodes × 3).
+  void loads(const Eigen::VectorXd& p, int n, Eigen::MatrixXd& sym, Eigen::MatrixXd& anti) const {
+    if (p.size() == 0 || n >= static_cast<int>(phi_sym.size())) return;
+    const Eigen::Vector2d s = phi_sym[n].transpose() * p, a = phi_anti[n].transpose() * p;
+    sym.col(0) += s[0] * S;
+    sym.col(1) += s[1] * S;
+    anti.col(0) += a[0] * S;
+    anti.col(1) += a[1] * S;
+  }
+};
+
+/// The stations of the case's generator (angles, hats, normals and standoffs as fem/flexspline_system.cpp's
+/// generator_stations), but no finer than the series resolves: a hat of half-width Δ has its spectrum's main lobe up
+/// to n = 2π/Δ, so Δ ≥ 2π/N (pairs ≤ N/2). `S`: ∫ N_i r ds over the band's inner-wall edges.
+HarmonicStations harmonic_stations(const Case& c, const Eigen::VectorXd& S, int N) {
+  const auto& w = *c.wave_generator;
+  const double r = c.flexspline.inner_radius_m;
+  if (N < 2)
+    throw InputError("solver.harmonics = " + std::to_string(N) +
+                     ": a wave generator deforms the flexspline in harmonics 2 and up; use harmonics >= 2");
+  HarmonicStations h;
+  h.S = S;
+  h.unilateral = w.model == WaveGeneratorModel::Cam || w.model == WaveGeneratorModel::Rollers;
+  const int pairs = std::min(static_cast<int>(std::lround(kPi / station_spacing(c))), N / 2);
+  const double spacing = kPi / pairs;
+  h.half_width_rad = spacing;
+  std::optional<CamSurface> cam;
+  if (w.model == WaveGeneratorModel::Cam) cam.emplace(w, r);
+  std::function<double(double)> tilt = [](double) { return 0.0; };
+  if (w.model == WaveGeneratorModel::Rollers) {
+    h.angle_rad = {w.beta_rad, kPi - w.beta_rad};
+  } else {
+    for (int k = 0; k < pairs; ++k) h.angle_rad.push_back(k * spacing);
+    if (cam) tilt = [&cam](double t) { return cam->tilt(t); };
+  }
+  const Eigen::Index m = static_cast<Eigen::Index>(h.angle_rad.size());
+  h.obstacle_m.resize(m);
+  for (Eigen::Index j = 0; j < m; ++j)
+    h.obstacle_m[j] = w.model == WaveGeneratorModel::Cam       ? 2 * cam->standoff_m(h.angle_rad[j])
+                      : w.model == WaveGeneratorModel::Rollers ? 2.0  // per metre the rollers stand out; scaled to w0
+                                                               : 0.0;
+  h.phi_sym.assign(N + 1, Eigen::MatrixXd::Zero(m, 2));
+  h.phi_anti.assign(N + 1, Eigen::MatrixXd::Zero(m, 2));
+  // θ moments by Gauss–Legendre (8 points) on pieces of the hat's two linear flanks short enough that N·piece ≤ 0.5:
+  // the integrands are smooth on each piece, the result exact to round-off.
+  static const double gx[8] = {-0.9602898564975363, -0.7966664774136267, -0.5255324099163290, -0.1834346424956498,
+                               0.1834346424956498,  0.5255324099163290,  0.7966664774136267,  0.9602898564975363};
+  static const double gw[8] = {0.1012285362903763, 0.2223810344533745, 0.3137066458778873, 0.3626837833783620,
+                               0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
+  const int pieces = static_cast<int>(std::ceil(N * spacing / 0.5)) + 1;
+  const double area = spacing * S.sum();  // ∫ hat dA: ∫ hat dθ = Δ, ∫ r ds = Σ S_i
+  for (Eigen::Index j = 0; j < m; ++j)
+    for (const double centre : {h.angle_rad[j], h.angle_rad[j] + kPi})
+      for (int side : {-1, 1})
+        for (int q = 0; q < pieces; ++q) {
+          const double a = static_cast<double>(q) / pieces, b = static_cast<double>(q + 1) / pieces;
+          for (int g = 0; g < 8; ++g) {
+            const double x = 0.5 * (a + b) + 0.5 * (b - a) * gx[g];  // distance from the centre ÷ Δ
+            const double t = centre + side * x * spacing;
+            const double weight = 0.5 * (b - a) * spacing * gw[g] * (1 - x) / area;
+            const double k = tilt(t), nr = 1 / std::sqrt(1 + k * k), nt = -k * nr;
+            for (int n = 0; n <= N; ++n) {
+              const double cn = std::cos(n * t), sn = std::sin(n * t);
+              h.phi_sym[n](j, 0) += weight * nr * cn;
+              h.phi_sym[n](j, 1) += weight * nt * sn;
+              h.phi_anti[n](j, 0) += weight * nr * sn;
+              h.phi_anti[n](j, 1) -= weight * nt * cn;
+            }
+          }
+        }
+  return h;
+}
+
 /// Moment about z (N·m) of the physical loads whose harmonic-0 antisymmetric generalised forces are F (n_nodes × 3).
 double moment_z(const SectionMesh& s, const Eigen::MatrixXd& anti0) { return -s.nodes.col(0).dot(anti0.col(1)); }
 
@@ -222,14 +360,44 @@ Eigen::MatrixXd to_nodes(const HarmonicDofs& d, const Eigen::VectorXd& x, Eigen:
   return fixed_values;
 }
 
-SymmetricCsc assemble(const SectionMesh& s, const Material& m, const HarmonicDofs& d, int n,
-                      std::vector<Mat18>& element_matrices) {
+/// The element stiffness as a polynomial in the harmonic: B = B₀ + n·B₁, so ∫BᵀDB r dA = K₀ + n·K₁ + n²·K₂; integrated
+/// once per element, each harmonic's matrix is a sum (the integration was most of a harmonic's cost).
+struct ElementPolynomial {
+  Mat18 k0, k1, k2;
+  Mat18 at(int n) const { return theta_weight(n) * (k0 + n * k1 + (static_cast<double>(n) * n) * k2); }
+};
+ElementPolynomial element_polynomial(const Mat6x2& X, const Eigen::Matrix<double, 6, 6>& D) {
+  ElementPolynomial p;
+  p.k0.setZero();
+  p.k1.setZero();
+  p.k2.setZero();
+  for (int k = 0; k < 7; ++k) {
+    const StrainPoint a = strain_matrix(X, kRule.xi[k], kRule.eta[k], 0);
+    const StrainPoint b = strain_matrix(X, kRule.xi[k], kRule.eta[k], 1);
+    const Mat6x18 B0 = a.B, B1 = b.B - a.B;
+    const double w = kRule.w[k] * std::abs(a.det) * a.r;
+    const Mat6x18 DB0 = D * B0, DB1 = D * B1;
+    p.k0.noalias() += w * (B0.transpose() * DB0);
+    const Mat18 cross = B0.transpose() * DB1;
+    p.k1.noalias() += w * (cross + cross.transpose());
+    p.k2.noalias() += w * (B1.transpose() * DB1);
+  }
+  return p;
+}
+std::vector<ElementPolynomial> element_polynomials(const SectionMesh& s, const Material& m) {
+  const auto D = elasticity(m);
+  std::vector<ElementPolynomial> out(s.triangles.size());
+  for (std::size_t e = 0; e < s.triangles.size(); ++e) out[e] = element_polynomial(coords(s, e), D);
+  return out;
+}
+
+/// Σ_e of an element quantity (18 × 18 per element) on the equations of a numbering, upper triangle.
+template <class ElementMatrix>
+SymmetricCsc assemble(const SectionMesh& s, const HarmonicDofs& d, ElementMatrix element) {
   std::vector<Eigen::Triplet<double, std::int64_t>> trip;
   trip.reserve(s.triangles.size() * 18 * 19 / 2);
-  element_matrices.resize(s.triangles.size());
   for (std::size_t e = 0; e < s.triangles.size(); ++e) {
-    const Mat18 Ke = harmonic_element_stiffness(coords(s, e), m, n);
-    element_matrices[e] = Ke;
+    const Mat18& Ke = element(e);
     const auto& t = s.triangles[e];
     for (int p = 0; p < 18; ++p) {
       const std::int64_t ip = d.eq[3 * t[p / 3] + p % 3];
@@ -251,6 +419,28 @@ SymmetricCsc assemble(const SectionMesh& s, const Material& m, const HarmonicDof
   out.row.assign(K.innerIndexPtr(), K.innerIndexPtr() + K.nonZeros());
   out.value.assign(K.valuePtr(), K.valuePtr() + K.nonZeros());
   return out;
+}
+
+/// The global K₀, K₁, K₂ of one numbering (the harmonics with the same axis conditions, n ≥ 2, share one): each
+/// harmonic's matrix is w_n·(K₀ + n·K₁ + n²·K₂) on one pattern, O(nnz) per harmonic.
+struct GlobalPolynomial {
+  HarmonicDofs dofs;
+  SymmetricCsc k0;
+  std::vector<double> v1, v2;
+  SymmetricCsc at(int n) const {
+    SymmetricCsc K = k0;
+    const double w = theta_weight(n), nn = static_cast<double>(n) * n;
+    for (std::size_t i = 0; i < K.value.size(); ++i) K.value[i] = w * (k0.value[i] + n * v1[i] + nn * v2[i]);
+    return K;
+  }
+};
+GlobalPolynomial assemble_polynomial(const SectionMesh& s, const std::vector<ElementPolynomial>& poly, HarmonicDofs d) {
+  GlobalPolynomial g;
+  g.k0 = assemble(s, d, [&](std::size_t e) -> const Mat18& { return poly[e].k0; });
+  g.v1 = assemble(s, d, [&](std::size_t e) -> const Mat18& { return poly[e].k1; }).value;
+  g.v2 = assemble(s, d, [&](std::size_t e) -> const Mat18& { return poly[e].k2; }).value;
+  g.dofs = std::move(d);
+  return g;
 }
 
 /// Where a quantity is read: section nodes with weights (a node, or the six of a located point).
@@ -497,8 +687,7 @@ Eigen::Matrix<double, 18, 18> harmonic_element_stiffness(const Eigen::Matrix<dou
 Eigen::MatrixXd solve_harmonic(const SectionMesh& s, const Material& m, int n, const std::vector<bool>& fixed,
                                const Eigen::MatrixXd& F) {
   const HarmonicDofs d = number_dofs(s.n_nodes(), n, fixed, axis_nodes(s));
-  std::vector<Mat18> Ke;
-  const CholmodFactor factor(assemble(s, m, d, n, Ke), d.node_of_eq);
+  const CholmodFactor factor(assemble_polynomial(s, element_polynomials(s, m), d).at(n), d.node_of_eq);
   return to_nodes(d, factor.solve(to_equations(d, F)), Eigen::MatrixXd::Zero(F.rows(), 3));
 }
 
@@ -565,32 +754,17 @@ FourierSolution analyse_section_fourier(const Case& c, SectionMesh section, int 
   progress("fourier: section of " + std::to_string(nn) + " nodes, " + std::to_string(sec.triangles.size()) +
            " quadratic triangles, harmonics 0.." + std::to_string(N));
 
-  // Supports.
-  std::vector<bool> clamped(nn, false), axis(nn, false), band_node(nn, false);
+  // Supports: the clamp, and the axis conditions.
+  std::vector<bool> clamped(nn, false), axis = axis_nodes(sec);
   for (const auto& e : sec.edges)
     if (e.marker == kSurfaceClamped)
       for (int v : e.nodes) clamped[v] = true;
-  axis = axis_nodes(sec);
-  double z_wg = 0;
-  if (c.wave_generator) z_wg = f.length_m - c.wave_generator->axial_position_m;
-  auto in_band = [&](const Eigen::Vector2d& x) { return std::abs(x[1] - z_wg) <= 0.5 * c.wave_generator->band_width_m; };
-  if (cam) {
-    const auto band = select_edges(sec, kSurfaceInner, in_band);
-    if (band.empty())
-      throw InputError("wave_generator: no inner wall in the cam's band at z = " + std::to_string(z_wg * 1e3) +
-                       " mm; check wave_generator.axial_position_mm / band_width_mm");
-    for (const auto* e : band)
-      for (int v : e->nodes)
-        if (!clamped[v]) band_node[v] = true;
-  }
-
   std::vector<bool> fixed(3 * nn, false);
-  for (std::size_t i = 0; i < nn; ++i) {
-    fixed[3 * i] = clamped[i] || band_node[i];
-    fixed[3 * i + 1] = fixed[3 * i + 2] = clamped[i];
-  }
+  for (std::size_t i = 0; i < nn; ++i) fixed[3 * i] = fixed[3 * i + 1] = fixed[3 * i + 2] = clamped[i];
+  const double z_wg = c.wave_generator ? f.length_m - c.wave_generator->axial_position_m : 0.0;
+  auto in_band = [&](const Eigen::Vector2d& x) { return std::abs(x[1] - z_wg) <= 0.5 * c.wave_generator->band_width_m; };
 
-  // Loads: unit torque (N·m) and the unit generator (forces of total weight 1 N per unit weight).
+  // Loads: unit torque (N·m) and, for the force models, the unit generator (forces of total weight 1 N per unit weight).
   std::vector<LoadTerm> torque_terms, gen_terms;
   {
     const bool all_round = plain_tube || c.load.torque_loading == TorqueLoading::Uniform;
@@ -607,29 +781,47 @@ FourierSolution analyse_section_fourier(const Case& c, SectionMesh section, int 
     t.spatial /= moment;
     torque_terms.push_back(t);
   }
-  if (c.wave_generator && !cam) {
+  std::optional<HarmonicStations> stations;
+  Eigen::MatrixXd turn_load_anti0;  // the band's unit turn moment, harmonic 0 (contact models)
+  if (c.wave_generator) {
     const auto edges = select_edges(sec, kSurfaceInner, in_band);
     if (edges.empty())
-      throw InputError("wave_generator: no inner wall under the forces at z = " + std::to_string(z_wg * 1e3) +
+      throw InputError("wave_generator: no inner wall in the generator's band at z = " + std::to_string(z_wg * 1e3) +
                        " mm; check wave_generator.axial_position_mm / band_width_mm");
     const Eigen::MatrixXd unit =
         edge_integral(sec, edges, [](const Eigen::Vector2d&) { return Eigen::Vector3d(1, 0, 0); });
-    const double area = 2 * kPatchHalfAngle * unit.col(0).sum();  // Σ_i ∫ N_i r ds = ∫ r ds
-    for (const auto& force : generator_forces(*c.wave_generator)) {
+    stations = harmonic_stations(c, unit.col(0), N);
+    if (stations->unilateral) {
+      // A unit moment about z of tangential traction ∝ r·e_θ on the band (harmonic 0): its work-conjugate displacement
+      // is the band's mean turn (as the tet10 path's band_turn_load).
       LoadTerm t;
-      t.windows = {{force.angle_rad - kPatchHalfAngle, force.angle_rad + kPatchHalfAngle, force.weight / area}};
-      t.spatial = unit;
-      gen_terms.push_back(t);
+      t.windows = {{0.0, 2 * kPi, 1.0}};
+      t.spatial = edge_integral(sec, edges, [](const Eigen::Vector2d& x) { return Eigen::Vector3d(0, x[0], 0); });
+      t.spatial /= cos_moment(t.windows, 0) * sec.nodes.col(0).dot(t.spatial.col(1));
+      Eigen::MatrixXd sym0 = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nn), 3);
+      turn_load_anti0 = sym0;
+      harmonic_loads({t}, 0, sym0, turn_load_anti0);
+    }
+    if (!stations->unilateral) {
+      const double area = 2 * kPatchHalfAngle * unit.col(0).sum();  // Σ_i ∫ N_i r ds = ∫ r ds
+      for (const auto& force : generator_forces(*c.wave_generator)) {
+        LoadTerm t;
+        t.windows = {{force.angle_rad - kPatchHalfAngle, force.angle_rad + kPatchHalfAngle, force.weight / area}};
+        t.spatial = unit;
+        gen_terms.push_back(t);
+      }
     }
   }
 
-  // Per harmonic: loads, then (when loaded) numbering, assembly, factor, solve of the four columns
-  // (torque sym, torque anti, generator sym, generator anti).
-  HarmonicField torque, gen;
-  torque.sym.assign(N + 1, {});
-  torque.anti.assign(N + 1, {});
-  gen.sym.assign(N + 1, {});
-  gen.anti.assign(N + 1, {});
+  // Per harmonic: loads, then (when loaded) numbering, assembly, factor, solve of the columns torque sym, torque anti,
+  // generator forces sym, anti, and the two station vectors E_r, E_θ (HarmonicStations).
+  HarmonicField torque, force_gen;
+  for (auto* h : {&torque, &force_gen}) {
+    h->sym.assign(N + 1, {});
+    h->anti.assign(N + 1, {});
+  }
+  std::vector<Eigen::MatrixXd> Ur(N + 1), Ut(N + 1);
+  Eigen::MatrixXd turn_anti0;  // amplitudes of the band's unit turn moment (harmonic 0, antisymmetric family)
   std::vector<std::array<Eigen::MatrixXd, 4>> loads(N + 1);
   std::vector<double> norm(N + 1, 0.0);
   double max_norm = 0;
@@ -638,18 +830,19 @@ FourierSolution analyse_section_fourier(const Case& c, SectionMesh section, int 
     harmonic_loads(torque_terms, n, loads[n][0], loads[n][1]);
     harmonic_loads(gen_terms, n, loads[n][2], loads[n][3]);
     for (const auto& m : loads[n]) norm[n] = std::max(norm[n], m.cwiseAbs().maxCoeff());
+    if (stations) norm[n] = std::max(norm[n], stations->load_norm(n));
     max_norm = std::max(max_norm, norm[n]);
   }
-  const double w0 = cam ? *c.wave_generator->radial_deformation_m : 0.0;
-  std::vector<Eigen::MatrixXd> gen_reaction_sym(2), gen_reaction_anti(2), torque_reaction_anti0(1);
   Stopwatch solve_clock;
+  const std::vector<ElementPolynomial> poly = element_polynomials(sec, c.material);
+  std::array<std::optional<GlobalPolynomial>, 3> numbering;  // n = 0, n = 1, n ≥ 2 (the axis conditions)
   for (int n = 0; n <= N; ++n) {
-    const bool lifted = cam && n == 2;
-    if (!lifted && !(norm[n] > kNoLoad * max_norm)) continue;
-    const HarmonicDofs d = number_dofs(nn, n, fixed, axis);
+    if (!(norm[n] > kNoLoad * max_norm)) continue;
     Stopwatch hc;
-    std::vector<Mat18> Ke;
-    const SymmetricCsc K = assemble(sec, c.material, d, n, Ke);
+    auto& g = numbering[std::min(n, 2)];
+    if (!g) g = assemble_polynomial(sec, poly, number_dofs(nn, n, fixed, axis));
+    const HarmonicDofs& d = g->dofs;
+    const SymmetricCsc K = g->at(n);
     fs.assemble_s += hc.lap();
     const CholmodFactor factor(K, d.node_of_eq);
     HarmonicStats st;
@@ -668,51 +861,40 @@ FourierSolution analyse_section_fourier(const Case& c, SectionMesh section, int 
     fs.factor.ordering = factor.stats().ordering;
     out.harmonics.push_back(st);
 
-    // Prescribed values (the cam's u_r = w0·cos2θ: a = w0 on the band, symmetric family of n = 2).
-    Eigen::MatrixXd prescribed_sym = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nn), 3);
-    if (lifted)
-      for (std::size_t i = 0; i < nn; ++i)
-        if (band_node[i]) prescribed_sym(static_cast<Eigen::Index>(i), 0) = w0;
-    Eigen::MatrixXd B(d.n_eq, 4);
+    const bool turn = n == 0 && turn_load_anti0.size() != 0;
+    const int cols = stations ? (turn ? 7 : 6) : 4;
+    Eigen::MatrixXd B(d.n_eq, cols);
     for (int col = 0; col < 4; ++col) B.col(col) = to_equations(d, loads[n][col]);
-    if (lifted)
-      for (std::size_t e = 0; e < sec.triangles.size(); ++e) {
-        const auto& t = sec.triangles[e];
-        Eigen::Matrix<double, 18, 1> ue;
-        for (int a = 0; a < 6; ++a) ue.segment<3>(3 * a) = prescribed_sym.row(t[a]).transpose();
-        if (ue.isZero()) continue;
-        const Eigen::Matrix<double, 18, 1> fe = Ke[e] * ue;
-        for (int p = 0; p < 18; ++p) {
-          const std::int64_t q = d.eq[3 * t[p / 3] + p % 3];
-          if (q >= 0) B(q, 2) -= d.sign[3 * t[p / 3] + p % 3] * fe[p];
-        }
-      }
-    const Eigen::MatrixXd X = factor.solve(B);
-    Eigen::MatrixXd* targets[4] = {&torque.sym[n], &torque.anti[n], &gen.sym[n], &gen.anti[n]};
-    for (int col = 0; col < 4; ++col)
-      *targets[col] = to_nodes(d, X.col(col),
-                               col == 2 ? prescribed_sym : Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nn), 3));
-    // Internal forces K·u at every node of the harmonics that carry resultants (reactions: n = 0, 1).
-    if (n <= 1) {
-      auto internal = [&](const Eigen::MatrixXd& U) {
-        Eigen::MatrixXd R = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nn), 3);
-        for (std::size_t e = 0; e < sec.triangles.size(); ++e) {
-          const auto& t = sec.triangles[e];
-          Eigen::Matrix<double, 18, 1> ue;
-          for (int a = 0; a < 6; ++a) ue.segment<3>(3 * a) = U.row(t[a]).transpose();
-          const Eigen::Matrix<double, 18, 1> fe = Ke[e] * ue;
-          for (int a = 0; a < 6; ++a) R.row(t[a]) += fe.segment<3>(3 * a).transpose();
-        }
-        return R;
-      };
-      gen_reaction_sym[n] = internal(gen.sym[n]) - loads[n][2];
-      gen_reaction_anti[n] = internal(gen.anti[n]) - loads[n][3];
-      if (n == 0) torque_reaction_anti0[0] = internal(torque.anti[0]) - loads[0][1];
+    if (stations) {
+      B.col(4) = to_equations(d, stations->unit(0));
+      B.col(5) = to_equations(d, stations->unit(1));
     }
+    if (turn) B.col(6) = to_equations(d, turn_load_anti0);
+    const Eigen::MatrixXd X = factor.solve(B);
+    const Eigen::MatrixXd zero = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nn), 3);
+    Eigen::MatrixXd* targets[7] = {&torque.sym[n],     &torque.anti[n], &force_gen.sym[n], &force_gen.anti[n],
+                                   &Ur[n],             &Ut[n],          &turn_anti0};
+    for (int col = 0; col < cols; ++col) *targets[col] = to_nodes(d, X.col(col), zero);
   }
   fs.solve_s = solve_clock.lap();
   progress("fourier: " + std::to_string(out.harmonics.size()) + " harmonics solved, " +
-           std::to_string(fs.factor.factor_gflop) + " GF, " + std::to_string(fs.solve_s) + " s");
+           std::to_string(fs.factor.factor_gflop) + " GF, " + std::to_string(fs.solve_s) + " s (assembly " +
+           std::to_string(fs.assemble_s) + " s, factor " + std::to_string(fs.factor.analyse_s + fs.factor.factor_s) +
+           " s)");
+
+  // Internal forces K·u of harmonic n (0 or 1) of one family's amplitudes.
+  auto internal = [&](int n, const Eigen::MatrixXd& U) {
+    Eigen::MatrixXd R = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nn), 3);
+    if (U.size() == 0) return R;
+    for (std::size_t e = 0; e < sec.triangles.size(); ++e) {
+      const auto& t = sec.triangles[e];
+      Eigen::Matrix<double, 18, 1> ue;
+      for (int a = 0; a < 6; ++a) ue.segment<3>(3 * a) = U.row(t[a]).transpose();
+      const Eigen::Matrix<double, 18, 1> fe = poly[e].at(n) * ue;
+      for (int a = 0; a < 6; ++a) R.row(t[a]) += fe.segment<3>(3 * a).transpose();
+    }
+    return R;
+  };
 
   // φ₀: the rigid rotation of the reading ring (rim neutral circle at mid-width, or the plain tube's end face).
   fs.reading_radius_m = neutral_radius(f);
@@ -740,75 +922,178 @@ FourierSolution analyse_section_fourier(const Case& c, SectionMesh section, int 
       }
     return rigid_rotation_z(P, D);
   };
-  fs.torque_Nm = c.load.torque_Nm;
-  fs.compliance_rad_per_Nm = rotation(torque);
-  fs.phi0_rad = fs.compliance_rad_per_Nm * fs.torque_Nm;
   const double G = c.material.shear_modulus_Pa();
   const double ri = f.inner_radius_m, ro = f.inner_radius_m + f.wall_thickness_m;
   const double J = kPi / 2 * (std::pow(ro, 4) - std::pow(ri, 4));
   const double body_start = f.shape == FlexsplineShape::Cup ? f.diaphragm_thickness_m : 0.0;
-  fs.phi0_theory_rad = fs.torque_Nm * (fs.reading_z_m - body_start) / (G * J);
-  fs.applied_torque_Nm = moment_z(sec, loads[0][1]) * fs.torque_Nm;
-  {
-    Eigen::MatrixXd R = torque_reaction_anti0[0];
-    if (R.size() == 0) R = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nn), 3);
-    for (std::size_t i = 0; i < nn; ++i)
-      if (!clamped[i]) R.row(static_cast<Eigen::Index>(i)).setZero();
-    fs.reaction_torque_Nm = moment_z(sec, R) * fs.torque_Nm;
-  }
+  fs.torque_Nm = c.load.torque_Nm;
+  const double T = fs.torque_Nm, T_ref = T != 0.0 ? T : 1.0;  // compliance is read at T (or 1 N·m without torque)
+  fs.phi0_theory_rad = T * (fs.reading_z_m - body_start) / (G * J);
+  const double r_rim_outer = rim_outer_radius(f, c.gear);
+  fs.phi0_theory_cup = cup_torsion_theory(f, r_rim_outer, c.material, T, fs.reading_z_m);
 
+  // Load cases (as the tet10 path, fem/flexspline_analysis.cpp). gen: the generator alone; inc: what the torque T_ref
+  // adds with the generator in place; support_inc: the generator's forces on the flexspline in that increment.
+  HarmonicField gen, inc = torque * T_ref, support_inc;
+  Eigen::VectorXd p_support_inc;  // station forces of support_inc (empty: none)
   const bool has_generator = c.wave_generator.has_value();
+  const double z_mid = f.length_m - 0.5 * f.rim_width_m;
+  Probe mid;
+  if (has_generator) mid = probe_at(sec, {fs.reading_radius_m, z_mid});
+  // Radial displacement of the neutral circle at the rim mid-width at θ, mean of θ and θ + π (as the tet10 path).
+  auto rim_w = [&](const HarmonicField& u, double t) {
+    return 0.5 * (displacement_at(u, mid, t)[0] + displacement_at(u, mid, t + kPi)[0]);
+  };
   if (has_generator) {
     const auto& w = *c.wave_generator;
-    const double z_mid = f.length_m - 0.5 * f.rim_width_m;
-    const Probe mid = probe_at(sec, {fs.reading_radius_m, z_mid});
-    const double w_unit = 0.5 * (displacement_at(gen, mid, 0.0)[0] + displacement_at(gen, mid, kPi)[0]);
-    if (!(w_unit > 0))
-      throw InputError("wave_generator: the generator does not push the major axis outward (w = " +
-                       std::to_string(w_unit) + " m per unit load); check the force angles");
-    double scale = 1.0;
-    if (!cam) {
+    const HarmonicStations& hs = *stations;
+    GeneratorReadout gr;
+    static const char* kModels[] = {"four_force", "two_force", "forces", "cam", "rollers"};
+    gr.model = kModels[static_cast<int>(w.model)];
+    gr.unilateral = hs.unilateral;
+    gr.station_angle_rad = hs.angle_rad;
+    const Eigen::MatrixXd C = hs.influence(Ur, Ut);
+    const Eigen::VectorXd u0_torque = hs.project(torque);  // per pair, unit torque
+    auto field = [&](const Eigen::VectorXd& p) { return hs.field(p, Ur, Ut); };
+    Eigen::VectorXd p_gen;  // station forces of the generator case (contact models)
+    if (hs.unilateral) {
+      // Contact of the generator alone, with T_ref and with the sweep's torques: each a small problem on C.
+      Eigen::VectorXd obstacle = hs.obstacle_m;
+      if (w.model == WaveGeneratorModel::Rollers) {
+        // Set the rollers out so the major axis reaches w0 (all four touch: linear in the standoff).
+        const double w_unit = rim_w(field(bilateral_support(C, obstacle).force_N), 0.0);
+        if (!(w_unit > 0))
+          throw InputError("wave_generator: rollers at beta_deg = " + std::to_string(w.beta_rad * 180 / kPi) +
+                           " do not push the major axis outward; use beta_deg < 45");
+        obstacle *= *w.radial_deformation_m / w_unit;
+      }
+      gr.obstacle_m = obstacle;
+      // As the tet10 path: the wave stays with the generator (the gaps ignore the band's turn), and the bearing in
+      // series (a cam's).
+      GeneratorContactModel model;
+      const Eigen::Index pairs = C.rows();
+      model.turn_gap_m_per_rad.resize(pairs);
+      for (Eigen::Index j = 0; j < pairs; ++j) {
+        Eigen::MatrixXd ls = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nn), 3), la = ls;
+        hs.loads(Eigen::VectorXd::Unit(pairs, j), 0, ls, la);
+        model.turn_gap_m_per_rad[j] = moment_z(sec, la);
+      }
+      HarmonicField turn_field;
+      turn_field.sym.assign(N + 1, {});
+      turn_field.anti.assign(N + 1, {});
+      turn_field.sym[0] = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nn), 3);
+      turn_field.anti[0] = turn_anti0;
+      model.band_turn_rad_per_N = hs.project(turn_field);
+      const double band_turn_per_T = (turn_load_anti0.array() * torque.anti[0].array()).sum();
+      if (w.model == WaveGeneratorModel::Cam && w.bearing)
+        model.approach_m = bearing_pair_approach(*w.bearing, hs.half_width_rad);
+      auto contact = [&](double torque_Nm) {
+        return generator_contact(C, obstacle - torque_Nm * u0_torque, torque_Nm * band_turn_per_T, model);
+      };
+      const StationForces s_gen = contact(0.0);
+      const StationForces s_comb = contact(T_ref);
+      gr.contact_iterations = s_gen.iterations;
+      p_gen = s_gen.force_N;
+      gen = field(p_gen);
+      p_support_inc = s_comb.force_N - s_gen.force_N;
+      const double rot_gen = rotation(gen);
+      for (const double k : {0.25, 0.5, 1.0, 2.0}) {
+        const double Tk = k * T_ref;
+        HarmonicField u = field(contact(Tk).force_N);
+        u += torque * Tk;
+        fs.torque_sweep.emplace_back(Tk, (rotation(u) - rot_gen) / Tk);
+      }
+      gr.force_wg_N.assign(s_gen.force_N.data(), s_gen.force_N.data() + s_gen.force_N.size());
+      gr.force_comb_N.assign(s_comb.force_N.data(), s_comb.force_N.data() + s_comb.force_N.size());
+      const double touching_gap = kTouchingGap * *w.radial_deformation_m;
+      gr.zones_wg_deg = contact_zones_deg(gr.station_angle_rad, touching(s_gen, touching_gap), hs.half_width_rad);
+      gr.zones_comb_deg = contact_zones_deg(gr.station_angle_rad, touching(s_comb, touching_gap), hs.half_width_rad);
+      gr.min_contact_force_N = s_gen.force_N.minCoeff();
+    } else {
+      // Force idealisation: scale to w0 (or force_N); the torque case with the band held radially at the stations.
+      const double w_unit = rim_w(force_gen, 0.0);
+      if (!(w_unit > 0))
+        throw InputError("wave_generator: the generator does not push the major axis outward (w = " +
+                         std::to_string(w_unit) + " m per unit load); check the force angles");
       double total_at_end = 0;
       for (const auto& force : generator_forces(w))
         if (std::abs(std::remainder(force.angle_rad, 2 * kPi)) < kPi / 2) total_at_end += force.weight;
-      scale = w.radial_deformation_m ? *w.radial_deformation_m / w_unit : w.force_N / std::max(total_at_end, 1e-300);
+      const double scale =
+          w.radial_deformation_m ? *w.radial_deformation_m / w_unit : w.force_N / std::max(total_at_end, 1e-300);
       fs.generator_force_N = scale * (w.model == WaveGeneratorModel::FourForce ? 0.5 : 1.0);
+      gen = force_gen * scale;
+      for (int n = 0; n <= N; ++n) {
+        loads[n][2] *= scale;
+        loads[n][3] *= scale;
+      }
+      const StationForces s_T = bilateral_support(C, -T_ref * u0_torque);
+      p_support_inc = s_T.force_N;
+      gr.force_comb_N.assign(s_T.force_N.data(), s_T.force_N.data() + s_T.force_N.size());
+      double fmin = 1e300;
+      for (const auto& force : generator_forces(w)) {
+        fmin = std::min(fmin, force.weight * scale);
+        const double a = std::remainder(force.angle_rad, 2 * kPi) * 180 / kPi, h = kPatchHalfAngle * 180 / kPi;
+        gr.zones_wg_deg.emplace_back(a - h, a + h);
+      }
+      gr.min_contact_force_N = fmin;
     }
-    gen = gen * scale;
-    fs.generator_w0_m = w_unit * scale;
-    // Resultant of the generator's loads on the flexspline (the cam's: its reactions on the band) from the
-    // generalised forces of harmonics 0 and 1 (see the header for the families).
-    Eigen::MatrixXd Fs0, Fs1, Fa1;
-    if (cam) {
-      auto band_only = [&](Eigen::MatrixXd R) {
-        if (R.size() == 0) return Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nn), 3).eval();
-        for (std::size_t i = 0; i < nn; ++i)
-          if (!band_node[i]) R.row(static_cast<Eigen::Index>(i)).setZero();
-        return R;
-      };
-      Fs0 = band_only(gen_reaction_sym[0]) * scale;
-      Fs1 = band_only(gen_reaction_sym[1]) * scale;
-      Fa1 = band_only(gen_reaction_anti[1]) * scale;
-    } else {
-      Fs0 = loads[0][2] * scale;
-      Fs1 = N >= 1 ? (loads[1][2] * scale).eval() : Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nn), 3).eval();
-      Fa1 = N >= 1 ? (loads[1][3] * scale).eval() : Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nn), 3).eval();
+    support_inc = field(p_support_inc);
+    inc = support_inc;
+    inc += torque * T_ref;
+    if (!hs.unilateral)
+      for (const double k : {0.25, 0.5, 1.0, 2.0}) fs.torque_sweep.emplace_back(k * T_ref, rotation(inc) / T_ref);
+    // The generator's loads on the flexspline of harmonics 0 and 1 (resultants, total radial force).
+    std::array<Eigen::MatrixXd, 2> Fs, Fa;
+    for (int n = 0; n <= 1; ++n) {
+      Fs[n] = Fa[n] = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nn), 3);
+      if (n > N) continue;
+      if (hs.unilateral) hs.loads(p_gen, n, Fs[n], Fa[n]);
+      else {
+        Fs[n] = loads[n][2];
+        Fa[n] = loads[n][3];
+      }
     }
+    gr.total_radial_force_N = Fs[0].col(0).sum();  // Σ_i ∫∫ t_r N_i r dθ ds = ∫ t_r dA
+    {
+      Eigen::MatrixXd ls = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nn), 3), la = ls;
+      hs.loads(p_support_inc, 0, ls, la);
+      gr.reaction_torque_Nm = moment_z(sec, la) * (T / T_ref);
+    }
+    gr.w_major_m = rim_w(gen, 0.0);
+    gr.w_minor_m = rim_w(gen, kPi / 2);
+    fs.generator_w0_m = gr.w_major_m;
     const Eigen::VectorXd r = sec.nodes.col(0), z = sec.nodes.col(1);
+    const Eigen::MatrixXd &Fs0 = Fs[0], &Fs1 = Fs[1], &Fa1 = Fa[1];
     const double Fx = (Fs1.col(0) - Fs1.col(1)).sum(), Fy = (Fa1.col(0) - Fa1.col(1)).sum(), Fz = Fs0.col(2).sum();
     fs.generator_net_force = Eigen::Vector3d(Fx, Fy, Fz);
     fs.generator_net_moment = Eigen::Vector3d(r.dot(Fa1.col(2)) - z.dot(Fa1.col(0) - Fa1.col(1)),
                                               z.dot(Fs1.col(0) - Fs1.col(1)) - r.dot(Fs1.col(2)), 0.0);
     fs.generator_rotation_rad = rotation(gen);
+    fs.generator = gr;
+  } else {
+    for (const double k : {0.25, 0.5, 1.0, 2.0}) fs.torque_sweep.emplace_back(k * T_ref, rotation(inc) / T_ref);
+  }
+
+  // φ₀ and C_τ: the rotation the torque adds with the generator in place.
+  fs.compliance_rad_per_Nm = rotation(inc) / T_ref;
+  fs.phi0_rad = fs.compliance_rad_per_Nm * T;
+  const double to_T = T / T_ref;
+  const HarmonicField torque_case = inc * to_T;
+
+  // Torque balance of the torque case: applied moment vs the clamp's reaction plus the generator's.
+  fs.applied_torque_Nm = moment_z(sec, loads[0][1]) * T;
+  {
+    Eigen::MatrixXd support = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nn), 3), support_sym = support;
+    if (stations) stations->loads(p_support_inc * to_T, 0, support_sym, support);
+    Eigen::MatrixXd R = internal(0, torque_case.anti[0]) - loads[0][1] * T - support;
+    for (std::size_t i = 0; i < nn; ++i)
+      if (!clamped[i]) R.row(static_cast<Eigen::Index>(i)).setZero();
+    fs.reaction_torque_Nm = moment_z(sec, R) + moment_z(sec, support);
+  }
+
+  if (has_generator) {
     HarmonicField comb = gen;
-    comb += torque * fs.torque_Nm;
-    const bool has_torque = fs.torque_Nm != 0.0;
-    for (const double factor_T : {0.25, 0.5, 1.0, 2.0}) {
-      const double T = factor_T * (has_torque ? fs.torque_Nm : 1.0);
-      HarmonicField u = gen;
-      u += torque * T;
-      fs.torque_sweep.emplace_back(T, (rotation(u) - fs.generator_rotation_rad) / T);
-    }
+    comb += torque_case;
     NeutralCurveSamples nc;
     nc.radius_m = fs.reading_radius_m;
     nc.z_m = z_mid;
@@ -837,11 +1122,28 @@ FourierSolution analyse_section_fourier(const Case& c, SectionMesh section, int 
     curve(comb, nc.w_comb_m, nc.v_comb_m, nc.mu_comb_rad);
     fs.neutral_curve = nc;
   }
+
+  // φ₀ over the engagement zones: the mean tangential displacement of the torque case on the neutral circle there.
+  if (!plain_tube) {
+    const double half = c.load.torque_loading == TorqueLoading::Uniform ? kPi : c.load.engagement_half_angle_rad;
+    const Probe ring = probe_at(sec, {fs.reading_radius_m, fs.reading_z_m});
+    double sum = 0;
+    int count = 0;
+    for (int k = 0; k < kRingSamples; ++k) {
+      const double t = 2 * kPi * k / kRingSamples;
+      if (std::abs(std::remainder(t, 2 * kPi)) <= half + 1e-9 || std::abs(std::remainder(t - kPi, 2 * kPi)) <= half + 1e-9) {
+        sum += displacement_at(torque_case, ring, t)[1];
+        ++count;
+      }
+    }
+    fs.phi0_engaged_rad = sum / count / fs.reading_radius_m;
+  } else {
+    fs.phi0_engaged_rad = fs.phi0_rad;
+  }
   out.torque_unit = torque;
   out.generator = gen;
 
   // Stresses: nodal amplitudes; hoop profile and extremes of the generator case (else the torque case).
-  const HarmonicField torque_case = torque * fs.torque_Nm;
   const HarmonicField& hoop_field = has_generator ? gen : torque_case;
   std::vector<Eigen::MatrixXd> hs, ha;
   nodal_stress(sec, c.material, hoop_field, hs, ha);
@@ -850,9 +1152,7 @@ FourierSolution analyse_section_fourier(const Case& c, SectionMesh section, int 
     const double inset = 1e-3 * f.inner_radius_m;
     fs.hoop.profile_z_m = z;
     fs.hoop.inner_radius_m = f.inner_radius_m + inset;
-    fs.hoop.outer_radius_m =
-        (f.teeth == TeethModel::None ? f.inner_radius_m + f.wall_thickness_m : f.inner_radius_m + f.rim_thickness_m) -
-        inset;
+    fs.hoop.outer_radius_m = (f.teeth == TeethModel::None ? f.inner_radius_m + f.wall_thickness_m : r_rim_outer) - inset;
     const Probe pin = probe_at(sec, {fs.hoop.inner_radius_m, z}), pout = probe_at(sec, {fs.hoop.outer_radius_m, z});
     for (int k = 0; k < kRingSamples; ++k) {
       const double t = 2 * kPi * k / kRingSamples;
@@ -861,24 +1161,35 @@ FourierSolution analyse_section_fourier(const Case& c, SectionMesh section, int 
       fs.hoop.outer_Pa.push_back(hoop_at(hs, ha, pout, trig));
     }
   }
+  {
+    const int k = static_cast<int>(std::lround(fs.hoop.nominal_angle_deg));
+    fs.hoop.nominal_bending_Pa = 0.5 * (fs.hoop.outer_Pa[k] - fs.hoop.inner_Pa[k]);
+    fs.hoop.nominal_membrane_Pa = 0.5 * (fs.hoop.outer_Pa[k] + fs.hoop.inner_Pa[k]);
+    if (has_generator) {
+      const double t_wall = fs.hoop.outer_radius_m + (fs.hoop.inner_radius_m - ri) - ri;  // the profile's wall
+      fs.hoop.ring_theory_bending_Pa =
+          ring_theory_bending_stress(*c.wave_generator, c.material.youngs_modulus_Pa, ri + 0.5 * t_wall, t_wall,
+                                     fs.generator->w_major_m, fs.hoop.nominal_angle_deg * kPi / 180);
+    }
+  }
   fs.hoop.max_tensile_Pa = -1e300;
   fs.hoop.max_compressive_Pa = 1e300;
-  const int stations = 4 * kRingSamples;  // 0.25°: finer than any grid the extremes could be read on
+  const int angles = 4 * kRingSamples;  // 0.25°: finer than any grid the extremes could be read on
   std::vector<Trig> trigs;
-  for (int k = 0; k < stations; ++k) trigs.emplace_back(2 * kPi * k / stations, hs.size());
+  for (int k = 0; k < angles; ++k) trigs.emplace_back(2 * kPi * k / angles, hs.size());
   for (std::size_t i = 0; i < nn; ++i) {
     if (sec.nodes(static_cast<Eigen::Index>(i), 1) < 0.5 * f.length_m) continue;
     const Probe p = probe_node(static_cast<int>(i));
-    for (int k = 0; k < stations; ++k) {
+    for (int k = 0; k < angles; ++k) {
       const double st = hoop_at(hs, ha, p, trigs[k]);
       if (st > fs.hoop.max_tensile_Pa) {
         fs.hoop.max_tensile_Pa = st;
-        fs.hoop.max_tensile_angle_deg = 360.0 * k / stations;
+        fs.hoop.max_tensile_angle_deg = 360.0 * k / angles;
         fs.hoop.max_tensile_z_m = sec.nodes(static_cast<Eigen::Index>(i), 1);
       }
       if (st < fs.hoop.max_compressive_Pa) {
         fs.hoop.max_compressive_Pa = st;
-        fs.hoop.max_compressive_angle_deg = 360.0 * k / stations;
+        fs.hoop.max_compressive_angle_deg = 360.0 * k / angles;
         fs.hoop.max_compressive_z_m = sec.nodes(static_cast<Eigen::Index>(i), 1);
       }
     }

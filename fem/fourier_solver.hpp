@@ -11,10 +11,13 @@
 //
 // Loads are expanded exactly in θ (patches and zones are piecewise constant in θ, integrated in closed form) and
 // integrated over the section's boundary edges with 3 Gauss points; what is truncated is the series at N, nothing
-// else. The generator models, torque loadings, supports and the figures read from the solution are those of
-// fem/flexspline_analysis.hpp (same conventions; see there), with these differences that are not approximations:
-// the four-force patches are exactly ±3° × the band on the inner wall (the section has node lines at the band's
-// edges), and the cam's prescription u_r = w0·cos2θ on the band is harmonic 2 of the symmetric family exactly.
+// else. The generator models (the cam and rollers in unilateral contact on the band's stations, with the bearing in
+// series and the gaps blind to the band's turn as fem/generator_contact.hpp's model; the force models with the torque
+// case held radially at them), torque loadings, supports and the figures read from the solution are
+// those of fem/flexspline_analysis.hpp (same conventions; see there), with these differences: the four-force patches
+// are exactly ±3° × the band on the inner wall (the section has node lines at the band's edges); the stations are
+// the tet10 path's but at most N/2 pairs (a hat of half-width Δ needs harmonics up to 2π/Δ), and their influence
+// matrix is exact up to the truncation (two solves per harmonic; see HarmonicStations in the source).
 // Nodes on the axis (the cup's boss) carry the regularity conditions: n = 0: a = b = 0; n = 1: c = 0, b = −a;
 // n ≥ 2: a = b = c = 0.
 #include <vector>
@@ -63,7 +66,7 @@ struct HarmonicStats {
 struct FourierSolution {
   SectionMesh section;
   FlexsplineSolution figures;  ///< φ₀, C_τ, neutral curve, hoop stress, reactions (cases[].u empty unless a grid)
-  HarmonicField torque_unit;   ///< T = 1 N·m
+  HarmonicField torque_unit;   ///< T = 1 N·m, without the generator's support
   HarmonicField generator;     ///< scaled to the case (w0 or force)
   std::vector<HarmonicStats> harmonics;  ///< the harmonics solved (those with a load)
   int harmonics_kept = 0;      ///< N

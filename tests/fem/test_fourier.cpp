@@ -196,5 +196,38 @@ TEST(FourierGrid, RevolvedVolumeAndValues) {
   EXPECT_LT((s.figures.cases.front().u.segment<3>(3 * id) - cart).norm(), 1e-12 * cart.norm() + 1e-18);
 }
 
+// The cam in unilateral contact on the harmonic basis: the generator pushes only (every station force ≥ 0), touches
+// where the cam stands out to the bore (w at the major axis = w0 within the contact stations' hat averaging), lifts off
+// at the minor axis; the torque case balances (clamp + generator reaction = −applied, 1e-9), and the station forces sum
+// to the total radial force (each pair's unit load is 1 N of normal force at each of its two stations).
+TEST(FourierCam, UnilateralContactBalances) {
+  Case c = plain_tube();
+  c.solver.harmonics = 48;
+  c.load.torque_Nm = 20;
+  WaveGeneratorParams w;
+  w.model = WaveGeneratorModel::Cam;
+  w.radial_deformation_m = 0.1e-3;
+  c.wave_generator = w;
+  const FourierSolution s = analyse_flexspline_fourier(c);
+  ASSERT_TRUE(s.figures.generator.has_value());
+  const auto& g = *s.figures.generator;
+  EXPECT_TRUE(g.unilateral);
+  EXPECT_EQ(g.model, "cam");
+  double sum = 0;
+  for (double p : g.force_wg_N) {
+    EXPECT_GE(p, 0.0);
+    sum += 2 * p;
+  }
+  // The normal is tilted by the cam's slope (≤ 2·w0/r = 0.01): its radial part is ≥ 0.99995 of the force.
+  EXPECT_NEAR(g.total_radial_force_N / sum, 1.0, 1e-4);
+  EXPECT_GT(g.w_major_m, 0.9 * *w.radial_deformation_m);
+  EXPECT_LT(g.w_major_m, 1.02 * *w.radial_deformation_m);  // measured 1.0105·w0: the gap is held hat-averaged
+  EXPECT_LT(g.w_minor_m, -0.5 * *w.radial_deformation_m);
+  ASSERT_EQ(g.zones_wg_deg.size(), 2u);
+  EXPECT_LT(g.zones_wg_deg[0].first, -10.0);
+  EXPECT_GT(g.zones_wg_deg[0].second, 10.0);
+  EXPECT_NEAR(s.figures.reaction_torque_Nm, -s.figures.applied_torque_Nm, 1e-9 * std::abs(c.load.torque_Nm));
+}
+
 }  // namespace
 }  // namespace sw

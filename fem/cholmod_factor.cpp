@@ -83,6 +83,23 @@ constexpr double kMinPivotRatio = 1e-13;
 
 namespace {
 
+/// A cholmod_sparse view of K's upper triangle (no copy; CHOLMOD only reads it).
+cholmod_sparse csc_view(const SymmetricCsc& K) {
+  cholmod_sparse A{};
+  A.nrow = A.ncol = static_cast<size_t>(K.n);
+  A.nzmax = K.nnz();
+  A.p = const_cast<std::int64_t*>(K.column_start.data());
+  A.i = const_cast<std::int64_t*>(K.row.data());
+  A.x = const_cast<double*>(K.value.data());
+  A.stype = 1;  // upper triangle stored
+  A.itype = CHOLMOD_LONG;
+  A.xtype = CHOLMOD_REAL;
+  A.dtype = CHOLMOD_DOUBLE;
+  A.sorted = 1;
+  A.packed = 1;
+  return A;
+}
+
 /// Fill-reducing permutation of K's equations from METIS on the graph of its blocks (nodes).
 std::vector<std::int64_t> block_ordering(const SymmetricCsc& K, const std::vector<std::int64_t>& block,
                                          cholmod_common& c) {
@@ -144,18 +161,7 @@ CholmodFactor::CholmodFactor(const SymmetricCsc& K, const std::vector<std::int64
   c.error_handler = nullptr;
   if (K.n == 0) throw InputError("no free degrees of freedom: every node is fixed");
 
-  cholmod_sparse A{};
-  A.nrow = A.ncol = static_cast<size_t>(K.n);
-  A.nzmax = K.nnz();
-  A.p = const_cast<std::int64_t*>(K.column_start.data());
-  A.i = const_cast<std::int64_t*>(K.row.data());
-  A.x = const_cast<double*>(K.value.data());
-  A.stype = 1;  // upper triangle stored
-  A.itype = CHOLMOD_LONG;
-  A.xtype = CHOLMOD_REAL;
-  A.dtype = CHOLMOD_DOUBLE;
-  A.sorted = 1;
-  A.packed = 1;
+  cholmod_sparse A = csc_view(K);
 
   auto t0 = std::chrono::steady_clock::now();
   std::vector<std::int64_t> perm;
@@ -174,13 +180,21 @@ CholmodFactor::CholmodFactor(const SymmetricCsc& K, const std::vector<std::int64
   const int ord = impl_->factor->ordering;
   impl_->stats.ordering = !perm.empty() ? "METIS on the node graph" : ord >= 0 && ord < 7 ? kOrderings[ord] : "other";
 
-  t0 = std::chrono::steady_clock::now();
+  impl_->stats.equations = K.n;
+  impl_->stats.supernodal = impl_->factor->is_super;
+  refactorise(K);
+}
+
+void CholmodFactor::refactorise(const SymmetricCsc& K) {
+  if (K.n != static_cast<std::int64_t>(impl_->factor->n))
+    throw std::logic_error("refactorise: the matrix is not of the analysed size");
+  cholmod_common& c = impl_->common;
+  cholmod_sparse A = csc_view(K);
+  const auto t0 = std::chrono::steady_clock::now();
   const int ok = cholmod_l_factorize(&A, impl_->factor, &c);
   impl_->stats.factor_s = seconds_since(t0);
   if (!ok || c.status != CHOLMOD_OK) throw InputError(status_sentence(c, K.n));
-  impl_->stats.equations = K.n;
   impl_->stats.matrix_nnz = static_cast<std::int64_t>(K.nnz());
-  impl_->stats.supernodal = impl_->factor->is_super;
 
   // Unconstrained rigid modes need not give a negative pivot in floating point: check the pivot spread too.
   const double rcond = cholmod_l_rcond(impl_->factor, &c);

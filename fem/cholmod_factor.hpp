@@ -45,6 +45,10 @@ public:
   CholmodFactor(const CholmodFactor&) = delete;
   CholmodFactor& operator=(const CholmodFactor&) = delete;
 
+  /// Factorises K again on this factor's analysis (ordering and supernodes): K must have the pattern the factor was
+  /// analysed for (the harmonic solver's n ≥ 2 matrices share one). Only the numeric factorisation is timed.
+  void refactorise(const SymmetricCsc& K);
+
   /// Solves K·X = B for all columns of B at once (n x k).
   Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
 

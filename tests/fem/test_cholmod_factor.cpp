@@ -67,6 +67,21 @@ TEST(ForwardSolve, HalfSolveOnThePathsGivesTheInfluenceMatrixOfFullSolves) {
   }
 }
 
+// A second matrix of the same pattern factorised on the first one's analysis solves like a factor of its own.
+TEST(Refactorise, SamePatternOnTheFirstAnalysisSolvesLikeAFreshFactor) {
+  const Tube t = clamped_tube();
+  SymmetricCsc K2 = t.K;
+  for (double& v : K2.value) v *= 3.0;  // same pattern, other values: a stiffer material
+  for (std::int64_t j = 0; j < K2.n; ++j) K2.value[K2.column_start[j + 1] - 1] *= 1.5;  // and a heavier diagonal
+  CholmodFactor reused(t.K, equation_nodes(t.dofs));
+  reused.refactorise(K2);
+  const CholmodFactor fresh(K2, equation_nodes(t.dofs));
+  const Eigen::MatrixXd B = Eigen::MatrixXd::Random(t.dofs.n_equations, 3);
+  const Eigen::MatrixXd x1 = reused.solve(B), x2 = fresh.solve(B);
+  EXPECT_LT((x1 - x2).cwiseAbs().maxCoeff(), 1e-10 * x2.cwiseAbs().maxCoeff());
+  EXPECT_THROW(reused.refactorise(SymmetricCsc{}), std::logic_error);
+}
+
 TEST(ForwardSolve, RefusesARightHandSideOfTheWrongSize) {
   const Tube t = clamped_tube();
   const CholmodFactor factor(t.K);

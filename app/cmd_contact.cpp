@@ -15,24 +15,13 @@
 namespace sw::app {
 namespace {
 
-const char* generator_model_name(WaveGeneratorModel m) {
-  switch (m) {
-    case WaveGeneratorModel::FourForce: return "four_force";
-    case WaveGeneratorModel::TwoForce: return "two_force";
-    case WaveGeneratorModel::Forces: return "forces";
-    case WaveGeneratorModel::Cam: return "cam";
-    case WaveGeneratorModel::Rollers: return "rollers";
-  }
-  return "?";
-}
-
 /// The FEM of an earlier run of the same case (--fem): the model is meshed and factorised again (the influence
 /// coefficients need the factor, which no file carries) and must have as many equations as that run's; the
 /// generator-deformed neutral curve and C_τ are read back instead of solving the load cases again.
 FemJobResult fem_from_run(const Case& c, const std::filesystem::path& result_json, double max_memory_gb) {
   const FemRunForContact run = read_fem_run_for_contact(result_json);
   const WaveGeneratorParams& w = *c.wave_generator;
-  const std::string model = generator_model_name(w.model);
+  const std::string model = model_name(w.model);
   if (run.generator_model != model)
     throw InputError(result_json.string() + ": made with generator.model = \"" + run.generator_model + "\", " +
                      c.path + " has \"" + model + "\"; run `strainwave fem` on this case again");

@@ -20,6 +20,11 @@ enum class TeethModel { None, Ring, Explicit };
 /// that push and never pull (frictionless unilateral contact on the generator band; rollers: rigid, at ±β from both
 /// ends of the major axis, set out so the major axis reaches w0).
 enum class WaveGeneratorModel { FourForce, TwoForce, Forces, Cam, Rollers };
+/// The case key's spelling of a generator model ("four_force", "two_force", "forces", "cam", "rollers").
+inline const char* model_name(WaveGeneratorModel m) {
+  static const char* kNames[] = {"four_force", "two_force", "forces", "cam", "rollers"};
+  return kNames[static_cast<int>(m)];
+}
 /// The cam's outer surface: polar r + w0·cos2φ (the first-order shape the linear model works in; the default), a
 /// true ellipse of semi-axes r + w0 and r − w0 (inside the polar form by up to 1.5·w0²/r at ±45°), or a list of radii
 /// against angle over a half turn (fem/cam_profile.hpp).

@@ -322,8 +322,7 @@ FlexsplineSolution analyse_flexspline(const Case& c, const TetMesh& mesh, const 
   if (gen) {
     const auto& w = *c.wave_generator;
     GeneratorReadout gr;
-    static const char* kModels[] = {"four_force", "two_force", "forces", "cam", "rollers"};
-    gr.model = kModels[static_cast<int>(w.model)];
+    gr.model = model_name(w.model);
     gr.unilateral = gen->unilateral;
     gr.station_angle_rad = gen->stations.angle_rad;
     progress("generator: influence of " + std::to_string(gen->stations.angle_rad.size()) + " contact station pairs");
@@ -338,11 +337,7 @@ FlexsplineSolution analyse_flexspline(const Case& c, const TetMesh& mesh, const 
         // linear in the rollers' standoff; one solve for the unit standoff gives the scale.
         const Eigen::VectorXd u_unit =
             eq.solve(contact_load(gen->stations, bilateral_support(C, obstacle).force_N)).col(0);
-        const double w_unit = rim_w(f, sampler, s.reading_radius_m, u_unit, 0.0);
-        if (!(w_unit > 0))
-          throw InputError("wave_generator: rollers at beta_deg = " + std::to_string(w.beta_rad * 180 / kPi) +
-                           " do not push the major axis outward; use beta_deg < 45");
-        obstacle *= *w.radial_deformation_m / w_unit;
+        obstacle *= rollers_setout(w, rim_w(f, sampler, s.reading_radius_m, u_unit, 0.0));
       }
       gr.obstacle_m = obstacle;
       // The wave stays with the generator (the gaps ignore the band's turn), and the bearing in series (a cam's).

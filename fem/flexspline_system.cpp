@@ -127,6 +127,13 @@ FlexsplineSystem assemble_and_factorise(const Case& c, const TetMesh& mesh) {
   return eq;
 }
 
+double rollers_setout(const WaveGeneratorParams& w, double w_unit_m) {
+  if (!(w_unit_m > 0))
+    throw InputError("wave_generator: rollers at beta_deg = " + std::to_string(w.beta_rad * 180 / kPi) +
+                     " do not push the major axis outward; use beta_deg < 45");
+  return *w.radial_deformation_m / w_unit_m;
+}
+
 double cam_standoff(const WaveGeneratorParams& w, double r, double t) { return CamSurface(w, r).standoff_m(t); }
 
 GeneratorStations generator_stations(const Case& c, const TetMesh& mesh) {

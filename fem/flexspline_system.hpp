@@ -51,6 +51,11 @@ std::vector<WaveGeneratorForce> generator_forces(const WaveGeneratorParams& w);
 /// Half-width of each of the force idealisation's patches on the bore (rad).
 inline constexpr double kGeneratorPatchHalfAngle_rad = 3.0 * 3.141592653589793 / 180;
 
+/// The rollers' set-out per metre of standoff: all four touch (symmetric), so the generator case is linear in the
+/// standoff, and `w_unit_m` (the major axis's w for a unit standoff) scales it to the case's w0. InputError when the
+/// rollers do not push the major axis outward.
+double rollers_setout(const WaveGeneratorParams& w, double w_unit_m);
+
 /// Radial standoff s(θ) of the cam's surface from the unloaded bore of radius r at angle θ from the major axis.
 double cam_standoff(const WaveGeneratorParams& w, double r_m, double theta_rad);
 /// Angular spacing of the contact stations: two element edges at the bore (a contact pressure resolved more finely

@@ -957,8 +957,7 @@ FourierSolution analyse_section_fourier(const Case& c, SectionMesh section, int 
     const auto& w = *c.wave_generator;
     const HarmonicStations& hs = *stations;
     GeneratorReadout gr;
-    static const char* kModels[] = {"four_force", "two_force", "forces", "cam", "rollers"};
-    gr.model = kModels[static_cast<int>(w.model)];
+    gr.model = model_name(w.model);
     gr.unilateral = hs.unilateral;
     gr.station_angle_rad = hs.angle_rad;
     const Eigen::MatrixXd C = hs.influence(Ur, Ut);
@@ -970,11 +969,7 @@ FourierSolution analyse_section_fourier(const Case& c, SectionMesh section, int 
       Eigen::VectorXd obstacle = hs.obstacle_m;
       if (w.model == WaveGeneratorModel::Rollers) {
         // Set the rollers out so the major axis reaches w0 (all four touch: linear in the standoff).
-        const double w_unit = rim_w(field(bilateral_support(C, obstacle).force_N), 0.0);
-        if (!(w_unit > 0))
-          throw InputError("wave_generator: rollers at beta_deg = " + std::to_string(w.beta_rad * 180 / kPi) +
-                           " do not push the major axis outward; use beta_deg < 45");
-        obstacle *= *w.radial_deformation_m / w_unit;
+        obstacle *= rollers_setout(w, rim_w(field(bilateral_support(C, obstacle).force_N), 0.0));
       }
       gr.obstacle_m = obstacle;
       // As the tet10 path: the wave stays with the generator (the gaps ignore the band's turn), and the bearing in

@@ -613,8 +613,7 @@ std::string describe_case(const Case& c) {
       << *c.material.ultimate_strength_Pa / 1e6 << "\n";
   if (c.wave_generator) {
     const auto& w = *c.wave_generator;
-    static const char* kModels[] = {"four_force", "two_force", "forces", "cam", "rollers"};
-    s << "[wave_generator]\nmodel = \"" << kModels[static_cast<int>(w.model)] << "\"\n";
+    s << "[wave_generator]\nmodel = \"" << model_name(w.model) << "\"\n";
     if (w.model == WaveGeneratorModel::FourForce || w.model == WaveGeneratorModel::Rollers)
       s << "beta_deg = " << w.beta_rad / kDeg << "\n";
     if (w.radial_deformation_m) s << "radial_deformation_mm = " << mm(*w.radial_deformation_m) << "\n";

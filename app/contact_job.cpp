@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <numbers>
 #include <optional>
+#include <string>
 
 #include "common/error.hpp"
 #include "common/progress.hpp"
@@ -29,15 +30,9 @@ SeriesParts series_parts(const Case& c) {
   if (c.gear) {
     // The tooth pair's own compliance per unit face width (bending, foundation, flattening of both teeth; analytic,
     // gear/tooth_stiffness.hpp) over the rim's width, at the flank's contact radius (kept on the active flank).
-    const GearParams g = *c.gear;
-    const Material m = c.material;
-    const GearRadii radii = gear_radii(g);
-    const double width = c.flexspline.rim_width_m, bore = c.flexspline.inner_radius_m;
-    s.tooth_pair_m_per_N = [=](double r) {
-      return tooth_pair_compliance(g, m, std::clamp(r, radii.form_f, radii.tip_f), kReferenceLineLoad_N_per_m, bore)
-                 .total() / width;
-    };
-    s.teeth_source = "tooth pair compliance (analytic: beam over the real outline, Sainsot foundation, Weber flattening)";
+    s.tooth_pair_m_per_N = case_tooth_pair_compliance(c);
+    s.teeth_source = "tooth pair compliance (analytic: beam over the real outline, Sainsot foundation, Weber flattening; "
+                     "both teeth loaded where they touch)";
   }
   if (c.wave_generator && c.wave_generator->bearing) {
     const GeneratorBearing b = *c.wave_generator->bearing;
@@ -101,6 +96,41 @@ ContactAnalysis run_contact_job(const Case& c, const FemJobResult& fem, const st
   std::printf("  twist at rated: engagement %.1f %%, body %.1f %%, teeth %.1f %%, generator bearing %.1f %%, circular "
               "spline %.1f %%\n", 100 * a.split.engagement, 100 * a.split.body, 100 * a.split.teeth,
               100 * a.split.generator, 100 * a.split.circular_spline);
+  if (!a.edges.empty()) {
+    // The zone's edge: the loaded edge tooth with the least radial overlap left, the free one that comes closest.
+    const EdgeTooth* held = nullptr;
+    const EdgeTooth* free = nullptr;
+    int beyond = 0, beyond_loaded = 0;
+    for (const EdgeTooth& e : a.edges) {
+      if (e.engaged && (!held || e.overlap_min_m < held->overlap_min_m)) held = &e;
+      if (!e.candidate && (!free || e.overlap_max_m > free->overlap_max_m)) free = &e;
+    }
+    for (std::size_t i = 0; i < a.flanks.size(); ++i)
+      if (a.flanks[i].beyond_tip_circle) {
+        ++beyond;
+        beyond_loaded += a.steps.front().flank_force_N[i] > 0 || a.steps.back().flank_force_N[i] > 0;
+      }
+    std::string line = a.zone_edges_hold ? "  mesh-zone edges hold under load:" : "  WARNING: a mesh-zone edge moves under load:";
+    char buf[256];
+    if (held) {
+      std::snprintf(buf, sizeof buf, " the last engaged tooth (%.1f deg) keeps %.2f of its %.2f µm radial overlap%s;",
+                    held->phi_rad * 180 / std::numbers::pi, held->overlap_min_m * 1e6, held->overlap_at_rest_m * 1e6,
+                    held->slips ? " and loses it while loaded (its tip would slip over the circular spline's tip)" : "");
+      line += buf;
+    }
+    if (beyond > 0) {
+      std::snprintf(buf, sizeof buf, " %d flanks short of the circular spline's tip circle at rest take part, %d loaded at "
+                    "±rated;", beyond, beyond_loaded);
+      line += buf;
+    }
+    if (free) {
+      std::snprintf(buf, sizeof buf, " the nearest tooth left out (%.1f deg) stays %.2f µm clear of the circular spline's tip circle%s",
+                    free->phi_rad * 180 / std::numbers::pi, -free->overlap_max_m * 1e6,
+                    free->enters ? " (negative: it comes into mesh)" : "");
+      line += buf;
+    }
+    std::printf("%s\n", line.c_str());
+  }
   if (a.overlap_at_rest_m > 0)
     std::printf("  WARNING: the teeth overlap at rest by %.2f µm on the FEM's neutral curve, so part of the curve above is a "
                 "preload from that interference, not a property of the drive; remove the interference first (the "

@@ -24,6 +24,7 @@
 #include "common/progress.hpp"
 #include "dynamics/model.hpp"
 #include "dynamics/moving_mesh_build.hpp"
+#include "contact/loaded_contact.hpp"
 #include "gear/tooth_stiffness.hpp"
 #include "gear/tooth_profile.hpp"
 #include "dynamics/simulate.hpp"
@@ -69,13 +70,7 @@ int main(int argc, char** argv) {
                                          c.material, p, std::move(pairs), case_path);
     if (pairs_mode == "moving") {  // the rim coupled through the FEM needs the FEM job: `strainwave dynamics` times it
       const sw::GearParams g = *c.gear;
-      const sw::Material mat = c.material;
-      const sw::GearRadii radii = sw::gear_radii(g);
-      const double width = c.flexspline.rim_width_m, bore = c.flexspline.inner_radius_m;
-      const sw::ToothCompliance teeth = [=](double r) {
-        return sw::tooth_pair_compliance(g, mat, std::clamp(r, radii.form_f, radii.tip_f),
-                                         sw::kReferenceLineLoad_N_per_m, bore).total() / width;
-      };
+      const sw::ToothCompliance teeth = sw::case_tooth_pair_compliance(c);
       const sw::NeutralCurve curve = sw::generator_neutral_curve(
           sw::rim_mean_radius(c.flexspline), sw::case_radial_deformation_m(c), *c.wave_generator);
       m.moving = std::make_shared<sw::MovingMesh>(sw::rigid_rim_mesh(g, curve, teeth, 16));

@@ -16,6 +16,7 @@
 #include "fem/assembly.hpp"
 #include "fem/loads.hpp"
 #include "fem/post.hpp"
+#include "gear/tooth_stiffness.hpp"
 #include "kinematics/neutral_curve.hpp"
 
 namespace sw {
@@ -23,46 +24,36 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-double wrap_pi(double a) { return std::remainder(a, 2 * kPi); }
-double theta_of(const Eigen::Vector3d& x) { return std::atan2(x[1], x[0]); }
+}  // namespace
 
-/// Load patterns of the flanks on the rim's outer surface: a linear hat one tooth pitch wide about the contact's
-/// polar angle (and its half-turn partner's), uniform across the face, along the force the circular spline puts on
-/// the flexspline tooth (−normal), with the tangential part scaled so the moment about the axis is exactly the
-/// geometric one (the ring's surface and the contact point differ slightly in radius).
-class FlankLoads {
-public:
-  FlankLoads(const TetMesh& mesh, double pitch_rad) : mesh_(mesh), half_(pitch_rad), hats_(mesh, rim(mesh)) {}
-  /// 1 N along `force_dir` (2-D, frame of the generator) at each station; moment about z forced to `moment_Nm`.
-  Eigen::VectorXd pattern(const std::vector<double>& stations, const Eigen::Vector2d& force_dir, double moment_Nm) const {
-    const std::vector<bool> all(mesh_.n_nodes(), true);
-    Eigen::VectorXd radial = Eigen::VectorXd::Zero(3 * mesh_.n_nodes()), tangential = radial;
-    double fr = 0;
-    for (const double s : stations) {
-      const Eigen::VectorXd r = hats_.load(s, half_, [](double t) { return Eigen::Vector3d(std::cos(t), std::sin(t), 0); });
-      if (r.size() == 0)
-        throw InputError("contact: no rim faces under the tooth at " + std::to_string(s * 180 / kPi) +
-                         " deg; refine mesh.size_mm");
-      radial += r;
-      tangential += hats_.load(s, half_, [](double t) { return Eigen::Vector3d(-std::sin(t), std::cos(t), 0); });
-      // The radial component in the station's frame (the same for the partner at s + π, by symmetry); the tangential
-      // one follows from the moment below.
-      fr = force_dir.dot(Eigen::Vector2d(std::cos(s), std::sin(s)));
-    }
-    const double m_r = moment_about_z(mesh_, radial, all), m_t = moment_about_z(mesh_, tangential, all);
-    return fr * radial + (moment_Nm - fr * m_r) / m_t * tangential;
-  }
+std::vector<const BoundaryFace*> FlankLoads::rim(const TetMesh& mesh) {
+  auto faces = select_faces(mesh, kSurfaceRimOuter);
+  if (faces.empty()) throw InputError("contact: the flexspline mesh has no toothed rim surface");
+  return faces;
+}
 
-private:
-  static std::vector<const BoundaryFace*> rim(const TetMesh& mesh) {
-    auto faces = select_faces(mesh, kSurfaceRimOuter);
-    if (faces.empty()) throw InputError("contact: the flexspline mesh has no toothed rim surface");
-    return faces;
+FlankLoads::FlankLoads(const TetMesh& mesh, double pitch_rad) : mesh_(mesh), half_(pitch_rad), hats_(mesh, rim(mesh)) {}
+
+Eigen::VectorXd FlankLoads::pattern(const std::vector<double>& stations, const Eigen::Vector2d& force_dir,
+                                    double moment_Nm) const {
+  const std::vector<bool> all(mesh_.n_nodes(), true);
+  Eigen::VectorXd radial = Eigen::VectorXd::Zero(3 * mesh_.n_nodes()), tangential = radial;
+  for (const double s : stations) {
+    const Eigen::VectorXd r = hats_.load(s, half_, [](double t) { return Eigen::Vector3d(std::cos(t), std::sin(t), 0); });
+    if (r.size() == 0)
+      throw InputError("contact: no rim faces under the tooth at " + std::to_string(s * 180 / kPi) +
+                       " deg; refine mesh.size_mm");
+    radial += r;
+    tangential += hats_.load(s, half_, [](double t) { return Eigen::Vector3d(-std::sin(t), std::cos(t), 0); });
   }
-  const TetMesh& mesh_;
-  double half_;
-  AngularHats hats_;
-};
+  // The radial component in the first station's frame; a partner at s + π carries the force turned by π, whose
+  // radial component in its own frame is the same.
+  const double fr = stations.empty() ? 0.0 : force_dir.dot(Eigen::Vector2d(std::cos(stations[0]), std::sin(stations[0])));
+  const double m_r = moment_about_z(mesh_, radial, all), m_t = moment_about_z(mesh_, tangential, all);
+  return fr * radial + (moment_Nm - fr * m_r) / m_t * tangential;
+}
+
+namespace {
 
 Eigen::SparseMatrix<double> sparse_columns(const std::vector<Eigen::VectorXd>& cols, const Eigen::SparseMatrix<double>& more) {
   std::vector<Eigen::Triplet<double>> t;
@@ -102,12 +93,21 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
 
   // The flanks that can close: within reach of the first one on their side.
   double first_closing[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  std::vector<PairClearance> rest(g.teeth_flexspline);
   for (int k = 0; k < g.teeth_flexspline; ++k) {
     const double phi = tooth_material_angle(g, k, opt.wg_angle_rad);
-    if (!pair_clearance(model, phi, 0.0).engaged) continue;
+    rest[k] = pair_clearance(model, phi, 0.0);
+    if (!rest[k].engaged) continue;
     for (const Flank side : {Flank::Ccw, Flank::Cw})
       first_closing[side == Flank::Cw] = std::min(first_closing[side == Flank::Cw], closing_angle_rad(model, phi, 0.0, side));
   }
+  // Teeth within `pitches` of a change of engagement (the mesh zones' edges).
+  const int zf = g.teeth_flexspline;
+  auto near_edge = [&](int k, int pitches) {
+    for (int d = -pitches; d <= pitches; ++d)
+      if (rest[(k + d + zf) % zf].engaged != rest[k].engaged) return true;
+    return false;
+  };
   const double reach = reach_factor * std::abs(fem.compliance_rad_per_Nm) * opt.rated_torque_Nm;
   out.reach_rad = reach;
   std::vector<Eigen::VectorXd> columns;
@@ -116,14 +116,17 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
   for (int k = 0; k < g.teeth_flexspline; ++k) {
     const double phi = tooth_material_angle(g, k, opt.wg_angle_rad);
     if (out.half_turn_pairs && !(phi > -kPi / 2 && phi <= kPi / 2)) continue;
-    const PairClearance pc = pair_clearance(model, phi, 0.0);
-    if (!pc.engaged) continue;
+    const PairClearance& pc = rest[k];
+    // Beyond the circular spline's tip circle a tooth cannot be turned into contact, but the rim moves radially under
+    // load and the zones widen: the free teeth within two pitches of an edge take part, with the distance of the
+    // closest points (tip corner to tip corner) as their gap, to first order.
+    if (!pc.engaged && !near_edge(k, 2)) continue;
     const ToothPlacement place = place_tooth(curve, phi, 0.0);
     for (const Flank side : {Flank::Ccw, Flank::Cw}) {
-      const double delta = closing_angle_rad(model, phi, 0.0, side);
-      if (!std::isfinite(delta) || delta > first_closing[side == Flank::Cw] + reach) continue;
       const FlankClearance& fc = side == Flank::Ccw ? pc.ccw : pc.cw;
       if (side == Flank::Ccw ? !(fc.lever_arm_m > 0) : !(fc.lever_arm_m < 0)) continue;
+      const double delta = pc.engaged ? closing_angle_rad(model, phi, 0.0, side) : fc.clearance_m / std::abs(fc.lever_arm_m);
+      if (!std::isfinite(delta) || (pc.engaged && delta > first_closing[side == Flank::Cw] + reach)) continue;
       FlankContact f;
       f.tooth = k;
       f.phi_rad = phi;
@@ -132,9 +135,12 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
       f.lever_m = fc.lever_arm_m;
       f.part_f = fc.part_f;
       f.part_c = fc.part_c;
+      f.beyond_tip_circle = !pc.engaged;
       const Eigen::Vector2d local = Eigen::Rotation2Dd(-place.angle_rad) * (fc.point_f - place.offset_m);
       f.contact_radius_m = local.norm();
-      f.compliance_m_per_N = opt.series.tooth_pair_m_per_N ? opt.series.tooth_pair_m_per_N(f.contact_radius_m) : 0.0;
+      f.contact_radius_c_m = fc.point_c.norm();  // the circular spline is fixed: frame W is its own
+      f.compliance_m_per_N =
+          opt.series.tooth_pair_m_per_N ? opt.series.tooth_pair_m_per_N(f.contact_radius_m, f.contact_radius_c_m) : 0.0;
       const double s = std::atan2(fc.point_f.y(), fc.point_f.x());
       std::vector<double> stations{s};
       if (out.half_turn_pairs) stations.push_back(s + kPi);
@@ -148,15 +154,43 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
   for (const auto& f : out.flanks) out.overlap_at_rest_m = std::max(out.overlap_at_rest_m, -std::abs(f.lever_m) * f.closing_angle_rad);
   const auto nf = static_cast<Eigen::Index>(out.flanks.size());
 
+  // The zones' edges: the teeth within two pitches of a change of engagement. Whether such a tooth can touch at all is
+  // its radial overlap, which the rim's radial motion under load changes: a radial observer pattern at its tip reads
+  // that motion at every step (the tooth's own bending moves its tip along the pitch circle, not radially, and is
+  // left out).
+  std::vector<Eigen::VectorXd> observers;
+  for (int k = 0; k < zf; ++k) {
+    const double phi = tooth_material_angle(g, k, opt.wg_angle_rad);
+    if (out.half_turn_pairs && !(phi > -kPi / 2 && phi <= kPi / 2)) continue;
+    if (!near_edge(k, 3)) continue;
+    const ToothPlacement place = place_tooth(curve, phi, 0.0);
+    const Eigen::Vector2d tip = Eigen::Rotation2Dd(place.angle_rad) * Eigen::Vector2d(model.radii.tip_f, 0.0) + place.offset_m;
+    const double s = std::atan2(tip.y(), tip.x());
+    std::vector<double> stations{s};
+    if (out.half_turn_pairs) stations.push_back(s + kPi);
+    observers.push_back(loads.pattern(stations, Eigen::Vector2d(std::cos(s), std::sin(s)), 0.0) / n_teeth);
+    EdgeTooth e;
+    e.tooth = k;
+    e.phi_rad = phi;
+    e.engaged = rest[k].engaged;
+    e.overlap_at_rest_m = e.overlap_min_m = e.overlap_max_m = rest[k].depth_m;
+    e.candidate = std::any_of(out.flanks.begin(), out.flanks.end(), [&](const FlankContact& f) { return f.tooth == k; });
+    out.edges.push_back(e);
+  }
+  const auto no = static_cast<Eigen::Index>(observers.size());
+
   // The generator's stations, and the influence coefficients of every pattern.
   const GeneratorStations gen = generator_stations(c, mesh);
   const bool unilateral = gen.unilateral;
   const Eigen::SparseMatrix<double> L = sparse_columns(columns, gen.stations.loads);
   const auto nb = gen.stations.loads.cols();
   out.setup_s = clock.lap();
-  progress("contact: influence of " + std::to_string(nf) + " flank patterns and " + std::to_string(nb) +
-           " generator stations");
-  const Eigen::MatrixXd A_body = sys.influence(L);
+  progress("contact: influence of " + std::to_string(nf) + " flank patterns, " + std::to_string(nb) +
+           " generator stations and " + std::to_string(no) + " zone-edge observers");
+  const Eigen::SparseMatrix<double> L_all = sparse_columns(observers, L);
+  const Eigen::MatrixXd A_all = sys.influence(L_all);
+  const Eigen::MatrixXd A_body = A_all.bottomRightCorner(nf + nb, nf + nb);
+  const Eigen::MatrixXd R_edge = A_all.topRightCorner(no, nf + nb);  // radial motion at the edge teeth's tips
   out.influence_s = clock.lap();
   Eigen::VectorXd lambda(nf + nb);
   const std::vector<bool> all(mesh.n_nodes(), true);
@@ -264,6 +298,23 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
         st.pairs_in_contact += static_cast<int>(n_teeth);
         st.max_pair_force_N = std::max(st.max_pair_force_N, s.force_N[i]);
       }
+    // The edge teeth's radial overlap in this state (from the generator's state at rest).
+    {
+      Eigen::VectorXd dx(nf + nb);
+      if (unilateral) dx << s.force_N.head(nf), s.force_N.tail(nb) - p0;
+      else dx << s.force_N, band_solve * s.force_N;
+      const Eigen::VectorXd du = R_edge * dx;
+      for (Eigen::Index e = 0; e < no; ++e) {
+        EdgeTooth& et = out.edges[e];
+        const double overlap = et.overlap_at_rest_m + du[e];
+        et.overlap_min_m = std::min(et.overlap_min_m, overlap);
+        et.overlap_max_m = std::max(et.overlap_max_m, overlap);
+        bool loaded = false;
+        for (Eigen::Index i = 0; i < nf; ++i) loaded = loaded || (out.flanks[i].tooth == et.tooth && s.force_N[i] > 0);
+        if (et.engaged && loaded && overlap < 0) et.slips = true;
+        if (!et.candidate && overlap > 0) et.enters = true;
+      }
+    }
     st.balance_error_rel = std::abs(lambda.head(s.force_N.size()).dot(s.force_N) - T) / std::abs(T);
     out.torque_balance_error_rel = std::max(out.torque_balance_error_rel, st.balance_error_rel);
     out.steps.push_back(st);
@@ -284,6 +335,7 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
     progress("contact: the twist reaches flanks left out; again with twice the reach");
     return analyse_within_reach(c, mesh, sys, fem, opt, 2 * reach_factor);
   }
+  for (const EdgeTooth& e : out.edges) out.zone_edges_hold = out.zone_edges_hold && !e.slips && !e.enters;
   out.play_rad = out.curve.twist_rad[N + 1] - out.curve.twist_rad[N];
   out.lost_motion_rad = lost_motion_rad(out.curve, T_R);
   out.catalog = opt.catalog_t1_Nm > 0 && opt.catalog_t2_Nm > opt.catalog_t1_Nm && opt.catalog_t2_Nm < T_R
@@ -326,7 +378,9 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
     else x << at_rated.force_N, band_solve * at_rated.force_N;
     const Eigen::VectorXd f = L * x;
     const Eigen::VectorXd u = sys.solve(f).col(0);
-    const Eigen::VectorXd d_direct = L.transpose() * u, d_influence = A_body * x;
+    Eigen::VectorXd x_all = Eigen::VectorXd::Zero(no + nf + nb);  // the observers carry no force
+    x_all.tail(nf + nb) = x;
+    const Eigen::VectorXd d_direct = L_all.transpose() * u, d_influence = A_all * x_all;
     out.superposition_error_rel = (d_direct - d_influence).cwiseAbs().maxCoeff() / d_direct.cwiseAbs().maxCoeff();
     const Eigen::VectorXd reactions = internal_forces(mesh, c.material, u) - f;
     out.fem_reaction_torque_Nm = moment_about_z(mesh, reactions, sys.clamped);
@@ -338,6 +392,18 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
 }
 
 }  // namespace
+
+std::function<double(double, double)> case_tooth_pair_compliance(const Case& c) {
+  if (!c.gear) return {};
+  const GearParams g = *c.gear;
+  const Material m = c.material;
+  const GearRadii radii = gear_radii(g);
+  const double width = c.flexspline.rim_width_m, bore = c.flexspline.inner_radius_m;
+  return [=](double r_f, double r_c) {
+    return tooth_pair_compliance(g, m, std::clamp(r_f, radii.form_f, radii.tip_f), kReferenceLineLoad_N_per_m, bore,
+                                 r_c).total() / width;
+  };
+}
 
 void check_contact_case(const Case& c) {
   if (!c.gear) throw InputError(c.path + ": contact needs a [gear] table (the teeth that carry the torque)");

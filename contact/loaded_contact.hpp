@@ -29,6 +29,7 @@
 #include "contact/torque_twist.hpp"
 #include "fem/flexspline_analysis.hpp"
 #include "fem/flexspline_system.hpp"
+#include "fem/loads.hpp"
 #include "kinematics/backlash.hpp"
 #include "mesh/tet_mesh.hpp"
 
@@ -36,14 +37,38 @@ namespace sw {
 
 /// What acts in series with the flexspline body; an empty function (or 0) is a rigid part.
 struct SeriesParts {
-  /// Compliance of one tooth pair over the whole face width (m/N) at the contact radius on the flexspline tooth.
-  std::function<double(double contact_radius_f_m)> tooth_pair_m_per_N;
+  /// Compliance of one tooth pair over the whole face width (m/N), loaded where the teeth touch: at these radii on the
+  /// flexspline's tooth (its own frame) and on the circular spline's (0: the conjugate point).
+  std::function<double(double contact_radius_f_m, double contact_radius_c_m)> tooth_pair_m_per_N;
   std::string teeth_source;  ///< what the tooth compliance comes from, for reports
   /// Approach of the generator bearing's races (m) under one ball's load (N), and the number of balls.
   std::function<double(double ball_load_N)> bearing_approach_m;
   int bearing_balls = 0;
   double circular_spline_rad_per_Nm = 0;  ///< torsion of the circular spline's body
 };
+
+/// Load patterns of the flanks on the rim's outer surface: a linear hat one tooth pitch wide about the contact's polar
+/// angle (and its half-turn partner's), uniform across the face, along the force the circular spline puts on the
+/// flexspline tooth, with the tangential part scaled so the moment about the axis is exactly the geometric one (the
+/// ring's surface and the contact point differ slightly in radius).
+class FlankLoads {
+public:
+  FlankLoads(const TetMesh& mesh, double pitch_rad);
+  /// Nodal loads of 1 N along `force_dir` (2-D, frame of the generator) at stations[0], and of 1 N turned by π at
+  /// a partner stations[1] = stations[0] + π; the moment about z forced to `moment_Nm`.
+  Eigen::VectorXd pattern(const std::vector<double>& stations, const Eigen::Vector2d& force_dir, double moment_Nm) const;
+
+private:
+  static std::vector<const BoundaryFace*> rim(const TetMesh& mesh);
+  const TetMesh& mesh_;
+  double half_;
+  AngularHats hats_;
+};
+
+/// The case's tooth pair compliance over the rim's face width (m/N) at the two contact radii: the analytic one of
+/// gear/tooth_stiffness.hpp (bending, foundation, flattening of both teeth), the flexspline's radius clamped to its
+/// active flank. Empty without a [gear].
+std::function<double(double contact_radius_f_m, double contact_radius_c_m)> case_tooth_pair_compliance(const Case& c);
 
 struct ContactOptions {
   double rated_torque_Nm = 0;  ///< the curve runs from −rated to +rated
@@ -65,8 +90,28 @@ struct FlankContact {
   double closing_angle_rad = 0;  ///< rigid turn of the output that closes it (< 0: overlap at rest)
   double lever_m = 0;          ///< signed moment arm (> 0 ccw: closed by a positive turn)
   double contact_radius_m = 0;  ///< on the flexspline tooth, its own frame
+  double contact_radius_c_m = 0;  ///< on the circular spline's tooth
   double compliance_m_per_N = 0;  ///< the tooth pair's own (series)
   ToothPart part_f = ToothPart::Flank, part_c = ToothPart::Flank;  ///< where the teeth touch (flank, tip corner)
+  /// Free at rest (the flexspline's tip short of the circular spline's tip circle, near a zone's edge): its gap is the
+  /// distance of the closest points to first order, closing_angle_rad that distance over the lever.
+  bool beyond_tip_circle = false;
+};
+
+/// A tooth at an edge of a mesh zone, where the flexspline's tip just reaches past the circular spline's tip circle
+/// (engaged) or just fails to (free). Whether it can touch at all is its radial overlap, which the rim's radial motion
+/// under load changes; it is read at every step through a radial observer pattern at the tooth's tip.
+struct EdgeTooth {
+  int tooth = 0;
+  double phi_rad = 0;
+  bool engaged = false;                ///< at rest (a candidate for contact when engaged)
+  double overlap_at_rest_m = 0;        ///< radial overlap |tip| − r_a,c at rest (< 0: clear of the tip circle)
+  double overlap_min_m = 0, overlap_max_m = 0;  ///< over the torque steps (rest + the rim's radial displacement)
+  /// Engaged and carrying force at a step where its overlap is gone: the tip would slip over the circular spline's
+  /// tip, which the contact model (fixed contact normal) does not follow.
+  bool slips = false;
+  bool candidate = false;  ///< its flanks take part in the contact problem
+  bool enters = false;  ///< no candidate, overlapping at some step: it would come into mesh
 };
 
 struct TorqueStep {
@@ -106,6 +151,11 @@ struct ContactAnalysis {
   double reach_rad = 0;  ///< flanks closing this much later than the first on their side were left out
   double min_closing_rad = 0;  ///< smallest closing angle at rest over both sides (< 0: the teeth overlap at rest)
   double overlap_at_rest_m = 0;  ///< largest overlap at rest along a contact normal (0: none)
+  /// The teeth within three pitches of a mesh zone's edge, watched at every step (those within two take part, the free
+  /// ones with their first-order gap); `zone_edges_hold` when no loaded engaged tooth loses its radial overlap and no
+  /// tooth left out gains one (the candidate set is then the right one).
+  std::vector<EdgeTooth> edges;
+  bool zone_edges_hold = true;
   /// The problem solved at every step: flanks (in the order of `flanks`), then the generator's stations when they are
   /// unilateral (their λ 0, their gap the FEM's obstacle); the tooth pairs' compliance on the diagonal, the bearing's
   /// secant not. For the multibody model, which moves the teeth through it.

@@ -48,8 +48,8 @@ bool lookup(const FlankTable& t, int side, double phi, TableValue& v) {
 }  // namespace
 
 FlankTable make_flank_table(double phi_start, double phi_end, double step, int teeth_per_unknown,
-                            const std::function<bool(double, int, double&, double&, double&)>& flank,
-                            const std::function<double(double)>& tooth_compliance) {
+                            const std::function<bool(double, int, double&, double&, double&, double&)>& flank,
+                            const std::function<double(double, double)>& tooth_compliance) {
   FlankTable t;
   t.phi_start_rad = phi_start;
   t.step_rad = step;
@@ -61,11 +61,11 @@ FlankTable make_flank_table(double phi_start, double phi_end, double step, int t
   }
   for (int j = 0; j < n; ++j)
     for (int side = 0; side < 2; ++side) {
-      double q = 0, lever = 0, radius = 0;
-      if (!flank(phi_start + j * step, side, q, lever, radius)) continue;
+      double q = 0, lever = 0, radius = 0, radius_c = 0;
+      if (!flank(phi_start + j * step, side, q, lever, radius, radius_c)) continue;
       t.q_m[side][j] = teeth_per_unknown * q;
       t.lambda_m[side][j] = teeth_per_unknown * lever;
-      t.compliance_m_per_N[side][j] = tooth_compliance ? teeth_per_unknown * tooth_compliance(radius) : 0.0;
+      t.compliance_m_per_N[side][j] = tooth_compliance ? teeth_per_unknown * tooth_compliance(radius, radius_c) : 0.0;
     }
   return t;
 }

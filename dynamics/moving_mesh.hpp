@@ -62,10 +62,11 @@ struct MeshInstant {
 };
 
 /// Flank geometry over φ from gap/lever functions (kinematics) sampled on a grid of `step_rad` covering `phi_range`.
-/// `flank(phi, side, q, lambda, contact_radius)` returns false where the flank cannot close.
+/// `flank(phi, side, q, lambda, contact_radius_f, contact_radius_c)` returns false where the flank cannot close; the
+/// tooth pair's compliance is taken at the two contact radii.
 FlankTable make_flank_table(double phi_start_rad, double phi_end_rad, double step_rad, int teeth_per_unknown,
-                            const std::function<bool(double, int, double&, double&, double&)>& flank,
-                            const std::function<double(double)>& tooth_compliance_m_per_N);
+                            const std::function<bool(double, int, double&, double&, double&, double&)>& flank,
+                            const std::function<double(double, double)>& tooth_compliance_m_per_N);
 
 /// The problem at σ (rad). Fills `out` (reused between calls).
 void mesh_instant(const MovingMesh& m, double sigma_rad, MeshInstant& out);

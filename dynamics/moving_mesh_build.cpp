@@ -19,25 +19,34 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 
 /// The backlash module's view of one flank: gap |ℓ|·δ at zero deflection, signed lever ℓ, contact radius on the
-/// flexspline tooth; false where it cannot close (out of the zone, never closing, or closing the other way), exactly
-/// the selection of contact/loaded_contact.cpp.
+/// flexspline tooth and on the circular spline's; false where it cannot close (out of the zone and more than two
+/// pitches from its edge, never closing, or closing the other way), exactly the selection of
+/// contact/loaded_contact.cpp: within two pitches of an edge a free tooth takes part with the distance of the closest
+/// points as its gap, to first order.
 struct FlankGeometry {
   const BacklashModel& model;
   const NeutralCurve& curve;
+  double pitch_rad;
   double cached_phi = std::numeric_limits<double>::quiet_NaN();
   PairClearance pc;
-  bool operator()(double phi, int side, double& q, double& lever, double& radius) {
+  bool near_edge = false;
+  bool operator()(double phi, int side, double& q, double& lever, double& radius, double& radius_c) {
     if (phi != cached_phi) {
       pc = pair_clearance(model, phi, 0.0);
       cached_phi = phi;
+      near_edge = false;
+      if (!pc.engaged)
+        for (const int d : {-2, -1, 1, 2}) near_edge = near_edge || pair_clearance(model, phi + d * pitch_rad, 0.0).engaged;
     }
-    if (!pc.engaged) return false;
+    if (!pc.engaged && !near_edge) return false;
     const Flank f = side == 0 ? Flank::Ccw : Flank::Cw;
-    const double delta = closing_angle_rad(model, phi, 0.0, f);
     const FlankClearance& fc = side == 0 ? pc.ccw : pc.cw;
-    if (!std::isfinite(delta) || (side == 0 ? !(fc.lever_arm_m > 0) : !(fc.lever_arm_m < 0))) return false;
+    if (side == 0 ? !(fc.lever_arm_m > 0) : !(fc.lever_arm_m < 0)) return false;
+    const double delta = pc.engaged ? closing_angle_rad(model, phi, 0.0, f) : fc.clearance_m / std::abs(fc.lever_arm_m);
+    if (!std::isfinite(delta)) return false;
     const ToothPlacement place = place_tooth(curve, phi, 0.0);
     radius = (Eigen::Rotation2Dd(-place.angle_rad) * (fc.point_f - place.offset_m)).norm();
+    radius_c = fc.point_c.norm();
     lever = fc.lever_arm_m;
     q = std::abs(lever) * delta;
     return true;
@@ -49,7 +58,7 @@ FlankTable table_on(const GearParams& g, const NeutralCurve& curve, const ToothC
   const int per = g.teeth_flexspline % 2 == 0 ? 2 : 1;
   const double half = kPi / per;
   const int n = static_cast<int>(std::ceil(half / step)) + 1;  // grid j·step, j = −n … n: phases fall on it
-  FlankGeometry geo{model, curve};
+  FlankGeometry geo{model, curve, 2 * kPi / g.teeth_flexspline};
   return make_flank_table(-n * step, n * step, step, per, std::ref(geo), teeth);
 }
 

@@ -13,7 +13,7 @@
 namespace sw {
 
 /// Tooth-pair compliance (m/N over the face width) at a contact radius on the flexspline tooth; empty: rigid teeth.
-using ToothCompliance = std::function<double(double contact_radius_m)>;
+using ToothCompliance = std::function<double(double contact_radius_f_m, double contact_radius_c_m)>;
 
 /// Independent pairs on a rigid rim: the flank table on `curve` (e.g. the case's generator curve), sampled every
 /// pitch/samples_per_pitch over the whole circle (half of it when z_f is even).

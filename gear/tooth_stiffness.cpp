@@ -177,7 +177,8 @@ FlankLaw external_law(const GearParams& g) {
 }  // namespace
 
 ToothPairCompliance tooth_pair_compliance(const GearParams& g, const Material& m, double contact_radius_f_m,
-                                          double line_load_N_per_m, double rim_inner_radius_m) {
+                                          double line_load_N_per_m, double rim_inner_radius_m,
+                                          double contact_radius_c_m) {
   check_load(line_load_N_per_m);
   const GearRadii r = gear_radii(g);
   check_radius(contact_radius_f_m, r.form_f, r.tip_f, "flexspline");
@@ -201,7 +202,8 @@ ToothPairCompliance tooth_pair_compliance(const GearParams& g, const Material& m
                                                    (g.teeth_circular - g.teeth_flexspline);
   const double alw = inverse_involute(inv_w);
   const double aw = (r.base_c - r.base_f) / std::cos(alw);
-  const double uc_raw = (aw * std::sin(alw) + r.base_f * uf) / r.base_c;
+  const double uc_raw = contact_radius_c_m > 0 ? roll_at_radius(r.base_c, contact_radius_c_m)
+                                               : (aw * std::sin(alw) + r.base_f * uf) / r.base_c;
   const double uc = std::clamp(uc_raw, lc.flank.u_min, lc.flank.u_max);
   const double rc = r.base_c * std::sqrt(1 + uc * uc);
   // Reaction on the circular spline's tooth: along the same line of action, into its tooth (+e′(ε_c − u_c)).

@@ -80,9 +80,11 @@ struct FoundationFit {
 /// flexspline's bore (h_f = r_f/r_int of the foundation term; 0 = a solid body, h_f at the fit's edge); the circular
 /// spline is taken as a thick ring. Throws InputError when the radius lies outside the flexspline's active flank
 /// [form radius, tip radius] or the line load is not positive.
+/// `contact_radius_c_m` > 0 places the load on the circular spline's tooth at that radius (where the teeth really
+/// touch, e.g. its tip corner), clamped to its active flank; 0 takes the conjugate point.
 ToothPairCompliance tooth_pair_compliance(const GearParams& g, const Material& m, double contact_radius_f_m,
                                           double line_load_N_per_m = kReferenceLineLoad_N_per_m,
-                                          double rim_inner_radius_m = 0.0);
+                                          double rim_inner_radius_m = 0.0, double contact_radius_c_m = 0.0);
 
 /// A standard external spur pair cut by the ISO 53 basic rack (h_a* = 1, h_f* = 1.25; the root rounded by the same
 /// quarter-ellipse fillet as the flexspline's outline), for the check against ISO 6336-1.

@@ -52,6 +52,13 @@ std::string contact_json(const ContactAnalysis& a, const std::string& case_path,
   j["fem_reaction_torque_Nm"] = a.fem_reaction_torque_Nm;
   j["compliance_split"] = {{"engagement", a.split.engagement}, {"body", a.split.body}, {"teeth", a.split.teeth},
                            {"generator", a.split.generator}, {"circular_spline", a.split.circular_spline}};
+  json edges = json::array();
+  for (const auto& e : a.edges)
+    edges.push_back({{"tooth", e.tooth}, {"angle_deg", e.phi_rad * 180 / std::numbers::pi}, {"engaged_at_rest", e.engaged}, {"contact_candidate", e.candidate},
+                     {"radial_overlap_at_rest_um", e.overlap_at_rest_m * 1e6},
+                     {"radial_overlap_min_um", e.overlap_min_m * 1e6}, {"radial_overlap_max_um", e.overlap_max_m * 1e6},
+                     {"slips_over_the_tip", e.slips}, {"comes_into_mesh", e.enters}});
+  j["zone_edges"] = {{"hold", a.zone_edges_hold}, {"teeth", edges}};
   j["generator_support"] = a.generator_support;
   j["half_turn_pairs"] = a.half_turn_pairs;
   json flanks = json::array();
@@ -63,6 +70,7 @@ std::string contact_json(const ContactAnalysis& a, const std::string& case_path,
                       {"angle_deg", f.phi_rad * 180 / std::numbers::pi},
                       {"flank", f.flank == Flank::Ccw ? "ccw" : "cw"},
                       {"touching", std::string(part_name(f.part_f)) + " on " + part_name(f.part_c)},
+                      {"beyond_tip_circle_at_rest", f.beyond_tip_circle},
                       {"closing_angle_rad", f.closing_angle_rad},
                       {"lever_m", f.lever_m},
                       {"contact_radius_m", f.contact_radius_m},

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include <Eigen/Core>
+
 #include <gtest/gtest.h>
 
 #include "contact/loaded_contact.hpp"
@@ -42,7 +44,7 @@ ContactAnalysis analyse(double tooth_compliance_m_per_N, double reach_factor = 3
   o.reach_factor = reach_factor;
   o.rated_torque_Nm = 44.1;
   o.steps = 8;
-  if (tooth_compliance_m_per_N > 0) o.series.tooth_pair_m_per_N = [=](double) { return tooth_compliance_m_per_N; };
+  if (tooth_compliance_m_per_N > 0) o.series.tooth_pair_m_per_N = [=](double, double) { return tooth_compliance_m_per_N; };
   return analyse_contact(k.c, k.mesh, k.system, k.fem, o);
 }
 
@@ -61,6 +63,64 @@ TEST(LoadedContact, InfluenceCoefficientsMatchDirectSolveAndTorqueBalances) {
   EXPECT_GT(a.curve.twist_rad.back(), coarse_seed_cam().fem.phi0_rad);
   // Monotone curve.
   for (std::size_t i = 1; i < a.curve.twist_rad.size(); ++i) EXPECT_GE(a.curve.twist_rad[i], a.curve.twist_rad[i - 1]);
+}
+
+// A flank's load pattern and its half-turn partner's: 1 N along the flank's force at the station, the same turned by π
+// at the partner (both radial components inward when the force pushes inward), and the requested moment. The hats
+// spread the load over ±1 pitch of a curved rim, so the resultant's direction is exact to the hat's mean cosine
+// (1 − O(pitch²)), hence 1e-3; the moment is forced exactly. (The partner once carried the radial part outward.)
+TEST(LoadedContact, FlankPatternAndItsHalfTurnPartnerCarryTheSameForce) {
+  const Coarse& k = coarse_seed_cam();
+  const double pitch = 2 * M_PI / k.c.gear->teeth_flexspline, s = 0.3;
+  const Eigen::Vector2d er(std::cos(s), std::sin(s)), et(-std::sin(s), std::cos(s));
+  const Eigen::Vector2d dir = (-0.5 * er + 0.8660254037844386 * et).normalized();  // inward and along the pitch circle
+  // The moment of 1 N along dir at the rim's outer surface, at both stations.
+  const double moment = 2 * rim_outer_radius(k.c.flexspline, k.c.gear) * dir.dot(et);
+  const Eigen::VectorXd f = FlankLoads(k.mesh, pitch).pattern({s, s + M_PI}, dir, moment);
+  Eigen::Vector2d near_s = Eigen::Vector2d::Zero(), near_partner = Eigen::Vector2d::Zero();
+  double mz = 0;
+  for (std::size_t n = 0; n < k.mesh.n_nodes(); ++n) {
+    const Eigen::Vector2d x(k.mesh.nodes(n, 0), k.mesh.nodes(n, 1)), fn(f[3 * n], f[3 * n + 1]);
+    if (fn.norm() == 0) continue;
+    mz += x.x() * fn.y() - x.y() * fn.x();
+    (std::abs(std::remainder(std::atan2(x.y(), x.x()) - s, 2 * M_PI)) < 4 * pitch ? near_s : near_partner) += fn;
+  }
+  EXPECT_NEAR(mz, moment, 1e-12);
+  EXPECT_NEAR(near_s.dot(dir), 1.0, 1e-3);
+  EXPECT_NEAR(near_partner.dot(-dir), 1.0, 1e-3);
+  EXPECT_NEAR(near_s.dot(er), dir.dot(er), 1e-3);  // the radial part pushes inward at both
+  EXPECT_NEAR(near_partner.dot(-er), dir.dot(er), 1e-3);
+}
+
+// The mesh zones' edges are watched at every step: the observers read the rim's radial motion at the edge teeth's
+// tips (their read-out is in the superposition check above) and the teeth sit where the engagement changes. Under
+// torque the rim moves outward at the zones' edges (on the coarse seed cup the first free tooth, 3.3 µm short of the
+// circular spline's tip circle at rest, comes about 5 µm into it), so the free teeth near an edge take part; with them
+// the edges hold: no loaded engaged tooth loses its overlap and no tooth left out comes into mesh.
+TEST(LoadedContact, MeshZoneEdgesAreWatchedAndHold) {
+  const ContactAnalysis a = analyse(0.0);
+  ASSERT_FALSE(a.edges.empty());
+  int engaged = 0, free = 0;
+  for (const EdgeTooth& e : a.edges) {
+    std::printf("edge tooth %d at %.1f deg, %s: radial overlap at rest %.2f um, over the steps %.2f .. %.2f um\n",
+                e.tooth, e.phi_rad * 180 / M_PI, e.engaged ? "engaged" : "free", e.overlap_at_rest_m * 1e6,
+                e.overlap_min_m * 1e6, e.overlap_max_m * 1e6);
+    (e.engaged ? engaged : free)++;
+    EXPECT_EQ(e.engaged, e.overlap_at_rest_m > 0);
+    EXPECT_LE(e.overlap_min_m, e.overlap_at_rest_m);
+    EXPECT_GE(e.overlap_max_m, e.overlap_at_rest_m);
+  }
+  EXPECT_GT(engaged, 0);
+  EXPECT_GT(free, 0);
+  EXPECT_TRUE(a.zone_edges_hold);
+  int beyond = 0, beyond_loaded = 0;
+  for (std::size_t i = 0; i < a.flanks.size(); ++i)
+    if (a.flanks[i].beyond_tip_circle) {
+      ++beyond;
+      beyond_loaded += a.steps.back().flank_force_N[i] > 0 || a.steps.front().flank_force_N[i] > 0;
+    }
+  std::printf("%d flanks beyond the tip circle at rest take part, %d of them loaded at ±rated\n", beyond, beyond_loaded);
+  EXPECT_GT(beyond, 0);
 }
 
 // The gear and the cam are symmetric about the major axis (tooth 0 on it): −T mirrors +T. The mesh is not symmetric,

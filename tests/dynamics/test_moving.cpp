@@ -28,16 +28,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-ToothCompliance teeth_of(const Case& c) {
-  const GearParams g = *c.gear;
-  const Material mat = c.material;
-  const GearRadii radii = gear_radii(g);
-  const double width = c.flexspline.rim_width_m, bore = c.flexspline.inner_radius_m;
-  return [=](double r) {
-    return tooth_pair_compliance(g, mat, std::clamp(r, radii.form_f, radii.tip_f), kReferenceLineLoad_N_per_m, bore)
-               .total() / width;
-  };
-}
+ToothCompliance teeth_of(const Case& c) { return case_tooth_pair_compliance(c); }
 
 DynamicsModel model_of(const Case& c, DynamicsParams p) {
   DynamicsModel m = make_model(*c.gear, c.flexspline, c.flexspline.shape == FlexsplineShape::Cup, c.material, p,

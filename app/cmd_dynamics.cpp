@@ -57,7 +57,7 @@ std::shared_ptr<const MovingMesh> moving_mesh(const Case& c, const DynamicsParam
     const double rm = rim_mean_radius(c.flexspline), w0 = case_radial_deformation_m(c);
     const NeutralCurve curve =
         c.wave_generator ? generator_neutral_curve(rm, w0, *c.wave_generator) : cam_neutral_curve(rm, w0);
-    return std::make_shared<MovingMesh>(rigid_rim_mesh(*c.gear, curve, teeth, 16));
+    return std::make_shared<MovingMesh>(rigid_rim_mesh(*c.gear, curve, teeth, 64));
   }
   check_contact_case(c);
   FemJobOptions o;
@@ -67,7 +67,7 @@ std::shared_ptr<const MovingMesh> moving_mesh(const Case& c, const DynamicsParam
   const double rated = c.load.rated_torque_Nm.value_or(c.load.torque_Nm);
   return std::make_shared<MovingMesh>(
       fem_coupled_mesh(c, *fem.mesh, *fem.system, fem.solution, teeth, rated, p.compliance_phases,
-                       std::max(1, 16 / p.compliance_phases)));  // the flank table every pitch/16
+                       std::max(1, 64 / p.compliance_phases)));  // the flank table every pitch/64: see test_moving
 }
 
 void run_dynamics(const std::string& case_path, std::string out_dir, const std::string& clearances,

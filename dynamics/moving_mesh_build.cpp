@@ -26,7 +26,7 @@ constexpr double kPi = std::numbers::pi;
 struct FlankGeometry {
   const BacklashModel& model;
   const NeutralCurve& curve;
-  double pitch_rad;
+  double pitch_rad;  // 0: engaged teeth only
   double cached_phi = std::numeric_limits<double>::quiet_NaN();
   PairClearance pc;
   bool near_edge = false;
@@ -35,7 +35,7 @@ struct FlankGeometry {
       pc = pair_clearance(model, phi, 0.0);
       cached_phi = phi;
       near_edge = false;
-      if (!pc.engaged)
+      if (!pc.engaged && pitch_rad > 0)
         for (const int d : {-2, -1, 1, 2}) near_edge = near_edge || pair_clearance(model, phi + d * pitch_rad, 0.0).engaged;
     }
     if (!pc.engaged && !near_edge) return false;
@@ -53,12 +53,16 @@ struct FlankGeometry {
   }
 };
 
-FlankTable table_on(const GearParams& g, const NeutralCurve& curve, const ToothCompliance& teeth, double step) {
+/// `edge_teeth`: the free teeth next to the zone's edges take part. Only where the rim moves radially under load (the
+/// FEM-coupled mesh): on a rigid rim a free tooth's tip stays inside the circular spline's tip circle, so a turn of the
+/// rim slides it past and it never touches.
+FlankTable table_on(const GearParams& g, const NeutralCurve& curve, const ToothCompliance& teeth, double step,
+                    bool edge_teeth) {
   const BacklashModel model = make_backlash_model(g, curve);
   const int per = g.teeth_flexspline % 2 == 0 ? 2 : 1;
   const double half = kPi / per;
   const int n = static_cast<int>(std::ceil(half / step)) + 1;  // grid j·step, j = −n … n: phases fall on it
-  FlankGeometry geo{model, curve, 2 * kPi / g.teeth_flexspline};
+  FlankGeometry geo{model, curve, edge_teeth ? 2 * kPi / g.teeth_flexspline : 0.0};
   return make_flank_table(-n * step, n * step, step, per, std::ref(geo), teeth);
 }
 
@@ -74,7 +78,7 @@ MovingMesh rigid_rim_mesh(const GearParams& g, const NeutralCurve& curve, const 
   m.teeth_flexspline = g.teeth_flexspline;
   m.teeth_per_unknown = g.teeth_flexspline % 2 == 0 ? 2 : 1;
   m.pitch_rad = 2 * kPi / g.teeth_flexspline;
-  m.table = table_on(g, curve, teeth, m.pitch_rad / samples_per_pitch);
+  m.table = table_on(g, curve, teeth, m.pitch_rad / samples_per_pitch, false);
   m.source = "moving pairs on a rigid rim (backlash module's clearances every pitch/" +
              std::to_string(samples_per_pitch) + ")";
   return m;
@@ -93,7 +97,7 @@ MovingMesh fem_coupled_mesh(const Case& c, const TetMesh& mesh, const Flexspline
   m.pitch_rad = 2 * kPi / g.teeth_flexspline;
   const NeutralCurveSamples& nc = *fem.neutral_curve;
   const NeutralCurve curve = fit_neutral_curve(nc.radius_m, nc.phi_rad, nc.w_wg_m, nc.v_wg_m, nc.mu_wg_rad, "FEM");
-  m.table = table_on(g, curve, teeth, m.pitch_rad / (phases * table_per_phase));
+  m.table = table_on(g, curve, teeth, m.pitch_rad / (phases * table_per_phase), true);
   const int period = m.key_period();
   for (int s = 0; s < phases; ++s) {
     MeshPhase ph;

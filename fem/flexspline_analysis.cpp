@@ -33,7 +33,7 @@ Eigen::VectorXd torque_load(const TetMesh& mesh, const std::vector<const Boundar
 
 /// A unit moment about z of tangential traction ∝ r·e_θ on the generator band's bore: its work-conjugate displacement
 /// is the band's mean turn (exactly χ for a rigid turn χ).
-Eigen::VectorXd band_turn_load(const Case& c, const TetMesh& mesh) {
+Eigen::VectorXd band_turn_load(const FlexsplineModel& c, const TetMesh& mesh) {
   const auto& w = *c.wave_generator;
   const double z = c.flexspline.length_m - w.axial_position_m;
   return torque_load(mesh, select_faces(mesh, kSurfaceInner, [&](const Eigen::Vector3d& x) {
@@ -42,7 +42,7 @@ Eigen::VectorXd band_turn_load(const Case& c, const TetMesh& mesh) {
 }
 
 /// Unit-torque tangential traction on the rim, or the exact torsion shear on the open end of a plain tube.
-Eigen::VectorXd unit_torque_load(const Case& c, const TetMesh& mesh) {
+Eigen::VectorXd unit_torque_load(const FlexsplineModel& c, const TetMesh& mesh) {
   const auto& f = c.flexspline;
   if (f.teeth == TeethModel::None && f.shape == FlexsplineShape::Tube)
     return torque_load(mesh, select_faces(mesh, kSurfaceOpenEnd), 1.0, "the open end");
@@ -99,7 +99,7 @@ void curve_of(const Ring& ring, const RowMatrixX3d& d, double radius, std::vecto
 /// Where φ₀ is read: the open end face of a plain tube, else a ring at the rim's neutral radius and mid-width.
 class RotationReader {
 public:
-  RotationReader(const Case& c, const TetMesh& mesh) : mesh_(mesh), sampler_(mesh) {
+  RotationReader(const FlexsplineModel& c, const TetMesh& mesh) : mesh_(mesh), sampler_(mesh) {
     const auto& f = c.flexspline;
     plain_tube_ = f.shape == FlexsplineShape::Tube && f.teeth == TeethModel::None;
     radius_ = neutral_radius(f);
@@ -139,11 +139,11 @@ private:
 
 }  // namespace
 
-Eigen::VectorXd torque_load_vector(const Case& c, const TetMesh& mesh, double torque_Nm) {
+Eigen::VectorXd torque_load_vector(const FlexsplineModel& c, const TetMesh& mesh, double torque_Nm) {
   return unit_torque_load(c, mesh) * torque_Nm;
 }
 
-double reading_rotation(const Case& c, const TetMesh& mesh, const Eigen::VectorXd& u) {
+double reading_rotation(const FlexsplineModel& c, const TetMesh& mesh, const Eigen::VectorXd& u) {
   return RotationReader(c, mesh)(u);
 }
 
@@ -189,7 +189,7 @@ double rim_w(const FlexsplineParams& f, const PointSampler& sampler, double radi
 }
 
 /// Hoop stress extremes over the open half and the profile at the generator's plane.
-HoopStressExtreme hoop_stress(const Case& c, const TetMesh& mesh, const PointSampler& sampler,
+HoopStressExtreme hoop_stress(const FlexsplineModel& c, const TetMesh& mesh, const PointSampler& sampler,
                               const LoadCaseSolution& lc, double reading_z) {
   const auto& f = c.flexspline;
   HoopStressExtreme h;
@@ -278,11 +278,11 @@ double ring_theory_bending_stress(const WaveGeneratorParams& w, double youngs_mo
   return youngs_modulus_Pa * 0.5 * thickness_m * dkappa;
 }
 
-FlexsplineSolution analyse_flexspline(const Case& c, const TetMesh& mesh) {
+FlexsplineSolution analyse_flexspline(const FlexsplineModel& c, const TetMesh& mesh) {
   return analyse_flexspline(c, mesh, assemble_and_factorise(c, mesh));
 }
 
-FlexsplineSolution analyse_flexspline(const Case& c, const TetMesh& mesh, const FlexsplineSystem& eq) {
+FlexsplineSolution analyse_flexspline(const FlexsplineModel& c, const TetMesh& mesh, const FlexsplineSystem& eq) {
   FlexsplineSolution s;
   const auto& f = c.flexspline;
   s.factor = eq.factor->stats();

@@ -30,7 +30,7 @@ FemJobResult fem_from_run(const Case& c, const std::filesystem::path& result_jso
                               "contact without --fem");
   progress("mesh: " + c.path + " (the model of " + result_json.string() + ")");
   auto mesh = std::make_shared<const TetMesh>(mesh_for_case(c, max_memory_gb));
-  auto system = std::make_shared<const FlexsplineSystem>(assemble_and_factorise(c, *mesh));
+  auto system = std::make_shared<const FlexsplineSystem>(assemble_and_factorise(flexspline_model(c), *mesh));
   if (system->dofs.n_equations != run.equations)
     throw InputError(result_json.string() + ": made from a model of " + std::to_string(run.equations) +
                      " equations, " + c.path + " gives " + std::to_string(system->dofs.n_equations) +
@@ -42,7 +42,7 @@ FemJobResult fem_from_run(const Case& c, const std::filesystem::path& result_jso
   GeneratorReadout g;
   g.model = model;
   g.unilateral = w.model == WaveGeneratorModel::Cam;
-  if (g.unilateral) g.obstacle_m = generator_stations(c, *mesh).obstacle_m;
+  if (g.unilateral) g.obstacle_m = generator_stations(flexspline_model(c), *mesh).obstacle_m;
   job.solution.generator = g;
   job.mesh = mesh;
   job.system = system;

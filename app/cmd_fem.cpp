@@ -73,15 +73,16 @@ FemJobResult run_fem_job(const Case& c, const fs::path& out_dir, const FemJobOpt
   progress("mesh: " + std::to_string(mesh.n_nodes()) + " nodes, " + std::to_string(mesh.tets.size()) +
            " TET10, min dihedral " + std::to_string(mesh.quality.min_dihedral_deg) + " deg");
   FemJobResult job;
-  auto system = std::make_shared<const FlexsplineSystem>(assemble_and_factorise(c, mesh));
-  job.solution = analyse_flexspline(c, mesh, *system);
+  const FlexsplineModel model = flexspline_model(c);
+  auto system = std::make_shared<const FlexsplineSystem>(assemble_and_factorise(model, mesh));
+  job.solution = analyse_flexspline(model, mesh, *system);
   job.mesh = mesh_ptr;
   job.system = system;
   clock.lap();
   progress("output: " + out_dir.string());
   if (options.write_vtk) write_fem_vtk(out_dir, c, mesh, job.solution);
   if (options.export_inp) {
-    write_inp_deck(*options.export_inp, c, mesh, clamped_nodes(mesh), torque_load_vector(c, mesh, c.load.torque_Nm),
+    write_inp_deck(*options.export_inp, c, mesh, clamped_nodes(mesh), torque_load_vector(model, mesh, c.load.torque_Nm),
                    "fem --export-inp (clamp and torque only; no generator)");
     progress("deck: " + options.export_inp->string());
   }

@@ -27,7 +27,8 @@ FemJobResult run_fourier_fem_job(const Case& c, const fs::path& out_dir, bool wr
   RunInfo run;
   run.blas = detect_blas();
   Stopwatch clock;
-  FourierSolution fourier = analyse_flexspline_fourier(c, write_vtk ? grid_sectors(c.solver.harmonics) : 0);
+  FourierSolution fourier =
+      analyse_flexspline_fourier(flexspline_model(c), write_vtk ? grid_sectors(c.solver.harmonics) : 0);
   run.mesh_s = fourier.section_s;
   clock.lap();
   FemJobResult job;

@@ -32,9 +32,9 @@ int main(int argc, char** argv) {
     Stopwatch clock;
     const TetMesh mesh = bench::mesh_for_bench(c);
     const double t_mesh = clock.lap();
-    const FlexsplineSystem system = assemble_and_factorise(c, mesh);
+    const FlexsplineSystem system = assemble_and_factorise(flexspline_model(c), mesh);
     const double t_factor = clock.lap();
-    const FlexsplineSolution fem = analyse_flexspline(c, mesh, system);
+    const FlexsplineSolution fem = analyse_flexspline(flexspline_model(c), mesh, system);
     const double t_cases = clock.lap();
     ContactOptions o;
     o.rated_torque_Nm = c.load.rated_torque_Nm.value_or(c.load.torque_Nm);

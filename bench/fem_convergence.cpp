@@ -34,7 +34,7 @@ int main(int argc, char** argv) {
       c.mesh.size_m = base.mesh.size_m * std::pow(ratio, k);
       sw::Stopwatch clock;
       const sw::TetMesh mesh = sw::mesh_flexspline(c.flexspline, c.gear, c.mesh);
-      const sw::FlexsplineSolution s = sw::analyse_flexspline(c, mesh);
+      const sw::FlexsplineSolution s = sw::analyse_flexspline(flexspline_model(c), mesh);
       h.push_back(c.mesh.size_m);
       phi.push_back(s.compliance_rad_per_Nm * (c.load.torque_Nm != 0 ? c.load.torque_Nm : 1.0));
       std::printf("%-10.4f %-8d %-10zu %-16.9e %-10.1f\n", c.mesh.size_m * 1e3, c.mesh.wall_layers, mesh.n_nodes(),

@@ -134,11 +134,11 @@ Row run_one(Case c, const MeshSpec& spec, const std::filesystem::path& out_dir, 
   progress("factorised: " + std::to_string(st.factor_gflop) + " GF in " + std::to_string(st.factor_s) + " s");
 
   const double T = c.load.torque_Nm;
-  const Eigen::VectorXd f = torque_load_vector(c, mesh, T);
+  const Eigen::VectorXd f = torque_load_vector(flexspline_model(c), mesh, T);
   const Eigen::VectorXd x = factor.solve(restrict_to_free(dofs, f));
   FlexsplineSolution s;
   s.cases.push_back({"torque", expand_to_full(dofs, x, Eigen::VectorXd::Zero(3 * mesh.n_nodes())), {}, 0.0});
-  row.phi0_rad = reading_rotation(c, mesh, s.cases[0].u);
+  row.phi0_rad = reading_rotation(flexspline_model(c), mesh, s.cases[0].u);
   row.solve_s = clock.lap();
   const auto& fl = c.flexspline;
   const double ri = fl.inner_radius_m, ro = fl.inner_radius_m + fl.wall_thickness_m;

@@ -66,7 +66,7 @@ Figures run_fourier(Case c, int harmonics, double size_m, int layers) {
   c.mesh.size_m = size_m;
   c.mesh.wall_layers = layers;
   Stopwatch clock;
-  const FourierSolution s = analyse_flexspline_fourier(c);
+  const FourierSolution s = analyse_flexspline_fourier(flexspline_model(c));
   const double t = clock.lap();
   Figures f = from(s.figures);
   f.seconds = t;
@@ -93,8 +93,9 @@ Figures run_tet10(Case c, double size_m, int layers, TorqueAlone* alone, int ccx
   const TetMesh mesh = mesh_for_bench(c);
   Figures f;
   {
-    const FlexsplineSystem system = assemble_and_factorise(c, mesh);
-    const FlexsplineSolution s = analyse_flexspline(c, mesh, system);
+    const FlexsplineModel model = flexspline_model(c);
+    const FlexsplineSystem system = assemble_and_factorise(model, mesh);
+    const FlexsplineSolution s = analyse_flexspline(model, mesh, system);
     const double t = clock.lap();
     f = from(s);
     f.seconds = t;
@@ -103,7 +104,7 @@ Figures run_tet10(Case c, double size_m, int layers, TorqueAlone* alone, int ccx
     if (alone) {
       Case ct = c;
       ct.wave_generator.reset();
-      alone->tet10_phi0 = analyse_flexspline(ct, mesh, system).phi0_rad;
+      alone->tet10_phi0 = analyse_flexspline(flexspline_model(ct), mesh, system).phi0_rad;
     }
   }  // the factor is freed before ccx runs
   if (alone) {
@@ -111,11 +112,12 @@ Figures run_tet10(Case c, double size_m, int layers, TorqueAlone* alone, int ccx
     ct.wave_generator.reset();
     const std::string ccx = ensure_ccx();
     TempDir tmp("sw_fourier_ccx_");
-    write_inp_deck(tmp.path() / "job.inp", ct, mesh, clamped_nodes(mesh), torque_load_vector(ct, mesh, ct.load.torque_Nm),
+    const FlexsplineModel model = flexspline_model(ct);
+    write_inp_deck(tmp.path() / "job.inp", ct, mesh, clamped_nodes(mesh), torque_load_vector(model, mesh, ct.load.torque_Nm),
                    "bench_fourier_vs_tet10");
     progress("ccx on " + std::to_string(mesh.n_nodes()) + " nodes");
     alone->ccx_s = run_ccx(ccx, tmp.path(), ccx_threads);
-    alone->ccx_phi0 = reading_rotation(ct, mesh, read_frd_displacements(tmp.path() / "job.frd", mesh.n_nodes()));
+    alone->ccx_phi0 = reading_rotation(model, mesh, read_frd_displacements(tmp.path() / "job.frd", mesh.n_nodes()));
     const CcxLog log = read_ccx_log(tmp.path() / "ccx.log");
     alone->ccx_equations = log.equations;
     alone->ccx_summary = log.summary;

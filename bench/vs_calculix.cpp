@@ -93,7 +93,7 @@ int run(int argc, char** argv) {
 
   progress("ours: analyse_flexspline");
   clock.lap();
-  const FlexsplineSolution ours = analyse_flexspline(c, mesh);
+  const FlexsplineSolution ours = analyse_flexspline(flexspline_model(c), mesh);
   const double ours_s = clock.lap();
   const Eigen::VectorXd* u_ours = nullptr;
   for (const auto& lc : ours.cases)
@@ -101,7 +101,7 @@ int run(int argc, char** argv) {
   if (!u_ours) throw InputError("analyse_flexspline returned no torque case");
 
   const std::vector<bool> fixed_node = clamped_nodes(mesh);
-  const Eigen::VectorXd load = torque_load_vector(c, mesh, c.load.torque_Nm);
+  const Eigen::VectorXd load = torque_load_vector(flexspline_model(c), mesh, c.load.torque_Nm);
   const fs::path inp = tmp.path() / "job.inp";
   write_inp_deck(inp, c, mesh, fixed_node, load, "bench_vs_calculix");
   const double inp_s = clock.lap();
@@ -110,7 +110,7 @@ int run(int argc, char** argv) {
   const double ccx_s = run_ccx(ccx, tmp.path(), ccx_threads);
   progress("ccx done in " + std::to_string(ccx_s) + " s; reading job.frd");
   const Eigen::VectorXd u_ccx = read_frd_displacements(tmp.path() / "job.frd", mesh.n_nodes());
-  const double phi_ccx = reading_rotation(c, mesh, u_ccx);
+  const double phi_ccx = reading_rotation(flexspline_model(c), mesh, u_ccx);
   const double phi_ours = ours.phi0_rad;
   const double du = (u_ccx - *u_ours).reshaped(3, mesh.n_nodes()).colwise().norm().maxCoeff();
   const double umax = u_ours->reshaped(3, mesh.n_nodes()).colwise().norm().maxCoeff();

@@ -180,7 +180,7 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
   const auto no = static_cast<Eigen::Index>(observers.size());
 
   // The generator's stations, and the influence coefficients of every pattern.
-  const GeneratorStations gen = generator_stations(c, mesh);
+  const GeneratorStations gen = generator_stations(flexspline_model(c), mesh);
   const bool unilateral = gen.unilateral;
   const Eigen::SparseMatrix<double> L = sparse_columns(columns, gen.stations.loads);
   const auto nb = gen.stations.loads.cols();

@@ -4,6 +4,9 @@
 #include <cmath>
 #include <memory>
 #include <numbers>
+#include <optional>
+#include <utility>
+#include <vector>
 
 #include "common/error.hpp"
 #include "common/progress.hpp"
@@ -19,6 +22,8 @@ constexpr int kRingSamples = 360;                     // 1° steps around the re
 
 double wrap_pi(double a) { return std::remainder(a, 2 * kPi); }
 double theta_of(const Eigen::Vector3d& x) { return std::atan2(x[1], x[0]); }
+/// A tube without teeth: the torque is the exact torsion shear on its open end, and φ₀ is read on that face.
+bool is_plain_tube(const FlexsplineParams& f) { return f.shape == FlexsplineShape::Tube && f.teeth == TeethModel::None; }
 
 /// Scales a load so its moment about z equals `torque_Nm`.
 Eigen::VectorXd torque_load(const TetMesh& mesh, const std::vector<const BoundaryFace*>& faces, double torque_Nm,
@@ -33,7 +38,7 @@ Eigen::VectorXd torque_load(const TetMesh& mesh, const std::vector<const Boundar
 
 /// A unit moment about z of tangential traction ∝ r·e_θ on the generator band's bore: its work-conjugate displacement
 /// is the band's mean turn (exactly χ for a rigid turn χ).
-Eigen::VectorXd band_turn_load(const Case& c, const TetMesh& mesh) {
+Eigen::VectorXd band_turn_load(const FlexsplineModel& c, const TetMesh& mesh) {
   const auto& w = *c.wave_generator;
   const double z = c.flexspline.length_m - w.axial_position_m;
   return torque_load(mesh, select_faces(mesh, kSurfaceInner, [&](const Eigen::Vector3d& x) {
@@ -42,9 +47,9 @@ Eigen::VectorXd band_turn_load(const Case& c, const TetMesh& mesh) {
 }
 
 /// Unit-torque tangential traction on the rim, or the exact torsion shear on the open end of a plain tube.
-Eigen::VectorXd unit_torque_load(const Case& c, const TetMesh& mesh) {
+Eigen::VectorXd unit_torque_load(const FlexsplineModel& c, const TetMesh& mesh) {
   const auto& f = c.flexspline;
-  if (f.teeth == TeethModel::None && f.shape == FlexsplineShape::Tube)
+  if (is_plain_tube(f))
     return torque_load(mesh, select_faces(mesh, kSurfaceOpenEnd), 1.0, "the open end");
   if (c.load.torque_loading == TorqueLoading::Uniform)
     return torque_load(mesh, select_faces(mesh, kSurfaceRimOuter), 1.0, "the rim");
@@ -99,9 +104,9 @@ void curve_of(const Ring& ring, const RowMatrixX3d& d, double radius, std::vecto
 /// Where φ₀ is read: the open end face of a plain tube, else a ring at the rim's neutral radius and mid-width.
 class RotationReader {
 public:
-  RotationReader(const Case& c, const TetMesh& mesh) : mesh_(mesh), sampler_(mesh) {
+  RotationReader(const FlexsplineModel& c, const TetMesh& mesh) : mesh_(mesh), sampler_(mesh) {
     const auto& f = c.flexspline;
-    plain_tube_ = f.shape == FlexsplineShape::Tube && f.teeth == TeethModel::None;
+    plain_tube_ = is_plain_tube(f);
     radius_ = neutral_radius(f);
     z_ = plain_tube_ ? f.length_m : f.length_m - 0.5 * f.rim_width_m;
     ring_ = reading_ring(radius_, z_);
@@ -139,11 +144,11 @@ private:
 
 }  // namespace
 
-Eigen::VectorXd torque_load_vector(const Case& c, const TetMesh& mesh, double torque_Nm) {
+Eigen::VectorXd torque_load_vector(const FlexsplineModel& c, const TetMesh& mesh, double torque_Nm) {
   return unit_torque_load(c, mesh) * torque_Nm;
 }
 
-double reading_rotation(const Case& c, const TetMesh& mesh, const Eigen::VectorXd& u) {
+double reading_rotation(const FlexsplineModel& c, const TetMesh& mesh, const Eigen::VectorXd& u) {
   return RotationReader(c, mesh)(u);
 }
 
@@ -188,9 +193,10 @@ double rim_w(const FlexsplineParams& f, const PointSampler& sampler, double radi
   return 0.5 * sum;
 }
 
-/// Hoop stress extremes over the open half and the profile at the generator's plane.
-HoopStressExtreme hoop_stress(const Case& c, const TetMesh& mesh, const PointSampler& sampler,
-                              const LoadCaseSolution& lc, double reading_z) {
+/// Hoop stress extremes over the open half, the profile at the generator's plane and the nominal stress on it; with
+/// the generator's w0 reached (`w_major_m`), the thin ring theory's bending stress for it.
+HoopStressExtreme hoop_stress(const FlexsplineModel& c, const TetMesh& mesh, const PointSampler& sampler,
+                              const LoadCaseSolution& lc, double reading_z, std::optional<double> w_major_m) {
   const auto& f = c.flexspline;
   HoopStressExtreme h;
   const CylindricalFields cyl = cylindrical_components(mesh, lc.u, lc.stress);
@@ -225,6 +231,16 @@ HoopStressExtreme hoop_stress(const Case& c, const TetMesh& mesh, const PointSam
       h.max_compressive_angle_deg = ang;
       h.max_compressive_z_m = mesh.nodes(i, 2);
     }
+  }
+  const int k = static_cast<int>(std::lround(h.nominal_angle_deg));
+  h.nominal_bending_Pa = 0.5 * (h.outer_Pa[k] - h.inner_Pa[k]);
+  h.nominal_membrane_Pa = 0.5 * (h.outer_Pa[k] + h.inner_Pa[k]);
+  if (w_major_m) {
+    const double ri = f.inner_radius_m;
+    const double t_wall = h.outer_radius_m + (h.inner_radius_m - ri) - ri;  // the profile's wall
+    h.ring_theory_bending_Pa = ring_theory_bending_stress(*c.wave_generator, c.material.youngs_modulus_Pa,
+                                                          ri + 0.5 * t_wall, t_wall, *w_major_m,
+                                                          h.nominal_angle_deg * kPi / 180);
   }
   return h;
 }
@@ -278,224 +294,322 @@ double ring_theory_bending_stress(const WaveGeneratorParams& w, double youngs_mo
   return youngs_modulus_Pa * 0.5 * thickness_m * dkappa;
 }
 
-FlexsplineSolution analyse_flexspline(const Case& c, const TetMesh& mesh) {
-  return analyse_flexspline(c, mesh, assemble_and_factorise(c, mesh));
-}
+namespace {
 
-FlexsplineSolution analyse_flexspline(const Case& c, const TetMesh& mesh, const FlexsplineSystem& eq) {
-  FlexsplineSolution s;
-  const auto& f = c.flexspline;
-  s.factor = eq.factor->stats();
-  s.assemble_s = eq.assemble_s;
-  Stopwatch clock;
+// The steps of the analysis, in the order the driver below takes them.
 
-  // The unit torque, and for the force models the unit generator forces.
-  s.torque_Nm = c.load.torque_Nm;
-  const double T = s.torque_Nm, T_ref = T != 0.0 ? T : 1.0;  // compliance is read at T (or 1 N·m without torque)
-  const Eigen::VectorXd f_torque = unit_torque_load(c, mesh);
-  const std::optional<GeneratorStations> gen =
-      c.wave_generator ? std::optional(generator_stations(c, mesh)) : std::nullopt;
+/// The unit loads, solved together on the one factorisation: 1 N·m of the case's torque load and, with a generator,
+/// its own pattern (a body that pushes: a unit moment on the band, conjugate to the band's turn; the force
+/// idealisation: its unit forces).
+struct UnitSolutions {
+  Eigen::VectorXd torque_load, torque_u;        ///< 3·n_nodes
+  Eigen::VectorXd generator_load, generator_u;  ///< 3·n_nodes; empty without a generator
+};
+
+UnitSolutions solve_unit_loads(const FlexsplineModel& c, const TetMesh& mesh, const FlexsplineSystem& eq,
+                               const GeneratorStations* gen) {
+  UnitSolutions unit;
+  unit.torque_load = unit_torque_load(c, mesh);
   Eigen::MatrixXd loads(3 * mesh.n_nodes(), gen ? 2 : 1);
-  loads.col(0) = f_torque;
+  loads.col(0) = unit.torque_load;
   if (gen) loads.col(1) = gen->unilateral ? band_turn_load(c, mesh) : gen->force_load;
   const Eigen::MatrixXd U = eq.solve(loads);
-  const Eigen::VectorXd u_unit_torque = U.col(0);
+  unit.torque_u = U.col(0);
+  if (gen) {
+    unit.generator_load = loads.col(1);
+    unit.generator_u = U.col(1);
+  }
+  return unit;
+}
 
-  const RotationReader rotation(c, mesh);
-  const PointSampler& sampler = rotation.sampler();
-  s.reading_radius_m = rotation.radius();
-  s.reading_z_m = rotation.z();
-  // Theory: T·L/(G·J) of the body wall, L from where the body wall starts (the clamp of a tube, the diaphragm's face
-  // of a cup) to the reading plane.
+/// What the torque T_ref adds with the generator in place: displacements (3·n_nodes), the generator's forces on the
+/// flexspline in that increment (its support; zero without a generator), and (T, φ₀/T) at several torques.
+struct TorqueIncrement {
+  Eigen::VectorXd u, f_support;
+  std::vector<std::pair<double, double>> sweep;
+};
+
+constexpr double kSweep[] = {0.25, 0.5, 1.0, 2.0};  // the sweep's torques, in T_ref
+
+/// The torque without a generator: linear, one compliance at every torque.
+TorqueIncrement torque_alone(const TetMesh& mesh, const UnitSolutions& unit, const RotationReader& rotation,
+                             double T_ref) {
+  TorqueIncrement inc{unit.torque_u * T_ref, Eigen::VectorXd::Zero(3 * mesh.n_nodes()), {}};
+  for (const double k : kSweep) inc.sweep.emplace_back(k * T_ref, rotation(inc.u) / T_ref);
+  return inc;
+}
+
+/// The generator's load cases: the generator alone (displacements, its forces on the flexspline, the rim's net
+/// rotation and the forces' resultant), the torque's increment with the generator in place, and the read-out.
+struct GeneratorCases {
+  Eigen::VectorXd u, f;
+  double rim_rotation_rad = 0;
+  Resultant resultant;
+  TorqueIncrement torque;
+  GeneratorReadout readout;
+  double force_per_point_N = 0;  ///< the force idealisation: each point load after scaling
+};
+
+/// A generator that pushes and never pulls (cam, rollers): its contact alone, with T_ref and with the sweep's torques,
+/// each a small problem on the stations' influence matrix C; then one solve for the displacements of all their
+/// contact loads.
+GeneratorCases generator_contact_cases(const FlexsplineModel& c, const TetMesh& mesh, const FlexsplineSystem& eq,
+                                       const GeneratorStations& gen, const Eigen::MatrixXd& C,
+                                       const UnitSolutions& unit, const RotationReader& rotation, double T_ref) {
+  const auto& w = *c.wave_generator;
+  const Eigen::VectorXd u0_torque = gen.stations.loads.transpose() * unit.torque_u;  // per pair, unit torque
+  GeneratorCases g;
+  GeneratorReadout& gr = g.readout;
+  Eigen::VectorXd obstacle = gen.obstacle_m;
+  if (w.model == WaveGeneratorModel::Rollers) {
+    // Set the rollers out so the major axis reaches w0: all four touch (symmetric), so the generator case is linear
+    // in the rollers' standoff; one solve for the unit standoff gives the scale.
+    const Eigen::VectorXd u_unit = eq.solve(contact_load(gen.stations, bilateral_support(C, obstacle).force_N)).col(0);
+    obstacle *= rollers_setout(w, rim_w(c.flexspline, rotation.sampler(), rotation.radius(), u_unit, 0.0));
+  }
+  gr.obstacle_m = obstacle;
+  // The wave stays with the generator (the gaps ignore the band's turn), and the bearing in series (a cam's).
+  GeneratorContactModel model;
+  const std::vector<bool> all(mesh.n_nodes(), true);
+  model.turn_gap_m_per_rad.resize(C.rows());
+  for (Eigen::Index k = 0; k < C.rows(); ++k)
+    model.turn_gap_m_per_rad[k] = moment_about_z(mesh, Eigen::VectorXd(gen.stations.loads.col(k)), all);
+  model.band_turn_rad_per_N = gen.stations.loads.transpose() * unit.generator_u;
+  const double band_turn_per_T = unit.generator_load.dot(unit.torque_u);  // rad per N·m of the torque
+  if (w.model == WaveGeneratorModel::Cam && w.bearing)
+    model.approach_m = bearing_pair_approach(*w.bearing, gen.stations.half_width_rad);
+  auto contact = [&](double torque) {
+    return generator_contact(C, obstacle - torque * u0_torque, torque * band_turn_per_T, model);
+  };
+  const StationForces p_gen = contact(0.0);
+  gr.contact_iterations = p_gen.iterations;
+  std::vector<double> sweep_T;
+  for (const double k : kSweep) sweep_T.push_back(k * T_ref);
+  Eigen::MatrixXd contact_loads(3 * mesh.n_nodes(), 2 + sweep_T.size());
+  contact_loads.col(0) = contact_load(gen.stations, p_gen.force_N);
+  const StationForces p_comb = contact(T_ref);
+  contact_loads.col(1) = contact_load(gen.stations, p_comb.force_N);
+  for (std::size_t k = 0; k < sweep_T.size(); ++k)
+    contact_loads.col(2 + k) = contact_load(gen.stations, contact(sweep_T[k]).force_N);
+  const Eigen::MatrixXd V = eq.solve(contact_loads);
+  g.u = V.col(0);
+  g.f = contact_loads.col(0);
+  g.torque.u = V.col(1) - V.col(0) + unit.torque_u * T_ref;
+  g.torque.f_support = contact_loads.col(1) - contact_loads.col(0);
+  const double rot_gen = rotation(g.u);
+  for (std::size_t k = 0; k < sweep_T.size(); ++k)
+    g.torque.sweep.emplace_back(sweep_T[k], (rotation(V.col(2 + k) + unit.torque_u * sweep_T[k]) - rot_gen) / sweep_T[k]);
+  gr.force_wg_N.assign(p_gen.force_N.data(), p_gen.force_N.data() + p_gen.force_N.size());
+  gr.force_comb_N.assign(p_comb.force_N.data(), p_comb.force_N.data() + p_comb.force_N.size());
+  const double touching_gap = kTouchingGap * *w.radial_deformation_m;
+  const double step = gen.stations.half_width_rad;  // the stations' spacing
+  gr.zones_wg_deg = contact_zones_deg(gen.stations.angle_rad, touching(p_gen, touching_gap), step);
+  gr.zones_comb_deg = contact_zones_deg(gen.stations.angle_rad, touching(p_comb, touching_gap), step);
+  gr.min_contact_force_N = p_gen.force_N.minCoeff();
+  if (model.approach_m) {
+    const double p_max = std::max(p_gen.force_N.maxCoeff(), p_comb.force_N.maxCoeff());
+    gr.bearing_max_ball_load_N = ball_load_N(*w.bearing, gen.stations.half_width_rad, p_max);
+    gr.bearing_max_approach_m = 0.5 * model.approach_m(p_max);
+  }
+  return g;
+}
+
+/// The force idealisation: the unit forces scaled to w0 (or force_N); the torque case with the band held radially at
+/// the stations (bilateral), so linear in the torque.
+GeneratorCases generator_force_cases(const FlexsplineModel& c, const TetMesh& mesh, const FlexsplineSystem& eq,
+                                     const GeneratorStations& gen, const Eigen::MatrixXd& C,
+                                     const UnitSolutions& unit, const RotationReader& rotation, double T_ref) {
+  const auto& w = *c.wave_generator;
+  const Eigen::VectorXd u0_torque = gen.stations.loads.transpose() * unit.torque_u;  // per pair, unit torque
+  GeneratorCases g;
+  GeneratorReadout& gr = g.readout;
+  const double w_unit = rim_w(c.flexspline, rotation.sampler(), rotation.radius(), unit.generator_u, 0.0);
+  if (!(w_unit > 0))
+    throw InputError("wave_generator: the generator does not push the major axis outward (w = " +
+                     std::to_string(w_unit) + " m per unit load); check the force angles");
+  double total_at_end = 0;  // sum of weights near θ = 0 (one end of the major axis)
+  for (const auto& force : generator_forces(w))
+    if (std::abs(wrap_pi(force.angle_rad)) < kPi / 2) total_at_end += force.weight;
+  const double scale =
+      w.radial_deformation_m ? *w.radial_deformation_m / w_unit : w.force_N / std::max(total_at_end, 1e-300);
+  g.force_per_point_N = scale * (w.model == WaveGeneratorModel::FourForce ? 0.5 : 1.0);
+  g.u = unit.generator_u * scale;
+  g.f = gen.force_load * scale;
+  const StationForces p_T = bilateral_support(C, -T_ref * u0_torque);
+  g.torque.f_support = contact_load(gen.stations, p_T.force_N);
+  g.torque.u = eq.solve(g.torque.f_support).col(0) + unit.torque_u * T_ref;
+  for (const double k : kSweep) g.torque.sweep.emplace_back(k * T_ref, rotation(g.torque.u) / T_ref);
+  gr.force_comb_N.assign(p_T.force_N.data(), p_T.force_N.data() + p_T.force_N.size());
+  double fmin = 1e300;
+  for (const auto& force : generator_forces(w)) fmin = std::min(fmin, force.weight * scale);
+  gr.min_contact_force_N = fmin;
+  for (const auto& force : generator_forces(w)) {
+    const double a = wrap_pi(force.angle_rad) * 180 / kPi, h = kGeneratorPatchHalfAngle_rad * 180 / kPi;
+    gr.zones_wg_deg.emplace_back(a - h, a + h);
+  }
+  return g;
+}
+
+/// The generator: the influence matrix of its stations, its contact (or forces) alone and under the torque, and what
+/// it does to the flexspline at the torque T.
+GeneratorCases solve_generator(const FlexsplineModel& c, const TetMesh& mesh, const FlexsplineSystem& eq,
+                               const GeneratorStations& gen, const UnitSolutions& unit, const RotationReader& rotation,
+                               double T, double T_ref) {
+  progress("generator: influence of " + std::to_string(gen.stations.angle_rad.size()) + " contact station pairs");
+  const Eigen::MatrixXd C = eq.influence(gen.stations.loads);
+  GeneratorCases g = gen.unilateral ? generator_contact_cases(c, mesh, eq, gen, C, unit, rotation, T_ref)
+                                    : generator_force_cases(c, mesh, eq, gen, C, unit, rotation, T_ref);
+  GeneratorReadout& gr = g.readout;
+  gr.model = model_name(c.wave_generator->model);
+  gr.unilateral = gen.unilateral;
+  gr.station_angle_rad = gen.stations.angle_rad;
+  gr.total_radial_force_N = radial_total(mesh, g.f);
+  gr.reaction_torque_Nm = moment_about_z(mesh, g.torque.f_support, std::vector<bool>(mesh.n_nodes(), true)) * (T / T_ref);
+  gr.w_major_m = rim_w(c.flexspline, rotation.sampler(), rotation.radius(), g.u, 0.0);
+  gr.w_minor_m = rim_w(c.flexspline, rotation.sampler(), rotation.radius(), g.u, kPi / 2);
+  g.resultant = load_resultant(mesh, g.f);
+  g.rim_rotation_rad = rotation(g.u);
+  return g;
+}
+
+/// φ₀ and C_τ: the rim's rotation the torque adds with the generator in place; the torque case at T (3·n_nodes); and
+/// its balance: the applied moment vs the clamp's reaction plus the generator's.
+struct TorqueReadout {
+  double compliance_rad_per_Nm = 0, phi0_rad = 0;
+  Eigen::VectorXd u;
+  double applied_torque_Nm = 0, reaction_torque_Nm = 0;
+};
+
+TorqueReadout read_torque(const FlexsplineModel& c, const TetMesh& mesh, const FlexsplineSystem& eq,
+                          const UnitSolutions& unit, const RotationReader& rotation, const TorqueIncrement& inc,
+                          double T, double T_ref) {
+  TorqueReadout r;
+  r.compliance_rad_per_Nm = rotation(inc.u) / T_ref;
+  r.phi0_rad = r.compliance_rad_per_Nm * T;
+  const double to_T = T / T_ref;
+  r.u = inc.u * to_T;
+  const std::vector<bool> all(mesh.n_nodes(), true);
+  r.applied_torque_Nm = moment_about_z(mesh, unit.torque_load * T, all);
+  const Eigen::VectorXd clamp_reactions =
+      internal_forces(mesh, c.material, r.u) - unit.torque_load * T - inc.f_support * to_T;
+  r.reaction_torque_Nm = moment_about_z(mesh, clamp_reactions, eq.clamped) + moment_about_z(mesh, inc.f_support * to_T, all);
+  return r;
+}
+
+/// The load cases: the generator alone, the torque (with the generator in place), both; or the torque alone.
+std::vector<LoadCaseSolution> load_cases(const TorqueReadout& torque, const GeneratorCases* gen,
+                                         const RotationReader& rotation) {
+  if (!gen) return {{"torque", torque.u, RowMatrixX6d(), torque.phi0_rad}};
+  const Eigen::VectorXd u_comb = gen->u + torque.u;
+  return {{"generator", gen->u, RowMatrixX6d(), gen->rim_rotation_rad},
+          {"torque", torque.u, RowMatrixX6d(), torque.phi0_rad},
+          {"generator_torque", u_comb, RowMatrixX6d(), rotation(u_comb)}};
+}
+
+/// The deformed neutral curve at the rim mid-width for the generator case and the combined case.
+NeutralCurveSamples neutral_curve(const FlexsplineParams& f, const RotationReader& rotation,
+                                  const Eigen::VectorXd& u_gen, const Eigen::VectorXd& u_comb) {
+  NeutralCurveSamples nc;
+  nc.radius_m = rotation.radius();
+  nc.z_m = f.length_m - 0.5 * f.rim_width_m;
+  const Ring mid = reading_ring(nc.radius_m, nc.z_m);
+  for (int k = 0; k < kRingSamples; ++k) nc.phi_rad.push_back(2 * kPi * k / kRingSamples);
+  curve_of(mid, sample(rotation.sampler(), mid, u_gen), nc.radius_m, nc.w_wg_m, nc.v_wg_m, nc.mu_wg_rad);
+  curve_of(mid, sample(rotation.sampler(), mid, u_comb), nc.radius_m, nc.w_comb_m, nc.v_comb_m, nc.mu_comb_rad);
+  return nc;
+}
+
+/// φ₀ over the engagement zones: the mean tangential displacement of the torque case u_torque on the reading circle
+/// there, over its radius (over the whole circle for a uniform torque loading).
+double engaged_rotation(const FlexsplineModel& c, const RotationReader& rotation, const Eigen::VectorXd& u_torque) {
+  const double half = c.load.torque_loading == TorqueLoading::Uniform ? kPi : c.load.engagement_half_angle_rad;
+  const Ring ring = reading_ring(rotation.radius(), rotation.z());
+  std::vector<double> w, v, mu;
+  curve_of(ring, sample(rotation.sampler(), ring, u_torque), rotation.radius(), w, v, mu);
+  double sum = 0;
+  int n = 0;
+  for (int k = 0; k < kRingSamples; ++k) {
+    const double t = 2 * kPi * k / kRingSamples;
+    if (std::abs(wrap_pi(t)) <= half + 1e-9 || std::abs(wrap_pi(t - kPi)) <= half + 1e-9) {
+      sum += v[k];
+      ++n;
+    }
+  }
+  return sum / n / rotation.radius();
+}
+
+/// The body wall's torsion alone, T·L/(G·J), L from where the body wall starts (the clamp of a tube, the diaphragm's
+/// face of a cup) to the reading plane.
+double body_wall_torsion_rad(const FlexsplineModel& c, double torque_Nm, double reading_z_m) {
+  const auto& f = c.flexspline;
   const double G = c.material.shear_modulus_Pa();
   const double ri = f.inner_radius_m, ro = f.inner_radius_m + f.wall_thickness_m;
   const double J = kPi / 2 * (std::pow(ro, 4) - std::pow(ri, 4));
   const double body_start = f.shape == FlexsplineShape::Cup ? f.diaphragm_thickness_m : 0.0;
-  s.phi0_theory_rad = T * (s.reading_z_m - body_start) / (G * J);
-  const double r_rim_outer = rim_outer_radius(f, c.gear);
-  s.phi0_theory_cup = cup_torsion_theory(f, r_rim_outer, c.material, T, s.reading_z_m);
+  return torque_Nm * (reading_z_m - body_start) / (G * J);
+}
 
-  // Load cases. u_gen: the generator alone; u_inc: what the torque T_ref adds with the generator in place;
-  // f_support_inc: the generator's forces on the flexspline in that increment (the torque case's support).
-  Eigen::VectorXd u_gen, u_inc = u_unit_torque * T_ref, f_support_inc = Eigen::VectorXd::Zero(3 * mesh.n_nodes());
-  Eigen::VectorXd f_gen;
-  if (gen) {
-    const auto& w = *c.wave_generator;
-    GeneratorReadout gr;
-    gr.model = model_name(w.model);
-    gr.unilateral = gen->unilateral;
-    gr.station_angle_rad = gen->stations.angle_rad;
-    progress("generator: influence of " + std::to_string(gen->stations.angle_rad.size()) + " contact station pairs");
-    const Eigen::MatrixXd C = eq.influence(gen->stations.loads);
-    const Eigen::VectorXd u0_torque = gen->stations.loads.transpose() * u_unit_torque;  // per pair, unit torque
-    if (gen->unilateral) {
-      // Contact of the generator alone, of the generator with T_ref and with the sweep's torques: each a small
-      // problem on C; then one solve for the displacements of all their contact loads.
-      Eigen::VectorXd obstacle = gen->obstacle_m;
-      if (w.model == WaveGeneratorModel::Rollers) {
-        // Set the rollers out so the major axis reaches w0: all four touch (symmetric), so the generator case is
-        // linear in the rollers' standoff; one solve for the unit standoff gives the scale.
-        const Eigen::VectorXd u_unit =
-            eq.solve(contact_load(gen->stations, bilateral_support(C, obstacle).force_N)).col(0);
-        obstacle *= rollers_setout(w, rim_w(f, sampler, s.reading_radius_m, u_unit, 0.0));
-      }
-      gr.obstacle_m = obstacle;
-      // The wave stays with the generator (the gaps ignore the band's turn), and the bearing in series (a cam's).
-      GeneratorContactModel model;
-      const std::vector<bool> all(mesh.n_nodes(), true);
-      model.turn_gap_m_per_rad.resize(C.rows());
-      for (Eigen::Index k = 0; k < C.rows(); ++k)
-        model.turn_gap_m_per_rad[k] = moment_about_z(mesh, Eigen::VectorXd(gen->stations.loads.col(k)), all);
-      model.band_turn_rad_per_N = gen->stations.loads.transpose() * U.col(1);
-      const double band_turn_per_T = loads.col(1).dot(u_unit_torque);  // rad per N·m of the torque
-      if (w.model == WaveGeneratorModel::Cam && w.bearing)
-        model.approach_m = bearing_pair_approach(*w.bearing, gen->stations.half_width_rad);
-      auto contact = [&](double torque) {
-        return generator_contact(C, obstacle - torque * u0_torque, torque * band_turn_per_T, model);
-      };
-      const StationForces p_gen = contact(0.0);
-      gr.contact_iterations = p_gen.iterations;
-      std::vector<double> sweep_T;
-      for (const double k : {0.25, 0.5, 1.0, 2.0}) sweep_T.push_back(k * T_ref);
-      Eigen::MatrixXd contact_loads(3 * mesh.n_nodes(), 2 + sweep_T.size());
-      contact_loads.col(0) = contact_load(gen->stations, p_gen.force_N);
-      const StationForces p_comb = contact(T_ref);
-      contact_loads.col(1) = contact_load(gen->stations, p_comb.force_N);
-      for (std::size_t k = 0; k < sweep_T.size(); ++k)
-        contact_loads.col(2 + k) =
-            contact_load(gen->stations, contact(sweep_T[k]).force_N);
-      const Eigen::MatrixXd V = eq.solve(contact_loads);
-      u_gen = V.col(0);
-      f_gen = contact_loads.col(0);
-      u_inc = V.col(1) - V.col(0) + u_unit_torque * T_ref;
-      f_support_inc = contact_loads.col(1) - contact_loads.col(0);
-      const double rot_gen = rotation(u_gen);
-      for (std::size_t k = 0; k < sweep_T.size(); ++k)
-        s.torque_sweep.emplace_back(sweep_T[k],
-                                    (rotation(V.col(2 + k) + u_unit_torque * sweep_T[k]) - rot_gen) / sweep_T[k]);
-      gr.force_wg_N.assign(p_gen.force_N.data(), p_gen.force_N.data() + p_gen.force_N.size());
-      gr.force_comb_N.assign(p_comb.force_N.data(), p_comb.force_N.data() + p_comb.force_N.size());
-      const double touching_gap = kTouchingGap * *w.radial_deformation_m;
-      const double step = gen->stations.half_width_rad;  // the stations' spacing
-      gr.zones_wg_deg = contact_zones_deg(gr.station_angle_rad, touching(p_gen, touching_gap), step);
-      gr.zones_comb_deg = contact_zones_deg(gr.station_angle_rad, touching(p_comb, touching_gap), step);
-      gr.min_contact_force_N = p_gen.force_N.minCoeff();
-      if (model.approach_m) {
-        const double p_max = std::max(p_gen.force_N.maxCoeff(), p_comb.force_N.maxCoeff());
-        gr.bearing_max_ball_load_N = ball_load_N(*w.bearing, gen->stations.half_width_rad, p_max);
-        gr.bearing_max_approach_m = 0.5 * model.approach_m(p_max);
-      }
-    } else {
-      // Force idealisation: scale to w0 (or force_N); the torque case with the band held radially at the stations.
-      const Eigen::VectorXd u_unit_gen = U.col(1);  // the unit generator forces
-      const double w_unit = rim_w(f, sampler, s.reading_radius_m, u_unit_gen, 0.0);
-      if (!(w_unit > 0))
-        throw InputError("wave_generator: the generator does not push the major axis outward (w = " +
-                         std::to_string(w_unit) + " m per unit load); check the force angles");
-      double total_at_end = 0;  // sum of weights near θ = 0 (one end of the major axis)
-      for (const auto& force : generator_forces(w))
-        if (std::abs(wrap_pi(force.angle_rad)) < kPi / 2) total_at_end += force.weight;
-      const double scale =
-          w.radial_deformation_m ? *w.radial_deformation_m / w_unit : w.force_N / std::max(total_at_end, 1e-300);
-      s.generator_force_N = scale * (w.model == WaveGeneratorModel::FourForce ? 0.5 : 1.0);
-      u_gen = u_unit_gen * scale;
-      f_gen = gen->force_load * scale;
-      const StationForces p_T = bilateral_support(C, -T_ref * u0_torque);
-      f_support_inc = contact_load(gen->stations, p_T.force_N);
-      u_inc = eq.solve(f_support_inc).col(0) + u_unit_torque * T_ref;
-      for (const double k : {0.25, 0.5, 1.0, 2.0}) s.torque_sweep.emplace_back(k * T_ref, rotation(u_inc) / T_ref);
-      gr.force_comb_N.assign(p_T.force_N.data(), p_T.force_N.data() + p_T.force_N.size());
-      double fmin = 1e300;
-      for (const auto& force : generator_forces(w)) fmin = std::min(fmin, force.weight * scale);
-      gr.min_contact_force_N = fmin;
-      for (const auto& force : generator_forces(w)) {
-        const double a = wrap_pi(force.angle_rad) * 180 / kPi, h = kGeneratorPatchHalfAngle_rad * 180 / kPi;
-        gr.zones_wg_deg.emplace_back(a - h, a + h);
-      }
-    }
-    gr.total_radial_force_N = radial_total(mesh, f_gen);
-    gr.reaction_torque_Nm = moment_about_z(mesh, f_support_inc, std::vector<bool>(mesh.n_nodes(), true)) * (T / T_ref);
-    gr.w_major_m = rim_w(f, sampler, s.reading_radius_m, u_gen, 0.0);
-    gr.w_minor_m = rim_w(f, sampler, s.reading_radius_m, u_gen, kPi / 2);
-    s.generator_w0_m = gr.w_major_m;
-    const Resultant res = load_resultant(mesh, f_gen);
-    s.generator_net_force = res.force;
-    s.generator_net_moment = res.moment;
-    s.generator_rotation_rad = rotation(u_gen);
-    s.generator = gr;
-  } else {
-    for (const double k : {0.25, 0.5, 1.0, 2.0}) s.torque_sweep.emplace_back(k * T_ref, rotation(u_inc) / T_ref);
-  }
+/// Fatigue over one generator revolution of the combined case's nodal stresses, at the rim and the diaphragm's fillet.
+FatigueReadout rim_fatigue(const FlexsplineModel& c, const PointSampler& sampler, const RowMatrixX6d& stress) {
+  const auto& f = c.flexspline;
+  const auto& w = *c.wave_generator;
+  return flexspline_fatigue(f, rim_outer_radius(f, c.gear), f.length_m - w.axial_position_m, w.band_width_m,
+                            c.material, sampler, stress);
+}
+
+}  // namespace
+
+FlexsplineSolution analyse_flexspline(const FlexsplineModel& c, const TetMesh& mesh) {
+  return analyse_flexspline(c, mesh, assemble_and_factorise(c, mesh));
+}
+
+FlexsplineSolution analyse_flexspline(const FlexsplineModel& c, const TetMesh& mesh, const FlexsplineSystem& eq) {
+  FlexsplineSolution s;
+  s.factor = eq.factor->stats();
+  s.assemble_s = eq.assemble_s;
+  Stopwatch clock;
+  s.torque_Nm = c.load.torque_Nm;
+  const double T = s.torque_Nm, T_ref = T != 0.0 ? T : 1.0;  // compliance is read at T (or 1 N·m without torque)
+
+  // Solves: the unit loads, the generator alone and under the torque, the torque's increment with it in place.
+  const std::optional<GeneratorStations> stations =
+      c.wave_generator ? std::optional(generator_stations(c, mesh)) : std::nullopt;
+  const UnitSolutions unit = solve_unit_loads(c, mesh, eq, stations ? &*stations : nullptr);
+  const RotationReader rotation(c, mesh);
+  std::optional<GeneratorCases> gen;
+  if (stations) gen = solve_generator(c, mesh, eq, *stations, unit, rotation, T, T_ref);
+  const TorqueIncrement inc = gen ? gen->torque : torque_alone(mesh, unit, rotation, T_ref);
   s.solve_s = clock.lap();
 
-  // φ₀ and C_τ: the rotation the torque adds with the generator in place.
-  s.compliance_rad_per_Nm = rotation(u_inc) / T_ref;
-  s.phi0_rad = s.compliance_rad_per_Nm * T;
-
-  // Torque balance of the torque case: applied moment vs the clamp's reaction plus the generator's.
-  const double to_T = T / T_ref;
-  const Eigen::VectorXd u_torque = u_inc * to_T;
-  s.applied_torque_Nm = moment_about_z(mesh, f_torque * T, std::vector<bool>(mesh.n_nodes(), true));
-  const Eigen::VectorXd clamp_reactions =
-      internal_forces(mesh, c.material, u_torque) - f_torque * T - f_support_inc * to_T;
-  s.reaction_torque_Nm = moment_about_z(mesh, clamp_reactions, eq.clamped) +
-                         moment_about_z(mesh, f_support_inc * to_T, std::vector<bool>(mesh.n_nodes(), true));
-
-  s.cases.push_back({"torque", u_torque, RowMatrixX6d(), s.phi0_rad});
+  // Read-outs: φ₀, C_τ and the torque balance; the closed forms; the load cases and the neutral curve.
+  const TorqueReadout torque = read_torque(c, mesh, eq, unit, rotation, inc, T, T_ref);
+  s.phi0_rad = torque.phi0_rad;
+  s.compliance_rad_per_Nm = torque.compliance_rad_per_Nm;
+  s.torque_sweep = inc.sweep;
+  s.applied_torque_Nm = torque.applied_torque_Nm;
+  s.reaction_torque_Nm = torque.reaction_torque_Nm;
+  s.reading_radius_m = rotation.radius();
+  s.reading_z_m = rotation.z();
+  s.phi0_theory_rad = body_wall_torsion_rad(c, T, s.reading_z_m);
+  s.phi0_theory_cup =
+      cup_torsion_theory(c.flexspline, rim_outer_radius(c.flexspline, c.gear), c.material, T, s.reading_z_m);
+  s.phi0_engaged_rad = is_plain_tube(c.flexspline) ? s.phi0_rad : engaged_rotation(c, rotation, torque.u);
+  s.cases = load_cases(torque, gen ? &*gen : nullptr, rotation);
   if (gen) {
-    s.cases.insert(s.cases.begin(), {"generator", u_gen, RowMatrixX6d(), s.generator_rotation_rad});
-    const Eigen::VectorXd u_comb = u_gen + u_torque;
-    s.cases.push_back({"generator_torque", u_comb, RowMatrixX6d(), rotation(u_comb)});
-    // The deformed neutral curve at the rim mid-width for the generator and the combined case.
-    NeutralCurveSamples nc;
-    nc.radius_m = s.reading_radius_m;
-    nc.z_m = f.length_m - 0.5 * f.rim_width_m;
-    const Ring mid = reading_ring(nc.radius_m, nc.z_m);
-    for (int k = 0; k < kRingSamples; ++k) nc.phi_rad.push_back(2 * kPi * k / kRingSamples);
-    curve_of(mid, sample(sampler, mid, u_gen), nc.radius_m, nc.w_wg_m, nc.v_wg_m, nc.mu_wg_rad);
-    curve_of(mid, sample(sampler, mid, u_comb), nc.radius_m, nc.w_comb_m, nc.v_comb_m, nc.mu_comb_rad);
-    s.neutral_curve = nc;
+    s.generator = gen->readout;
+    s.generator_force_N = gen->force_per_point_N;
+    s.generator_w0_m = gen->readout.w_major_m;
+    s.generator_net_force = gen->resultant.force;
+    s.generator_net_moment = gen->resultant.moment;
+    s.generator_rotation_rad = gen->rim_rotation_rad;
+    s.neutral_curve = neutral_curve(c.flexspline, rotation, s.cases.front().u, s.cases.back().u);
   }
 
-  // φ₀ over the engagement zones: the mean tangential displacement of the torque case on the neutral circle there.
-  if (!(f.shape == FlexsplineShape::Tube && f.teeth == TeethModel::None)) {
-    const double half = c.load.torque_loading == TorqueLoading::Uniform ? kPi : c.load.engagement_half_angle_rad;
-    const Ring ring = reading_ring(s.reading_radius_m, s.reading_z_m);
-    std::vector<double> w, v, mu;
-    curve_of(ring, sample(sampler, ring, u_torque), s.reading_radius_m, w, v, mu);
-    double sum = 0;
-    int n = 0;
-    for (int k = 0; k < kRingSamples; ++k) {
-      const double t = 2 * kPi * k / kRingSamples;
-      if (std::abs(wrap_pi(t)) <= half + 1e-9 || std::abs(wrap_pi(t - kPi)) <= half + 1e-9) {
-        sum += v[k];
-        ++n;
-      }
-    }
-    s.phi0_engaged_rad = sum / n / s.reading_radius_m;
-  } else {
-    s.phi0_engaged_rad = s.phi0_rad;
-  }
-
-  // Stresses of every case; hoop stress of the generator case if any, else of the torque case.
+  // Stresses of every case; the hoop stress of the generator case if any, else of the torque case; fatigue.
   for (auto& lc : s.cases) lc.stress = nodal_stress(mesh, c.material, lc.u);
-  s.hoop = hoop_stress(c, mesh, sampler, s.cases.front(), s.reading_z_m);
-  if (gen) {
-    const auto& w = *c.wave_generator;
-    s.fatigue = flexspline_fatigue(f, r_rim_outer, f.length_m - w.axial_position_m, w.band_width_m, c.material, sampler,
-                                   s.cases.back().stress);
-  }
-  {
-    const int k = static_cast<int>(std::lround(s.hoop.nominal_angle_deg));
-    s.hoop.nominal_bending_Pa = 0.5 * (s.hoop.outer_Pa[k] - s.hoop.inner_Pa[k]);
-    s.hoop.nominal_membrane_Pa = 0.5 * (s.hoop.outer_Pa[k] + s.hoop.inner_Pa[k]);
-    if (gen && s.generator) {
-      const double t_wall = s.hoop.outer_radius_m + (s.hoop.inner_radius_m - ri) - ri;  // the profile's wall
-      s.hoop.ring_theory_bending_Pa =
-          ring_theory_bending_stress(*c.wave_generator, c.material.youngs_modulus_Pa, ri + 0.5 * t_wall, t_wall,
-                                     s.generator->w_major_m, s.hoop.nominal_angle_deg * kPi / 180);
-    }
-  }
+  s.hoop = hoop_stress(c, mesh, rotation.sampler(), s.cases.front(), s.reading_z_m,
+                       gen ? std::optional(gen->readout.w_major_m) : std::nullopt);
+  if (gen) s.fatigue = rim_fatigue(c, rotation.sampler(), s.cases.back().stress);
   return s;
 }
 

@@ -28,6 +28,7 @@
 #include <Eigen/Core>
 
 #include "common/params.hpp"
+#include "fem/flexspline_model.hpp"
 #include "fem/cholmod_factor.hpp"
 #include "fem/fatigue.hpp"
 #include "fem/flexspline_system.hpp"
@@ -137,16 +138,16 @@ double neutral_radius(const FlexsplineParams& f);
 
 /// Consistent load vector (3·n_nodes, N) of the case's torque load (rim engagement zones, uniform rim, or the exact
 /// torsion shear on a plain tube's open end), scaled to `torque_Nm`.
-Eigen::VectorXd torque_load_vector(const Case& c, const TetMesh& mesh, double torque_Nm);
+Eigen::VectorXd torque_load_vector(const FlexsplineModel& c, const TetMesh& mesh, double torque_Nm);
 
 /// Least-squares rigid rotation about z (rad) of the reading ring of displacement field u (3·n_nodes): the open end
 /// face of a plain tube, else 360 points on the rim's neutral circle at its mid-width.
-double reading_rotation(const Case& c, const TetMesh& mesh, const Eigen::VectorXd& u);
+double reading_rotation(const FlexsplineModel& c, const TetMesh& mesh, const Eigen::VectorXd& u);
 
 /// Solves every load case of the flexspline on one factorisation and extracts φ₀, C_τ, the neutral curve and
 /// stresses. The mesh must come from mesh_flexspline for the same parameters.
-FlexsplineSolution analyse_flexspline(const Case& c, const TetMesh& mesh);
+FlexsplineSolution analyse_flexspline(const FlexsplineModel& c, const TetMesh& mesh);
 /// The same on a system already factorised for this case and mesh (kept for later stages, e.g. the tooth contact).
-FlexsplineSolution analyse_flexspline(const Case& c, const TetMesh& mesh, const FlexsplineSystem& system);
+FlexsplineSolution analyse_flexspline(const FlexsplineModel& c, const TetMesh& mesh, const FlexsplineSystem& system);
 
 }  // namespace sw

@@ -42,7 +42,7 @@ namespace {
 
 /// Radial outward patch loads on the inner wall, one per force, each of magnitude weight (N) as the integral of the
 /// pressure over its patch.
-Eigen::VectorXd generator_load(const Case& c, const TetMesh& mesh) {
+Eigen::VectorXd generator_load(const FlexsplineModel& c, const TetMesh& mesh) {
   const auto& w = *c.wave_generator;
   const double z_wg = c.flexspline.length_m - w.axial_position_m;
   Eigen::VectorXd f = Eigen::VectorXd::Zero(3 * mesh.n_nodes());
@@ -67,7 +67,7 @@ Eigen::VectorXd generator_load(const Case& c, const TetMesh& mesh) {
 
 }  // namespace
 
-double station_spacing(const Case& c) {
+double station_spacing(const FlexsplineModel& c) {
   const double two_edges_deg = 2 * c.mesh.size_m / c.flexspline.inner_radius_m * 180 / kPi;
   const double n = std::round(180.0 / std::clamp(two_edges_deg, 2.0, 6.0));
   return kPi / n;
@@ -109,7 +109,7 @@ Eigen::MatrixXd FlexsplineSystem::influence(const Eigen::SparseMatrix<double>& l
   return 0.5 * (C + C.transpose());  // symmetric up to round-off; make it exactly so
 }
 
-FlexsplineSystem assemble_and_factorise(const Case& c, const TetMesh& mesh) {
+FlexsplineSystem assemble_and_factorise(const FlexsplineModel& c, const TetMesh& mesh) {
   FlexsplineSystem eq;
   eq.clamped = clamped_nodes(mesh);
   std::vector<bool> fixed(3 * mesh.n_nodes());
@@ -136,7 +136,7 @@ double rollers_setout(const WaveGeneratorParams& w, double w_unit_m) {
 
 double cam_standoff(const WaveGeneratorParams& w, double r, double t) { return CamSurface(w, r).standoff_m(t); }
 
-GeneratorStations generator_stations(const Case& c, const TetMesh& mesh) {
+GeneratorStations generator_stations(const FlexsplineModel& c, const TetMesh& mesh) {
   const auto& w = *c.wave_generator;
   const auto& f = c.flexspline;
   const double z = f.length_m - w.axial_position_m, r = f.inner_radius_m;

@@ -9,6 +9,7 @@
 #include <Eigen/SparseCore>
 
 #include "common/params.hpp"
+#include "fem/flexspline_model.hpp"
 #include "fem/assembly.hpp"
 #include "fem/cholmod_factor.hpp"
 #include "fem/generator_contact.hpp"
@@ -30,7 +31,7 @@ struct FlexsplineSystem {
 };
 
 /// Supports (every node on a kSurfaceClamped face), assembly and the one factorisation (progress on stderr).
-FlexsplineSystem assemble_and_factorise(const Case& c, const TetMesh& mesh);
+FlexsplineSystem assemble_and_factorise(const FlexsplineModel& c, const TetMesh& mesh);
 
 /// The wave generator as the solver sees it: contact stations on the bore over the generator's band and what they
 /// push against (a cam's or the rollers' standoff), or, for the force idealisation, the unit forces and stations that
@@ -42,7 +43,7 @@ struct GeneratorStations {
                                ///< rollers: per metre of set-out, scaled to w0 by the analysis)
   Eigen::VectorXd force_load;  ///< force models: the unit generator forces (3·n_nodes)
 };
-GeneratorStations generator_stations(const Case& c, const TetMesh& mesh);
+GeneratorStations generator_stations(const FlexsplineModel& c, const TetMesh& mesh);
 
 /// Angles (from the major axis) and weights of the force idealisation's point forces (four_force, two_force, forces;
 /// rollers: where the rollers touch). Not for a cam, whose forces come from its contact.
@@ -60,6 +61,6 @@ double rollers_setout(const WaveGeneratorParams& w, double w_unit_m);
 double cam_standoff(const WaveGeneratorParams& w, double r_m, double theta_rad);
 /// Angular spacing of the contact stations: two element edges at the bore (a contact pressure resolved more finely
 /// than the displacement field checkerboards), at least 2° and at most 6°, dividing 180° evenly.
-double station_spacing(const Case& c);
+double station_spacing(const FlexsplineModel& c);
 
 }  // namespace sw

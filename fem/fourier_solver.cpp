@@ -243,7 +243,7 @@ struct HarmonicStations {
 /// The stations of the case's generator (angles, hats, normals and standoffs as fem/flexspline_system.cpp's
 /// generator_stations), but no finer than the series resolves: a hat of half-width Δ has its spectrum's main lobe up
 /// to n = 2π/Δ, so Δ ≥ 2π/N (pairs ≤ N/2). `S`: ∫ N_i r ds over the band's inner-wall edges.
-HarmonicStations harmonic_stations(const Case& c, const Eigen::VectorXd& S, int N) {
+HarmonicStations harmonic_stations(const FlexsplineModel& c, const Eigen::VectorXd& S, int N) {
   const auto& w = *c.wave_generator;
   const double r = c.flexspline.inner_radius_m;
   if (N < 2)
@@ -729,7 +729,7 @@ HarmonicField HarmonicField::operator*(double k) const {
   return f;
 }
 
-FourierSolution analyse_flexspline_fourier(const Case& c, int grid_sectors) {
+FourierSolution analyse_flexspline_fourier(const FlexsplineModel& c, int grid_sectors) {
   Stopwatch clock;
   std::optional<std::pair<double, double>> band;
   if (c.wave_generator)
@@ -741,7 +741,7 @@ FourierSolution analyse_flexspline_fourier(const Case& c, int grid_sectors) {
   return s;
 }
 
-FourierSolution analyse_section_fourier(const Case& c, SectionMesh section, int grid_sectors) {
+FourierSolution analyse_section_fourier(const FlexsplineModel& c, SectionMesh section, int grid_sectors) {
   FourierSolution out;
   out.section = std::move(section);
   const SectionMesh& sec = out.section;

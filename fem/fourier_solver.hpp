@@ -25,6 +25,7 @@
 #include <Eigen/Core>
 
 #include "common/params.hpp"
+#include "fem/flexspline_model.hpp"
 #include "fem/cholmod_factor.hpp"
 #include "fem/flexspline_analysis.hpp"
 #include "fem/fourier_section.hpp"
@@ -77,9 +78,9 @@ struct FourierSolution {
 /// Solves the case (teeth "ring" or "none") by harmonics 0..c.solver.harmonics on its meridian section. With
 /// `grid_sectors` > 0 also revolves the section into a TET10 grid of that many sectors (midside nodes included,
 /// every node evaluated from the series) and fills figures.cases[].u / .stress on it for VTU output.
-FourierSolution analyse_flexspline_fourier(const Case& c, int grid_sectors = 0);
+FourierSolution analyse_flexspline_fourier(const FlexsplineModel& c, int grid_sectors = 0);
 
 /// Same on a given section (tests: the annulus of fem/fourier_section.hpp).
-FourierSolution analyse_section_fourier(const Case& c, SectionMesh section, int grid_sectors = 0);
+FourierSolution analyse_section_fourier(const FlexsplineModel& c, SectionMesh section, int grid_sectors = 0);
 
 }  // namespace sw

@@ -51,7 +51,7 @@ TEST(ExportInp, CalculixSolvesTheDeckToOurPhi0) {
   const sw::Case c = sw::load_case((dir / "tube.toml").string());
   const sw::TetMesh mesh = sw::mesh_flexspline(c.flexspline, c.gear, c.mesh);  // what `fem` meshes
   const Eigen::VectorXd u = sw::read_frd_displacements(dir / "job.frd", mesh.n_nodes());
-  const double phi0_ccx = sw::reading_rotation(c, mesh, u);
+  const double phi0_ccx = sw::reading_rotation(flexspline_model(c), mesh, u);
   const double phi0_ours = read_json(dir / "out" / "result.json")["phi0_rad"].get<double>();
   // 1e-5: the same linear system solved by two direct solvers; the deck's 14 significant digits are far below it.
   EXPECT_NEAR(phi0_ccx / phi0_ours, 1.0, 1e-5) << phi0_ccx << " vs " << phi0_ours;

@@ -31,8 +31,8 @@ const Coarse& coarse_seed_cam() {
     s->c.mesh.wall_layers = 1;
     s->c.wave_generator->model = WaveGeneratorModel::Cam;
     s->mesh = mesh_flexspline(s->c.flexspline, s->c.gear, s->c.mesh);
-    s->system = assemble_and_factorise(s->c, s->mesh);
-    s->fem = analyse_flexspline(s->c, s->mesh, s->system);
+    s->system = assemble_and_factorise(flexspline_model(s->c), s->mesh);
+    s->fem = analyse_flexspline(flexspline_model(s->c), s->mesh, s->system);
     return s;
   }();
   return *k;

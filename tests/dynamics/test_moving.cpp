@@ -63,8 +63,8 @@ const CoarseSeed& coarse_seed() {
     s->c.mesh.size_m = 1.2e-3;
     s->c.mesh.wall_layers = 1;
     s->mesh = mesh_flexspline(s->c.flexspline, s->c.gear, s->c.mesh);
-    s->system = assemble_and_factorise(s->c, s->mesh);
-    s->fem = analyse_flexspline(s->c, s->mesh, s->system);
+    s->system = assemble_and_factorise(flexspline_model(s->c), s->mesh);
+    s->fem = analyse_flexspline(flexspline_model(s->c), s->mesh, s->system);
     return s;
   }();
   return *k;

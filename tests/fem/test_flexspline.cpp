@@ -15,8 +15,8 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-Case tube_with_generator(WaveGeneratorModel model) {
-  Case c;
+FlexsplineModel tube_with_generator(WaveGeneratorModel model) {
+  FlexsplineModel c;
   c.flexspline.shape = FlexsplineShape::Tube;
   c.flexspline.teeth = TeethModel::None;
   c.flexspline.inner_radius_m = 18.4e-3;
@@ -37,13 +37,13 @@ Case tube_with_generator(WaveGeneratorModel model) {
   return c;
 }
 
-TetMesh mesh_of(const Case& c) {
+TetMesh mesh_of(const FlexsplineModel& c) {
   const auto& f = c.flexspline;
   return mesh_tube(f.inner_radius_m, f.inner_radius_m + f.wall_thickness_m, f.length_m, c.mesh);
 }
 
 TEST(FourForceGenerator, LoadsAreSelfEquilibratedAndReachW0WithoutNetRotation) {
-  const Case c = tube_with_generator(WaveGeneratorModel::FourForce);
+  const FlexsplineModel c = tube_with_generator(WaveGeneratorModel::FourForce);
   const TetMesh m = mesh_of(c);
   const FlexsplineSolution s = analyse_flexspline(c, m);
   // Four equal radial forces at ±β and π ± β: zero resultant and zero moment, to round-off of the patch integration
@@ -96,7 +96,7 @@ TEST(Fatigue, GoodmanSafetyFactorAndCycle) {
 // the major axis, and with torque the clamp's and the generator's reactions balance the applied torque (1e-8: an
 // identity of the discrete equations, the generator's share included).
 TEST(CamGenerator, PushesOnlyTouchesAroundTheMajorAxisAndBalancesTorque) {
-  const Case c = tube_with_generator(WaveGeneratorModel::Cam);
+  const FlexsplineModel c = tube_with_generator(WaveGeneratorModel::Cam);
   const TetMesh m = mesh_of(c);
   const FlexsplineSolution s = analyse_flexspline(c, m);
   ASSERT_TRUE(s.generator.has_value());
@@ -129,7 +129,7 @@ TEST(CamGenerator, PushesOnlyTouchesAroundTheMajorAxisAndBalancesTorque) {
 // alone (symmetric), the standoff that reaches w0 is found on the linear all-touching problem and the unilateral solve
 // keeps it (1e-6), and with torque the reactions balance (1e-8); a roller's normal is radial, so it carries no torque.
 TEST(RollerGenerator, FourRollersTouchReachW0AndBalanceTorque) {
-  Case c = tube_with_generator(WaveGeneratorModel::Rollers);
+  FlexsplineModel c = tube_with_generator(WaveGeneratorModel::Rollers);
   const TetMesh m = mesh_of(c);
   const FlexsplineSolution s = analyse_flexspline(c, m);
   ASSERT_TRUE(s.generator.has_value());

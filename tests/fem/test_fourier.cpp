@@ -57,8 +57,8 @@ TEST(HarmonicElement, RigidModesAndRank) {
   }
 }
 
-Case plain_tube() {
-  Case c;
+FlexsplineModel plain_tube() {
+  FlexsplineModel c;
   c.flexspline.shape = FlexsplineShape::Tube;
   c.flexspline.teeth = TeethModel::None;
   c.flexspline.inner_radius_m = 18.5e-3;
@@ -73,7 +73,7 @@ Case plain_tube() {
 // The torsion field u_θ = T·z·r/(G·J) is quadratic: the quadratic section reproduces it exactly (up to round-off)
 // under the exact end shear τ = T·r/J, on a coarse section. Tolerance 1e-8 (the issue's), and the reaction balances.
 TEST(FourierTorsion, TubeExact) {
-  const Case c = plain_tube();
+  const FlexsplineModel c = plain_tube();
   const FourierSolution s = analyse_flexspline_fourier(c);
   const auto& f = s.figures;
   std::printf("tube torsion: %zu section nodes, phi0 %.12e vs T·L/(G·J) %.12e (rel %.2e)\n", s.section.n_nodes(),
@@ -120,7 +120,7 @@ TEST(FourierLame, ThickCylinder) {
 // The cup's boss reaches the axis: the regularity conditions must keep every harmonic well posed (a singular or
 // indefinite matrix throws) and the axis displacement single-valued: at n = 1, b = −a.
 TEST(FourierAxis, CupBossWithEveryHarmonic) {
-  Case c;
+  FlexsplineModel c;
   c.flexspline.shape = FlexsplineShape::Cup;
   c.flexspline.teeth = TeethModel::None;
   c.flexspline.length_m = 14.7e-3;
@@ -162,7 +162,7 @@ TEST(FourierAxis, CupBossWithEveryHarmonic) {
 // The revolved grid: its straight-edged TET10 volume approaches 2π ∫ r dA from below by the chord error of the
 // sectors, and the grid's displacement at a node equals the series there.
 TEST(FourierGrid, RevolvedVolumeAndValues) {
-  Case c = plain_tube();
+  FlexsplineModel c = plain_tube();
   c.solver.harmonics = 4;
   WaveGeneratorParams w;
   w.model = WaveGeneratorModel::FourForce;
@@ -201,7 +201,7 @@ TEST(FourierGrid, RevolvedVolumeAndValues) {
 // at the minor axis; the torque case balances (clamp + generator reaction = −applied, 1e-9), and the station forces sum
 // to the total radial force (each pair's unit load is 1 N of normal force at each of its two stations).
 TEST(FourierCam, UnilateralContactBalances) {
-  Case c = plain_tube();
+  FlexsplineModel c = plain_tube();
   c.solver.harmonics = 48;
   c.load.torque_Nm = 20;
   WaveGeneratorParams w;

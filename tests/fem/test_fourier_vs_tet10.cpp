@@ -16,8 +16,8 @@
 namespace sw {
 namespace {
 
-Case tube_with_generator(WaveGeneratorModel model) {
-  Case c;
+FlexsplineModel tube_with_generator(WaveGeneratorModel model) {
+  FlexsplineModel c;
   c.flexspline.shape = FlexsplineShape::Tube;
   c.flexspline.teeth = TeethModel::None;
   c.flexspline.inner_radius_m = 18.4e-3;
@@ -42,11 +42,11 @@ struct Differences {
   std::vector<std::pair<double, double>> zones_t, zones_f;
 };
 
-Differences compare(const Case& c, int harmonics = 64) {
+Differences compare(const FlexsplineModel& c, int harmonics = 64) {
   const auto& f = c.flexspline;
   const TetMesh m = mesh_tube(f.inner_radius_m, f.inner_radius_m + f.wall_thickness_m, f.length_m, c.mesh);
   const FlexsplineSolution t = analyse_flexspline(c, m);
-  Case cf = c;
+  FlexsplineModel cf = c;
   cf.solver.method = SolverMethod::Fourier;
   cf.solver.harmonics = harmonics;
   cf.mesh.size_m = 0.5e-3;  // the section is cheap: converged on its own
@@ -89,7 +89,7 @@ TEST(FourierVsTet10, TubeFourForce) {
 // faces on r = 18.4 mm; N = 60 gives the harmonic path the same), so the same contact problem up to each solver's
 // discretisation: the contact zones, the total radial force and the neutral curve must agree.
 TEST(FourierVsTet10, TubeCam) {
-  Case c = tube_with_generator(WaveGeneratorModel::Cam);
+  FlexsplineModel c = tube_with_generator(WaveGeneratorModel::Cam);
   const Differences d = compare(c, 60);
   std::printf("  total radial force tet10 %.4g N, fourier %.4g N (%+.2e)\n", d.force_t, d.force_f, d.force_f / d.force_t - 1);
   for (std::size_t k = 0; k < std::max(d.zones_t.size(), d.zones_f.size()); ++k)

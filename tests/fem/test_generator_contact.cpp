@@ -315,7 +315,7 @@ TEST(CamOnThinRing, BilateralStationsRecoverThePrescribedShape) {
 // ±1.5 w0). The torque balance holds with the generator's share (1e-8), and the cup's closed form is within 3 % of
 // the FEM even on this mesh.
 void expect_rim_held(WaveGeneratorModel model, double rim_tolerance_of_w0) {
-  Case c = load_case("cases/seed_190_192.toml");
+  FlexsplineModel c = flexspline_model(load_case("cases/seed_190_192.toml"));
   c.mesh.size_m = 1.2e-3;
   c.mesh.wall_layers = 1;
   c.wave_generator->model = model;
@@ -359,7 +359,7 @@ TEST(SeedCupUnderTorque, CamHoldsTheRimInwardOnly) { expect_rim_held(WaveGenerat
 // f_kᵀu = s_k − a(p_k) (+ the band's turn, zero by symmetry in the generator case). A bearing a million times stiffer
 // gives the rigid cam's answer.
 TEST(SeedCupCamBearing, BoreFollowsTheCamLessTheBallApproach) {
-  Case c = load_case("cases/seed_190_192.toml");
+  FlexsplineModel c = flexspline_model(load_case("cases/seed_190_192.toml"));
   c.mesh.size_m = 1.2e-3;
   c.mesh.wall_layers = 1;
   const TetMesh m = mesh_flexspline(c.flexspline, c.gear, c.mesh);
@@ -428,7 +428,7 @@ TEST(SeedCupCamBearing, BoreFollowsTheCamLessTheBallApproach) {
 // differs by up to 2.4e-6·w0 (0.5 nm), and where cam and bore conform a nanometre moves a station's force by ~0.02 N
 // (the conforming zone's ill-conditioning; resultants do not see it).
 TEST(SeedCupCamProfile, ListSampledFromPolarGivesThePolarCam) {
-  Case c = load_case("cases/seed_190_192.toml");
+  FlexsplineModel c = flexspline_model(load_case("cases/seed_190_192.toml"));
   c.mesh.size_m = 1.2e-3;
   c.mesh.wall_layers = 1;
   const TetMesh m = mesh_flexspline(c.flexspline, c.gear, c.mesh);

@@ -49,7 +49,7 @@ constexpr double kTorsionTol = 5e-4;
 constexpr double kTorqueBalanceTol = 1e-8;
 
 TEST(TubeTorsion, TwistMatchesTLOverGJAndReactionEqualsAppliedTorque) {
-  Case c;
+  FlexsplineModel c;
   c.flexspline.shape = FlexsplineShape::Tube;
   c.flexspline.teeth = TeethModel::None;
   c.flexspline.inner_radius_m = 18.5e-3;

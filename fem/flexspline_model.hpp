@@ -1,0 +1,27 @@
+#pragma once
+// What the FEM solves: the flexspline, its material, the wave generator, the loads, the mesh size (the generator's
+// contact stations follow it) and the solver. Every fem/ function takes this, never the whole case, so the FEM cannot
+// depend on a later stage's options ([dynamics], [catalog], [circular_spline]) or on where the case came from; a
+// message that needs the case file is completed by the caller.
+#include <optional>
+
+#include "common/params.hpp"
+
+namespace sw {
+
+struct FlexsplineModel {
+  FlexsplineParams flexspline;
+  std::optional<GearParams> gear;  ///< the teeth as a ring: the rim's outer radius (mesh/flexspline.hpp)
+  Material material;
+  std::optional<WaveGeneratorParams> wave_generator;  ///< absent: torque alone
+  LoadParams load;
+  MeshParams mesh;
+  SolverParams solver;
+};
+
+/// The case's tables the FEM reads, copied (the one place a Case becomes the FEM's input).
+inline FlexsplineModel flexspline_model(const Case& c) {
+  return {c.flexspline, c.gear, c.material, c.wave_generator, c.load, c.mesh, c.solver};
+}
+
+}  // namespace sw

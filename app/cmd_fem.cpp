@@ -93,20 +93,21 @@ FemJobResult run_fem_job(const Case& c, const fs::path& out_dir, const FemJobOpt
   job.result_json_path = out_dir / "result.json";
   write_file_atomic(job.result_json_path, fem_result_json(c, mesh, job.solution, run));
   const auto& s = job.solution;
+  const FactorStats& factor = s.timings.factor;
   std::printf("fem %s: %zu nodes, %lld equations, factor %.2f GF in %.2f s (%.1f GF/s), total %.1f s, peak %.0f MB\n",
-              c.path.c_str(), mesh.n_nodes(), static_cast<long long>(s.factor.equations), s.factor.factor_gflop,
-              s.factor.factor_s, s.factor.factor_s > 0 ? s.factor.factor_gflop / s.factor.factor_s : 0.0, run.total_s,
+              c.path.c_str(), mesh.n_nodes(), static_cast<long long>(factor.equations), factor.factor_gflop,
+              factor.factor_s, factor.factor_s > 0 ? factor.factor_gflop / factor.factor_s : 0.0, run.total_s,
               run.peak_rss_bytes / 1e6);
-  const auto& th = s.phi0_theory_cup;
+  const auto& th = s.checks.phi0_theory_cup;
   std::printf("  phi0 = %.6e rad at T = %g N·m (C_tau = %.6e rad/N·m), over the engagement zones %.6e rad\n",
               s.phi0_rad, s.torque_Nm, s.compliance_rad_per_Nm, s.phi0_engaged_rad);
   std::printf("  closed form %.6e rad (FEM/closed form %.4f) = diaphragm %.4e (annular plate %.2f..%.2f mm) + body wall "
               "%.4e (%.2f mm) + rim %.4e (%.2f mm); body wall alone T·L/(G·J) %.6e rad\n",
               th.total_rad(), th.total_rad() != 0 ? s.phi0_rad / th.total_rad() : 0.0, th.diaphragm_rad,
               th.diaphragm_inner_radius_m * 1e3, th.diaphragm_outer_radius_m * 1e3, th.body_rad,
-              th.body_length_m * 1e3, th.rim_rad, th.rim_length_m * 1e3, s.phi0_theory_rad);
-  std::printf("  reaction torque %.9g N·m (clamp and generator) vs applied %.9g N·m\n", s.reaction_torque_Nm,
-              s.applied_torque_Nm);
+              th.body_length_m * 1e3, th.rim_rad, th.rim_length_m * 1e3, s.checks.phi0_theory_rad);
+  std::printf("  reaction torque %.9g N·m (clamp and generator) vs applied %.9g N·m\n", s.checks.reaction_torque_Nm,
+              s.checks.applied_torque_Nm);
   if (s.generator) {
     const auto& g = *s.generator;
     std::string zones;
@@ -121,7 +122,7 @@ FemJobResult run_fem_job(const Case& c, const fs::path& out_dir, const FemJobOpt
                 g.total_radial_force_N, g.min_contact_force_N, zones.c_str());
     std::printf("  generator: w at the major axis %.4f mm, at the minor axis %.4f mm, net rim rotation %.2e rad; "
                 "it carries %.4g N·m of the torque\n",
-                g.w_major_m * 1e3, g.w_minor_m * 1e3, s.generator_rotation_rad, g.reaction_torque_Nm);
+                g.w_major_m * 1e3, g.w_minor_m * 1e3, s.checks.generator_rotation_rad, g.reaction_torque_Nm);
     if (g.bearing_max_ball_load_N > 0)
       std::printf("  generator bearing in series: largest ball load %.0f N, its Hertzian approach %.2f um\n",
                   g.bearing_max_ball_load_N, g.bearing_max_approach_m * 1e6);

@@ -64,16 +64,18 @@ FemJobResult run_fourier_fem_job(const Case& c, const fs::path& out_dir, bool wr
   std::printf("fem %s (fourier): section %zu nodes, harmonics 0..%d (%zu solved, %lld equations in all), factor "
               "%.3f GF, total %.2f s, peak %.0f MB\n",
               c.path.c_str(), sec.n_nodes(), fourier.harmonics_kept, fourier.harmonics.size(),
-              static_cast<long long>(equations), s.factor.factor_gflop, run.total_s, run.peak_rss_bytes / 1e6);
+              static_cast<long long>(equations), s.timings.factor.factor_gflop, run.total_s, run.peak_rss_bytes / 1e6);
   std::printf("  phi0 = %.6e rad at T = %g N·m (C_tau = %.6e rad/N·m); theory T·L/(G·J) = %.6e rad (FEM/theory %.4f)\n",
-              s.phi0_rad, s.torque_Nm, s.compliance_rad_per_Nm, s.phi0_theory_rad,
-              s.phi0_theory_rad != 0 ? s.phi0_rad / s.phi0_theory_rad : 0.0);
-  std::printf("  reaction torque %.9g N·m vs applied %.9g N·m\n", s.reaction_torque_Nm, s.applied_torque_Nm);
+              s.phi0_rad, s.torque_Nm, s.compliance_rad_per_Nm, s.checks.phi0_theory_rad,
+              s.checks.phi0_theory_rad != 0 ? s.phi0_rad / s.checks.phi0_theory_rad : 0.0);
+  std::printf("  reaction torque %.9g N·m vs applied %.9g N·m\n", s.checks.reaction_torque_Nm,
+              s.checks.applied_torque_Nm);
   if (c.wave_generator)
     std::printf("  generator: %.4g N per force, w0 = %.4f mm, net rim rotation %.2e rad; hoop stress %+.1f MPa at "
                 "%.1f deg, %+.1f MPa at %.1f deg\n",
-                s.generator_force_N, s.generator_w0_m * 1e3, s.generator_rotation_rad, s.hoop.max_tensile_Pa / 1e6,
-                s.hoop.max_tensile_angle_deg, s.hoop.max_compressive_Pa / 1e6, s.hoop.max_compressive_angle_deg);
+                s.generator_force_N, s.generator_w0_m * 1e3, s.checks.generator_rotation_rad,
+                s.hoop.max_tensile_Pa / 1e6, s.hoop.max_tensile_angle_deg, s.hoop.max_compressive_Pa / 1e6,
+                s.hoop.max_compressive_angle_deg);
   std::printf("  wrote %s\n", out_dir.string().c_str());
   return job;
 }

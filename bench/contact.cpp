@@ -43,8 +43,9 @@ int main(int argc, char** argv) {
     const ContactAnalysis a = analyse_contact(c, mesh, system, fem, o);
     const double t_contact = clock.lap(), cpu_contact = bench::process_cpu_s() - cpu0;
     std::printf("%s: %lld equations; mesh %.1f s, assembly + factor %.1f s (%.1f GF at %.1f GF/s), load cases %.1f s\n",
-                case_path.c_str(), static_cast<long long>(fem.factor.equations), t_mesh, t_factor,
-                fem.factor.factor_gflop, fem.factor.factor_gflop / fem.factor.factor_s, t_cases);
+                case_path.c_str(), static_cast<long long>(fem.timings.factor.equations), t_mesh, t_factor,
+                fem.timings.factor.factor_gflop, fem.timings.factor.factor_gflop / fem.timings.factor.factor_s,
+                t_cases);
     std::printf("contact: %d contacts (%zu flank patterns + generator stations): patterns and gaps %.2f s, influence "
                 "coefficients %.2f s, %zu torque steps %.3f s, independent check (one full solve, reactions) %.2f s; "
                 "total beyond the FEM %.2f s wall clock, %.2f s CPU on all threads\n", a.unknowns, a.flanks.size(),

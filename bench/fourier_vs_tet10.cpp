@@ -50,8 +50,8 @@ Figures from(const FlexsplineSolution& s) {
   f.phi0 = s.phi0_rad;
   f.hoop90_outer = s.hoop.outer_Pa.empty() ? 0 : s.hoop.outer_Pa[90];
   f.hoop_max = s.hoop.max_tensile_Pa;
-  f.gflop = s.factor.factor_gflop;
-  f.factor_s = s.factor.factor_s;
+  f.gflop = s.timings.factor.factor_gflop;
+  f.factor_s = s.timings.factor.factor_s;
   if (s.neutral_curve) {
     f.w = s.neutral_curve->w_wg_m;
     f.v = s.neutral_curve->v_wg_m;
@@ -100,7 +100,7 @@ Figures run_tet10(Case c, double size_m, int layers, TorqueAlone* alone, int ccx
     f = from(s);
     f.seconds = t;
     f.size = static_cast<long long>(mesh.n_nodes());
-    f.equations = s.factor.equations;
+    f.equations = s.timings.factor.equations;
     if (alone) {
       Case ct = c;
       ct.wave_generator.reset();

@@ -23,7 +23,9 @@ constexpr int kRingSamples = 360;                     // 1° steps around the re
 double wrap_pi(double a) { return std::remainder(a, 2 * kPi); }
 double theta_of(const Eigen::Vector3d& x) { return std::atan2(x[1], x[0]); }
 /// A tube without teeth: the torque is the exact torsion shear on its open end, and φ₀ is read on that face.
-bool is_plain_tube(const FlexsplineParams& f) { return f.shape == FlexsplineShape::Tube && f.teeth == TeethModel::None; }
+bool is_plain_tube(const FlexsplineParams& f) {
+  return f.shape == FlexsplineShape::Tube && f.teeth == TeethModel::None;
+}
 
 /// Scales a load so its moment about z equals `torque_Nm`.
 Eigen::VectorXd torque_load(const TetMesh& mesh, const std::vector<const BoundaryFace*>& faces, double torque_Nm,
@@ -350,14 +352,21 @@ struct GeneratorCases {
   double force_per_point_N = 0;  ///< the force idealisation: each point load after scaling
 };
 
+/// The generator's stations as the contact sees them: their influence matrix C (pairs × pairs, m/N) and their
+/// displacement under the unit torque (per pair, m per N·m).
+struct StationResponse {
+  Eigen::MatrixXd C;
+  Eigen::VectorXd u0_torque;
+};
+
 /// A generator that pushes and never pulls (cam, rollers): its contact alone, with T_ref and with the sweep's torques,
-/// each a small problem on the stations' influence matrix C; then one solve for the displacements of all their
-/// contact loads.
+/// each a small problem on the stations' influence matrix; then one solve for the displacements of all their contact
+/// loads.
 GeneratorCases generator_contact_cases(const FlexsplineModel& c, const TetMesh& mesh, const FlexsplineSystem& eq,
-                                       const GeneratorStations& gen, const Eigen::MatrixXd& C,
+                                       const GeneratorStations& gen, const StationResponse& response,
                                        const UnitSolutions& unit, const RotationReader& rotation, double T_ref) {
   const auto& w = *c.wave_generator;
-  const Eigen::VectorXd u0_torque = gen.stations.loads.transpose() * unit.torque_u;  // per pair, unit torque
+  const Eigen::MatrixXd& C = response.C;
   GeneratorCases g;
   GeneratorReadout& gr = g.readout;
   Eigen::VectorXd obstacle = gen.obstacle_m;
@@ -379,7 +388,7 @@ GeneratorCases generator_contact_cases(const FlexsplineModel& c, const TetMesh& 
   if (w.model == WaveGeneratorModel::Cam && w.bearing)
     model.approach_m = bearing_pair_approach(*w.bearing, gen.stations.half_width_rad);
   auto contact = [&](double torque) {
-    return generator_contact(C, obstacle - torque * u0_torque, torque * band_turn_per_T, model);
+    return generator_contact(C, obstacle - torque * response.u0_torque, torque * band_turn_per_T, model);
   };
   const StationForces p_gen = contact(0.0);
   gr.contact_iterations = p_gen.iterations;
@@ -398,7 +407,8 @@ GeneratorCases generator_contact_cases(const FlexsplineModel& c, const TetMesh& 
   g.torque.f_support = contact_loads.col(1) - contact_loads.col(0);
   const double rot_gen = rotation(g.u);
   for (std::size_t k = 0; k < sweep_T.size(); ++k)
-    g.torque.sweep.emplace_back(sweep_T[k], (rotation(V.col(2 + k) + unit.torque_u * sweep_T[k]) - rot_gen) / sweep_T[k]);
+    g.torque.sweep.emplace_back(sweep_T[k],
+                                (rotation(V.col(2 + k) + unit.torque_u * sweep_T[k]) - rot_gen) / sweep_T[k]);
   gr.force_wg_N.assign(p_gen.force_N.data(), p_gen.force_N.data() + p_gen.force_N.size());
   gr.force_comb_N.assign(p_comb.force_N.data(), p_comb.force_N.data() + p_comb.force_N.size());
   const double touching_gap = kTouchingGap * *w.radial_deformation_m;
@@ -417,12 +427,9 @@ GeneratorCases generator_contact_cases(const FlexsplineModel& c, const TetMesh& 
 /// The force idealisation: the unit forces scaled to w0 (or force_N); the torque case with the band held radially at
 /// the stations (bilateral), so linear in the torque.
 GeneratorCases generator_force_cases(const FlexsplineModel& c, const TetMesh& mesh, const FlexsplineSystem& eq,
-                                     const GeneratorStations& gen, const Eigen::MatrixXd& C,
+                                     const GeneratorStations& gen, const StationResponse& response,
                                      const UnitSolutions& unit, const RotationReader& rotation, double T_ref) {
-  const auto& w = *c.wave_generator;
-  const Eigen::VectorXd u0_torque = gen.stations.loads.transpose() * unit.torque_u;  // per pair, unit torque
-  GeneratorCases g;
-  GeneratorReadout& gr = g.readout;
+  const WaveGeneratorParams& w = *c.wave_generator;
   const double w_unit = rim_w(c.flexspline, rotation.sampler(), rotation.radius(), unit.generator_u, 0.0);
   if (!(w_unit > 0))
     throw InputError("wave_generator: the generator does not push the major axis outward (w = " +
@@ -432,10 +439,12 @@ GeneratorCases generator_force_cases(const FlexsplineModel& c, const TetMesh& me
     if (std::abs(wrap_pi(force.angle_rad)) < kPi / 2) total_at_end += force.weight;
   const double scale =
       w.radial_deformation_m ? *w.radial_deformation_m / w_unit : w.force_N / std::max(total_at_end, 1e-300);
+  GeneratorCases g;
+  GeneratorReadout& gr = g.readout;
   g.force_per_point_N = scale * (w.model == WaveGeneratorModel::FourForce ? 0.5 : 1.0);
   g.u = unit.generator_u * scale;
   g.f = gen.force_load * scale;
-  const StationForces p_T = bilateral_support(C, -T_ref * u0_torque);
+  const StationForces p_T = bilateral_support(response.C, -T_ref * response.u0_torque);
   g.torque.f_support = contact_load(gen.stations, p_T.force_N);
   g.torque.u = eq.solve(g.torque.f_support).col(0) + unit.torque_u * T_ref;
   for (const double k : kSweep) g.torque.sweep.emplace_back(k * T_ref, rotation(g.torque.u) / T_ref);
@@ -456,15 +465,16 @@ GeneratorCases solve_generator(const FlexsplineModel& c, const TetMesh& mesh, co
                                const GeneratorStations& gen, const UnitSolutions& unit, const RotationReader& rotation,
                                double T, double T_ref) {
   progress("generator: influence of " + std::to_string(gen.stations.angle_rad.size()) + " contact station pairs");
-  const Eigen::MatrixXd C = eq.influence(gen.stations.loads);
-  GeneratorCases g = gen.unilateral ? generator_contact_cases(c, mesh, eq, gen, C, unit, rotation, T_ref)
-                                    : generator_force_cases(c, mesh, eq, gen, C, unit, rotation, T_ref);
+  const StationResponse response{eq.influence(gen.stations.loads), gen.stations.loads.transpose() * unit.torque_u};
+  GeneratorCases g = gen.unilateral ? generator_contact_cases(c, mesh, eq, gen, response, unit, rotation, T_ref)
+                                    : generator_force_cases(c, mesh, eq, gen, response, unit, rotation, T_ref);
   GeneratorReadout& gr = g.readout;
   gr.model = model_name(c.wave_generator->model);
   gr.unilateral = gen.unilateral;
   gr.station_angle_rad = gen.stations.angle_rad;
   gr.total_radial_force_N = radial_total(mesh, g.f);
-  gr.reaction_torque_Nm = moment_about_z(mesh, g.torque.f_support, std::vector<bool>(mesh.n_nodes(), true)) * (T / T_ref);
+  const std::vector<bool> all(mesh.n_nodes(), true);
+  gr.reaction_torque_Nm = moment_about_z(mesh, g.torque.f_support, all) * (T / T_ref);
   gr.w_major_m = rim_w(c.flexspline, rotation.sampler(), rotation.radius(), g.u, 0.0);
   gr.w_minor_m = rim_w(c.flexspline, rotation.sampler(), rotation.radius(), g.u, kPi / 2);
   g.resultant = load_resultant(mesh, g.f);
@@ -472,28 +482,53 @@ GeneratorCases solve_generator(const FlexsplineModel& c, const TetMesh& mesh, co
   return g;
 }
 
-/// φ₀ and C_τ: the rim's rotation the torque adds with the generator in place; the torque case at T (3·n_nodes); and
-/// its balance: the applied moment vs the clamp's reaction plus the generator's.
+/// The body wall's torsion alone, T·L/(G·J), L from where the body wall starts (the clamp of a tube, the diaphragm's
+/// face of a cup) to the reading plane.
+double body_wall_torsion_rad(const FlexsplineModel& c, double torque_Nm, double reading_z_m) {
+  const auto& f = c.flexspline;
+  const double G = c.material.shear_modulus_Pa();
+  const double ri = f.inner_radius_m, ro = f.inner_radius_m + f.wall_thickness_m;
+  const double J = kPi / 2 * (std::pow(ro, 4) - std::pow(ri, 4));
+  const double body_start = f.shape == FlexsplineShape::Cup ? f.diaphragm_thickness_m : 0.0;
+  return torque_Nm * (reading_z_m - body_start) / (G * J);
+}
+
+/// φ₀ and C_τ: the rim's rotation the torque adds with the generator in place, and the torque case at T
+/// (3·n_nodes).
 struct TorqueReadout {
   double compliance_rad_per_Nm = 0, phi0_rad = 0;
   Eigen::VectorXd u;
-  double applied_torque_Nm = 0, reaction_torque_Nm = 0;
 };
 
-TorqueReadout read_torque(const FlexsplineModel& c, const TetMesh& mesh, const FlexsplineSystem& eq,
-                          const UnitSolutions& unit, const RotationReader& rotation, const TorqueIncrement& inc,
-                          double T, double T_ref) {
+TorqueReadout read_torque(const RotationReader& rotation, const TorqueIncrement& inc, double T, double T_ref) {
   TorqueReadout r;
   r.compliance_rad_per_Nm = rotation(inc.u) / T_ref;
   r.phi0_rad = r.compliance_rad_per_Nm * T;
-  const double to_T = T / T_ref;
-  r.u = inc.u * to_T;
-  const std::vector<bool> all(mesh.n_nodes(), true);
-  r.applied_torque_Nm = moment_about_z(mesh, unit.torque_load * T, all);
-  const Eigen::VectorXd clamp_reactions =
-      internal_forces(mesh, c.material, r.u) - unit.torque_load * T - inc.f_support * to_T;
-  r.reaction_torque_Nm = moment_about_z(mesh, clamp_reactions, eq.clamped) + moment_about_z(mesh, inc.f_support * to_T, all);
+  r.u = inc.u * (T / T_ref);
   return r;
+}
+
+/// The checks: the torque case's balance (the applied moment vs the clamp's reaction plus the generator's), the
+/// closed forms of the torsion at the reading plane, and the generator's self-equilibrium and net rim rotation.
+FemChecks check(const FlexsplineModel& c, const TetMesh& mesh, const FlexsplineSystem& eq, const UnitSolutions& unit,
+                const TorqueIncrement& inc, const GeneratorCases* gen, double T, double T_ref, double reading_z_m) {
+  FemChecks k;
+  const double to_T = T / T_ref;
+  const std::vector<bool> all(mesh.n_nodes(), true);
+  k.applied_torque_Nm = moment_about_z(mesh, unit.torque_load * T, all);
+  const Eigen::VectorXd clamp_reactions =
+      internal_forces(mesh, c.material, inc.u * to_T) - unit.torque_load * T - inc.f_support * to_T;
+  k.reaction_torque_Nm =
+      moment_about_z(mesh, clamp_reactions, eq.clamped) + moment_about_z(mesh, inc.f_support * to_T, all);
+  k.phi0_theory_rad = body_wall_torsion_rad(c, T, reading_z_m);
+  k.phi0_theory_cup =
+      cup_torsion_theory(c.flexspline, rim_outer_radius(c.flexspline, c.gear), c.material, T, reading_z_m);
+  if (gen) {
+    k.generator_net_force = gen->resultant.force;
+    k.generator_net_moment = gen->resultant.moment;
+    k.generator_rotation_rad = gen->rim_rotation_rad;
+  }
+  return k;
 }
 
 /// The load cases: the generator alone, the torque (with the generator in place), both; or the torque alone.
@@ -538,17 +573,6 @@ double engaged_rotation(const FlexsplineModel& c, const RotationReader& rotation
   return sum / n / rotation.radius();
 }
 
-/// The body wall's torsion alone, T·L/(G·J), L from where the body wall starts (the clamp of a tube, the diaphragm's
-/// face of a cup) to the reading plane.
-double body_wall_torsion_rad(const FlexsplineModel& c, double torque_Nm, double reading_z_m) {
-  const auto& f = c.flexspline;
-  const double G = c.material.shear_modulus_Pa();
-  const double ri = f.inner_radius_m, ro = f.inner_radius_m + f.wall_thickness_m;
-  const double J = kPi / 2 * (std::pow(ro, 4) - std::pow(ri, 4));
-  const double body_start = f.shape == FlexsplineShape::Cup ? f.diaphragm_thickness_m : 0.0;
-  return torque_Nm * (reading_z_m - body_start) / (G * J);
-}
-
 /// Fatigue over one generator revolution of the combined case's nodal stresses, at the rim and the diaphragm's fillet.
 FatigueReadout rim_fatigue(const FlexsplineModel& c, const PointSampler& sampler, const RowMatrixX6d& stress) {
   const auto& f = c.flexspline;
@@ -564,46 +588,37 @@ FlexsplineSolution analyse_flexspline(const FlexsplineModel& c, const TetMesh& m
 }
 
 FlexsplineSolution analyse_flexspline(const FlexsplineModel& c, const TetMesh& mesh, const FlexsplineSystem& eq) {
-  FlexsplineSolution s;
-  s.factor = eq.factor->stats();
-  s.assemble_s = eq.assemble_s;
   Stopwatch clock;
-  s.torque_Nm = c.load.torque_Nm;
-  const double T = s.torque_Nm, T_ref = T != 0.0 ? T : 1.0;  // compliance is read at T (or 1 N·m without torque)
+  const double T = c.load.torque_Nm, T_ref = T != 0.0 ? T : 1.0;  // compliance is read at T (or 1 N·m without torque)
 
-  // Solves: the unit loads, the generator alone and under the torque, the torque's increment with it in place.
+  // Solves: the unit loads; the generator alone and under the torque; what the torque adds with it in place.
   const std::optional<GeneratorStations> stations =
       c.wave_generator ? std::optional(generator_stations(c, mesh)) : std::nullopt;
   const UnitSolutions unit = solve_unit_loads(c, mesh, eq, stations ? &*stations : nullptr);
   const RotationReader rotation(c, mesh);
-  std::optional<GeneratorCases> gen;
-  if (stations) gen = solve_generator(c, mesh, eq, *stations, unit, rotation, T, T_ref);
+  const std::optional<GeneratorCases> gen =
+      stations ? std::optional(solve_generator(c, mesh, eq, *stations, unit, rotation, T, T_ref)) : std::nullopt;
   const TorqueIncrement inc = gen ? gen->torque : torque_alone(mesh, unit, rotation, T_ref);
-  s.solve_s = clock.lap();
+  FlexsplineSolution s;
+  s.timings = {eq.factor->stats(), eq.assemble_s, clock.lap()};
 
-  // Read-outs: φ₀, C_τ and the torque balance; the closed forms; the load cases and the neutral curve.
-  const TorqueReadout torque = read_torque(c, mesh, eq, unit, rotation, inc, T, T_ref);
+  // Read-outs: φ₀ and C_τ, the load cases, the generator and the neutral curve; the checks.
+  const TorqueReadout torque = read_torque(rotation, inc, T, T_ref);
+  s.torque_Nm = T;
   s.phi0_rad = torque.phi0_rad;
   s.compliance_rad_per_Nm = torque.compliance_rad_per_Nm;
   s.torque_sweep = inc.sweep;
-  s.applied_torque_Nm = torque.applied_torque_Nm;
-  s.reaction_torque_Nm = torque.reaction_torque_Nm;
   s.reading_radius_m = rotation.radius();
   s.reading_z_m = rotation.z();
-  s.phi0_theory_rad = body_wall_torsion_rad(c, T, s.reading_z_m);
-  s.phi0_theory_cup =
-      cup_torsion_theory(c.flexspline, rim_outer_radius(c.flexspline, c.gear), c.material, T, s.reading_z_m);
   s.phi0_engaged_rad = is_plain_tube(c.flexspline) ? s.phi0_rad : engaged_rotation(c, rotation, torque.u);
   s.cases = load_cases(torque, gen ? &*gen : nullptr, rotation);
   if (gen) {
     s.generator = gen->readout;
     s.generator_force_N = gen->force_per_point_N;
     s.generator_w0_m = gen->readout.w_major_m;
-    s.generator_net_force = gen->resultant.force;
-    s.generator_net_moment = gen->resultant.moment;
-    s.generator_rotation_rad = gen->rim_rotation_rad;
     s.neutral_curve = neutral_curve(c.flexspline, rotation, s.cases.front().u, s.cases.back().u);
   }
+  s.checks = check(c, mesh, eq, unit, inc, gen ? &*gen : nullptr, T, T_ref, s.reading_z_m);
 
   // Stresses of every case; the hoop stress of the generator case if any, else of the torque case; fatigue.
   for (auto& lc : s.cases) lc.stress = nodal_stress(mesh, c.material, lc.u);

@@ -105,29 +105,40 @@ struct GeneratorReadout {
   Eigen::VectorXd obstacle_m;             ///< unilateral: the standoff each station pair pushes against (m, summed)
 };
 
+/// The balances and closed forms the FEM's figures are checked against (written and printed beside them).
+struct FemChecks {
+  double applied_torque_Nm = 0;       ///< moment of the applied torque loads about z
+  double reaction_torque_Nm = 0;      ///< moment about z of the clamp's and the generator's reactions (torque case)
+  double phi0_theory_rad = 0;         ///< T·L/(G·J) of the body wall
+  CupTorsionTheory phi0_theory_cup;   ///< body wall + diaphragm + rim, term by term
+  double generator_rotation_rad = 0;  ///< net rim rotation of the generator-alone case (0 by symmetry)
+  Eigen::Vector3d generator_net_force = Eigen::Vector3d::Zero();   ///< resultant of the generator loads (N)
+  Eigen::Vector3d generator_net_moment = Eigen::Vector3d::Zero();  ///< and their moment about the origin (N·m)
+};
+
+/// What the solve cost: the factorisation's size, flops and times, the assembly and the load cases' solves.
+struct FemTimings {
+  FactorStats factor;
+  double assemble_s = 0, solve_s = 0;
+};
+
+/// The flexspline's results, with their checks and what they cost beside them.
 struct FlexsplineSolution {
   std::vector<LoadCaseSolution> cases;
   double torque_Nm = 0;
   double phi0_rad = 0;                ///< torque alone
   double compliance_rad_per_Nm = 0;   ///< φ₀ / T
-  double phi0_theory_rad = 0;         ///< T·L/(G·J) of the body wall
-  CupTorsionTheory phi0_theory_cup;   ///< body wall + diaphragm + rim, term by term
   double phi0_engaged_rad = 0;        ///< mean rotation of the rim's neutral circle over the engagement zones
-  double applied_torque_Nm = 0;       ///< moment of the applied torque loads about z (check)
-  double reaction_torque_Nm = 0;      ///< moment about z of the clamp's and the generator's reactions (torque case)
-  double generator_rotation_rad = 0;  ///< net rim rotation of the generator-alone case (0 by symmetry)
   double generator_force_N = 0;       ///< force of each of the generator's point loads after scaling
   double generator_w0_m = 0;          ///< major-axis radial displacement reached
-  Eigen::Vector3d generator_net_force = Eigen::Vector3d::Zero();   ///< resultant of the generator loads (N)
-  Eigen::Vector3d generator_net_moment = Eigen::Vector3d::Zero();  ///< and their moment about the origin (N·m)
   std::vector<std::pair<double, double>> torque_sweep;  ///< (T, φ₀/T) from the combined case at several torques
   std::optional<NeutralCurveSamples> neutral_curve;     ///< when there is a generator
   std::optional<GeneratorReadout> generator;
   std::optional<FatigueReadout> fatigue;  ///< over one generator revolution of the combined case (with a generator)
   HoopStressExtreme hoop;             ///< of the generator case if any, else of the torque case
-  FactorStats factor;
-  double assemble_s = 0, solve_s = 0;
   double reading_radius_m = 0, reading_z_m = 0;  ///< where φ₀ is read
+  FemChecks checks;
+  FemTimings timings;
 };
 
 /// Nodes fixed by the supports: every node on a kSurfaceClamped face (size n_nodes).

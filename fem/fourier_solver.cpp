@@ -847,7 +847,7 @@ FourierSolution analyse_section_fourier(const FlexsplineModel& c, SectionMesh se
     if (!g) g = assemble_polynomial(sec, poly, number_dofs(nn, n, fixed, axis));
     const HarmonicDofs& d = g->dofs;
     const SymmetricCsc K = g->at(n);
-    fs.assemble_s += hc.lap();
+    fs.timings.assemble_s += hc.lap();
     auto& analysed = factors[std::min(n, 2)];
     const bool fresh = !analysed;
     if (fresh) analysed = std::make_unique<CholmodFactor>(K, d.node_of_eq);
@@ -861,13 +861,13 @@ FourierSolution analyse_section_fourier(const FlexsplineModel& c, SectionMesh se
     const double analyse_s = fresh ? factor.stats().analyse_s : 0.0;
     st.factor_s = analyse_s + factor.stats().factor_s;
     st.load_norm = norm[n];
-    fs.factor.equations = std::max(fs.factor.equations, d.n_eq);
-    fs.factor.matrix_nnz += static_cast<std::int64_t>(K.nnz());
-    fs.factor.factor_nnz += st.factor_nnz;
-    fs.factor.factor_gflop += st.factor_gflop;
-    fs.factor.analyse_s += analyse_s;
-    fs.factor.factor_s += factor.stats().factor_s;
-    fs.factor.ordering = factor.stats().ordering;
+    fs.timings.factor.equations = std::max(fs.timings.factor.equations, d.n_eq);
+    fs.timings.factor.matrix_nnz += static_cast<std::int64_t>(K.nnz());
+    fs.timings.factor.factor_nnz += st.factor_nnz;
+    fs.timings.factor.factor_gflop += st.factor_gflop;
+    fs.timings.factor.analyse_s += analyse_s;
+    fs.timings.factor.factor_s += factor.stats().factor_s;
+    fs.timings.factor.ordering = factor.stats().ordering;
     out.harmonics.push_back(st);
 
     const bool turn = n == 0 && turn_load_anti0.size() != 0;
@@ -885,11 +885,11 @@ FourierSolution analyse_section_fourier(const FlexsplineModel& c, SectionMesh se
                                    &Ur[n],             &Ut[n],          &turn_anti0};
     for (int col = 0; col < cols; ++col) *targets[col] = to_nodes(d, X.col(col), zero);
   }
-  fs.solve_s = solve_clock.lap();
+  fs.timings.solve_s = solve_clock.lap();
   progress("fourier: " + std::to_string(out.harmonics.size()) + " harmonics solved, " +
-           std::to_string(fs.factor.factor_gflop) + " GF, " + std::to_string(fs.solve_s) + " s (assembly " +
-           std::to_string(fs.assemble_s) + " s, factor " + std::to_string(fs.factor.analyse_s + fs.factor.factor_s) +
-           " s)");
+           std::to_string(fs.timings.factor.factor_gflop) + " GF, " + std::to_string(fs.timings.solve_s) +
+           " s (assembly " + std::to_string(fs.timings.assemble_s) + " s, factor " +
+           std::to_string(fs.timings.factor.analyse_s + fs.timings.factor.factor_s) + " s)");
 
   // Internal forces K·u of harmonic n (0 or 1) of one family's amplitudes.
   auto internal = [&](int n, const Eigen::MatrixXd& U) {
@@ -937,9 +937,9 @@ FourierSolution analyse_section_fourier(const FlexsplineModel& c, SectionMesh se
   const double body_start = f.shape == FlexsplineShape::Cup ? f.diaphragm_thickness_m : 0.0;
   fs.torque_Nm = c.load.torque_Nm;
   const double T = fs.torque_Nm, T_ref = T != 0.0 ? T : 1.0;  // compliance is read at T (or 1 N·m without torque)
-  fs.phi0_theory_rad = T * (fs.reading_z_m - body_start) / (G * J);
+  fs.checks.phi0_theory_rad = T * (fs.reading_z_m - body_start) / (G * J);
   const double r_rim_outer = rim_outer_radius(f, c.gear);
-  fs.phi0_theory_cup = cup_torsion_theory(f, r_rim_outer, c.material, T, fs.reading_z_m);
+  fs.checks.phi0_theory_cup = cup_torsion_theory(f, r_rim_outer, c.material, T, fs.reading_z_m);
 
   // Load cases (as the tet10 path, fem/flexspline_analysis.cpp). gen: the generator alone; inc: what the torque T_ref
   // adds with the generator in place; support_inc: the generator's forces on the flexspline in that increment.
@@ -1069,10 +1069,10 @@ FourierSolution analyse_section_fourier(const FlexsplineModel& c, SectionMesh se
     const Eigen::VectorXd r = sec.nodes.col(0), z = sec.nodes.col(1);
     const Eigen::MatrixXd &Fs0 = Fs[0], &Fs1 = Fs[1], &Fa1 = Fa[1];
     const double Fx = (Fs1.col(0) - Fs1.col(1)).sum(), Fy = (Fa1.col(0) - Fa1.col(1)).sum(), Fz = Fs0.col(2).sum();
-    fs.generator_net_force = Eigen::Vector3d(Fx, Fy, Fz);
-    fs.generator_net_moment = Eigen::Vector3d(r.dot(Fa1.col(2)) - z.dot(Fa1.col(0) - Fa1.col(1)),
+    fs.checks.generator_net_force = Eigen::Vector3d(Fx, Fy, Fz);
+    fs.checks.generator_net_moment = Eigen::Vector3d(r.dot(Fa1.col(2)) - z.dot(Fa1.col(0) - Fa1.col(1)),
                                               z.dot(Fs1.col(0) - Fs1.col(1)) - r.dot(Fs1.col(2)), 0.0);
-    fs.generator_rotation_rad = rotation(gen);
+    fs.checks.generator_rotation_rad = rotation(gen);
     fs.generator = gr;
   } else {
     for (const double k : {0.25, 0.5, 1.0, 2.0}) fs.torque_sweep.emplace_back(k * T_ref, rotation(inc) / T_ref);
@@ -1085,14 +1085,14 @@ FourierSolution analyse_section_fourier(const FlexsplineModel& c, SectionMesh se
   const HarmonicField torque_case = inc * to_T;
 
   // Torque balance of the torque case: applied moment vs the clamp's reaction plus the generator's.
-  fs.applied_torque_Nm = moment_z(sec, loads[0][1]) * T;
+  fs.checks.applied_torque_Nm = moment_z(sec, loads[0][1]) * T;
   {
     Eigen::MatrixXd support = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nn), 3), support_sym = support;
     if (stations) stations->loads(p_support_inc * to_T, 0, support_sym, support);
     Eigen::MatrixXd R = internal(0, torque_case.anti[0]) - loads[0][1] * T - support;
     for (std::size_t i = 0; i < nn; ++i)
       if (!clamped[i]) R.row(static_cast<Eigen::Index>(i)).setZero();
-    fs.reaction_torque_Nm = moment_z(sec, R) + moment_z(sec, support);
+    fs.checks.reaction_torque_Nm = moment_z(sec, R) + moment_z(sec, support);
   }
 
   if (has_generator) {

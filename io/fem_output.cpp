@@ -24,28 +24,31 @@ long peak_rss_bytes() {
 
 std::string fem_result_json(const Case& c, const TetMesh& mesh, const FlexsplineSolution& s, const RunInfo& run) {
   using nlohmann::json;
+  const FemChecks& checks = s.checks;
+  const FactorStats& factor = s.timings.factor;
   json j;
   j["case"] = c.path;
   j["torque_Nm"] = s.torque_Nm;
   j["phi0_rad"] = s.phi0_rad;
   j["compliance_rad_per_Nm"] = s.compliance_rad_per_Nm;
-  j["phi0_theory_rad"] = s.phi0_theory_rad;
-  j["phi0_theory_cup_rad"] = s.phi0_theory_cup.total_rad();
-  j["phi0_theory_cup_terms"] = {{"diaphragm_rad", s.phi0_theory_cup.diaphragm_rad},
-                                {"body_wall_rad", s.phi0_theory_cup.body_rad},
-                                {"rim_rad", s.phi0_theory_cup.rim_rad},
+  j["phi0_theory_rad"] = checks.phi0_theory_rad;
+  j["phi0_theory_cup_rad"] = checks.phi0_theory_cup.total_rad();
+  j["phi0_theory_cup_terms"] = {{"diaphragm_rad", checks.phi0_theory_cup.diaphragm_rad},
+                                {"body_wall_rad", checks.phi0_theory_cup.body_rad},
+                                {"rim_rad", checks.phi0_theory_cup.rim_rad},
                                 {"diaphragm_radii_mm",
-                                 {s.phi0_theory_cup.diaphragm_inner_radius_m * 1e3,
-                                  s.phi0_theory_cup.diaphragm_outer_radius_m * 1e3}},
-                                {"body_length_mm", s.phi0_theory_cup.body_length_m * 1e3},
-                                {"rim_length_mm", s.phi0_theory_cup.rim_length_m * 1e3},
-                                {"rim_outer_radius_mm", s.phi0_theory_cup.rim_outer_radius_m * 1e3}};
+                                 {checks.phi0_theory_cup.diaphragm_inner_radius_m * 1e3,
+                                  checks.phi0_theory_cup.diaphragm_outer_radius_m * 1e3}},
+                                {"body_length_mm", checks.phi0_theory_cup.body_length_m * 1e3},
+                                {"rim_length_mm", checks.phi0_theory_cup.rim_length_m * 1e3},
+                                {"rim_outer_radius_mm", checks.phi0_theory_cup.rim_outer_radius_m * 1e3}};
   j["phi0_engaged_rad"] = s.phi0_engaged_rad;
   j["phi0_reading"] = {{"radius_mm", s.reading_radius_m * 1e3}, {"z_mm", s.reading_z_m * 1e3}};
-  j["applied_torque_Nm"] = s.applied_torque_Nm;
-  j["reaction_torque_Nm"] = s.reaction_torque_Nm;
+  j["applied_torque_Nm"] = checks.applied_torque_Nm;
+  j["reaction_torque_Nm"] = checks.reaction_torque_Nm;
   j["torque_balance_error_rel"] =
-      s.torque_Nm != 0 ? std::abs(s.reaction_torque_Nm + s.applied_torque_Nm) / std::abs(s.torque_Nm) : 0.0;
+      s.torque_Nm != 0 ? std::abs(checks.reaction_torque_Nm + checks.applied_torque_Nm) / std::abs(s.torque_Nm)
+                       : 0.0;
   j["max_hoop_stress_Pa"] = s.hoop.max_tensile_Pa;
   j["max_hoop_stress_angle_deg"] = s.hoop.max_tensile_angle_deg;
   j["min_hoop_stress_Pa"] = s.hoop.max_compressive_Pa;
@@ -77,10 +80,13 @@ std::string fem_result_json(const Case& c, const TetMesh& mesh, const Flexspline
   if (c.wave_generator) {
     j["wave_generator"] = {{"force_per_point_N", s.generator_force_N},
                            {"w0_reached_mm", s.generator_w0_m * 1e3},
-                           {"net_force_N", {s.generator_net_force[0], s.generator_net_force[1], s.generator_net_force[2]}},
+                           {"net_force_N",
+                            {checks.generator_net_force[0], checks.generator_net_force[1],
+                             checks.generator_net_force[2]}},
                            {"net_moment_Nm",
-                            {s.generator_net_moment[0], s.generator_net_moment[1], s.generator_net_moment[2]}},
-                           {"rim_rotation_rad", s.generator_rotation_rad}};
+                            {checks.generator_net_moment[0], checks.generator_net_moment[1],
+                             checks.generator_net_moment[2]}},
+                           {"rim_rotation_rad", checks.generator_rotation_rad}};
     json sweep = json::array();
     for (const auto& [T, c_tau] : s.torque_sweep) sweep.push_back({{"torque_Nm", T}, {"compliance_rad_per_Nm", c_tau}});
     j["torque_sweep"] = sweep;
@@ -144,19 +150,19 @@ std::string fem_result_json(const Case& c, const TetMesh& mesh, const Flexspline
                {"max_radius_edge_ratio", mesh.quality.max_radius_edge_ratio}};
   j["solver"] = {{"method", c.solver.method == SolverMethod::Fourier ? "fourier" : "tet10"},
                  {"dofs", 3 * mesh.n_nodes()},
-                 {"equations", s.factor.equations},
-                 {"matrix_nnz", s.factor.matrix_nnz},
-                 {"factor_nnz", s.factor.factor_nnz},
-                 {"factor_gflop", s.factor.factor_gflop},
-                 {"factor_gflop_per_s", s.factor.factor_s > 0 ? s.factor.factor_gflop / s.factor.factor_s : 0.0},
-                 {"ordering", s.factor.ordering},
-                 {"supernodal", s.factor.supernodal},
+                 {"equations", factor.equations},
+                 {"matrix_nnz", factor.matrix_nnz},
+                 {"factor_nnz", factor.factor_nnz},
+                 {"factor_gflop", factor.factor_gflop},
+                 {"factor_gflop_per_s", factor.factor_s > 0 ? factor.factor_gflop / factor.factor_s : 0.0},
+                 {"ordering", factor.ordering},
+                 {"supernodal", factor.supernodal},
                  {"blas", run.blas.description}};
   j["timings_s"] = {{"mesh", run.mesh_s},
-                    {"assemble", s.assemble_s},
-                    {"analyse", s.factor.analyse_s},
-                    {"factor", s.factor.factor_s},
-                    {"solve", s.solve_s},
+                    {"assemble", s.timings.assemble_s},
+                    {"analyse", factor.analyse_s},
+                    {"factor", factor.factor_s},
+                    {"solve", s.timings.solve_s},
                     {"output", run.output_s},
                     {"total", run.total_s}};
   j["peak_rss_bytes"] = run.peak_rss_bytes;

@@ -48,8 +48,8 @@ TEST(FourForceGenerator, LoadsAreSelfEquilibratedAndReachW0WithoutNetRotation) {
   const FlexsplineSolution s = analyse_flexspline(c, m);
   // Four equal radial forces at ±β and π ± β: zero resultant and zero moment, to round-off of the patch integration
   // (the patches are symmetric only up to the unstructured mesh, so allow 1e-9 of one force).
-  EXPECT_LT(s.generator_net_force.norm(), 1e-9 * s.generator_force_N);
-  EXPECT_LT(s.generator_net_moment.norm(), 1e-9 * s.generator_force_N * 20e-3);
+  EXPECT_LT(s.checks.generator_net_force.norm(), 1e-9 * s.generator_force_N);
+  EXPECT_LT(s.checks.generator_net_moment.norm(), 1e-9 * s.generator_force_N * 20e-3);
   // w0 at the major axis, read independently from the displacement field (0.1 %).
   const PointSampler sampler(m);
   const double r = neutral_radius(c.flexspline), z = c.flexspline.length_m;
@@ -60,11 +60,11 @@ TEST(FourForceGenerator, LoadsAreSelfEquilibratedAndReachW0WithoutNetRotation) {
   // Two-lobe shape: the minor axis moves in.
   EXPECT_LT(sampler.displacement({0, r, z}, u)[1], 0.0);
   // Symmetric loads give no rotation: compare with the torque case's rotation scale.
-  EXPECT_LT(std::abs(s.generator_rotation_rad), 1e-4 * std::abs(s.phi0_rad));
+  EXPECT_LT(std::abs(s.checks.generator_rotation_rad), 1e-4 * std::abs(s.phi0_rad));
   // The torque sweep is linear: φ/T constant.
   for (const auto& [T, c_tau] : s.torque_sweep) EXPECT_NEAR(c_tau / s.compliance_rad_per_Nm, 1.0, 1e-9) << T;
   // Torque balance: clamp plus the band's radial support (which carries no moment about z, to round-off).
-  EXPECT_NEAR(-s.reaction_torque_Nm / s.applied_torque_Nm, 1.0, 1e-8);
+  EXPECT_NEAR(-s.checks.reaction_torque_Nm / s.checks.applied_torque_Nm, 1.0, 1e-8);
   // Hoop stress pattern of the seed paper: tension near the forces, compression at the minor axis.
   ASSERT_TRUE(s.neutral_curve.has_value());
   EXPECT_GT(s.hoop.max_tensile_Pa, 0.0);
@@ -120,8 +120,8 @@ TEST(CamGenerator, PushesOnlyTouchesAroundTheMajorAxisAndBalancesTorque) {
               1.0, 0.01);
   EXPECT_LT(g.w_minor_m, 0.0);
   // A cam of two symmetric lobes does not twist the flexspline.
-  EXPECT_LT(std::abs(s.generator_rotation_rad), 1e-3 * std::abs(s.phi0_rad));
-  EXPECT_NEAR(-s.reaction_torque_Nm / s.applied_torque_Nm, 1.0, 1e-8);
+  EXPECT_LT(std::abs(s.checks.generator_rotation_rad), 1e-3 * std::abs(s.phi0_rad));
+  EXPECT_NEAR(-s.checks.reaction_torque_Nm / s.checks.applied_torque_Nm, 1.0, 1e-8);
   EXPECT_NE(g.reaction_torque_Nm, 0.0);
 }
 
@@ -139,8 +139,8 @@ TEST(RollerGenerator, FourRollersTouchReachW0AndBalanceTorque) {
   EXPECT_GT(g.min_contact_force_N, 0.0);
   EXPECT_NEAR(g.w_major_m / 0.2e-3, 1.0, 1e-6);
   for (double f : g.force_comb_N) EXPECT_GE(f, 0.0);
-  EXPECT_NEAR(-s.reaction_torque_Nm / s.applied_torque_Nm, 1.0, 1e-8);
-  EXPECT_LT(std::abs(g.reaction_torque_Nm), 1e-9 * std::abs(s.applied_torque_Nm));
+  EXPECT_NEAR(-s.checks.reaction_torque_Nm / s.checks.applied_torque_Nm, 1.0, 1e-8);
+  EXPECT_LT(std::abs(g.reaction_torque_Nm), 1e-9 * std::abs(s.checks.applied_torque_Nm));
 }
 
 }  // namespace

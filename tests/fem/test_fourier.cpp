@@ -77,10 +77,10 @@ TEST(FourierTorsion, TubeExact) {
   const FourierSolution s = analyse_flexspline_fourier(c);
   const auto& f = s.figures;
   std::printf("tube torsion: %zu section nodes, phi0 %.12e vs T·L/(G·J) %.12e (rel %.2e)\n", s.section.n_nodes(),
-              f.phi0_rad, f.phi0_theory_rad, f.phi0_rad / f.phi0_theory_rad - 1);
-  EXPECT_NEAR(f.phi0_rad / f.phi0_theory_rad, 1.0, 1e-8);
-  EXPECT_NEAR(f.applied_torque_Nm, c.load.torque_Nm, 1e-9 * c.load.torque_Nm);
-  EXPECT_NEAR(f.reaction_torque_Nm, -c.load.torque_Nm, 1e-8 * c.load.torque_Nm);
+              f.phi0_rad, f.checks.phi0_theory_rad, f.phi0_rad / f.checks.phi0_theory_rad - 1);
+  EXPECT_NEAR(f.phi0_rad / f.checks.phi0_theory_rad, 1.0, 1e-8);
+  EXPECT_NEAR(f.checks.applied_torque_Nm, c.load.torque_Nm, 1e-9 * c.load.torque_Nm);
+  EXPECT_NEAR(f.checks.reaction_torque_Nm, -c.load.torque_Nm, 1e-8 * c.load.torque_Nm);
   ASSERT_EQ(s.harmonics.size(), 1u);
   EXPECT_EQ(s.harmonics[0].n, 0);
 }
@@ -156,7 +156,7 @@ TEST(FourierAxis, CupBossWithEveryHarmonic) {
     const double h = 3.0 * kPi / 180, k = std::sin(h) / h;
     expect += scale * f.weight * k * Eigen::Vector3d(std::cos(f.angle_rad), std::sin(f.angle_rad), 0);
   }
-  EXPECT_LT((s.figures.generator_net_force - expect).norm(), 1e-9 * expect.norm());
+  EXPECT_LT((s.figures.checks.generator_net_force - expect).norm(), 1e-9 * expect.norm());
 }
 
 // The revolved grid: its straight-edged TET10 volume approaches 2π ∫ r dA from below by the chord error of the
@@ -226,7 +226,8 @@ TEST(FourierCam, UnilateralContactBalances) {
   ASSERT_EQ(g.zones_wg_deg.size(), 2u);
   EXPECT_LT(g.zones_wg_deg[0].first, -10.0);
   EXPECT_GT(g.zones_wg_deg[0].second, 10.0);
-  EXPECT_NEAR(s.figures.reaction_torque_Nm, -s.figures.applied_torque_Nm, 1e-9 * std::abs(c.load.torque_Nm));
+  EXPECT_NEAR(s.figures.checks.reaction_torque_Nm, -s.figures.checks.applied_torque_Nm,
+              1e-9 * std::abs(c.load.torque_Nm));
 }
 
 }  // namespace

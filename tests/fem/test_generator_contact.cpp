@@ -340,11 +340,11 @@ void expect_rim_held(WaveGeneratorModel model, double rim_tolerance_of_w0) {
               worst_z * 1e3);
   std::printf("seed cup (coarse), %s: rim radial motion from the torque at most %.2f %% of w0; phi0 %.4e rad, "
               "closed form %.4e rad, engaged %.4e rad; generator carries %.3g N·m\n",
-              s.generator->model.c_str(), 100 * worst / w0, s.phi0_rad, s.phi0_theory_cup.total_rad(),
+              s.generator->model.c_str(), 100 * worst / w0, s.phi0_rad, s.checks.phi0_theory_cup.total_rad(),
               s.phi0_engaged_rad, s.generator->reaction_torque_Nm);
   EXPECT_LT(worst, rim_tolerance_of_w0 * w0);
-  EXPECT_NEAR(-s.reaction_torque_Nm / s.applied_torque_Nm, 1.0, 1e-8);
-  EXPECT_NEAR(s.phi0_rad / s.phi0_theory_cup.total_rad(), 1.0, 0.03);
+  EXPECT_NEAR(-s.checks.reaction_torque_Nm / s.checks.applied_torque_Nm, 1.0, 1e-8);
+  EXPECT_NEAR(s.phi0_rad / s.checks.phi0_theory_cup.total_rad(), 1.0, 0.03);
   for (double f : s.generator->force_comb_N)
     if (s.generator->unilateral) EXPECT_GE(f, 0.0);
 }
@@ -395,7 +395,7 @@ TEST(SeedCupCamBearing, BoreFollowsTheCamLessTheBallApproach) {
   EXPECT_LT(g.w_major_m, rigid.generator->w_major_m - 0.5 * approach_major);
   EXPECT_NEAR(stiff.generator->w_major_m, rigid.generator->w_major_m, 1e-5 * rigid.generator->w_major_m);
   EXPECT_NEAR(stiff.phi0_rad, rigid.phi0_rad, 1e-5 * rigid.phi0_rad);
-  EXPECT_NEAR(-balls.reaction_torque_Nm / balls.applied_torque_Nm, 1.0, 1e-8);
+  EXPECT_NEAR(-balls.checks.reaction_torque_Nm / balls.checks.applied_torque_Nm, 1.0, 1e-8);
 
   // The forces along the zone about the major axis (stations from −90° to +90°, each pair's partner standing for the
   // negative angles): with the balls in series they fall off smoothly from the major axis, one hump, no station left

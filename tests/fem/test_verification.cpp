@@ -65,11 +65,11 @@ TEST(TubeTorsion, TwistMatchesTLOverGJAndReactionEqualsAppliedTorque) {
   std::printf("tube torsion: %zu nodes, phi0 %.8e rad, theory %.8e rad, error %.2e\n", m.n_nodes(), s.phi0_rad,
               theory, s.phi0_rad / theory - 1);
   EXPECT_NEAR(s.phi0_rad / theory, 1.0, kTorsionTol);
-  EXPECT_NEAR(s.phi0_theory_rad, theory, 1e-12 * theory);
-  EXPECT_NEAR(s.phi0_theory_cup.total_rad(), theory, 1e-12 * theory);  // a plain tube: the body wall term alone
-  EXPECT_EQ(s.phi0_theory_cup.diaphragm_rad, 0.0);
-  EXPECT_NEAR(s.applied_torque_Nm, 100.0, kTorqueBalanceTol * 100);
-  EXPECT_NEAR(-s.reaction_torque_Nm / s.applied_torque_Nm, 1.0, kTorqueBalanceTol);
+  EXPECT_NEAR(s.checks.phi0_theory_rad, theory, 1e-12 * theory);
+  EXPECT_NEAR(s.checks.phi0_theory_cup.total_rad(), theory, 1e-12 * theory);  // a plain tube: the body wall term alone
+  EXPECT_EQ(s.checks.phi0_theory_cup.diaphragm_rad, 0.0);
+  EXPECT_NEAR(s.checks.applied_torque_Nm, 100.0, kTorqueBalanceTol * 100);
+  EXPECT_NEAR(-s.checks.reaction_torque_Nm / s.checks.applied_torque_Nm, 1.0, kTorqueBalanceTol);
 }
 
 // --- 4. Lamé thick cylinder under internal pressure, free ends -------------------------------------------------------

@@ -45,7 +45,11 @@ FemJobResult run_fem_job(const Case& c, const std::filesystem::path& out_dir, co
 /// The same on the harmonic solver (solver.method = "fourier"; app/fem_fourier_job.cpp); VTU output optional.
 FemJobResult run_fourier_fem_job(const Case& c, const std::filesystem::path& out_dir, bool write_vtk = true);
 
-/// Applies a `--solver` command-line choice ("tet10" | "fourier"; empty: the case's) to the case.
-void apply_solver_option(Case& c, const std::string& solver);
+/// Applies the `--solver` ("tet10" | "fourier") and `--backend` ("cholmod" | "petsc") command-line choices (empty:
+/// the case's) to the case.
+void apply_solver_option(Case& c, const std::string& solver, const std::string& backend = "");
+
+/// Registers --backend cholmod | petsc on a subcommand.
+void add_backend_option(CLI::App* cmd, std::string& backend);
 
 }  // namespace sw::app

@@ -151,7 +151,14 @@ std::string fem_result_json(const Case& c, const TetMesh& mesh, const Flexspline
                  {"factor_gflop_per_s", s.factor.factor_s > 0 ? s.factor.factor_gflop / s.factor.factor_s : 0.0},
                  {"ordering", s.factor.ordering},
                  {"supernodal", s.factor.supernodal},
-                 {"blas", run.blas.description}};
+                 {"blas", run.blas.description},
+                 {"backend", s.factor.backend},
+                 {"algorithm", s.factor.algorithm},
+                 {"ranks", s.factor.ranks}};
+  if (s.factor.backend == "petsc")
+    j["solver"].update({{"peak_rss_bytes_per_rank", s.factor.peak_rss_bytes_per_rank},
+                        {"iterations", s.factor.iterations},
+                        {"right_hand_sides", s.factor.right_hand_sides}});
   j["timings_s"] = {{"mesh", run.mesh_s},
                     {"assemble", s.assemble_s},
                     {"analyse", s.factor.analyse_s},

@@ -86,6 +86,7 @@ FemJobResult run_fem_job(const Case& c, const fs::path& out_dir, const FemJobOpt
   FemJobResult job;
   auto system = std::make_shared<const FlexsplineSystem>(assemble_and_factorise(c, mesh));
   job.solution = analyse_flexspline(c, mesh, *system);
+  job.solution.factor = system->factor->stats();  // with the solves' counts and each rank's peak memory
   job.mesh = mesh_ptr;
   job.system = system;
   clock.lap();

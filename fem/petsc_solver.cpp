@@ -152,7 +152,7 @@ Outcome finish_request(const std::optional<std::string>& my_error) {
     MPI_Bcast(&n, 1, MPI_INT64_T, failed, PETSC_COMM_WORLD);
     message.resize(static_cast<std::size_t>(n));
     MPI_Bcast(message.data(), static_cast<int>(n), MPI_CHAR, failed, PETSC_COMM_WORLD);
-    o.error = s.size > 1 ? "rank " + std::to_string(failed) + ": " + message : message;
+    o.error = failed > 0 ? "rank " + std::to_string(failed) + ": " + message : message;
   }
   long mine = peak_rss_bytes();
   o.peak_rss_bytes_per_rank.resize(static_cast<std::size_t>(s.size));

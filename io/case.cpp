@@ -370,7 +370,8 @@ SolverParams read_solver(TableReader r) {
   s.method = r.choice("method", "tet10", {"tet10", "fourier"}) == "fourier" ? SolverMethod::Fourier : SolverMethod::Tet10;
   s.harmonics = r.integer("harmonics", s.harmonics, 0);
   if (s.harmonics > 4096) r.fail_value("harmonics", s.harmonics, "must be <= 4096");
-  s.backend = r.choice("backend", "cholmod", {"cholmod", "petsc"}) == "petsc" ? SolverBackend::Petsc : SolverBackend::Cholmod;
+  const bool petsc = r.choice("backend", "cholmod", {"cholmod", "petsc"}) == "petsc";
+  s.backend = petsc ? SolverBackend::Petsc : SolverBackend::Cholmod;
   r.reject_unknown();
   return s;
 }

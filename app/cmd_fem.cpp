@@ -12,6 +12,7 @@
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "fem/flexspline_analysis.hpp"
+#include "fem/petsc_solver.hpp"
 #include "io/atomic_file.hpp"
 #include "io/case.hpp"
 #include "io/fem_output.hpp"
@@ -38,7 +39,10 @@ void add_fem_job_options(CLI::App* cmd, FemJobOptions& o) {
 
 TetMesh mesh_for_case(const Case& c, double max_memory_gb) {
   // Seconds, not minutes: refused from the geometry before TetGen runs.
-  refuse_if_too_large(estimate_model_size(c.flexspline, c.gear, c.mesh), max_memory_gb * 1e9, c.path);
+  // The petsc backend spreads the factor over its ranks' machines: the budget is one machine's times their number.
+  const int machines = c.solver.backend == SolverBackend::Petsc ? parallel::nodes() : 1;
+  const double per_machine = max_memory_gb > 0 ? max_memory_gb * 1e9 : machines > 1 ? available_memory_bytes() : 0.0;
+  refuse_if_too_large(estimate_model_size(c.flexspline, c.gear, c.mesh), per_machine * machines, c.path);
   return mesh_flexspline(c.flexspline, c.gear, c.mesh);
 }
 

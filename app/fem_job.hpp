@@ -36,7 +36,7 @@ struct FemJobOptions {
 void add_fem_job_options(CLI::App* cmd, FemJobOptions& options);
 
 /// The mesh of the case's flexspline, refused in one line before meshing when the model's estimated peak memory
-/// exceeds max_memory_gb (0: the machine's available memory).
+/// exceeds max_memory_gb (0: the machine's available memory), per machine the petsc backend's ranks run on.
 TetMesh mesh_for_case(const Case& c, double max_memory_gb = 0);
 
 /// Meshes, solves, writes every fem output under out_dir, prints the summary (by the case's solver.method).

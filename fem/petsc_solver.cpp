@@ -66,7 +66,7 @@ struct Session {
   std::vector<std::string> argv_text;
   std::vector<char*> argv;
   bool started = false, stopped = false, used = false;
-  int rank = 0, size = 1;
+  int rank = 0, size = 1, nodes = 1;
   std::int64_t next_id = 1;
 };
 
@@ -76,7 +76,7 @@ Session& session() {
 }
 
 bool launched_by_mpi() {
-  for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK", "SLURM_STEP_NUM_TASKS"})
+  for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"})  // OpenMPI; MPICH, srun --mpi=pmi2; PMIx
     if (std::getenv(v)) return true;
   return false;
 }
@@ -98,6 +98,13 @@ void initialise_petsc() {
   PetscPushErrorHandler(record_error, nullptr);
   MPI_Comm_rank(PETSC_COMM_WORLD, &s.rank);
   MPI_Comm_size(PETSC_COMM_WORLD, &s.size);
+  MPI_Comm node;  // the ranks on this machine; the node count is the number of their first ranks
+  MPI_Comm_split_type(PETSC_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+  int node_rank = 0;
+  MPI_Comm_rank(node, &node_rank);
+  MPI_Comm_free(&node);
+  s.nodes = node_rank == 0 ? 1 : 0;
+  MPI_Allreduce(MPI_IN_PLACE, &s.nodes, 1, MPI_INT, MPI_SUM, PETSC_COMM_WORLD);
   s.started = true;
 }
 
@@ -570,6 +577,7 @@ void start(const std::vector<std::string>& petsc_options) {
 
 int rank() { return session().rank; }
 int ranks() { return session().size; }
+int nodes() { return session().nodes; }
 
 int serve() {
   std::map<std::int64_t, std::unique_ptr<Distributed>> systems;

@@ -44,6 +44,8 @@ void start(const std::vector<std::string>& petsc_options);
 /// This process's rank and the number of ranks (0 and 1 without an MPI launch).
 int rank();
 int ranks();
+/// Machines (shared-memory nodes) the ranks run on (1 without an MPI launch).
+int nodes();
 
 /// Ranks ≥ 1: take part in every setup and solve rank 0 asks for, until it stops; returns the exit code.
 int serve();

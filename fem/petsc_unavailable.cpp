@@ -18,6 +18,7 @@ void start(const std::vector<std::string>& petsc_options) {
 }
 int rank() { return 0; }
 int ranks() { return 1; }
+int nodes() { return 1; }
 int serve() { return 0; }
 void stop() {}
 }  // namespace parallel

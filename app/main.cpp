@@ -17,7 +17,8 @@ namespace {
 /// MPI and PETSc for the process (fem/petsc_solver.hpp): rank 0 runs the command, the other ranks of an mpirun launch
 /// serve its distributed solves; on every way out of main, rank 0 releases them.
 struct ParallelRun {
-  ~ParallelRun() { sw::parallel::stop(); }
+  bool succeeded = false;
+  ~ParallelRun() { sw::parallel::stop(succeeded); }
 };
 
 }  // namespace
@@ -70,5 +71,6 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "strainwave: internal error: %s\n", e.what());
     return 3;
   }
+  parallel_run.succeeded = true;
   return 0;
 }

@@ -31,8 +31,9 @@ std::string read_text(const fs::path& p) {
   return s.str();
 }
 
-/// The case's text with its [mesh] size, its teeth, and without the generator (and what needs it) if asked.
-std::string variant(std::string t, double size_mm, const std::string& teeth, bool generator) {
+/// The case's text with its [mesh] size and wall layers, its teeth, and without the generator (and what needs it)
+/// if asked.
+std::string variant(std::string t, double size_mm, int wall_layers, const std::string& teeth, bool generator) {
   auto set_line = [&](const std::string& key, const std::string& value) {
     const auto at = t.find("\n" + key + " =");
     if (at == std::string::npos) throw std::runtime_error("the case has no line '" + key + " = ...'");
@@ -40,6 +41,7 @@ std::string variant(std::string t, double size_mm, const std::string& teeth, boo
     t.replace(at + 1, end - at - 1, key + " = " + value);
   };
   set_line("size_mm", std::to_string(size_mm));
+  set_line("wall_layers", std::to_string(wall_layers));
   if (!teeth.empty()) set_line("teeth", "\"" + teeth + "\"");
   if (!generator) {
     for (const std::string table : {"[wave_generator]", "[dynamics]", "[circular_spline]"}) {
@@ -60,13 +62,15 @@ struct Run {
 
 int main(int argc, char** argv) {
   CLI::App app{"bench_backends: CHOLMOD vs PETSc (MUMPS, CG + GAMG) under MPI, per phase"};
-  std::string case_path = "cases/seed_190_192.toml", teeth = "explicit";
-  std::vector<double> sizes{1.5, 1.0};
+  std::string case_path = "cases/seed_190_192.toml", teeth = "ring";
+  std::vector<std::string> meshes{"1.5:1", "1.5:2"};
   int ranks = 2;
   bool krylov_contact = false;
   app.add_option("case", case_path, "case file (TOML)");
-  app.add_option("--sizes", sizes, "mesh.size_mm values")->delimiter(',');
-  app.add_option("--teeth", teeth, "flexspline.teeth for every run (empty: the case's)");
+  app.add_option("--meshes", meshes, "meshes as size_mm:wall_layers (the walls' layers set the cup's mesh more than "
+                                    "size_mm does)")->delimiter(',');
+  app.add_option("--teeth", teeth, "flexspline.teeth for every run (empty: the case's; explicit teeth of the seed cup "
+                                  "are 8.4e5 equations even at size_mm 1.5, beyond 5 GB on MUMPS)");
   app.add_option("--ranks", ranks, "MPI ranks of the PETSc runs");
   app.add_flag("--krylov-contact", krylov_contact, "also run CG + GAMG on the whole case (slow: ~35 solves)");
   CLI11_PARSE(app, argc, argv);
@@ -78,14 +82,17 @@ int main(int argc, char** argv) {
     const std::vector<Run> direct{{"cholmod", "OPENBLAS_NUM_THREADS=2 ", ""},
                                   {"mumps", mpi, "--backend petsc"}};
     const Run krylov{"cg+gamg", mpi, "--backend petsc -ksp_type cg -pc_type gamg"};
-    std::printf("%-7s %-9s %-8s %5s %9s %6s %6s %6s %7s %6s %7s %8s %8s %5s %6s %s\n", "size_mm", "variant",
+    std::printf("%-7s %-9s %-8s %5s %9s %6s %6s %6s %7s %6s %7s %8s %8s %5s %6s %s\n", "mesh", "variant",
                 "solver", "ranks", "equations", "mesh", "assem", "analy", "factor", "solve", "total", "GF", "nnz(L)",
                 "rhs", "iters", "peak MB per rank");
-    for (const double size : sizes) {
+    for (const std::string& m : meshes) {
+      const auto colon = m.find(':');
+      if (colon == std::string::npos) throw std::runtime_error("--meshes " + m + ": expected size_mm:wall_layers");
+      const double size = std::stod(m.substr(0, colon));
+      const int layers = std::stoi(m.substr(colon + 1));
       for (const bool generator : {true, false}) {
-        const fs::path case_file =
-            dir.path() / ("case_" + std::to_string(size) + (generator ? "_whole" : "_torque") + ".toml");
-        std::ofstream(case_file) << variant(base, size, teeth, generator);
+        const fs::path case_file = dir.path() / ("case_" + m + (generator ? "_whole" : "_torque") + ".toml");
+        std::ofstream(case_file) << variant(base, size, layers, teeth, generator);
         std::vector<Run> runs = direct;
         if (!generator || krylov_contact) runs.push_back(krylov);
         for (const Run& r : runs) {
@@ -95,7 +102,7 @@ int main(int argc, char** argv) {
                                       case_file.string() + " --out " + out.string() + " " + r.args + " > " +
                                       (dir.path() / "log").string() + " 2>&1";
           if (std::system(command.c_str()) != 0) {
-            std::printf("%-7.2f %-9s %-8s failed: %s\n", size, generator ? "whole" : "torque", r.label.c_str(),
+            std::printf("%-7s %-9s %-8s failed: %s\n", m.c_str(), generator ? "whole" : "torque", r.label.c_str(),
                         read_text(dir.path() / "log").c_str());
             continue;
           }
@@ -107,8 +114,8 @@ int main(int argc, char** argv) {
             for (const auto& b : s["peak_rss_bytes_per_rank"]) memory += std::to_string(b.get<long>() / 1000000) + " ";
           else
             memory = std::to_string(j["peak_rss_bytes"].get<long>() / 1000000);
-          std::printf("%-7.2f %-9s %-8s %5d %9lld %6.1f %6.1f %6.1f %7.1f %6.1f %7.1f %8.1f %8.2e %5lld %6lld %s\n",
-                      size, generator ? "whole" : "torque", r.label.c_str(), s["ranks"].get<int>(),
+          std::printf("%-7s %-9s %-8s %5d %9lld %6.1f %6.1f %6.1f %7.1f %6.1f %7.1f %8.1f %8.2e %5lld %6lld %s\n",
+                      m.c_str(), generator ? "whole" : "torque", r.label.c_str(), s["ranks"].get<int>(),
                       s["equations"].get<long long>(), t["mesh"].get<double>(), t["assemble"].get<double>(),
                       t["analyse"].get<double>(), t["factor"].get<double>(), t["solve"].get<double>(),
                       t["total"].get<double>(), s["factor_gflop"].get<double>(), s["factor_nnz"].get<double>(),

@@ -613,16 +613,14 @@ int serve() {
   }
 }
 
-void stop() {
+void stop(bool succeeded) {
   Session& s = session();
   if (s.stopped) return;
   s.stopped = true;
-  if (!s.started) {
-    if (!s.options.empty())
-      std::fprintf(stderr, "strainwave: warning: PETSc options (%s ...) ignored: this run did not use the petsc backend\n",
-                   s.options.front().c_str());
-    return;
-  }
+  if (succeeded && !s.used && !s.options.empty())
+    std::fprintf(stderr, "strainwave: warning: PETSc options (%s ...) ignored: this run did not use the petsc backend\n",
+                 s.options.front().c_str());
+  if (!s.started) return;
   if (s.rank == 0 && s.size > 1) broadcast_header({kStop, 0, 0, 0});
   PetscFinalize();
 }
@@ -643,8 +641,7 @@ PetscSolver::PetscSolver(const TetMesh& mesh, const Material& material, const Do
   if (s.rank != 0) throw std::logic_error("PetscSolver is constructed on rank 0; the other ranks serve");
   s.used = true;
   impl_->id = s.next_id++;
-  if (s.size > 1) broadcast_header({kSetup, impl_->id, 0, 0});
-  MeshMessage m;
+  MeshMessage m;  // checked before the request goes out: once it has, every rank must see the request through
   m.material = material;
   m.free_node.resize(mesh.n_nodes());
   for (std::size_t i = 0; i < mesh.n_nodes(); ++i) {
@@ -653,7 +650,10 @@ PetscSolver::PetscSolver(const TetMesh& mesh, const Material& material, const Do
       throw std::logic_error("PetscSolver: a node with some dofs fixed and some free (whole nodes are fixed here)");
     m.free_node[i] = free;
   }
-  if (s.size > 1) broadcast_mesh(&mesh, m);
+  if (s.size > 1) {
+    broadcast_header({kSetup, impl_->id, 0, 0});
+    broadcast_mesh(&mesh, m);
+  }
   const Outcome o = finish_request(attempt([&] { set_up(impl_->d, mesh, m.free_node, material, &dofs); }));
   impl_->d.stats.peak_rss_bytes_per_rank = o.peak_rss_bytes_per_rank;
   if (o.error) throw InputError("PETSc: " + *o.error);

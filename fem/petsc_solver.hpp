@@ -50,9 +50,9 @@ int nodes();
 /// Ranks ≥ 1: take part in every setup and solve rank 0 asks for, until it stops; returns the exit code.
 int serve();
 
-/// Rank 0: releases the serving ranks and finalises PETSc. Idempotent; main calls it on every way out. Warns (one
-/// line) when PETSc options were given to a run that never used the petsc backend.
-void stop();
+/// Rank 0: releases the serving ranks and finalises PETSc. Idempotent; main calls it on every way out. After a run
+/// that `succeeded`, warns (one line) when PETSc options were given but the petsc backend was never used.
+void stop(bool succeeded);
 
 }  // namespace parallel
 

@@ -20,7 +20,7 @@ int rank() { return 0; }
 int ranks() { return 1; }
 int nodes() { return 1; }
 int serve() { return 0; }
-void stop() {}
+void stop(bool) {}
 }  // namespace parallel
 
 struct PetscSolver::Impl {};

@@ -12,6 +12,7 @@
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "fem/flexspline_analysis.hpp"
+#include "fem/petsc_solver.hpp"
 #include "io/atomic_file.hpp"
 #include "io/case.hpp"
 #include "io/fem_output.hpp"
@@ -38,16 +39,30 @@ void add_fem_job_options(CLI::App* cmd, FemJobOptions& o) {
 
 TetMesh mesh_for_case(const Case& c, double max_memory_gb) {
   // Seconds, not minutes: refused from the geometry before TetGen runs.
-  refuse_if_too_large(estimate_model_size(c.flexspline, c.gear, c.mesh), max_memory_gb * 1e9, c.path);
+  // The petsc backend spreads the factor over its ranks' machines: the budget is one machine's times their number.
+  const int machines = c.solver.backend == SolverBackend::Petsc ? parallel::nodes() : 1;
+  const double per_machine = max_memory_gb > 0 ? max_memory_gb * 1e9 : machines > 1 ? available_memory_bytes() : 0.0;
+  refuse_if_too_large(estimate_model_size(c.flexspline, c.gear, c.mesh), per_machine * machines, c.path);
   return mesh_flexspline(c.flexspline, c.gear, c.mesh);
 }
 
-void apply_solver_option(Case& c, const std::string& solver) {
-  if (solver.empty()) return;
-  c.solver.method = solver == "fourier" ? SolverMethod::Fourier : SolverMethod::Tet10;
+void apply_solver_option(Case& c, const std::string& solver, const std::string& backend) {
+  if (!backend.empty()) c.solver.backend = backend == "petsc" ? SolverBackend::Petsc : SolverBackend::Cholmod;
+  if (!solver.empty()) c.solver.method = solver == "fourier" ? SolverMethod::Fourier : SolverMethod::Tet10;
+  if (solver.empty() && backend.empty()) return;
   if (c.solver.method == SolverMethod::Fourier && c.flexspline.teeth == TeethModel::Explicit)
     throw InputError(c.path + ": --solver fourier needs a body of revolution; flexspline.teeth = \"explicit\" is not "
                               "one (use teeth = \"ring\" or \"none\", or --solver tet10)");
+  if (c.solver.method == SolverMethod::Fourier && c.solver.backend == SolverBackend::Petsc)
+    throw InputError(c.path + ": the petsc backend solves the TET10 model; the fourier solver runs in one process "
+                              "(use --solver tet10, or --backend cholmod)");
+}
+
+void add_backend_option(CLI::App* cmd, std::string& backend) {
+  cmd->add_option("--backend", backend,
+                  "cholmod | petsc (overrides [solver] backend); petsc under mpirun -np N distributes the TET10 solve, "
+                  "PETSc options (-ksp_type cg -pc_type gamg, -mat_mumps_icntl_14 50, ...) go last on the line")
+      ->check(CLI::IsMember({"cholmod", "petsc"}));
 }
 
 FemJobResult run_fem_job(const Case& c, const fs::path& out_dir, const FemJobOptions& options) {
@@ -76,6 +91,7 @@ FemJobResult run_fem_job(const Case& c, const fs::path& out_dir, const FemJobOpt
   const FlexsplineModel model = flexspline_model(c);
   auto system = std::make_shared<const FlexsplineSystem>(assemble_and_factorise(model, mesh));
   job.solution = analyse_flexspline(model, mesh, *system);
+  job.solution.timings.factor = system->factor->stats();  // with the solves' counts and each rank's peak memory
   job.mesh = mesh_ptr;
   job.system = system;
   clock.lap();
@@ -159,16 +175,17 @@ FemJobResult run_fem_job(const Case& c, const fs::path& out_dir, const FemJobOpt
 
 void add_fem_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("fem", "mesh the flexspline, solve every load case, extract phi0 and C_tau");
-  static std::string case_path, out, solver;
+  static std::string case_path, out, solver, backend;
   static FemJobOptions options;
   cmd->add_option("case", case_path, "case file (TOML)")->required();
   add_fem_job_options(cmd, options);
   cmd->add_option("--out", out, "output directory (default out/<case stem>/)");
   cmd->add_option("--solver", solver, "tet10 | fourier (overrides [solver] method)")
       ->check(CLI::IsMember({"tet10", "fourier"}));
+  add_backend_option(cmd, backend);
   cmd->callback([] {
     Case c = load_case(case_path);
-    apply_solver_option(c, solver);
+    apply_solver_option(c, solver, backend);
     progress("case:\n" + describe_case(c));
     run_fem_job(c, out.empty() ? default_out_dir(c) : fs::path(out), options);
   });

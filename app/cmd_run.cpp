@@ -79,7 +79,7 @@ void print_summary(const Case& c, const FemJobResult& fem, const std::optional<B
 
 void add_run_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("run", "fem, backlash fed with its phi0, then the loaded tooth contact: the main job");
-  static std::string case_path, out, solver, curve = "fem";
+  static std::string case_path, out, solver, backend, curve = "fem";
   static FemJobOptions fem_options;
   cmd->add_option("case", case_path, "case file (TOML)")->required();
   add_fem_job_options(cmd, fem_options);
@@ -90,9 +90,10 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--out", out, "output directory (default out/<case stem>/)");
   cmd->add_option("--solver", solver, "tet10 | fourier (overrides [solver] method)")
       ->check(CLI::IsMember({"tet10", "fourier"}));
+  add_backend_option(cmd, backend);
   cmd->callback([] {
     Case c = load_case(case_path);
-    apply_solver_option(c, solver);
+    apply_solver_option(c, solver, backend);
     progress("case:\n" + describe_case(c));
     const std::filesystem::path dir = out.empty() ? default_out_dir(c) : std::filesystem::path(out);
     const FemJobResult fem = run_fem_job(c, dir, fem_options);

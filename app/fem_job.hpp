@@ -36,7 +36,7 @@ struct FemJobOptions {
 void add_fem_job_options(CLI::App* cmd, FemJobOptions& options);
 
 /// The mesh of the case's flexspline, refused in one line before meshing when the model's estimated peak memory
-/// exceeds max_memory_gb (0: the machine's available memory).
+/// exceeds max_memory_gb (0: the machine's available memory), per machine the petsc backend's ranks run on.
 TetMesh mesh_for_case(const Case& c, double max_memory_gb = 0);
 
 /// Meshes, solves, writes every fem output under out_dir, prints the summary (by the case's solver.method).
@@ -45,7 +45,11 @@ FemJobResult run_fem_job(const Case& c, const std::filesystem::path& out_dir, co
 /// The same on the harmonic solver (solver.method = "fourier"; app/fem_fourier_job.cpp); VTU output optional.
 FemJobResult run_fourier_fem_job(const Case& c, const std::filesystem::path& out_dir, bool write_vtk = true);
 
-/// Applies a `--solver` command-line choice ("tet10" | "fourier"; empty: the case's) to the case.
-void apply_solver_option(Case& c, const std::string& solver);
+/// Applies the `--solver` ("tet10" | "fourier") and `--backend` ("cholmod" | "petsc") command-line choices (empty:
+/// the case's) to the case.
+void apply_solver_option(Case& c, const std::string& solver, const std::string& backend = "");
+
+/// Registers --backend cholmod | petsc on a subcommand.
+void add_backend_option(CLI::App* cmd, std::string& backend);
 
 }  // namespace sw::app

@@ -3,14 +3,39 @@
 #include <cstdio>
 #include <exception>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "app/commands.hpp"
 #include "common/error.hpp"
 #include "common/progress.hpp"
+#include "fem/petsc_solver.hpp"
+
+namespace {
+
+/// MPI and PETSc for the process (fem/petsc_solver.hpp): rank 0 runs the command, the other ranks of an mpirun launch
+/// serve its distributed solves; on every way out of main, rank 0 releases them.
+struct ParallelRun {
+  bool succeeded = false;
+  ~ParallelRun() { sw::parallel::stop(succeeded); }
+};
+
+}  // namespace
 
 int main(int argc, char** argv) {
+  // PETSc's options (a single dash: -ksp_type cg) go to PETSc, the rest to the command line parser.
+  std::vector<std::string> args(argv, argv + argc);
+  const std::vector<std::string> petsc_options = sw::parallel::take_petsc_options(args);
+  ParallelRun parallel_run;
+  try {
+    sw::parallel::start(petsc_options);
+  } catch (const sw::InputError& e) {
+    std::fprintf(stderr, "strainwave: error: %s\n", e.what());
+    return 2;
+  }
+  if (sw::parallel::rank() > 0) return sw::parallel::serve();
+
   CLI::App app{"strainwave: FEM, backlash, reconciliation and dynamics of strain wave gears"};
   app.require_subcommand(1);
   app.fallthrough();  // --quiet may follow the subcommand too
@@ -26,7 +51,9 @@ int main(int argc, char** argv) {
   sw::app::add_sweep_command(app);
   sw::app::add_design_command(app);
   try {
-    app.parse(argc, argv);
+    std::vector<const char*> kept;
+    for (const auto& a : args) kept.push_back(a.c_str());
+    app.parse(static_cast<int>(kept.size()), kept.data());
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
@@ -44,5 +71,6 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "strainwave: internal error: %s\n", e.what());
     return 3;
   }
+  parallel_run.succeeded = true;
   return 0;
 }

@@ -182,6 +182,7 @@ CholmodFactor::CholmodFactor(const SymmetricCsc& K, const std::vector<std::int64
 
   impl_->stats.equations = K.n;
   impl_->stats.supernodal = impl_->factor->is_super;
+  impl_->stats.algorithm = impl_->factor->is_super ? "supernodal Cholesky" : "simplicial Cholesky";
   refactorise(K);
 }
 

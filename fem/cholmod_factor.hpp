@@ -9,6 +9,7 @@
 #include <Eigen/SparseCore>
 
 #include "fem/assembly.hpp"
+#include "fem/linear_solver.hpp"
 
 namespace sw {
 
@@ -21,17 +22,7 @@ struct BlasInfo {
 /// Inspects the loaded BLAS (OpenBLAS is recognised by its openblas_get_config symbol).
 BlasInfo detect_blas();
 
-struct FactorStats {
-  std::int64_t equations = 0;
-  std::int64_t matrix_nnz = 0;   ///< stored upper triangle
-  double factor_nnz = 0;         ///< nnz(L)
-  double factor_gflop = 0;       ///< floating-point work of the numeric factorisation (GF)
-  double analyse_s = 0, factor_s = 0;
-  std::string ordering;          ///< ordering CHOLMOD selected
-  bool supernodal = true;
-};
-
-class CholmodFactor {
+class CholmodFactor final : public LinearSolver {
 public:
   /// Analyses and factorises K (upper triangle). Throws InputError with a sentence for CHOLMOD's failures; a matrix
   /// that is not positive definite means the supports leave rigid-body motion free.
@@ -50,15 +41,15 @@ public:
   void refactorise(const SymmetricCsc& K);
 
   /// Solves K·X = B for all columns of B at once (n x k).
-  Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const override;
 
   /// Y = L⁻¹·P·B for a sparse B (n x k), half of a solve: for K = Pᵀ·L·Lᵀ·P, Bᵀ·K⁻¹·B = Yᵀ·Y (influence matrices
   /// at half the cost). Only the supernodes on the paths from B's nonzero rows up the elimination tree are touched,
   /// each with only the columns whose path passes through it; Y's rows are in the factor's (permuted) order and zero
   /// off those paths. Empty when the factor is not a supernodal LLᵀ.
-  std::optional<Eigen::MatrixXd> forward_solve(const Eigen::SparseMatrix<double>& B) const;
+  std::optional<Eigen::MatrixXd> forward_solve(const Eigen::SparseMatrix<double>& B) const override;
 
-  const FactorStats& stats() const;
+  const FactorStats& stats() const override;
 
 private:
   struct Impl;

@@ -11,6 +11,7 @@
 #include "fem/cam_profile.hpp"
 #include "fem/flexspline_analysis.hpp"
 #include "fem/loads.hpp"
+#include "fem/petsc_solver.hpp"
 
 namespace sw {
 namespace {
@@ -116,13 +117,24 @@ FlexsplineSystem assemble_and_factorise(const FlexsplineModel& c, const TetMesh&
   for (std::size_t i = 0; i < mesh.n_nodes(); ++i) fixed[3 * i] = fixed[3 * i + 1] = fixed[3 * i + 2] = eq.clamped[i];
   eq.dofs = make_dof_map(fixed);
   Stopwatch clock;
-  progress("assemble: " + std::to_string(eq.dofs.n_equations) + " equations");
-  const SymmetricCsc K = assemble_stiffness(mesh, c.material, eq.dofs);
-  eq.assemble_s = clock.lap();
-  progress("factorise: nnz(K) = " + std::to_string(K.nnz()));
-  eq.factor = std::make_unique<CholmodFactor>(K, equation_nodes(eq.dofs));
+  if (c.solver.backend == SolverBackend::Petsc) {
+    progress("petsc: distributed assembly and set-up of " + std::to_string(eq.dofs.n_equations) + " equations");
+    auto solver = std::make_unique<PetscSolver>(mesh, c.material, eq.dofs);
+    eq.assemble_s = solver->assemble_s();
+    eq.factor = std::move(solver);
+  } else {
+    if (parallel::ranks() > 1)
+      throw InputError("solver.backend = \"cholmod\" runs in one process, but this run was launched on " +
+                       std::to_string(parallel::ranks()) + " MPI ranks; use --backend petsc (or [solver] backend = "
+                       "\"petsc\"), or run without mpirun");
+    progress("assemble: " + std::to_string(eq.dofs.n_equations) + " equations");
+    const SymmetricCsc K = assemble_stiffness(mesh, c.material, eq.dofs);
+    eq.assemble_s = clock.lap();
+    progress("factorise: nnz(K) = " + std::to_string(K.nnz()));
+    eq.factor = std::make_unique<CholmodFactor>(K, equation_nodes(eq.dofs));
+  }
   const FactorStats& st = eq.factor->stats();
-  progress("factorised: nnz(L) = " + std::to_string(static_cast<long long>(st.factor_nnz)) + ", " +
+  progress("factorised (" + st.algorithm + "): nnz(L) = " + std::to_string(static_cast<long long>(st.factor_nnz)) + ", " +
            std::to_string(st.factor_gflop) + " GF in " + std::to_string(st.factor_s) + " s");
   return eq;
 }

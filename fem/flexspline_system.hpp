@@ -1,7 +1,8 @@
 #pragma once
 // The flexspline's equations, kept for every stage that needs "solve with this right-hand side": the clamp's
-// supports, the stiffness factorised once by CHOLMOD, and the wave generator's contact stations on the bore. The FEM
-// load cases (fem/flexspline_analysis.hpp) and the loaded tooth contact (contact/) both work on one such system.
+// supports, the stiffness factorised once (by CHOLMOD, or on MPI ranks by PETSc: [solver] backend), and the wave
+// generator's contact stations on the bore. The FEM load cases (fem/flexspline_analysis.hpp) and the loaded tooth
+// contact (contact/) both work on one such system.
 #include <memory>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "fem/flexspline_model.hpp"
 #include "fem/assembly.hpp"
 #include "fem/cholmod_factor.hpp"
+#include "fem/linear_solver.hpp"
 #include "fem/generator_contact.hpp"
 #include "mesh/tet_mesh.hpp"
 
@@ -20,7 +22,7 @@ namespace sw {
 struct FlexsplineSystem {
   std::vector<bool> clamped;  ///< per node: on a kSurfaceClamped face
   DofMap dofs;
-  std::unique_ptr<CholmodFactor> factor;
+  std::unique_ptr<LinearSolver> factor;  ///< CholmodFactor or PetscSolver, by c.solver.backend
   double assemble_s = 0;
 
   /// K⁻¹·F for full-dof loads (3·n_nodes × k), as full-dof displacements (zero on the clamp).
@@ -30,7 +32,8 @@ struct FlexsplineSystem {
   Eigen::MatrixXd influence(const Eigen::SparseMatrix<double>& loads) const;
 };
 
-/// Supports (every node on a kSurfaceClamped face), assembly and the one factorisation (progress on stderr).
+/// Supports (every node on a kSurfaceClamped face), assembly and the one factorisation (progress on stderr), on the
+/// model's solver.backend: CHOLMOD in this process, or PETSc on the MPI ranks (each assembles its share).
 FlexsplineSystem assemble_and_factorise(const FlexsplineModel& c, const TetMesh& mesh);
 
 /// The wave generator as the solver sees it: contact stations on the bore over the generator's band and what they

@@ -370,6 +370,8 @@ SolverParams read_solver(TableReader r) {
   s.method = r.choice("method", "tet10", {"tet10", "fourier"}) == "fourier" ? SolverMethod::Fourier : SolverMethod::Tet10;
   s.harmonics = r.integer("harmonics", s.harmonics, 0);
   if (s.harmonics > 4096) r.fail_value("harmonics", s.harmonics, "must be <= 4096");
+  const bool petsc = r.choice("backend", "cholmod", {"cholmod", "petsc"}) == "petsc";
+  s.backend = petsc ? SolverBackend::Petsc : SolverBackend::Cholmod;
   r.reject_unknown();
   return s;
 }
@@ -567,6 +569,9 @@ Case parse_case(const std::string& toml_text, const std::string& path) {
   if (c.solver.method == SolverMethod::Fourier && c.flexspline.teeth == TeethModel::Explicit)
     throw InputError(path + ": solver.method = \"fourier\" needs a body of revolution; flexspline.teeth = \"explicit\" "
                             "is not one (use teeth = \"ring\" or \"none\", or method = \"tet10\")");
+  if (c.solver.method == SolverMethod::Fourier && c.solver.backend == SolverBackend::Petsc)
+    throw InputError(path + ": solver.backend = \"petsc\" solves the TET10 model; solver.method = \"fourier\" runs in "
+                            "one process (use method = \"tet10\", or backend = \"cholmod\")");
   if (c.wave_generator && c.wave_generator->axial_position_m > c.flexspline.length_m)
     throw InputError(path + ": wave_generator.axial_position_mm = " +
                      format_number(c.wave_generator->axial_position_m / kMm) +
@@ -655,6 +660,7 @@ std::string describe_case(const Case& c) {
     << c.mesh.min_dihedral_deg << "\n";
   s << "[solver]\nmethod = \"" << (c.solver.method == SolverMethod::Fourier ? "fourier" : "tet10") << "\"\n";
   if (c.solver.method == SolverMethod::Fourier) s << "harmonics = " << c.solver.harmonics << "\n";
+  else s << "backend = \"" << (c.solver.backend == SolverBackend::Petsc ? "petsc" : "cholmod") << "\"\n";
   if (c.dynamics) s << describe(*c.dynamics);
   return s.str();
 }

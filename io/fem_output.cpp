@@ -157,7 +157,14 @@ std::string fem_result_json(const Case& c, const TetMesh& mesh, const Flexspline
                  {"factor_gflop_per_s", factor.factor_s > 0 ? factor.factor_gflop / factor.factor_s : 0.0},
                  {"ordering", factor.ordering},
                  {"supernodal", factor.supernodal},
-                 {"blas", run.blas.description}};
+                 {"blas", run.blas.description},
+                 {"backend", factor.backend},
+                 {"algorithm", factor.algorithm},
+                 {"ranks", factor.ranks}};
+  if (factor.backend == "petsc")
+    j["solver"].update({{"peak_rss_bytes_per_rank", factor.peak_rss_bytes_per_rank},
+                        {"iterations", factor.iterations},
+                        {"right_hand_sides", factor.right_hand_sides}});
   j["timings_s"] = {{"mesh", run.mesh_s},
                     {"assemble", s.timings.assemble_s},
                     {"analyse", factor.analyse_s},

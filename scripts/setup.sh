@@ -6,7 +6,7 @@ cd "$(dirname "$0")/.."
 
 packages=(g++ cmake make pkg-config
   libeigen3-dev libsuitesparse-dev libopenblas-dev libopenblas0-pthread libtet1.5-dev libvtk9-dev libgtest-dev
-  libtomlplusplus-dev nlohmann-json3-dev libcli11-dev libfftw3-dev libsundials-dev
+  libtomlplusplus-dev nlohmann-json3-dev libcli11-dev libfftw3-dev libsundials-dev libpetsc-real-dev openmpi-bin
   paraview xvfb xauth chromium calculix-ccx)
 missing=()
 for p in "${packages[@]}"; do

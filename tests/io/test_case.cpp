@@ -65,6 +65,19 @@ TEST(CaseFile, SolverTable) {
             std::string::npos);
 }
 
+TEST(CaseFile, SolverBackend) {
+  EXPECT_EQ(parse_case(kTube, "t.toml").solver.backend, SolverBackend::Cholmod);
+  EXPECT_EQ(parse_case(std::string(kTube) + "[solver]\nbackend = \"petsc\"\n", "t.toml").solver.backend,
+            SolverBackend::Petsc);
+  EXPECT_NE(error_of(std::string(kTube) + "[solver]\nbackend = \"mumps\"\n")
+                .find("solver.backend = 'mumps'; expected one of \"cholmod\", \"petsc\""),
+            std::string::npos)
+      << error_of(std::string(kTube) + "[solver]\nbackend = \"mumps\"\n");
+  const std::string e = error_of(std::string(kTube) + "[solver]\nmethod = \"fourier\"\nbackend = \"petsc\"\n");
+  EXPECT_EQ(e, "cases/x.toml: solver.backend = \"petsc\" solves the TET10 model; solver.method = \"fourier\" runs in "
+               "one process (use method = \"tet10\", or backend = \"cholmod\")");
+}
+
 TEST(CaseFile, WrongTypeSaysWhatWasExpected) {
   std::string t = kTube;
   t.replace(t.find("30"), 2, "\"thirty\"");

@@ -91,7 +91,6 @@ FemJobResult run_fem_job(const Case& c, const fs::path& out_dir, const FemJobOpt
   const FlexsplineModel model = flexspline_model(c);
   auto system = std::make_shared<const FlexsplineSystem>(assemble_and_factorise(model, mesh));
   job.solution = analyse_flexspline(model, mesh, *system);
-  job.solution.timings.factor = system->factor->stats();  // with the solves' counts and each rank's peak memory
   job.mesh = mesh_ptr;
   job.system = system;
   clock.lap();

@@ -1,6 +1,5 @@
 #include "fem/petsc_solver.hpp"
 
-#include <sys/resource.h>
 
 #include <algorithm>
 #include <cctype>
@@ -18,6 +17,7 @@
 
 #include "common/error.hpp"
 #include "common/progress.hpp"
+#include "common/resources.hpp"
 #include "fem/elasticity.hpp"
 
 namespace sw {
@@ -51,12 +51,6 @@ void check(PetscErrorCode code) {
   while (!message.empty() && (message.back() == '\n' || message.back() == ' ')) message.pop_back();
   std::replace(message.begin(), message.end(), '\n', ' ');
   throw PetscFailure(message);
-}
-
-long peak_rss_bytes() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return u.ru_maxrss * 1024L;
 }
 
 // ---- the session: MPI and PETSc for the process, and rank 0's requests to the others ---------------------------

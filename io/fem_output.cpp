@@ -1,6 +1,5 @@
 #include "io/fem_output.hpp"
 
-#include <sys/resource.h>
 
 #include <cmath>
 #include <cstdio>
@@ -15,12 +14,6 @@
 #include "io/vtu.hpp"
 
 namespace sw {
-
-long peak_rss_bytes() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return u.ru_maxrss * 1024L;
-}
 
 std::string fem_result_json(const Case& c, const TetMesh& mesh, const FlexsplineSolution& s, const RunInfo& run) {
   using nlohmann::json;

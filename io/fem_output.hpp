@@ -6,6 +6,7 @@
 #include <string>
 
 #include "common/params.hpp"
+#include "common/resources.hpp"
 #include "fem/cholmod_factor.hpp"
 #include "fem/flexspline_analysis.hpp"
 #include "mesh/tet_mesh.hpp"
@@ -17,9 +18,6 @@ struct RunInfo {
   long peak_rss_bytes = 0;
   BlasInfo blas;
 };
-
-/// Peak resident set size of this process so far (bytes).
-long peak_rss_bytes();
 
 /// result.json text for the solution.
 std::string fem_result_json(const Case& c, const TetMesh& mesh, const FlexsplineSolution& s, const RunInfo& run);

@@ -32,6 +32,7 @@
 #include "fem/fourier_solver.hpp"
 #include "io/case.hpp"
 #include "io/inp.hpp"
+#include "mesh/flexspline.hpp"
 
 namespace sw::bench {
 namespace {
@@ -85,10 +86,17 @@ struct TorqueAlone {
   std::string ccx_summary;
 };
 
-Figures run_tet10(Case c, double size_m, int layers, TorqueAlone* alone, int ccx_threads) {
+/// A tet10 mesh of the series: size, wall layers, corner levels (-1: the default).
+struct Tet10Mesh {
+  double size_m = 0;
+  int layers = 0, corner_levels = -1;
+};
+
+Figures run_tet10(Case c, const Tet10Mesh& m, TorqueAlone* alone, int ccx_threads) {
   c.solver.method = SolverMethod::Tet10;
-  c.mesh.size_m = size_m;
-  c.mesh.wall_layers = layers;
+  c.mesh.size_m = m.size_m;
+  c.mesh.wall_layers = m.layers;
+  c.mesh.corner_levels = m.corner_levels;
   Stopwatch clock;
   const TetMesh mesh = mesh_for_bench(c);
   Figures f;
@@ -123,7 +131,8 @@ Figures run_tet10(Case c, double size_m, int layers, TorqueAlone* alone, int ccx
     alone->ccx_summary = log.summary;
   }
   char label[64];
-  std::snprintf(label, sizeof label, "tet10 %.3g mm/%d", size_m * 1e3, layers);
+  std::snprintf(label, sizeof label, "tet10 %.3g mm/%d/%d", m.size_m * 1e3, m.layers,
+                corner_levels(c.flexspline, c.mesh));
   f.label = label;
   return f;
 }
@@ -210,7 +219,8 @@ int run(int argc, char** argv) {
   app.add_option("--harmonics", harmonics_list, "harmonic orders N to run (comma-separated); the last is the reference")
       ->capture_default_str();
   app.add_option("--tet10-meshes", tet10_meshes,
-                 "tet10 meshes SIZE_MM/LAYERS,... coarsest first (default: the case's mesh; three: extrapolated)");
+                 "tet10 meshes SIZE_MM/LAYERS[/CORNER_LEVELS],... coarsest first (default: the case's mesh; three: "
+                 "extrapolated, by the ratio of their corner sizes)");
   app.add_flag("--skip-tet10", skip_tet10, "fourier tables only");
   app.add_flag("--ccx", with_ccx, "also CalculiX on the finest tet10 mesh (torque alone)");
   app.add_option("--ccx-threads", ccx_threads, "OMP_NUM_THREADS for ccx")->capture_default_str();
@@ -246,19 +256,20 @@ int run(int argc, char** argv) {
               ref.label.c_str(), ref.phi0, ref.hoop90_outer / 1e6);
 
   if (!skip_tet10) {
-    std::vector<std::pair<double, int>> meshes;
+    std::vector<Tet10Mesh> meshes;
     std::stringstream ss(tet10_meshes);
     std::string item;
     while (std::getline(ss, item, ',')) {
+      Tet10Mesh m;
       double size_mm = 0;
-      int layers = 0;
       char slash = 0;
       std::stringstream is(item);
-      if (!(is >> size_mm >> slash >> layers) || slash != '/')
-        throw InputError("--tet10-meshes: \"" + item + "\"; expected SIZE_MM/LAYERS");
-      meshes.emplace_back(size_mm * 1e-3, layers);
+      if (!(is >> size_mm >> slash >> m.layers) || slash != '/' || ((is >> slash) && (slash != '/' || !(is >> m.corner_levels))))
+        throw InputError("--tet10-meshes: \"" + item + "\"; expected SIZE_MM/LAYERS or SIZE_MM/LAYERS/CORNER_LEVELS");
+      m.size_m = size_mm * 1e-3;
+      meshes.push_back(m);
     }
-    if (meshes.empty()) meshes.emplace_back(c.mesh.size_m, c.mesh.wall_layers);
+    if (meshes.empty()) meshes.push_back({c.mesh.size_m, c.mesh.wall_layers, c.mesh.corner_levels});
     // The fourier run the speed is quoted for: N = 64 on the case's section when it was run, else the largest N.
     const auto it64 = std::find(orders.begin(), orders.end(), 64);
     const Figures& fast = harmonics[it64 != orders.end() ? it64 - orders.begin() : harmonics.size() - 1];
@@ -266,7 +277,7 @@ int run(int argc, char** argv) {
     TorqueAlone alone;
     for (std::size_t i = 0; i < meshes.size(); ++i) {
       const bool last = i + 1 == meshes.size();
-      tet10.push_back(run_tet10(c, meshes[i].first, meshes[i].second, with_ccx && last ? &alone : nullptr, ccx_threads));
+      tet10.push_back(run_tet10(c, meshes[i], with_ccx && last ? &alone : nullptr, ccx_threads));
     }
     print_header("tet10 against the extrapolated fourier values", "nodes");
     for (const auto& t : tet10) {
@@ -277,7 +288,17 @@ int run(int argc, char** argv) {
                   fast.label.c_str(), fast.seconds, t.seconds / fast.seconds);
     }
     if (tet10.size() == 3) {
-      const double r = meshes[1].first / meshes[2].first;
+      // The refinement ratio: of the sizes, or of the corner sizes when only the corner levels change (the
+      // singular corners then dominate the error).
+      auto levels = [&](const Tet10Mesh& m) {
+        Case ci = c;
+        ci.mesh.size_m = m.size_m;
+        ci.mesh.wall_layers = m.layers;
+        ci.mesh.corner_levels = m.corner_levels;
+        return corner_levels(ci.flexspline, ci.mesh);
+      };
+      const double r = meshes[1].size_m != meshes[2].size_m ? meshes[1].size_m / meshes[2].size_m
+                                                          : std::ldexp(1.0, levels(meshes[2]) - levels(meshes[1]));
       const Figures t = extrapolate(tet10, r, "tet10 extrapolated");
       if (std::isnan(richardson(tet10[0].phi0, tet10[1].phi0, tet10[2].phi0, r).order))
         std::printf("  tet10 phi0 not monotone over these meshes: no extrapolation\n");

@@ -93,6 +93,11 @@ struct LoadParams {
 struct MeshParams {
   double size_m = 0.6e-3;    ///< target edge length away from thin walls
   int wall_layers = 2;       ///< minimum TET10 layers through any wall
+  /// Refinement toward a cup's clamp corners (the boss meets the free diaphragm faces; the field is singular there):
+  /// the edge length at the corners is the diaphragm's layer thickness halved this many times, growing away from
+  /// them. -1: each solver's default (TET10: none, mesh/flexspline.hpp; harmonic section: 2 + ceil(log2 layers),
+  /// fem/fourier_section.cpp); 0: none. Both solvers (the TET10 size field, the graded harmonic section).
+  int corner_levels = -1;
   double min_dihedral_deg = 0.0;      ///< TetGen quality switch (0 = TetGen default)
   double max_radius_edge_ratio = 2.0; ///< TetGen -q bound
 };

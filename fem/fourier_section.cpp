@@ -174,7 +174,10 @@ SectionMesh mesh_flexspline_section(const FlexsplineParams& f, const std::option
   // sections). The cells at the junction are split geometrically (halving) toward it, in r in the diaphragm and the
   // boss, in z through every wall's layers (the layers are shared by all walls, so their outermost layers are thin
   // everywhere) and in the boss above the diaphragm. Levels: 2 + log2(layers), so the corner cell shrinks as h².
-  const int levels = cup ? 2 + static_cast<int>(std::ceil(std::log2(static_cast<double>(layers)))) : 0;
+  // mesh.corner_levels overrides the count (mesh/flexspline.hpp: the TET10 size field uses the same key).
+  const int levels = !cup ? 0
+                     : mesh.corner_levels >= 0 ? mesh.corner_levels
+                                               : 2 + static_cast<int>(std::ceil(std::log2(static_cast<double>(layers))));
   const std::vector<double> lay = graded(layers, levels, true, true);
 
   SectionBuilder b;

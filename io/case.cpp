@@ -356,6 +356,7 @@ MeshParams read_mesh(TableReader r) {
   MeshParams m;
   m.size_m = r.positive("size_mm", m.size_m / kMm) * kMm;
   m.wall_layers = r.integer("wall_layers", m.wall_layers, 1);
+  m.corner_levels = r.integer("corner_levels", m.corner_levels, -1);  // the upper bound: mesh/flexspline.cpp
   m.max_radius_edge_ratio = r.number("max_radius_edge_ratio", m.max_radius_edge_ratio);
   if (!(m.max_radius_edge_ratio >= 1.1)) r.fail_value("max_radius_edge_ratio", m.max_radius_edge_ratio, "must be >= 1.1");
   m.min_dihedral_deg = r.number("min_dihedral_deg", m.min_dihedral_deg);
@@ -656,6 +657,7 @@ std::string describe_case(const Case& c) {
     s << "[circular_spline]\nouter_radius_mm = " << mm(c.circular_spline->outer_radius_m)
       << "\nwidth_mm = " << mm(c.circular_spline->width_m) << "\n";
   s << "[mesh]\nsize_mm = " << mm(c.mesh.size_m) << "\nwall_layers = " << c.mesh.wall_layers
+    << "\ncorner_levels = " << c.mesh.corner_levels
     << "\nmax_radius_edge_ratio = " << c.mesh.max_radius_edge_ratio << "\nmin_dihedral_deg = "
     << c.mesh.min_dihedral_deg << "\n";
   s << "[solver]\nmethod = \"" << (c.solver.method == SolverMethod::Fourier ? "fourier" : "tet10") << "\"\n";

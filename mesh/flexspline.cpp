@@ -178,6 +178,26 @@ void add_toothed_prism(RevolvedPlc& revolved, std::vector<ProfileSurface>& surfa
 
 }  // namespace
 
+int corner_levels(const FlexsplineParams& f, const MeshParams& mesh) {
+  if (mesh.corner_levels > kMaxCornerLevels)
+    throw InputError("mesh.corner_levels = " + std::to_string(mesh.corner_levels) + "; must be <= " +
+                     std::to_string(kMaxCornerLevels) + " (-1: the default grading, 0: none)");
+  if (f.shape != FlexsplineShape::Cup) return 0;
+  return std::max(mesh.corner_levels, 0);
+}
+
+ProfileSizeField corner_size_field(const FlexsplineParams& f, const MeshParams& mesh) {
+  ProfileSizeField field;
+  const int levels = corner_levels(f, mesh);
+  if (levels == 0) return field;
+  const double td = f.diaphragm_thickness_m, rb = f.boss_radius_m;
+  field.points = {Eigen::Vector2d(rb, 0.0), Eigen::Vector2d(rb, td)};
+  field.size_m = std::ldexp(wall_size(td, mesh).across_m, -levels);
+  field.growth = kCornerGrowth;
+  field.max_aspect = kCornerAspect;
+  return field;
+}
+
 double rim_outer_radius(const FlexsplineParams& f, const std::optional<GearParams>& gear) {
   const double root = f.inner_radius_m + f.rim_thickness_m;
   if (f.teeth == TeethModel::None) return root;
@@ -189,6 +209,7 @@ double rim_outer_radius(const FlexsplineParams& f, const std::optional<GearParam
 
 void validate_flexspline(const FlexsplineParams& f, const std::optional<GearParams>& gear, const MeshParams& mesh) {
   wall_size(f.wall_thickness_m, mesh);  // mesh.size_mm > 0, mesh.wall_layers >= 1
+  corner_levels(f, mesh);               // mesh.corner_levels <= kMaxCornerLevels
   if (!(f.inner_radius_m > 0)) reject("inner_radius_mm", f.inner_radius_m, "must be > 0");
   if (!(f.wall_thickness_m > 0)) reject("wall_thickness_mm", f.wall_thickness_m, "must be > 0");
   if (!(f.length_m > 0)) reject("length_mm", f.length_m, "must be > 0");
@@ -316,6 +337,7 @@ TetMesh mesh_flexspline(const FlexsplineParams& f, const std::optional<GearParam
     b.line(V2(0, 0), V2(rb, 0), kSurfaceClamped, sboss);
     b.line(V2(0, hb), V2(0, 0), kSurfaceOther, sboss);  // the axis: sweeps nothing
     b.region(0.5 * rb, 0.5 * hb, 3, sboss);
+    b.p.refine = corner_size_field(f, mesh);
   }
   // TetGen's node budget: as many added points as the estimate's TET10 nodes, about 7× the corner points expected
   // (the estimate is within a few per cent on the cases), so only a refinement that runs away is stopped.

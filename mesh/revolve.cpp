@@ -26,6 +26,40 @@ Eigen::Vector2d closest_profile_point(const ProfileSurface& s, const Eigen::Vect
   return n > 0.0 ? Eigen::Vector2d(s.centre + v * (s.radius / n)) : Eigen::Vector2d(s.centre + Eigen::Vector2d(s.radius, 0));
 }
 
+// Interior split parameters t (0 < t < 1, increasing) of the edge qa..qb: sub-segments no longer than `size`, graded
+// by the size field where it asks for less. Without refinement on the edge, n equal parts (n = ceil(length / size)).
+// With it, the parameters equidistribute ∫ ds / h(s) (sampled finely: h is piecewise smooth and the edges are short
+// against its scale away from the points), rounded up to a whole number of parts.
+std::vector<double> split_parameters(const Eigen::Vector2d& qa, const Eigen::Vector2d& qb, double size,
+                                     const ProfileSizeField& field) {
+  const double length = (qb - qa).norm();
+  constexpr int kSamples = 2000;
+  bool graded = false;
+  std::vector<double> density(kSamples + 1);  // length / h at t = k / kSamples
+  for (int k = 0; k <= kSamples; ++k) {
+    const double h = field.at(qa + (qb - qa) * (static_cast<double>(k) / kSamples), size);
+    graded = graded || h < size * (1 - 1e-9);
+    density[k] = length / h;
+  }
+  std::vector<double> t;
+  if (!graded) {
+    const int n = std::max(1, static_cast<int>(std::ceil(length / size - 1e-9)));
+    for (int i = 1; i < n; ++i) t.push_back(static_cast<double>(i) / n);
+    return t;
+  }
+  std::vector<double> cumulative(kSamples + 1, 0.0);  // trapezoidal ∫ density dt
+  for (int k = 1; k <= kSamples; ++k) cumulative[k] = cumulative[k - 1] + 0.5 * (density[k - 1] + density[k]) / kSamples;
+  const int n = std::max(1, static_cast<int>(std::ceil(cumulative.back() - 1e-9)));
+  int k = 0;
+  for (int i = 1; i < n; ++i) {
+    const double target = cumulative.back() * i / n;
+    while (cumulative[k + 1] < target) ++k;
+    const double f = (target - cumulative[k]) / (cumulative[k + 1] - cumulative[k]);
+    t.push_back((k + f) / kSamples);
+  }
+  return t;
+}
+
 // Union-find over profile vertices.
 int find_root(std::vector<int>& parent, int i) {
   while (parent[i] != i) i = parent[i] = parent[parent[i]];
@@ -33,6 +67,12 @@ int find_root(std::vector<int>& parent, int i) {
 }
 
 }  // namespace
+
+double ProfileSizeField::at(const Eigen::Vector2d& p, double edge_size_m) const {
+  double h = edge_size_m;
+  for (const auto& q : points) h = std::min(h, size_m + growth * (p - q).norm());
+  return h;
+}
 
 Eigen::Vector3d project_to_surface(const ProfileSurface& s, const Eigen::Vector3d& p) {
   if (s.kind == ProfileSurface::Kind::Fixed) return p;
@@ -185,12 +225,13 @@ RevolvedPlc revolve_profile(const RevolvedProfile& profile) {
     for (std::size_t k = 0; k + 1 < stops.size(); ++k) {
       const int a = stops[k].second, b = stops[k + 1].second;
       const Eigen::Vector2d qa = V[a], qb = V[b];
-      const int n = std::max(1, static_cast<int>(std::ceil((qb - qa).norm() / size - 1e-9)));
+      const std::vector<double> cuts = split_parameters(qa, qb, size, profile.refine);
+      const int n = static_cast<int>(cuts.size()) + 1;
       int prev = a;
       for (int i = 1; i <= n; ++i) {
         int next = b;
         if (i < n) {
-          Eigen::Vector2d q = qa + (qb - qa) * (static_cast<double>(i) / n);
+          Eigen::Vector2d q = qa + (qb - qa) * cuts[i - 1];
           if (profile.surfaces[E.surface].kind == ProfileSurface::Kind::Circle)
             q = closest_profile_point(profile.surfaces[E.surface], q);
           verts.push_back(q);
@@ -215,11 +256,13 @@ RevolvedPlc revolve_profile(const RevolvedProfile& profile) {
     const int n = static_cast<int>(std::ceil(2.0 * kPi * r / size - 1e-9));
     return std::max(8, (n + 7) / 8 * 8);
   };
+  const ProfileSizeField& field = profile.refine;
   for (const auto& s : segs)
     for (int v : {s.a, s.b})
       if (!on_axis(v)) {
         const int g = find_root(parent, v);
-        group_n[g] = std::max(group_n[g], ring_count(verts[v].x(), s.size));
+        const double angular = std::min(s.size, std::max(1.0, field.max_aspect) * field.at(verts[v], s.size));
+        group_n[g] = std::max(group_n[g], ring_count(verts[v].x(), angular));
       }
 
   // 3. Points: a ring of N points per off-axis vertex (angle 2 pi k / N), one point per axis vertex.

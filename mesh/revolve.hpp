@@ -37,6 +37,20 @@ struct ProfileRegion {
   double size_m = 1e-3;
 };
 
+/// A local size field on the profile, graded toward singular points (r, z) such as a clamp's corner: the target edge
+/// length at p is size_m + growth · |p − point| (the smallest over the points), never more than an edge's own size.
+/// Edges are split by it (graded sub-segments) and rings take their angular counts from max_aspect times it: the
+/// fields at such a ring corner vary with (r, z) far faster than around the axis, so the angular spacing may exceed
+/// the profile spacing there. Empty points: no local refinement.
+struct ProfileSizeField {
+  std::vector<Eigen::Vector2d> points;  ///< (r, z), metres
+  double size_m = 0.0;                  ///< edge length at the points
+  double growth = 0.5;                  ///< increase of the edge length per unit distance from them
+  double max_aspect = 1.0;              ///< angular spacing / profile spacing allowed near the points (>= 1)
+  /// Target length at p given the edge's own size (m).
+  double at(const Eigen::Vector2d& p, double edge_size_m) const;
+};
+
 /// Closed profile (edges may separate regions). Vertices with r = 0 lie on the axis; edges along the axis are
 /// allowed (they sweep nothing). Each edge's target length is the smallest size of the regions it touches,
 /// given per edge here.
@@ -46,6 +60,7 @@ struct RevolvedProfile {
   std::vector<double> edge_size_m;        ///< per edge: target sub-segment length
   std::vector<ProfileSurface> surfaces;
   std::vector<ProfileRegion> regions;
+  ProfileSizeField refine;                ///< local refinement (none by default)
 };
 
 /// Closest point on the surface of revolution to p (x, y, z in metres): the profile point nearest to (r, z) at the

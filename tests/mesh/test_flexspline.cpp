@@ -11,7 +11,9 @@
 
 #include "common/error.hpp"
 #include "gear/tooth_profile.hpp"
+#include "mesh/estimate.hpp"
 #include "mesh/flexspline.hpp"
+#include "mesh/shapes.hpp"
 #include "mesh/tetgen_mesh.hpp"
 
 namespace sw {
@@ -281,6 +283,58 @@ TEST(MeshFlexsplineExplicitTeeth, RootCircleInsideTheBodyWallIsRejected) {
   f.rim_thickness_m = 0.8e-3;  // root circle 0.1575 mm inside the rim's outer radius: the teeth do not fit
   EXPECT_THROW(mesh_flexspline(f, GearParams{}, coarse()), InputError);
   EXPECT_THROW(mesh_flexspline(f, std::nullopt, coarse()), InputError);
+}
+
+// The size field toward the clamp corners: the edge length at the corners is the diaphragm's layer / 2^levels (an
+// edge of the graded profile is at most that long where it starts at the corner; 1.5x allows for the split rounding
+// up to whole sub-segments), the geometry is the uniform mesh's (the refinement only moves where nodes are), the node
+// count is the estimate's (calibrated at 0.6 mm / 2 layers; 15 % here at 1 mm / 1 layer) and the tets stay usable.
+TEST(MeshFlexsplineCornerRefinement, GradesTowardTheClampCornersWithinTheEstimate) {
+  const FlexsplineParams f = seed_cup();
+  const GearParams g;
+  MeshParams mp = coarse();
+  const TetMesh uniform = mesh_flexspline(f, g, mp);
+  mp.corner_levels = 3;
+  const double corner_edge = std::ldexp(wall_size(f.diaphragm_thickness_m, mp).across_m, -3);
+  const ProfileSizeField field = corner_size_field(f, mp);
+  ASSERT_EQ(field.points.size(), 2u);
+  EXPECT_DOUBLE_EQ(field.size_m, corner_edge);
+  EXPECT_DOUBLE_EQ(field.at(field.points[1], 1e-3), corner_edge);
+  EXPECT_NEAR(field.at(field.points[1] + Eigen::Vector2d(0.1e-3, 0), 1e-3), corner_edge + kCornerGrowth * 0.1e-3, 1e-15);
+  EXPECT_DOUBLE_EQ(field.at(field.points[1] + Eigen::Vector2d(5e-3, 0), 1e-3), 1e-3);  // never above the edge's size
+
+  const TetMesh m = mesh_flexspline(f, g, mp);
+  EXPECT_NEAR(mesh_volume(m) / mesh_volume(uniform), 1.0, 1e-4);
+  // Shortest edge at each corner ring (nodes within a tenth of the corner edge of it, in (r, z)).
+  for (const Eigen::Vector2d& corner : field.points) {
+    auto rz = [&](int v) { return Eigen::Vector2d(std::hypot(m.nodes(v, 0), m.nodes(v, 1)), m.nodes(v, 2)); };
+    double shortest = 1.0;
+    for (const auto& t : m.tets)
+      for (const auto& e : kTetEdges) {
+        const int a = t[e[0]], b = t[e[1]];
+        if ((rz(a) - corner).norm() < 0.1 * corner_edge || (rz(b) - corner).norm() < 0.1 * corner_edge)
+          shortest = std::min(shortest, (m.nodes.row(a) - m.nodes.row(b)).norm());
+      }
+    EXPECT_LT(shortest, 1.5 * corner_edge);
+    EXPECT_GT(shortest, 0.25 * corner_edge);
+  }
+  const double estimate = estimate_model_size(f, g, mp).nodes;
+  std::printf("seed cup 1 mm / 1 layer: %zu nodes uniform, %zu at corner_levels 3 (estimate %.0f), min dihedral %.2f\n",
+              uniform.n_nodes(), m.n_nodes(), estimate, m.quality.min_dihedral_deg);
+  EXPECT_GT(m.n_nodes(), uniform.n_nodes());
+  EXPECT_NEAR(static_cast<double>(m.n_nodes()) / estimate, 1.0, 0.15);
+  EXPECT_GT(m.quality.min_dihedral_deg, 1.0);
+}
+
+TEST(MeshFlexsplineCornerRefinement, TooManyLevelsAreRejectedWithTheKey) {
+  MeshParams mp = coarse();
+  mp.corner_levels = kMaxCornerLevels + 1;
+  try {
+    mesh_flexspline(seed_cup(), GearParams{}, mp);
+    FAIL() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("mesh.corner_levels = 9; must be <= 8"), std::string::npos) << e.what();
+  }
 }
 
 // The seed case (module 0.2, 190 teeth, 0.6 mm wall) with explicit teeth at its default mesh: within the node budget

@@ -93,9 +93,14 @@ ContactAnalysis run_contact_job(const Case& c, const FemJobResult& fem, const st
   }
   std::printf("  lost motion (twist between ±4 %% of rated, middle line) %.3f arcmin; play (dead band at zero torque) "
               "%.3f arcmin\n", a.lost_motion_rad * kArcmin, a.play_rad * kArcmin);
-  std::printf("  twist at rated: engagement %.1f %%, body %.1f %%, teeth %.1f %%, generator bearing %.1f %%, circular "
-              "spline %.1f %%\n", 100 * a.split.engagement, 100 * a.split.body, 100 * a.split.teeth,
-              100 * a.split.generator, 100 * a.split.circular_spline);
+  // The split reads the tangent at rated torque: its intercept is what the pairs' engagement adds (play taken up,
+  // pairs closing one after another); it is negative when the curve softens toward rated torque (the tangent's slope
+  // in twist per torque above the secant's), and then says so instead of naming a negative engagement.
+  std::printf("  twist at rated, along the tangent there: body %.1f %%, teeth %.1f %%, generator bearing %.1f %%, "
+              "circular spline %.1f %%; the tangent's intercept %.1f %% (%s)\n", 100 * a.split.body,
+              100 * a.split.teeth, 100 * a.split.generator, 100 * a.split.circular_spline, 100 * a.split.engagement,
+              a.split.engagement >= 0 ? "engagement: play taken up and pairs closing one after another"
+                                      : "below the origin: the curve softens toward rated torque");
   if (!a.edges.empty()) {
     // The zone's edge: the loaded edge tooth with the least radial overlap left, the free one that comes closest.
     const EdgeTooth* held = nullptr;

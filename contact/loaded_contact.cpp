@@ -117,15 +117,18 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
     const double phi = tooth_material_angle(g, k, opt.wg_angle_rad);
     if (out.half_turn_pairs && !(phi > -kPi / 2 && phi <= kPi / 2)) continue;
     const PairClearance& pc = rest[k];
-    // Beyond the circular spline's tip circle a tooth cannot be turned into contact, but the rim moves radially under
-    // load and the zones widen: the free teeth within two pitches of an edge take part, with the distance of the
-    // closest points (tip corner to tip corner) as their gap, to first order.
+    // The rim moves radially under load and the zones widen: the free teeth within two pitches of an edge take part.
+    // Their gap is the exact rigid turn that closes the flank, as for the engaged teeth, and not the distance of the
+    // closest points: near an edge those are the two tip corners, and a turn of the rim carries the tooth along the
+    // wave, down past the other corner (seed: 3.7 µm apart, but a turn of 5.3e-3 rad to close, not 2.3e-4), so the
+    // distance would let a turn close a flank that it cannot, and the gap would jump by 20× where the tooth crosses
+    // the tip circle.
     if (!pc.engaged && !near_edge(k, 2)) continue;
     const ToothPlacement place = place_tooth(curve, phi, 0.0);
     for (const Flank side : {Flank::Ccw, Flank::Cw}) {
       const FlankClearance& fc = side == Flank::Ccw ? pc.ccw : pc.cw;
       if (side == Flank::Ccw ? !(fc.lever_arm_m > 0) : !(fc.lever_arm_m < 0)) continue;
-      const double delta = pc.engaged ? closing_angle_rad(model, phi, 0.0, side) : fc.clearance_m / std::abs(fc.lever_arm_m);
+      const double delta = closing_angle_rad(model, phi, 0.0, side);
       if (!std::isfinite(delta) || (pc.engaged && delta > first_closing[side == Flank::Cw] + reach)) continue;
       FlankContact f;
       f.tooth = k;

@@ -93,8 +93,8 @@ struct FlankContact {
   double contact_radius_c_m = 0;  ///< on the circular spline's tooth
   double compliance_m_per_N = 0;  ///< the tooth pair's own (series)
   ToothPart part_f = ToothPart::Flank, part_c = ToothPart::Flank;  ///< where the teeth touch (flank, tip corner)
-  /// Free at rest (the flexspline's tip short of the circular spline's tip circle, near a zone's edge): its gap is the
-  /// distance of the closest points to first order, closing_angle_rad that distance over the lever.
+  /// Free at rest (the flexspline's tip short of the circular spline's tip circle, near a zone's edge); its gap is its
+  /// exact closing turn like every other flank's.
   bool beyond_tip_circle = false;
 };
 

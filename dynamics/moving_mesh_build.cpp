@@ -21,8 +21,8 @@ constexpr double kPi = std::numbers::pi;
 /// The backlash module's view of one flank: gap |ℓ|·δ at zero deflection, signed lever ℓ, contact radius on the
 /// flexspline tooth and on the circular spline's; false where it cannot close (out of the zone and more than two
 /// pitches from its edge, never closing, or closing the other way), exactly the selection of
-/// contact/loaded_contact.cpp: within two pitches of an edge a free tooth takes part with the distance of the closest
-/// points as its gap, to first order.
+/// contact/loaded_contact.cpp: within two pitches of an edge a free tooth takes part, with its exact closing turn as
+/// its gap like every other tooth.
 struct FlankGeometry {
   const BacklashModel& model;
   const NeutralCurve& curve;
@@ -42,7 +42,7 @@ struct FlankGeometry {
     const Flank f = side == 0 ? Flank::Ccw : Flank::Cw;
     const FlankClearance& fc = side == 0 ? pc.ccw : pc.cw;
     if (side == 0 ? !(fc.lever_arm_m > 0) : !(fc.lever_arm_m < 0)) return false;
-    const double delta = pc.engaged ? closing_angle_rad(model, phi, 0.0, f) : fc.clearance_m / std::abs(fc.lever_arm_m);
+    const double delta = closing_angle_rad(model, phi, 0.0, f);
     if (!std::isfinite(delta)) return false;
     const ToothPlacement place = place_tooth(curve, phi, 0.0);
     radius = (Eigen::Rotation2Dd(-place.angle_rad) * (fc.point_f - place.offset_m)).norm();

@@ -80,6 +80,7 @@ void mesh_instant(const MovingMesh& m, double sigma, MeshInstant& out) {
   const int shift = static_cast<int>(std::fmod(turns, period) + period) % period;  // teeth renamed by whole pitches
   std::vector<TableValue> values;
   std::vector<int> rows, cols_next;  // coupled: flank rows in phase s and in the next phase
+  std::vector<int> kept;             // coupled: their places among phase s's continuing flanks
   auto add = [&](int tooth, int side, double phi) {
     TableValue v;
     if (!lookup(m.table, side, wrap_phi(phi, m.teeth_per_unknown), v)) return false;
@@ -100,11 +101,12 @@ void mesh_instant(const MovingMesh& m, double sigma, MeshInstant& out) {
     s1 = (s + 1) % S;
     a = (r - m.phases[s].shift_rad) / h;
     const MeshPhase& ph = m.phases[s];
-    for (std::size_t i = 0; i < ph.key.size(); ++i) {
-      if (ph.next[i] < 0) continue;
+    for (std::size_t c = 0; c < ph.continuing.size(); ++c) {
+      const int i = ph.continuing[c];
       if (add((ph.key[i] + shift) % period, ph.side[i], ph.phi_rad[i] - (r - ph.shift_rad))) {
-        rows.push_back(static_cast<int>(i));
+        rows.push_back(i);
         cols_next.push_back(ph.next[i]);
+        kept.push_back(static_cast<int>(c));
       }
     }
   }
@@ -131,24 +133,45 @@ void mesh_instant(const MovingMesh& m, double sigma, MeshInstant& out) {
   }
   const MeshPhase& P0 = m.phases[s];
   const MeshPhase& P1 = m.phases[s1];
-  const int nb = static_cast<int>(m.station_q.size());
-  const int n0 = static_cast<int>(P0.key.size()), n1 = static_cast<int>(P1.key.size());
   const double h = p / m.phases.size();
-  auto i0 = [&](int k) { return k < nf ? rows[k] : n0 + (k - nf); };
-  auto i1 = [&](int k) { return k < nf ? cols_next[k] : n1 + (k - nf); };
-  const int n = nf + nb;
-  out.A.resize(n, n);
-  out.dA.resize(n, n);
-  for (int c = 0; c < n; ++c)
-    for (int rr = 0; rr < n; ++rr) {
-      const double x0 = P0.A_body(i0(rr), i0(c)), x1 = P1.A_body(i1(rr), i1(c));
-      out.A(rr, c) = (1 - a) * x0 + a * x1;
-      out.dA(rr, c) = (x1 - x0) / h;
-    }
+  const double da = r - P0.shift_rad;
+  const auto nc = static_cast<int>(P0.continuing.size());
+  if (nf == nc) {  // every continuing flank is on the table here: the whole gathered block
+    out.A = P0.A_start + da * P0.A_slope;
+    out.dA = P0.A_slope;
+  } else {
+    const int nb = static_cast<int>(m.station_q.size());
+    std::vector<int> idx(kept);
+    for (int j = 0; j < nb; ++j) idx.push_back(nc + j);
+    out.A = P0.A_start(idx, idx) + da * P0.A_slope(idx, idx);
+    out.dA = P0.A_slope(idx, idx);
+  }
   for (int k = 0; k < nf; ++k) {
     const double c0 = P0.q_correction[rows[k]], c1 = P1.q_correction[cols_next[k]];
     out.q[k] += (1 - a) * c0 + a * c1;
     out.dq[k] += (c1 - c0) / h;
+  }
+}
+
+void prepare_intervals(MovingMesh& m) {
+  const int S = static_cast<int>(m.phases.size());
+  const int nb = static_cast<int>(m.station_q.size());
+  const double h = m.pitch_rad / S;
+  for (int s = 0; s < S; ++s) {
+    MeshPhase& P0 = m.phases[s];
+    const MeshPhase& P1 = m.phases[(s + 1) % S];
+    P0.continuing.clear();
+    for (std::size_t i = 0; i < P0.key.size(); ++i)
+      if (P0.next[i] >= 0) P0.continuing.push_back(static_cast<int>(i));
+    const int n0 = static_cast<int>(P0.key.size()), n1 = static_cast<int>(P1.key.size());
+    std::vector<int> i0(P0.continuing), i1;
+    for (int i : P0.continuing) i1.push_back(P0.next[i]);
+    for (int j = 0; j < nb; ++j) {
+      i0.push_back(n0 + j);
+      i1.push_back(n1 + j);
+    }
+    P0.A_start = P0.A_body(i0, i0);
+    P0.A_slope = (P1.A_body(i1, i1) - P0.A_start) / h;
   }
 }
 

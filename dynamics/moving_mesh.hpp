@@ -39,6 +39,11 @@ struct MeshPhase {
   std::vector<int> next;         ///< per flank: the same flank's index in the next phase (−1: not there)
   Eigen::MatrixXd A_body;        ///< body compliance (m/N, series parts excluded), flanks then stations
   Eigen::VectorXd q_correction;  ///< per flank: the problem's gap minus the table's (the generator's own state)
+  /// Over [shift_rad, the next phase's shift): the body compliance of the flanks that go on into the next phase
+  /// (`continuing`, indices into key) and the stations, at shift_rad and its slope in σ (m/N per rad). Gathered once
+  /// by prepare_intervals() so that every instant interpolates contiguous memory.
+  std::vector<int> continuing;
+  Eigen::MatrixXd A_start, A_slope;
 };
 
 struct MovingMesh {
@@ -67,6 +72,9 @@ struct MeshInstant {
 FlankTable make_flank_table(double phi_start_rad, double phi_end_rad, double step_rad, int teeth_per_unknown,
                             const std::function<bool(double, int, double&, double&, double&, double&)>& flank,
                             const std::function<double(double, double)>& tooth_compliance_m_per_N);
+
+/// Fills every phase's continuing flanks, A_start and A_slope from the phases' A_body and next (a coupled mesh).
+void prepare_intervals(MovingMesh& m);
 
 /// The problem at σ (rad). Fills `out` (reused between calls).
 void mesh_instant(const MovingMesh& m, double sigma_rad, MeshInstant& out);

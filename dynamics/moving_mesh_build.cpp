@@ -142,6 +142,7 @@ MovingMesh fem_coupled_mesh(const Case& c, const TetMesh& mesh, const Flexspline
       ph.next.push_back(it == where.end() ? -1 : it->second);
     }
   }
+  prepare_intervals(m);
   m.source = "moving pairs coupled through the rim (loaded-contact body compliance at " + std::to_string(phases) +
              " phases per pitch, interpolated; clearances on the FEM's neutral curve every pitch/" +
              std::to_string(phases * table_per_phase) + ")";

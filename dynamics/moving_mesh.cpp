@@ -26,22 +26,42 @@ struct TableValue {
   double q, dq_dphi, lambda, dlambda_dphi, compliance, dcompliance_dphi;
 };
 
-/// Linear interpolation of the table; false where the flank cannot close on either grid angle.
+/// Slope of a tabulated function at grid point j, monotone (Fritsch–Butland, as PCHIP): the harmonic mean of the two
+/// neighbouring secants where they agree in sign, zero at a local extremum, the one-sided secant at a validity edge.
+/// A monotone slope never overshoots the data (Catmull–Rom's central difference did at the kinks of q, where the
+/// contact moves from the circular spline's flank to its tip corner, and put a line at 8·f_m into the spectrum).
+double node_slope(const std::vector<double>& y, int j, double h) {
+  const bool lo = j > 0 && !std::isnan(y[j - 1]);
+  const bool hi = j + 1 < static_cast<int>(y.size()) && !std::isnan(y[j + 1]);
+  if (lo && hi) {
+    const double d0 = (y[j] - y[j - 1]) / h, d1 = (y[j + 1] - y[j]) / h;
+    return d0 * d1 > 0 ? 2 * d0 * d1 / (d0 + d1) : 0.0;
+  }
+  if (hi) return (y[j + 1] - y[j]) / h;
+  if (lo) return (y[j] - y[j - 1]) / h;
+  return 0.0;
+}
+
+/// Cubic Hermite interpolation on [j, j + 1] at fraction a with the node slopes above: value and
+/// derivative in φ, continuous across grid points. A linear interpolation kinks every flank at every grid point, all
+/// teeth at once (they sit one pitch apart on a grid of pitch/n), and each kink cut the integrator's step.
+void hermite(const std::vector<double>& y, int j, double a, double h, double& value, double& slope) {
+  const double m0 = node_slope(y, j, h) * h, m1 = node_slope(y, j + 1, h) * h;
+  const double a2 = a * a, a3 = a2 * a;
+  value = (2 * a3 - 3 * a2 + 1) * y[j] + (a3 - 2 * a2 + a) * m0 + (-2 * a3 + 3 * a2) * y[j + 1] + (a3 - a2) * m1;
+  slope = ((6 * a2 - 6 * a) * y[j] + (3 * a2 - 4 * a + 1) * m0 + (-6 * a2 + 6 * a) * y[j + 1] + (3 * a2 - 2 * a) * m1) / h;
+}
+
+/// The table at φ; false where the flank cannot close on either grid angle.
 bool lookup(const FlankTable& t, int side, double phi, TableValue& v) {
   const double u = (phi - t.phi_start_rad) / t.step_rad;
   const int j = static_cast<int>(std::floor(u));
   if (j < 0 || j + 1 >= t.size()) return false;
   const double a = u - j;
-  const auto& q = t.q_m[side];
-  const auto& l = t.lambda_m[side];
-  const auto& c = t.compliance_m_per_N[side];
-  if (std::isnan(q[j]) || std::isnan(q[j + 1])) return false;
-  v.q = (1 - a) * q[j] + a * q[j + 1];
-  v.dq_dphi = (q[j + 1] - q[j]) / t.step_rad;
-  v.lambda = (1 - a) * l[j] + a * l[j + 1];
-  v.dlambda_dphi = (l[j + 1] - l[j]) / t.step_rad;
-  v.compliance = (1 - a) * c[j] + a * c[j + 1];
-  v.dcompliance_dphi = (c[j + 1] - c[j]) / t.step_rad;
+  if (std::isnan(t.q_m[side][j]) || std::isnan(t.q_m[side][j + 1])) return false;
+  hermite(t.q_m[side], j, a, t.step_rad, v.q, v.dq_dphi);
+  hermite(t.lambda_m[side], j, a, t.step_rad, v.lambda, v.dlambda_dphi);
+  hermite(t.compliance_m_per_N[side], j, a, t.step_rad, v.compliance, v.dcompliance_dphi);
   return true;
 }
 

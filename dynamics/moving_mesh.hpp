@@ -9,7 +9,8 @@
 //   approach is λ_i·e − q_i for a mesh deflection e (contact/README.md's g = q − λψ + A·x with ψ = e);
 //   the tooth pair's own compliance c_i (m/N, × teeth per unknown) from gear/tooth_stiffness at the contact radius.
 // These come from a table over φ (the backlash module's exact closing angle and lever arm of both flanks, on the
-// neutral curve the table was built on), sampled every pitch/(phases·table_per_phase) and interpolated linearly.
+// neutral curve the table was built on), sampled every pitch/(phases·table_per_phase) and interpolated by monotone
+// cubic Hermite segments (C¹: no kink at the grid points, which all teeth cross at once).
 //
 // Coupling through the rim (optional): the loaded-contact problem's body compliance A (flanks and the generator's
 // stations, contact/loaded_contact.hpp's ContactAnalysis::problem) at `phases` generator phases over one tooth pitch.

@@ -116,9 +116,9 @@ ToothedRim toothed_rim(const FlexsplineParams& f, const GearParams& g, const Mes
   const double ri = f.inner_radius_m, ro = ri + f.wall_thickness_m;
   const WallSize wb = wall_size(ro - ri, mesh);
   ToothedRim t;
-  const double t_mid = flexspline_tooth_thickness(g, 0.5 * (r.form_f + r.tip_f));
-  t.tooth_size_m = std::min(mesh.size_m, 0.5 * t_mid);
-  t.axial_size_m = std::min(mesh.size_m, kToothAxialAspect * t.tooth_size_m);
+  const ToothMeshSize size = tooth_mesh_size(g, mesh);
+  t.tooth_size_m = size.across_m;
+  t.axial_size_m = size.axial_m;
   const int per_flank = std::max(3, static_cast<int>(std::ceil((r.tip_f - r.form_f) / t.tooth_size_m - 1e-9)) + 1);
   t.outline = simplify_outline(flexspline_outline(g, per_flank), g.teeth_flexspline, 0.4 * t.tooth_size_m);
   t.layer_radii_m = rim_layer_radii(ri, ro, r.root_f, mesh);
@@ -177,6 +177,15 @@ void add_toothed_prism(RevolvedPlc& revolved, std::vector<ProfileSurface>& surfa
 }
 
 }  // namespace
+
+ToothMeshSize tooth_mesh_size(const GearParams& g, const MeshParams& mesh) {
+  const GearRadii r = gear_radii(g);
+  const double t_mid = flexspline_tooth_thickness(g, 0.5 * (r.form_f + r.tip_f));
+  ToothMeshSize size;
+  size.across_m = std::min(mesh.size_m, 0.5 * t_mid);
+  size.axial_m = std::min(mesh.size_m, kToothAxialAspect * size.across_m);
+  return size;
+}
 
 int corner_levels(const FlexsplineParams& f, const MeshParams& mesh) {
   if (mesh.corner_levels > kMaxCornerLevels)

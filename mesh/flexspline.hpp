@@ -72,6 +72,14 @@ int corner_levels(const FlexsplineParams& f, const MeshParams& mesh);
 /// Empty for a tube or corner_levels = 0.
 ProfileSizeField corner_size_field(const FlexsplineParams& f, const MeshParams& mesh);
 
+/// Edge lengths of the explicit teeth's mesh: across a tooth half its thickness at mid height (two quadratic tets
+/// across), along the axis 2.5 times that (the teeth are prisms whose fields vary slowly along it); neither above
+/// mesh.size_m. The model-size estimate counts the teeth with them.
+struct ToothMeshSize {
+  double across_m = 0, axial_m = 0;
+};
+ToothMeshSize tooth_mesh_size(const GearParams& g, const MeshParams& mesh);
+
 /// Meshes the flexspline (see the file comment for the geometry): markers kSurfaceClamped (tube end z = 0, all
 /// boss faces), kSurfaceInner, kSurfaceOuter (body, and the diaphragm's edge r = r_o), kSurfaceRimOuter,
 /// kSurfaceRimStep, kSurfaceOpenEnd, kSurfaceDiaphragm (diaphragm faces and fillet). Each wall (body, rim,

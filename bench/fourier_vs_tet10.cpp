@@ -92,11 +92,17 @@ struct Tet10Mesh {
   int layers = 0, corner_levels = -1;
 };
 
+/// The case's mesh keys with this mesh's size, layers and corner levels.
+MeshParams mesh_params(MeshParams p, const Tet10Mesh& m) {
+  p.size_m = m.size_m;
+  p.wall_layers = m.layers;
+  p.corner_levels = m.corner_levels;
+  return p;
+}
+
 Figures run_tet10(Case c, const Tet10Mesh& m, TorqueAlone* alone, int ccx_threads) {
   c.solver.method = SolverMethod::Tet10;
-  c.mesh.size_m = m.size_m;
-  c.mesh.wall_layers = m.layers;
-  c.mesh.corner_levels = m.corner_levels;
+  c.mesh = mesh_params(c.mesh, m);
   Stopwatch clock;
   const TetMesh mesh = mesh_for_bench(c);
   Figures f;
@@ -290,13 +296,7 @@ int run(int argc, char** argv) {
     if (tet10.size() == 3) {
       // The refinement ratio: of the sizes, or of the corner sizes when only the corner levels change (the
       // singular corners then dominate the error).
-      auto levels = [&](const Tet10Mesh& m) {
-        Case ci = c;
-        ci.mesh.size_m = m.size_m;
-        ci.mesh.wall_layers = m.layers;
-        ci.mesh.corner_levels = m.corner_levels;
-        return corner_levels(ci.flexspline, ci.mesh);
-      };
+      auto levels = [&](const Tet10Mesh& m) { return corner_levels(c.flexspline, mesh_params(c.mesh, m)); };
       const double r = meshes[1].size_m != meshes[2].size_m ? meshes[1].size_m / meshes[2].size_m
                                                           : std::ldexp(1.0, levels(meshes[2]) - levels(meshes[1]));
       const Figures t = extrapolate(tet10, r, "tet10 extrapolated");

@@ -99,8 +99,7 @@ void mesh_instant(const MovingMesh& m, double sigma, MeshInstant& out) {
   const double r = sigma - turns * p;
   const int shift = static_cast<int>(std::fmod(turns, period) + period) % period;  // teeth renamed by whole pitches
   std::vector<TableValue> values;
-  std::vector<int> rows, cols_next;  // coupled: flank rows in phase s and in the next phase
-  std::vector<int> kept;             // coupled: their places among phase s's continuing flanks
+  std::vector<int> kept;  // coupled: the flanks' places among phase s's continuing flanks
   auto add = [&](int tooth, int side, double phi) {
     TableValue v;
     if (!lookup(m.table, side, wrap_phi(phi, m.teeth_per_unknown), v)) return false;
@@ -123,11 +122,8 @@ void mesh_instant(const MovingMesh& m, double sigma, MeshInstant& out) {
     const MeshPhase& ph = m.phases[s];
     for (std::size_t c = 0; c < ph.continuing.size(); ++c) {
       const int i = ph.continuing[c];
-      if (add((ph.key[i] + shift) % period, ph.side[i], ph.phi_rad[i] - (r - ph.shift_rad))) {
-        rows.push_back(i);
-        cols_next.push_back(ph.next[i]);
+      if (add((ph.key[i] + shift) % period, ph.side[i], ph.phi_rad[i] - (r - ph.shift_rad)))
         kept.push_back(static_cast<int>(c));
-      }
     }
   }
   const int nf = static_cast<int>(values.size());
@@ -167,7 +163,8 @@ void mesh_instant(const MovingMesh& m, double sigma, MeshInstant& out) {
     out.dA = P0.A_slope(idx, idx);
   }
   for (int k = 0; k < nf; ++k) {
-    const double c0 = P0.q_correction[rows[k]], c1 = P1.q_correction[cols_next[k]];
+    const int i = P0.continuing[kept[k]];
+    const double c0 = P0.q_correction[i], c1 = P1.q_correction[P0.next[i]];
     out.q[k] += (1 - a) * c0 + a * c1;
     out.dq[k] += (c1 - c0) / h;
   }

@@ -18,9 +18,6 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr int kInterior = -1;  // a block side that is not on the boundary (or lies on the axis)
 
-// Boss cells over mesh.size: every boss face but the diaphragm's is clamped (as in mesh/flexspline.cpp).
-constexpr double kBossSizeFactor = 4.0;
-
 using V2 = Eigen::Vector2d;
 
 /// A structured block: a map of the unit square (u, v) onto the section, nu × nv cells, the region of its

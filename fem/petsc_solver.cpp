@@ -1,6 +1,5 @@
 #include "fem/petsc_solver.hpp"
 
-
 #include <algorithm>
 #include <cctype>
 #include <cstdio>

@@ -1,6 +1,5 @@
 #include "io/fem_output.hpp"
 
-
 #include <cmath>
 #include <cstdio>
 #include <fstream>

@@ -67,7 +67,7 @@ double corner_refinement_nodes(const FlexsplineParams& f, const MeshParams& mesh
   if (field.points.empty()) return 0.0;
   const double td = f.diaphragm_thickness_m, rb = f.boss_radius_m, ri = f.inner_radius_m, hb = 2.0 * td;
   const WallSize wd = wall_size(td, mesh);
-  const double boss = 4.0 * mesh.size_m;  // kBossSizeFactor (mesh/flexspline.cpp)
+  const double boss = kBossSizeFactor * mesh.size_m;
   const double reach = (boss - field.size_m) / field.growth;  // beyond it the field asks for nothing
   const std::vector<double> rs = graded_cells(std::max(0.0, rb - reach), std::min(ri, rb + reach), {rb}, field.size_m, wd.along_m);
   const std::vector<double> zs = graded_cells(0.0, hb, {0.0, td}, field.size_m, wd.across_m);
@@ -108,7 +108,7 @@ ModelSizeEstimate estimate_model_size(const FlexsplineParams& f, const std::opti
   }
   if (cup) {
     n += cells(annulus(f.boss_radius_m, ro, td), td, mesh);
-    const double sboss = 4.0 * mesh.size_m;  // the boss is meshed coarsely (mesh/flexspline.cpp)
+    const double sboss = kBossSizeFactor * mesh.size_m;
     n += annulus(0.0, f.boss_radius_m, 2.0 * td) / (sboss * sboss * sboss);
   }
   const bool plain_tube = !cup && f.teeth == TeethModel::None;

@@ -97,10 +97,6 @@ std::vector<Eigen::Vector2d> simplify_outline(const std::vector<Eigen::Vector2d>
   return out;
 }
 
-// Boss edge length over mesh.size: every boss face is clamped, so its tets carry no strain worth resolving; only the
-// interface with the diaphragm (r = boss_radius) keeps the diaphragm's size.
-constexpr double kBossSizeFactor = 4.0;
-
 // Axial over cross-section edge length on the tooth flanks. The teeth are prisms whose fields vary slowly along the
 // axis, so their tets may be longer axially than the layered walls' (kMaxLayerAspect = 2); 2.5 brings the seed case
 // from ~600k to ~440k nodes with the worst tet set by the shoulder, not by the teeth.

@@ -46,6 +46,11 @@ double rim_outer_radius(const FlexsplineParams& f, const std::optional<GearParam
 /// "flexspline.fillet_radius_mm = 3; must be < inner_radius_mm - boss_radius_mm = 2.4".
 void validate_flexspline(const FlexsplineParams& f, const std::optional<GearParams>& gear, const MeshParams& mesh);
 
+/// Boss edge length over mesh.size: every boss face is clamped, so its tets carry no strain worth resolving; only the
+/// interface with the diaphragm (r = boss_radius) keeps the diaphragm's size. The harmonic section and the model-size
+/// estimate mesh and count the boss with it too.
+inline constexpr double kBossSizeFactor = 4.0;
+
 /// Largest mesh.corner_levels: 2^-8 of a layer is already far below any tooth or fillet a case resolves.
 inline constexpr int kMaxCornerLevels = 8;
 /// Growth of the edge length with the distance from a clamp corner (the size field's slope): 0.5 keeps neighbouring

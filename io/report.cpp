@@ -214,8 +214,11 @@ std::string contact_section(const fs::path& dir) {
   const json& sp = a["compliance_split"];
   t.row("twist at rated, by part", fmt("body %.0f %%", 100 * num(sp, "body")) + fmt(", teeth %.0f %%", 100 * num(sp, "teeth")) +
         fmt(", generator %.0f %%", 100 * num(sp, "generator")) + fmt(", circular spline %.0f %%", 100 * num(sp, "circular_spline")) +
-        fmt(", engagement %.0f %%", 100 * num(sp, "engagement")),
-        "the tangent at rated torque split by energy; its intercept is the engagement (play, pairs engaging)");
+        fmt(", tangent's intercept %.0f %%", 100 * num(sp, "engagement")),
+        num(sp, "engagement") >= 0
+            ? "the tangent at rated torque split by energy; its intercept is the engagement (play, pairs engaging)"
+            : "the tangent at rated torque split by energy; its intercept is below the origin: the curve softens "
+              "toward rated torque");
   t.row("checks", fmt("balance %.1e", num(a, "torque_balance_error_rel")),
         fmt("clamp reaction in a direct FEM solve %.6g N·m", num(a, "fem_reaction_torque_Nm")));
   s << t.html();

@@ -144,36 +144,108 @@ void mesh_instant(const MovingMesh& m, double sigma, MeshInstant& out) {
   }
   if (!m.coupled()) {
     out.A.resize(0, 0);
-    out.dA.resize(0, 0);
+    out.cubic = nullptr;
     return;
   }
   const MeshPhase& P0 = m.phases[s];
   const MeshPhase& P1 = m.phases[s1];
   const double h = p / m.phases.size();
-  const double da = r - P0.shift_rad;
   const auto nc = static_cast<int>(P0.continuing.size());
+  const double a2 = a * a, a3 = a2 * a;
+  const Eigen::MatrixXd* C = P0.A_cubic;
+  out.cubic = C;
+  out.a = a;
+  out.h = h;
+  out.rows.clear();
   if (nf == nc) {  // every continuing flank is on the table here: the whole gathered block
-    out.A = P0.A_start + da * P0.A_slope;
-    out.dA = P0.A_slope;
+    out.A.noalias() = C[0] + a * C[1] + a2 * C[2] + a3 * C[3];
   } else {
     const int nb = static_cast<int>(m.station_q.size());
-    std::vector<int> idx(kept);
-    for (int j = 0; j < nb; ++j) idx.push_back(nc + j);
-    out.A = P0.A_start(idx, idx) + da * P0.A_slope(idx, idx);
-    out.dA = P0.A_slope(idx, idx);
+    out.rows = kept;
+    for (int j = 0; j < nb; ++j) out.rows.push_back(nc + j);
+    const std::vector<int>& idx = out.rows;
+    out.A.resize(idx.size(), idx.size());
+    for (std::size_t c = 0; c < idx.size(); ++c)
+      for (std::size_t r = 0; r < idx.size(); ++r) {
+        const Eigen::Index i = idx[r], j = idx[c];
+        out.A(r, c) = C[0](i, j) + a * C[1](i, j) + a2 * C[2](i, j) + a3 * C[3](i, j);
+      }
   }
   for (int k = 0; k < nf; ++k) {
-    const int i = P0.continuing[kept[k]];
+    const int c = kept[k], i = P0.continuing[c];
     const double c0 = P0.q_correction[i], c1 = P1.q_correction[P0.next[i]];
-    out.q[k] += (1 - a) * c0 + a * c1;
-    out.dq[k] += (c1 - c0) / h;
+    const double m0 = P0.q_slope_start[c] * h, m1 = P0.q_slope_end[c] * h;
+    out.q[k] += (2 * a3 - 3 * a2 + 1) * c0 + (a3 - 2 * a2 + a) * m0 + (-2 * a3 + 3 * a2) * c1 + (a3 - a2) * m1;
+    out.dq[k] += ((6 * a2 - 6 * a) * c0 + (3 * a2 - 4 * a + 1) * m0 + (-6 * a2 + 6 * a) * c1 + (3 * a2 - 2 * a) * m1) / h;
   }
+}
+
+double body_travel_torque_Nm(const MeshInstant& in, const Eigen::VectorXd& x) {
+  if (!in.cubic) return 0.0;
+  const Eigen::MatrixXd* C = in.cubic;
+  const double b2 = 2 * in.a, b3 = 3 * in.a * in.a;
+  std::vector<int> loaded;
+  for (Eigen::Index i = 0; i < x.size(); ++i)
+    if (x[i] != 0.0) loaded.push_back(static_cast<int>(i));
+  double sum = 0.0;
+  for (int c : loaded) {
+    const Eigen::Index j = in.rows.empty() ? c : in.rows[c];
+    double col = 0.0;
+    for (int r : loaded) {
+      const Eigen::Index i = in.rows.empty() ? r : in.rows[r];
+      col += x[r] * (C[1](i, j) + b2 * C[2](i, j) + b3 * C[3](i, j));
+    }
+    sum += x[c] * col;
+  }
+  return 0.5 * sum / in.h;
 }
 
 void prepare_intervals(MovingMesh& m) {
   const int S = static_cast<int>(m.phases.size());
   const int nb = static_cast<int>(m.station_q.size());
   const double h = m.pitch_rad / S;
+  // Each phase's neighbours: a flank's (or station's) index in the previous and in the next phase, −1 where absent.
+  std::vector<std::vector<int>> before(S), after(S);
+  for (int s = 0; s < S; ++s) {
+    const MeshPhase& P = m.phases[s];
+    const MeshPhase& prev = m.phases[(s + S - 1) % S];
+    const MeshPhase& next = m.phases[(s + 1) % S];
+    after[s] = P.next;
+    before[s].assign(P.key.size(), -1);
+    for (std::size_t i = 0; i < prev.next.size(); ++i)
+      if (prev.next[i] >= 0) before[s][prev.next[i]] = static_cast<int>(i);
+    for (int j = 0; j < nb; ++j) {
+      after[s].push_back(static_cast<int>(next.key.size()) + j);
+      before[s].push_back(static_cast<int>(prev.key.size()) + j);
+    }
+  }
+  // The slope in σ at a phase of a value known at the phases: the central difference where the entry is in both
+  // neighbouring phases, one-sided where it is in one, zero where it is in neither. It belongs to the phase, so the two
+  // segments that meet there share it.
+  auto slope = [h](bool lo, bool hi, double down, double here, double up) {
+    return hi && lo ? (up - down) / (2 * h) : hi ? (up - here) / h : lo ? (here - down) / h : 0.0;
+  };
+  std::vector<Eigen::MatrixXd> tangent(S);
+  std::vector<std::vector<double>> q_tangent(S);
+  for (int s = 0; s < S; ++s) {
+    const MeshPhase& P = m.phases[s];
+    const MeshPhase& prev = m.phases[(s + S - 1) % S];
+    const MeshPhase& next = m.phases[(s + 1) % S];
+    const auto n = P.A_body.rows();
+    tangent[s].resize(n, n);
+    for (Eigen::Index c = 0; c < n; ++c)
+      for (Eigen::Index r = 0; r < n; ++r) {
+        const int rl = before[s][r], cl = before[s][c], rh = after[s][r], ch = after[s][c];
+        const bool lo = rl >= 0 && cl >= 0, hi = rh >= 0 && ch >= 0;
+        tangent[s](r, c) = slope(lo, hi, lo ? prev.A_body(rl, cl) : 0.0, P.A_body(r, c), hi ? next.A_body(rh, ch) : 0.0);
+      }
+    q_tangent[s].resize(P.key.size());
+    for (std::size_t i = 0; i < P.key.size(); ++i) {
+      const int lo = before[s][i], hi = after[s][i];
+      q_tangent[s][i] = slope(lo >= 0, hi >= 0, lo >= 0 ? prev.q_correction[lo] : 0.0, P.q_correction[i],
+                              hi >= 0 ? next.q_correction[hi] : 0.0);
+    }
+  }
   for (int s = 0; s < S; ++s) {
     MeshPhase& P0 = m.phases[s];
     const MeshPhase& P1 = m.phases[(s + 1) % S];
@@ -187,8 +259,20 @@ void prepare_intervals(MovingMesh& m) {
       i0.push_back(n0 + j);
       i1.push_back(n1 + j);
     }
-    P0.A_start = P0.A_body(i0, i0);
-    P0.A_slope = (P1.A_body(i1, i1) - P0.A_start) / h;
+    // The Hermite segment over a ∈ [0, 1] as a cubic: A0 + a·hT0 + a²·(3ΔA − 2hT0 − hT1) + a³·(hT0 + hT1 − 2ΔA).
+    const Eigen::MatrixXd A0 = P0.A_body(i0, i0);
+    const Eigen::MatrixXd dA = P1.A_body(i1, i1) - A0;
+    const Eigen::MatrixXd T0 = h * tangent[s](i0, i0), T1 = h * tangent[(s + 1) % S](i1, i1);
+    P0.A_cubic[0] = A0;
+    P0.A_cubic[1] = T0;
+    P0.A_cubic[2] = 3 * dA - 2 * T0 - T1;
+    P0.A_cubic[3] = T0 + T1 - 2 * dA;
+    P0.q_slope_start.clear();
+    P0.q_slope_end.clear();
+    for (int i : P0.continuing) {
+      P0.q_slope_start.push_back(q_tangent[s][i]);
+      P0.q_slope_end.push_back(q_tangent[(s + 1) % S][P0.next[i]]);
+    }
   }
 }
 

@@ -14,8 +14,11 @@
 //
 // Coupling through the rim (optional): the loaded-contact problem's body compliance A (flanks and the generator's
 // stations, contact/loaded_contact.hpp's ContactAnalysis::problem) at `phases` generator phases over one tooth pitch.
-// Between phases every entry is interpolated linearly in σ; a shift by one pitch renames tooth k as tooth k − 1, so
-// the phases cover every angle. The same flank must be in both neighbouring phases, else it is left out over that
+// Between phases every entry of A and each flank's gap correction (the generator's own state) is interpolated by a
+// cubic Hermite segment whose slopes (central differences over the neighbouring phases) are shared across the phase
+// boundaries. Linear segments made the forces jump at every boundary: the damping acts on the gap's rate, and the
+// teeth's travel torque ½xᵀ(∂A/∂σ)x on A's slope; each jump cut the integrator's step. A shift by one pitch renames
+// tooth k as tooth k − 1, so the phases cover every angle. The same flank must be in both neighbouring phases, else it is left out over that
 // sub-interval (it is then beyond the problem's reach: far from closing).
 #include <functional>
 #include <string>
@@ -41,10 +44,14 @@ struct MeshPhase {
   Eigen::MatrixXd A_body;        ///< body compliance (m/N, series parts excluded), flanks then stations
   Eigen::VectorXd q_correction;  ///< per flank: the problem's gap minus the table's (the generator's own state)
   /// Over [shift_rad, the next phase's shift): the body compliance of the flanks that go on into the next phase
-  /// (`continuing`, indices into key) and the stations, at shift_rad and its slope in σ (m/N per rad). Gathered once
-  /// by prepare_intervals() so that every instant interpolates contiguous memory.
+  /// (`continuing`, indices into key) and the stations as a cubic in a = (σ − shift_rad)/h, h = pitch/phases:
+  /// A = A_cubic[0] + a·A_cubic[1] + a²·A_cubic[2] + a³·A_cubic[3] (m/N). Gathered once by prepare_intervals() so
+  /// that every instant combines contiguous memory.
   std::vector<int> continuing;
-  Eigen::MatrixXd A_start, A_slope;
+  Eigen::MatrixXd A_cubic[4];
+  /// Per continuing flank: d(q_correction)/dσ at shift_rad and at the next phase's shift (m/rad), the same value on
+  /// both sides of a phase boundary, so that the gap's rate has no jump there (see prepare_intervals()).
+  std::vector<double> q_slope_start, q_slope_end;
 };
 
 struct MovingMesh {
@@ -63,9 +70,17 @@ struct MovingMesh {
 struct MeshInstant {
   std::vector<int> tooth, side;       ///< per flank: tooth index (mod key_period), side
   Eigen::VectorXd q, dq, lambda, dlambda, compliance, dcompliance;  ///< per flank; d/dσ
-  Eigen::MatrixXd A, dA;              ///< body compliance and d/dσ, flanks then stations (empty: rigid rim)
+  Eigen::MatrixXd A;                  ///< body compliance, flanks then stations (empty: rigid rim)
+  /// Where A came from, for its σ-derivative: the phase's cubic, the rows/columns taken from it (empty: all), a, h.
+  const Eigen::MatrixXd* cubic = nullptr;
+  std::vector<int> rows;
+  double a = 0, h = 1;
   int flanks() const { return static_cast<int>(q.size()); }
 };
+
+/// ½·xᵀ(∂A/∂σ)x at the instant for contact forces x (N): the body's share of the teeth's travel torque (N·m), summed
+/// over the loaded contacts only (x ≠ 0), without forming ∂A/∂σ.
+double body_travel_torque_Nm(const MeshInstant& in, const Eigen::VectorXd& x);
 
 /// Flank geometry over φ from gap/lever functions (kinematics) sampled on a grid of `step_rad` covering `phi_range`.
 /// `flank(phi, side, q, lambda, contact_radius_f, contact_radius_c)` returns false where the flank cannot close; the
@@ -74,7 +89,8 @@ FlankTable make_flank_table(double phi_start_rad, double phi_end_rad, double ste
                             const std::function<bool(double, int, double&, double&, double&, double&)>& flank,
                             const std::function<double(double, double)>& tooth_compliance_m_per_N);
 
-/// Fills every phase's continuing flanks, A_start and A_slope from the phases' A_body and next (a coupled mesh).
+/// Fills every phase's continuing flanks, A_cubic and the gap correction's slopes from the phases' A_body,
+/// q_correction and next (a coupled mesh).
 void prepare_intervals(MovingMesh& m);
 
 /// The problem at σ (rad). Fills `out` (reused between calls).

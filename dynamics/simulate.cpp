@@ -59,7 +59,6 @@ struct Snapshot {
   double max_force = 0.0;           ///< largest flank force [N]
   // moving pairs: scratch reused between evaluations
   MeshInstant inst;
-  Eigen::MatrixXd A;
   Eigen::VectorXd b, x, x_el;
   std::vector<char> active;          ///< warm start, by (tooth, side) then station
   std::vector<char> local_active;
@@ -229,18 +228,18 @@ public:
     // series compliance per unknown (n teeth) and its σ-derivative (diagonal of ∂A/∂σ)
     auto series = [&](int i) { return constant ? n / k : in.compliance[i]; };
     if (mm.coupled()) {
-      s.A = in.A;
-      for (int i = 0; i < nf; ++i) s.A(i, i) += series(i);
+      Eigen::MatrixXd& A = s.inst.A;  // the instant's own copy: the series parts go on its diagonal
+      for (int i = 0; i < nf; ++i) A(i, i) += series(i);
       s.b.tail(nb) = mm.station_q;
       s.local_active.resize(nf + nb);
       const int period = mm.key_period();
       for (int i = 0; i < nf; ++i) s.local_active[i] = s.active[2 * in.tooth[i] + in.side[i]];
       for (int j = 0; j < nb; ++j) s.local_active[nf + j] = s.active[2 * period + j];
-      solve_lcp(s.A, s.b, s.x_el, s.local_active);
+      solve_lcp(A, s.b, s.x_el, s.local_active);
       for (int i = 0; i < nf; ++i) s.active[2 * in.tooth[i] + in.side[i]] = s.x_el[i] > 0;
       for (int j = 0; j < nb; ++j) s.active[2 * period + j] = s.local_active[nf + j];
-      U += 0.5 * s.x_el.dot(s.A * s.x_el);
-      M_sigma += 0.5 * s.x_el.dot(in.dA * s.x_el);
+      U -= 0.5 * s.x_el.dot(s.b);  // ½xᵀAx = −½xᵀb: x·(Ax + b) = 0 at the solution
+      M_sigma += body_travel_torque_Nm(in, s.x_el);
     } else {
       for (int i = 0; i < nf; ++i) {
         const double d = -s.b[i] / n;  // approach per tooth

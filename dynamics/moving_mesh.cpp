@@ -42,11 +42,20 @@ double node_slope(const std::vector<double>& y, int j, double h) {
   return 0.0;
 }
 
+/// The node slopes of a whole column of the table.
+std::vector<double> node_slopes(const std::vector<double>& y, double h) {
+  std::vector<double> out(y.size(), 0.0);
+  for (std::size_t j = 0; j < y.size(); ++j)
+    if (!std::isnan(y[j])) out[j] = node_slope(y, static_cast<int>(j), h);
+  return out;
+}
+
 /// Cubic Hermite interpolation on [j, j + 1] at fraction a with the node slopes above: value and
 /// derivative in φ, continuous across grid points. A linear interpolation kinks every flank at every grid point, all
 /// teeth at once (they sit one pitch apart on a grid of pitch/n), and each kink cut the integrator's step.
-void hermite(const std::vector<double>& y, int j, double a, double h, double& value, double& slope) {
-  const double m0 = node_slope(y, j, h) * h, m1 = node_slope(y, j + 1, h) * h;
+void hermite(const std::vector<double>& y, const std::vector<double>& dy, int j, double a, double h, double& value,
+             double& slope) {
+  const double m0 = dy[j] * h, m1 = dy[j + 1] * h;
   const double a2 = a * a, a3 = a2 * a;
   value = (2 * a3 - 3 * a2 + 1) * y[j] + (a3 - 2 * a2 + a) * m0 + (-2 * a3 + 3 * a2) * y[j + 1] + (a3 - a2) * m1;
   slope = ((6 * a2 - 6 * a) * y[j] + (3 * a2 - 4 * a + 1) * m0 + (-6 * a2 + 6 * a) * y[j + 1] + (3 * a2 - 2 * a) * m1) / h;
@@ -59,9 +68,9 @@ bool lookup(const FlankTable& t, int side, double phi, TableValue& v) {
   if (j < 0 || j + 1 >= t.size()) return false;
   const double a = u - j;
   if (std::isnan(t.q_m[side][j]) || std::isnan(t.q_m[side][j + 1])) return false;
-  hermite(t.q_m[side], j, a, t.step_rad, v.q, v.dq_dphi);
-  hermite(t.lambda_m[side], j, a, t.step_rad, v.lambda, v.dlambda_dphi);
-  hermite(t.compliance_m_per_N[side], j, a, t.step_rad, v.compliance, v.dcompliance_dphi);
+  hermite(t.q_m[side], t.q_slope[side], j, a, t.step_rad, v.q, v.dq_dphi);
+  hermite(t.lambda_m[side], t.lambda_slope[side], j, a, t.step_rad, v.lambda, v.dlambda_dphi);
+  hermite(t.compliance_m_per_N[side], t.compliance_slope[side], j, a, t.step_rad, v.compliance, v.dcompliance_dphi);
   return true;
 }
 
@@ -87,6 +96,11 @@ FlankTable make_flank_table(double phi_start, double phi_end, double step, int t
       t.lambda_m[side][j] = teeth_per_unknown * lever;
       t.compliance_m_per_N[side][j] = tooth_compliance ? teeth_per_unknown * tooth_compliance(radius, radius_c) : 0.0;
     }
+  for (int side = 0; side < 2; ++side) {
+    t.q_slope[side] = node_slopes(t.q_m[side], step);
+    t.lambda_slope[side] = node_slopes(t.lambda_m[side], step);
+    t.compliance_slope[side] = node_slopes(t.compliance_m_per_N[side], step);
+  }
   return t;
 }
 
@@ -143,34 +157,28 @@ void mesh_instant(const MovingMesh& m, double sigma, MeshInstant& out) {
     out.dcompliance[i] = -v.dcompliance_dphi;
   }
   if (!m.coupled()) {
-    out.A.resize(0, 0);
     out.cubic = nullptr;
+    out.stations = 0;
     return;
   }
   const MeshPhase& P0 = m.phases[s];
   const MeshPhase& P1 = m.phases[s1];
   const double h = p / m.phases.size();
   const auto nc = static_cast<int>(P0.continuing.size());
-  const double a2 = a * a, a3 = a2 * a;
-  const Eigen::MatrixXd* C = P0.A_cubic;
-  out.cubic = C;
+  out.cubic = P0.A_cubic;
   out.a = a;
   out.h = h;
   out.rows.clear();
-  if (nf == nc) {  // every continuing flank is on the table here: the whole gathered block
-    out.A.noalias() = C[0] + a * C[1] + a2 * C[2] + a3 * C[3];
-  } else {
-    const int nb = static_cast<int>(m.station_q.size());
+  if (nf != nc) {  // a continuing flank is off the table here: a subset of the gathered block
     out.rows = kept;
-    for (int j = 0; j < nb; ++j) out.rows.push_back(nc + j);
-    const std::vector<int>& idx = out.rows;
-    out.A.resize(idx.size(), idx.size());
-    for (std::size_t c = 0; c < idx.size(); ++c)
-      for (std::size_t r = 0; r < idx.size(); ++r) {
-        const Eigen::Index i = idx[r], j = idx[c];
-        out.A(r, c) = C[0](i, j) + a * C[1](i, j) + a2 * C[2](i, j) + a3 * C[3](i, j);
-      }
+    for (int j = 0; j < static_cast<int>(m.station_q.size()); ++j) out.rows.push_back(nc + j);
   }
+  out.stations = static_cast<int>(m.station_q.size());
+  const int n = nf + out.stations;
+  if (out.A.rows() < n) out.A.resize(n, n);  // kept between instants: only the first n rows of a column are used
+  out.formed.assign(n, 0);
+  out.series.setZero(n);
+  const double a2 = a * a, a3 = a2 * a;
   for (int k = 0; k < nf; ++k) {
     const int c = kept[k], i = P0.continuing[c];
     const double c0 = P0.q_correction[i], c1 = P1.q_correction[P0.next[i]];
@@ -178,6 +186,28 @@ void mesh_instant(const MovingMesh& m, double sigma, MeshInstant& out) {
     out.q[k] += (2 * a3 - 3 * a2 + 1) * c0 + (a3 - 2 * a2 + a) * m0 + (-2 * a3 + 3 * a2) * c1 + (a3 - a2) * m1;
     out.dq[k] += ((6 * a2 - 6 * a) * c0 + (3 * a2 - 4 * a + 1) * m0 + (-6 * a2 + 6 * a) * c1 + (3 * a2 - 2 * a) * m1) / h;
   }
+}
+
+const double* MeshInstant::column(int j) {
+  double* out = A.col(j).data();
+  if (formed[j]) return out;
+  const Eigen::MatrixXd* C = cubic;
+  const double a2 = a * a, a3 = a2 * a;
+  const Eigen::Index n = unknowns();
+  if (rows.empty()) {
+    const double *c0 = C[0].col(j).data(), *c1 = C[1].col(j).data(), *c2 = C[2].col(j).data(), *c3 = C[3].col(j).data();
+    for (Eigen::Index i = 0; i < n; ++i) out[i] = c0[i] + a * c1[i] + a2 * c2[i] + a3 * c3[i];
+  } else {
+    const Eigen::Index jj = rows[j];
+    const double *c0 = C[0].col(jj).data(), *c1 = C[1].col(jj).data(), *c2 = C[2].col(jj).data(), *c3 = C[3].col(jj).data();
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const Eigen::Index r = rows[i];
+      out[i] = c0[r] + a * c1[r] + a2 * c2[r] + a3 * c3[r];
+    }
+  }
+  out[j] += series[j];
+  formed[j] = 1;
+  return out;
 }
 
 double body_travel_torque_Nm(const MeshInstant& in, const Eigen::VectorXd& x) {
@@ -277,6 +307,11 @@ void prepare_intervals(MovingMesh& m) {
 }
 
 int solve_lcp(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& x, std::vector<char>& active) {
+  return solve_lcp([&A](int j) { return A.col(j).data(); }, b, x, active);
+}
+
+int solve_lcp(const std::function<const double*(int)>& column, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+              std::vector<char>& active) {
   const int n = static_cast<int>(b.size());
   active.resize(n, 0);
   x = Eigen::VectorXd::Zero(n);
@@ -297,12 +332,14 @@ int solve_lcp(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorX
       Eigen::VectorXd bF(nF);
       for (int c = 0; c < nF; ++c) {
         bF[c] = -b[F[c]];
-        for (int r = 0; r < nF; ++r) AF(r, c) = A(F[r], F[c]);
+        const double* col = column(F[c]);
+        for (int r = 0; r < nF; ++r) AF(r, c) = col[F[r]];
       }
       const Eigen::VectorXd xF = AF.llt().solve(bF);
       for (int c = 0; c < nF; ++c) x[F[c]] = xF[c];
     }
-    w.noalias() = A * x + b;
+    w = b;
+    for (int j : F) w += x[j] * Eigen::Map<const Eigen::VectorXd>(column(j), n);
     std::vector<int> bad;
     for (int i = 0; i < n; ++i)
       if ((active[i] && x[i] < 0) || (!active[i] && w[i] < -tol_w)) bad.push_back(i);

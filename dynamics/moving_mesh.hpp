@@ -32,6 +32,7 @@ namespace sw {
 struct FlankTable {
   double phi_start_rad = 0, step_rad = 0;
   std::vector<double> q_m[2], lambda_m[2], compliance_m_per_N[2];  ///< [side: 0 ccw (λ > 0), 1 cw (λ < 0)][j]
+  std::vector<double> q_slope[2], lambda_slope[2], compliance_slope[2];  ///< the interpolant's slopes at the grid
   int size() const { return static_cast<int>(q_m[0].size()); }
 };
 
@@ -70,12 +71,21 @@ struct MovingMesh {
 struct MeshInstant {
   std::vector<int> tooth, side;       ///< per flank: tooth index (mod key_period), side
   Eigen::VectorXd q, dq, lambda, dlambda, compliance, dcompliance;  ///< per flank; d/dσ
-  Eigen::MatrixXd A;                  ///< body compliance, flanks then stations (empty: rigid rim)
-  /// Where A came from, for its σ-derivative: the phase's cubic, the rows/columns taken from it (empty: all), a, h.
+  /// Coupled: the body compliance A (flanks then stations) at σ is the phase's cubic in a = (σ − shift)/h over the
+  /// rows/columns `rows` of it (empty: all), plus `series` on the flanks' diagonal (the tooth pairs, set by the
+  /// caller). Its columns are formed on demand (column()): the contact problem needs only the loaded contacts'.
   const Eigen::MatrixXd* cubic = nullptr;
   std::vector<int> rows;
   double a = 0, h = 1;
+  Eigen::VectorXd series;
   int flanks() const { return static_cast<int>(q.size()); }
+  int unknowns() const { return cubic ? flanks() + stations : flanks(); }
+  /// Column j of A + diag(series) (formed once per instant).
+  const double* column(int j);
+
+  int stations = 0;
+  Eigen::MatrixXd A;           ///< the columns formed so far (at least unknowns() rows; the first unknowns() used)
+  std::vector<char> formed;
 };
 
 /// ½·xᵀ(∂A/∂σ)x at the instant for contact forces x (N): the body's share of the teeth's travel torque (N·m), summed
@@ -99,7 +109,10 @@ void mesh_instant(const MovingMesh& m, double sigma_rad, MeshInstant& out);
 /// Linear complementarity x ≥ 0, w = A·x + b ≥ 0, x·w = 0 for symmetric positive definite A: block principal pivoting
 /// (Júdice and Pires 1994) with Murty's single pivot as the safeguard, started from `active` (updated). Written here
 /// because it is one small dense problem per right-hand side with a warm start, which no Debian library offers.
+/// A is given by its columns (`column(j)` points at A(:, j)); only those of the active contacts are asked for.
 /// Returns the iterations; throws InputError when it does not converge.
+int solve_lcp(const std::function<const double*(int)>& column, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+              std::vector<char>& active);
 int solve_lcp(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& x, std::vector<char>& active);
 
 }  // namespace sw

@@ -228,14 +228,14 @@ public:
     // series compliance per unknown (n teeth) and its σ-derivative (diagonal of ∂A/∂σ)
     auto series = [&](int i) { return constant ? n / k : in.compliance[i]; };
     if (mm.coupled()) {
-      Eigen::MatrixXd& A = s.inst.A;  // the instant's own copy: the series parts go on its diagonal
-      for (int i = 0; i < nf; ++i) A(i, i) += series(i);
+      MeshInstant& inst = s.inst;  // the series parts go on the body's diagonal
+      for (int i = 0; i < nf; ++i) inst.series[i] = series(i);
       s.b.tail(nb) = mm.station_q;
       s.local_active.resize(nf + nb);
       const int period = mm.key_period();
       for (int i = 0; i < nf; ++i) s.local_active[i] = s.active[2 * in.tooth[i] + in.side[i]];
       for (int j = 0; j < nb; ++j) s.local_active[nf + j] = s.active[2 * period + j];
-      solve_lcp(A, s.b, s.x_el, s.local_active);
+      solve_lcp([&inst](int j) { return inst.column(j); }, s.b, s.x_el, s.local_active);
       for (int i = 0; i < nf; ++i) s.active[2 * in.tooth[i] + in.side[i]] = s.x_el[i] > 0;
       for (int j = 0; j < nb; ++j) s.active[2 * period + j] = s.local_active[nf + j];
       U -= 0.5 * s.x_el.dot(s.b);  // ½xᵀAx = −½xᵀb: x·(Ax + b) = 0 at the solution

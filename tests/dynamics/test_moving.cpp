@@ -70,6 +70,76 @@ const CoarseSeed& coarse_seed() {
   return *k;
 }
 
+/// The coarse seed's mesh coupled through the rim as the tool builds it (8 phases, the flank table every pitch/64).
+const MovingMesh& coarse_coupled() {
+  static const MovingMesh* m = [] {
+    const CoarseSeed& k = coarse_seed();
+    return new MovingMesh(fem_coupled_mesh(k.c, k.mesh, k.system, k.fem, teeth_of(k.c), 44.1, 8, 8));
+  }();
+  return *m;
+}
+
+// Across every boundary between two compliance phases, the flank problem is C¹ in σ: the gaps q, their rates ∂q/∂σ,
+// the body compliance A and the quadratic form xᵀ(∂A/∂σ)x of the teeth's travel torque agree on both sides for the
+// flanks present on both (σ_b ± 1e-9 of a phase). With linear segments, ∂q/∂σ (through the generator's gap
+// correction) and ∂A/∂σ jumped at every boundary: the contact forces jumped with the damping, and the integrator cut
+// its step at each. Tolerances: relative 1e-6 for values and rates, 1e-4 for the quadratic form (what ±1e-9 of a
+// phase moves them by is far below; the linear segments' jumps were of order one).
+TEST(MovingMesh, CompliancePhasesJoinWithContinuousGapsRatesAndCompliance) {
+  MovingMesh m = coarse_coupled();
+  const int S = static_cast<int>(m.phases.size());
+  const double h = m.pitch_rad / S, eps = 1e-9 * h;
+  double worst_q = 0, worst_dq = 0, worst_A = 0, worst_form = 0;
+  for (int b = 1; b <= S; ++b) {
+    const double sigma = 3 * m.pitch_rad + b * h;
+    MeshInstant lo, hi;
+    mesh_instant(m, sigma - eps, lo);
+    mesh_instant(m, sigma + eps, hi);
+    std::map<std::pair<int, int>, int> at_hi;
+    for (int i = 0; i < hi.flanks(); ++i) at_hi[{hi.tooth[i], hi.side[i]}] = i;
+    std::vector<int> il, ih;  // common flanks, then the stations
+    for (int i = 0; i < lo.flanks(); ++i) {
+      const auto it = at_hi.find({lo.tooth[i], lo.side[i]});
+      if (it != at_hi.end()) il.push_back(i), ih.push_back(it->second);
+    }
+    const int common = static_cast<int>(il.size());
+    ASSERT_GT(common, lo.flanks() / 2) << "boundary " << b;
+    double q_scale = 0, dq_scale = 0;
+    for (int c = 0; c < common; ++c) {
+      q_scale = std::max(q_scale, std::abs(lo.q[il[c]]));
+      dq_scale = std::max(dq_scale, std::abs(lo.dq[il[c]]));
+    }
+    for (int c = 0; c < common; ++c) {
+      worst_q = std::max(worst_q, std::abs(lo.q[il[c]] - hi.q[ih[c]]) / q_scale);
+      worst_dq = std::max(worst_dq, std::abs(lo.dq[il[c]] - hi.dq[ih[c]]) / dq_scale);
+    }
+    for (int j = 0; j < lo.stations; ++j) il.push_back(lo.flanks() + j), ih.push_back(hi.flanks() + j);
+    double a_scale = 0, a_jump = 0;
+    for (std::size_t c = 0; c < il.size(); ++c) {
+      const double* cl = lo.column(il[c]);
+      const double* ch = hi.column(ih[c]);
+      for (std::size_t r = 0; r < il.size(); ++r) {
+        a_scale = std::max(a_scale, std::abs(cl[il[r]]));
+        a_jump = std::max(a_jump, std::abs(cl[il[r]] - ch[ih[r]]));
+      }
+    }
+    worst_A = std::max(worst_A, a_jump / a_scale);
+    // the quadratic form with 100 N on every common flank and station
+    Eigen::VectorXd xl = Eigen::VectorXd::Zero(lo.unknowns()), xh = Eigen::VectorXd::Zero(hi.unknowns());
+    for (std::size_t c = 0; c < il.size(); ++c) xl[il[c]] = xh[ih[c]] = 100.0;
+    const double fl = body_travel_torque_Nm(lo, xl), fh = body_travel_torque_Nm(hi, xh);
+    worst_form = std::max(worst_form, std::abs(fl - fh) / std::max(std::abs(fl), std::abs(fh)));
+    std::printf("boundary %d: %d common flanks of %d / %d; travel torque form %.6g / %.6g N·m\n", b, common,
+                lo.flanks(), hi.flanks(), fl, fh);
+  }
+  std::printf("largest jumps across a phase boundary: q %.2e, dq/dsigma %.2e, A %.2e, x'(dA/dsigma)x %.2e\n", worst_q,
+              worst_dq, worst_A, worst_form);
+  EXPECT_LT(worst_q, 1e-6);
+  EXPECT_LT(worst_dq, 1e-6);
+  EXPECT_LT(worst_A, 1e-6);
+  EXPECT_LT(worst_form, 1e-4);
+}
+
 // A slow run (60 rpm at the generator, default damping) against the loaded contact solved directly at the generator
 // angles of the samples, at the same flank torque: per-tooth forces within 1 % of the largest, mesh deflection
 // within 1 %. The samples' angles lie between the body's compliance phases, so the interpolation's error is in it.
@@ -91,7 +161,7 @@ TEST(MovingMesh, SlowRunReproducesTheLoadedContactAtEveryGeneratorAngle) {
   p.damping_Ns_per_m = 100;  // small: its force c·q′·σ̇ stays below 1e-3 of the elastic one
   p.oversampling = 1;  // plain samples: the comparison is of the model, not of the output filter
   DynamicsModel m = model_of(k.c, p);
-  m.moving = std::make_shared<MovingMesh>(fem_coupled_mesh(k.c, k.mesh, k.system, k.fem, teeth, 44.1, 8, 8));
+  m.moving = std::make_shared<MovingMesh>(coarse_coupled());
   const DynamicsSeries s = simulate(m);
   for (const auto& ph : m.moving->phases) {
     int missing = 0;

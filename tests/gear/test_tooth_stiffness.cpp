@@ -112,6 +112,31 @@ TEST(ToothPairCompliance, SeedFlexsplineToothAgainstTheExplicitToothFemIsPinned)
   }
 }
 
+// The rim's own compliance removed as the 3-D model holds it (tests/gear/slab_fem.hpp ring_slab_compliance): what the
+// tooth adds in series to the ring model's influence coefficients is the explicit slab's centre-line deflection minus
+// the ring slab's pattern deflection, both held at the bore. Measured on the seed's tooth, printed with the analytic
+// bending + foundation against it.
+TEST(ToothPairCompliance, SeedToothWithTheRingModelsOwnComplianceRemoved) {
+  const GearParams g = seed_gear();
+  const GearRadii r = gear_radii(g);
+  const Material steel;
+  ToothSlabOptions o;
+  o.bore_radius_m = kSeedBore_m;
+  o.points_per_flank = 24;
+  const double strip = 2.0 * (r.tip_f - r.form_f) / (o.points_per_flank - 1);
+  for (double fraction : {0.2, 0.5, 0.8, 0.95}) {
+    const double rc = r.form_f + fraction * (r.tip_f - r.form_f);
+    const double fem = test::slab_compliance(g, steel, o, rc, strip).compliance_m2_per_N;
+    const double ring = test::ring_slab_compliance(g, steel, o, rc);
+    const ToothPairCompliance c = tooth_pair_compliance(g, steel, rc, 1e4, kSeedBore_m);
+    std::printf("seed tooth at %.2f of the flank: explicit slab %.4e, ring slab %.4e (%.1f %%), tooth %.4e m2/N; "
+                "analytic bending %.4e + foundation %.4e = %.2f x the tooth\n", fraction, fem, ring, 100 * ring / fem,
+                fem - ring, c.bending_f, c.foundation_f, (c.bending_f + c.foundation_f) / (fem - ring));
+    EXPECT_GT(ring, 0.0);
+    EXPECT_LT(ring, fem);
+  }
+}
+
 // The seed pair's c′ (10 N/mm): 21.2 N/(mm·µm) at mid-flank, 15.3 at the tip; softer towards the tip, positive parts.
 TEST(ToothPairCompliance, SeedPairIsStiffestMidFlankAndSofterAtTheTip) {
   const GearParams g = seed_gear();

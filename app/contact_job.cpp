@@ -28,11 +28,12 @@ SeriesParts series_parts(const Case& c) {
   SeriesParts s;
   s.teeth_source = "rigid teeth";
   if (c.gear) {
-    // The tooth pair's own compliance per unit face width (bending, foundation, flattening of both teeth; analytic,
-    // gear/tooth_stiffness.hpp) over the rim's width, at the flank's contact radius (kept on the active flank).
+    // The tooth pair's own compliance per unit face width over the rim's width, at the flank's contact radius (kept
+    // on the active flank): contact/loaded_contact.hpp case_tooth_pair_compliance.
     s.tooth_pair_m_per_N = case_tooth_pair_compliance(c);
-    s.teeth_source = "tooth pair compliance (analytic: beam over the real outline, Sainsot foundation, Weber flattening; "
-                     "both teeth loaded where they touch)";
+    s.teeth_source = "tooth pair compliance (flexspline tooth: explicit-tooth FEM less the ring model's share; circular "
+                     "spline tooth: beam over the real outline and Sainsot foundation; Weber flattening; both teeth "
+                     "loaded where they touch)";
   }
   if (c.wave_generator && c.wave_generator->bearing) {
     const GeneratorBearing b = *c.wave_generator->bearing;

@@ -65,9 +65,10 @@ private:
   AngularHats hats_;
 };
 
-/// The case's tooth pair compliance over the rim's face width (m/N) at the two contact radii: the analytic one of
-/// gear/tooth_stiffness.hpp (bending, foundation, flattening of both teeth), the flexspline's radius clamped to its
-/// active flank. Empty without a [gear].
+/// The case's tooth pair compliance over the rim's face width (m/N) at the two contact radii: the flexspline's tooth
+/// from the explicit-tooth FEM with the ring model's own share taken off (contact/tooth_fem.hpp), the circular
+/// spline's tooth (bending, foundation) and the flattening of both from gear/tooth_stiffness.hpp; the flexspline's
+/// radius clamped to its active flank. Builds the FEM tooth once (two small slabs). Empty without a [gear].
 std::function<double(double contact_radius_f_m, double contact_radius_c_m)> case_tooth_pair_compliance(const Case& c);
 
 struct ContactOptions {

@@ -12,6 +12,64 @@
 
 namespace sw {
 
+namespace {
+
+/// The closed outline (points in order, each segment's marker) extruded from z = 0 to `depth`: two caps and one quad
+/// per segment, TET10 through TetGen with tets no larger than a regular one of edge `max_edge` (0 = no bound).
+TetMesh extrude(const std::vector<Eigen::Vector2d>& pts, const std::vector<int>& seg_marker, double depth,
+                double max_edge) {
+  const int n = static_cast<int>(pts.size());
+  Plc plc;
+  for (double zz : {0.0, depth})
+    for (const auto& p : pts) plc.points.emplace_back(p.x(), p.y(), zz);
+  PlcFacet bottom, top;
+  bottom.polygons.emplace_back();
+  top.polygons.emplace_back();
+  for (int i = 0; i < n; ++i) {
+    bottom.polygons[0].push_back(i);
+    top.polygons[0].push_back(n + i);
+  }
+  plc.facets.push_back(bottom);
+  plc.facets.push_back(top);
+  for (int i = 0; i < n; ++i) {
+    const int j = (i + 1) % n;
+    PlcFacet quad;
+    quad.polygons.push_back({i, j, n + j, n + i});
+    quad.marker = seg_marker[i];
+    plc.facets.push_back(quad);
+  }
+  TetgenOptions t;
+  t.max_radius_edge_ratio = 2.0;
+  t.max_volume_m3 = max_edge * max_edge * max_edge / (6 * std::sqrt(2.0));
+  return tetrahedralize_plc(plc, t);
+}
+
+/// The body's sides and bore arc below an outline that runs from angle −a_end to +a_end at radius `top_m`: the right
+/// side down to the bore, the bore arc back, the left side up (its last point is followed by the outline's first).
+void close_with_body(double top_m, double bore_m, double a_end, double spacing, int extra,
+                     std::vector<Eigen::Vector2d>& pts, std::vector<int>& seg_marker) {
+  const double body = top_m - bore_m;
+  const int n_side = std::max(2, static_cast<int>(std::ceil(body / (4 * spacing)))) + extra;
+  for (int i = 0; i < n_side; ++i) {
+    const double rad = top_m - body * i / n_side;
+    pts.emplace_back(rad * std::cos(a_end), rad * std::sin(a_end));
+    seg_marker.push_back(kSurfaceRimStep);
+  }
+  const int n_arc = std::max(4, static_cast<int>(std::ceil(2 * a_end * bore_m / (6 * spacing)))) + extra;
+  for (int i = 0; i < n_arc; ++i) {
+    const double a = a_end - 2 * a_end * i / n_arc;
+    pts.emplace_back(bore_m * std::cos(a), bore_m * std::sin(a));
+    seg_marker.push_back(kSurfaceClamped);
+  }
+  for (int i = 0; i < n_side; ++i) {
+    const double rad = bore_m + body * i / n_side;
+    pts.emplace_back(rad * std::cos(-a_end), rad * std::sin(-a_end));
+    seg_marker.push_back(kSurfaceRimStep);
+  }
+}
+
+}  // namespace
+
 ToothSlab mesh_tooth_slab(const GearParams& g, const ToothSlabOptions& o) {
   constexpr double kPi = std::numbers::pi;
   const GearRadii r = gear_radii(g);
@@ -62,56 +120,38 @@ ToothSlab mesh_tooth_slab(const GearParams& g, const ToothSlabOptions& o) {
     seg_marker = tooth_markers;
     const double a_end = (K + 0.5) * 2 * kPi / z;
     const double depth = o.depth_over_spacing * spacing;
-    const double body = r.root_f - o.bore_radius_m;
-    const int n_side = std::max(2, static_cast<int>(std::ceil(body / (4 * spacing)))) + attempt;
-    for (int i = 0; i < n_side; ++i) {  // right side, root circle down to the bore
-      const double rad = r.root_f - body * i / n_side;
-      pts.emplace_back(rad * std::cos(a_end), rad * std::sin(a_end));
-      seg_marker.push_back(kSurfaceRimStep);
-    }
-    const int n_arc = std::max(4, static_cast<int>(std::ceil(2 * a_end * o.bore_radius_m / (6 * spacing)))) + attempt;
-    for (int i = 0; i < n_arc; ++i) {  // bore arc, +a_end to −a_end
-      const double a = a_end - 2 * a_end * i / n_arc;
-      pts.emplace_back(o.bore_radius_m * std::cos(a), o.bore_radius_m * std::sin(a));
-      seg_marker.push_back(kSurfaceClamped);
-    }
-    for (int i = 0; i < n_side; ++i) {  // left side, bore up to the root circle (the first point closes it)
-      const double rad = o.bore_radius_m + body * i / n_side;
-      pts.emplace_back(rad * std::cos(-a_end), rad * std::sin(-a_end));
-      seg_marker.push_back(kSurfaceRimStep);
-    }
-
-    // Extrude: points i (z = 0) and n + i (z = depth); the two caps and one quad per outline segment.
-    const int n = static_cast<int>(pts.size());
-    Plc plc;
-    for (double zz : {0.0, depth})
-      for (const auto& p : pts) plc.points.emplace_back(p.x(), p.y(), zz);
-    PlcFacet bottom, top;
-    bottom.polygons.emplace_back();
-    top.polygons.emplace_back();
-    for (int i = 0; i < n; ++i) {
-      bottom.polygons[0].push_back(i);
-      top.polygons[0].push_back(n + i);
-    }
-    plc.facets.push_back(bottom);
-    plc.facets.push_back(top);
-    for (int i = 0; i < n; ++i) {
-      const int j = (i + 1) % n;
-      PlcFacet quad;
-      quad.polygons.push_back({i, j, n + j, n + i});
-      quad.marker = seg_marker[i];
-      plc.facets.push_back(quad);
-    }
-    TetgenOptions t;
-    t.max_radius_edge_ratio = 2.0;
-    const double edge = o.max_edge_over_spacing * spacing;
-    t.max_volume_m3 = edge * edge * edge / (6 * std::sqrt(2.0));
+    close_with_body(r.root_f, o.bore_radius_m, a_end, spacing, attempt, pts, seg_marker);
     try {
-      return ToothSlab{tetrahedralize_plc(plc, t), depth};
+      return ToothSlab{extrude(pts, seg_marker, depth, o.max_edge_over_spacing * spacing), depth};
     } catch (const InputError&) {
       if (attempt == 3) throw;
     }
+  }
 }
+
+ToothSlab mesh_ring_slab(const GearParams& g, const ToothSlabOptions& o, double r_o) {
+  constexpr double kPi = std::numbers::pi;
+  const GearRadii r = gear_radii(g);
+  if (!(o.bore_radius_m > 0 && o.bore_radius_m < r_o) || o.teeth_each_side < 0 ||
+      2 * o.teeth_each_side + 1 > g.teeth_flexspline) {
+    std::ostringstream s;
+    s << "ring slab: bore radius " << o.bore_radius_m * 1e3 << " mm, " << o.teeth_each_side
+      << " teeth each side; need 0 < bore < outer radius " << r_o * 1e3 << " mm and 2K + 1 <= z";
+    throw InputError(s.str());
+  }
+  const double spacing = (r.tip_f - r.form_f) / (std::max(8, o.points_per_flank) - 1);
+  const double a_end = (o.teeth_each_side + 0.5) * 2 * kPi / g.teeth_flexspline;
+  std::vector<Eigen::Vector2d> pts;
+  std::vector<int> seg_marker;
+  const int n_out = static_cast<int>(std::ceil(2 * a_end * r_o / spacing));
+  for (int i = 0; i < n_out; ++i) {  // the ring's outer arc, −a_end to +a_end
+    const double a = -a_end + 2 * a_end * i / n_out;
+    pts.emplace_back(r_o * std::cos(a), r_o * std::sin(a));
+    seg_marker.push_back(kSurfaceRimOuter);
+  }
+  close_with_body(r_o, o.bore_radius_m, a_end, spacing, 0, pts, seg_marker);
+  const double depth = o.depth_over_spacing * spacing;
+  return ToothSlab{extrude(pts, seg_marker, depth, o.max_edge_over_spacing * spacing), depth};
 }
 
 }  // namespace sw

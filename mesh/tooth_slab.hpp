@@ -27,4 +27,10 @@ struct ToothSlab {
 /// inside the root circle or K < 0.
 ToothSlab mesh_tooth_slab(const GearParams& g, const ToothSlabOptions& options);
 
+/// The same slab without teeth, the body out to `outer_radius_m` (the 3-D model's rim_outer_radius: the ring of
+/// flexspline.teeth = "ring", or the bare rim of "none"): the same sector, bore, depth and tet size; the outer arc
+/// kSurfaceRimOuter. What the 3-D model holds of a tooth's load, to be taken off the explicit slab's. Throws
+/// InputError when the bore is not inside the outer radius.
+ToothSlab mesh_ring_slab(const GearParams& g, const ToothSlabOptions& options, double outer_radius_m);
+
 }  // namespace sw

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <memory>
+#include <tuple>
 
 #include "common/error.hpp"
 
@@ -48,6 +51,20 @@ Branches find_branches(const Eigen::VectorXd& x, double threshold) {
 namespace {
 Eigen::VectorXd to_vec(const std::vector<double>& v) { return Eigen::Map<const Eigen::VectorXd>(v.data(), v.size()); }
 }  // namespace
+
+Baseline with_remembered_runs(Baseline b) {
+  if (!b.dynamics_run) return b;
+  using Key = std::tuple<double, double, double, double, double>;
+  auto store = std::make_shared<std::map<Key, DynamicsRun>>();
+  b.dynamics_run = [run = b.dynamics_run, store](const DynamicsVariation& v) {
+    const Key key{v.stiffness_ratio, v.stiffness_phase_rad, v.damping_Ns_per_m, v.drag_coulomb_Nm,
+                  v.drag_viscous_Nms_per_rad};
+    auto it = store->find(key);
+    if (it == store->end()) it = store->emplace(key, run(v)).first;
+    return it->second;
+  };
+  return b;
+}
 
 Eigen::VectorXd resample(const std::vector<double>& t, const std::vector<double>& y, const Eigen::VectorXd& at) {
   Eigen::VectorXd out(at.size());

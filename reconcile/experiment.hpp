@@ -56,6 +56,11 @@ struct Baseline {
   double output_speed_rad_s = 0.0;     ///< dynamics: steady output speed magnitude
 };
 
+/// The same baseline with its dynamics runs remembered: a run is a deterministic function of its variation, so a
+/// variation seen before (the sensitivity and calibration runs of every recording of one model, the synthesis of many
+/// noise seeds) returns the stored run instead of integrating again. Copies share the store; not thread-safe.
+Baseline with_remembered_runs(Baseline baseline);
+
 struct Experiment {
   Kind kind = Kind::Torsion;
   int n = 0;

@@ -152,6 +152,7 @@ reconcile::Baseline dynamics_baseline(const DynamicsModel& model) {
   b.drive_ramp_end_s = model.params.drive_ramp_end_s;
   b.load_torque_Nm = model.params.load_torque_Nm;
   b.output_speed_rad_s = std::abs(ss.speed_rad_s[static_cast<int>(ss.output)]);
+  if (model.moving) b.analysis_from_s = model.params.steady_from_s;
   b.source = pair_model_name(model);
   b.dynamics_run = [model, ss](const reconcile::DynamicsVariation& v) {
     const DynamicsModel m = varied_model(model, ss, v);
@@ -252,6 +253,11 @@ reconcile::Baseline make_baseline(Kind kind, const BaselineSources& src, std::ve
       b.drive_ramp_end_s = d.drive_ramp_end_s;
       b.load_torque_Nm = d.load_torque_Nm;
       b.output_speed_rad_s = d.output_speed_rad_s;
+      b.analysis_from_s = d.analysis_from_s;
+      if (d.analysis_from_s > 0.0)
+        notes.push_back("moving tooth pairs: the recording is compared from dynamics.steady_from_s = " +
+                        num(d.analysis_from_s) + " s on (in the run-up and at load steps the teeth separate and "
+                        "strike again, and the meshing force answers the model's parameters by the impacts' timing)");
       notes.push_back("dynamics baseline: the [dynamics] model of " + c->path + " (" + to_string(q.configuration) +
                       ", " + d.source + ", constant mesh stiffness; " + job.source + "); f_m = " +
                       std::to_string(d.mesh_frequency_Hz) + " Hz");

@@ -59,7 +59,6 @@ sw::Case bench_case(const BenchOptions& o) {
   p.pair_motion = o.pairs == "frozen" ? sw::PairMotion::Frozen : sw::PairMotion::Moving;
   p.pair_stiffness = o.stiffness == "constant" ? sw::PairStiffness::Constant : sw::PairStiffness::Teeth;
   p.rim = sw::RimCoupling::Rigid;
-  p.oversampling = 1;
   p.duration_s = 0.04;
   p.output_step_s = 1.0e-5;
   p.load_ramp_start_s = 0.012;
@@ -199,6 +198,43 @@ void diagnose(const Baseline& b, const BenchOptions& o, const std::string& effec
   }
 }
 
+/// RMS (N) of the meshing-force change for a drag, a damping change and a k(t) amplitude over several decades: a
+/// model whose force is smooth in its parameters shows a change proportional to the step; a floor shows jitter.
+void response_scaling(const Baseline& b) {
+  const sw::reconcile::DynamicsRun r0 = b.dynamics_run(DynamicsVariation{});
+  auto rms_change = [&](const DynamicsVariation& v) {
+    const sw::reconcile::DynamicsRun r = b.dynamics_run(v);
+    double s2 = 0;
+    for (std::size_t i = 0; i < r.mesh_force_N.size(); ++i) s2 += std::pow(r.mesh_force_N[i] - r0.mesh_force_N[i], 2);
+    return std::sqrt(s2 / r.mesh_force_N.size());
+  };
+  {
+    DynamicsVariation drag;
+    drag.drag_coulomb_Nm = 1e-4;
+    const sw::reconcile::DynamicsRun r = b.dynamics_run(drag);
+    std::printf("drag 1e-4 N*m: RMS change per 2 ms window:");
+    const std::size_t w = 200;
+    for (std::size_t a = 0; a + w <= r.mesh_force_N.size(); a += w) {
+      double s2 = 0, m = 0;
+      for (std::size_t i = a; i < a + w; ++i) {
+        s2 += std::pow(r.mesh_force_N[i] - r0.mesh_force_N[i], 2);
+        m = std::max(m, std::abs(r.mesh_force_N[i] - r0.mesh_force_N[i]));
+      }
+      std::printf(" %.3g/%.3g", std::sqrt(s2 / w), m);
+    }
+    std::printf("\n");
+  }
+  std::printf("meshing-force change (RMS, N) against the step:\n");
+  for (double step : {1e-8, 1e-6, 1e-4, 1e-2, 1e0}) {
+    DynamicsVariation drag, damp, stiff;
+    drag.drag_coulomb_Nm = step;
+    damp.damping_Ns_per_m = b.damping_Ns_per_m * (1.0 + step);
+    stiff.stiffness_ratio = 0.1 * step;
+    std::printf("    step %.0e: drag %.0e N*m %.4g N, damping x(1 + %.0e) %.4g N, k(t) ratio %.0e %.4g N\n", step, step,
+                rms_change(drag), step, rms_change(damp), 0.1 * step, rms_change(stiff));
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -223,6 +259,7 @@ int main(int argc, char** argv) {
     std::printf("%s\nnoise: white %.3g N + AR(1) %.3g N (phi 0.8) + quantum %.3g N; effects at %.3g x the noise RMS\n",
                 notes.back().c_str(), o.noise_N, o.noise_N, 0.2 * o.noise_N, o.concealment);
     const std::vector<std::string> effects{"mesh_stiffness_variation", "damping", "drag_torque", ""};
+    if (o.diagnose) response_scaling(b);
     if (o.diagnose)
       for (std::size_t i = 0; i + 1 < effects.size(); ++i) diagnose(b, o, effects[i]);
     for (std::size_t i = 0; i < effects.size() && o.seeds > 0; ++i) {

@@ -275,17 +275,21 @@ std::vector<EffectSpec> dynamics_effects() {
     s.name = "mesh_stiffness_variation";
     s.physics = "mesh stiffness that varies as teeth engage and disengage: k(t) = k0 (1 + r sin(2 pi f_m t + phi)), "
                 "a line at the mesh frequency f_m = z_f |n_f - n_w| / 60 in the meshing force";
-    // The lines at f_m and 2 f_m locked to the mesh phase; Δk/k0 from the f_m line's amplitude through the
-    // calibration curve of runs at a few Δk/k0 (the response is far from linear in Δk).
-    s.n_linear = 4;
+    // The responses to r sin(psi) and r cos(psi) (the sensitivity columns at phase 0 and pi/2; k(t) is linear in
+    // r cos(phi) and r sin(phi)), whole waveforms: on moving pairs the mesh has its own f_m content, so the
+    // variation's response is not a pair of lines and its f_m line depends on phi. r from the coefficients' magnitude
+    // through the calibration curve of runs at a few r (the response is far from linear in r on frozen pairs).
+    s.n_linear = 2;
     s.bounds = no_bounds;
-    s.columns = [](const Experiment& e, const Vec&) { return mesh_lines(e); };
+    s.columns = [](const Experiment& e, const Vec&) { return Mat(e.sensitivity.leftCols(2)); };
     s.headline = [](const Experiment& e, const FitResult& f, int t) {
       const Vec& b = f.terms[t].beta;
-      const double line = std::hypot(b[0], b[1]);
-      return NamedValues{{"amplitude_ratio", invert_calibration(e.calib_ratio, e.calib_line_N, 0.01, line)},
+      const Vec contribution = e.sensitivity.leftCols(2) * b;
+      const Vec line = mesh_lines(e).colPivHouseholderQr().solve(contribution);
+      return NamedValues{{"amplitude_ratio", invert_calibration(e.calib_ratio, e.calib_stiffness_beta, 0.01,
+                                                                std::hypot(b[0], b[1]))},
                          {"frequency_Hz", e.model.mesh_frequency_Hz},
-                         {"line_amplitude_N", line},
+                         {"line_amplitude_N", std::hypot(line[0], line[1])},
                          {"phase_rad", std::atan2(b[1], b[0])}};
     };
     v.push_back(s);

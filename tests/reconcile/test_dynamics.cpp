@@ -35,7 +35,6 @@ sw::Case small_case(PairMotion pairs) {
   p.pair_motion = pairs;
   p.pair_stiffness = PairStiffness::Teeth;
   p.rim = RimCoupling::Rigid;
-  p.oversampling = 1;
   p.duration_s = 0.04;
   p.output_step_s = 1.0e-5;
   p.load_ramp_start_s = 0.012;
@@ -147,7 +146,9 @@ TEST(ReconcileDynamics, NamesMeshStiffnessVariationOnMovingPairs) {
 }
 
 TEST(ReconcileDynamics, NamesDampingOnMovingPairs) {
-  expect_named({"damping:coefficient_Ns_per_m=2000", 1.0, "coefficient_Ns_per_m"}, 12, kHeadlineTolerance);
+  // added_Ns_per_m, not the coefficient: at 1x the noise the coefficient moves by ~2 % from c0, so a test on it
+  // would pass with any fit near c0.
+  expect_named({"damping:coefficient_Ns_per_m=2000", 1.0, "added_Ns_per_m"}, 12, kHeadlineTolerance);
 }
 
 TEST(ReconcileDynamics, NamesDragTorqueOnMovingPairs) {

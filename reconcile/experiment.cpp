@@ -92,6 +92,25 @@ Eigen::MatrixXd mesh_lines(const Experiment& e) {
   return m;
 }
 
+Eigen::VectorXd damping_secant(const Experiment& e, double c_Ns_per_m) {
+  const std::vector<double>& c = e.damping_table_Ns_per_m;
+  const int m = static_cast<int>(c.size());
+  if (m < 2) return Eigen::VectorXd::Zero(e.n);
+  const double c0 = e.model.damping_Ns_per_m;
+  const double at = std::clamp(c_Ns_per_m, c.front(), c.back());
+  const int j = std::clamp(static_cast<int>(std::upper_bound(c.begin(), c.end(), at) - c.begin()) - 1, 0, m - 2);
+  const auto slope = [&](int k) { return Eigen::VectorXd((e.damping_response.col(k + 1) - e.damping_response.col(k)) /
+                                                         (c[k + 1] - c[k])); };
+  if (std::abs(at - c0) <= 1e-12 * std::max(c0, 1.0)) {
+    const int i0 = static_cast<int>(std::lower_bound(c.begin(), c.end(), c0) - c.begin());
+    if (i0 == 0) return slope(0);
+    if (i0 >= m - 1) return slope(m - 2);
+    return 0.5 * (slope(i0 - 1) + slope(i0));
+  }
+  const double w = (at - c[j]) / (c[j + 1] - c[j]);
+  return ((1.0 - w) * e.damping_response.col(j) + w * e.damping_response.col(j + 1)) / (at - c0);
+}
+
 double invert_calibration(const std::vector<double>& x, const std::vector<double>& y, double x_ref, double value) {
   const int m = static_cast<int>(x.size());
   if (m < 2) return x_ref;
@@ -275,17 +294,18 @@ Experiment make_experiment(const Recording& recording, const Baseline& base) {
         const Eigen::VectorXd b = stiffness_qr.solve(Eigen::VectorXd(force(sv) - e.baseline));
         e.calib_stiffness_beta.push_back(std::hypot(b[0], b[1]));
       }
-      const Eigen::VectorXd sc = e.sensitivity.col(2);
-      const double scn = std::max(sc.squaredNorm(), 1e-300);
+      // The response to the damping coefficient on a geometric table (ratio 2^(1/4), c0/8 to 8 c0, and 0 when the
+      // model has none): the fit reads c from it as a nonlinear parameter (damping_response_at).
       const double cref = c0 > 0.0 ? c0 : 1e3;
-      const std::vector<double> factors{0.125, 0.25, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0, 5.0, 8.0};
-      for (std::size_t j = 0; j < factors.size(); ++j) {
-        const double f = factors[j];
+      if (c0 == 0.0) e.damping_table_Ns_per_m.push_back(0.0);
+      for (int k = -kDampingTableSteps; k <= kDampingTableSteps; ++k)
+        e.damping_table_Ns_per_m.push_back(cref * std::pow(2.0, k / 4.0));
+      e.damping_response.resize(e.n, e.damping_table_Ns_per_m.size());
+      for (std::size_t j = 0; j < e.damping_table_Ns_per_m.size(); ++j) {
         DynamicsVariation cv;
-        cv.damping_Ns_per_m = f * cref;
-        const Eigen::VectorXd d = f == 1.0 && c0 > 0.0 ? Eigen::VectorXd::Zero(e.n) : Eigen::VectorXd(force(cv) - e.baseline);
-        e.calib_damping.push_back(f * cref);
-        e.calib_damping_beta.push_back(sc.dot(d) / scn);
+        cv.damping_Ns_per_m = e.damping_table_Ns_per_m[j];
+        e.damping_response.col(j) = cv.damping_Ns_per_m == c0 ? Eigen::VectorXd::Zero(e.n)
+                                                              : Eigen::VectorXd(force(cv) - e.baseline);
       }
       break;
     }

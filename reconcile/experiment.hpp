@@ -85,10 +85,13 @@ struct Experiment {
   /// dynamics: sensitivity columns of the response (mesh_force_N) from perturbed runs, per unit parameter:
   /// 0,1: Δk/k0 at phase 0 and π/2; 2: damping (per N·s/m); 3: Coulomb drag (per N·m); 4: viscous drag (per N·m·s/rad)
   Eigen::MatrixXd sensitivity;
-  /// dynamics: calibration curves of the nonlinear responses, from runs at a few parameter values (ascending):
-  /// the magnitude of the coefficients of the two k(t) sensitivity columns (least squares) against Δk/k0, and the
-  /// coefficient of the damping sensitivity column (least squares) against the damping coefficient.
-  std::vector<double> calib_ratio, calib_stiffness_beta, calib_damping, calib_damping_beta;
+  /// dynamics: calibration curve of the nonlinear k(t) response, from runs at a few Δk/k0 (ascending): the magnitude
+  /// of the coefficients of the two k(t) sensitivity columns (least squares) against Δk/k0.
+  std::vector<double> calib_ratio, calib_stiffness_beta;
+  /// dynamics: the damping coefficients of a table (ascending, N·s/m) and the response to each (n x table size:
+  /// meshing force of the run minus the baseline's; zero at the model's own c0).
+  std::vector<double> damping_table_Ns_per_m;
+  Eigen::MatrixXd damping_response;
   Baseline model;                    ///< the baseline parameters used
   std::string response_name;         ///< column name of the response
   std::string response_unit;         ///< "rad" or "um"
@@ -108,6 +111,14 @@ Eigen::VectorXd resample(const std::vector<double>& t, const std::vector<double>
 
 /// dynamics: cos/sin(k ψ_mesh) for k = 1, 2 (n x 4), the mesh-frequency line and its harmonic.
 Eigen::MatrixXd mesh_lines(const Experiment& e);
+
+/// Steps of the damping table each side of c0 (ratio 2^(1/4): c0/8 to 8 c0).
+inline constexpr int kDampingTableSteps = 12;
+
+/// dynamics: the secant (n rows, N per N·s/m) of the response to the damping coefficient from the model's c0 to c:
+/// the response at c, interpolated linearly in c between the table's runs (c clamped to the table), over c - c0; at
+/// c = c0 the mean of the two neighbouring segments' slopes.
+Eigen::VectorXd damping_secant(const Experiment& e, double c_Ns_per_m);
 
 /// Inverse of a calibration curve y(x) given at ascending x: the x whose y is `y`, searched on the segments nearest
 /// x_ref first (the curve may fold back far away); linear extrapolation beyond the ends.

@@ -154,6 +154,13 @@ Tally run_effect(const Baseline& b, const BenchOptions& o, const std::string& ef
     const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     (i == 0 ? t.first_seconds : t.seconds) += sec;
     record(t, name, effect.empty() ? nlohmann::json::object() : truth["effects"][0]["params"], r);
+    bool named = effect.empty();
+    for (const auto& fx : r.effects) named = named || fx.name == name;
+    for (const auto& rj : r.rejected)
+      if (!named && rj.name == name) std::printf("    seed %llu not named: %s\n", (unsigned long long)(first_seed + i),
+                                                 rj.reason.c_str());
+    if (!named && !r.significant) std::printf("    seed %llu not named: no significant mismatch\n",
+                                             (unsigned long long)(first_seed + i));
   }
   t.seconds /= std::max(1, o.seeds - 1);
   return t;
@@ -191,6 +198,12 @@ void diagnose(const Baseline& b, const BenchOptions& o, const std::string& effec
   std::printf("%s (signal RMS %.3g N, noise RMS %.3g N, AR(%d)): unexplained by its model: OLS %.1f %%, GLS %.1f %% "
               "(whitened)\n", name.c_str(), std::sqrt(d.squaredNorm() / d.size()), noisy.noise_rms, ar.order(),
               100 * std::sqrt(ols.rss_w / d.squaredNorm()), 100 * std::sqrt(gls.rss_w / dw));
+  if (name == "damping") {
+    const double c = truth["coefficient_Ns_per_m"].get<double>(), c0 = b.damping_Ns_per_m;
+    const Vec table = (c - c0) * damping_secant(ec, c);
+    std::printf("    the table's interpolant at the true c misses %.1f %% of the response (RMS)\n",
+                100 * (table - d).norm() / d.norm());
+  }
   const NamedValues ho = spec->headline(ec, ols, 0), hg = spec->headline(ec, gls, 0);
   for (std::size_t i = 0; i < ho.size(); ++i)
     std::printf("    %-22s truth %-10.5g  OLS %.5g  GLS %.5g\n", ho[i].first.c_str(),

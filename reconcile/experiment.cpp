@@ -92,23 +92,41 @@ Eigen::MatrixXd mesh_lines(const Experiment& e) {
   return m;
 }
 
-Eigen::VectorXd damping_secant(const Experiment& e, double c_Ns_per_m) {
+namespace {
+
+/// The damping response at c (clamped to the table): Lagrange cubic through the four table runs around c (linear
+/// with two). Interpolation error O(h^4) on the table's spacing: linear interpolation between the runs at 1682 and
+/// 2000 N*s/m read a concealed 1700 2.4 % low on the frozen seed gear, more than its own scatter.
+Eigen::VectorXd damping_response_at(const Experiment& e, double c_Ns_per_m) {
   const std::vector<double>& c = e.damping_table_Ns_per_m;
   const int m = static_cast<int>(c.size());
-  if (m < 2) return Eigen::VectorXd::Zero(e.n);
-  const double c0 = e.model.damping_Ns_per_m;
   const double at = std::clamp(c_Ns_per_m, c.front(), c.back());
   const int j = std::clamp(static_cast<int>(std::upper_bound(c.begin(), c.end(), at) - c.begin()) - 1, 0, m - 2);
-  const auto slope = [&](int k) { return Eigen::VectorXd((e.damping_response.col(k + 1) - e.damping_response.col(k)) /
-                                                         (c[k + 1] - c[k])); };
-  if (std::abs(at - c0) <= 1e-12 * std::max(c0, 1.0)) {
-    const int i0 = static_cast<int>(std::lower_bound(c.begin(), c.end(), c0) - c.begin());
-    if (i0 == 0) return slope(0);
-    if (i0 >= m - 1) return slope(m - 2);
-    return 0.5 * (slope(i0 - 1) + slope(i0));
+  const int points = std::min(m, 4);
+  const int k0 = std::clamp(j - 1, 0, m - points);
+  Eigen::VectorXd r = Eigen::VectorXd::Zero(e.n);
+  for (int i = k0; i < k0 + points; ++i) {
+    double w = 1.0;
+    for (int l = k0; l < k0 + points; ++l)
+      if (l != i) w *= (at - c[l]) / (c[i] - c[l]);
+    r += w * e.damping_response.col(i);
   }
-  const double w = (at - c[j]) / (c[j + 1] - c[j]);
-  return ((1.0 - w) * e.damping_response.col(j) + w * e.damping_response.col(j + 1)) / (at - c0);
+  return r;
+}
+
+}  // namespace
+
+Eigen::VectorXd damping_secant(const Experiment& e, double c_Ns_per_m) {
+  const std::vector<double>& c = e.damping_table_Ns_per_m;
+  if (c.size() < 2) return Eigen::VectorXd::Zero(e.n);
+  const double c0 = e.model.damping_Ns_per_m;
+  const double at = std::clamp(c_Ns_per_m, c.front(), c.back());
+  const double h = 1e-3 * std::max(c0, c[1] - c[0]);
+  if (std::abs(at - c0) < h) {  // the secant's limit at c0: the interpolant's slope there
+    const double lo = std::max(c0 - h, c.front()), hi = std::min(c0 + h, c.back());
+    return (damping_response_at(e, hi) - damping_response_at(e, lo)) / (hi - lo);
+  }
+  return (damping_response_at(e, at) - damping_response_at(e, c0)) / (at - c0);
 }
 
 double invert_calibration(const std::vector<double>& x, const std::vector<double>& y, double x_ref, double value) {

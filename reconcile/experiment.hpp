@@ -116,8 +116,8 @@ Eigen::MatrixXd mesh_lines(const Experiment& e);
 inline constexpr int kDampingTableSteps = 12;
 
 /// dynamics: the secant (n rows, N per N·s/m) of the response to the damping coefficient from the model's c0 to c:
-/// the response at c, interpolated linearly in c between the table's runs (c clamped to the table), over c - c0; at
-/// c = c0 the mean of the two neighbouring segments' slopes.
+/// the response at c, a cubic through the table's runs around c (c clamped to the table), over c - c0; within
+/// 1e-3 c0 of c0 the interpolant's slope there.
 Eigen::VectorXd damping_secant(const Experiment& e, double c_Ns_per_m);
 
 /// Inverse of a calibration curve y(x) given at ascending x: the x whose y is `y`, searched on the segments nearest

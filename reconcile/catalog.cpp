@@ -279,12 +279,18 @@ std::vector<EffectSpec> dynamics_effects() {
     // r cos(phi) and r sin(phi)), whole waveforms: on moving pairs the mesh has its own f_m content, so the
     // variation's response is not a pair of lines and its f_m line depends on phi. r from the coefficients' magnitude
     // through the calibration curve of runs at a few r (the response is far from linear in r on frozen pairs).
-    s.n_linear = 2;
+    // The columns' parts not locked to the mesh come with coefficients of their own (they carry the response's
+    // transient part, not r).
+    s.n_linear = 4;
     s.bounds = no_bounds;
-    s.columns = [](const Experiment& e, const Vec&) { return Mat(e.sensitivity.leftCols(2)); };
+    s.columns = [](const Experiment& e, const Vec&) {
+      Mat m(e.n, 4);
+      m << e.sensitivity.leftCols(2), e.stiffness_unlocked;
+      return m;
+    };
     s.headline = [](const Experiment& e, const FitResult& f, int t) {
       const Vec& b = f.terms[t].beta;
-      const Vec contribution = e.sensitivity.leftCols(2) * b;
+      const Vec contribution = e.sensitivity.leftCols(2) * b.head(2);
       const Vec line = mesh_lines(e).colPivHouseholderQr().solve(contribution);
       return NamedValues{{"amplitude_ratio", invert_calibration(e.calib_ratio, e.calib_stiffness_beta, 0.01,
                                                                 std::hypot(b[0], b[1]))},

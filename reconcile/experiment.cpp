@@ -83,14 +83,16 @@ Eigen::VectorXd resample(const std::vector<double>& t, const std::vector<double>
   return out;
 }
 
-Eigen::MatrixXd mesh_lines(const Experiment& e) {
-  Eigen::MatrixXd m(e.n, 4);
-  for (int k = 1; k <= 2; ++k) {
+Eigen::MatrixXd mesh_harmonics(const Experiment& e, int orders) {
+  Eigen::MatrixXd m(e.n, 2 * orders);
+  for (int k = 1; k <= orders; ++k) {
     m.col(2 * k - 2) = (k * e.mesh_phase_rad.array()).cos();
     m.col(2 * k - 1) = (k * e.mesh_phase_rad.array()).sin();
   }
   return m;
 }
+
+Eigen::MatrixXd mesh_lines(const Experiment& e) { return mesh_harmonics(e, 2); }
 
 namespace {
 
@@ -282,6 +284,18 @@ Experiment make_experiment(const Recording& recording, const Baseline& base) {
       e.sensitivity.col(0) = (force(v) - e.baseline) / dk;
       v.stiffness_phase_rad = 0.5 * M_PI;
       e.sensitivity.col(1) = (force(v) - e.baseline) / dk;
+      // Split into the part locked to the mesh (k(t) is periodic in the mesh phase, so is the steady response to it)
+      // and the rest (the load step's ringing changed, contacts that open and close at other times), which may
+      // answer r non-smoothly: r is read from the locked part alone (frozen seed gear: 51 % of an r = 0.05 response
+      // lay outside the raw columns, and r read from them was half the truth).
+      const Eigen::MatrixXd harmonics = mesh_harmonics(e, kMeshHarmonics);
+      const auto harmonics_qr = harmonics.colPivHouseholderQr();
+      e.stiffness_unlocked.resize(e.n, 2);
+      for (int j = 0; j < 2; ++j) {
+        const Eigen::VectorXd locked = harmonics * harmonics_qr.solve(Eigen::VectorXd(e.sensitivity.col(j)));
+        e.stiffness_unlocked.col(j) = e.sensitivity.col(j) - locked;
+        e.sensitivity.col(j) = locked;
+      }
       const double c0 = base.damping_Ns_per_m;
       if (c0 > 0.0) {
         DynamicsVariation lo, hi;

@@ -83,8 +83,10 @@ struct Experiment {
   double rated_torque_Nm = 0.0;      ///< torsion: metadata `rated_torque_Nm`, 0 when absent
   Eigen::VectorXd mesh_phase_rad;    ///< dynamics: ψ_mesh(t) of the baseline run (2π per tooth passing)
   /// dynamics: sensitivity columns of the response (mesh_force_N) from perturbed runs, per unit parameter:
-  /// 0,1: Δk/k0 at phase 0 and π/2; 2: damping (per N·s/m); 3: Coulomb drag (per N·m); 4: viscous drag (per N·m·s/rad)
+  /// 0,1: Δk/k0 at phase 0 and π/2 (their part locked to the mesh, see stiffness_unlocked); 2: damping (per N·s/m); 3: Coulomb drag (per N·m); 4: viscous drag (per N·m·s/rad)
   Eigen::MatrixXd sensitivity;
+  /// dynamics: the k(t) sensitivity columns' part not locked to the mesh (n x 2; columns 0, 1 hold the locked part).
+  Eigen::MatrixXd stiffness_unlocked;
   /// dynamics: calibration curve of the nonlinear k(t) response, from runs at a few Δk/k0 (ascending): the magnitude
   /// of the coefficients of the two k(t) sensitivity columns (least squares) against Δk/k0.
   std::vector<double> calib_ratio, calib_stiffness_beta;
@@ -109,7 +111,11 @@ Recording rows_from(const Recording& recording, double from_s);
 /// Linear interpolation of y(t) (t ascending) at `at`; constant beyond the ends.
 Eigen::VectorXd resample(const std::vector<double>& t, const std::vector<double>& y, const Eigen::VectorXd& at);
 
-/// dynamics: cos/sin(k ψ_mesh) for k = 1, 2 (n x 4), the mesh-frequency line and its harmonic.
+/// dynamics: cos/sin(k ψ_mesh) for k = 1 .. orders (n x 2 orders), the mesh-frequency line and its harmonics.
+Eigen::MatrixXd mesh_harmonics(const Experiment& e, int orders);
+/// Mesh orders the k(t) sensitivity columns keep.
+inline constexpr int kMeshHarmonics = 4;
+/// dynamics: mesh_harmonics(e, 2), the mesh-frequency line and its harmonic.
 Eigen::MatrixXd mesh_lines(const Experiment& e);
 
 /// Steps of the damping table each side of c0 (ratio 2^(1/4): c0/8 to 8 c0).

@@ -70,14 +70,7 @@ sw::Case bench_case(const BenchOptions& o) {
 }
 
 SynthOptions synth_options(const Baseline& b, const BenchOptions& o, const std::string& effect, std::uint64_t seed) {
-  SynthOptions s;
-  s.kind = Kind::Dynamics;
-  s.baseline = b;
-  s.white_sd = o.noise_N;
-  s.ar1_sd = o.noise_N;
-  s.quantum = 0.2 * o.noise_N;
-  s.speed_sd_rpm = 0.05;
-  s.seed = seed;
+  SynthOptions s = dynamics_proof_options(b, o.noise_N, seed);
   s.concealment = o.concealment;
   if (!effect.empty()) s.effects.push_back(parse_synth_effect(effect));
   return s;

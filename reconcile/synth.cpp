@@ -385,6 +385,18 @@ SynthResult synthesize_dynamics(const SynthOptions& o, Recording rec) {
 
 }  // namespace
 
+SynthOptions dynamics_proof_options(const Baseline& baseline, double noise_N, std::uint64_t seed) {
+  SynthOptions o;
+  o.kind = Kind::Dynamics;
+  o.baseline = baseline;
+  o.white_sd = noise_N;
+  o.ar1_sd = noise_N;
+  o.quantum = 0.2 * noise_N;
+  o.speed_sd_rpm = 0.05;
+  o.seed = seed;
+  return o;
+}
+
 SynthResult synthesize(const SynthOptions& o) {
   if (o.samples < kMinSamples)
     throw InputError("synth: samples = " + std::to_string(o.samples) + "; must be >= " + std::to_string(kMinSamples));

@@ -69,14 +69,7 @@ struct Outcome {
 };
 
 Outcome run_proof(const Proof& p, std::uint64_t seed) {
-  SynthOptions o;
-  o.kind = Kind::Dynamics;
-  o.baseline = moving_baseline();
-  o.white_sd = p.noise;
-  o.ar1_sd = p.noise;
-  o.quantum = 0.2 * p.noise;
-  o.speed_sd_rpm = 0.05;
-  o.seed = seed;
+  SynthOptions o = dynamics_proof_options(moving_baseline(), p.noise, seed);
   o.concealment = p.concealment;
   if (!p.effect.empty()) o.effects.push_back(parse_synth_effect(p.effect));
   const SynthResult s = synthesize(o);
@@ -133,6 +126,24 @@ TEST(ReconcileDynamicsBaseline, WithoutGearSaysWhatIsMissing) {
     FAIL() << "no error";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("[gear] missing"), std::string::npos) << e.what();
+  }
+}
+
+// Moving pairs are compared over the steady window: a recording with fewer rows there than reconcile needs is refused
+// in one line that says so.
+TEST(ReconcileDynamicsBaseline, RecordingWithTooLittleSteadyRunningIsRefused) {
+  Recording rec = synthesize(dynamics_proof_options(moving_baseline(), 5.0, 1)).recording;
+  const double steady_s = moving_baseline().analysis_from_s;
+  ASSERT_GT(steady_s, 0.0);
+  std::size_t keep = 0;
+  while (keep < rec.rows() && rec.values[0][keep] < steady_s + 50 * 1.0e-5) ++keep;  // 50 steady rows
+  for (auto& column : rec.values) column.resize(keep);
+  rec.lines.resize(keep);
+  try {
+    make_experiment(rec, moving_baseline());
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("record longer steady running"), std::string::npos) << e.what();
   }
 }
 

@@ -102,13 +102,20 @@ std::string pair_model_name(const DynamicsModel& m) {
 /// at phi_k = 2 pi k / z_f - sigma, so z_f phi_k = -z_f sigma (mod 2 pi) for every tooth, and the mesh phase is
 /// psi_mesh = s z_f sigma (s the sense of the generator's travel relative to the flexspline): the table's factor at phi
 /// is 1 + r sin(phase - s z_f phi), the same for all teeth at each instant, as k(t) is.
+/// The table's node slopes of the compliance follow the quotient rule (c/g)' = c'/g - c g'/g^2, so the interpolant
+/// stays the cubic Hermite of the modulated compliance.
 MovingMesh with_stiffness_variation(const MovingMesh& mesh, double ratio, double phase_rad, double sense) {
   MovingMesh m = mesh;
   FlankTable& t = m.table;
+  const double z = sense * m.teeth_flexspline;
   for (int side = 0; side < 2; ++side)
     for (int j = 0; j < t.size(); ++j) {
       const double phi = t.phi_start_rad + j * t.step_rad;
-      t.compliance_m_per_N[side][j] /= 1.0 + ratio * std::sin(phase_rad - sense * m.teeth_flexspline * phi);
+      const double g = 1.0 + ratio * std::sin(phase_rad - z * phi), dg = -z * ratio * std::cos(phase_rad - z * phi);
+      double& c = t.compliance_m_per_N[side][j];
+      double& dc = t.compliance_slope[side][j];
+      dc = dc / g - c * dg / (g * g);
+      c /= g;
     }
   return m;
 }

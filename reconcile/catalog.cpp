@@ -303,8 +303,8 @@ std::vector<EffectSpec> dynamics_effects() {
   {
     EffectSpec s;
     s.name = "damping";
-    s.physics = "contact damping other than the model's: the meshing-force fluctuations after the run-up and load "
-                "steps decay at another rate";
+    s.physics = "contact damping other than the model's: the meshing-force fluctuations (the ringing after the run-up "
+                "and load steps; with moving pairs also each tooth's entry into the mesh) are damped at another rate";
     // The column is the model's own response to a change of c from c0 to theta, per unit change (the secant of the
     // response, from the table of runs), and its coefficient is the change: added = beta, c = c0 + beta. The damping
     // sets the decay rate of the ringing after a step, so a large change alters the response's shape and theta finds

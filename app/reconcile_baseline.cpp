@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 
@@ -250,10 +251,14 @@ reconcile::Baseline make_baseline(Kind kind, const BaselineSources& src, std::ve
       q.stiffness_variation_N_per_m = 0.0;
       DynamicsModelOptions o;
       o.fem_result = src.fem_result;
-      const DynamicsJobModel job = dynamics_model(*c, q, o, default_out_dir(*c));
+      const std::filesystem::path fem_dir = default_out_dir(*c);
+      if (q.pair_motion == PairMotion::Moving && q.rim == RimCoupling::Fem)
+        notes.push_back("rim = \"fem\": the flexspline body's compliance from the FEM solved first, its result in " +
+                        fem_dir.string() + " (each of the ~40 runs of the experiment then integrates the coupled mesh)");
+      const DynamicsJobModel job = dynamics_model(*c, q, o, fem_dir);
       reconcile::Baseline d = dynamics_baseline(job.model);
       b.source = c->path + ": " + d.source;
-      b.dynamics_run = d.dynamics_run;
+      b.dynamics_run = reconcile::with_remembered_runs(d).dynamics_run;  // synth and the experiment share runs
       b.damping_Ns_per_m = d.damping_Ns_per_m;
       b.mesh_frequency_Hz = d.mesh_frequency_Hz;
       b.steady_from_s = d.steady_from_s;

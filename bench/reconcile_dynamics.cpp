@@ -264,7 +264,7 @@ int main(int argc, char** argv) {
     sw::app::BaselineSources src;
     src.case_file = bench_case(o);
     std::vector<std::string> notes;
-    const Baseline b = with_remembered_runs(sw::app::make_baseline(Kind::Dynamics, src, notes));
+    const Baseline b = sw::app::make_baseline(Kind::Dynamics, src, notes);  // its runs are remembered
     std::printf("%s\nnoise: white %.3g N + AR(1) %.3g N (phi 0.8) + quantum %.3g N; effects at %.3g x the noise RMS\n",
                 notes.back().c_str(), o.noise_N, o.noise_N, 0.2 * o.noise_N, o.concealment);
     const std::vector<std::string> effects{"mesh_stiffness_variation:amplitude_ratio=0.05,phase_rad=0.3",

@@ -44,14 +44,14 @@ sw::Case small_case(PairMotion pairs) {
   return c;
 }
 
-/// The moving-pair baseline, built once; its runs are remembered, so the sensitivity and calibration runs are shared
-/// by every test here (a run is a deterministic function of its variation).
+/// The moving-pair baseline, built once; make_baseline remembers its runs, so the sensitivity and calibration runs are
+/// shared by every test here (a run is a deterministic function of its variation).
 const Baseline& moving_baseline() {
   static const Baseline b = [] {
     app::BaselineSources src;
     src.case_file = small_case(PairMotion::Moving);
     std::vector<std::string> notes;
-    return with_remembered_runs(app::make_baseline(Kind::Dynamics, src, notes));
+    return app::make_baseline(Kind::Dynamics, src, notes);
   }();
   return b;
 }

@@ -14,61 +14,16 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.hpp"
-#include "app/contact_job.hpp"
-#include "app/fem_job.hpp"
-#include "dynamics/moving_mesh_build.hpp"
-#include "io/fem_output.hpp"
+#include "app/dynamics_job.hpp"
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "dynamics/analysis.hpp"
 #include "dynamics/report.hpp"
 #include "io/atomic_file.hpp"
 #include "io/case.hpp"
-#include "dynamics/kinematic_pairs.hpp"
-#include "kinematics/backlash.hpp"
-#include "kinematics/neutral_curve.hpp"
 
 namespace sw::app {
 namespace {
-
-/// C_τ from `strainwave fem`'s result.json (key compliance_rad_per_Nm).
-double compliance_from_fem(const std::string& path) { return read_fem_compliance(path); }
-
-/// What to do with a flank whose clearance at rest is negative (interference in the basic kinematic model):
-/// "preload" keeps it (contact force at rest), "clip" sets the clearance to 0, "drop" removes the pair.
-std::vector<ToothPair> treat_interference(std::vector<ToothPair> pairs, const std::string& policy) {
-  if (policy == "preload") return pairs;
-  std::vector<ToothPair> out;
-  for (ToothPair t : pairs) {
-    const bool interferes = t.clearance_drive_m < 0 || t.clearance_coast_m < 0;
-    if (policy == "drop" && interferes) continue;
-    t.clearance_drive_m = std::max(0.0, t.clearance_drive_m);
-    t.clearance_coast_m = std::max(0.0, t.clearance_coast_m);
-    out.push_back(t);
-  }
-  return out;
-}
-
-/// The moving mesh of the case: a rigid rim on the case's generator curve, or the rim coupled through the FEM's body.
-std::shared_ptr<const MovingMesh> moving_mesh(const Case& c, const DynamicsParams& p, const std::string& out_dir) {
-  const ToothCompliance teeth =
-      p.pair_stiffness == PairStiffness::Teeth ? series_parts(c).tooth_pair_m_per_N : ToothCompliance{};
-  if (p.rim == RimCoupling::Rigid) {
-    const double rm = rim_mean_radius(c.flexspline), w0 = case_radial_deformation_m(c);
-    const NeutralCurve curve =
-        c.wave_generator ? generator_neutral_curve(rm, w0, *c.wave_generator) : cam_neutral_curve(rm, w0);
-    return std::make_shared<MovingMesh>(rigid_rim_mesh(*c.gear, curve, teeth, 64));
-  }
-  check_contact_case(c);
-  FemJobOptions o;
-  o.write_vtk = false;
-  const FemJobResult fem = run_fem_job(c, out_dir, o);
-  if (!fem.mesh || !fem.system) throw InputError(c.path + ": rim = \"fem\" needs the TET10 solver (solver.method)");
-  const double rated = c.load.rated_torque_Nm.value_or(c.load.torque_Nm);
-  return std::make_shared<MovingMesh>(
-      fem_coupled_mesh(c, *fem.mesh, *fem.system, fem.solution, teeth, rated, p.compliance_phases,
-                       std::max(1, 64 / p.compliance_phases)));  // the flank table every pitch/64: see test_moving
-}
 
 void run_dynamics(const std::string& case_path, std::string out_dir, const std::string& clearances,
                   const std::string& fem_result, const std::string& interference, const std::string& pairs_option,
@@ -79,44 +34,15 @@ void run_dynamics(const std::string& case_path, std::string out_dir, const std::
   DynamicsParams p = c.dynamics ? *c.dynamics : DynamicsParams{};
   if (!pairs_option.empty()) p.pair_motion = pairs_option == "moving" ? PairMotion::Moving : PairMotion::Frozen;
   if (!rim_option.empty()) p.rim = rim_option == "fem" ? RimCoupling::Fem : RimCoupling::Rigid;
-  const bool moving = p.pair_motion == PairMotion::Moving;
-  if (moving) validate_moving(p, case_path);
-  if (!fem_result.empty()) {
-    p.flexspline_compliance_rad_per_Nm = compliance_from_fem(fem_result);
-    progress("dynamics: flexspline rim and flange joined by 1/C_tau, C_tau = " +
-             std::to_string(p.flexspline_compliance_rad_per_Nm) + " rad/(N m) from " + fem_result);
-  }
   if (out_dir.empty()) out_dir = default_out_dir(c).string();
   progress("case:\n" + describe(p));
-  std::vector<ToothPair> pairs;
-  std::string source;
-  if (clearances == "kinematics") {
-    pairs = pairs_from_kinematics(c);
-    source = "kinematics (basic model, wave generator at 0, phi0 = 0), " + std::to_string(pairs.size()) + " engaged pairs";
-  } else {
-    pairs = approximate_tooth_pairs(*c.gear, case_radial_deformation_m(c), c.load.engagement_half_angle_rad,
-                                    p.base_clearance_m);
-    source = "approximate stand-in (w0(1 - cos 2phi) sin(alpha) within +-engagement_half_angle), " +
-             std::to_string(pairs.size()) + " pairs";
-  }
-  int interfering = 0;
-  for (const auto& tp : pairs) interfering += (tp.clearance_drive_m < 0 || tp.clearance_coast_m < 0) ? 1 : 0;
-  if (interfering > 0) {
-    progress("dynamics: " + std::to_string(interfering) + " pairs have negative clearance (interference) at rest: " +
-             (interference == "preload" ? "carried as contact preload"
-              : interference == "clip"  ? "clearance set to 0"
-                                        : "pairs left out"));
-    pairs = treat_interference(std::move(pairs), interference);
-    source += ", interference: " + interference;
-  }
-  DynamicsModel m = make_model(*c.gear, c.flexspline, c.flexspline.shape == FlexsplineShape::Cup, c.material, p,
-                               std::move(pairs), case_path);
-  if (moving) {
-    if (out_dir.empty()) out_dir = default_out_dir(c).string();
-    m.moving = moving_mesh(c, p, out_dir);
-    m.pairs.clear();
-    source = m.moving->source;
-  }
+  DynamicsModelOptions o;
+  o.clearances = clearances;
+  o.interference = interference;
+  o.fem_result = fem_result;
+  DynamicsJobModel job = dynamics_model(c, p, o, out_dir);
+  const DynamicsModel& m = job.model;
+  const std::string& source = job.source;
   progress("dynamics: " + std::string(to_string(p.configuration)) + ", " + std::to_string(m.pairs.size()) +
            " tooth pairs (" + source + "), " + std::to_string(std::lround(p.duration_s / p.output_step_s)) +
            " output steps");

@@ -3,15 +3,18 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 
 #include <nlohmann/json.hpp>
 
+#include "app/commands.hpp"
+#include "app/dynamics_job.hpp"
 #include "common/error.hpp"
 #include "dynamics/model.hpp"
-#include "dynamics/simulate.hpp"
 #include "dynamics/kinematic_pairs.hpp"
+#include "dynamics/simulate.hpp"
 #include "kinematics/backlash.hpp"
 #include "kinematics/neutral_curve.hpp"
 #include "io/contact_curve.hpp"
@@ -86,6 +89,57 @@ std::optional<int> meta_int(const reconcile::Recording* r, const std::string& ke
   return static_cast<int>(std::lround(*v));
 }
 
+/// The pair model in words: frozen or moving pairs, the rim, the pair stiffness.
+std::string pair_model_name(const DynamicsModel& m) {
+  if (!m.moving) return "frozen tooth pairs";
+  const std::string stiffness = m.params.pair_stiffness == PairStiffness::Teeth
+                                    ? "tooth-pair compliance" : "constant pair stiffness k0";
+  return std::string(m.moving->coupled() ? "moving tooth pairs coupled through the flexspline body (FEM)"
+                                         : "moving tooth pairs on a rigid rim") + ", " + stiffness;
+}
+
+/// Moving pairs with the teeth's own compliance have no k0 for k(t) = k0 (1 + r sin(psi_mesh + phase)) to act on; the
+/// same variation is each flank's compliance divided by 1 + r sin(psi_mesh + phase) at the flank's place. Tooth k sits
+/// at phi_k = 2 pi k / z_f - sigma, so z_f phi_k = -z_f sigma (mod 2 pi) for every tooth, and the mesh phase is
+/// psi_mesh = s z_f sigma (s the sense of the generator's travel relative to the flexspline): the table's factor at phi
+/// is 1 + r sin(phase - s z_f phi), the same for all teeth at each instant, as k(t) is.
+/// The table's node slopes of the compliance follow the quotient rule (c/g)' = c'/g - c g'/g^2, so the interpolant
+/// stays the cubic Hermite of the modulated compliance.
+MovingMesh with_stiffness_variation(const MovingMesh& mesh, double ratio, double phase_rad, double sense) {
+  MovingMesh m = mesh;
+  FlankTable& t = m.table;
+  const double z = sense * m.teeth_flexspline;
+  for (int side = 0; side < 2; ++side)
+    for (int j = 0; j < t.size(); ++j) {
+      const double phi = t.phi_start_rad + j * t.step_rad;
+      const double g = 1.0 + ratio * std::sin(phase_rad - z * phi), dg = -z * ratio * std::cos(phase_rad - z * phi);
+      double& c = t.compliance_m_per_N[side][j];
+      double& dc = t.compliance_slope[side][j];
+      dc = dc / g - c * dg / (g * g);
+      c /= g;
+    }
+  return m;
+}
+
+/// The model of one variation: k(t), damping and output drag changed as the variation says.
+DynamicsModel varied_model(const DynamicsModel& model, const SteadyState& ss, const reconcile::DynamicsVariation& v) {
+  DynamicsModel m = model;
+  const bool teeth = m.moving && m.params.pair_stiffness == PairStiffness::Teeth;
+  if (teeth && v.stiffness_ratio != 0.0) {
+    const int w = static_cast<int>(BodyId::WaveGenerator), f = static_cast<int>(BodyId::FlexsplineRim);
+    const double sense = ss.speed_rad_s[w] - ss.speed_rad_s[f] >= 0.0 ? 1.0 : -1.0;
+    m.moving = std::make_shared<MovingMesh>(
+        with_stiffness_variation(*model.moving, v.stiffness_ratio, v.stiffness_phase_rad, sense));
+  } else {
+    m.params.stiffness_variation_N_per_m = v.stiffness_ratio * m.params.stiffness_N_per_m;
+    m.params.stiffness_phase_deg = v.stiffness_phase_rad * 180.0 / M_PI;
+  }
+  if (v.damping_Ns_per_m >= 0.0) m.params.damping_Ns_per_m = v.damping_Ns_per_m;
+  m.params.output_drag_coulomb_Nm += v.drag_coulomb_Nm;
+  m.params.output_drag_viscous_Nms_per_rad += v.drag_viscous_Nms_per_rad;
+  return m;
+}
+
 }  // namespace
 
 TorsionBaseline parse_torsion_baseline(const std::string& text) {
@@ -106,13 +160,10 @@ reconcile::Baseline dynamics_baseline(const DynamicsModel& model) {
   b.drive_ramp_end_s = model.params.drive_ramp_end_s;
   b.load_torque_Nm = model.params.load_torque_Nm;
   b.output_speed_rad_s = std::abs(ss.speed_rad_s[static_cast<int>(ss.output)]);
+  if (model.moving) b.analysis_from_s = model.params.steady_from_s;
+  b.source = pair_model_name(model);
   b.dynamics_run = [model, ss](const reconcile::DynamicsVariation& v) {
-    DynamicsModel m = model;
-    m.params.stiffness_variation_N_per_m = v.stiffness_ratio * m.params.stiffness_N_per_m;
-    m.params.stiffness_phase_deg = v.stiffness_phase_rad * 180.0 / M_PI;
-    if (v.damping_Ns_per_m >= 0.0) m.params.damping_Ns_per_m = v.damping_Ns_per_m;
-    m.params.output_drag_coulomb_Nm += v.drag_coulomb_Nm;
-    m.params.output_drag_viscous_Nms_per_rad += v.drag_viscous_Nms_per_rad;
+    const DynamicsModel m = varied_model(model, ss, v);
     const DynamicsSeries s = simulate(m);
     reconcile::DynamicsRun r;
     r.time_s = s.time_s;
@@ -193,25 +244,35 @@ reconcile::Baseline make_baseline(Kind kind, const BaselineSources& src, std::ve
       if (!c || !c->gear)
         throw InputError((c ? c->path : std::string("case")) +
                          ": [gear] missing; the dynamics baseline needs the case's gear and [dynamics] table");
-      const DynamicsParams p = c->dynamics ? *c->dynamics : DynamicsParams{};
-      if (p.stiffness_variation_N_per_m != 0.0)
+      DynamicsParams q = c->dynamics ? *c->dynamics : DynamicsParams{};
+      if (q.stiffness_variation_N_per_m != 0.0)
         notes.push_back("the case has dynamics.stiffness_variation_N_per_m = " +
-                        std::to_string(p.stiffness_variation_N_per_m) + "; the baseline uses constant mesh stiffness");
-      DynamicsParams q = p;
+                        std::to_string(q.stiffness_variation_N_per_m) + "; the baseline uses constant mesh stiffness");
       q.stiffness_variation_N_per_m = 0.0;
-      const DynamicsModel m = make_model(*c->gear, c->flexspline, c->flexspline.shape == FlexsplineShape::Cup,
-                                         c->material, q, pairs_from_kinematics(*c), c->path);
-      reconcile::Baseline d = dynamics_baseline(m);
-      b.dynamics_run = d.dynamics_run;
+      DynamicsModelOptions o;
+      o.fem_result = src.fem_result;
+      const std::filesystem::path fem_dir = default_out_dir(*c);
+      if (q.pair_motion == PairMotion::Moving && q.rim == RimCoupling::Fem)
+        notes.push_back("rim = \"fem\": the flexspline body's compliance from the FEM solved first, its result in " +
+                        fem_dir.string() + " (each of the ~40 runs of the experiment then integrates the coupled mesh)");
+      const DynamicsJobModel job = dynamics_model(*c, q, o, fem_dir);
+      reconcile::Baseline d = dynamics_baseline(job.model);
+      b.source = c->path + ": " + d.source;
+      b.dynamics_run = reconcile::with_remembered_runs(d).dynamics_run;  // synth and the experiment share runs
       b.damping_Ns_per_m = d.damping_Ns_per_m;
       b.mesh_frequency_Hz = d.mesh_frequency_Hz;
       b.steady_from_s = d.steady_from_s;
       b.drive_ramp_end_s = d.drive_ramp_end_s;
       b.load_torque_Nm = d.load_torque_Nm;
       b.output_speed_rad_s = d.output_speed_rad_s;
+      b.analysis_from_s = d.analysis_from_s;
+      if (d.analysis_from_s > 0.0)
+        notes.push_back("moving tooth pairs: the recording is compared from dynamics.steady_from_s = " +
+                        num(d.analysis_from_s) + " s on (in the run-up and at load steps the teeth separate and "
+                        "strike again, and the meshing force answers the model's parameters by the impacts' timing)");
       notes.push_back("dynamics baseline: the [dynamics] model of " + c->path + " (" + to_string(q.configuration) +
-                      ", constant mesh stiffness, kinematics clearances), " + std::to_string(m.pairs.size()) +
-                      " tooth pairs; f_m = " + std::to_string(d.mesh_frequency_Hz) + " Hz");
+                      ", " + d.source + ", constant mesh stiffness; " + job.source + "); f_m = " +
+                      std::to_string(d.mesh_frequency_Hz) + " Hz");
       break;
     }
   }

@@ -37,6 +37,8 @@ reconcile::Baseline dynamics_baseline(const DynamicsModel& model);
 inline constexpr double kCurveEndTolerance = 0.01;
 
 /// Builds the baseline of `kind`. `notes` receives case/metadata disagreements and where each number came from.
+/// Dynamics: the model `strainwave dynamics` builds from the case ([dynamics] pairs and rim; rim = "fem" solves the
+/// FEM first), with constant mesh stiffness; its runs are remembered (reconcile::with_remembered_runs).
 reconcile::Baseline make_baseline(reconcile::Kind kind, const BaselineSources& src, std::vector<std::string>& notes);
 
 }  // namespace sw::app

@@ -275,17 +275,27 @@ std::vector<EffectSpec> dynamics_effects() {
     s.name = "mesh_stiffness_variation";
     s.physics = "mesh stiffness that varies as teeth engage and disengage: k(t) = k0 (1 + r sin(2 pi f_m t + phi)), "
                 "a line at the mesh frequency f_m = z_f |n_f - n_w| / 60 in the meshing force";
-    // The lines at f_m and 2 f_m locked to the mesh phase; Δk/k0 from the f_m line's amplitude through the
-    // calibration curve of runs at a few Δk/k0 (the response is far from linear in Δk).
+    // The responses to r sin(psi) and r cos(psi) (the sensitivity columns at phase 0 and pi/2; k(t) is linear in
+    // r cos(phi) and r sin(phi)), whole waveforms: on moving pairs the mesh has its own f_m content, so the
+    // variation's response is not a pair of lines and its f_m line depends on phi. r from the coefficients' magnitude
+    // through the calibration curve of runs at a few r (the response is far from linear in r on frozen pairs).
+    // The columns' parts not locked to the mesh come with coefficients of their own (they carry the response's
+    // transient part, not r).
     s.n_linear = 4;
     s.bounds = no_bounds;
-    s.columns = [](const Experiment& e, const Vec&) { return mesh_lines(e); };
+    s.columns = [](const Experiment& e, const Vec&) {
+      Mat m(e.n, 4);
+      m << e.sensitivity.leftCols(2), e.stiffness_unlocked;
+      return m;
+    };
     s.headline = [](const Experiment& e, const FitResult& f, int t) {
       const Vec& b = f.terms[t].beta;
-      const double line = std::hypot(b[0], b[1]);
-      return NamedValues{{"amplitude_ratio", invert_calibration(e.calib_ratio, e.calib_line_N, 0.01, line)},
+      const Vec contribution = e.sensitivity.leftCols(2) * b.head(2);
+      const Vec line = mesh_lines(e).colPivHouseholderQr().solve(contribution);
+      return NamedValues{{"amplitude_ratio", invert_calibration(e.calib_ratio, e.calib_stiffness_beta, 0.01,
+                                                                std::hypot(b[0], b[1]))},
                          {"frequency_Hz", e.model.mesh_frequency_Hz},
-                         {"line_amplitude_N", line},
+                         {"line_amplitude_N", std::hypot(line[0], line[1])},
                          {"phase_rad", std::atan2(b[1], b[0])}};
     };
     v.push_back(s);
@@ -293,17 +303,23 @@ std::vector<EffectSpec> dynamics_effects() {
   {
     EffectSpec s;
     s.name = "damping";
-    s.physics = "contact damping other than the model's: the meshing-force fluctuations after the run-up and load "
-                "steps decay at another rate";
-    // Linear in the sensitivity column at c0 (central difference of runs at c0/2 and 3c0/2); the response is far
-    // from linear in c, so the fitted coefficient is mapped back to c through the calibration curve of runs at a
-    // table of c (a free nonlinear c with a free scale extrapolates badly from one transient to the next).
-    s.bounds = no_bounds;
-    s.columns = [](const Experiment& e, const Vec&) { return Mat(e.sensitivity.col(2)); };
+    s.physics = "contact damping other than the model's: the meshing-force fluctuations (the ringing after the run-up "
+                "and load steps; with moving pairs also each tooth's entry into the mesh) are damped at another rate";
+    // The column is the model's own response to a change of c from c0 to theta, per unit change (the secant of the
+    // response, from the table of runs), and its coefficient is the change: added = beta, c = c0 + beta. The damping
+    // sets the decay rate of the ringing after a step, so a large change alters the response's shape and theta finds
+    // the shape (beta = theta - c0 when the model is right); a small one only scales it, and then beta alone is
+    // determined, whatever theta. The one linear column at c0 mapped through a calibration curve that stood here
+    // before left 45 % of a c = 2 c0 response unexplained and read c 25 % low (frozen seed gear).
+    s.nonlinear_names = {"secant_to_Ns_per_m"};
+    s.bounds = [](const Experiment& e) {
+      const auto& c = e.damping_table_Ns_per_m;
+      return c.empty() ? bounds1(0.0, 1.0) : bounds1(c.front(), c.back());
+    };
+    s.columns = [](const Experiment& e, const Vec& th) { return Mat(damping_secant(e, th[0])); };
     s.headline = [](const Experiment& e, const FitResult& f, int t) {
-      const double c0 = e.model.damping_Ns_per_m;
-      const double c = invert_calibration(e.calib_damping, e.calib_damping_beta, c0 > 0 ? c0 : 1e3, f.terms[t].beta[0]);
-      return NamedValues{{"coefficient_Ns_per_m", c}, {"added_Ns_per_m", c - c0}};
+      const double c0 = e.model.damping_Ns_per_m, added = f.terms[t].beta[0];
+      return NamedValues{{"coefficient_Ns_per_m", c0 + added}, {"added_Ns_per_m", added}};
     };
     v.push_back(s);
   }

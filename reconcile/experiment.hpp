@@ -54,7 +54,17 @@ struct Baseline {
   double drive_ramp_end_s = 0.0;       ///< dynamics: end of the speed ramp
   double load_torque_Nm = 0.0;         ///< dynamics: full load (sets the drag perturbation)
   double output_speed_rad_s = 0.0;     ///< dynamics: steady output speed magnitude
+  /// dynamics: rows before this time are not analysed (0: all rows). Moving tooth pairs separate and strike again in
+  /// the run-up and at a load step, and there the meshing force responds to the model's parameters by the timing of
+  /// those impacts, not smoothly: a drag of 1e-4 N*m moves it by up to 836 N (26/28 gear); in steady running the
+  /// response is smooth (the same drag: 0.0076 N, the drag over the flanks' arm). Analysed: the steady window.
+  double analysis_from_s = 0.0;
 };
+
+/// The same baseline with its dynamics runs remembered: a run is a deterministic function of its variation, so a
+/// variation seen before (the sensitivity and calibration runs of every recording of one model, the synthesis of many
+/// noise seeds) returns the stored run instead of integrating again. Copies share the store; not thread-safe.
+Baseline with_remembered_runs(Baseline baseline);
 
 struct Experiment {
   Kind kind = Kind::Torsion;
@@ -73,12 +83,17 @@ struct Experiment {
   double rated_torque_Nm = 0.0;      ///< torsion: metadata `rated_torque_Nm`, 0 when absent
   Eigen::VectorXd mesh_phase_rad;    ///< dynamics: ψ_mesh(t) of the baseline run (2π per tooth passing)
   /// dynamics: sensitivity columns of the response (mesh_force_N) from perturbed runs, per unit parameter:
-  /// 0,1: Δk/k0 at phase 0 and π/2; 2: damping (per N·s/m); 3: Coulomb drag (per N·m); 4: viscous drag (per N·m·s/rad)
+  /// 0,1: Δk/k0 at phase 0 and π/2 (their part locked to the mesh, see stiffness_unlocked); 2: damping (per N·s/m); 3: Coulomb drag (per N·m); 4: viscous drag (per N·m·s/rad)
   Eigen::MatrixXd sensitivity;
-  /// dynamics: calibration curves of the nonlinear responses, from runs at a few parameter values (ascending):
-  /// the amplitude of the f_m line (least-squares on mesh_lines()) against Δk/k0, and the coefficient of the damping
-  /// sensitivity column (least squares) against the damping coefficient.
-  std::vector<double> calib_ratio, calib_line_N, calib_damping, calib_damping_beta;
+  /// dynamics: the k(t) sensitivity columns' part not locked to the mesh (n x 2; columns 0, 1 hold the locked part).
+  Eigen::MatrixXd stiffness_unlocked;
+  /// dynamics: calibration curve of the nonlinear k(t) response, from runs at a few Δk/k0 (ascending): the magnitude
+  /// of the coefficients of the two k(t) sensitivity columns (least squares) against Δk/k0.
+  std::vector<double> calib_ratio, calib_stiffness_beta;
+  /// dynamics: the damping coefficients of a table (ascending, N·s/m) and the response to each (n x table size:
+  /// meshing force of the run minus the baseline's; zero at the model's own c0).
+  std::vector<double> damping_table_Ns_per_m;
+  Eigen::MatrixXd damping_response;
   Baseline model;                    ///< the baseline parameters used
   std::string response_name;         ///< column name of the response
   std::string response_unit;         ///< "rad" or "um"
@@ -89,11 +104,27 @@ struct Experiment {
 /// kind needs (e.g. C_tau <= 0 for torsion) or the recording is too short (< kMinSamples rows) or degenerate.
 Experiment make_experiment(const Recording& recording, const Baseline& baseline);
 
+/// The rows of a recording from time_s = from_s on (all of them when from_s <= 0 or there is no time_s). Throws
+/// InputError when fewer than kMinSamples remain.
+Recording rows_from(const Recording& recording, double from_s);
+
 /// Linear interpolation of y(t) (t ascending) at `at`; constant beyond the ends.
 Eigen::VectorXd resample(const std::vector<double>& t, const std::vector<double>& y, const Eigen::VectorXd& at);
 
-/// dynamics: cos/sin(k ψ_mesh) for k = 1, 2 (n x 4), the mesh-frequency line and its harmonic.
+/// dynamics: cos/sin(k ψ_mesh) for k = 1 .. orders (n x 2 orders), the mesh-frequency line and its harmonics.
+Eigen::MatrixXd mesh_harmonics(const Experiment& e, int orders);
+/// Mesh orders the k(t) sensitivity columns keep.
+inline constexpr int kMeshHarmonics = 4;
+/// dynamics: mesh_harmonics(e, 2), the mesh-frequency line and its harmonic.
 Eigen::MatrixXd mesh_lines(const Experiment& e);
+
+/// Steps of the damping table each side of c0 (ratio 2^(1/4): c0/8 to 8 c0).
+inline constexpr int kDampingTableSteps = 12;
+
+/// dynamics: the secant (n rows, N per N·s/m) of the response to the damping coefficient from the model's c0 to c:
+/// the response at c, a cubic through the table's runs around c (c clamped to the table), over c - c0; within
+/// 1e-3 c0 of c0 the interpolant's slope there.
+Eigen::VectorXd damping_secant(const Experiment& e, double c_Ns_per_m);
 
 /// Inverse of a calibration curve y(x) given at ascending x: the x whose y is `y`, searched on the segments nearest
 /// x_ref first (the curve may fold back far away); linear extrapolation beyond the ends.

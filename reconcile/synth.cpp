@@ -320,6 +320,9 @@ SynthResult synthesize_dynamics(const SynthOptions& o, Recording rec) {
     const DynamicsRun r = b.dynamics_run(v);
     return std::make_pair(r, Vec(Eigen::Map<const Vec>(r.mesh_force_N.data(), r.mesh_force_N.size())));
   };
+  // The effect's size is measured where reconcile compares (the baseline's analysed rows).
+  const auto first = std::lower_bound(base.time_s.begin(), base.time_s.end(), b.analysis_from_s) - base.time_s.begin();
+  auto analysed_rms = [&](const Vec& diff) { return rms(diff.tail(diff.size() - first)); };
   DynamicsVariation all;
   nlohmann::json effects = nlohmann::json::array();
   for (const auto& fx : o.effects) {
@@ -329,7 +332,7 @@ SynthResult synthesize_dynamics(const SynthOptions& o, Recording rec) {
     if (o.concealment > 0.0) {
       // Rescale so the effect's RMS on the meshing force is concealment x noise RMS (two secant steps).
       for (int it = 0; it < 2; ++it) {
-        const double r = rms(diff);
+        const double r = analysed_rms(diff);
         if (!(r > 0.0)) throw InputError("synth effect " + fx.name + " has no effect on this run");
         k *= o.concealment * out.noise_rms / r;
         diff = force(d.scaled(k)).second - f0;
@@ -339,8 +342,8 @@ SynthResult synthesize_dynamics(const SynthOptions& o, Recording rec) {
     if (fx.name == "mesh_stiffness_variation") { all.stiffness_ratio = v.stiffness_ratio; all.stiffness_phase_rad = v.stiffness_phase_rad; }
     if (fx.name == "damping") all.damping_Ns_per_m = v.damping_Ns_per_m;
     if (fx.name == "drag_torque") { all.drag_coulomb_Nm = v.drag_coulomb_Nm; all.drag_viscous_Nms_per_rad = v.drag_viscous_Nms_per_rad; }
-    out.effect_rms.push_back({fx.name, rms(diff)});
-    effects.push_back({{"name", fx.name}, {"params", d.headline(k)}, {"rms", rms(diff)}});
+    out.effect_rms.push_back({fx.name, analysed_rms(diff)});
+    effects.push_back({{"name", fx.name}, {"params", d.headline(k)}, {"rms", analysed_rms(diff)}});
   }
   const DynamicsRun run = o.effects.empty() ? base : force(all).first;
   const int n = static_cast<int>(run.time_s.size());
@@ -381,6 +384,18 @@ SynthResult synthesize_dynamics(const SynthOptions& o, Recording rec) {
 }
 
 }  // namespace
+
+SynthOptions dynamics_proof_options(const Baseline& baseline, double noise_N, std::uint64_t seed) {
+  SynthOptions o;
+  o.kind = Kind::Dynamics;
+  o.baseline = baseline;
+  o.white_sd = noise_N;
+  o.ar1_sd = noise_N;
+  o.quantum = 0.2 * noise_N;
+  o.speed_sd_rpm = 0.05;
+  o.seed = seed;
+  return o;
+}
 
 SynthResult synthesize(const SynthOptions& o) {
   if (o.samples < kMinSamples)

@@ -45,6 +45,10 @@ struct SynthResult {
   std::vector<std::pair<std::string, double>> effect_rms;  ///< RMS of each effect's contribution
 };
 
+/// The noise of the dynamics proofs and of bench_reconcile_dynamics on a dynamics baseline: white and AR(1)
+/// (phi 0.8) noise of sd noise_N each on the meshing force, quantum noise_N / 5, 0.05 rpm white on both speeds.
+SynthOptions dynamics_proof_options(const Baseline& baseline, double noise_N, std::uint64_t seed);
+
 /// Generates a recording. Throws InputError for unknown effect names or parameters, or effects of another kind.
 SynthResult synthesize(const SynthOptions& options);
 

@@ -1,0 +1,105 @@
+#include "app/dynamics_job.hpp"
+
+#include <algorithm>
+#include <vector>
+
+#include "app/contact_job.hpp"
+#include "app/fem_job.hpp"
+#include "common/error.hpp"
+#include "common/progress.hpp"
+#include "dynamics/kinematic_pairs.hpp"
+#include "dynamics/moving_mesh_build.hpp"
+#include "io/case.hpp"
+#include "io/fem_output.hpp"
+#include "kinematics/backlash.hpp"
+#include "kinematics/neutral_curve.hpp"
+
+namespace sw::app {
+namespace {
+
+/// What to do with a flank whose clearance at rest is negative (interference in the basic kinematic model):
+/// "preload" keeps it (contact force at rest), "clip" sets the clearance to 0, "drop" removes the pair.
+std::vector<ToothPair> treat_interference(std::vector<ToothPair> pairs, const std::string& policy) {
+  if (policy == "preload") return pairs;
+  std::vector<ToothPair> out;
+  for (ToothPair t : pairs) {
+    const bool interferes = t.clearance_drive_m < 0 || t.clearance_coast_m < 0;
+    if (policy == "drop" && interferes) continue;
+    t.clearance_drive_m = std::max(0.0, t.clearance_drive_m);
+    t.clearance_coast_m = std::max(0.0, t.clearance_coast_m);
+    out.push_back(t);
+  }
+  return out;
+}
+
+/// The frozen pairs of generator angle 0 and where their clearances come from.
+std::vector<ToothPair> frozen_pairs(const Case& c, const DynamicsParams& p, const DynamicsModelOptions& o,
+                                    std::string& source) {
+  std::vector<ToothPair> pairs;
+  if (o.clearances == "kinematics") {
+    pairs = pairs_from_kinematics(c);
+    source = "kinematics (basic model, wave generator at 0, phi0 = 0), " + std::to_string(pairs.size()) + " engaged pairs";
+  } else {
+    pairs = approximate_tooth_pairs(*c.gear, case_radial_deformation_m(c), c.load.engagement_half_angle_rad,
+                                    p.base_clearance_m);
+    source = "approximate stand-in (w0(1 - cos 2phi) sin(alpha) within +-engagement_half_angle), " +
+             std::to_string(pairs.size()) + " pairs";
+  }
+  int interfering = 0;
+  for (const auto& tp : pairs) interfering += (tp.clearance_drive_m < 0 || tp.clearance_coast_m < 0) ? 1 : 0;
+  if (interfering > 0) {
+    progress("dynamics: " + std::to_string(interfering) + " pairs have negative clearance (interference) at rest: " +
+             (o.interference == "preload" ? "carried as contact preload"
+              : o.interference == "clip"  ? "clearance set to 0"
+                                          : "pairs left out"));
+    pairs = treat_interference(std::move(pairs), o.interference);
+    source += ", interference: " + o.interference;
+  }
+  return pairs;
+}
+
+}  // namespace
+
+std::shared_ptr<const MovingMesh> moving_mesh(const Case& c, const DynamicsParams& p,
+                                              const std::filesystem::path& out_dir) {
+  const ToothCompliance teeth =
+      p.pair_stiffness == PairStiffness::Teeth ? series_parts(c).tooth_pair_m_per_N : ToothCompliance{};
+  if (p.rim == RimCoupling::Rigid) {
+    const double rm = rim_mean_radius(c.flexspline), w0 = case_radial_deformation_m(c);
+    const NeutralCurve curve =
+        c.wave_generator ? generator_neutral_curve(rm, w0, *c.wave_generator) : cam_neutral_curve(rm, w0);
+    return std::make_shared<MovingMesh>(rigid_rim_mesh(*c.gear, curve, teeth, 64));
+  }
+  check_contact_case(c);
+  FemJobOptions o;
+  o.write_vtk = false;
+  const FemJobResult fem = run_fem_job(c, out_dir, o);
+  if (!fem.mesh || !fem.system) throw InputError(c.path + ": rim = \"fem\" needs the TET10 solver (solver.method)");
+  const double rated = c.load.rated_torque_Nm.value_or(c.load.torque_Nm);
+  return std::make_shared<MovingMesh>(
+      fem_coupled_mesh(c, *fem.mesh, *fem.system, fem.solution, teeth, rated, p.compliance_phases,
+                       std::max(1, 64 / p.compliance_phases)));  // the flank table every pitch/64: see test_moving
+}
+
+DynamicsJobModel dynamics_model(const Case& c, DynamicsParams p, const DynamicsModelOptions& o,
+                                const std::filesystem::path& out_dir) {
+  const bool moving = p.pair_motion == PairMotion::Moving;
+  if (moving) validate_moving(p, c.path);
+  if (!o.fem_result.empty()) {
+    p.flexspline_compliance_rad_per_Nm = read_fem_compliance(o.fem_result);
+    progress("dynamics: flexspline rim and flange joined by 1/C_tau, C_tau = " +
+             std::to_string(p.flexspline_compliance_rad_per_Nm) + " rad/(N m) from " + o.fem_result);
+  }
+  DynamicsJobModel r;
+  std::vector<ToothPair> pairs = frozen_pairs(c, p, o, r.source);
+  r.model = make_model(*c.gear, c.flexspline, c.flexspline.shape == FlexsplineShape::Cup, c.material, p,
+                       std::move(pairs), c.path);
+  if (moving) {
+    r.model.moving = moving_mesh(c, p, out_dir);
+    r.model.pairs.clear();
+    r.source = r.model.moving->source;
+  }
+  return r;
+}
+
+}  // namespace sw::app

@@ -6,8 +6,10 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <system_error>
+#include <vector>
 
 #include "common/error.hpp"
 #include "common/params.hpp"
@@ -19,6 +21,35 @@ namespace sw::bench {
 
 /// The flexspline mesh of a case, as `strainwave fem` builds it.
 inline TetMesh mesh_for_bench(const Case& c) { return mesh_flexspline(c.flexspline, c.gear, c.mesh); }
+
+/// A tet10 mesh on a bench's command line: SIZE_MM/LAYERS[/CORNER_LEVELS] (mesh.size_mm, mesh.wall_layers,
+/// mesh.corner_levels; −1: the case's).
+struct MeshSpec {
+  double size_mm = 1.0;
+  int layers = 2;
+  int corner_levels = -1;
+};
+
+/// The comma-separated meshes of `option`, read before any work so a typo costs nothing; a third part only when
+/// `with_levels`. Throws InputError naming the item (size > 0, layers >= 1, levels >= 0, nothing after it).
+inline std::vector<MeshSpec> parse_mesh_specs(const std::string& text, const std::string& option, bool with_levels) {
+  std::vector<MeshSpec> out;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    MeshSpec m;
+    char slash = 0, extra = 0;
+    std::stringstream is(item);
+    bool ok = (is >> m.size_mm >> slash >> m.layers) && slash == '/';
+    if (ok && (is >> extra)) ok = with_levels && extra == '/' && (is >> m.corner_levels) && m.corner_levels >= 0 && !(is >> extra);
+    if (!ok || !(m.size_mm > 0) || m.layers < 1)
+      throw InputError(option + ": \"" + item + "\"; expected SIZE_MM/LAYERS" +
+                       (with_levels ? std::string(" or SIZE_MM/LAYERS/CORNER_LEVELS") : std::string()) +
+                       " (size > 0, layers >= 1" + (with_levels ? ", levels >= 0" : "") + ", nothing after)");
+    out.push_back(m);
+  }
+  return out;
+}
 
 /// A fresh directory under the system temp dir (`prefix`XXXXXX), removed with its content on destruction unless
 /// keep() was called.

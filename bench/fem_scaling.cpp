@@ -56,11 +56,6 @@
 namespace sw::bench {
 namespace {
 
-struct MeshSpec {
-  double size_mm = 1.0;
-  int layers = 2;
-};
-
 /// One mesh's figures. Plain data: a forked child writes it through a pipe.
 struct Row {
   MeshSpec spec;
@@ -75,17 +70,7 @@ struct Row {
 };
 
 std::vector<MeshSpec> parse_meshes(const std::string& text) {
-  std::vector<MeshSpec> out;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    MeshSpec m;
-    char slash = 0;
-    std::stringstream is(item);
-    if (!(is >> m.size_mm) || !(is >> slash) || slash != '/' || !(is >> m.layers) || m.size_mm <= 0 || m.layers < 1)
-      throw InputError("--meshes: \"" + item + "\"; expected SIZE_MM/LAYERS, e.g. 0.5/3");
-    out.push_back(m);
-  }
+  std::vector<MeshSpec> out = parse_mesh_specs(text, "--meshes", false);
   if (out.empty()) throw InputError("--meshes: empty list; expected e.g. 1.0/2,0.5/3");
   return out;
 }

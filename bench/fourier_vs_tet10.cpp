@@ -215,27 +215,6 @@ void print_header(const char* title, const char* size_name) {
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
 }
 
-/// --tet10-meshes: SIZE_MM/LAYERS[/CORNER_LEVELS],... ; read before any work so a typo costs nothing.
-std::vector<Tet10Mesh> parse_tet10_meshes(const std::string& text) {
-  std::vector<Tet10Mesh> meshes;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    Tet10Mesh m;
-    double size_mm = 0;
-    char slash = 0, extra = 0;
-    std::stringstream is(item);
-    bool ok = (is >> size_mm >> slash >> m.layers) && slash == '/';  // corner levels −1: the case's
-    if (ok && (is >> slash)) ok = slash == '/' && (is >> m.corner_levels) && m.corner_levels >= 0 && !(is >> extra);
-    if (!ok || !(size_mm > 0) || m.layers < 1)
-      throw InputError("--tet10-meshes: \"" + item + "\"; expected SIZE_MM/LAYERS or SIZE_MM/LAYERS/CORNER_LEVELS "
-                       "(size > 0, layers >= 1, levels >= 0, nothing after)");
-    m.size_m = size_mm * 1e-3;
-    meshes.push_back(m);
-  }
-  return meshes;
-}
-
 int run(int argc, char** argv) {
   CLI::App app{"bench_fourier_vs_tet10: the harmonic solver against tet10 and CalculiX on one case, each converged on "
                "its own"};
@@ -253,7 +232,9 @@ int run(int argc, char** argv) {
   app.add_option("--ccx-threads", ccx_threads, "OMP_NUM_THREADS for ccx")->capture_default_str();
   app.add_option("--dgemm-n", dgemm_n, "order of the DGEMM reference matrices")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
-  const std::vector<Tet10Mesh> requested_meshes = parse_tet10_meshes(tet10_meshes);
+  std::vector<Tet10Mesh> requested_meshes;
+  for (const MeshSpec& m : parse_mesh_specs(tet10_meshes, "--tet10-meshes", true))
+    requested_meshes.push_back({m.size_mm * 1e-3, m.layers, m.corner_levels});
   const Case c = load_case(case_path);
   std::vector<int> orders;
   {

@@ -19,27 +19,24 @@
 namespace sw {
 namespace {
 
-/// A slab held at its bore under plane strain, factorised.
-struct SlabModel {
-  ToothSlab slab;
-  DofMap dofs;
-  CholmodFactor factor;
-  SlabModel(ToothSlab s, const Material& m) : slab(std::move(s)), dofs(make_dofs(slab.mesh)),
-      factor(assemble_stiffness(slab.mesh, m, dofs), equation_nodes(dofs)) {}
-  Eigen::VectorXd solve(const Eigen::VectorXd& f) const {
-    return expand_to_full(dofs, factor.solve(restrict_to_free(dofs, f)), Eigen::VectorXd::Zero(f.size()));
-  }
-  static DofMap make_dofs(const TetMesh& m) {
-    std::vector<bool> fixed(3 * m.n_nodes(), false);
-    for (std::size_t i = 0; i < m.n_nodes(); ++i) fixed[3 * i + 2] = true;  // plane strain
-    for (const auto& f : m.faces)
-      if (f.marker == kSurfaceClamped)
-        for (int a : f.nodes) fixed[3 * a] = fixed[3 * a + 1] = true;
-    return make_dof_map(fixed);
-  }
-};
+DofMap plane_strain_bore_clamped(const TetMesh& m) {
+  std::vector<bool> fixed(3 * m.n_nodes(), false);
+  for (std::size_t i = 0; i < m.n_nodes(); ++i) fixed[3 * i + 2] = true;  // plane strain
+  for (const auto& f : m.faces)
+    if (f.marker == kSurfaceClamped)
+      for (int a : f.nodes) fixed[3 * a] = fixed[3 * a + 1] = true;
+  return make_dof_map(fixed);
+}
 
 }  // namespace
+
+PlaneStrainSlab::PlaneStrainSlab(ToothSlab s, const Material& m)
+    : slab_(std::move(s)), dofs_(plane_strain_bore_clamped(slab_.mesh)),
+      factor_(assemble_stiffness(slab_.mesh, m, dofs_), equation_nodes(dofs_)) {}
+
+Eigen::VectorXd PlaneStrainSlab::solve(const Eigen::VectorXd& f) const {
+  return expand_to_full(dofs_, factor_.solve(restrict_to_free(dofs_, f)), Eigen::VectorXd::Zero(f.size()));
+}
 
 double FlexsplineToothFem::operator()(double r) const {
   const auto n = radius_m.size();
@@ -61,9 +58,9 @@ FlexsplineToothFem flexspline_tooth_fem(const GearParams& g, const Material& mat
   o.points_per_flank = points_per_flank;
   const double spacing = (r.tip_f - r.form_f) / (points_per_flank - 1);
   const double strip = 2 * spacing;  // the elliptic strip's half-width: two outline segments
-  const SlabModel toothed(mesh_tooth_slab(g, o), mat), ring(mesh_ring_slab(g, o, ring_outer_radius_m), mat);
-  const FlankLoads patterns(ring.slab.mesh, 2 * std::numbers::pi / g.teeth_flexspline);
-  const PointSampler sampler(toothed.slab.mesh);
+  const PlaneStrainSlab toothed(mesh_tooth_slab(g, o), mat), ring(mesh_ring_slab(g, o, ring_outer_radius_m), mat);
+  const FlankLoads patterns(ring.slab().mesh, 2 * std::numbers::pi / g.teeth_flexspline);
+  const PointSampler sampler(toothed.slab().mesh);
   const Involute fl = flexspline_flank(g);
   const double top = r.tip_f - 0.005 * (r.tip_f - r.form_f);
   FlexsplineToothFem out;
@@ -74,23 +71,23 @@ FlexsplineToothFem flexspline_tooth_fem(const GearParams& g, const Material& mat
     const double a = fl.epsilon - u;
     const Eigen::Vector3d dir(std::sin(a), -std::cos(a), 0.0);  // −e′(ε − u): into the tooth
     // explicit: w = 1 N/m over the strip, read at the centre line
-    const TetMesh& m = toothed.slab.mesh;
+    const TetMesh& m = toothed.slab().mesh;
     auto dist = [&](const Eigen::Vector3d& x) { return std::hypot(x.x() - P.x(), x.y() - P.y()); };
     const auto faces = select_faces(m, kSurfaceRimOuter, [&](const Eigen::Vector3d& c) { return c.y() > 0 && dist(c) < 3 * strip; });
     auto shape = [&](const Eigen::Vector3d& x) { const double s = dist(x) / strip; return s < 1 ? std::sqrt(1 - s * s) : 0.0; };
-    const double scale = toothed.slab.depth_m / faces_integral(m, faces, shape);
+    const double scale = toothed.slab().depth_m / faces_integral(m, faces, shape);
     const Eigen::VectorXd f = traction_load(m, faces, [&](const Eigen::Vector3d& x, const Eigen::Vector3d&) {
       return Eigen::Vector3d(scale * shape(x) * dir);
     });
-    const Eigen::Vector3d uc = sampler.displacement(Eigen::Vector3d(P.x(), 0.0, 0.5 * toothed.slab.depth_m), toothed.solve(f));
+    const Eigen::Vector3d uc = sampler.displacement(Eigen::Vector3d(P.x(), 0.0, 0.5 * toothed.slab().depth_m), toothed.solve(f));
     // ring: contact/'s pattern of 1 N over the depth, read fᵀu
     const Eigen::Vector2d d2(dir.x(), dir.y());
     const Eigen::VectorXd fr = patterns.pattern({0.0}, d2, P.x() * d2.y() - P.y() * d2.x());
     out.radius_m.push_back(rc);
     out.explicit_m2_per_N.push_back(uc.dot(dir));
-    out.ring_m2_per_N.push_back(fr.dot(ring.solve(fr)) * ring.slab.depth_m);
+    out.ring_m2_per_N.push_back(fr.dot(ring.solve(fr)) * ring.slab().depth_m);
   }
-  out.nodes = toothed.slab.mesh.n_nodes() + ring.slab.mesh.n_nodes();
+  out.nodes = toothed.slab().mesh.n_nodes() + ring.slab().mesh.n_nodes();
   out.seconds = clock.lap();
   return out;
 }

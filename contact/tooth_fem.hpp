@@ -16,10 +16,30 @@
 // far outside its range, and bending + foundation come out 1.75–8.3× this FEM tooth (tests/gear).
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "common/params.hpp"
+#include "fem/assembly.hpp"
+#include "fem/cholmod_factor.hpp"
 #include "gear/gear.hpp"
+#include "mesh/tooth_slab.hpp"
 
 namespace sw {
+
+/// A slab of mesh/tooth_slab held at its bore (its kSurfaceClamped faces) under plane strain (u_z = 0 at every node,
+/// so the 3-D TET10 model is exactly the 2-D plane-strain one), factorised once.
+class PlaneStrainSlab {
+public:
+  PlaneStrainSlab(ToothSlab slab, const Material& m);
+  const ToothSlab& slab() const { return slab_; }
+  /// Displacement (3·n_nodes, m) under nodal loads f (N).
+  Eigen::VectorXd solve(const Eigen::VectorXd& f) const;
+
+private:
+  ToothSlab slab_;
+  DofMap dofs_;
+  CholmodFactor factor_;
+};
 
 struct FlexsplineToothFem {
   std::vector<double> radius_m;              ///< contact radii on the flexspline's flank, form to tip, ascending

@@ -1,6 +1,6 @@
 #pragma once
-// Explicit-tooth FEM of one loaded tooth: the slab of mesh/tooth_slab under plane strain (u_z = 0 at every node, so
-// the 3-D TET10 model is exactly the 2-D plane-strain one), body held at the bore, a line load along the involute's
+// Explicit-tooth FEM of one loaded tooth: the slab of mesh/tooth_slab under plane strain, body held at the bore
+// (contact/tooth_fem.hpp's PlaneStrainSlab), a line load along the involute's
 // normal at the contact radius spread over a small elliptic (Hertzian) strip. The deflection is read, along the load,
 // at the tooth's centre line at the height of the contact point (Weber's convention: no local indentation).
 #include <cmath>
@@ -13,6 +13,7 @@
 #include "fem/cholmod_factor.hpp"
 #include "fem/elasticity.hpp"
 #include "contact/loaded_contact.hpp"
+#include "contact/tooth_fem.hpp"
 #include "fem/loads.hpp"
 #include "fem/post.hpp"
 #include "gear/tooth_profile.hpp"
@@ -28,14 +29,9 @@ struct SlabResult {
 /// FEM compliance of flexspline tooth 0 of `g` loaded on its ccw flank at `contact_radius_m`.
 inline SlabResult slab_compliance(const GearParams& g, const Material& mat, const ToothSlabOptions& opt,
                                   double contact_radius_m, double strip_half_width_m) {
-  const ToothSlab slab = mesh_tooth_slab(g, opt);
+  const PlaneStrainSlab model(mesh_tooth_slab(g, opt), mat);
+  const ToothSlab& slab = model.slab();
   const TetMesh& m = slab.mesh;
-  std::vector<bool> fixed(3 * m.n_nodes(), false);
-  for (std::size_t i = 0; i < m.n_nodes(); ++i) fixed[3 * i + 2] = true;  // plane strain
-  for (const auto& f : m.faces)
-    if (f.marker == kSurfaceClamped)
-      for (int a : f.nodes) fixed[3 * a] = fixed[3 * a + 1] = true;
-  const DofMap dofs = make_dof_map(fixed);
 
   const Involute fl = flexspline_flank(g);
   const double u = roll_at_radius(fl.base_radius, contact_radius_m);
@@ -52,10 +48,7 @@ inline SlabResult slab_compliance(const GearParams& g, const Material& mat, cons
   const Eigen::VectorXd f = traction_load(m, faces, [&](const Eigen::Vector3d& x, const Eigen::Vector3d&) {
     return Eigen::Vector3d(scale * shape(x) * dir);
   });
-  const CholmodFactor factor(assemble_stiffness(m, mat, dofs), equation_nodes(dofs));
-  const Eigen::VectorXd uf = factor.solve(restrict_to_free(dofs, f));
-  const Eigen::VectorXd full = expand_to_full(dofs, uf, Eigen::VectorXd::Zero(3 * m.n_nodes()));
-  const Eigen::Vector3d uc = PointSampler(m).displacement(Eigen::Vector3d(P.x(), 0.0, 0.5 * slab.depth_m), full);
+  const Eigen::Vector3d uc = PointSampler(m).displacement(Eigen::Vector3d(P.x(), 0.0, 0.5 * slab.depth_m), model.solve(f));
   return {uc.dot(dir) / w, m.n_nodes()};
 }
 
@@ -66,15 +59,9 @@ inline SlabResult slab_compliance(const GearParams& g, const Material& mat, cons
 inline double ring_slab_compliance(const GearParams& g, const Material& mat, const ToothSlabOptions& opt,
                                    double contact_radius_m) {
   const GearRadii radii = gear_radii(g);
-  const ToothSlab slab = mesh_ring_slab(g, opt, radii.root_f + 0.5 * (radii.tip_f - radii.root_f));
-  const TetMesh& m = slab.mesh;
-  const double depth = slab.depth_m, pitch = 2 * 3.14159265358979323846 / g.teeth_flexspline;
-  std::vector<bool> fixed(3 * m.n_nodes(), false);
-  for (std::size_t i = 0; i < m.n_nodes(); ++i) fixed[3 * i + 2] = true;  // plane strain
-  for (const auto& f : m.faces)
-    if (f.marker == kSurfaceClamped)
-      for (int a : f.nodes) fixed[3 * a] = fixed[3 * a + 1] = true;
-  const DofMap dofs = make_dof_map(fixed);
+  const PlaneStrainSlab model(mesh_ring_slab(g, opt, radii.root_f + 0.5 * (radii.tip_f - radii.root_f)), mat);
+  const TetMesh& m = model.slab().mesh;
+  const double depth = model.slab().depth_m, pitch = 2 * 3.14159265358979323846 / g.teeth_flexspline;
   const Involute fl = flexspline_flank(g);
   const double u = roll_at_radius(fl.base_radius, contact_radius_m);
   const Eigen::Vector2d P = involute_point(fl, u);
@@ -82,10 +69,7 @@ inline double ring_slab_compliance(const GearParams& g, const Material& mat, con
   const Eigen::Vector2d dir(std::sin(a), -std::cos(a));  // as slab_compliance: into the tooth
   const double arm = P.x() * dir.y() - P.y() * dir.x();
   const Eigen::VectorXd f = FlankLoads(m, pitch).pattern({0.0}, dir, arm);
-  const CholmodFactor factor(assemble_stiffness(m, mat, dofs), equation_nodes(dofs));
-  const Eigen::VectorXd uf = factor.solve(restrict_to_free(dofs, f));
-  const Eigen::VectorXd full = expand_to_full(dofs, uf, Eigen::VectorXd::Zero(3 * m.n_nodes()));
-  return f.dot(full) * depth;  // 1 N over the depth: a line load of 1/depth N/m
+  return f.dot(model.solve(f)) * depth;  // 1 N over the depth: a line load of 1/depth N/m
 }
 
 }  // namespace sw::test

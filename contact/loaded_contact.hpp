@@ -19,6 +19,7 @@
 //    contact); the paper's given forces hold the band radially at the stations (eliminated, bilateral).
 //  - No friction: loading and unloading coincide; the loop's middle line is the curve itself.
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -98,6 +99,13 @@ struct FlankContact {
   /// exact closing turn like every other flank's.
   bool beyond_tip_circle = false;
 };
+
+/// The flank `side` of the tooth at material angle `phi_rad` (its clearance at rest `pc`) as a contact that can take
+/// part: the tooth engaged, or free within two pitches of a mesh zone's edge (`near_edge`); its moment arm closing it
+/// the right way; a finite exact closing turn. Fills everything but the tooth index and the pair's compliance.
+/// Shared by the loaded contact and the multibody model's moving mesh, so both see the same flanks.
+std::optional<FlankContact> candidate_flank(const BacklashModel& model, const NeutralCurve& curve,
+                                            const PairClearance& pc, double phi_rad, Flank side, bool near_edge);
 
 /// A tooth at an edge of a mesh zone, where the flexspline's tip just reaches past the circular spline's tip circle
 /// (engaged) or just fails to (free). Whether it can touch at all is its radial overlap, which the rim's radial motion

@@ -1,12 +1,12 @@
 #include "dynamics/moving_mesh_build.hpp"
 
 #include <cmath>
+#include <limits>
 #include <map>
+#include <optional>
 #include <numbers>
 #include <string>
 #include <utility>
-
-#include <Eigen/Geometry>
 
 #include "common/error.hpp"
 #include "common/progress.hpp"
@@ -19,10 +19,9 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 
 /// The backlash module's view of one flank: gap |ℓ|·δ at zero deflection, signed lever ℓ, contact radius on the
-/// flexspline tooth and on the circular spline's; false where it cannot close (out of the zone and more than two
-/// pitches from its edge, never closing, or closing the other way), exactly the selection of
-/// contact/loaded_contact.cpp: within two pitches of an edge a free tooth takes part, with its exact closing turn as
-/// its gap like every other tooth.
+/// flexspline tooth and on the circular spline's; false where it cannot close. The selection is the loaded contact's
+/// (contact/loaded_contact.hpp candidate_flank): within two pitches of a zone's edge a free tooth takes part, with its
+/// exact closing turn as its gap like every other tooth.
 struct FlankGeometry {
   const BacklashModel& model;
   const NeutralCurve& curve;
@@ -38,17 +37,12 @@ struct FlankGeometry {
       if (!pc.engaged && pitch_rad > 0)
         for (const int d : {-2, -1, 1, 2}) near_edge = near_edge || pair_clearance(model, phi + d * pitch_rad, 0.0).engaged;
     }
-    if (!pc.engaged && !near_edge) return false;
-    const Flank f = side == 0 ? Flank::Ccw : Flank::Cw;
-    const FlankClearance& fc = side == 0 ? pc.ccw : pc.cw;
-    if (side == 0 ? !(fc.lever_arm_m > 0) : !(fc.lever_arm_m < 0)) return false;
-    const double delta = closing_angle_rad(model, phi, 0.0, f);
-    if (!std::isfinite(delta)) return false;
-    const ToothPlacement place = place_tooth(curve, phi, 0.0);
-    radius = (Eigen::Rotation2Dd(-place.angle_rad) * (fc.point_f - place.offset_m)).norm();
-    radius_c = fc.point_c.norm();
-    lever = fc.lever_arm_m;
-    q = std::abs(lever) * delta;
+    const std::optional<FlankContact> f = candidate_flank(model, curve, pc, phi, side == 0 ? Flank::Ccw : Flank::Cw, near_edge);
+    if (!f) return false;
+    radius = f->contact_radius_m;
+    radius_c = f->contact_radius_c_m;
+    lever = f->lever_m;
+    q = std::abs(lever) * f->closing_angle_rad;
     return true;
   }
 };

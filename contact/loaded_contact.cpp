@@ -75,10 +75,6 @@ Eigen::SparseMatrix<double> sparse_columns(const std::vector<Eigen::VectorXd>& c
 
 }  // namespace
 
-namespace {
-
-}  // namespace
-
 std::optional<FlankContact> candidate_flank(const BacklashModel& model, const NeutralCurve& curve,
                                             const PairClearance& pc, double phi, Flank side, bool near_edge) {
   if (!pc.engaged && !near_edge) return std::nullopt;
@@ -158,7 +154,6 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
       if (!cand || (pc.engaged && cand->closing_angle_rad > first_closing[side == Flank::Cw] + reach)) continue;
       FlankContact& f = *cand;
       const FlankClearance& fc = side == Flank::Ccw ? pc.ccw : pc.cw;
-      const double delta = f.closing_angle_rad;
       f.tooth = k;
       f.compliance_m_per_N =
           opt.series.tooth_pair_m_per_N ? opt.series.tooth_pair_m_per_N(f.contact_radius_m, f.contact_radius_c_m) : 0.0;
@@ -166,7 +161,7 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
       std::vector<double> stations{s};
       if (out.half_turn_pairs) stations.push_back(s + kPi);
       columns.push_back(loads.pattern(stations, -fc.normal, -n_teeth * f.lever_m));
-      q_flank.push_back(n_teeth * std::abs(f.lever_m) * delta);
+      q_flank.push_back(n_teeth * std::abs(f.lever_m) * f.closing_angle_rad);
       out.flanks.push_back(f);
     }
   }

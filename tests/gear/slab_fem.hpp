@@ -9,8 +9,6 @@
 
 #include <Eigen/Dense>
 
-#include "fem/assembly.hpp"
-#include "fem/cholmod_factor.hpp"
 #include "fem/elasticity.hpp"
 #include "contact/loaded_contact.hpp"
 #include "contact/tooth_fem.hpp"

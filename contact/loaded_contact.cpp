@@ -39,22 +39,34 @@ std::vector<const BoundaryFace*> FlankLoads::rim(const TetMesh& mesh) {
 FlankLoads::FlankLoads(const TetMesh& mesh, double pitch_rad) : mesh_(mesh), half_(pitch_rad), hats_(mesh, rim(mesh)) {}
 
 Eigen::VectorXd FlankLoads::pattern(const std::vector<double>& stations, const Eigen::Vector2d& force_dir,
-                                    double moment_Nm) const {
-  const std::vector<bool> all(mesh_.n_nodes(), true);
-  Eigen::VectorXd radial = Eigen::VectorXd::Zero(3 * mesh_.n_nodes()), tangential = radial;
-  for (const double s : stations) {
-    const Eigen::VectorXd r = hats_.load(s, half_, [](double t) { return Eigen::Vector3d(std::cos(t), std::sin(t), 0); });
-    if (r.size() == 0)
+                                    double contact_radius_m) const {
+  const auto radial_dir = [](double t) { return Eigen::Vector3d(std::cos(t), std::sin(t), 0); };
+  const auto tangential_dir = [](double t) { return Eigen::Vector3d(-std::sin(t), std::cos(t), 0); };
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(3 * mesh_.n_nodes());
+  for (std::size_t i = 0; i < stations.size(); ++i) {
+    const double s = stations[i];
+    const Eigen::VectorXd radial = hats_.load(s, half_, radial_dir), tangential = hats_.load(s, half_, tangential_dir),
+                          outer = hats_.load(s + half_ / 2, half_ / 2, radial_dir),
+                          inner = hats_.load(s - half_ / 2, half_ / 2, radial_dir);
+    if (radial.size() == 0 || outer.size() == 0 || inner.size() == 0)
       throw InputError("contact: no rim faces under the tooth at " + std::to_string(s * 180 / kPi) +
                        " deg; refine mesh.size_mm");
-    radial += r;
-    tangential += hats_.load(s, half_, [](double t) { return Eigen::Vector3d(-std::sin(t), std::cos(t), 0); });
+    const Eigen::VectorXd couple = outer - inner;
+    // The contact force at this station (turned by π at the partner) and its moment about the axis: the three
+    // amplitudes reproduce both exactly.
+    const Eigen::Vector2d F = i == 0 ? force_dir : Eigen::Vector2d(-force_dir);
+    const Eigen::Vector2d P = contact_radius_m * Eigen::Vector2d(std::cos(s), std::sin(s));
+    Eigen::Matrix3d R;
+    Eigen::Vector3d target(F.x(), F.y(), P.x() * F.y() - P.y() * F.x());
+    int col = 0;
+    for (const Eigen::VectorXd* v : {&radial, &tangential, &couple}) {
+      const Resultant r = load_resultant(mesh_, *v);
+      R.col(col++) << r.force.x(), r.force.y(), r.moment.z();
+    }
+    const Eigen::Vector3d amp = R.fullPivLu().solve(target);
+    f += amp[0] * radial + amp[1] * tangential + amp[2] * couple;
   }
-  // The radial component in the first station's frame; a partner at s + π carries the force turned by π, whose
-  // radial component in its own frame is the same.
-  const double fr = stations.empty() ? 0.0 : force_dir.dot(Eigen::Vector2d(std::cos(stations[0]), std::sin(stations[0])));
-  const double m_r = moment_about_z(mesh_, radial, all), m_t = moment_about_z(mesh_, tangential, all);
-  return fr * radial + (moment_Nm - fr * m_r) / m_t * tangential;
+  return f;
 }
 
 namespace {
@@ -160,7 +172,7 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
       const double s = std::atan2(fc.point_f.y(), fc.point_f.x());
       std::vector<double> stations{s};
       if (out.half_turn_pairs) stations.push_back(s + kPi);
-      columns.push_back(loads.pattern(stations, -fc.normal, -n_teeth * f.lever_m));
+      columns.push_back(loads.pattern(stations, -fc.normal, fc.point_f.norm()));
       q_flank.push_back(n_teeth * std::abs(f.lever_m) * f.closing_angle_rad);
       out.flanks.push_back(f);
     }
@@ -184,7 +196,7 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
     const double s = std::atan2(tip.y(), tip.x());
     std::vector<double> stations{s};
     if (out.half_turn_pairs) stations.push_back(s + kPi);
-    observers.push_back(loads.pattern(stations, Eigen::Vector2d(std::cos(s), std::sin(s)), 0.0) / n_teeth);
+    observers.push_back(loads.pattern(stations, Eigen::Vector2d(std::cos(s), std::sin(s)), tip.norm()) / n_teeth);
     EdgeTooth e;
     e.tooth = k;
     e.phi_rad = phi;

@@ -8,8 +8,8 @@
 //    stations on the bore. A flank's gap at rest is the backlash module's exact closing angle times its moment arm,
 //    on the FEM's own generator-deformed neutral curve (the rim as the generator leaves it).
 //  - Body: the flexspline's influence coefficients from the one factorisation: each flank's force is a load pattern
-//    on the rim's outer surface (a linear hat one tooth pitch wide, across the face width) along the flank's contact
-//    normal, its tangential part scaled so the pattern's moment about the axis is the geometric moment arm; the
+//    on the rim's outer surface (hats one tooth pitch wide, across the face width): the contact force carried down a
+//    rigid tooth, its force and its moment about the tooth's foot, with exactly the contact force's resultant; the
 //    generator's stations as the FEM's generator contact (fem/generator_contact.hpp). Teeth and stations at θ and
 //    θ + π form one unknown (the half-turn symmetry of the generator and of an even tooth count), as in the FEM.
 //  - In series, on the diagonal: each tooth pair's own compliance (bending, foundation and flattening of both teeth;
@@ -48,16 +48,21 @@ struct SeriesParts {
   double circular_spline_rad_per_Nm = 0;  ///< torsion of the circular spline's body
 };
 
-/// Load patterns of the flanks on the rim's outer surface: a linear hat one tooth pitch wide about the contact's polar
-/// angle (and its half-turn partner's), uniform across the face, along the force the circular spline puts on the
-/// flexspline tooth, with the tangential part scaled so the moment about the axis is exactly the geometric one (the
-/// ring's surface and the contact point differ slightly in radius).
+/// Load patterns of the flanks on the rim's outer surface. A flexspline tooth is a short rigid post on the rim: a force
+/// at its flank reaches the rim as that force at the tooth's foot plus the moment of the force about the foot (force ×
+/// height above the surface). Per station (a contact's polar angle): a linear hat one tooth pitch wide of radial and of
+/// tangential traction, and the foot's moment as a radial couple (outward on one side of the station, inward on the
+/// other, each a hat half as wide), their amplitudes such that the station's load has exactly the resultant of the
+/// contact force: its force and its moment about the axis. Read work-conjugately (fᵀu), a pattern's displacement is
+/// the contact point's on a rigid tooth: the rim's turn under the tooth tilts it. Teeth at θ and θ + π (half-turn
+/// pairs) carry the force turned by π.
 class FlankLoads {
 public:
   FlankLoads(const TetMesh& mesh, double pitch_rad);
-  /// Nodal loads of 1 N along `force_dir` (2-D, frame of the generator) at stations[0], and of 1 N turned by π at
-  /// a partner stations[1] = stations[0] + π; the moment about z forced to `moment_Nm`.
-  Eigen::VectorXd pattern(const std::vector<double>& stations, const Eigen::Vector2d& force_dir, double moment_Nm) const;
+  /// Nodal loads of 1 N along `force_dir` (2-D, frame of the generator) at the point `contact_radius_m` out on the
+  /// radial line of stations[0], and of the same turned by π at a partner stations[1] = stations[0] + π.
+  Eigen::VectorXd pattern(const std::vector<double>& stations, const Eigen::Vector2d& force_dir,
+                          double contact_radius_m) const;
 
 private:
   static std::vector<const BoundaryFace*> rim(const TetMesh& mesh);

@@ -82,7 +82,7 @@ FlexsplineToothFem flexspline_tooth_fem(const GearParams& g, const Material& mat
     const Eigen::Vector3d uc = sampler.displacement(Eigen::Vector3d(P.x(), 0.0, 0.5 * toothed.slab().depth_m), toothed.solve(f));
     // ring: contact/'s pattern of 1 N over the depth, read fᵀu
     const Eigen::Vector2d d2(dir.x(), dir.y());
-    const Eigen::VectorXd fr = patterns.pattern({0.0}, d2, P.x() * d2.y() - P.y() * d2.x());
+    const Eigen::VectorXd fr = patterns.pattern({std::atan2(P.y(), P.x())}, d2, P.norm());
     out.radius_m.push_back(rc);
     out.explicit_m2_per_N.push_back(uc.dot(dir));
     out.ring_m2_per_N.push_back(fr.dot(ring.solve(fr)) * ring.slab().depth_m);

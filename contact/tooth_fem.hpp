@@ -6,9 +6,9 @@
 //   explicit: the real teeth; a line load along the involute's normal at the contact radius, spread over a small
 //     elliptic strip, read along the load at the tooth's centre line at the contact's height (Weber's convention: the
 //     local flattening is the contact term of gear/tooth_stiffness.hpp);
-//   ring: the body out to the 3-D model's rim (the ring of teeth = "ring"); loaded by contact/'s own flank pattern (1 N
-//     along the same normal, a linear hat one pitch wide on the ring's surface, its moment forced to the normal's
-//     moment arm) and read work-conjugately (fᵀu), as the influence coefficients read it.
+//   ring: the body out to the 3-D model's rim (the ring of teeth = "ring"); loaded by contact/'s own flank pattern (the
+//     contact force carried down a rigid tooth: force and foot moment as hats on the ring's surface, the resultant
+//     exactly the contact force's) and read work-conjugately (fᵀu), as the influence coefficients read it.
 // The tooth = explicit − ring, per unit line load (m²/N), sampled across the active flank and interpolated linearly.
 // Each slab is meshed and factorised once; every radius is one more right-hand side.
 //

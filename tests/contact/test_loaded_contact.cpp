@@ -65,31 +65,39 @@ TEST(LoadedContact, InfluenceCoefficientsMatchDirectSolveAndTorqueBalances) {
   for (std::size_t i = 1; i < a.curve.twist_rad.size(); ++i) EXPECT_GE(a.curve.twist_rad[i], a.curve.twist_rad[i - 1]);
 }
 
-// A flank's load pattern and its half-turn partner's: 1 N along the flank's force at the station, the same turned by π
-// at the partner (both radial components inward when the force pushes inward), and the requested moment. The hats
-// spread the load over ±1 pitch of a curved rim, so the resultant's direction is exact to the hat's mean cosine
-// (1 − O(pitch²)), hence 1e-3; the moment is forced exactly. (The partner once carried the radial part outward.)
-TEST(LoadedContact, FlankPatternAndItsHalfTurnPartnerCarryTheSameForce) {
+// A flank's load pattern and its half-turn partner's: a rigid tooth carrying 1 N along the flank's force at the contact
+// point, the same turned by π at the partner (both radial components inward when the force pushes inward). Near each
+// station the nodal loads have exactly the contact force's resultant: its force and its moment about the axis (to
+// round-off), and the foot's moment (force × height above the rim's surface) is there: the pattern's moment about the
+// foot is the force's, not the zero of a force applied at the surface. (The partner once carried the radial part
+// outward; the foot's moment was once missing, the tangential force scaled up instead.)
+TEST(LoadedContact, FlankPatternAndItsHalfTurnPartnerCarryTheContactForce) {
   const Coarse& k = coarse_seed_cam();
   const double pitch = 2 * M_PI / k.c.gear->teeth_flexspline, s = 0.3;
   const Eigen::Vector2d er(std::cos(s), std::sin(s)), et(-std::sin(s), std::cos(s));
   const Eigen::Vector2d dir = (-0.5 * er + 0.8660254037844386 * et).normalized();  // inward and along the pitch circle
-  // The moment of 1 N along dir at the rim's outer surface, at both stations.
-  const double moment = 2 * rim_outer_radius(k.c.flexspline, k.c.gear) * dir.dot(et);
-  const Eigen::VectorXd f = FlankLoads(k.mesh, pitch).pattern({s, s + M_PI}, dir, moment);
-  Eigen::Vector2d near_s = Eigen::Vector2d::Zero(), near_partner = Eigen::Vector2d::Zero();
-  double mz = 0;
+  const double surface = rim_outer_radius(k.c.flexspline, k.c.gear), contact = surface + 0.3e-3;
+  const Eigen::VectorXd f = FlankLoads(k.mesh, pitch).pattern({s, s + M_PI}, dir, contact);
+  Eigen::Vector2d force[2] = {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
+  double mz[2] = {0, 0}, foot[2] = {0, 0};
   for (std::size_t n = 0; n < k.mesh.n_nodes(); ++n) {
     const Eigen::Vector2d x(k.mesh.nodes(n, 0), k.mesh.nodes(n, 1)), fn(f[3 * n], f[3 * n + 1]);
     if (fn.norm() == 0) continue;
-    mz += x.x() * fn.y() - x.y() * fn.x();
-    (std::abs(std::remainder(std::atan2(x.y(), x.x()) - s, 2 * M_PI)) < 4 * pitch ? near_s : near_partner) += fn;
+    const int p = std::abs(std::remainder(std::atan2(x.y(), x.x()) - s, 2 * M_PI)) < 4 * pitch ? 0 : 1;
+    const Eigen::Vector2d base = (p == 0 ? 1.0 : -1.0) * surface * er, r = x - base;
+    force[p] += fn;
+    mz[p] += x.x() * fn.y() - x.y() * fn.x();
+    foot[p] += r.x() * fn.y() - r.y() * fn.x();
   }
-  EXPECT_NEAR(mz, moment, 1e-12);
-  EXPECT_NEAR(near_s.dot(dir), 1.0, 1e-3);
-  EXPECT_NEAR(near_partner.dot(-dir), 1.0, 1e-3);
-  EXPECT_NEAR(near_s.dot(er), dir.dot(er), 1e-3);  // the radial part pushes inward at both
-  EXPECT_NEAR(near_partner.dot(-er), dir.dot(er), 1e-3);
+  const double arm = contact * dir.dot(et), height = contact - surface;
+  for (int p = 0; p < 2; ++p) {
+    const Eigen::Vector2d F = p == 0 ? dir : Eigen::Vector2d(-dir);
+    EXPECT_NEAR((force[p] - F).norm(), 0.0, 1e-12) << "station " << p;
+    EXPECT_NEAR(mz[p], arm, 1e-14) << "station " << p;
+    EXPECT_NEAR(foot[p], height * dir.dot(et), 1e-14) << "station " << p;  // (P − foot) × F, P = foot + height·e_r
+  }
+  EXPECT_LT(force[0].dot(er), 0.0);  // the radial part pushes inward at both
+  EXPECT_LT(force[1].dot(-er), 0.0);
 }
 
 // The mesh zones' edges are watched at every step: the observers read the rim's radial motion at the edge teeth's

@@ -52,7 +52,7 @@ inline SlabResult slab_compliance(const GearParams& g, const Material& mat, cons
 
 /// What the 3-D model's ring already holds of one flank's load: mesh/tooth_slab's ring slab (the teeth smeared into
 /// the ring of flexspline.teeth = "ring", outer radius r_root + (r_tip − r_root)/2), plane strain, held at the bore, loaded by contact/'s flank pattern (1 N along the contact normal at
-/// `contact_radius_m`, a linear hat one pitch wide on the outer surface, its moment forced to the normal's moment arm)
+/// `contact_radius_m` carried down a rigid tooth: hats of force and foot moment on the outer surface)
 /// and read work-conjugately (fᵀu), as the influence coefficients read it. Per unit line load (m²/N).
 inline double ring_slab_compliance(const GearParams& g, const Material& mat, const ToothSlabOptions& opt,
                                    double contact_radius_m) {
@@ -65,8 +65,7 @@ inline double ring_slab_compliance(const GearParams& g, const Material& mat, con
   const Eigen::Vector2d P = involute_point(fl, u);
   const double a = fl.epsilon - u;
   const Eigen::Vector2d dir(std::sin(a), -std::cos(a));  // as slab_compliance: into the tooth
-  const double arm = P.x() * dir.y() - P.y() * dir.x();
-  const Eigen::VectorXd f = FlankLoads(m, pitch).pattern({0.0}, dir, arm);
+  const Eigen::VectorXd f = FlankLoads(m, pitch).pattern({std::atan2(P.y(), P.x())}, dir, P.norm());
   return f.dot(model.solve(f)) * depth;  // 1 N over the depth: a line load of 1/depth N/m
 }
 

@@ -273,9 +273,10 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
     const double m = 0.5 * (x + p);
     return (approach(m + h) - approach(m - h)) / (2 * h);
   };
-  auto solve_step = [&](double T) {
-    if (!bearing) return solve_contact(P, T);
-    ContactProblem Pb = P;
+  // One torque on a problem whose first n_fl unknowns are flanks and whose last nb are the generator's stations.
+  auto solve_step = [&](const ContactProblem& base, Eigen::Index n_fl, double T) {
+    if (!bearing) return solve_contact(base, T);
+    ContactProblem Pb = base;
     const double p_ref = std::max(p0.maxCoeff(), 1.0);
     for (Eigen::Index k = 0; k < nb; ++k) bearing_c[k] = secant(p0[k], p0[k], p_ref);  // start: the tangent at the preload
     // The secants' fixed point, relaxed: where a station lifts off and lands again from one pass to the next the plain
@@ -288,14 +289,14 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
     double relax = 1.0, last = std::numeric_limits<double>::infinity();
     for (int it = 0;; ++it) {
       for (Eigen::Index k = 0; k < nb; ++k) {
-        Pb.A(nf + k, nf + k) = P.A(nf + k, nf + k) + bearing_c[k];
-        Pb.q[nf + k] = P.q[nf + k] - bearing_c[k] * p0[k];
+        Pb.A(n_fl + k, n_fl + k) = base.A(n_fl + k, n_fl + k) + bearing_c[k];
+        Pb.q[n_fl + k] = base.q[n_fl + k] - bearing_c[k] * p0[k];
       }
       s = solve_contact(Pb, T);
       double residual = 0;
       Eigen::VectorXd c_new(nb);
       for (Eigen::Index k = 0; k < nb; ++k) {
-        const double x = s.force_N[nf + k];
+        const double x = s.force_N[n_fl + k];
         c_new[k] = secant(x, p0[k], p_ref);
         residual = std::max(residual, std::abs(bearing_c[k] * (x - p0[k]) - (approach(x) - approach(p0[k]))));
       }
@@ -326,18 +327,19 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
   // on a coarse size-17 cup); the output's torque is counted from it, so that the limits at zero stay either side of
   // the play instead of on the side the round-off picks.
   const double rest_moment_Nm = unilateral ? lambda.tail(nb).dot(p0) : 0.0;
-  auto output_torque = [&](const ContactSolution& s) { return lambda.head(s.force_N.size()).dot(s.force_N) - rest_moment_Nm; };
-  ContactSolution at_rated;
-  double flanks_torque_at_rated = T_R;
-  for (const double T : torques) {
-    // The output's torque is what the flanks carry plus the locked generator's share (λ with the stations' moment
-    // arms) beyond its moment at rest: find the flanks' torque that gives T. The share is about 1/ratio of it, so
-    // T_out is nearly affine in T_flanks: secant steps.
+  // The output's torque: the moments (`moments`, the stations' included) of the forces beyond the preload's.
+  auto output_torque = [&](const Eigen::VectorXd& moments, const ContactSolution& s) {
+    return moments.head(s.force_N.size()).dot(s.force_N) - rest_moment_Nm;
+  };
+  // The output's torque is what the flanks carry plus the locked generator's share (λ with the stations' moment arms)
+  // beyond its moment at rest: find the flanks' torque that gives T. The share is about 1/ratio of it, so T_out is
+  // nearly affine in T_flanks: secant steps. Returns the solution and the flanks' torque.
+  auto solve_torque = [&](const ContactProblem& base, Eigen::Index n_fl, const Eigen::VectorXd& moments, double T) {
     ContactSolution s;
     double T_flanks = T, prev_flanks = 0, prev_out = 0;
     for (int it = 0;; ++it) {
-      s = solve_step(T_flanks);
-      const double T_out = output_torque(s);
+      s = solve_step(base, n_fl, T_flanks);
+      const double T_out = output_torque(moments, s);
       if (std::abs(T_out - T) <= 1e-13 * std::abs(T)) break;
       const double slope = it == 0 || T_out == prev_out ? 1.0 : (T_flanks - prev_flanks) / (T_out - prev_out);
       if (it == 50) {
@@ -349,6 +351,12 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
       prev_out = T_out;
       T_flanks += slope * (T - T_out);
     }
+    return std::make_pair(s, T_flanks);
+  };
+  ContactSolution at_rated;
+  double flanks_torque_at_rated = T_R;
+  for (const double T : torques) {
+    const auto [s, T_flanks] = solve_torque(P, nf, lambda, T);
     TorqueStep st;
     st.torque_Nm = T;
     st.twist_rad = s.twist_rad + opt.series.circular_spline_rad_per_Nm * T;
@@ -376,7 +384,7 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
         if (!et.candidate && overlap > 0) et.enters = true;
       }
     }
-    st.balance_error_rel = std::abs(output_torque(s) - T) / std::abs(T);
+    st.balance_error_rel = std::abs(output_torque(lambda, s) - T) / std::abs(T);
     out.torque_balance_error_rel = std::max(out.torque_balance_error_rel, st.balance_error_rel);
     out.steps.push_back(st);
     out.curve.torque_Nm.push_back(st.torque_Nm);
@@ -445,6 +453,34 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
     out.superposition_error_rel = (d_direct - d_influence).cwiseAbs().maxCoeff() / d_direct.cwiseAbs().maxCoeff();
     const Eigen::VectorXd reactions = internal_forces(mesh, c.material, u) - f;
     out.fem_reaction_torque_Nm = moment_about_z(mesh, reactions, sys.clamped);
+  }
+  // What the teeth at the zones' edges hold: their flanks' share of +rated torque, and the twist at +rated without them.
+  // They are engaged a few µm deep or not at all at rest and touch at the outlines' sharp tip corners; a real tooth's
+  // rounded tip would let them ride over, so the curve's stiffness should not rest on them unseen.
+  {
+    std::vector<Eigen::Index> keep;
+    double edge_moment = 0;
+    for (Eigen::Index i = 0; i < nf; ++i) {
+      if (near_edge(out.flanks[i].tooth, 2)) edge_moment += lambda[i] * at_rated.force_N[i];
+      else keep.push_back(i);
+    }
+    const auto kept_flanks = static_cast<Eigen::Index>(keep.size());
+    for (Eigen::Index k = nf; k < P.q.size(); ++k) keep.push_back(k);
+    out.edge_teeth_torque_share = edge_moment / T_R;
+    out.twist_at_rated_without_edge_teeth_rad = out.curve.twist_rad.back();
+    if (kept_flanks < nf) {
+      ContactProblem Pe;
+      Pe.A = P.A(keep, keep);
+      Pe.q = P.q(keep);
+      Pe.lambda = P.lambda(keep);
+      const Eigen::VectorXd moments = lambda(keep);
+      try {
+        const ContactSolution s = solve_torque(Pe, kept_flanks, moments, T_R).first;
+        out.twist_at_rated_without_edge_teeth_rad = s.twist_rad + opt.series.circular_spline_rad_per_Nm * T_R;
+      } catch (const InputError&) {
+        out.twist_at_rated_without_edge_teeth_rad = std::numeric_limits<double>::infinity();  // nothing else carries it
+      }
+    }
   }
   out.check_s = clock.lap();
   progress("contact: " + std::to_string(torques.size()) + " torque steps on " + std::to_string(out.unknowns) +

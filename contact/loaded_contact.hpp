@@ -170,6 +170,11 @@ struct ContactAnalysis {
   /// tooth left out gains one (the candidate set is then the right one).
   std::vector<EdgeTooth> edges;
   bool zone_edges_hold = true;
+  /// The teeth within two pitches of a mesh zone's edge at +rated torque: their flanks' share of the torque, and the
+  /// twist with them left out (infinity when nothing else can carry it). Engaged a few µm deep or not at all at rest,
+  /// they touch at the outlines' sharp tip corners, which real teeth round off: what of the curve rests on them.
+  double edge_teeth_torque_share = 0;
+  double twist_at_rated_without_edge_teeth_rad = 0;
   /// The problem solved at every step: flanks (in the order of `flanks`), then the generator's stations when they are
   /// unilateral (their λ 0, their gap the FEM's obstacle); the tooth pairs' compliance on the diagonal, the bearing's
   /// secant not. For the multibody model, which moves the teeth through it.

@@ -58,7 +58,11 @@ std::string contact_json(const ContactAnalysis& a, const std::string& case_path,
                      {"radial_overlap_at_rest_um", e.overlap_at_rest_m * 1e6},
                      {"radial_overlap_min_um", e.overlap_min_m * 1e6}, {"radial_overlap_max_um", e.overlap_max_m * 1e6},
                      {"slips_over_the_tip", e.slips}, {"comes_into_mesh", e.enters}});
-  j["zone_edges"] = {{"hold", a.zone_edges_hold}, {"teeth", edges}};
+  j["zone_edges"] = {{"hold", a.zone_edges_hold}, {"teeth", edges},
+                     {"torque_share_at_rated", a.edge_teeth_torque_share},
+                     {"twist_at_rated_without_them_arcmin", std::isfinite(a.twist_at_rated_without_edge_teeth_rad)
+                                                                ? json(a.twist_at_rated_without_edge_teeth_rad * kArcmin)
+                                                                : json(nullptr)}};
   j["generator_support"] = a.generator_support;
   j["half_turn_pairs"] = a.half_turn_pairs;
   json flanks = json::array();

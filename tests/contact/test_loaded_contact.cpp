@@ -1,6 +1,7 @@
 // The loaded tooth contact on a coarse seed cup with a cam generator: the influence coefficients against a direct FEM
 // solve, the torque balance of the flank forces and of the clamp's reaction, reversal symmetry of a symmetric gear.
 #include <cmath>
+#include <map>
 #include <cstdio>
 
 #include <Eigen/Core>
@@ -121,6 +122,27 @@ TEST(LoadedContact, MeshZoneEdgesAreWatchedAndHold) {
   EXPECT_GT(engaged, 0);
   EXPECT_GT(free, 0);
   EXPECT_TRUE(a.zone_edges_hold);
+  // The edge teeth's share of +rated torque, recomputed from the flank forces: the teeth within two pitches of a change
+  // of engagement (a tooth off the watched list is more than three pitches from any change, so it engages as its
+  // watched neighbour does), their flanks' moments over the torque. Without them the drive can only be softer.
+  std::map<int, bool> engaged_at;
+  for (const EdgeTooth& e : a.edges) engaged_at[e.tooth] = e.engaged;
+  const int zf = coarse_seed_cam().c.gear->teeth_flexspline;
+  auto near_edge = [&](int k) {
+    if (!engaged_at.count(k)) return false;
+    for (int d = -2; d <= 2; ++d)
+      if (const auto it = engaged_at.find((k + d + zf) % zf); it != engaged_at.end() && it->second != engaged_at[k]) return true;
+    return false;
+  };
+  double edge_moment = 0;
+  for (std::size_t i = 0; i < a.flanks.size(); ++i)
+    if (near_edge(a.flanks[i].tooth)) edge_moment += a.problem.lambda[static_cast<Eigen::Index>(i)] * a.steps.back().flank_force_N[i];
+  std::printf("edge teeth carry %.2f %% of +rated torque; twist at rated %.5e rad, without them %.5e rad\n",
+              100 * a.edge_teeth_torque_share, a.curve.twist_rad.back(), a.twist_at_rated_without_edge_teeth_rad);
+  EXPECT_NEAR(a.edge_teeth_torque_share, edge_moment / a.rated_torque_Nm, 1e-12);
+  EXPECT_GE(a.edge_teeth_torque_share, 0.0);
+  EXPECT_LE(a.edge_teeth_torque_share, 1.0);
+  EXPECT_GE(a.twist_at_rated_without_edge_teeth_rad, a.curve.twist_rad.back() * (1 - 1e-12));
   int beyond = 0, beyond_loaded = 0;
   for (std::size_t i = 0; i < a.flanks.size(); ++i)
     if (a.flanks[i].beyond_tip_circle) {

@@ -136,14 +136,18 @@ ContactAnalysis run_contact_job(const Case& c, const FemJobResult& fem, const st
       line += buf;
     }
     std::printf("%s\n", line.c_str());
-    // What the curve rests on at the edges: teeth engaged a few µm deep, touching at sharp tip corners.
+    // What the curve rests on at the edges: teeth engaged a few µm deep, touching at their tips.
     const double without = a.twist_at_rated_without_edge_teeth_rad, with = a.curve.twist_rad.back();
     char rest[96] = "not defined (no other flank carries it)";
     if (std::isfinite(without))
       std::snprintf(rest, sizeof rest, "%.3f arcmin (%+.1f %%)", without * kArcmin, 100 * (without / with - 1));
-    std::printf("  the teeth within two pitches of the zones' edges carry %.1f %% of the rated torque on the outlines' "
-                "sharp tip corners (real tips are rounded); without them the twist at rated torque is %s\n",
-                100 * a.edge_teeth_torque_share, rest);
+    const bool sharp = c.gear->tip_rounding_flexspline_m == 0 && c.gear->tip_rounding_circular_m == 0;
+    std::printf("  the teeth within two pitches of the zones' edges carry %.1f %% of the rated torque%s; without them "
+                "the twist at rated torque is %s\n", 100 * a.edge_teeth_torque_share,
+                sharp ? " on sharp tip corners (real tips are rounded: [gear] tip_rounding_flexspline_mm, "
+                        "tip_rounding_circular_mm)"
+                      : "",
+                rest);
   }
   if (a.overlap_at_rest_m > 0)
     std::printf("  WARNING: the teeth overlap at rest by %.2f µm on the FEM's neutral curve, so part of the curve above is a "

@@ -18,6 +18,10 @@ struct GearParams {
   double addendum_coefficient_circular = 1.0;     ///< h_a,c*: tip inside the shifted reference circle
   double dedendum_coefficient_flexspline = 1.25;  ///< h_f,f*: the shaper cutter's tip height (root follows from it)
   double dedendum_coefficient_circular = 1.25;    ///< h_f,c*: root outside the shifted reference circle
+  /// Radius of the arc that rounds each tooth's tip corners (tangent to the flank and to the tip circle), metres;
+  /// 0: sharp corners.
+  double tip_rounding_flexspline_m = 0;
+  double tip_rounding_circular_m = 0;
 };
 
 /// Checks the ranges and the consistency of a gear set that can be made (tooth numbers, module, pressure angle,

@@ -67,6 +67,10 @@ void validate_gear(const GearParams& g, const std::string& file) {
       {"dedendum_coefficient_circular", g.dedendum_coefficient_circular}};
   for (const auto& [key, v] : proportions)
     if (!(v > 0.1 && v < 2.0)) fail(key, v, "must be in (0.1, 2) modules");
+  if (!(g.tip_rounding_flexspline_m >= 0 && g.tip_rounding_flexspline_m < g.module_m))
+    fail("tip_rounding_flexspline_mm", g.tip_rounding_flexspline_m * 1e3, "must be in [0, module)");
+  if (!(g.tip_rounding_circular_m >= 0 && g.tip_rounding_circular_m < g.module_m))
+    fail("tip_rounding_circular_mm", g.tip_rounding_circular_m * 1e3, "must be in [0, module)");
 }
 
 GearRadii gear_radii(const GearParams& g) {
@@ -145,6 +149,51 @@ Involute circular_space_flank(const GearParams& g) {
   f.u_min = roll_at_radius(r.base_c, r.tip_c);
   f.u_max = roll_at_radius(r.base_c, r.form_c);
   return f;
+}
+
+namespace {
+
+/// The arc of radius ρ tangent to involute f and to the circle of radius r_tip, its centre on the material's side:
+/// at radius r_tip − side·ρ and signed involute distance side·ρ (side = −1: the flexspline tooth, inside its ccw flank
+/// and its tip circle; +1: the circular spline's tooth, beyond its space's ccw side and outside its tip circle).
+/// Throws InputError naming `key` when the arc does not fit between the flank's end and the tooth's middle.
+TipRounding tip_rounding(const Involute& f, double r_tip, double side, double rho,
+                         double tooth_middle_rad, const char* key) {
+  TipRounding k;
+  k.radius_m = rho;
+  if (rho == 0) {
+    k.flank_roll = side < 0 ? f.u_max : f.u_min;
+    k.centre = k.flank_point = k.land_point = involute_point(f, k.flank_roll);
+    return k;
+  }
+  const double rc = r_tip + side * rho, rb = f.base_radius;
+  const double ac = std::acos(std::min(1.0, rb / rc));
+  const double arg = f.epsilon - involute_function(ac) + side * rho / rb;  // r_b (arg + inv α − ε) = side·ρ
+  k.centre = rc * Eigen::Vector2d(std::cos(arg), std::sin(arg));
+  k.flank_roll = f.epsilon - arg + ac;  // the normal through the centre meets the flank here
+  k.flank_point = involute_point(f, k.flank_roll);
+  k.land_point = r_tip * Eigen::Vector2d(std::cos(arg), std::sin(arg));
+  const bool on_flank = rc > rb && k.flank_roll >= f.u_min && k.flank_roll <= f.u_max;
+  const bool leaves_land = side < 0 ? arg > 0 : arg < tooth_middle_rad;
+  if (!on_flank || !leaves_land) {
+    std::ostringstream s;
+    s << "gear." << key << " = " << rho * 1e3 << "; the rounding must end on the flank (above its form radius) and "
+      << "leave part of the tip land: make it smaller";
+    throw InputError(s.str());
+  }
+  return k;
+}
+
+}  // namespace
+
+TipRounding flexspline_tip_rounding(const GearParams& g) {
+  return tip_rounding(flexspline_flank(g), gear_radii(g).tip_f, -1.0, g.tip_rounding_flexspline_m, 0.0,
+                      "tip_rounding_flexspline_mm");
+}
+
+TipRounding circular_tip_rounding(const GearParams& g) {
+  return tip_rounding(circular_space_flank(g), gear_radii(g).tip_c, +1.0, g.tip_rounding_circular_m,
+                      kPi / g.teeth_circular, "tip_rounding_circular_mm");
 }
 
 Eigen::Vector2d involute_point(const Involute& f, double u) {

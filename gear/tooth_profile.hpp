@@ -83,6 +83,22 @@ Involute flexspline_flank(const GearParams& g);
 /// The ccw side of circular-spline space 0 (u from the tip radius r_ac to the form radius r_Fc).
 Involute circular_space_flank(const GearParams& g);
 
+/// A tooth's ccw tip corner rounded by an arc of radius ρ tangent to the flank and to the tip circle: in the
+/// flexspline's frame (tooth 0) or the circular spline's space frame (the tooth beyond space 0's ccw side). With ρ = 0
+/// the arc is the sharp corner: centre and both ends on it.
+struct TipRounding {
+  double radius_m = 0;
+  Eigen::Vector2d centre{0, 0};       ///< inside the tooth: on the circle r_tip ∓ ρ, ρ from the flank
+  double flank_roll = 0;              ///< roll parameter where the arc leaves the flank
+  Eigen::Vector2d flank_point{0, 0};  ///< the arc's end on the flank
+  Eigen::Vector2d land_point{0, 0};   ///< the arc's end on the tip circle
+};
+
+/// The flexspline's rounding (gear.tip_rounding_flexspline_m) and the circular spline's. Throws InputError naming the
+/// key when the arc does not fit (it must end on the flank above the form radius and leave part of the tip land).
+TipRounding flexspline_tip_rounding(const GearParams& g);
+TipRounding circular_tip_rounding(const GearParams& g);
+
 /// Roll parameter of an involute with base radius r_b at radius R ≥ r_b: sqrt(R²/r_b² − 1).
 double roll_at_radius(double base_radius_m, double radius_m);
 

@@ -164,6 +164,8 @@ GearParams read_gear(TableReader r) {
   g.addendum_coefficient_circular = r.number("addendum_coefficient_circular", g.addendum_coefficient_circular);
   g.dedendum_coefficient_flexspline = r.number("dedendum_coefficient_flexspline", g.dedendum_coefficient_flexspline);
   g.dedendum_coefficient_circular = r.number("dedendum_coefficient_circular", g.dedendum_coefficient_circular);
+  g.tip_rounding_flexspline_m = r.number("tip_rounding_flexspline_mm", g.tip_rounding_flexspline_m / kMm) * kMm;
+  g.tip_rounding_circular_m = r.number("tip_rounding_circular_mm", g.tip_rounding_circular_m / kMm) * kMm;
   r.reject_unknown();
   validate_gear(g, r.file());  // gear/ owns the ranges and the consistency of a set that can be made
   return g;
@@ -601,7 +603,9 @@ std::string describe_case(const Case& c) {
       << "\naddendum_coefficient_flexspline = " << g.addendum_coefficient_flexspline
       << "\naddendum_coefficient_circular = " << g.addendum_coefficient_circular
       << "\ndedendum_coefficient_flexspline = " << g.dedendum_coefficient_flexspline
-      << "\ndedendum_coefficient_circular = " << g.dedendum_coefficient_circular << "\n";
+      << "\ndedendum_coefficient_circular = " << g.dedendum_coefficient_circular
+      << "\ntip_rounding_flexspline_mm = " << mm(g.tip_rounding_flexspline_m)
+      << "\ntip_rounding_circular_mm = " << mm(g.tip_rounding_circular_m) << "\n";
   }
   const auto& f = c.flexspline;
   const bool cup = f.shape == FlexsplineShape::Cup;

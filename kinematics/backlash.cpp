@@ -84,7 +84,18 @@ struct OutlineDistance {
   ToothPart part = ToothPart::Flank;
 };
 
+/// Whether direction v (from a rounding's centre) lies within the arc's angle, between its flank and land ends.
+bool within_arc(const TipRounding& k, const Eigen::Vector2d& v) {
+  const Eigen::Vector2d a = k.flank_point - k.centre, b = k.land_point - k.centre;
+  auto cross = [](const Eigen::Vector2d& x, const Eigen::Vector2d& y) { return x.x() * y.y() - x.y() * y.x(); };
+  const double s = cross(a, b) > 0 ? 1.0 : -1.0;
+  return s * cross(a, v) >= 0 && s * cross(v, b) >= 0;
+}
+
+OutlineDistance cs_distance_rounded(const BacklashModel& m, const Eigen::Vector2d& p);
+
 OutlineDistance cs_distance(const BacklashModel& m, const Eigen::Vector2d& p) {
+  if (m.round_c.radius_m > 0) return cs_distance_rounded(m, p);
   const Involute& c = m.flank_c;
   const double r_tip = m.radii.tip_c;
   const double R = p.norm(), arg = std::atan2(p.y(), p.x());
@@ -121,18 +132,86 @@ OutlineDistance cs_distance(const BacklashModel& m, const Eigen::Vector2d& p) {
   return best;
 }
 
+/// cs_distance with the circular-spline tooth's tip corner rounded (m.round_c): the flank up to the arc, the arc, the
+/// tip land beyond it. The rounded tooth is the sharp one less the cap between the arc and the corner.
+OutlineDistance cs_distance_rounded(const BacklashModel& m, const Eigen::Vector2d& p) {
+  const Involute& c = m.flank_c;
+  const TipRounding& k = m.round_c;
+  const double r_tip = m.radii.tip_c;
+  const double R = p.norm(), arg = std::atan2(p.y(), p.x());
+  const InvoluteDistance id = involute_signed_distance(c, p);
+  const double tooth_middle = kPi / m.gear.teeth_circular, land_from = std::atan2(k.centre.y(), k.centre.x());
+  const Eigen::Vector2d v = p - k.centre;
+  const bool on_arc = within_arc(k, v) && v.norm() > 0;
+  const bool inside = R > r_tip && id.distance_m > 0 && arg < tooth_middle + 1e-12 && !(on_arc && v.norm() > k.radius_m);
+  OutlineDistance best;
+  double dist = std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector2d& end : {k.flank_point, k.land_point})
+    if ((p - end).norm() < dist) {
+      dist = (p - end).norm();
+      best.foot = end;
+      best.part = ToothPart::TipCorner;
+    }
+  if (id.foot_roll >= k.flank_roll && std::abs(id.distance_m) <= dist) {
+    dist = std::abs(id.distance_m);
+    best.foot = involute_point(c, id.foot_roll);
+    best.part = ToothPart::Flank;
+  }
+  if (arg >= land_from && arg <= tooth_middle + 1e-12 && std::abs(R - r_tip) < dist) {
+    dist = std::abs(R - r_tip);
+    best.foot = p * (r_tip / R);
+    best.part = ToothPart::TipLand;
+  }
+  bool arc = false;
+  if (on_arc && std::abs(v.norm() - k.radius_m) < dist) {
+    dist = std::abs(v.norm() - k.radius_m);
+    best.foot = k.centre + k.radius_m * v / v.norm();
+    best.part = ToothPart::TipCorner;
+    arc = true;
+  }
+  best.d = inside ? dist : -dist;
+  if (best.part == ToothPart::Flank) {
+    const double th = c.epsilon - id.foot_roll;
+    best.grad = Eigen::Vector2d(-std::sin(th), std::cos(th));
+  } else if (best.part == ToothPart::TipLand) {
+    best.grad = p / R;
+  } else if (arc) {
+    best.grad = -v / v.norm();  // towards the arc's centre: deeper
+  } else {
+    const Eigen::Vector2d dc = p - best.foot;
+    best.grad = dc.norm() > 0 ? Eigen::Vector2d((inside ? 1.0 : -1.0) * dc / dc.norm()) : Eigen::Vector2d(p / R);
+  }
+  return best;
+}
+
 /// The flexspline tooth's ccw side in its own frame: flank u ∈ [u_min, u_max], then the tip land from the ccw tip
 /// corner (angle θ_t) to the tooth's middle, as one parameter t ∈ [0, 2]: t ≤ 1 on the flank, t > 1 on the land.
+/// A rounding's arc as a function of s ∈ [0, 1], from its flank end to its land end.
+Eigen::Vector2d arc_point(const TipRounding& k, double s) {
+  const Eigen::Vector2d a = k.flank_point - k.centre, b = k.land_point - k.centre;
+  const double a0 = std::atan2(a.y(), a.x()), sweep = wrap_pi(std::atan2(b.y(), b.x()) - a0), th = a0 + s * sweep;
+  return k.centre + k.radius_m * Eigen::Vector2d(std::cos(th), std::sin(th));
+}
+
+/// With the tip corner rounded (m.round_f) the side runs t ∈ [0, 3]: the flank to the arc (t ≤ 1), the arc (t ≤ 2),
+/// the tip land from the arc to the tooth's middle.
 Eigen::Vector2d flexspline_side_point(const BacklashModel& m, double t) {
   const Involute& f = m.flank_f;
+  if (const TipRounding& k = m.round_f; k.radius_m > 0) {
+    if (t <= 1.0) return involute_point(f, f.u_min + t * (k.flank_roll - f.u_min));
+    if (t <= 2.0) return arc_point(k, t - 1.0);
+    const double a = std::atan2(k.centre.y(), k.centre.x()) * (3.0 - t);
+    return m.radii.tip_f * Eigen::Vector2d(std::cos(a), std::sin(a));
+  }
   if (t <= 1.0) return involute_point(f, f.u_min + t * (f.u_max - f.u_min));
   const Eigen::Vector2d corner = involute_point(f, f.u_max);
   const double a = std::atan2(corner.y(), corner.x()) * (2.0 - t);
   return m.radii.tip_f * Eigen::Vector2d(std::cos(a), std::sin(a));
 }
 
-ToothPart flexspline_part(double t) {
-  return t < 1.0 - 1e-9 ? ToothPart::Flank : t <= 1.0 + 1e-9 ? ToothPart::TipCorner : ToothPart::TipLand;
+ToothPart flexspline_part(const BacklashModel& m, double t) {
+  const double corner_end = m.round_f.radius_m > 0 ? 2.0 : 1.0;
+  return t < 1.0 - 1e-9 ? ToothPart::Flank : t <= corner_end + 1e-9 ? ToothPart::TipCorner : ToothPart::TipLand;
 }
 
 /// Depth of point q (flexspline tooth frame) inside the flexspline tooth's ccw half (0 when outside), with the
@@ -149,6 +228,22 @@ Penetration flexspline_penetration(const BacklashModel& m, const Eigen::Vector2d
   if (R >= m.radii.tip_f || R <= m.radii.form_f) return {};
   const InvoluteDistance id = involute_signed_distance(f, q);
   if (id.distance_m >= 0) return {};
+  if (const TipRounding& k = m.round_f; k.radius_m > 0) {
+    // The rounded tooth: the sharp one less the cap between the arc and the corner.
+    const Eigen::Vector2d v = q - k.centre;
+    const bool on_arc = within_arc(k, v) && v.norm() > 0;
+    if (on_arc && v.norm() > k.radius_m) return {};
+    Penetration p{std::numeric_limits<double>::infinity(), k.flank_point, ToothPart::TipCorner};
+    for (const Eigen::Vector2d& end : {k.flank_point, k.land_point})
+      if ((q - end).norm() < p.depth) p = {(q - end).norm(), end, ToothPart::TipCorner};
+    if (id.foot_roll <= k.flank_roll && -id.distance_m < p.depth)
+      p = {-id.distance_m, involute_point(f, id.foot_roll), ToothPart::Flank};
+    if (std::atan2(q.y(), q.x()) <= std::atan2(k.centre.y(), k.centre.x()) && m.radii.tip_f - R < p.depth)
+      p = {m.radii.tip_f - R, q * (m.radii.tip_f / R), ToothPart::TipLand};
+    if (on_arc && k.radius_m - v.norm() < p.depth)
+      p = {k.radius_m - v.norm(), Eigen::Vector2d(k.centre + k.radius_m * v / v.norm()), ToothPart::TipCorner};
+    return p;
+  }
   const Eigen::Vector2d corner = involute_point(f, f.u_max);
   Penetration p{(q - corner).norm(), corner, ToothPart::TipCorner};
   if (id.foot_roll <= f.u_max && -id.distance_m < p.depth)
@@ -170,9 +265,14 @@ FlankClearance flank_clearance(const BacklashModel& m, const Eigen::Matrix2d& A,
   double best_t = 0, best = std::numeric_limits<double>::infinity();
   // Coarse scan of the flank (kSamples intervals) and the tip land (kSamples / 2), then Brent around the best sample
   // on its own part (the corner t = 1 is a sample of both).
+  // A rounded tip corner is a part of its own (t ∈ (1, 2], as many samples as the land); the outline is smooth
+  // across its ends, so one Brent bracket spans the best sample's neighbours.
+  const bool rounded = m.round_f.radius_m > 0;
   std::vector<double> ts;
   for (int i = 0; i <= kSamples; ++i) ts.push_back(static_cast<double>(i) / kSamples);
   for (int i = 1; i <= kSamples / 2; ++i) ts.push_back(1.0 + 2.0 * i / kSamples);
+  if (rounded)
+    for (int i = 1; i <= kSamples / 2; ++i) ts.push_back(2.0 + 2.0 * i / kSamples);
   size_t best_i = 0;
   for (size_t i = 0; i < ts.size(); ++i) {
     const double gi = g(ts[i]);
@@ -186,21 +286,41 @@ FlankClearance flank_clearance(const BacklashModel& m, const Eigen::Matrix2d& A,
     }
   };
   const size_t last_flank = kSamples;
-  if (best_i <= last_flank) refine(ts[best_i > 0 ? best_i - 1 : 0], ts[std::min(best_i + 1, last_flank)]);
-  if (best_i >= last_flank) refine(ts[best_i > last_flank ? best_i - 1 : last_flank], ts[std::min(best_i + 1, ts.size() - 1)]);
+  if (rounded) {
+    refine(ts[best_i > 0 ? best_i - 1 : 0], ts[std::min(best_i + 1, ts.size() - 1)]);
+  } else {
+    if (best_i <= last_flank) refine(ts[best_i > 0 ? best_i - 1 : 0], ts[std::min(best_i + 1, last_flank)]);
+    if (best_i >= last_flank) refine(ts[best_i > last_flank ? best_i - 1 : last_flank], ts[std::min(best_i + 1, ts.size() - 1)]);
+  }
   const Eigen::Vector2d pl = local(best_t);
   const OutlineDistance cd = cs_distance(m, pl);
   FlankClearance r;
   r.clearance_m = -cd.d;
-  r.roll_f = best_t <= 1.0 ? m.flank_f.u_min + best_t * (m.flank_f.u_max - m.flank_f.u_min) : m.flank_f.u_max;
+  r.roll_f = best_t <= 1.0 ? m.flank_f.u_min + best_t * (m.round_f.flank_roll - m.flank_f.u_min) : m.round_f.flank_roll;
   r.point_f = back * pl;
   r.point_c = back * cd.foot;
   r.normal = back * cd.grad;
-  r.part_f = flexspline_part(best_t);
+  r.part_f = flexspline_part(m, best_t);
   r.part_c = cd.part;
-  // The circular spline's tip corner inside the flexspline tooth (a corner cutting into a flank or tip land).
-  const Eigen::Vector2d corner_c = involute_point(m.flank_c, m.flank_c.u_min);
-  const Penetration pen = flexspline_penetration(m, A.transpose() * (corner_c - b));
+  // The circular spline's tip corner inside the flexspline tooth (a corner cutting into a flank or tip land); a
+  // rounded one at the arc's deepest point (a scan of the arc, then Brent).
+  Eigen::Vector2d corner_c = involute_point(m.flank_c, m.flank_c.u_min);
+  Penetration pen = flexspline_penetration(m, A.transpose() * (corner_c - b));
+  if (const TipRounding& k = m.round_c; k.radius_m > 0) {
+    auto depth = [&](double s) { return -flexspline_penetration(m, A.transpose() * (arc_point(k, s) - b)).depth; };
+    constexpr int kArc = 16;
+    int best_s = 0;
+    double deepest = 0;
+    for (int i = 0; i <= kArc; ++i)
+      if (const double d = depth(static_cast<double>(i) / kArc); d < deepest) { deepest = d; best_s = i; }
+    pen = {};
+    if (deepest < 0) {
+      const double s = brent_minimize(depth, std::max(best_s - 1, 0) / double(kArc), std::min(best_s + 1, kArc) / double(kArc), 1e-13);
+      const double at = depth(s) <= deepest ? s : static_cast<double>(best_s) / kArc;
+      corner_c = arc_point(k, at);
+      pen = flexspline_penetration(m, A.transpose() * (corner_c - b));
+    }
+  }
   if (pen.depth > 0 && pen.depth > -r.clearance_m) {
     const Eigen::Vector2d foot = A * pen.foot + b;
     r.clearance_m = -pen.depth;
@@ -222,6 +342,8 @@ BacklashModel make_backlash_model(const GearParams& gear, NeutralCurve curve) {
   m.radii = gear_radii(gear);
   m.flank_f = flexspline_flank(gear);
   m.flank_c = circular_space_flank(gear);
+  m.round_f = flexspline_tip_rounding(gear);
+  m.round_c = circular_tip_rounding(gear);
   if (!(curve.mean_radius_m > 0 && curve.mean_radius_m < m.radii.root_f)) {
     throw InputError("flexspline: rim neutral radius r_m = " + std::to_string(curve.mean_radius_m * 1e3) +
                      " mm must lie inside the tooth root circle r = " + std::to_string(m.radii.root_f * 1e3) +

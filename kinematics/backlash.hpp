@@ -30,6 +30,8 @@ struct BacklashModel {
   GearRadii radii;
   Involute flank_f;  ///< ccw flank of flexspline tooth 0, flexspline frame
   Involute flank_c;  ///< ccw side of circular-spline space 0, circular-spline frame
+  TipRounding round_f;  ///< the flexspline tooth's ccw tip corner (sharp when its radius is 0)
+  TipRounding round_c;  ///< the tip corner of the circular-spline tooth beyond space 0's ccw side
   NeutralCurve curve;
 };
 

@@ -94,6 +94,20 @@ TEST(CaseFile, FlexsplineWithMoreTeethThanCircularSplineIsRejected) {
   EXPECT_NE(e.find("gear.teeth_circular = 26; must be > gear.teeth_flexspline = 28"), std::string::npos) << e;
 }
 
+// The tip rounding arrives in metres; a negative one, or one of a module or more, is one line naming the key (one that
+// does not fit the tooth is refused by the gear geometry, tests/kinematics).
+TEST(CaseFile, TipRoundingIsReadInMillimetresAndChecked) {
+  const Case c = parse_case(std::string(kTube) + "[gear]\ntip_rounding_flexspline_mm = 0.02\ntip_rounding_circular_mm = 0.03\n"
+                                                 "[circular_spline]\nouter_radius_mm = 30\nwidth_mm = 5\n",
+                            "cases/x.toml");
+  EXPECT_NEAR(c.gear->tip_rounding_flexspline_m, 2e-5, 1e-18);
+  EXPECT_NEAR(c.gear->tip_rounding_circular_m, 3e-5, 1e-18);
+  const std::string e = error_of(std::string(kTube) + "[gear]\ntip_rounding_circular_mm = -0.01\n");
+  EXPECT_NE(e.find("cases/x.toml: gear.tip_rounding_circular_mm = -0.01; must be in [0, module)"), std::string::npos) << e;
+  const std::string big = error_of(std::string(kTube) + "[gear]\ntip_rounding_flexspline_mm = 0.2\n");
+  EXPECT_NE(big.find("gear.tip_rounding_flexspline_mm = 0.2; must be in [0, module)"), std::string::npos) << big;
+}
+
 TEST(CaseFile, TeethNeedAGearTable) {
   std::string t = kTube;
   t.replace(t.find("\"none\""), 6, "\"ring\"\nrim_width_mm = 5\nrim_thickness_mm = 1.2");

@@ -92,49 +92,10 @@ bool within_arc(const TipRounding& k, const Eigen::Vector2d& v) {
   return s * cross(a, v) >= 0 && s * cross(v, b) >= 0;
 }
 
-OutlineDistance cs_distance_rounded(const BacklashModel& m, const Eigen::Vector2d& p);
-
+/// With the tip corner rounded (m.round_c) the outline is the flank up to the arc, the arc, the tip land beyond it: the
+/// rounded tooth is the sharp one less the cap between the arc and the corner. A sharp corner is the arc of radius 0
+/// (centre and both ends on the corner).
 OutlineDistance cs_distance(const BacklashModel& m, const Eigen::Vector2d& p) {
-  if (m.round_c.radius_m > 0) return cs_distance_rounded(m, p);
-  const Involute& c = m.flank_c;
-  const double r_tip = m.radii.tip_c;
-  const double R = p.norm(), arg = std::atan2(p.y(), p.x());
-  const InvoluteDistance id = involute_signed_distance(c, p);
-  const Eigen::Vector2d corner = involute_point(c, c.u_min);
-  const double corner_arg = std::atan2(corner.y(), corner.x());
-  const double tooth_middle = kPi / m.gear.teeth_circular;
-  const bool inside = R > r_tip && id.distance_m > 0 && arg < tooth_middle + 1e-12;
-  OutlineDistance best;
-  double dist = (p - corner).norm();
-  best.foot = corner;
-  best.part = ToothPart::TipCorner;
-  if (id.foot_roll >= c.u_min && std::abs(id.distance_m) <= dist) {
-    dist = std::abs(id.distance_m);
-    best.foot = involute_point(c, id.foot_roll);
-    best.part = ToothPart::Flank;
-  }
-  if (arg >= corner_arg && arg <= tooth_middle + 1e-12 && std::abs(R - r_tip) < dist) {
-    dist = std::abs(R - r_tip);
-    best.foot = p * (r_tip / R);
-    best.part = ToothPart::TipLand;
-  }
-  best.d = inside ? dist : -dist;
-  // Gradient of the signed distance: into the material across the nearest part.
-  if (best.part == ToothPart::Flank) {
-    const double th = c.epsilon - id.foot_roll;
-    best.grad = Eigen::Vector2d(-std::sin(th), std::cos(th));
-  } else if (best.part == ToothPart::TipLand) {
-    best.grad = p / R;
-  } else {
-    const Eigen::Vector2d dc = p - corner;
-    best.grad = dc.norm() > 0 ? Eigen::Vector2d((inside ? 1.0 : -1.0) * dc / dc.norm()) : Eigen::Vector2d(p / R);
-  }
-  return best;
-}
-
-/// cs_distance with the circular-spline tooth's tip corner rounded (m.round_c): the flank up to the arc, the arc, the
-/// tip land beyond it. The rounded tooth is the sharp one less the cap between the arc and the corner.
-OutlineDistance cs_distance_rounded(const BacklashModel& m, const Eigen::Vector2d& p) {
   const Involute& c = m.flank_c;
   const TipRounding& k = m.round_c;
   const double r_tip = m.radii.tip_c;
@@ -142,7 +103,7 @@ OutlineDistance cs_distance_rounded(const BacklashModel& m, const Eigen::Vector2
   const InvoluteDistance id = involute_signed_distance(c, p);
   const double tooth_middle = kPi / m.gear.teeth_circular, land_from = std::atan2(k.centre.y(), k.centre.x());
   const Eigen::Vector2d v = p - k.centre;
-  const bool on_arc = within_arc(k, v) && v.norm() > 0;
+  const bool on_arc = k.radius_m > 0 && within_arc(k, v) && v.norm() > 0;
   const bool inside = R > r_tip && id.distance_m > 0 && arg < tooth_middle + 1e-12 && !(on_arc && v.norm() > k.radius_m);
   OutlineDistance best;
   double dist = std::numeric_limits<double>::infinity();
@@ -224,32 +185,24 @@ struct Penetration {
 
 Penetration flexspline_penetration(const BacklashModel& m, const Eigen::Vector2d& q) {
   const Involute& f = m.flank_f;
+  const TipRounding& k = m.round_f;  // a sharp corner: the arc of radius 0
   const double R = q.norm();
   if (R >= m.radii.tip_f || R <= m.radii.form_f) return {};
   const InvoluteDistance id = involute_signed_distance(f, q);
   if (id.distance_m >= 0) return {};
-  if (const TipRounding& k = m.round_f; k.radius_m > 0) {
-    // The rounded tooth: the sharp one less the cap between the arc and the corner.
-    const Eigen::Vector2d v = q - k.centre;
-    const bool on_arc = within_arc(k, v) && v.norm() > 0;
-    if (on_arc && v.norm() > k.radius_m) return {};
-    Penetration p{std::numeric_limits<double>::infinity(), k.flank_point, ToothPart::TipCorner};
-    for (const Eigen::Vector2d& end : {k.flank_point, k.land_point})
-      if ((q - end).norm() < p.depth) p = {(q - end).norm(), end, ToothPart::TipCorner};
-    if (id.foot_roll <= k.flank_roll && -id.distance_m < p.depth)
-      p = {-id.distance_m, involute_point(f, id.foot_roll), ToothPart::Flank};
-    if (std::atan2(q.y(), q.x()) <= std::atan2(k.centre.y(), k.centre.x()) && m.radii.tip_f - R < p.depth)
-      p = {m.radii.tip_f - R, q * (m.radii.tip_f / R), ToothPart::TipLand};
-    if (on_arc && k.radius_m - v.norm() < p.depth)
-      p = {k.radius_m - v.norm(), Eigen::Vector2d(k.centre + k.radius_m * v / v.norm()), ToothPart::TipCorner};
-    return p;
-  }
-  const Eigen::Vector2d corner = involute_point(f, f.u_max);
-  Penetration p{(q - corner).norm(), corner, ToothPart::TipCorner};
-  if (id.foot_roll <= f.u_max && -id.distance_m < p.depth)
+  // The rounded tooth: the sharp one less the cap between the arc and the corner.
+  const Eigen::Vector2d v = q - k.centre;
+  const bool on_arc = k.radius_m > 0 && within_arc(k, v) && v.norm() > 0;
+  if (on_arc && v.norm() > k.radius_m) return {};
+  Penetration p{std::numeric_limits<double>::infinity(), k.flank_point, ToothPart::TipCorner};
+  for (const Eigen::Vector2d& end : {k.flank_point, k.land_point})
+    if ((q - end).norm() < p.depth) p = {(q - end).norm(), end, ToothPart::TipCorner};
+  if (id.foot_roll <= k.flank_roll && -id.distance_m < p.depth)
     p = {-id.distance_m, involute_point(f, id.foot_roll), ToothPart::Flank};
-  if (std::atan2(q.y(), q.x()) <= std::atan2(corner.y(), corner.x()) && m.radii.tip_f - R < p.depth)
+  if (std::atan2(q.y(), q.x()) <= std::atan2(k.centre.y(), k.centre.x()) && m.radii.tip_f - R < p.depth)
     p = {m.radii.tip_f - R, q * (m.radii.tip_f / R), ToothPart::TipLand};
+  if (on_arc && k.radius_m - v.norm() < p.depth)
+    p = {k.radius_m - v.norm(), Eigen::Vector2d(k.centre + k.radius_m * v / v.norm()), ToothPart::TipCorner};
   return p;
 }
 

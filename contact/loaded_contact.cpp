@@ -51,20 +51,30 @@ Eigen::VectorXd FlankLoads::pattern(const std::vector<double>& stations, const E
     if (radial.size() == 0 || outer.size() == 0 || inner.size() == 0)
       throw InputError("contact: no rim faces under the tooth at " + std::to_string(s * 180 / kPi) +
                        " deg; refine mesh.size_mm");
-    const Eigen::VectorXd couple = outer - inner;
     // The contact force at this station (turned by π at the partner) and its moment about the axis: the three
-    // amplitudes reproduce both exactly.
+    // amplitudes reproduce both exactly. Every sum runs over the hats' nodes only (the radial hat's: the others lie
+    // within it); the full vectors are the mesh's size.
     const Eigen::Vector2d F = i == 0 ? force_dir : Eigen::Vector2d(-force_dir);
     const Eigen::Vector2d P = contact_radius_m * Eigen::Vector2d(std::cos(s), std::sin(s));
-    Eigen::Matrix3d R;
-    Eigen::Vector3d target(F.x(), F.y(), P.x() * F.y() - P.y() * F.x());
-    int col = 0;
-    for (const Eigen::VectorXd* v : {&radial, &tangential, &couple}) {
-      const Resultant r = load_resultant(mesh_, *v);
-      R.col(col++) << r.force.x(), r.force.y(), r.moment.z();
+    std::vector<Eigen::Index> nodes;
+    for (Eigen::Index n = 0; n < static_cast<Eigen::Index>(mesh_.n_nodes()); ++n)
+      if (radial.segment<3>(3 * n).any()) nodes.push_back(n);
+    const auto k = static_cast<Eigen::Index>(nodes.size());
+    Eigen::MatrixXd H(3 * k, 3);  // radial, tangential, couple (outer − inner) at those nodes
+    Eigen::Matrix3d R = Eigen::Matrix3d::Zero();
+    for (Eigen::Index j = 0; j < k; ++j) {
+      const Eigen::Index n = nodes[j];
+      H.block<3, 1>(3 * j, 0) = radial.segment<3>(3 * n);
+      H.block<3, 1>(3 * j, 1) = tangential.segment<3>(3 * n);
+      H.block<3, 1>(3 * j, 2) = outer.segment<3>(3 * n) - inner.segment<3>(3 * n);
+      for (int c = 0; c < 3; ++c) {
+        const double fx = H(3 * j, c), fy = H(3 * j + 1, c);
+        R.col(c) += Eigen::Vector3d(fx, fy, mesh_.nodes(n, 0) * fy - mesh_.nodes(n, 1) * fx);
+      }
     }
-    const Eigen::Vector3d amp = R.fullPivLu().solve(target);
-    f += amp[0] * radial + amp[1] * tangential + amp[2] * couple;
+    const Eigen::Vector3d target(F.x(), F.y(), P.x() * F.y() - P.y() * F.x());
+    const Eigen::VectorXd h = H * R.fullPivLu().solve(target);
+    for (Eigen::Index j = 0; j < k; ++j) f.segment<3>(3 * nodes[j]) += h.segment<3>(3 * j);
   }
   return f;
 }

@@ -13,7 +13,7 @@
 // Each slab is meshed and factorised once; every radius is one more right-hand side.
 //
 // Why not the analytic tooth: on the seed's tooth (z = 190 on a 0.7 mm rim) Sainsot's foundation fit is extrapolated
-// far outside its range, and bending + foundation come out 1.75–8.3× this FEM tooth (tests/gear).
+// far outside its range, and bending + foundation come out 1.8–8.6× this FEM tooth (tests/gear).
 #include <vector>
 
 #include <Eigen/Core>

@@ -363,13 +363,15 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
     }
     return std::make_pair(s, T_flanks);
   };
+  // The output's twist: the contact problem's plus the circular spline's torsion.
+  auto twist_rad = [&](const ContactSolution& s, double T) { return s.twist_rad + opt.series.circular_spline_rad_per_Nm * T; };
   ContactSolution at_rated;
   double flanks_torque_at_rated = T_R;
   for (const double T : torques) {
     const auto [s, T_flanks] = solve_torque(P, nf, lambda, T);
     TorqueStep st;
     st.torque_Nm = T;
-    st.twist_rad = s.twist_rad + opt.series.circular_spline_rad_per_Nm * T;
+    st.twist_rad = twist_rad(s, T);
     st.flank_force_N.assign(s.force_N.data(), s.force_N.data() + nf);
     if (unilateral) st.station_force_N.assign(s.force_N.data() + nf, s.force_N.data() + nf + nb);
     for (Eigen::Index i = 0; i < nf; ++i)
@@ -450,23 +452,10 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
         1.0 - out.split.body - out.split.teeth - out.split.generator - out.split.circular_spline;
   }
 
-  // Independent check at +rated: the contact forces as nodal loads on the FEM, the clamp's reaction moment.
-  {
-    Eigen::VectorXd x(nf + nb);
-    if (unilateral) x = at_rated.force_N;  // the whole loaded state, the generator's preload included
-    else x << at_rated.force_N, band_solve * at_rated.force_N;
-    const Eigen::VectorXd f = L * x;
-    const Eigen::VectorXd u = sys.solve(f).col(0);
-    Eigen::VectorXd x_all = Eigen::VectorXd::Zero(no + nf + nb);  // the observers carry no force
-    x_all.tail(nf + nb) = x;
-    const Eigen::VectorXd d_direct = L_all.transpose() * u, d_influence = A_all * x_all;
-    out.superposition_error_rel = (d_direct - d_influence).cwiseAbs().maxCoeff() / d_direct.cwiseAbs().maxCoeff();
-    const Eigen::VectorXd reactions = internal_forces(mesh, c.material, u) - f;
-    out.fem_reaction_torque_Nm = moment_about_z(mesh, reactions, sys.clamped);
-  }
   // What the teeth at the zones' edges hold: their flanks' share of +rated torque, and the twist at +rated without them.
-  // They are engaged a few µm deep or not at all at rest and touch at the outlines' sharp tip corners; a real tooth's
-  // rounded tip would let them ride over, so the curve's stiffness should not rest on them unseen.
+  // They are engaged a few µm deep or not at all at rest and touch at their tips; on sharp corners they can carry much
+  // of the torque where a rounded tip would let them ride over, so the curve's stiffness should not rest on them
+  // unseen. After the split: the re-solve moves the bearing's secants.
   {
     std::vector<Eigen::Index> keep;
     double edge_moment = 0;
@@ -486,11 +475,27 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
       const Eigen::VectorXd moments = lambda(keep);
       try {
         const ContactSolution s = solve_torque(Pe, kept_flanks, moments, T_R).first;
-        out.twist_at_rated_without_edge_teeth_rad = s.twist_rad + opt.series.circular_spline_rad_per_Nm * T_R;
+        out.twist_at_rated_without_edge_teeth_rad = twist_rad(s, T_R);
       } catch (const InputError&) {
         out.twist_at_rated_without_edge_teeth_rad = std::numeric_limits<double>::infinity();  // nothing else carries it
       }
     }
+  }
+  out.contact_s += clock.lap();
+
+  // Independent check at +rated: the contact forces as nodal loads on the FEM, the clamp's reaction moment.
+  {
+    Eigen::VectorXd x(nf + nb);
+    if (unilateral) x = at_rated.force_N;  // the whole loaded state, the generator's preload included
+    else x << at_rated.force_N, band_solve * at_rated.force_N;
+    const Eigen::VectorXd f = L * x;
+    const Eigen::VectorXd u = sys.solve(f).col(0);
+    Eigen::VectorXd x_all = Eigen::VectorXd::Zero(no + nf + nb);  // the observers carry no force
+    x_all.tail(nf + nb) = x;
+    const Eigen::VectorXd d_direct = L_all.transpose() * u, d_influence = A_all * x_all;
+    out.superposition_error_rel = (d_direct - d_influence).cwiseAbs().maxCoeff() / d_direct.cwiseAbs().maxCoeff();
+    const Eigen::VectorXd reactions = internal_forces(mesh, c.material, u) - f;
+    out.fem_reaction_torque_Nm = moment_about_z(mesh, reactions, sys.clamped);
   }
   out.check_s = clock.lap();
   progress("contact: " + std::to_string(torques.size()) + " torque steps on " + std::to_string(out.unknowns) +

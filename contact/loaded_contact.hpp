@@ -172,7 +172,8 @@ struct ContactAnalysis {
   bool zone_edges_hold = true;
   /// The teeth within two pitches of a mesh zone's edge at +rated torque: their flanks' share of the torque, and the
   /// twist with them left out (infinity when nothing else can carry it). Engaged a few µm deep or not at all at rest,
-  /// they touch at the outlines' sharp tip corners, which real teeth round off: what of the curve rests on them.
+  /// they touch at their tips; on sharp corners (no [gear] tip rounding) they can carry much of the torque where a
+  /// rounded tip would ride over: what of the curve rests on them.
   double edge_teeth_torque_share = 0;
   double twist_at_rated_without_edge_teeth_rad = 0;
   /// The problem solved at every step: flanks (in the order of `flanks`), then the generator's stations when they are

@@ -131,6 +131,7 @@ OutlineDistance cs_distance(const BacklashModel& m, const Eigen::Vector2d& p) {
     arc = true;
   }
   best.d = inside ? dist : -dist;
+  // Gradient of the signed distance: into the material across the nearest part.
   if (best.part == ToothPart::Flank) {
     const double th = c.epsilon - id.foot_roll;
     best.grad = Eigen::Vector2d(-std::sin(th), std::cos(th));
@@ -145,8 +146,6 @@ OutlineDistance cs_distance(const BacklashModel& m, const Eigen::Vector2d& p) {
   return best;
 }
 
-/// The flexspline tooth's ccw side in its own frame: flank u ∈ [u_min, u_max], then the tip land from the ccw tip
-/// corner (angle θ_t) to the tooth's middle, as one parameter t ∈ [0, 2]: t ≤ 1 on the flank, t > 1 on the land.
 /// A rounding's arc as a function of s ∈ [0, 1], from its flank end to its land end.
 Eigen::Vector2d arc_point(const TipRounding& k, double s) {
   const Eigen::Vector2d a = k.flank_point - k.centre, b = k.land_point - k.centre;
@@ -154,6 +153,8 @@ Eigen::Vector2d arc_point(const TipRounding& k, double s) {
   return k.centre + k.radius_m * Eigen::Vector2d(std::cos(th), std::sin(th));
 }
 
+/// The flexspline tooth's ccw side in its own frame: flank u ∈ [u_min, u_max], then the tip land from the ccw tip
+/// corner (angle θ_t) to the tooth's middle, as one parameter t ∈ [0, 2]: t ≤ 1 on the flank, t > 1 on the land.
 /// With the tip corner rounded (m.round_f) the side runs t ∈ [0, 3]: the flank to the arc (t ≤ 1), the arc (t ≤ 2),
 /// the tip land from the arc to the tooth's middle.
 Eigen::Vector2d flexspline_side_point(const BacklashModel& m, double t) {
@@ -257,16 +258,17 @@ FlankClearance flank_clearance(const BacklashModel& m, const Eigen::Matrix2d& A,
   r.part_c = cd.part;
   // The circular spline's tip corner inside the flexspline tooth (a corner cutting into a flank or tip land); a
   // rounded one at the arc's deepest point (a scan of the arc, then Brent).
-  Eigen::Vector2d corner_c = involute_point(m.flank_c, m.flank_c.u_min);
-  Penetration pen = flexspline_penetration(m, A.transpose() * (corner_c - b));
-  if (const TipRounding& k = m.round_c; k.radius_m > 0) {
+  Eigen::Vector2d corner_c = m.round_c.centre;  // the sharp corner (a rounding of radius 0)
+  Penetration pen;
+  if (const TipRounding& k = m.round_c; k.radius_m == 0) {
+    pen = flexspline_penetration(m, A.transpose() * (corner_c - b));
+  } else {
     auto depth = [&](double s) { return -flexspline_penetration(m, A.transpose() * (arc_point(k, s) - b)).depth; };
     constexpr int kArc = 16;
     int best_s = 0;
     double deepest = 0;
     for (int i = 0; i <= kArc; ++i)
       if (const double d = depth(static_cast<double>(i) / kArc); d < deepest) { deepest = d; best_s = i; }
-    pen = {};
     if (deepest < 0) {
       const double s = brent_minimize(depth, std::max(best_s - 1, 0) / double(kArc), std::min(best_s + 1, kArc) / double(kArc), 1e-13);
       const double at = depth(s) <= deepest ? s : static_cast<double>(best_s) / kArc;

@@ -134,6 +134,31 @@ std::vector<std::size_t> drawn_points(const PlotSeries& s) {
   return idx;
 }
 
+/// A legend's rectangle in drawing coordinates: whether a marker lies under it or a line segment crosses it.
+struct LegendBox {
+  double x0, y0, x1, y1;
+  bool holds(double x, double y, double radius) const {
+    return x >= x0 - radius && x <= x1 + radius && y >= y0 - radius && y <= y1 + radius;
+  }
+  /// Liang-Barsky: the part of the segment inside the box is not empty.
+  bool crossed_by(double ax, double ay, double bx, double by) const {
+    double t0 = 0, t1 = 1;
+    const double dx = bx - ax, dy = by - ay;
+    for (const auto& [q, r] : {std::pair{-dx, ax - x0}, std::pair{dx, x1 - ax}, std::pair{-dy, ay - y0},
+                               std::pair{dy, y1 - ay}}) {
+      if (q == 0) {
+        if (r < 0) return false;
+        continue;
+      }
+      const double t = r / q;
+      if (q < 0) t0 = std::max(t0, t);
+      else t1 = std::min(t1, t);
+      if (t0 > t1) return false;
+    }
+    return true;
+  }
+};
+
 /// The plot's elements in a width x height box at the origin.
 std::string plot_body(const LinePlot& p) {
   double xlo = std::numeric_limits<double>::infinity(), xhi = -xlo, ylo = xlo, yhi = -xlo;
@@ -145,10 +170,50 @@ std::string plot_body(const LinePlot& p) {
     }
   const bool degrees = p.x_label.find("(deg)") != std::string::npos;
   const Axis ax = make_axis(xlo, xhi, p.x_range, false, degrees, 8);
-  const Axis ay = make_axis(ylo, yhi, p.y_range, p.log_y, false, 6);
+  Axis ay = make_axis(ylo, yhi, p.y_range, p.log_y, false, 6);
   const double W = p.width, H = p.height, L = 78, R = 20, T = 30, B = 48;
   auto X = [&](double x) { return L + ax.unit(x) * (W - L - R); };
   auto Y = [&](double y) { return T + (1.0 - ay.unit(y)) * (H - T - B); };
+  // The legend, as wide as its longest label (about 6.6 px a character at 12 px), in the corner of the plot area
+  // where it hides the least data (as matplotlib's loc='best'): fewest markers and line segments under it, top right
+  // first when corners tie. When every corner hides data and the y range is free, the range grows upwards by the
+  // legend's height so the legend sits above the data.
+  std::size_t chars = 0, entries = 0;
+  for (const auto& ser : p.series) {
+    std::size_t n = 0;
+    for (unsigned char c : ser.label) n += (c & 0xC0) != 0x80;  // UTF-8 characters
+    chars = std::max(chars, n);
+    entries += !ser.label.empty();
+  }
+  const double lw = 44 + 6.6 * chars, lh = 16.0 * entries;
+  double lx = W - R - 4 - lw, ly0 = T + 4;
+  auto place_legend = [&] {
+    std::size_t fewest = std::numeric_limits<std::size_t>::max();
+    for (const auto& [cx, cy] : {std::pair{W - R - 4 - lw, T + 4}, std::pair{L + 4, T + 4},
+                                 std::pair{W - R - 4 - lw, H - B - 4 - lh}, std::pair{L + 4, H - B - 4 - lh}}) {
+      const LegendBox box{cx, cy, cx + lw, cy + lh};
+      std::size_t hidden = 0;
+      for (const auto& ser : p.series) {
+        double px = NAN, py = NAN;
+        for (std::size_t i : drawn_points(ser)) {
+          const bool ok = std::isfinite(ser.x[i]) && std::isfinite(ser.y[i]) && (!p.log_y || ser.y[i] > 0);
+          const double qx = ok ? X(ser.x[i]) : NAN, qy = ok ? Y(ser.y[i]) : NAN;
+          if (ok && (ser.markers ? box.holds(qx, qy, ser.marker_radius) : std::isfinite(px) && box.crossed_by(px, py, qx, qy)))
+            ++hidden;
+          px = qx;
+          py = qy;
+        }
+      }
+      if (hidden < fewest) { fewest = hidden; lx = cx; ly0 = cy; }
+    }
+    return fewest;
+  };
+  const double area = H - T - B, room = lh + 8;
+  if (entries > 0 && place_legend() > 0 && !(p.y_range.second > p.y_range.first) && !p.log_y && area > 2 * room &&
+      std::isfinite(yhi)) {
+    ay = make_axis(ylo, ay.lo + (std::max(yhi, ay.hi) - ay.lo) * area / (area - room), p.y_range, false, false, 6);
+    place_legend();
+  }
   std::ostringstream s;
   s.precision(6);
   s << "<g font-family='sans-serif' font-size='12'>\n<rect width='" << W << "' height='" << H << "' fill='white'/>\n";
@@ -208,18 +273,10 @@ std::string plot_body(const LinePlot& p) {
       << (ser.opacity < 1 ? " opacity='" + std::to_string(ser.opacity) + "'" : "") << "/>\n";
   }
   s << "</svg>\n";
-  // Legend in the top right corner, as wide as its longest label (about 6.6 px a character at 12 px).
-  std::size_t chars = 0;
-  for (const auto& ser : p.series) {
-    std::size_t n = 0;
-    for (unsigned char c : ser.label) n += (c & 0xC0) != 0x80;  // UTF-8 characters
-    chars = std::max(chars, n);
-  }
-  const double lw = 44 + 6.6 * chars, lx = W - R - 4 - lw;
   int legend = 0;
   for (const auto& ser : p.series) {
     if (ser.label.empty()) continue;
-    const double ly = T + 14 + 16 * legend++;
+    const double ly = ly0 + 10 + 16 * legend++;
     s << "<rect x='" << f1(lx) << "' y='" << ly - 10 << "' width='" << f1(lw) << "' height='16' fill='white' "
       << "opacity='0.85'/>";
     if (ser.markers)

@@ -125,3 +125,33 @@ TEST(SvgFigure, StacksPanelsUnderItsHeaderAndOverItsFooter) {
   EXPECT_NE(svg.find("a note"), std::string::npos);
   EXPECT_NE(svg.find("width='1520'"), std::string::npos);  // two columns of 760
 }
+
+namespace {
+
+/// The x of the legend's first white box (the boxes are the only rects with opacity 0.85).
+double legend_x(const std::string& svg) {
+  const std::size_t at = svg.rfind("<rect x='", svg.find("opacity='0.85'"));
+  return std::stod(svg.substr(at + 9));
+}
+
+}  // namespace
+
+TEST(SvgLinePlot, TheLegendGoesWhereItHidesTheLeastData) {
+  // Default 760 px wide, plot area from x = 78 to 740: a legend on the right starts beyond the middle, on the left
+  // at 82.
+  sw::LinePlot p;
+  p.series = {{"rising", {0, 1}, {0, 1}}};
+  EXPECT_LT(legend_x(sw::svg_line_plot(p)), 90.0);  // the line ends in the top right corner
+  p.series = {{"falling", {0, 1}, {1, 0}}};
+  EXPECT_GT(legend_x(sw::svg_line_plot(p)), 400.0);  // top right is free
+  // A lone marker at the top right (the largest force of a scatter) is not covered: the legend moves.
+  p.series = {{"forces", {0, 0.5, 0.97, 1}, {0, 0.1, 0.95, 0}, "#000", false, true}};
+  const std::string svg = sw::svg_line_plot(p);
+  EXPECT_LT(legend_x(svg), 90.0);
+  // Data in every corner (a force scatter with zeros along the bottom): the y range grows so the legend sits above.
+  p.series = {{"forces", {0, 0.03, 0.03, 0.97, 0.97, 1}, {0, 0.03, 0.97, 0.97, 0.03, 1}, "#000", false, true}};
+  const std::string roomy = sw::svg_line_plot(p);
+  EXPECT_NE(roomy.find(">1.2<"), std::string::npos);
+  p.y_range = {0, 1};  // a fixed range is kept
+  EXPECT_EQ(sw::svg_line_plot(p).find(">1.2<"), std::string::npos);
+}

@@ -54,6 +54,7 @@ ContactAnalysis run_contact_job(const Case& c, const FemJobResult& fem, const st
   ContactOptions o;
   o.rated_torque_Nm = c.load.rated_torque_Nm.value_or(c.load.torque_Nm);
   o.series = series_parts(c);
+  o.face_slices = c.contact_face_slices;
   std::optional<CatalogLaw> reference;
   if (c.catalog_size)
     if (const CatalogDrive* d = catalog_drive(*c.catalog_size); d && d->has_stiffness()) {
@@ -73,9 +74,10 @@ ContactAnalysis run_contact_job(const Case& c, const FemJobResult& fem, const st
   std::printf("contact %s: %d contacts (%zu flanks%s, generator: %s), %zu torque steps in %.2f s (influence %.2f s)\n",
               c.path.c_str(), a.unknowns, a.flanks.size(), a.half_turn_pairs ? " × 2 teeth" : "",
               a.generator_support.c_str(), a.steps.size(), a.contact_s, a.influence_s);
-  std::printf("  twist at rated torque %.4g N·m: %.3f arcmin; %d flanks in contact, largest flank force %.1f N at "
+  const char* unit = a.face_slices > 1 ? "flank slices" : "flanks";
+  std::printf("  twist at rated torque %.4g N·m: %.3f arcmin; %d %s in contact, largest force on one %.1f N at "
               "%.1f deg (the flexspline's %s on the circular spline's %s); teeth: %s\n", a.rated_torque_Nm,
-              r.twist_rad * kArcmin, r.pairs_in_contact, r.max_pair_force_N, tf.phi_rad * 180 / std::numbers::pi,
+              r.twist_rad * kArcmin, r.pairs_in_contact, unit, r.max_pair_force_N, tf.phi_rad * 180 / std::numbers::pi,
               part_name(tf.part_f), part_name(tf.part_c), o.series.teeth_source.c_str());
   std::printf("  three segments (%s): T1 %.3g N·m, T2 %.3g N·m, K1 %.4g, K2 %.4g, K3 %.4g N·m/rad\n",
               a.catalog.breakpoints_fitted ? "breakpoints fitted" : "the catalog's breakpoints", a.catalog.t1_Nm,
@@ -148,6 +150,24 @@ ContactAnalysis run_contact_job(const Case& c, const FemJobResult& fem, const st
                         "tip_rounding_circular_mm)"
                       : "",
                 rest);
+  }
+  if (a.face_sections.size() == 3) {
+    // The cup's coning across the face: the rim's deflection and the teeth's clearance at the ends and the centre.
+    const FaceSection *d = &a.face_sections[0], *m = &a.face_sections[1], *o = &a.face_sections[2];
+    auto closing = [](const FaceSection& f) {
+      char b[64];
+      if (f.overlap_m > 0)
+        std::snprintf(b, sizeof b, "overlap %.2f µm (%.1f deg)", f.overlap_m * 1e6, f.overlap_phi_rad * 180 / std::numbers::pi);
+      else std::snprintf(b, sizeof b, "first flank closes at %.3f arcmin", f.first_closing_rad * kArcmin);
+      return std::string(b);
+    };
+    std::printf("  coning across the face (diaphragm end / centre / open end): the rim's radial deflection at the major "
+                "axis %.1f / %.1f / %.1f µm; at rest %s / %s / %s; %s\n", d->w_major_m * 1e6, m->w_major_m * 1e6,
+                o->w_major_m * 1e6, closing(*d).c_str(), closing(*m).c_str(), closing(*o).c_str(),
+                a.face_slices > 1
+                    ? ("the contact meshes straight teeth in " + std::to_string(a.face_slices) + " axial slices").c_str()
+                    : "the contact takes the teeth as relieved along the face for it (every section meshing as the "
+                      "centre; [contact] face_slices meshes straight teeth)");
   }
   if (a.overlap_at_rest_m > 0)
     std::printf("  WARNING: the teeth overlap at rest by %.2f µm on the FEM's neutral curve, so part of the curve above is a "

@@ -129,6 +129,9 @@ struct Case {
   std::optional<int> catalog_size;
   /// [circular_spline]: the given keys, else the defaults of contact/circular_spline.hpp; absent without [gear].
   std::optional<CircularSplineParams> circular_spline;
+  /// [contact] face_slices: axial slices of the toothed face in the loaded contact (contact/loaded_contact.hpp
+  /// ContactOptions::face_slices); 1, the default: the face as one contact at its centre section.
+  int contact_face_slices = 1;
   /// [dynamics]: the dynamics stage's own options (dynamics/dynamics_params.hpp), null when the table is absent.
   /// Held by pointer so that this header does not depend on a later stage.
   std::shared_ptr<const DynamicsParams> dynamics;

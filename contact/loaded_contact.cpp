@@ -30,13 +30,20 @@ constexpr double kPi = std::numbers::pi;
 
 }  // namespace
 
-std::vector<const BoundaryFace*> FlankLoads::rim(const TetMesh& mesh) {
-  auto faces = select_faces(mesh, kSurfaceRimOuter);
-  if (faces.empty()) throw InputError("contact: the flexspline mesh has no toothed rim surface");
+std::vector<const BoundaryFace*> FlankLoads::rim(const TetMesh& mesh, double z_lo_m, double z_hi_m) {
+  std::vector<const BoundaryFace*> faces;
+  for (const BoundaryFace* f : select_faces(mesh, kSurfaceRimOuter)) {
+    double z = 0;
+    for (int k = 0; k < 3; ++k) z += mesh.nodes(f->nodes[k], 2) / 3;
+    if (z >= z_lo_m && z <= z_hi_m) faces.push_back(f);
+  }
+  if (faces.empty()) throw InputError("contact: the flexspline mesh has no toothed rim surface" +
+                                      std::string(std::isfinite(z_lo_m) ? " in an axial slice; refine mesh.size_mm" : ""));
   return faces;
 }
 
-FlankLoads::FlankLoads(const TetMesh& mesh, double pitch_rad) : mesh_(mesh), half_(pitch_rad), hats_(mesh, rim(mesh)) {}
+FlankLoads::FlankLoads(const TetMesh& mesh, double pitch_rad, double z_lo_m, double z_hi_m)
+    : mesh_(mesh), half_(pitch_rad), hats_(mesh, rim(mesh, z_lo_m, z_hi_m)) {}
 
 Eigen::VectorXd FlankLoads::pattern(const std::vector<double>& stations, const Eigen::Vector2d& force_dir,
                                     double contact_radius_m) const {
@@ -138,53 +145,123 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
   out.half_turn_pairs = g.teeth_flexspline % 2 == 0;
   const double n_teeth = out.half_turn_pairs ? 2.0 : 1.0;  // teeth per unknown
 
-  // The flanks that can close: within reach of the first one on their side.
+  // The face width in axial slices, each with the rim as the generator leaves it at the slice's centre (the FEM's
+  // generator case read there: the cup's coning). One slice is the centre section's curve itself.
+  const int n_slices = std::max(1, opt.face_slices);
+  if (n_slices > 1 && fem.cases.empty())
+    throw InputError(c.path + ": contact.face_slices = " + std::to_string(n_slices) +
+                     " reads the FEM's rim at every slice, and a result read back (--fem) has only its centre section; "
+                     "run contact without --fem (or face_slices = 1)");
+  const double face = c.flexspline.rim_width_m;
+  struct Slice {
+    double z_lo, z_hi;
+    NeutralCurve curve;
+    BacklashModel model;
+    std::vector<PairClearance> rest;
+  };
+  // Sections read from the FEM's generator case in one pass: the face's ends, then the slices' centres (if sliced).
+  std::vector<double> z_read;
+  if (!fem.cases.empty()) z_read = {nc.z_m - face / 2, nc.z_m + face / 2};
+  for (int j = 0; j < n_slices && n_slices > 1; ++j) z_read.push_back(nc.z_m - face / 2 + face * (j + 0.5) / n_slices);
+  std::vector<NeutralCurve> read;
+  if (!z_read.empty())
+    for (const NeutralCurveSamples& at : neutral_curves_at(flexspline_model(c), mesh, fem.cases.front().u, z_read))
+      read.push_back(fit_neutral_curve(at.radius_m, at.phi_rad, at.w_wg_m, at.v_wg_m, at.mu_wg_rad, "FEM"));
+  std::vector<Slice> slices;
+  for (int j = 0; j < n_slices; ++j) {
+    const double z_lo = nc.z_m - face / 2 + face * j / n_slices, z_hi = z_lo + face / n_slices;
+    const NeutralCurve& cj = n_slices > 1 ? read[2 + j] : curve;
+    const double inf = std::numeric_limits<double>::infinity();
+    slices.push_back({n_slices == 1 ? -inf : z_lo, n_slices == 1 ? inf : z_hi, cj, make_backlash_model(g, cj), {}});
+  }
+  out.face_slices = n_slices;
+  // The face's ends and centre at rest: how the coning moves the teeth's clearance across the face.
+  if (!fem.cases.empty())
+    for (const auto& [z, cz] : {std::pair<double, const NeutralCurve&>{nc.z_m - face / 2, read[0]}, {nc.z_m, curve},
+                                {nc.z_m + face / 2, read[1]}}) {
+      const BacklashModel mz = make_backlash_model(g, cz);
+      FaceSection fs;
+      fs.z_m = z;
+      fs.w_major_m = cz.at(0.0).w_m;
+      fs.first_closing_rad = std::numeric_limits<double>::infinity();
+      for (int k = 0; k < g.teeth_flexspline; ++k) {
+        const double phi = tooth_material_angle(g, k, opt.wg_angle_rad);
+        const PairClearance pc = pair_clearance(mz, phi, 0.0);
+        if (!pc.engaged) continue;
+        for (const Flank side : {Flank::Ccw, Flank::Cw}) {
+          const double lever = (side == Flank::Ccw ? pc.ccw : pc.cw).lever_arm_m;
+          if (side == Flank::Ccw ? !(lever > 0) : !(lever < 0)) continue;
+          const double delta = closing_angle_rad(mz, phi, 0.0, side);
+          if (!std::isfinite(delta)) continue;
+          fs.first_closing_rad = std::min(fs.first_closing_rad, delta);
+          if (-std::abs(lever) * delta > fs.overlap_m) {
+            fs.overlap_m = -std::abs(lever) * delta;
+            fs.overlap_phi_rad = std::remainder(phi, kPi);
+          }
+        }
+      }
+      out.face_sections.push_back(fs);
+    }
+
+  // The flanks that can close: within reach of the first one on their side (over every slice).
   double first_closing[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
   std::vector<PairClearance> rest(g.teeth_flexspline);
-  for (int k = 0; k < g.teeth_flexspline; ++k) {
-    const double phi = tooth_material_angle(g, k, opt.wg_angle_rad);
-    rest[k] = pair_clearance(model, phi, 0.0);
-    if (!rest[k].engaged) continue;
-    for (const Flank side : {Flank::Ccw, Flank::Cw})
-      first_closing[side == Flank::Cw] = std::min(first_closing[side == Flank::Cw], closing_angle_rad(model, phi, 0.0, side));
+  for (int k = 0; k < g.teeth_flexspline; ++k) rest[k] = pair_clearance(model, tooth_material_angle(g, k, opt.wg_angle_rad), 0.0);
+  for (Slice& sl : slices) {
+    sl.rest.resize(g.teeth_flexspline);
+    for (int k = 0; k < g.teeth_flexspline; ++k) {
+      const double phi = tooth_material_angle(g, k, opt.wg_angle_rad);
+      sl.rest[k] = n_slices == 1 ? rest[k] : pair_clearance(sl.model, phi, 0.0);
+      if (!sl.rest[k].engaged) continue;
+      for (const Flank side : {Flank::Ccw, Flank::Cw})
+        first_closing[side == Flank::Cw] =
+            std::min(first_closing[side == Flank::Cw], closing_angle_rad(sl.model, phi, 0.0, side));
+    }
   }
-  // Teeth within `pitches` of a change of engagement (the mesh zones' edges).
+  // Teeth within `pitches` of a change of engagement (the mesh zones' edges) at the centre section.
   const int zf = g.teeth_flexspline;
-  auto near_edge = [&](int k, int pitches) {
+  auto near_edge_in = [&](const std::vector<PairClearance>& r, int k, int pitches) {
     for (int d = -pitches; d <= pitches; ++d)
-      if (rest[(k + d + zf) % zf].engaged != rest[k].engaged) return true;
+      if (r[(k + d + zf) % zf].engaged != r[k].engaged) return true;
     return false;
   };
+  auto near_edge = [&](int k, int pitches) { return near_edge_in(rest, k, pitches); };
   const double reach = reach_factor * std::abs(fem.compliance_rad_per_Nm) * opt.rated_torque_Nm;
   out.reach_rad = reach;
   std::vector<Eigen::VectorXd> columns;
   std::vector<double> q_flank;
   const FlankLoads loads(mesh, 2 * kPi / g.teeth_flexspline);
-  for (int k = 0; k < g.teeth_flexspline; ++k) {
-    const double phi = tooth_material_angle(g, k, opt.wg_angle_rad);
-    if (out.half_turn_pairs && !(phi > -kPi / 2 && phi <= kPi / 2)) continue;
-    const PairClearance& pc = rest[k];
-    // The rim moves radially under load and the zones widen: the free teeth within two pitches of an edge take part.
-    // Their gap is the exact rigid turn that closes the flank, as for the engaged teeth, and not the distance of the
-    // closest points: near an edge those are the two tip corners, and a turn of the rim carries the tooth along the
-    // wave, down past the other corner (seed: 3.7 µm apart, but a turn of 5.3e-3 rad to close, not 2.3e-4), so the
-    // distance would let a turn close a flank that it cannot, and the gap would jump by 20× where the tooth crosses
-    // the tip circle.
-    const bool edge = near_edge(k, 2);
-    for (const Flank side : {Flank::Ccw, Flank::Cw}) {
-      std::optional<FlankContact> cand = candidate_flank(model, curve, pc, phi, side, edge);
-      if (!cand || (pc.engaged && cand->closing_angle_rad > first_closing[side == Flank::Cw] + reach)) continue;
-      FlankContact& f = *cand;
-      const FlankClearance& fc = side == Flank::Ccw ? pc.ccw : pc.cw;
-      f.tooth = k;
-      f.compliance_m_per_N =
-          opt.series.tooth_pair_m_per_N ? opt.series.tooth_pair_m_per_N(f.contact_radius_m, f.contact_radius_c_m) : 0.0;
-      const double s = std::atan2(fc.point_f.y(), fc.point_f.x());
-      std::vector<double> stations{s};
-      if (out.half_turn_pairs) stations.push_back(s + kPi);
-      columns.push_back(loads.pattern(stations, -fc.normal, fc.point_f.norm()));
-      q_flank.push_back(n_teeth * std::abs(f.lever_m) * f.closing_angle_rad);
-      out.flanks.push_back(f);
+  for (int j = 0; j < n_slices; ++j) {
+    const Slice& sl = slices[j];
+    const FlankLoads slice_loads(mesh, 2 * kPi / g.teeth_flexspline, sl.z_lo, sl.z_hi);
+    for (int k = 0; k < g.teeth_flexspline; ++k) {
+      const double phi = tooth_material_angle(g, k, opt.wg_angle_rad);
+      if (out.half_turn_pairs && !(phi > -kPi / 2 && phi <= kPi / 2)) continue;
+      const PairClearance& pc = sl.rest[k];
+      // The rim moves radially under load and the zones widen: the free teeth within two pitches of an edge take
+      // part. Their gap is the exact rigid turn that closes the flank, as for the engaged teeth, and not the distance
+      // of the closest points: near an edge those are the two tip corners, and a turn of the rim carries the tooth
+      // along the wave, down past the other corner (seed: 3.7 µm apart, but a turn of 5.3e-3 rad to close, not
+      // 2.3e-4), so the distance would let a turn close a flank that it cannot, and the gap would jump by 20× where
+      // the tooth crosses the tip circle.
+      const bool edge = near_edge_in(sl.rest, k, 2);
+      for (const Flank side : {Flank::Ccw, Flank::Cw}) {
+        std::optional<FlankContact> cand = candidate_flank(sl.model, sl.curve, pc, phi, side, edge);
+        if (!cand || (pc.engaged && cand->closing_angle_rad > first_closing[side == Flank::Cw] + reach)) continue;
+        FlankContact& f = *cand;
+        const FlankClearance& fc = side == Flank::Ccw ? pc.ccw : pc.cw;
+        f.tooth = k;
+        f.slice = j;
+        f.compliance_m_per_N = opt.series.tooth_pair_m_per_N
+                                   ? n_slices * opt.series.tooth_pair_m_per_N(f.contact_radius_m, f.contact_radius_c_m)
+                                   : 0.0;
+        const double s = std::atan2(fc.point_f.y(), fc.point_f.x());
+        std::vector<double> stations{s};
+        if (out.half_turn_pairs) stations.push_back(s + kPi);
+        columns.push_back(slice_loads.pattern(stations, -fc.normal, fc.point_f.norm()));
+        q_flank.push_back(n_teeth * std::abs(f.lever_m) * f.closing_angle_rad);
+        out.flanks.push_back(f);
+      }
     }
   }
   if (out.flanks.empty()) throw InputError(c.path + ": contact: no tooth flank in the mesh zone can close");

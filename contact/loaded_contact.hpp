@@ -19,6 +19,7 @@
 //    contact); the paper's given forces hold the band radially at the stations (eliminated, bilateral).
 //  - No friction: loading and unloading coincide; the loop's middle line is the curve itself.
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -58,14 +59,16 @@ struct SeriesParts {
 /// pairs) carry the force turned by π.
 class FlankLoads {
 public:
-  FlankLoads(const TetMesh& mesh, double pitch_rad);
+  /// On the rim's faces whose centroid lies in [z_lo_m, z_hi_m] (an axial slice of the face width; the default: all).
+  FlankLoads(const TetMesh& mesh, double pitch_rad, double z_lo_m = -std::numeric_limits<double>::infinity(),
+             double z_hi_m = std::numeric_limits<double>::infinity());
   /// Nodal loads of 1 N along `force_dir` (2-D, frame of the generator) at the point `contact_radius_m` out on the
   /// radial line of stations[0], and of the same turned by π at a partner stations[1] = stations[0] + π.
   Eigen::VectorXd pattern(const std::vector<double>& stations, const Eigen::Vector2d& force_dir,
                           double contact_radius_m) const;
 
 private:
-  static std::vector<const BoundaryFace*> rim(const TetMesh& mesh);
+  static std::vector<const BoundaryFace*> rim(const TetMesh& mesh, double z_lo_m, double z_hi_m);
   const TetMesh& mesh_;
   double half_;
   AngularHats hats_;
@@ -85,6 +88,11 @@ struct ContactOptions {
   /// Flanks closing more than this many body twists at rated torque (C_τ·T_R) after the first stay out; doubled until
   /// the twist at rated torque stays short of them.
   double reach_factor = 3.0;
+  /// Axial slices of the face width, each flank one contact per slice (its own gap, load band and 1/n of the face's
+  /// tooth stiffness, the slices' springs side by side). The gaps follow the cup's coning: each slice's from the
+  /// FEM's rim as the generator leaves it at the slice's centre (needs the solution's generator case). 1: the face
+  /// width as one contact at its centre section.
+  int face_slices = 1;
   /// Catalog breakpoints (T1, T2) to read K1..K3 at; 0: fitted to the curve.
   double catalog_t1_Nm = 0, catalog_t2_Nm = 0;
 };
@@ -92,6 +100,7 @@ struct ContactOptions {
 /// One flank that can take part.
 struct FlankContact {
   int tooth = 0;               ///< flexspline tooth index (its half-turn partner is tooth + z_f/2 when paired)
+  int slice = 0;               ///< axial slice of the face width (ContactOptions::face_slices)
   double phi_rad = 0;          ///< material angle from the major axis
   Flank flank = Flank::Ccw;
   double closing_angle_rad = 0;  ///< rigid turn of the output that closes it (< 0: overlap at rest)
@@ -143,8 +152,21 @@ struct ComplianceSplit {
   double engagement = 0, body = 0, teeth = 0, generator = 0, circular_spline = 0;
 };
 
+/// The rim at a section of the toothed face, as the generator leaves it (the cup's coning: the deflection grows with
+/// the distance from the diaphragm), and how the teeth sit there at rest.
+struct FaceSection {
+  double z_m = 0;               ///< from the closed end
+  double w_major_m = 0;         ///< radial deflection at the major axis
+  double first_closing_rad = 0; ///< smallest closing turn over the engaged flanks (< 0: they overlap at rest)
+  double overlap_m = 0;         ///< largest overlap at rest along a contact normal (0: none)
+  double overlap_phi_rad = 0;   ///< the tooth where it is (material angle from the nearer end of the major axis)
+};
+
 struct ContactAnalysis {
   std::vector<FlankContact> flanks;
+  /// The face's diaphragm end, centre and open end (empty for a result read back without its load cases' fields).
+  std::vector<FaceSection> face_sections;
+  int face_slices = 1;
   bool half_turn_pairs = false;
   std::string generator_support;   ///< how the generator takes part
   std::vector<TorqueStep> steps;   ///< −rated … +rated, increasing torque, two steps at 0 (the limits)

@@ -583,6 +583,22 @@ FatigueReadout rim_fatigue(const FlexsplineModel& c, const PointSampler& sampler
 
 }  // namespace
 
+std::vector<NeutralCurveSamples> neutral_curves_at(const FlexsplineModel& c, const TetMesh& mesh,
+                                                   const Eigen::VectorXd& u, const std::vector<double>& z_m) {
+  const RotationReader rotation(c, mesh);
+  std::vector<NeutralCurveSamples> out;
+  for (const double z : z_m) {
+    NeutralCurveSamples nc;
+    nc.radius_m = rotation.radius();
+    nc.z_m = z;
+    const Ring ring = reading_ring(nc.radius_m, z);
+    for (int k = 0; k < kRingSamples; ++k) nc.phi_rad.push_back(2 * kPi * k / kRingSamples);
+    curve_of(ring, sample(rotation.sampler(), ring, u), nc.radius_m, nc.w_wg_m, nc.v_wg_m, nc.mu_wg_rad);
+    out.push_back(std::move(nc));
+  }
+  return out;
+}
+
 FlexsplineSolution analyse_flexspline(const FlexsplineModel& c, const TetMesh& mesh) {
   return analyse_flexspline(c, mesh, assemble_and_factorise(c, mesh));
 }

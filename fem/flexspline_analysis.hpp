@@ -155,6 +155,11 @@ Eigen::VectorXd torque_load_vector(const FlexsplineModel& c, const TetMesh& mesh
 /// face of a plain tube, else 360 points on the rim's neutral circle at its mid-width.
 double reading_rotation(const FlexsplineModel& c, const TetMesh& mesh, const Eigen::VectorXd& u);
 
+/// The rim's curves (w, v, μ at 1° steps, in the *_wg fields) of displacement field u (3·n_nodes) on the neutral circle
+/// at axial positions z_m (from the closed end): the neutral curves of other sections than the rim's mid-width.
+std::vector<NeutralCurveSamples> neutral_curves_at(const FlexsplineModel& c, const TetMesh& mesh,
+                                                   const Eigen::VectorXd& u, const std::vector<double>& z_m);
+
 /// Solves every load case of the flexspline on one factorisation and extracts φ₀, C_τ, the neutral curve and
 /// stresses. The mesh must come from mesh_flexspline for the same parameters.
 FlexsplineSolution analyse_flexspline(const FlexsplineModel& c, const TetMesh& mesh);

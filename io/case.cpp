@@ -406,6 +406,16 @@ CircularSplineParams read_circular_spline(TableReader r, const GearParams& gear,
   return c;
 }
 
+/// [contact] face_slices: 1 to kMaxFaceSlices (each slice adds the flanks' influence solves again).
+int read_contact(TableReader r) {
+  constexpr int kMaxFaceSlices = 8;
+  const int n = r.integer("face_slices", 1, 1);
+  if (n > kMaxFaceSlices)
+    r.fail_value("face_slices", n, "must be <= " + std::to_string(kMaxFaceSlices) + " (each slice repeats the flanks' influence solves)");
+  r.reject_unknown();
+  return n;
+}
+
 DynamicsParams read_dynamics(TableReader r) {
   DynamicsParams d;
   const std::string conf = r.choice("configuration", to_string(d.configuration),
@@ -535,12 +545,12 @@ Case parse_case(const std::string& toml_text, const std::string& path) {
   c.path = path;
   c.stem = std::filesystem::path(path).stem().string();
   static const std::set<std::string> kTables = {"gear", "flexspline", "material", "wave_generator", "load", "mesh",
-                                                "solver", "catalog", "circular_spline", "dynamics"};
+                                                "solver", "catalog", "circular_spline", "contact", "dynamics"};
   for (const auto& [key, node] : root) {
     if (!kTables.count(std::string(key.str())))
       throw InputError(path + ":" + std::to_string(node.source().begin.line) + ": [" + std::string(key.str()) +
                        "] is not a known table (allowed: [gear], [flexspline], [material], [wave_generator], "
-                       "[load], [mesh], [solver], [catalog], [circular_spline], [dynamics])");
+                       "[load], [mesh], [solver], [catalog], [circular_spline], [contact], [dynamics])");
   }
   static const toml::table kEmpty;
   auto table = [&](const char* name) -> const toml::table* { return sub_table(root, name, path); };
@@ -564,6 +574,7 @@ Case parse_case(const std::string& toml_text, const std::string& path) {
         c.flexspline.rim_width_m);
   else if (table("circular_spline"))
     throw InputError(path + ": [circular_spline] needs a [gear] table (its root circle comes from the teeth)");
+  if (auto t = table("contact")) c.contact_face_slices = read_contact(TableReader(*t, "contact", path));
   if (auto t = table("dynamics")) c.dynamics = std::make_shared<const DynamicsParams>(read_dynamics(TableReader(*t, "dynamics", path)));
   if (c.flexspline.teeth != TeethModel::None && !c.gear)
     throw InputError(path + ": flexspline.teeth = \"" +
@@ -660,6 +671,7 @@ std::string describe_case(const Case& c) {
   if (c.circular_spline)
     s << "[circular_spline]\nouter_radius_mm = " << mm(c.circular_spline->outer_radius_m)
       << "\nwidth_mm = " << mm(c.circular_spline->width_m) << "\n";
+  if (c.contact_face_slices != 1) s << "[contact]\nface_slices = " << c.contact_face_slices << "\n";
   s << "[mesh]\nsize_mm = " << mm(c.mesh.size_m) << "\nwall_layers = " << c.mesh.wall_layers
     << "\ncorner_levels = " << c.mesh.corner_levels
     << "\nmax_radius_edge_ratio = " << c.mesh.max_radius_edge_ratio << "\nmin_dihedral_deg = "

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <map>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -47,6 +48,13 @@ std::string contact_json(const ContactAnalysis& a, const std::string& case_path,
   j["play_arcmin"] = a.play_rad * kArcmin;
   j["overlap_at_rest_um"] = a.overlap_at_rest_m * 1e6;
   j["min_closing_angle_arcmin"] = a.min_closing_rad * kArcmin;
+  j["face_slices"] = a.face_slices;
+  json sections = json::array();
+  for (const auto& f : a.face_sections)
+    sections.push_back({{"z_mm", f.z_m * 1e3}, {"w_major_um", f.w_major_m * 1e6},
+                        {"first_closing_arcmin", f.first_closing_rad * kArcmin}, {"overlap_at_rest_um", f.overlap_m * 1e6},
+                        {"overlap_angle_deg", f.overlap_phi_rad * 180 / std::numbers::pi}});
+  j["face_sections"] = sections;
   j["twist_at_rated_arcmin"] = a.curve.twist_rad.back() * kArcmin;
   j["torque_balance_error_rel"] = a.torque_balance_error_rel;
   j["fem_reaction_torque_Nm"] = a.fem_reaction_torque_Nm;
@@ -71,6 +79,7 @@ std::string contact_json(const ContactAnalysis& a, const std::string& case_path,
   for (std::size_t i = 0; i < a.flanks.size(); ++i) {
     const auto& f = a.flanks[i];
     flanks.push_back({{"tooth", f.tooth},
+                      {"slice", f.slice},
                       {"angle_deg", f.phi_rad * 180 / std::numbers::pi},
                       {"flank", f.flank == Flank::Ccw ? "ccw" : "cw"},
                       {"touching", std::string(part_name(f.part_f)) + " on " + part_name(f.part_c)},
@@ -133,15 +142,18 @@ std::string contact_svg(const ContactAnalysis& a, const std::optional<CatalogLaw
   pf.y_label = "flank force (N)";
   PlotSeries plus{"+rated, ccw flanks", {}, {}, "#1f77b4", false, true};
   PlotSeries minus{"−rated, cw flanks", {}, {}, "#ff7f0e", false, true};
+  // A flank's force summed over the face's slices (one slice: the flank's own).
+  std::map<std::pair<int, bool>, std::pair<double, double>> per_flank;  // (tooth, ccw) → (angle in deg, force)
   for (std::size_t i = 0; i < a.flanks.size(); ++i) {
-    const double deg = a.flanks[i].phi_rad * 180 / std::numbers::pi;
-    if (a.flanks[i].flank == Flank::Ccw) {
-      plus.x.push_back(deg);
-      plus.y.push_back(a.steps.back().flank_force_N[i]);
-    } else {
-      minus.x.push_back(deg);
-      minus.y.push_back(a.steps.front().flank_force_N[i]);
-    }
+    const bool ccw = a.flanks[i].flank == Flank::Ccw;
+    auto& [deg, force] = per_flank[{a.flanks[i].tooth, ccw}];
+    deg = a.flanks[i].phi_rad * 180 / std::numbers::pi;
+    force += ccw ? a.steps.back().flank_force_N[i] : a.steps.front().flank_force_N[i];
+  }
+  for (const auto& [key, at] : per_flank) {
+    PlotSeries& s = key.second ? plus : minus;
+    s.x.push_back(at.first);
+    s.y.push_back(at.second);
   }
   pf.series = {plus, minus};
   const std::string top = svg_line_plot(tt), bottom = svg_line_plot(pf);

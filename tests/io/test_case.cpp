@@ -108,6 +108,17 @@ TEST(CaseFile, TipRoundingIsReadInMillimetresAndChecked) {
   EXPECT_NE(big.find("gear.tip_rounding_flexspline_mm = 0.2; must be in [0, module)"), std::string::npos) << big;
 }
 
+TEST(CaseFile, ContactFaceSlicesAreAnIntegerFromOneToEight) {
+  EXPECT_EQ(parse_case(kTube, "cases/x.toml").contact_face_slices, 1);
+  EXPECT_EQ(parse_case(std::string(kTube) + "[contact]\nface_slices = 3\n", "cases/x.toml").contact_face_slices, 3);
+  const std::string zero = error_of(std::string(kTube) + "[contact]\nface_slices = 0\n");
+  EXPECT_NE(zero.find(": contact.face_slices = 0; must be >= 1"), std::string::npos) << zero;
+  const std::string many = error_of(std::string(kTube) + "[contact]\nface_slices = 9\n");
+  EXPECT_NE(many.find("contact.face_slices = 9; must be <= 8"), std::string::npos) << many;
+  const std::string other = error_of(std::string(kTube) + "[contact]\nslices = 3\n");
+  EXPECT_NE(other.find("contact.slices"), std::string::npos) << other;
+}
+
 TEST(CaseFile, TeethNeedAGearTable) {
   std::string t = kTube;
   t.replace(t.find("\"none\""), 6, "\"ring\"\nrim_width_mm = 5\nrim_thickness_mm = 1.2");

@@ -240,8 +240,11 @@ void dtrsm_(const char* side, const char* uplo, const char* transa, const char* 
 void dgemm_(const char* transa, const char* transb, const int* m, const int* n, const int* k, const double* alpha,
             const double* a, const int* lda, const double* b, const int* ldb, const double* beta, double* c,
             const int* ldc, std::size_t, std::size_t);
+void dsyrk_(const char* uplo, const char* trans, const int* n, const int* k, const double* alpha, const double* a,
+            const int* lda, const double* beta, double* c, const int* ldc, std::size_t, std::size_t);
 }
 }  // namespace
+
 
 // Written here rather than taken from CHOLMOD: its dense solve runs every supernode for every column, and its
 // sparse-set solve (cholmod_solve2 with Bset) is for one column. Load patterns for influence coefficients are local
@@ -249,6 +252,17 @@ void dgemm_(const char* transa, const char* transb, const int* m, const int* n, 
 // path from its rows to the root of the supernodal elimination tree (Gilbert and Peierls's reachability); grouping the
 // columns that share a supernode keeps each step a BLAS-3 triangular solve and product.
 std::optional<Eigen::MatrixXd> CholmodFactor::forward_solve(const Eigen::SparseMatrix<double>& B) const {
+  return forward(B, nullptr);
+}
+
+std::optional<Eigen::MatrixXd> CholmodFactor::influence_matrix(const Eigen::SparseMatrix<double>& B) const {
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(B.cols(), B.cols());
+  if (!forward(B, &C)) return std::nullopt;
+  C.triangularView<Eigen::StrictlyUpper>() = C.transpose();
+  return C;
+}
+
+std::optional<Eigen::MatrixXd> CholmodFactor::forward(const Eigen::SparseMatrix<double>& B, Eigen::MatrixXd* gram) const {
   const cholmod_factor* L = impl_->factor;
   if (!L->is_ll || !L->is_super || L->itype != CHOLMOD_LONG) return std::nullopt;
   const auto n = static_cast<std::int64_t>(L->n);
@@ -283,7 +297,7 @@ std::optional<Eigen::MatrixXd> CholmodFactor::forward_solve(const Eigen::SparseM
         columns[sn].push_back(static_cast<int>(j));
       }
     }
-  std::vector<double> X, W;
+  std::vector<double> X, W, G;
   const double one = 1, zero = 0;
   for (std::int64_t sn = 0; sn < nsuper; ++sn) {
     const auto& cols = columns[sn];
@@ -298,6 +312,12 @@ std::optional<Eigen::MatrixXd> CholmodFactor::forward_solve(const Eigen::SparseM
     dtrsm_("L", "L", "N", "N", &ncol, &nrhs, &one, Ls, &nrow, X.data(), &ncol, 1, 1, 1, 1);
     for (int c = 0; c < nrhs; ++c)
       for (int i = 0; i < ncol; ++i) Y(super[sn] + i, cols[c]) = X[static_cast<std::size_t>(c) * ncol + i];
+    if (gram) {  // these rows of Y are final: their share of Yᵀ·Y (lower triangle, in the columns' order)
+      G.resize(static_cast<std::size_t>(nrhs) * nrhs);
+      dsyrk_("L", "T", &nrhs, &ncol, &one, X.data(), &ncol, &zero, G.data(), &nrhs, 1, 1);
+      for (int b = 0; b < nrhs; ++b)
+        for (int a = b; a < nrhs; ++a) (*gram)(cols[a], cols[b]) += G[static_cast<std::size_t>(b) * nrhs + a];
+    }
     if (nbelow == 0) continue;
     W.resize(static_cast<std::size_t>(nbelow) * nrhs);
     dgemm_("N", "N", &nbelow, &nrhs, &ncol, &one, Ls + ncol, &nrow, X.data(), &ncol, &zero, W.data(), &nbelow, 1, 1);

@@ -95,11 +95,7 @@ Eigen::MatrixXd FlexsplineSystem::influence(const Eigen::SparseMatrix<double>& l
         if (const std::int64_t q = dofs.equation[it.row()]; q >= 0) entries.emplace_back(q, j, it.value());
     Eigen::SparseMatrix<double> B(dofs.n_equations, m);
     B.setFromTriplets(entries.begin(), entries.end());
-    if (const auto Y = factor->forward_solve(B)) {
-      Eigen::MatrixXd C = Eigen::MatrixXd::Zero(m, m);
-      C.selfadjointView<Eigen::Lower>().rankUpdate(Y->transpose());
-      return C.selfadjointView<Eigen::Lower>();
-    }
+    if (auto C = factor->influence_matrix(B)) return *C;
   }
   Eigen::MatrixXd C(m, m);
   for (Eigen::Index j0 = 0; j0 < m; j0 += kSolveChunk) {

@@ -41,6 +41,10 @@ public:
   virtual std::optional<Eigen::MatrixXd> forward_solve(const Eigen::SparseMatrix<double>&) const {
     return std::nullopt;
   }
+  /// Bᵀ·K⁻¹·B (k x k, symmetric) from the half solve: Yᵀ·Y. Empty where the backend has no half solve.
+  virtual std::optional<Eigen::MatrixXd> influence_matrix(const Eigen::SparseMatrix<double>&) const {
+    return std::nullopt;
+  }
 
   virtual const FactorStats& stats() const = 0;
 };

@@ -59,6 +59,10 @@ TEST(ForwardSolve, HalfSolveOnThePathsGivesTheInfluenceMatrixOfFullSolves) {
     ASSERT_TRUE(Y.has_value());
     const Eigen::MatrixXd half = Y->transpose() * *Y;
     const Eigen::MatrixXd full = Bd.transpose() * factor.solve(Bd);
+    // The influence matrix summed supernode by supernode during the half solve: Yᵀ·Y, symmetric to the bit.
+    const Eigen::MatrixXd g = *factor.influence_matrix(B);
+    EXPECT_LT((g - half).cwiseAbs().maxCoeff(), 1e-13 * half.cwiseAbs().maxCoeff()) << node_ordering;
+    EXPECT_EQ((g - g.transpose()).cwiseAbs().maxCoeff(), 0.0);
     // Round-off of two different substitution orders on a system of condition ~1e8: 1e-10 of the largest entry.
     EXPECT_LT((half - full).cwiseAbs().maxCoeff(), 1e-10 * full.cwiseAbs().maxCoeff()) << node_ordering;
     // A local pattern's forward substitution stays on its paths: most of Y is never touched.

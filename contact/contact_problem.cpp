@@ -37,7 +37,7 @@ Kkt solve_on(const ContactProblem& p, const std::vector<Eigen::Index>& S, double
 
 }  // namespace
 
-ContactSolution solve_contact(const ContactProblem& p, double T) {
+ContactSolution solve_contact(const ContactProblem& p, double T, const Eigen::VectorXd* warm) {
   const Eigen::Index n = p.q.size();
   if (p.A.rows() != n || p.A.cols() != n || p.lambda.size() != n)
     throw std::invalid_argument("solve_contact: A, q and lambda sizes differ");
@@ -53,6 +53,22 @@ ContactSolution solve_contact(const ContactProblem& p, double T) {
   x[first] = T / p.lambda[first];
   std::vector<bool> passive(n, false);
   passive[first] = true;
+  if (warm && warm->size() == n) {  // the warm set, if it gives a feasible start
+    std::vector<Eigen::Index> S;
+    for (Eigen::Index i = 0; i < n; ++i)
+      if ((*warm)[i] > 0) S.push_back(i);
+    if (!S.empty()) {
+      const Kkt k = solve_on(p, S, T);
+      if ((k.z.array() > 0).all() && k.z.allFinite()) {
+        x.setZero();
+        std::fill(passive.begin(), passive.end(), false);
+        for (std::size_t r = 0; r < S.size(); ++r) {
+          x[S[r]] = k.z[r];
+          passive[S[r]] = true;
+        }
+      }
+    }
+  }
   const double scale = std::max(p.q.cwiseAbs().maxCoeff(), std::abs(T) * p.A.diagonal().maxCoeff() / p.lambda.cwiseAbs().maxCoeff());
   const double tol = 1e-12 * std::max(scale, 1e-300);
   ContactSolution out;

@@ -34,7 +34,10 @@ struct ContactSolution {
 };
 
 /// Solves the problem for output torque T ≠ 0 (N·m). Throws InputError when no contact can carry T's sign (every λ_i
-/// of the other sign or zero).
-ContactSolution solve_contact(const ContactProblem& p, double torque_Nm);
+/// of the other sign or zero). `warm`: forces of a nearby problem's solution (the same contacts: the previous torque
+/// step, the previous pass of an iteration); the contacts it loads are the first passive set when the forces on that
+/// set all come out positive, which saves the active-set steps from one contact up. The solution is the same
+/// (the problem's optimum is unique); only the path to it changes.
+ContactSolution solve_contact(const ContactProblem& p, double torque_Nm, const Eigen::VectorXd* warm = nullptr);
 
 }  // namespace sw

@@ -361,8 +361,8 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
     return (approach(m + h) - approach(m - h)) / (2 * h);
   };
   // One torque on a problem whose first n_fl unknowns are flanks and whose last nb are the generator's stations.
-  auto solve_step = [&](const ContactProblem& base, Eigen::Index n_fl, double T) {
-    if (!bearing) return solve_contact(base, T);
+  auto solve_step = [&](const ContactProblem& base, Eigen::Index n_fl, double T, const Eigen::VectorXd* warm) {
+    if (!bearing) return solve_contact(base, T, warm);
     ContactProblem Pb = base;
     const double p_ref = std::max(p0.maxCoeff(), 1.0);
     for (Eigen::Index k = 0; k < nb; ++k) bearing_c[k] = secant(p0[k], p0[k], p_ref);  // start: the tangent at the preload
@@ -379,7 +379,7 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
         Pb.A(n_fl + k, n_fl + k) = base.A(n_fl + k, n_fl + k) + bearing_c[k];
         Pb.q[n_fl + k] = base.q[n_fl + k] - bearing_c[k] * p0[k];
       }
-      s = solve_contact(Pb, T);
+      s = solve_contact(Pb, T, it == 0 ? warm : &s.force_N);
       double residual = 0;
       Eigen::VectorXd c_new(nb);
       for (Eigen::Index k = 0; k < nb; ++k) {
@@ -420,12 +420,14 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
   };
   // The output's torque is what the flanks carry plus the locked generator's share (λ with the stations' moment arms)
   // beyond its moment at rest: find the flanks' torque that gives T. The share is about 1/ratio of it, so T_out is
-  // nearly affine in T_flanks: secant steps. Returns the solution and the flanks' torque.
-  auto solve_torque = [&](const ContactProblem& base, Eigen::Index n_fl, const Eigen::VectorXd& moments, double T) {
+  // nearly affine in T_flanks: secant steps. Returns the solution and the flanks' torque. `warm`: the forces of a
+  // nearby solution of the same problem (the previous torque step), where the active set starts.
+  auto solve_torque = [&](const ContactProblem& base, Eigen::Index n_fl, const Eigen::VectorXd& moments, double T,
+                          const Eigen::VectorXd* warm) {
     ContactSolution s;
     double T_flanks = T, prev_flanks = 0, prev_out = 0;
     for (int it = 0;; ++it) {
-      s = solve_step(base, n_fl, T_flanks);
+      s = solve_step(base, n_fl, T_flanks, it == 0 ? warm : &s.force_N);
       const double T_out = output_torque(moments, s);
       if (std::abs(T_out - T) <= 1e-13 * std::abs(T)) break;
       const double slope = it == 0 || T_out == prev_out ? 1.0 : (T_flanks - prev_flanks) / (T_out - prev_out);
@@ -444,8 +446,10 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
   auto twist_rad = [&](const ContactSolution& s, double T) { return s.twist_rad + opt.series.circular_spline_rad_per_Nm * T; };
   ContactSolution at_rated;
   double flanks_torque_at_rated = T_R;
+  Eigen::VectorXd previous;  // the last step's forces: the next step starts from its contact set
   for (const double T : torques) {
-    const auto [s, T_flanks] = solve_torque(P, nf, lambda, T);
+    const auto [s, T_flanks] = solve_torque(P, nf, lambda, T, previous.size() ? &previous : nullptr);
+    previous = s.force_N;
     TorqueStep st;
     st.torque_Nm = T;
     st.twist_rad = twist_rad(s, T);
@@ -551,7 +555,7 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
       Pe.lambda = P.lambda(keep);
       const Eigen::VectorXd moments = lambda(keep);
       try {
-        const ContactSolution s = solve_torque(Pe, kept_flanks, moments, T_R).first;
+        const ContactSolution s = solve_torque(Pe, kept_flanks, moments, T_R, nullptr).first;
         out.twist_at_rated_without_edge_teeth_rad = twist_rad(s, T_R);
       } catch (const InputError&) {
         out.twist_at_rated_without_edge_teeth_rad = std::numeric_limits<double>::infinity();  // nothing else carries it

@@ -101,6 +101,28 @@ TEST(ContactProblem, ReversalSymmetry) {
   EXPECT_EQ(plus.force_N[1], 0.0);
 }
 
+// A warm start changes the path, not the answer: from the previous torque's contact set (feasible) the solution is
+// the cold start's in fewer steps; from a set that cannot carry the torque (the other side's flanks) it starts cold.
+TEST(ContactProblem, WarmStartGivesTheSameSolution) {
+  const int n = 40;
+  Eigen::MatrixXd B = Eigen::MatrixXd::Random(n, n);
+  ContactProblem p;
+  p.A = (B * B.transpose() + n * Eigen::MatrixXd::Identity(n, n)) * 1e-10;
+  p.q = (Eigen::VectorXd::Random(n).array() + 1.0).matrix() * 2e-6;
+  p.lambda = Eigen::VectorXd::Constant(n, 0.02);
+  for (int i = 0; i < n; i += 2) p.lambda[i] = -0.02;
+  const ContactSolution before = solve_contact(p, 40.0), cold = solve_contact(p, 50.0);
+  const ContactSolution warm = solve_contact(p, 50.0, &before.force_N);
+  const ContactSolution reversed = solve_contact(p, -50.0);
+  const ContactSolution other_side = solve_contact(p, 50.0, &reversed.force_N);
+  ASSERT_GT(cold.in_contact(), 4);
+  for (const ContactSolution* s : {&warm, &other_side}) {
+    EXPECT_NEAR(s->twist_rad, cold.twist_rad, 1e-12 * std::abs(cold.twist_rad));
+    EXPECT_LT((s->force_N - cold.force_N).cwiseAbs().maxCoeff(), 1e-9 * cold.force_N.maxCoeff());
+  }
+  EXPECT_LT(warm.iterations, cold.iterations);
+}
+
 TEST(ContactProblem, NoFlankForTheTorqueIsRefused) {
   ContactProblem p;
   p.A = Eigen::Matrix2d::Identity() * 1e-8;

@@ -127,6 +127,33 @@ std::optional<FlankContact> candidate_flank(const BacklashModel& model, const Ne
 
 namespace {
 
+/// The teeth at rest on the rim's curve at one section of the face: its deflection at the major axis, the engaged
+/// flanks' first closing turn and their largest overlap (and where).
+FaceSection section_at_rest(const GearParams& g, const NeutralCurve& curve, double z_m, double wg_angle_rad) {
+  const BacklashModel model = make_backlash_model(g, curve);
+  FaceSection fs;
+  fs.z_m = z_m;
+  fs.w_major_m = curve.at(0.0).w_m;
+  fs.first_closing_rad = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < g.teeth_flexspline; ++k) {
+    const double phi = tooth_material_angle(g, k, wg_angle_rad);
+    const PairClearance pc = pair_clearance(model, phi, 0.0);
+    if (!pc.engaged) continue;
+    for (const Flank side : {Flank::Ccw, Flank::Cw}) {
+      const double lever = (side == Flank::Ccw ? pc.ccw : pc.cw).lever_arm_m;
+      if (side == Flank::Ccw ? !(lever > 0) : !(lever < 0)) continue;
+      const double delta = closing_angle_rad(model, phi, 0.0, side);
+      if (!std::isfinite(delta)) continue;
+      fs.first_closing_rad = std::min(fs.first_closing_rad, delta);
+      if (-std::abs(lever) * delta > fs.overlap_m) {
+        fs.overlap_m = -std::abs(lever) * delta;
+        fs.overlap_phi_rad = std::remainder(phi, kPi);
+      }
+    }
+  }
+  return fs;
+}
+
 ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const FlexsplineSystem& sys,
                                     const FlexsplineSolution& fem, const ContactOptions& opt, double reach_factor) {
   check_contact_case(c);
@@ -178,30 +205,8 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
   // The face's ends and centre at rest: how the coning moves the teeth's clearance across the face.
   if (!fem.cases.empty())
     for (const auto& [z, cz] : {std::pair<double, const NeutralCurve&>{nc.z_m - face / 2, read[0]}, {nc.z_m, curve},
-                                {nc.z_m + face / 2, read[1]}}) {
-      const BacklashModel mz = make_backlash_model(g, cz);
-      FaceSection fs;
-      fs.z_m = z;
-      fs.w_major_m = cz.at(0.0).w_m;
-      fs.first_closing_rad = std::numeric_limits<double>::infinity();
-      for (int k = 0; k < g.teeth_flexspline; ++k) {
-        const double phi = tooth_material_angle(g, k, opt.wg_angle_rad);
-        const PairClearance pc = pair_clearance(mz, phi, 0.0);
-        if (!pc.engaged) continue;
-        for (const Flank side : {Flank::Ccw, Flank::Cw}) {
-          const double lever = (side == Flank::Ccw ? pc.ccw : pc.cw).lever_arm_m;
-          if (side == Flank::Ccw ? !(lever > 0) : !(lever < 0)) continue;
-          const double delta = closing_angle_rad(mz, phi, 0.0, side);
-          if (!std::isfinite(delta)) continue;
-          fs.first_closing_rad = std::min(fs.first_closing_rad, delta);
-          if (-std::abs(lever) * delta > fs.overlap_m) {
-            fs.overlap_m = -std::abs(lever) * delta;
-            fs.overlap_phi_rad = std::remainder(phi, kPi);
-          }
-        }
-      }
-      out.face_sections.push_back(fs);
-    }
+                                {nc.z_m + face / 2, read[1]}})
+      out.face_sections.push_back(section_at_rest(g, cz, z, opt.wg_angle_rad));
 
   // The flanks that can close: within reach of the first one on their side (over every slice).
   double first_closing[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};

@@ -198,8 +198,7 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
   for (int j = 0; j < n_slices; ++j) {
     const double z_lo = nc.z_m - face / 2 + face * j / n_slices, z_hi = z_lo + face / n_slices;
     const NeutralCurve& cj = n_slices > 1 ? read[2 + j] : curve;
-    const double inf = std::numeric_limits<double>::infinity();
-    slices.push_back({n_slices == 1 ? -inf : z_lo, n_slices == 1 ? inf : z_hi, cj, make_backlash_model(g, cj), {}});
+    slices.push_back({z_lo, z_hi, cj, n_slices > 1 ? make_backlash_model(g, cj) : model, {}});
   }
   out.face_slices = n_slices;
   // The face's ends and centre at rest: how the coning moves the teeth's clearance across the face.
@@ -238,7 +237,10 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
   const FlankLoads loads(mesh, 2 * kPi / g.teeth_flexspline);
   for (int j = 0; j < n_slices; ++j) {
     const Slice& sl = slices[j];
-    const FlankLoads slice_loads(mesh, 2 * kPi / g.teeth_flexspline, sl.z_lo, sl.z_hi);
+    // One slice loads the whole face (the observers' patterns); more, each its own band of the rim's faces.
+    std::optional<FlankLoads> band;
+    if (n_slices > 1) band.emplace(mesh, 2 * kPi / g.teeth_flexspline, sl.z_lo, sl.z_hi);
+    const FlankLoads& slice_loads = band ? *band : loads;
     for (int k = 0; k < g.teeth_flexspline; ++k) {
       const double phi = tooth_material_angle(g, k, opt.wg_angle_rad);
       if (out.half_turn_pairs && !(phi > -kPi / 2 && phi <= kPi / 2)) continue;

@@ -542,16 +542,23 @@ std::vector<LoadCaseSolution> load_cases(const TorqueReadout& torque, const Gene
 }
 
 /// The deformed neutral curve at the rim mid-width for the generator case and the combined case.
-NeutralCurveSamples neutral_curve(const FlexsplineParams& f, const RotationReader& rotation,
-                                  const Eigen::VectorXd& u_gen, const Eigen::VectorXd& u_comb) {
+/// The rim's curve of u_gen (the *_wg fields; with u_comb also the *_comb ones) on the neutral circle at z_m.
+NeutralCurveSamples curve_at(const RotationReader& rotation, double z_m, const Eigen::VectorXd& u_gen,
+                             const Eigen::VectorXd* u_comb = nullptr) {
   NeutralCurveSamples nc;
   nc.radius_m = rotation.radius();
-  nc.z_m = f.length_m - 0.5 * f.rim_width_m;
-  const Ring mid = reading_ring(nc.radius_m, nc.z_m);
+  nc.z_m = z_m;
+  const Ring ring = reading_ring(nc.radius_m, z_m);
   for (int k = 0; k < kRingSamples; ++k) nc.phi_rad.push_back(2 * kPi * k / kRingSamples);
-  curve_of(mid, sample(rotation.sampler(), mid, u_gen), nc.radius_m, nc.w_wg_m, nc.v_wg_m, nc.mu_wg_rad);
-  curve_of(mid, sample(rotation.sampler(), mid, u_comb), nc.radius_m, nc.w_comb_m, nc.v_comb_m, nc.mu_comb_rad);
+  curve_of(ring, sample(rotation.sampler(), ring, u_gen), nc.radius_m, nc.w_wg_m, nc.v_wg_m, nc.mu_wg_rad);
+  if (u_comb)
+    curve_of(ring, sample(rotation.sampler(), ring, *u_comb), nc.radius_m, nc.w_comb_m, nc.v_comb_m, nc.mu_comb_rad);
   return nc;
+}
+
+NeutralCurveSamples neutral_curve(const FlexsplineParams& f, const RotationReader& rotation,
+                                  const Eigen::VectorXd& u_gen, const Eigen::VectorXd& u_comb) {
+  return curve_at(rotation, f.length_m - 0.5 * f.rim_width_m, u_gen, &u_comb);
 }
 
 /// φ₀ over the engagement zones: the mean tangential displacement of the torque case u_torque on the reading circle
@@ -587,15 +594,7 @@ std::vector<NeutralCurveSamples> neutral_curves_at(const FlexsplineModel& c, con
                                                    const Eigen::VectorXd& u, const std::vector<double>& z_m) {
   const RotationReader rotation(c, mesh);
   std::vector<NeutralCurveSamples> out;
-  for (const double z : z_m) {
-    NeutralCurveSamples nc;
-    nc.radius_m = rotation.radius();
-    nc.z_m = z;
-    const Ring ring = reading_ring(nc.radius_m, z);
-    for (int k = 0; k < kRingSamples; ++k) nc.phi_rad.push_back(2 * kPi * k / kRingSamples);
-    curve_of(ring, sample(rotation.sampler(), ring, u), nc.radius_m, nc.w_wg_m, nc.v_wg_m, nc.mu_wg_rad);
-    out.push_back(std::move(nc));
-  }
+  for (const double z : z_m) out.push_back(curve_at(rotation, z, u));
   return out;
 }
 

@@ -27,7 +27,7 @@
 #include "common/progress.hpp"
 #include "io/atomic_file.hpp"
 #include "io/case.hpp"
-#include "io/svg_plot.hpp"
+#include "common/svg_plot.hpp"
 
 extern char** environ;
 

@@ -12,7 +12,7 @@
 #include "io/atomic_file.hpp"
 #include "io/contact_output.hpp"
 #include "contact/circular_spline.hpp"
-#include "contact/generator_bearing.hpp"
+#include "fem/generator_bearing.hpp"
 #include "design/catalog.hpp"
 #include "gear/tooth_profile.hpp"
 #include "gear/tooth_stiffness.hpp"

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "contact/circular_spline.hpp"    // CircularSplineParams (standard library and gear/gear.hpp only)
-#include "contact/generator_bearing.hpp"  // GeneratorBearing (standard library only)
+#include "fem/generator_bearing.hpp"  // GeneratorBearing (standard library only)
 #include "gear/gear.hpp"
 
 namespace sw {
@@ -76,7 +76,7 @@ struct WaveGeneratorParams {
   double cam_clearance_m = 0.0;                  ///< cam only: radial fit to the bore, clearance > 0, interference < 0
   std::vector<CamPoint> cam_points;              ///< cam_profile = List: angles in [0, π), increasing
   std::vector<WaveGeneratorForce> forces;        ///< model = forces
-  /// The ball bearing between the cam and the flexspline (contact/generator_bearing.hpp); absent: a rigid generator.
+  /// The ball bearing between the cam and the flexspline (fem/generator_bearing.hpp); absent: a rigid generator.
   std::optional<GeneratorBearing> bearing;
 };
 

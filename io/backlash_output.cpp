@@ -17,7 +17,7 @@
 
 #include "common/error.hpp"
 #include "io/atomic_file.hpp"
-#include "io/svg_plot.hpp"
+#include "common/svg_plot.hpp"
 
 namespace sw {
 

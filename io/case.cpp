@@ -223,7 +223,7 @@ Material read_material(TableReader r) {
 }
 
 /// wave_generator.bearing = {balls, ball_diameter_mm, inner_groove_conformity, outer_groove_conformity}; the pitch
-/// radius follows from the flexspline's bore (contact/generator_bearing.hpp), and the bearing checks itself.
+/// radius follows from the flexspline's bore (fem/generator_bearing.hpp), and the bearing checks itself.
 GeneratorBearing read_bearing(TableReader r, double bore_radius_m) {
   GeneratorBearing b;
   b.balls = r.integer("balls", 0, 3);

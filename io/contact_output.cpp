@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "io/svg_plot.hpp"
+#include "common/svg_plot.hpp"
 
 namespace sw {
 namespace {

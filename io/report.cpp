@@ -11,7 +11,7 @@
 
 #include "common/error.hpp"
 #include "io/fem_output.hpp"
-#include "io/svg_plot.hpp"
+#include "common/svg_plot.hpp"
 
 namespace sw {
 

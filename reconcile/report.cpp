@@ -7,7 +7,7 @@
 #include <fftw3.h>
 #include <nlohmann/json.hpp>
 
-#include "io/svg_plot.hpp"
+#include "common/svg_plot.hpp"
 #include "reconcile/catalog.hpp"
 
 namespace sw::reconcile {

@@ -10,7 +10,7 @@
 #include <numbers>
 
 #include "common/error.hpp"
-#include "contact/generator_bearing.hpp"
+#include "fem/generator_bearing.hpp"
 
 namespace sw {
 namespace {

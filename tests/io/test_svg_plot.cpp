@@ -7,7 +7,7 @@
 #include <random>
 #include <string>
 
-#include "io/svg_plot.hpp"
+#include "common/svg_plot.hpp"
 
 namespace {
 

@@ -1,4 +1,4 @@
-#include "contact/generator_bearing.hpp"
+#include "fem/generator_bearing.hpp"
 
 #include <cmath>
 #include <limits>

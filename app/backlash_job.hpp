@@ -3,7 +3,7 @@
 #include <filesystem>
 #include <optional>
 
-#include "common/params.hpp"
+#include "io/case.hpp"
 #include "io/backlash_output.hpp"
 
 namespace sw::app {

@@ -25,7 +25,7 @@ FemJobResult fem_from_run(const Case& c, const std::filesystem::path& result_jso
   if (run.generator_model != model)
     throw InputError(result_json.string() + ": made with generator.model = \"" + run.generator_model + "\", " +
                      c.path + " has \"" + model + "\"; run `strainwave fem` on this case again");
-  if (w.model == WaveGeneratorModel::Rollers)
+  if (std::holds_alternative<Rollers>(w.model))
     throw InputError(c.path + ": --fem cannot take rollers (their set-out comes from the FEM's generator case); run "
                               "contact without --fem");
   progress("mesh: " + c.path + " (the model of " + result_json.string() + ")");
@@ -41,7 +41,7 @@ FemJobResult fem_from_run(const Case& c, const std::filesystem::path& result_jso
   job.solution.neutral_curve = run.neutral_curve;
   GeneratorReadout g;
   g.model = model;
-  g.unilateral = w.model == WaveGeneratorModel::Cam;
+  g.unilateral = cam_of(w) != nullptr;
   if (g.unilateral) g.obstacle_m = generator_stations(flexspline_model(c), *mesh).obstacle_m;
   job.solution.generator = g;
   job.mesh = mesh;
@@ -64,7 +64,7 @@ void add_contact_command(CLI::App& app) {
   cmd->callback([] {
     Case c = load_case(case_path);
     apply_solver_option(c, "tet10");
-    check_contact_case(c);  // before any work: nothing is written for a case contact cannot take
+    naming_file(c.path, [&] { check_contact_model(flexspline_model(c)); });  // before any work: nothing is written for a case contact cannot take
     progress("case:\n" + describe_case(c));
     const std::filesystem::path dir = out.empty() ? default_out_dir(c) : std::filesystem::path(out);
     const FemJobResult fem = fem_json.empty() ? run_fem_job(c, dir, fem_options)

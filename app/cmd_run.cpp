@@ -61,7 +61,7 @@ void print_summary(const Case& c, const FemJobResult& fem, const std::optional<B
     std::printf("  geometric angular play of the output: %.3f .. %.3f arcmin over a revolution (rigid teeth; not the "
                 "catalog's lost motion); interference at rest: %s\n", rb.angular_play_min_rad * kArcmin,
                 rb.angular_play_max_rad * kArcmin, b->geometry.interference ? "YES" : "none");
-    const bool point_loads = c.wave_generator->model != WaveGeneratorModel::Cam;
+    const bool point_loads = !cam_of(*c.wave_generator);
     if (b->geometry.interference && point_loads && b->curve_source.find("FEM") != std::string::npos)
       std::printf("  note: the neutral curve is the FEM's under a generator that loads the rim at points (forces or "
                   "rollers); on a short cup they dent it locally and the rim is far from elliptic. `--curve generator` "

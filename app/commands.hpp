@@ -4,7 +4,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "common/params.hpp"
+#include "io/case.hpp"
 
 namespace sw::app {
 

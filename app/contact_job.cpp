@@ -12,7 +12,7 @@
 #include "io/atomic_file.hpp"
 #include "io/contact_output.hpp"
 #include "contact/circular_spline.hpp"
-#include "fem/generator_bearing.hpp"
+#include "generator/generator_bearing.hpp"
 #include "design/catalog.hpp"
 #include "gear/tooth_profile.hpp"
 #include "gear/tooth_stiffness.hpp"
@@ -29,8 +29,8 @@ SeriesParts series_parts(const Case& c) {
   s.teeth_source = "rigid teeth";
   if (c.gear) {
     // The tooth pair's own compliance per unit face width over the rim's width, at the flank's contact radius (kept
-    // on the active flank): contact/loaded_contact.hpp case_tooth_pair_compliance.
-    s.tooth_pair_m_per_N = case_tooth_pair_compliance(c);
+    // on the active flank): contact/loaded_contact.hpp tooth_pair_compliance_of.
+    s.tooth_pair_m_per_N = tooth_pair_compliance_of(flexspline_model(c));
     s.teeth_source = "tooth pair compliance (flexspline tooth: explicit-tooth FEM less the ring model's share; circular "
                      "spline tooth: beam over the real outline and Sainsot foundation; Weber flattening; both teeth "
                      "loaded where they touch)";
@@ -54,7 +54,7 @@ ContactAnalysis run_contact_job(const Case& c, const FemJobResult& fem, const st
   ContactOptions o;
   o.rated_torque_Nm = c.load.rated_torque_Nm.value_or(c.load.torque_Nm);
   o.series = series_parts(c);
-  o.face_slices = c.contact_face_slices;
+  o.face_slices = c.contact.face_slices;
   std::optional<CatalogLaw> reference;
   if (c.catalog_size)
     if (const CatalogDrive* d = catalog_drive(*c.catalog_size); d && d->has_stiffness()) {
@@ -62,7 +62,8 @@ ContactAnalysis run_contact_job(const Case& c, const FemJobResult& fem, const st
       o.catalog_t1_Nm = d->t1_Nm;
       o.catalog_t2_Nm = d->t2_Nm;
     }
-  const ContactAnalysis a = analyse_contact(c, *fem.mesh, *fem.system, fem.solution, o);
+  const ContactAnalysis a =
+      naming_file(c.path, [&] { return analyse_contact(flexspline_model(c), *fem.mesh, *fem.system, fem.solution, o); });
   write_file_atomic(dir / "contact.json", contact_json(a, c.path, reference));
   write_file_atomic(dir / "torque_twist.csv", torque_twist_csv(a));
   write_file_atomic(dir / "contact.svg", contact_svg(a, reference));

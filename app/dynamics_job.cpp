@@ -37,10 +37,10 @@ std::vector<ToothPair> frozen_pairs(const Case& c, const DynamicsParams& p, cons
                                     std::string& source) {
   std::vector<ToothPair> pairs;
   if (o.clearances == "kinematics") {
-    pairs = pairs_from_kinematics(c);
+    pairs = pairs_from_kinematics(flexspline_model(c));
     source = "kinematics (basic model, wave generator at 0, phi0 = 0), " + std::to_string(pairs.size()) + " engaged pairs";
   } else {
-    pairs = approximate_tooth_pairs(*c.gear, case_radial_deformation_m(c), c.load.engagement_half_angle_rad,
+    pairs = approximate_tooth_pairs(*c.gear, radial_deformation_m(flexspline_model(c)), c.load.engagement_half_angle_rad,
                                     p.base_clearance_m);
     source = "approximate stand-in (w0(1 - cos 2phi) sin(alpha) within +-engagement_half_angle), " +
              std::to_string(pairs.size()) + " pairs";
@@ -65,20 +65,21 @@ std::shared_ptr<const MovingMesh> moving_mesh(const Case& c, const DynamicsParam
   const ToothCompliance teeth =
       p.pair_stiffness == PairStiffness::Teeth ? series_parts(c).tooth_pair_m_per_N : ToothCompliance{};
   if (p.rim == RimCoupling::Rigid) {
-    const double rm = rim_mean_radius(c.flexspline), w0 = case_radial_deformation_m(c);
+    const double rm = rim_mean_radius(c.flexspline), w0 = radial_deformation_m(flexspline_model(c));
     const NeutralCurve curve =
         c.wave_generator ? generator_neutral_curve(rm, w0, *c.wave_generator) : cam_neutral_curve(rm, w0);
     return std::make_shared<MovingMesh>(rigid_rim_mesh(*c.gear, curve, teeth, 64));
   }
-  check_contact_case(c);
+  naming_file(c.path, [&] { check_contact_model(flexspline_model(c)); });
   FemJobOptions o;
   o.write_vtk = false;
   const FemJobResult fem = run_fem_job(c, out_dir, o);
   if (!fem.mesh || !fem.system) throw InputError(c.path + ": rim = \"fem\" needs the TET10 solver (solver.method)");
   const double rated = c.load.rated_torque_Nm.value_or(c.load.torque_Nm);
-  return std::make_shared<MovingMesh>(
-      fem_coupled_mesh(c, *fem.mesh, *fem.system, fem.solution, teeth, rated, p.compliance_phases,
-                       std::max(1, 64 / p.compliance_phases)));  // the flank table every pitch/64: see test_moving
+  return std::make_shared<MovingMesh>(naming_file(c.path, [&] {  // the flank table every pitch/64: see test_moving
+    return fem_coupled_mesh(flexspline_model(c), *fem.mesh, *fem.system, fem.solution, teeth, rated,
+                            p.compliance_phases, std::max(1, 64 / p.compliance_phases));
+  }));
 }
 
 DynamicsJobModel dynamics_model(const Case& c, DynamicsParams p, const DynamicsModelOptions& o,

@@ -6,7 +6,7 @@
 #include <memory>
 #include <string>
 
-#include "common/params.hpp"
+#include "io/case.hpp"
 #include "dynamics/model.hpp"
 #include "dynamics/moving_mesh.hpp"
 

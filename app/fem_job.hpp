@@ -9,7 +9,7 @@
 #include <string>
 
 #include "app/commands.hpp"
-#include "common/params.hpp"
+#include "io/case.hpp"
 #include "fem/flexspline_analysis.hpp"
 #include "mesh/tet_mesh.hpp"
 

@@ -236,8 +236,8 @@ reconcile::Baseline make_baseline(Kind kind, const BaselineSources& src, std::ve
                          ": [gear] missing; the backlash baseline (basic kinematic model) needs the gear and flexspline");
       const double rm = rim_mean_radius(c->flexspline);
       const NeutralCurve curve = c->wave_generator
-                                     ? generator_neutral_curve(rm, case_radial_deformation_m(*c), *c->wave_generator)
-                                     : cam_neutral_curve(rm, case_radial_deformation_m(*c));
+                                     ? generator_neutral_curve(rm, radial_deformation_m(flexspline_model(*c)), *c->wave_generator)
+                                     : cam_neutral_curve(rm, radial_deformation_m(flexspline_model(*c)));
       const BacklashModel model = make_backlash_model(*c->gear, curve);
       b.backlash_um = [model](double wg_angle_rad) { return 1e6 * min_backlash_m(model, wg_angle_rad, 0.0); };
       notes.push_back("backlash baseline: basic kinematic model (phi0 = 0) of " + c->path);

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "common/error.hpp"
-#include "common/params.hpp"
+#include "io/case.hpp"
 #include "mesh/flexspline.hpp"
 #include "mesh/shapes.hpp"
 #include "mesh/tet_mesh.hpp"

@@ -66,7 +66,7 @@ sw::Case bench_case(const BenchOptions& o) {
   p.load_ramp_start_s = 0.012;
   p.load_ramp_end_s = 0.0122;
   p.steady_from_s = 0.02;
-  c.dynamics = std::make_shared<const sw::DynamicsParams>(p);
+  c.dynamics = p;
   return c;
 }
 

@@ -11,4 +11,15 @@ public:
   explicit InputError(const std::string& message) : std::runtime_error(message) {}
 };
 
+/// Calls f(); an InputError it throws gets "`file`: " in front. A stage takes its own input, not the case file, and
+/// says what is wrong; the caller that read the file completes the message with it.
+template <class F>
+decltype(auto) naming_file(const std::string& file, F&& f) {
+  try {
+    return f();
+  } catch (const InputError& e) {
+    throw InputError(file + ": " + e.what());
+  }
+}
+
 }  // namespace sw

@@ -154,11 +154,11 @@ FaceSection section_at_rest(const GearParams& g, const NeutralCurve& curve, doub
   return fs;
 }
 
-ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const FlexsplineSystem& sys,
+ContactAnalysis analyse_within_reach(const FlexsplineModel& c, const TetMesh& mesh, const FlexsplineSystem& sys,
                                     const FlexsplineSolution& fem, const ContactOptions& opt, double reach_factor) {
-  check_contact_case(c);
-  if (!fem.neutral_curve) throw InputError(c.path + ": contact needs the FEM's generator-deformed neutral curve");
-  if (!(opt.rated_torque_Nm > 0)) throw InputError(c.path + ": contact needs a rated torque > 0");
+  check_contact_model(c);
+  if (!fem.neutral_curve) throw InputError("contact needs the FEM's generator-deformed neutral curve");
+  if (!(opt.rated_torque_Nm > 0)) throw InputError("contact needs a rated torque > 0");
   const GearParams& g = *c.gear;
   const auto& w = *c.wave_generator;
   Stopwatch clock;
@@ -176,7 +176,7 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
   // generator case read there: the cup's coning). One slice is the centre section's curve itself.
   const int n_slices = std::max(1, opt.face_slices);
   if (n_slices > 1 && fem.cases.empty())
-    throw InputError(c.path + ": contact.face_slices = " + std::to_string(n_slices) +
+    throw InputError("contact.face_slices = " + std::to_string(n_slices) +
                      " reads the FEM's rim at every slice, and a result read back (--fem) has only its centre section; "
                      "run contact without --fem (or face_slices = 1)");
   const double face = c.flexspline.rim_width_m;
@@ -192,7 +192,7 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
   for (int j = 0; j < n_slices && n_slices > 1; ++j) z_read.push_back(nc.z_m - face / 2 + face * (j + 0.5) / n_slices);
   std::vector<NeutralCurve> read;
   if (!z_read.empty())
-    for (const NeutralCurveSamples& at : neutral_curves_at(flexspline_model(c), mesh, fem.cases.front().u, z_read))
+    for (const NeutralCurveSamples& at : neutral_curves_at(c, mesh, fem.cases.front().u, z_read))
       read.push_back(fit_neutral_curve(at.radius_m, at.phi_rad, at.w_wg_m, at.v_wg_m, at.mu_wg_rad, "FEM"));
   std::vector<Slice> slices;
   for (int j = 0; j < n_slices; ++j) {
@@ -271,7 +271,7 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
       }
     }
   }
-  if (out.flanks.empty()) throw InputError(c.path + ": contact: no tooth flank in the mesh zone can close");
+  if (out.flanks.empty()) throw InputError("contact: no tooth flank in the mesh zone can close");
   out.min_closing_rad = std::min(first_closing[0], first_closing[1]);
   for (const auto& f : out.flanks) out.overlap_at_rest_m = std::max(out.overlap_at_rest_m, -std::abs(f.lever_m) * f.closing_angle_rad);
   const auto nf = static_cast<Eigen::Index>(out.flanks.size());
@@ -302,7 +302,7 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
   const auto no = static_cast<Eigen::Index>(observers.size());
 
   // The generator's stations, and the influence coefficients of every pattern.
-  const GeneratorStations gen = generator_stations(flexspline_model(c), mesh);
+  const GeneratorStations gen = generator_stations(c, mesh);
   const bool unilateral = gen.unilateral;
   const Eigen::SparseMatrix<double> L = sparse_columns(columns, gen.stations.loads);
   const auto nb = gen.stations.loads.cols();
@@ -399,7 +399,7 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
       last = residual;
       bearing_c += relax * (c_new - bearing_c);
       if (it == 400)
-        throw InputError(c.path + ": contact: the generator bearing's Hertzian secant did not settle at T = " +
+        throw InputError("contact: the generator bearing's Hertzian secant did not settle at T = " +
                          std::to_string(T) + " N·m (approach off by " + std::to_string(residual * 1e9) + " nm)");
     }
     return s;
@@ -440,7 +440,7 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
       const double slope = it == 0 || T_out == prev_out ? 1.0 : (T_flanks - prev_flanks) / (T_out - prev_out);
       if (it == 50) {
         if (std::abs(T_out - T) <= 1e-10 * T_R) break;  // round-off of the moments at a limit at zero
-        throw InputError(c.path + ": contact: the flanks' share of T = " + std::to_string(T) +
+        throw InputError("contact: the flanks' share of T = " + std::to_string(T) +
                          " N·m did not settle (the output carries " + std::to_string(T_out) + " N·m)");
       }
       prev_flanks = T_flanks;
@@ -593,7 +593,7 @@ ContactAnalysis analyse_within_reach(const Case& c, const TetMesh& mesh, const F
 
 }  // namespace
 
-std::function<double(double, double)> case_tooth_pair_compliance(const Case& c) {
+std::function<double(double, double)> tooth_pair_compliance_of(const FlexsplineModel& c) {
   if (!c.gear) return {};
   const GearParams g = *c.gear;
   const Material m = c.material;
@@ -610,19 +610,19 @@ std::function<double(double, double)> case_tooth_pair_compliance(const Case& c) 
   };
 }
 
-void check_contact_case(const Case& c) {
-  if (!c.gear) throw InputError(c.path + ": contact needs a [gear] table (the teeth that carry the torque)");
+void check_contact_model(const FlexsplineModel& c) {
+  if (!c.gear) throw InputError("contact needs a [gear] table (the teeth that carry the torque)");
   if (!c.wave_generator || !c.wave_generator->radial_deformation_m)
-    throw InputError(c.path + ": contact needs [wave_generator] with radial_deformation_mm (the mesh zones' shape)");
+    throw InputError("contact needs [wave_generator] with radial_deformation_mm (the mesh zones' shape)");
   if (c.flexspline.teeth == TeethModel::Explicit)
-    throw InputError(c.path + ": contact needs flexspline.teeth = \"ring\" or \"none\" (the teeth's own compliance is "
+    throw InputError("contact needs flexspline.teeth = \"ring\" or \"none\" (the teeth's own compliance is "
                               "added in series; explicit teeth would count it twice)");
   if (c.solver.method != SolverMethod::Tet10)
-    throw InputError(c.path + ": contact solves on the TET10 model; solver.method = \"fourier\" has no factor to reuse "
+    throw InputError("contact solves on the TET10 model; solver.method = \"fourier\" has no factor to reuse "
                               "(use --solver tet10)");
 }
 
-ContactAnalysis analyse_contact(const Case& c, const TetMesh& mesh, const FlexsplineSystem& sys,
+ContactAnalysis analyse_contact(const FlexsplineModel& c, const TetMesh& mesh, const FlexsplineSystem& sys,
                                 const FlexsplineSolution& fem, const ContactOptions& opt) {
   return analyse_within_reach(c, mesh, sys, fem, opt, opt.reach_factor);
 }

@@ -26,7 +26,7 @@
 
 #include <Eigen/Core>
 
-#include "common/params.hpp"
+#include "fem/flexspline_model.hpp"
 #include "contact/contact_problem.hpp"
 #include "contact/torque_twist.hpp"
 #include "fem/flexspline_analysis.hpp"
@@ -74,11 +74,12 @@ private:
   AngularHats hats_;
 };
 
-/// The case's tooth pair compliance over the rim's face width (m/N) at the two contact radii: the flexspline's tooth
+/// The flexspline model's tooth pair compliance over the rim's face width (m/N) at the two contact radii: the flexspline's tooth
 /// from the explicit-tooth FEM with the ring model's own share taken off (contact/tooth_fem.hpp), the circular
 /// spline's tooth (bending, foundation) and the flattening of both from gear/tooth_stiffness.hpp; the flexspline's
 /// radius clamped to its active flank. Builds the FEM tooth once (two small slabs). Empty without a [gear].
-std::function<double(double contact_radius_f_m, double contact_radius_c_m)> case_tooth_pair_compliance(const Case& c);
+std::function<double(double contact_radius_f_m, double contact_radius_c_m)> tooth_pair_compliance_of(
+    const FlexsplineModel& model);
 
 struct ContactOptions {
   double rated_torque_Nm = 0;  ///< the curve runs from −rated to +rated
@@ -204,13 +205,14 @@ struct ContactAnalysis {
   ContactProblem problem;
 };
 
-/// Checks that the case can be analysed (a [gear], a [wave_generator] with radial_deformation_mm, teeth "ring" or
-/// "none", the tet10 solver) before any work is done. Throws InputError naming the file and what is missing.
-void check_contact_case(const Case& c);
+/// Checks that the model can be analysed (a [gear], a [wave_generator] with radial_deformation_mm, teeth "ring" or
+/// "none", the tet10 solver) before any work is done. Throws InputError saying what is missing; the caller, which
+/// knows the case file, puts its name in front (as for every InputError of this module).
+void check_contact_model(const FlexsplineModel& model);
 
-/// The contact analysis of a case with [gear], [wave_generator] and teeth = "ring", on the system its FEM solution
-/// came from. Throws InputError for a case it cannot handle (no gear, explicit teeth, no flank in the mesh zone).
-ContactAnalysis analyse_contact(const Case& c, const TetMesh& mesh, const FlexsplineSystem& system,
+/// The contact analysis of a model with a gear, a wave generator and teeth = "ring", on the system its FEM solution
+/// came from. Throws InputError for a model it cannot handle (no gear, explicit teeth, no flank in the mesh zone).
+ContactAnalysis analyse_contact(const FlexsplineModel& model, const TetMesh& mesh, const FlexsplineSystem& system,
                                 const FlexsplineSolution& fem, const ContactOptions& options);
 
 }  // namespace sw

@@ -18,7 +18,7 @@
 
 #include <Eigen/Core>
 
-#include "common/params.hpp"
+#include "common/material.hpp"
 #include "fem/assembly.hpp"
 #include "fem/cholmod_factor.hpp"
 #include "gear/gear.hpp"

@@ -109,7 +109,7 @@ CupDesign design_cup(int size, int ratio) {
   c.material.ultimate_strength_Pa = 1100e6;
 
   WaveGeneratorParams& w = c.wave_generator;
-  w.model = WaveGeneratorModel::Cam;
+  w.model = Cam{};
   w.radial_deformation_m = kW0PerModule * g.module_m * (g.teeth_circular - g.teeth_flexspline) / 2.0;
   w.axial_position_m = 0.5 * f.rim_width_m;
   w.band_width_m = kBandPerFaceWidth * f.rim_width_m;

@@ -6,7 +6,11 @@
 // the teeth's geometry in modules depends on the ratio alone.
 #include <string>
 
-#include "common/params.hpp"
+#include "common/material.hpp"
+#include "contact/circular_spline.hpp"
+#include "gear/gear.hpp"
+#include "generator/wave_generator.hpp"
+#include "mesh/flexspline_params.hpp"
 
 namespace sw {
 

@@ -8,14 +8,14 @@
 
 namespace sw {
 
-double case_radial_deformation_m(const Case& c) {
+double radial_deformation_m(const FlexsplineModel& c) {
   if (c.wave_generator && c.wave_generator->radial_deformation_m) return *c.wave_generator->radial_deformation_m;
   return c.gear->module_m * (c.gear->teeth_circular - c.gear->teeth_flexspline) / 2.0;
 }
 
-std::vector<ToothPair> pairs_from_kinematics(const Case& c) {
+std::vector<ToothPair> pairs_from_kinematics(const FlexsplineModel& c) {
   const double rm = rim_mean_radius(c.flexspline);
-  const double w0 = case_radial_deformation_m(c);
+  const double w0 = radial_deformation_m(c);
   const NeutralCurve curve =
       c.wave_generator ? generator_neutral_curve(rm, w0, *c.wave_generator) : cam_neutral_curve(rm, w0);
   const BacklashModel model = make_backlash_model(*c.gear, curve);

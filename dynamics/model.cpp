@@ -7,7 +7,6 @@
 #include <sstream>
 
 #include "common/error.hpp"
-#include "common/params.hpp"
 
 namespace sw {
 namespace {

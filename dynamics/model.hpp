@@ -32,7 +32,8 @@
 #include <string>
 #include <vector>
 
-#include "common/params.hpp"
+#include "common/material.hpp"
+#include "mesh/flexspline_params.hpp"
 #include "dynamics/dynamics_params.hpp"
 #include "dynamics/moving_mesh.hpp"
 #include "gear/gear.hpp"

@@ -78,11 +78,11 @@ MovingMesh rigid_rim_mesh(const GearParams& g, const NeutralCurve& curve, const 
   return m;
 }
 
-MovingMesh fem_coupled_mesh(const Case& c, const TetMesh& mesh, const FlexsplineSystem& system,
+MovingMesh fem_coupled_mesh(const FlexsplineModel& c, const TetMesh& mesh, const FlexsplineSystem& system,
                             const FlexsplineSolution& fem, const ToothCompliance& teeth, double rated_torque_Nm,
                             int phases, int table_per_phase, double reach_factor) {
-  check_contact_case(c);
-  if (!fem.neutral_curve) throw InputError(c.path + ": the moving mesh needs the FEM's generator-deformed neutral curve");
+  check_contact_model(c);
+  if (!fem.neutral_curve) throw InputError("the moving mesh needs the FEM's generator-deformed neutral curve");
   if (phases < 1 || table_per_phase < 1) throw InputError("dynamics: phases and table samples must be >= 1");
   const GearParams& g = *c.gear;
   MovingMesh m;

@@ -3,7 +3,7 @@
 // for a rim coupled through the flexspline's body, the loaded-contact problem at a few generator phases over one pitch.
 #include <functional>
 
-#include "common/params.hpp"
+#include "fem/flexspline_model.hpp"
 #include "dynamics/moving_mesh.hpp"
 #include "fem/flexspline_analysis.hpp"
 #include "fem/flexspline_system.hpp"
@@ -24,7 +24,7 @@ MovingMesh rigid_rim_mesh(const GearParams& gear, const NeutralCurve& curve, con
 /// within reach_factor body twists at rated torque, the generator's stations when unilateral) at `phases` generator
 /// phases over one pitch, and the flank table on the FEM's generator-deformed neutral curve, sampled every
 /// pitch/(phases·table_per_phase) so that the phases fall on its grid.
-MovingMesh fem_coupled_mesh(const Case& c, const TetMesh& mesh, const FlexsplineSystem& system,
+MovingMesh fem_coupled_mesh(const FlexsplineModel& model, const TetMesh& mesh, const FlexsplineSystem& system,
                             const FlexsplineSolution& fem, const ToothCompliance& teeth, double rated_torque_Nm,
                             int phases, int table_per_phase, double reach_factor = 12.0);
 

@@ -6,7 +6,7 @@
 
 #include <Eigen/Core>
 
-#include "common/params.hpp"
+#include "common/material.hpp"
 #include "mesh/tet_mesh.hpp"
 
 namespace sw {

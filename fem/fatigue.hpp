@@ -8,7 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "common/params.hpp"
+#include "common/material.hpp"
+#include "mesh/flexspline_params.hpp"
 #include "fem/post.hpp"
 
 namespace sw {

@@ -276,7 +276,7 @@ CupTorsionTheory cup_torsion_theory(const FlexsplineParams& f, double rim_outer_
 double ring_theory_bending_stress(const WaveGeneratorParams& w, double youngs_modulus_Pa, double r_mid_m,
                                   double thickness_m, double w0_m, double at_rad) {
   double dkappa = 0;
-  if (w.model == WaveGeneratorModel::Cam) {
+  if (cam_of(w)) {
     dkappa = 3 * w0_m * std::cos(2 * at_rad) / (r_mid_m * r_mid_m);
   } else {
     // The forces as the FEM applies them, all harmonics n ≥ 2 (n = 0 stretches an inextensible ring not at all, n = 1
@@ -370,7 +370,7 @@ GeneratorCases generator_contact_cases(const FlexsplineModel& c, const TetMesh& 
   GeneratorCases g;
   GeneratorReadout& gr = g.readout;
   Eigen::VectorXd obstacle = gen.obstacle_m;
-  if (w.model == WaveGeneratorModel::Rollers) {
+  if (std::holds_alternative<Rollers>(w.model)) {
     // Set the rollers out so the major axis reaches w0: all four touch (symmetric), so the generator case is linear
     // in the rollers' standoff; one solve for the unit standoff gives the scale.
     const Eigen::VectorXd u_unit = eq.solve(contact_load(gen.stations, bilateral_support(C, obstacle).force_N)).col(0);
@@ -385,7 +385,7 @@ GeneratorCases generator_contact_cases(const FlexsplineModel& c, const TetMesh& 
     model.turn_gap_m_per_rad[k] = moment_about_z(mesh, Eigen::VectorXd(gen.stations.loads.col(k)), all);
   model.band_turn_rad_per_N = gen.stations.loads.transpose() * unit.generator_u;
   const double band_turn_per_T = unit.generator_load.dot(unit.torque_u);  // rad per N·m of the torque
-  if (w.model == WaveGeneratorModel::Cam && w.bearing)
+  if (cam_of(w) && w.bearing)
     model.approach_m = bearing_pair_approach(*w.bearing, gen.stations.half_width_rad);
   auto contact = [&](double torque) {
     return generator_contact(C, obstacle - torque * response.u0_torque, torque * band_turn_per_T, model);
@@ -441,7 +441,7 @@ GeneratorCases generator_force_cases(const FlexsplineModel& c, const TetMesh& me
       w.radial_deformation_m ? *w.radial_deformation_m / w_unit : w.force_N / std::max(total_at_end, 1e-300);
   GeneratorCases g;
   GeneratorReadout& gr = g.readout;
-  g.force_per_point_N = scale * (w.model == WaveGeneratorModel::FourForce ? 0.5 : 1.0);
+  g.force_per_point_N = scale * point_force_share(w.model);
   g.u = unit.generator_u * scale;
   g.f = gen.force_load * scale;
   const StationForces p_T = bilateral_support(response.C, -T_ref * response.u0_torque);

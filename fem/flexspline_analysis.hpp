@@ -27,7 +27,7 @@
 
 #include <Eigen/Core>
 
-#include "common/params.hpp"
+#include "fem/flexspline_model.hpp"
 #include "fem/flexspline_model.hpp"
 #include "fem/cholmod_factor.hpp"
 #include "fem/fatigue.hpp"

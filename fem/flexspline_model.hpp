@@ -5,7 +5,11 @@
 // message that needs the case file is completed by the caller.
 #include <optional>
 
-#include "common/params.hpp"
+#include "common/material.hpp"
+#include "fem/fem_params.hpp"
+#include "gear/gear.hpp"
+#include "generator/wave_generator.hpp"
+#include "mesh/flexspline_params.hpp"
 
 namespace sw {
 
@@ -18,10 +22,5 @@ struct FlexsplineModel {
   MeshParams mesh;
   SolverParams solver;
 };
-
-/// The case's tables the FEM reads, copied (the one place a Case becomes the FEM's input).
-inline FlexsplineModel flexspline_model(const Case& c) {
-  return {c.flexspline, c.gear, c.material, c.wave_generator, c.load, c.mesh, c.solver};
-}
 
 }  // namespace sw

@@ -8,7 +8,7 @@
 
 #include "common/error.hpp"
 #include "common/progress.hpp"
-#include "fem/cam_profile.hpp"
+#include "generator/cam_profile.hpp"
 #include "fem/flexspline_analysis.hpp"
 #include "fem/loads.hpp"
 #include "fem/petsc_solver.hpp"
@@ -20,26 +20,6 @@ constexpr double kPi = std::numbers::pi;
 constexpr int kSolveChunk = 24;  // right-hand sides per CHOLMOD solve (memory: n_eq × 24 doubles)
 double wrap_pi(double a) { return std::remainder(a, 2 * kPi); }
 double theta_of(const Eigen::Vector3d& x) { return std::atan2(x[1], x[0]); }
-
-/// Angles (from the major axis) and weights of the generator's point forces.
-}  // namespace
-
-std::vector<WaveGeneratorForce> generator_forces(const WaveGeneratorParams& w) {
-  switch (w.model) {
-    case WaveGeneratorModel::FourForce:
-    case WaveGeneratorModel::Rollers:  // where the rollers touch (for ring theory)
-      return {{w.beta_rad, 0.5}, {-w.beta_rad, 0.5}, {kPi + w.beta_rad, 0.5}, {kPi - w.beta_rad, 0.5}};
-    case WaveGeneratorModel::TwoForce:
-      return {{0.0, 1.0}, {kPi, 1.0}};
-    case WaveGeneratorModel::Forces:
-      return w.forces;
-    case WaveGeneratorModel::Cam:
-      break;
-  }
-  throw std::logic_error("generator_forces: a cam's forces come from its contact");
-}
-
-namespace {
 
 /// Radial outward patch loads on the inner wall, one per force, each of magnitude weight (N) as the integral of the
 /// pressure over its patch.
@@ -137,7 +117,7 @@ FlexsplineSystem assemble_and_factorise(const FlexsplineModel& c, const TetMesh&
 
 double rollers_setout(const WaveGeneratorParams& w, double w_unit_m) {
   if (!(w_unit_m > 0))
-    throw InputError("wave_generator: rollers at beta_deg = " + std::to_string(w.beta_rad * 180 / kPi) +
+    throw InputError("wave_generator: rollers at beta_deg = " + std::to_string(std::get<Rollers>(w.model).beta_rad * 180 / kPi) +
                      " do not push the major axis outward; use beta_deg < 45");
   return *w.radial_deformation_m / w_unit_m;
 }
@@ -150,30 +130,11 @@ GeneratorStations generator_stations(const FlexsplineModel& c, const TetMesh& me
   const double z = f.length_m - w.axial_position_m, r = f.inner_radius_m;
   GeneratorStations g;
   const double spacing = station_spacing(c);
-  std::vector<double> angles;
-  NormalTilt tilt;
-  const auto cam = w.model == WaveGeneratorModel::Cam ? std::make_shared<const CamSurface>(w, r) : nullptr;
-  switch (w.model) {
-    case WaveGeneratorModel::Cam:
-      g.unilateral = true;
-      for (int k = 0; k * spacing < kPi - 1e-9; ++k) angles.push_back(k * spacing);
-      tilt = [cam](double t) { return cam->tilt(t); };
-      break;
-    case WaveGeneratorModel::Rollers:
-      // Two pairs: β with π + β, π − β with −β. A roller's normal passes through its centre: radial where it touches.
-      g.unilateral = true;
-      angles = {w.beta_rad, kPi - w.beta_rad};
-      break;
-    default:  // the force idealisation: stations all round the band, for the torque case's radial support
-      for (int k = 0; k * spacing < kPi - 1e-9; ++k) angles.push_back(k * spacing);
-      break;
-  }
-  g.stations = band_stations(mesh, z, w.band_width_m, angles, spacing, tilt);
-  g.obstacle_m.resize(static_cast<Eigen::Index>(angles.size()));
-  for (std::size_t j = 0; j < angles.size(); ++j)
-    g.obstacle_m[j] = w.model == WaveGeneratorModel::Cam ? 2 * cam->standoff_m(angles[j])
-                    : w.model == WaveGeneratorModel::Rollers ? 2.0  // per metre the rollers stand out; scaled to w0
-                                                             : 0.0;
+  const StationLayout layout = station_layout(w, r, spacing);
+  g.unilateral = layout.unilateral;
+  g.stations = band_stations(mesh, z, w.band_width_m, layout.angle_rad, spacing, layout.tilt);
+  g.obstacle_m = Eigen::Map<const Eigen::VectorXd>(layout.obstacle_m.data(),
+                                                   static_cast<Eigen::Index>(layout.obstacle_m.size()));
   if (!g.unilateral) g.force_load = generator_load(c, mesh);
   return g;
 }

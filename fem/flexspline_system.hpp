@@ -9,7 +9,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
-#include "common/params.hpp"
+#include "fem/flexspline_model.hpp"
 #include "fem/flexspline_model.hpp"
 #include "fem/assembly.hpp"
 #include "fem/cholmod_factor.hpp"
@@ -47,10 +47,6 @@ struct GeneratorStations {
   Eigen::VectorXd force_load;  ///< force models: the unit generator forces (3·n_nodes)
 };
 GeneratorStations generator_stations(const FlexsplineModel& c, const TetMesh& mesh);
-
-/// Angles (from the major axis) and weights of the force idealisation's point forces (four_force, two_force, forces;
-/// rollers: where the rollers touch). Not for a cam, whose forces come from its contact.
-std::vector<WaveGeneratorForce> generator_forces(const WaveGeneratorParams& w);
 
 /// Half-width of each of the force idealisation's patches on the bore (rad).
 inline constexpr double kGeneratorPatchHalfAngle_rad = 3.0 * 3.141592653589793 / 180;

@@ -15,7 +15,7 @@
 
 #include <Eigen/Core>
 
-#include "common/params.hpp"
+#include "fem/flexspline_model.hpp"
 #include "mesh/tet_mesh.hpp"
 
 namespace sw {

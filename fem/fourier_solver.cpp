@@ -15,7 +15,7 @@
 
 #include "common/error.hpp"
 #include "common/progress.hpp"
-#include "fem/cam_profile.hpp"
+#include "generator/cam_profile.hpp"
 #include "fem/flexspline_system.hpp"
 #include "fem/post.hpp"
 #include "mesh/flexspline.hpp"
@@ -251,25 +251,15 @@ HarmonicStations harmonic_stations(const FlexsplineModel& c, const Eigen::Vector
                      ": a wave generator deforms the flexspline in harmonics 2 and up; use harmonics >= 2");
   HarmonicStations h;
   h.S = S;
-  h.unilateral = w.model == WaveGeneratorModel::Cam || w.model == WaveGeneratorModel::Rollers;
   const int pairs = std::min(static_cast<int>(std::lround(kPi / station_spacing(c))), N / 2);
   const double spacing = kPi / pairs;
   h.half_width_rad = spacing;
-  std::optional<CamSurface> cam;
-  if (w.model == WaveGeneratorModel::Cam) cam.emplace(w, r);
-  std::function<double(double)> tilt = [](double) { return 0.0; };
-  if (w.model == WaveGeneratorModel::Rollers) {
-    h.angle_rad = {w.beta_rad, kPi - w.beta_rad};
-  } else {
-    for (int k = 0; k < pairs; ++k) h.angle_rad.push_back(k * spacing);
-    if (cam) tilt = [&cam](double t) { return cam->tilt(t); };
-  }
+  const StationLayout layout = station_layout(w, r, spacing);
+  h.unilateral = layout.unilateral;
+  h.angle_rad = layout.angle_rad;
+  const std::function<double(double)> tilt = layout.tilt ? layout.tilt : [](double) { return 0.0; };
   const Eigen::Index m = static_cast<Eigen::Index>(h.angle_rad.size());
-  h.obstacle_m.resize(m);
-  for (Eigen::Index j = 0; j < m; ++j)
-    h.obstacle_m[j] = w.model == WaveGeneratorModel::Cam       ? 2 * cam->standoff_m(h.angle_rad[j])
-                      : w.model == WaveGeneratorModel::Rollers ? 2.0  // per metre the rollers stand out; scaled to w0
-                                                               : 0.0;
+  h.obstacle_m = Eigen::Map<const Eigen::VectorXd>(layout.obstacle_m.data(), m);
   h.phi_sym.assign(N + 1, Eigen::MatrixXd::Zero(m, 2));
   h.phi_anti.assign(N + 1, Eigen::MatrixXd::Zero(m, 2));
   // θ moments by Gauss–Legendre (8 points) on pieces of the hat's two linear flanks short enough that N·piece ≤ 0.5:
@@ -751,7 +741,7 @@ FourierSolution analyse_section_fourier(const FlexsplineModel& c, SectionMesh se
   out.harmonics_kept = N;
   const std::size_t nn = sec.n_nodes();
   const bool plain_tube = f.shape == FlexsplineShape::Tube && f.teeth == TeethModel::None;
-  const bool cam = c.wave_generator && c.wave_generator->model == WaveGeneratorModel::Cam;
+  const bool cam = c.wave_generator && cam_of(*c.wave_generator);
   progress("fourier: section of " + std::to_string(nn) + " nodes, " + std::to_string(sec.triangles.size()) +
            " quadratic triangles, harmonics 0.." + std::to_string(N));
 
@@ -967,7 +957,7 @@ FourierSolution analyse_section_fourier(const FlexsplineModel& c, SectionMesh se
     if (hs.unilateral) {
       // Contact of the generator alone, with T_ref and with the sweep's torques: each a small problem on C.
       Eigen::VectorXd obstacle = hs.obstacle_m;
-      if (w.model == WaveGeneratorModel::Rollers) {
+      if (std::holds_alternative<Rollers>(w.model)) {
         // Set the rollers out so the major axis reaches w0 (all four touch: linear in the standoff).
         obstacle *= rollers_setout(w, rim_w(field(bilateral_support(C, obstacle).force_N), 0.0));
       }
@@ -989,7 +979,7 @@ FourierSolution analyse_section_fourier(const FlexsplineModel& c, SectionMesh se
       turn_field.anti[0] = turn_anti0;
       model.band_turn_rad_per_N = hs.project(turn_field);
       const double band_turn_per_T = (turn_load_anti0.array() * torque.anti[0].array()).sum();
-      if (w.model == WaveGeneratorModel::Cam && w.bearing)
+      if (cam_of(w) && w.bearing)
         model.approach_m = bearing_pair_approach(*w.bearing, hs.half_width_rad);
       auto contact = [&](double torque_Nm) {
         return generator_contact(C, obstacle - torque_Nm * u0_torque, torque_Nm * band_turn_per_T, model);
@@ -1024,7 +1014,7 @@ FourierSolution analyse_section_fourier(const FlexsplineModel& c, SectionMesh se
         if (std::abs(std::remainder(force.angle_rad, 2 * kPi)) < kPi / 2) total_at_end += force.weight;
       const double scale =
           w.radial_deformation_m ? *w.radial_deformation_m / w_unit : w.force_N / std::max(total_at_end, 1e-300);
-      fs.generator_force_N = scale * (w.model == WaveGeneratorModel::FourForce ? 0.5 : 1.0);
+      fs.generator_force_N = scale * point_force_share(w.model);
       gen = force_gen * scale;
       for (int n = 0; n <= N; ++n) {
         loads[n][2] *= scale;

@@ -24,7 +24,7 @@
 
 #include <Eigen/Core>
 
-#include "common/params.hpp"
+#include "fem/flexspline_model.hpp"
 #include "fem/flexspline_model.hpp"
 #include "fem/cholmod_factor.hpp"
 #include "fem/flexspline_analysis.hpp"

@@ -19,7 +19,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
-#include "fem/generator_bearing.hpp"
+#include "generator/generator_bearing.hpp"
 #include "mesh/tet_mesh.hpp"
 
 namespace sw {
@@ -76,7 +76,7 @@ StationForces generator_contact(const Eigen::MatrixXd& C, const Eigen::VectorXd&
 
 /// The pair's approach of a ball bearing between the generator and the bore: the pressure of stations `spacing_rad`
 /// apart smeared over the balls (ball load Q = p·2π/(balls·spacing), an idealisation: the balls are discrete),
-/// 2·δ(Q) for the pair, δ = δ(1 N)·Q^(2/3) (fem/generator_bearing.hpp, Hertz).
+/// 2·δ(Q) for the pair, δ = δ(1 N)·Q^(2/3) (generator/generator_bearing.hpp, Hertz).
 std::function<double(double)> bearing_pair_approach(const GeneratorBearing& bearing, double spacing_rad);
 /// Ball load (N) of a station force (N) for stations `spacing_rad` apart.
 double ball_load_N(const GeneratorBearing& bearing, double spacing_rad, double station_force_N);

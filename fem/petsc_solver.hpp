@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "common/params.hpp"
+#include "fem/flexspline_model.hpp"
 #include "fem/assembly.hpp"
 #include "fem/linear_solver.hpp"
 #include "mesh/tet_mesh.hpp"

@@ -49,7 +49,7 @@
 // (inv α_w = inv α + 2 tan α (x_c − x_f)/(z_c − z_f), r_bc tan α_c − r_bf tan α_f = a_w sin α_w), clamped to the
 // circular spline's active flank: an idealisation of the strain wave mesh, whose deformed flexspline makes no
 // conjugate pair (it moves the contact on the stiff circular-spline tooth a little, which changes its small share).
-#include "common/params.hpp"
+#include "common/material.hpp"
 #include "gear/gear.hpp"
 
 namespace sw {

@@ -13,8 +13,9 @@
 #include <toml++/toml.h>
 
 #include "common/error.hpp"
+#include "common/overloaded.hpp"
 #include "design/catalog.hpp"
-#include "fem/cam_profile.hpp"
+#include "generator/cam_profile.hpp"
 #include "gear/tooth_profile.hpp"
 
 namespace sw {
@@ -223,7 +224,7 @@ Material read_material(TableReader r) {
 }
 
 /// wave_generator.bearing = {balls, ball_diameter_mm, inner_groove_conformity, outer_groove_conformity}; the pitch
-/// radius follows from the flexspline's bore (fem/generator_bearing.hpp), and the bearing checks itself.
+/// radius follows from the flexspline's bore (generator/generator_bearing.hpp), and the bearing checks itself.
 GeneratorBearing read_bearing(TableReader r, double bore_radius_m) {
   GeneratorBearing b;
   b.balls = r.integer("balls", 0, 3);
@@ -244,11 +245,11 @@ GeneratorBearing read_bearing(TableReader r, double bore_radius_m) {
 /// profile = "polar" | "ellipse" | "list"; a list's points profile_points = [{angle_deg, radius_mm}, ...] over a half
 /// turn from the major axis (increasing in [0, 180), 4 or more) set w0 = radius at 0° − bore radius, which a given
 /// radial_deformation_mm must match.
-void read_cam_profile(TableReader& r, WaveGeneratorParams& w, double bore_radius_m) {
+void read_cam_profile(TableReader& r, Cam& cam, WaveGeneratorParams& w, double bore_radius_m) {
   const std::string profile = r.choice("profile", "polar", {"polar", "ellipse", "list"});
-  w.cam_profile = profile == "ellipse" ? CamProfile::Ellipse : profile == "list" ? CamProfile::List : CamProfile::Polar;
+  cam.profile = profile == "ellipse" ? CamProfile::Ellipse : profile == "list" ? CamProfile::List : CamProfile::Polar;
   const toml::array* list = r.array("profile_points");
-  if (w.cam_profile != CamProfile::List) {
+  if (cam.profile != CamProfile::List) {
     if (list) r.fail("profile_points", *list, "is for profile = \"list\" only");
     return;
   }
@@ -265,15 +266,15 @@ void read_cam_profile(TableReader& r, WaveGeneratorParams& w, double bore_radius
     if (!angle || !radius)
       throw InputError(r.file() + ": " + p.name() + " needs angle_deg and radius_mm");
     if (!(*angle >= 0 && *angle < 180)) p.fail_value("angle_deg", *angle, "must be in [0, 180) (a half turn from the major axis)");
-    if (!w.cam_points.empty() && !(*angle * kDeg > w.cam_points.back().angle_rad))
+    if (!cam.points.empty() && !(*angle * kDeg > cam.points.back().angle_rad))
       p.fail_value("angle_deg", *angle, "must be larger than the point before's (increasing angles)");
     if (!(*radius > 0)) p.fail_value("radius_mm", *radius, "must be > 0");
     p.reject_unknown();
     point.angle_rad = *angle * kDeg;
     point.radius_m = *radius * kMm;
-    w.cam_points.push_back(point);
+    cam.points.push_back(point);
   }
-  const double w0 = cam_list_w0_m(w.cam_points, bore_radius_m);
+  const double w0 = cam_list_w0_m(cam.points, bore_radius_m);
   if (!(w0 > 0))
     throw InputError(r.file() + ": wave_generator.profile_points: the radius at 0 deg (" + format_number((bore_radius_m + w0) / kMm) +
                      " mm) must exceed the bore radius " + format_number(bore_radius_m / kMm) + " mm (w0 > 0)");
@@ -284,53 +285,67 @@ void read_cam_profile(TableReader& r, WaveGeneratorParams& w, double bore_radius
   w.radial_deformation_m = w0;
 }
 
+/// beta_deg of the four forces and the rollers, in (0, 90).
+double read_beta(TableReader& r) {
+  const double beta = r.number("beta_deg", 30.0);
+  if (!(beta > 0.0 && beta < 90.0)) r.fail_value("beta_deg", beta, "must be in (0, 90)");
+  return beta * kDeg;
+}
+
+/// forces = [{angle_deg, weight}, ...] of model = "forces".
+GivenForces read_given_forces(TableReader& r) {
+  const toml::array* list = r.array("forces");
+  if (!list || list->empty())
+    throw InputError(r.file() + ": wave_generator.forces is missing or empty; model = \"forces\" needs a list "
+                                "like [{angle_deg = 30, weight = 1.0}, ...]");
+  GivenForces g;
+  for (std::size_t i = 0; i < list->size(); ++i) {
+    const toml::table* t = list->get(i)->as_table();
+    if (!t) r.fail("forces", *list->get(i), "expected tables {angle_deg = ..., weight = ...}");
+    TableReader f(*t, r.name() + ".forces[" + std::to_string(i) + "]", r.file());
+    WaveGeneratorForce force;
+    force.angle_rad = f.number("angle_deg", 0.0) * kDeg;
+    force.weight = f.positive("weight", 1.0);
+    f.reject_unknown();
+    g.forces.push_back(force);
+  }
+  return g;
+}
+
+/// The model's own keys, in the order the file reads them (beta_deg before radial_deformation_mm, a cam's profile
+/// after it): the model with them.
+GeneratorModel read_generator_model(TableReader& r, const std::string& model) {
+  if (model == "four_force") return FourForce{read_beta(r)};
+  if (model == "rollers") return Rollers{read_beta(r)};
+  if (model == "two_force") return TwoForce{};
+  if (model == "forces") return GivenForces{};  // its list is read after the common keys, as before
+  return Cam{};
+}
+
 WaveGeneratorParams read_wave_generator(TableReader r, double bore_radius_m) {
   WaveGeneratorParams w;
   const std::string model = r.choice("model", "four_force", {"four_force", "two_force", "forces", "cam", "rollers"});
-  w.model = model == "four_force" ? WaveGeneratorModel::FourForce
-            : model == "two_force" ? WaveGeneratorModel::TwoForce
-            : model == "forces"    ? WaveGeneratorModel::Forces
-            : model == "cam"       ? WaveGeneratorModel::Cam
-                                   : WaveGeneratorModel::Rollers;
-  const bool body = w.model == WaveGeneratorModel::Cam || w.model == WaveGeneratorModel::Rollers;
-  if (w.model == WaveGeneratorModel::FourForce || w.model == WaveGeneratorModel::Rollers) {
-    const double beta = r.number("beta_deg", 30.0);
-    if (!(beta > 0.0 && beta < 90.0)) r.fail_value("beta_deg", beta, "must be in (0, 90)");
-    w.beta_rad = beta * kDeg;
-  }
+  w.model = read_generator_model(r, model);
+  const bool body = pushes_only(w.model);
   if (auto w0 = r.number("radial_deformation_mm")) {
     if (!(*w0 > 0)) r.fail_value("radial_deformation_mm", *w0, "must be > 0");
     w.radial_deformation_m = *w0 * kMm;
   }
   if (!body) w.force_N = r.positive("force_N", w.force_N);
-  if (w.model == WaveGeneratorModel::Cam) read_cam_profile(r, w, bore_radius_m);
+  Cam* cam = std::get_if<Cam>(&w.model);
+  if (cam) read_cam_profile(r, *cam, w, bore_radius_m);
   if (body && !w.radial_deformation_m)
     throw InputError(r.file() + ": wave_generator.radial_deformation_mm is missing; model = \"" + model +
                      "\" is set out to reach it");
   w.axial_position_m = r.non_negative("axial_position_mm", w.axial_position_m / kMm) * kMm;
   w.band_width_m = r.positive("band_width_mm", w.band_width_m / kMm) * kMm;
-  if (w.model == WaveGeneratorModel::Cam) {
-    w.cam_clearance_m = r.number("fit_um", 0.0) * 1e-6;
-    if (!(std::abs(w.cam_clearance_m) < *w.radial_deformation_m))
-      r.fail_value("fit_um", w.cam_clearance_m * 1e6,
+  if (cam) {
+    cam->clearance_m = r.number("fit_um", 0.0) * 1e-6;
+    if (!(std::abs(cam->clearance_m) < *w.radial_deformation_m))
+      r.fail_value("fit_um", cam->clearance_m * 1e6,
                    "must be smaller in size than radial_deformation_mm (a clearance > 0 or an interference < 0, µm)");
   }
-  if (w.model == WaveGeneratorModel::Forces) {
-    const toml::array* list = r.array("forces");
-    if (!list || list->empty())
-      throw InputError(r.file() + ": wave_generator.forces is missing or empty; model = \"forces\" needs a list "
-                                  "like [{angle_deg = 30, weight = 1.0}, ...]");
-    for (std::size_t i = 0; i < list->size(); ++i) {
-      const toml::table* t = list->get(i)->as_table();
-      if (!t) r.fail("forces", *list->get(i), "expected tables {angle_deg = ..., weight = ...}");
-      TableReader f(*t, r.name() + ".forces[" + std::to_string(i) + "]", r.file());
-      WaveGeneratorForce force;
-      force.angle_rad = f.number("angle_deg", 0.0) * kDeg;
-      force.weight = f.positive("weight", 1.0);
-      f.reject_unknown();
-      w.forces.push_back(force);
-    }
-  }
+  if (std::holds_alternative<GivenForces>(w.model)) w.model = read_given_forces(r);
   if (const toml::table* t = r.table("bearing"))
     w.bearing = read_bearing(TableReader(*t, r.name() + ".bearing", r.file()), bore_radius_m);
   r.reject_unknown();
@@ -407,13 +422,14 @@ CircularSplineParams read_circular_spline(TableReader r, const GearParams& gear,
 }
 
 /// [contact] face_slices: 1 to kMaxFaceSlices (each slice adds the flanks' influence solves again).
-int read_contact(TableReader r) {
-  constexpr int kMaxFaceSlices = 8;
-  const int n = r.integer("face_slices", 1, 1);
-  if (n > kMaxFaceSlices)
-    r.fail_value("face_slices", n, "must be <= " + std::to_string(kMaxFaceSlices) + " (each slice repeats the flanks' influence solves)");
+ContactParams read_contact(TableReader r) {
+  ContactParams p;
+  p.face_slices = r.integer("face_slices", p.face_slices, 1);
+  if (p.face_slices > kMaxFaceSlices)
+    r.fail_value("face_slices", p.face_slices,
+                 "must be <= " + std::to_string(kMaxFaceSlices) + " (each slice repeats the flanks' influence solves)");
   r.reject_unknown();
-  return n;
+  return p;
 }
 
 DynamicsParams read_dynamics(TableReader r) {
@@ -574,8 +590,8 @@ Case parse_case(const std::string& toml_text, const std::string& path) {
         c.flexspline.rim_width_m);
   else if (table("circular_spline"))
     throw InputError(path + ": [circular_spline] needs a [gear] table (its root circle comes from the teeth)");
-  if (auto t = table("contact")) c.contact_face_slices = read_contact(TableReader(*t, "contact", path));
-  if (auto t = table("dynamics")) c.dynamics = std::make_shared<const DynamicsParams>(read_dynamics(TableReader(*t, "dynamics", path)));
+  if (auto t = table("contact")) c.contact = read_contact(TableReader(*t, "contact", path));
+  if (auto t = table("dynamics")) c.dynamics = read_dynamics(TableReader(*t, "dynamics", path));
   if (c.flexspline.teeth != TeethModel::None && !c.gear)
     throw InputError(path + ": flexspline.teeth = \"" +
                      std::string(c.flexspline.teeth == TeethModel::Ring ? "ring" : "explicit") +
@@ -600,6 +616,21 @@ Case load_case(const std::string& path) {
   text << in.rdbuf();
   return parse_case(text.str(), path);
 }
+
+namespace {
+
+void describe_cam(std::ostringstream& s, const Cam& cam) {
+  static const char* kProfiles[] = {"polar", "ellipse", "list"};
+  s << "profile = \"" << kProfiles[static_cast<int>(cam.profile)] << "\"\nfit_um = " << cam.clearance_m * 1e6 << "\n";
+  if (cam.points.empty()) return;
+  s << "profile_points = [";
+  for (std::size_t i = 0; i < cam.points.size(); ++i)
+    s << (i ? ",\n  " : "\n  ") << "{angle_deg = " << cam.points[i].angle_rad / kDeg
+      << ", radius_mm = " << cam.points[i].radius_m / kMm << "}";
+  s << "]\n";
+}
+
+}  // namespace
 
 std::string describe_case(const Case& c) {
   std::ostringstream s;
@@ -635,25 +666,17 @@ std::string describe_case(const Case& c) {
   if (c.wave_generator) {
     const auto& w = *c.wave_generator;
     s << "[wave_generator]\nmodel = \"" << model_name(w.model) << "\"\n";
-    if (w.model == WaveGeneratorModel::FourForce || w.model == WaveGeneratorModel::Rollers)
-      s << "beta_deg = " << w.beta_rad / kDeg << "\n";
+    std::visit(overloaded{[&](const FourForce& f) { s << "beta_deg = " << f.beta_rad / kDeg << "\n"; },
+                          [&](const Rollers& r) { s << "beta_deg = " << r.beta_rad / kDeg << "\n"; },
+                          [](const TwoForce&) {}, [](const GivenForces&) {}, [](const Cam&) {}},
+               w.model);
     if (w.radial_deformation_m) s << "radial_deformation_mm = " << mm(*w.radial_deformation_m) << "\n";
     else s << "force_N = " << w.force_N << "\n";
     s << "axial_position_mm = " << mm(w.axial_position_m) << "\nband_width_mm = " << mm(w.band_width_m) << "\n";
-    if (w.model == WaveGeneratorModel::Cam) {
-      static const char* kProfiles[] = {"polar", "ellipse", "list"};
-      s << "profile = \"" << kProfiles[static_cast<int>(w.cam_profile)] << "\"\nfit_um = " << w.cam_clearance_m * 1e6
-        << "\n";
-      if (!w.cam_points.empty()) {
-        s << "profile_points = [";
-        for (std::size_t i = 0; i < w.cam_points.size(); ++i)
-          s << (i ? ",\n  " : "\n  ") << "{angle_deg = " << w.cam_points[i].angle_rad / kDeg
-            << ", radius_mm = " << mm(w.cam_points[i].radius_m) << "}";
-        s << "]\n";
-      }
-    }
-    for (const auto& force : w.forces)
-      s << "forces += {angle_deg = " << force.angle_rad / kDeg << ", weight = " << force.weight << "}\n";
+    if (const Cam* cam = cam_of(w)) describe_cam(s, *cam);
+    if (const auto* g = std::get_if<GivenForces>(&w.model))
+      for (const auto& force : g->forces)
+        s << "forces += {angle_deg = " << force.angle_rad / kDeg << ", weight = " << force.weight << "}\n";
     if (w.bearing)
       s << "bearing = {balls = " << w.bearing->balls << ", ball_diameter_mm = " << mm(w.bearing->ball_diameter_m)
         << ", inner_groove_conformity = " << w.bearing->inner_groove_conformity
@@ -671,7 +694,7 @@ std::string describe_case(const Case& c) {
   if (c.circular_spline)
     s << "[circular_spline]\nouter_radius_mm = " << mm(c.circular_spline->outer_radius_m)
       << "\nwidth_mm = " << mm(c.circular_spline->width_m) << "\n";
-  if (c.contact_face_slices != 1) s << "[contact]\nface_slices = " << c.contact_face_slices << "\n";
+  if (c.contact.face_slices != 1) s << "[contact]\nface_slices = " << c.contact.face_slices << "\n";
   s << "[mesh]\nsize_mm = " << mm(c.mesh.size_m) << "\nwall_layers = " << c.mesh.wall_layers
     << "\ncorner_levels = " << c.mesh.corner_levels
     << "\nmax_radius_edge_ratio = " << c.mesh.max_radius_edge_ratio << "\nmin_dihedral_deg = "

@@ -6,10 +6,44 @@
 #include <string>
 #include <vector>
 
-#include "common/params.hpp"
-#include "dynamics/dynamics_params.hpp"  // [dynamics] (header-only, standard library only)
+#include "common/material.hpp"
+#include "contact/circular_spline.hpp"
+#include "contact/contact_params.hpp"
+#include "dynamics/dynamics_params.hpp"
+#include "fem/fem_params.hpp"
+#include "fem/flexspline_model.hpp"
+#include "gear/gear.hpp"
+#include "generator/wave_generator.hpp"
+#include "mesh/flexspline_params.hpp"
 
 namespace sw {
+
+/// A whole case: every stage's own options, as the file gives them (defaults filled in). Only the command line (app/)
+/// holds a Case; each stage takes its own part (flexspline_model() below for the FEM, the contact's and the dynamics'
+/// inputs from their own tables).
+struct Case {
+  std::string path;      ///< the file it came from (for messages)
+  std::string stem;      ///< file name without directory and extension (default output folder)
+  std::optional<GearParams> gear;
+  FlexsplineParams flexspline;
+  Material material;
+  std::optional<WaveGeneratorParams> wave_generator;
+  LoadParams load;
+  MeshParams mesh;
+  SolverParams solver;
+  /// [catalog] size: the catalog size the case stands for (a row of design/catalog.hpp).
+  std::optional<int> catalog_size;
+  /// [circular_spline]: the given keys, else the defaults of contact/circular_spline.hpp; absent without [gear].
+  std::optional<CircularSplineParams> circular_spline;
+  ContactParams contact;
+  /// [dynamics]: the dynamics stage's own options (dynamics/dynamics_params.hpp), absent when the table is.
+  std::optional<DynamicsParams> dynamics;
+};
+
+/// The case's tables the FEM reads, copied (the one place a Case becomes the FEM's input).
+inline FlexsplineModel flexspline_model(const Case& c) {
+  return {c.flexspline, c.gear, c.material, c.wave_generator, c.load, c.mesh, c.solver};
+}
 
 
 /// Parses and validates a case file. Throws InputError (one line: "file: key = value; expectation").

@@ -5,7 +5,7 @@
 #include <optional>
 #include <string>
 
-#include "common/params.hpp"
+#include "io/case.hpp"
 #include "common/resources.hpp"
 #include "fem/cholmod_factor.hpp"
 #include "fem/flexspline_analysis.hpp"

@@ -7,7 +7,7 @@
 
 #include <Eigen/Core>
 
-#include "common/params.hpp"
+#include "io/case.hpp"
 #include "mesh/tet_mesh.hpp"
 
 namespace sw {

@@ -4,10 +4,14 @@
 #include <cmath>
 #include <numbers>
 #include <sstream>
+#include <stdexcept>
+#include <string>
+#include <variant>
 
 #include <Eigen/Dense>
 
 #include "common/error.hpp"
+#include "common/overloaded.hpp"
 
 namespace sw {
 
@@ -78,29 +82,52 @@ NeutralCurve cam_neutral_curve(double mean_radius_m, double w0_m) {
   return c;
 }
 
-NeutralCurve generator_neutral_curve(double mean_radius_m, double w0_m, const WaveGeneratorParams& wg, int n_max) {
-  if (wg.model == WaveGeneratorModel::Cam) return cam_neutral_curve(mean_radius_m, w0_m);
+namespace {
+
+/// The thin ring's forces of a force generator (rollers: where they touch), each end of the major axis alike, and
+/// what the curve is called.
+struct RingForces {
   std::vector<WaveGeneratorForce> forces;
+  std::string name;
+};
+RingForces four_forces(double beta_rad) {
+  RingForces r;
+  for (double base : {0.0, kPi})
+    for (double sgn : {-1.0, 1.0}) r.forces.push_back({base + sgn * beta_rad, 1.0});
   std::ostringstream name;
-  switch (wg.model) {
-    case WaveGeneratorModel::FourForce:
-    case WaveGeneratorModel::Rollers:  // the ring touches the rollers at ±β: four forces
-      for (double base : {0.0, kPi})
-        for (double sgn : {-1.0, 1.0}) forces.push_back({base + sgn * wg.beta_rad, 1.0});
-      name << "thin ring, four forces at ±" << wg.beta_rad * 180.0 / kPi << "° and 180°±" << wg.beta_rad * 180.0 / kPi << "°";
-      break;
-    case WaveGeneratorModel::TwoForce:
-      forces = {{0.0, 1.0}, {kPi, 1.0}};
-      name << "thin ring, two forces on the major axis";
-      break;
-    default:
-      if (wg.forces.empty()) throw InputError("[wave_generator]: model = \"forces\" needs a non-empty forces list");
-      for (const auto& f : wg.forces) {
-        forces.push_back(f);
-        forces.push_back({f.angle_rad + kPi, f.weight});
-      }
-      name << "thin ring, " << forces.size() << " forces (list mirrored to both ends of the major axis)";
-  }
+  name << "thin ring, four forces at ±" << beta_rad * 180.0 / kPi << "° and 180°±" << beta_rad * 180.0 / kPi << "°";
+  r.name = name.str();
+  return r;
+}
+RingForces ring_forces(const GeneratorModel& model) {
+  return std::visit(
+      overloaded{[](const FourForce& f) { return four_forces(f.beta_rad); },
+                 [](const Rollers& r) { return four_forces(r.beta_rad); },  // the ring touches the rollers at ±β
+                 [](const TwoForce&) {
+                   return RingForces{{{0.0, 1.0}, {kPi, 1.0}}, "thin ring, two forces on the major axis"};
+                 },
+                 [](const GivenForces& g) {
+                   if (g.forces.empty())
+                     throw InputError("[wave_generator]: model = \"forces\" needs a non-empty forces list");
+                   RingForces r;
+                   for (const auto& f : g.forces) {
+                     r.forces.push_back(f);
+                     r.forces.push_back({f.angle_rad + kPi, f.weight});
+                   }
+                   r.name = "thin ring, " + std::to_string(r.forces.size()) +
+                            " forces (list mirrored to both ends of the major axis)";
+                   return r;
+                 },
+                 [](const Cam&) -> RingForces { throw std::logic_error("ring_forces: a cam is no force model"); }},
+      model);
+}
+
+}  // namespace
+
+NeutralCurve generator_neutral_curve(double mean_radius_m, double w0_m, const WaveGeneratorParams& wg, int n_max) {
+  if (cam_of(wg)) return cam_neutral_curve(mean_radius_m, w0_m);
+  const RingForces ring = ring_forces(wg.model);
+  const std::vector<WaveGeneratorForce>& forces = ring.forces;
   NeutralCurve c;
   c.mean_radius_m = mean_radius_m;
   c.w.a.assign(n_max + 1, 0.0);
@@ -122,7 +149,8 @@ NeutralCurve generator_neutral_curve(double mean_radius_m, double w0_m, const Wa
     c.w.b[n] *= w0_m / w_at_0;
   }
   derive_inextensible(c);
-  name << ", w0 = " << w0_m * 1e3 << " mm";
+  std::ostringstream name;
+  name << ring.name << ", w0 = " << w0_m * 1e3 << " mm";
   c.source = name.str();
   return c;
 }

@@ -17,7 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "common/params.hpp"
+#include "generator/wave_generator.hpp"
+#include "mesh/flexspline_params.hpp"
 
 namespace sw {
 

@@ -5,7 +5,8 @@
 #include <optional>
 #include <string>
 
-#include "common/params.hpp"
+#include "gear/gear.hpp"
+#include "mesh/flexspline_params.hpp"
 
 namespace sw {
 

@@ -29,7 +29,7 @@
 // deep at the seed case) by a chord (see simplify_outline in flexspline.cpp). Needs root circle > r_o.
 #include <optional>
 
-#include "common/params.hpp"
+#include "mesh/flexspline_params.hpp"
 #include "gear/gear.hpp"
 #include "mesh/revolve.hpp"
 #include "mesh/tet_mesh.hpp"

@@ -5,7 +5,7 @@
 
 #include <Eigen/Core>
 
-#include "common/params.hpp"
+#include "mesh/flexspline_params.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "mesh/tetgen_mesh.hpp"
 

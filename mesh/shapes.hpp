@@ -1,6 +1,6 @@
 #pragma once
 // Verification shapes (annular tube, thick cylinder, short ring, rectangular bar), TET10, metres.
-#include "common/params.hpp"
+#include "mesh/flexspline_params.hpp"
 #include "mesh/tet_mesh.hpp"
 
 namespace sw {

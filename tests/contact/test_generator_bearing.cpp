@@ -10,7 +10,7 @@
 #include <numbers>
 
 #include "common/error.hpp"
-#include "fem/generator_bearing.hpp"
+#include "generator/generator_bearing.hpp"
 
 namespace sw {
 namespace {

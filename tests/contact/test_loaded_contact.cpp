@@ -31,7 +31,7 @@ const Coarse& coarse_seed_cam() {
     s->c = load_case("cases/seed_190_192.toml");
     s->c.mesh.size_m = 1.2e-3;
     s->c.mesh.wall_layers = 1;
-    s->c.wave_generator->model = WaveGeneratorModel::Cam;
+    s->c.wave_generator->model = Cam{};
     s->mesh = mesh_flexspline(s->c.flexspline, s->c.gear, s->c.mesh);
     s->system = assemble_and_factorise(flexspline_model(s->c), s->mesh);
     s->fem = analyse_flexspline(flexspline_model(s->c), s->mesh, s->system);
@@ -47,7 +47,7 @@ ContactAnalysis analyse(double tooth_compliance_m_per_N, double reach_factor = 3
   o.rated_torque_Nm = 44.1;
   o.steps = 8;
   if (tooth_compliance_m_per_N > 0) o.series.tooth_pair_m_per_N = [=](double, double) { return tooth_compliance_m_per_N; };
-  return analyse_contact(k.c, k.mesh, k.system, k.fem, o);
+  return analyse_contact(flexspline_model(k.c), k.mesh, k.system, k.fem, o);
 }
 
 TEST(LoadedContact, InfluenceCoefficientsMatchDirectSolveAndTorqueBalances) {
@@ -211,7 +211,7 @@ TEST(LoadedContact, FaceSlicesFollowTheCupsConing) {
   o.steps = 4;
   o.face_slices = 3;
   o.series.tooth_pair_m_per_N = [](double, double) { return 1e-8; };
-  const ContactAnalysis a = analyse_contact(k.c, k.mesh, k.system, k.fem, o);
+  const ContactAnalysis a = analyse_contact(flexspline_model(k.c), k.mesh, k.system, k.fem, o);
   double first[3] = {1, 1, 1};
   for (const FlankContact& f : a.flanks) {
     first[f.slice] = std::min(first[f.slice], f.closing_angle_rad);
@@ -239,7 +239,7 @@ TEST(LoadedContact, FaceSlicesFollowTheCupsConing) {
   // A result read back (no load cases' fields) cannot give the slices' curves: refused with one line.
   FlexsplineSolution read_back = k.fem;
   read_back.cases.clear();
-  EXPECT_THROW(analyse_contact(k.c, k.mesh, k.system, read_back, o), InputError);
+  EXPECT_THROW(analyse_contact(flexspline_model(k.c), k.mesh, k.system, read_back, o), InputError);
 }
 
 }  // namespace

@@ -28,11 +28,11 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-ToothCompliance teeth_of(const Case& c) { return case_tooth_pair_compliance(c); }
+ToothCompliance teeth_of(const Case& c) { return tooth_pair_compliance_of(flexspline_model(c)); }
 
 DynamicsModel model_of(const Case& c, DynamicsParams p) {
   DynamicsModel m = make_model(*c.gear, c.flexspline, c.flexspline.shape == FlexsplineShape::Cup, c.material, p,
-                               pairs_from_kinematics(c), c.path);
+                               pairs_from_kinematics(flexspline_model(c)), c.path);
   return m;
 }
 
@@ -74,7 +74,7 @@ const CoarseSeed& coarse_seed() {
 const MovingMesh& coarse_coupled() {
   static const MovingMesh* m = [] {
     const CoarseSeed& k = coarse_seed();
-    return new MovingMesh(fem_coupled_mesh(k.c, k.mesh, k.system, k.fem, teeth_of(k.c), 44.1, 8, 8));
+    return new MovingMesh(fem_coupled_mesh(flexspline_model(k.c), k.mesh, k.system, k.fem, teeth_of(k.c), 44.1, 8, 8));
   }();
   return *m;
 }
@@ -224,7 +224,7 @@ TEST(MovingMesh, SlowRunReproducesTheLoadedContactAtEveryGeneratorAngle) {
     o.steps = 1;
     o.wg_angle_rad = contact_wg_angle_rad(*k.c.gear, sigma);
     o.series.tooth_pair_m_per_N = teeth;
-    const ContactAnalysis a = analyse_contact(k.c, k.mesh, k.system, k.fem, o);
+    const ContactAnalysis a = analyse_contact(flexspline_model(k.c), k.mesh, k.system, k.fem, o);
     const double flank_torque = s.mesh_torque_Nm[j] - s.travel_torque_Nm[j];  // Σ λ_i x_i
     const ContactSolution qs = solve_contact(a.problem, flank_torque);
     std::vector<double> tooth(period, 0.0);
@@ -261,7 +261,7 @@ TEST(MovingMesh, ConstantStiffnessPutsTheStrongestLinesAtTheMeshFrequencyFrozenP
   p.pair_stiffness = PairStiffness::Constant;
   DynamicsModel frozen = model_of(c, p);
   DynamicsModel moving = frozen;
-  const NeutralCurve curve = generator_neutral_curve(rim_mean_radius(c.flexspline), case_radial_deformation_m(c),
+  const NeutralCurve curve = generator_neutral_curve(rim_mean_radius(c.flexspline), radial_deformation_m(flexspline_model(c)),
                                                      *c.wave_generator);
   moving.moving = std::make_shared<MovingMesh>(rigid_rim_mesh(*c.gear, curve, {}, 16));
   const DynamicsSummary r = summarize(moving, simulate(moving));
@@ -299,7 +299,7 @@ TEST(MovingMesh, OddToothCountPutsTheFundamentalAtTwiceTheMeshFrequency) {
   c.gear = g;
   DynamicsParams p = *c.dynamics;
   DynamicsModel m = model_of(c, p);
-  const NeutralCurve curve = generator_neutral_curve(rim_mean_radius(c.flexspline), case_radial_deformation_m(c),
+  const NeutralCurve curve = generator_neutral_curve(rim_mean_radius(c.flexspline), radial_deformation_m(flexspline_model(c)),
                                                      *c.wave_generator);
   m.moving = std::make_shared<MovingMesh>(rigid_rim_mesh(g, curve, {}, 16));
   const DynamicsSummary r = summarize(m, simulate(m));
@@ -329,7 +329,7 @@ TEST(MovingMesh, EnergyAndTorqueBalanceWithTravellingTeeth) {
   p.duration_s = 0.03;
   p.steady_from_s = 0.022;
   DynamicsModel m = model_of(c, p);
-  const NeutralCurve curve = generator_neutral_curve(rim_mean_radius(c.flexspline), case_radial_deformation_m(c),
+  const NeutralCurve curve = generator_neutral_curve(rim_mean_radius(c.flexspline), radial_deformation_m(flexspline_model(c)),
                                                      *c.wave_generator);
   m.moving = std::make_shared<MovingMesh>(rigid_rim_mesh(*c.gear, curve, teeth_of(c), 16));
   const DynamicsSeries s = simulate(m);

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "fem/cam_profile.hpp"
+#include "generator/cam_profile.hpp"
 
 namespace sw {
 namespace {
@@ -16,15 +16,14 @@ constexpr double kR = 18.4e-3, kW0 = 0.2e-3;
 
 WaveGeneratorParams cam(CamProfile p) {
   WaveGeneratorParams w;
-  w.model = WaveGeneratorModel::Cam;
+  w.model = Cam{p};
   w.radial_deformation_m = kW0;
-  w.cam_profile = p;
   return w;
 }
 
 WaveGeneratorParams listed_from(const CamSurface& s, double step_deg) {
   WaveGeneratorParams w = cam(CamProfile::List);
-  for (double deg = 0; deg < 180 - 1e-9; deg += step_deg) w.cam_points.push_back({deg * kPi / 180, s.radius_m(deg * kPi / 180)});
+  for (double deg = 0; deg < 180 - 1e-9; deg += step_deg) std::get<Cam>(w.model).points.push_back({deg * kPi / 180, s.radius_m(deg * kPi / 180)});
   return w;
 }
 

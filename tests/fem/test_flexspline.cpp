@@ -15,7 +15,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-FlexsplineModel tube_with_generator(WaveGeneratorModel model) {
+FlexsplineModel tube_with_generator(GeneratorModel model) {
   FlexsplineModel c;
   c.flexspline.shape = FlexsplineShape::Tube;
   c.flexspline.teeth = TeethModel::None;
@@ -43,7 +43,7 @@ TetMesh mesh_of(const FlexsplineModel& c) {
 }
 
 TEST(FourForceGenerator, LoadsAreSelfEquilibratedAndReachW0WithoutNetRotation) {
-  const FlexsplineModel c = tube_with_generator(WaveGeneratorModel::FourForce);
+  const FlexsplineModel c = tube_with_generator(FourForce{});
   const TetMesh m = mesh_of(c);
   const FlexsplineSolution s = analyse_flexspline(c, m);
   // Four equal radial forces at ±β and π ± β: zero resultant and zero moment, to round-off of the patch integration
@@ -96,7 +96,7 @@ TEST(Fatigue, GoodmanSafetyFactorAndCycle) {
 // the major axis, and with torque the clamp's and the generator's reactions balance the applied torque (1e-8: an
 // identity of the discrete equations, the generator's share included).
 TEST(CamGenerator, PushesOnlyTouchesAroundTheMajorAxisAndBalancesTorque) {
-  const FlexsplineModel c = tube_with_generator(WaveGeneratorModel::Cam);
+  const FlexsplineModel c = tube_with_generator(Cam{});
   const TetMesh m = mesh_of(c);
   const FlexsplineSolution s = analyse_flexspline(c, m);
   ASSERT_TRUE(s.generator.has_value());
@@ -129,7 +129,7 @@ TEST(CamGenerator, PushesOnlyTouchesAroundTheMajorAxisAndBalancesTorque) {
 // alone (symmetric), the standoff that reaches w0 is found on the linear all-touching problem and the unilateral solve
 // keeps it (1e-6), and with torque the reactions balance (1e-8); a roller's normal is radial, so it carries no torque.
 TEST(RollerGenerator, FourRollersTouchReachW0AndBalanceTorque) {
-  FlexsplineModel c = tube_with_generator(WaveGeneratorModel::Rollers);
+  FlexsplineModel c = tube_with_generator(Rollers{});
   const TetMesh m = mesh_of(c);
   const FlexsplineSolution s = analyse_flexspline(c, m);
   ASSERT_TRUE(s.generator.has_value());

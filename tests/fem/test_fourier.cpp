@@ -130,8 +130,8 @@ TEST(FourierAxis, CupBossWithEveryHarmonic) {
   c.mesh.wall_layers = 1;
   c.load.torque_Nm = 10;
   WaveGeneratorParams w;
-  w.model = WaveGeneratorModel::Forces;
-  w.forces = {{0.3, 1.0}, {2.0, 0.5}, {4.0, 0.7}};  // no symmetry: every harmonic and both families are loaded
+  const GivenForces given{{{0.3, 1.0}, {2.0, 0.5}, {4.0, 0.7}}};  // no symmetry: every harmonic and both families
+  w.model = given;
   w.force_N = 100;
   c.wave_generator = w;
   c.solver.method = SolverMethod::Fourier;
@@ -149,9 +149,9 @@ TEST(FourierAxis, CupBossWithEveryHarmonic) {
   // The loads' resultant is what the forces add up to (weights × force scale along their directions).
   Eigen::Vector3d expect = Eigen::Vector3d::Zero();
   double at_end = 0;
-  for (const auto& f : w.forces) if (std::abs(std::remainder(f.angle_rad, 2 * kPi)) < kPi / 2) at_end += f.weight;
+  for (const auto& f : given.forces) if (std::abs(std::remainder(f.angle_rad, 2 * kPi)) < kPi / 2) at_end += f.weight;
   const double scale = w.force_N / at_end;
-  for (const auto& f : w.forces) {
+  for (const auto& f : given.forces) {
     // A patch ±3° wide: its resultant is the weight times sin(3°)/(3°) along the patch's centre direction.
     const double h = 3.0 * kPi / 180, k = std::sin(h) / h;
     expect += scale * f.weight * k * Eigen::Vector3d(std::cos(f.angle_rad), std::sin(f.angle_rad), 0);
@@ -165,7 +165,7 @@ TEST(FourierGrid, RevolvedVolumeAndValues) {
   FlexsplineModel c = plain_tube();
   c.solver.harmonics = 4;
   WaveGeneratorParams w;
-  w.model = WaveGeneratorModel::FourForce;
+  w.model = FourForce{};
   w.radial_deformation_m = 0.1e-3;
   c.wave_generator = w;
   const int sectors = 48;
@@ -205,7 +205,7 @@ TEST(FourierCam, UnilateralContactBalances) {
   c.solver.harmonics = 48;
   c.load.torque_Nm = 20;
   WaveGeneratorParams w;
-  w.model = WaveGeneratorModel::Cam;
+  w.model = Cam{};
   w.radial_deformation_m = 0.1e-3;
   c.wave_generator = w;
   const FourierSolution s = analyse_flexspline_fourier(c);

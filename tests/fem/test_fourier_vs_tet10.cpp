@@ -16,7 +16,7 @@
 namespace sw {
 namespace {
 
-FlexsplineModel tube_with_generator(WaveGeneratorModel model) {
+FlexsplineModel tube_with_generator(GeneratorModel model) {
   FlexsplineModel c;
   c.flexspline.shape = FlexsplineShape::Tube;
   c.flexspline.teeth = TeethModel::None;
@@ -78,7 +78,7 @@ Differences compare(const FlexsplineModel& c, int harmonics = 64) {
 // faces whose centroids fall in ±3° × band: on 2 mm faces at r = 18.4 mm, a patch is one face wide), nominal hoop
 // stress 0.7 %.
 TEST(FourierVsTet10, TubeFourForce) {
-  const Differences d = compare(tube_with_generator(WaveGeneratorModel::FourForce));
+  const Differences d = compare(tube_with_generator(FourForce{}));
   EXPECT_LT(std::abs(d.phi0_rel), 1e-6);
   EXPECT_LT(d.w_max, 0.025);
   EXPECT_LT(d.v_max, 0.012);
@@ -89,7 +89,7 @@ TEST(FourierVsTet10, TubeFourForce) {
 // faces on r = 18.4 mm; N = 60 gives the harmonic path the same), so the same contact problem up to each solver's
 // discretisation: the contact zones, the total radial force and the neutral curve must agree.
 TEST(FourierVsTet10, TubeCam) {
-  FlexsplineModel c = tube_with_generator(WaveGeneratorModel::Cam);
+  FlexsplineModel c = tube_with_generator(Cam{});
   const Differences d = compare(c, 60);
   std::printf("  total radial force tet10 %.4g N, fourier %.4g N (%+.2e)\n", d.force_t, d.force_f, d.force_f / d.force_t - 1);
   for (std::size_t k = 0; k < std::max(d.zones_t.size(), d.zones_f.size()); ++k)

@@ -314,7 +314,7 @@ TEST(CamOnThinRing, BilateralStationsRecoverThePrescribedShape) {
 // by less than 5 % of w0 everywhere (without the generator in place the four-force model's torque case moved it by
 // ±1.5 w0). The torque balance holds with the generator's share (1e-8), and the cup's closed form is within 3 % of
 // the FEM even on this mesh.
-void expect_rim_held(WaveGeneratorModel model, double rim_tolerance_of_w0) {
+void expect_rim_held(GeneratorModel model, double rim_tolerance_of_w0) {
   FlexsplineModel c = flexspline_model(load_case("cases/seed_190_192.toml"));
   c.mesh.size_m = 1.2e-3;
   c.mesh.wall_layers = 1;
@@ -352,12 +352,12 @@ void expect_rim_held(WaveGeneratorModel model, double rim_tolerance_of_w0) {
     if (s.generator->unilateral) EXPECT_GE(f, 0.0);
 }
 
-TEST(SeedCupUnderTorque, FourForceGeneratorHoldsTheRim) { expect_rim_held(WaveGeneratorModel::FourForce, 0.05); }
+TEST(SeedCupUnderTorque, FourForceGeneratorHoldsTheRim) { expect_rim_held(FourForce{}, 0.05); }
 // A cam holds the rim only inward: where the torque lifts the rim off, nothing holds it. Measured: 9.2 % of w0 (18.4 µm
 // outward at the open end, 16.5 µm within the band) at −121°, 3° outside the contact zone's edge, where the bore only
 // just clears the cam at rest; the torque's traction here is tangential only (a tooth force's radial part would press
 // the rim onto the cam). The bound is the unsupported torque case's ±1.5·w0 cut by ten.
-TEST(SeedCupUnderTorque, CamHoldsTheRimInwardOnly) { expect_rim_held(WaveGeneratorModel::Cam, 0.15); }
+TEST(SeedCupUnderTorque, CamHoldsTheRimInwardOnly) { expect_rim_held(Cam{}, 0.15); }
 
 // --- The seed cup's cam with a ball bearing in series (coarse mesh, one factorisation) ----------------------------------
 // Where a station pair touches, the bore's displacement there is the cam's standoff less the balls' Hertzian approach:
@@ -440,9 +440,10 @@ TEST(SeedCupCamProfile, ListSampledFromPolarGivesThePolarCam) {
   const FlexsplineSystem sys = assemble_and_factorise(c, m);
   const FlexsplineSolution polar = analyse_flexspline(c, m, sys);
   auto& w = *c.wave_generator;
+  Cam& cam = std::get<Cam>(w.model);
   for (int deg = 0; deg < 180; deg += 5)
-    w.cam_points.push_back({deg * kPi / 180, c.flexspline.inner_radius_m + *w.radial_deformation_m * std::cos(2 * deg * kPi / 180)});
-  w.cam_profile = CamProfile::List;
+    cam.points.push_back({deg * kPi / 180, c.flexspline.inner_radius_m + *w.radial_deformation_m * std::cos(2 * deg * kPi / 180)});
+  cam.profile = CamProfile::List;
   const FlexsplineSolution listed = analyse_flexspline(c, m, sys);
   const auto &a = *polar.generator, &b = *listed.generator;
   const double f_max = *std::max_element(a.force_wg_N.begin(), a.force_wg_N.end());

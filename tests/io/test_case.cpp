@@ -109,8 +109,8 @@ TEST(CaseFile, TipRoundingIsReadInMillimetresAndChecked) {
 }
 
 TEST(CaseFile, ContactFaceSlicesAreAnIntegerFromOneToEight) {
-  EXPECT_EQ(parse_case(kTube, "cases/x.toml").contact_face_slices, 1);
-  EXPECT_EQ(parse_case(std::string(kTube) + "[contact]\nface_slices = 3\n", "cases/x.toml").contact_face_slices, 3);
+  EXPECT_EQ(parse_case(kTube, "cases/x.toml").contact.face_slices, 1);
+  EXPECT_EQ(parse_case(std::string(kTube) + "[contact]\nface_slices = 3\n", "cases/x.toml").contact.face_slices, 3);
   const std::string zero = error_of(std::string(kTube) + "[contact]\nface_slices = 0\n");
   EXPECT_NE(zero.find(": contact.face_slices = 0; must be >= 1"), std::string::npos) << zero;
   const std::string many = error_of(std::string(kTube) + "[contact]\nface_slices = 9\n");
@@ -139,17 +139,17 @@ TEST(CaseFile, ForcesListIsReadWithDegreesAndWeights) {
                                 "[wave_generator]\nmodel = \"forces\"\nforce_N = 10\n"
                                 "forces = [{angle_deg = 30, weight = 2.0}, {angle_deg = 210}]\n",
                             "f.toml");
-  ASSERT_EQ(c.wave_generator->forces.size(), 2u);
-  EXPECT_NEAR(c.wave_generator->forces[0].angle_rad, 30.0 * 3.14159265358979 / 180.0, 1e-12);
-  EXPECT_DOUBLE_EQ(c.wave_generator->forces[1].weight, 1.0);
+  ASSERT_EQ(std::get<GivenForces>(c.wave_generator->model).forces.size(), 2u);
+  EXPECT_NEAR(std::get<GivenForces>(c.wave_generator->model).forces[0].angle_rad, 30.0 * 3.14159265358979 / 180.0, 1e-12);
+  EXPECT_DOUBLE_EQ(std::get<GivenForces>(c.wave_generator->model).forces[1].weight, 1.0);
 }
 
 TEST(CaseFile, CamProfileAndFitAreReadAndChecked) {
   const std::string cam = std::string(kTube) + "[wave_generator]\nmodel = \"cam\"\nradial_deformation_mm = 0.2\n";
   const Case c = parse_case(cam + "profile = \"ellipse\"\nfit_um = 5\n", "c.toml");
-  EXPECT_EQ(c.wave_generator->cam_profile, CamProfile::Ellipse);
-  EXPECT_DOUBLE_EQ(c.wave_generator->cam_clearance_m, 5e-6);
-  EXPECT_EQ(parse_case(cam, "c.toml").wave_generator->cam_profile, CamProfile::Polar);  // the default
+  EXPECT_EQ(std::get<Cam>(c.wave_generator->model).profile, CamProfile::Ellipse);
+  EXPECT_DOUBLE_EQ(std::get<Cam>(c.wave_generator->model).clearance_m, 5e-6);
+  EXPECT_EQ(std::get<Cam>(parse_case(cam, "c.toml").wave_generator->model).profile, CamProfile::Polar);  // the default
   EXPECT_NE(error_of(cam + "fit_um = 300\n").find("wave_generator.fit_um = 300; must be smaller"), std::string::npos);
   EXPECT_NE(error_of(cam + "profile = \"oval\"\n").find("wave_generator.profile"), std::string::npos);
   // A force model has no cam profile.
@@ -166,9 +166,9 @@ TEST(CaseFile, CamProfileListIsReadAndChecked) {
               std::to_string(18.5 + 0.2 * std::cos(2 * deg * 3.14159265358979 / 180)) + "}";
   points += "]\n";
   const Case c = parse_case(cam + points, "c.toml");
-  EXPECT_EQ(c.wave_generator->cam_profile, CamProfile::List);
-  ASSERT_EQ(c.wave_generator->cam_points.size(), 12u);
-  EXPECT_NEAR(c.wave_generator->cam_points[1].angle_rad, 15 * 3.14159265358979 / 180, 1e-12);
+  EXPECT_EQ(std::get<Cam>(c.wave_generator->model).profile, CamProfile::List);
+  ASSERT_EQ(std::get<Cam>(c.wave_generator->model).points.size(), 12u);
+  EXPECT_NEAR(std::get<Cam>(c.wave_generator->model).points[1].angle_rad, 15 * 3.14159265358979 / 180, 1e-12);
   EXPECT_NEAR(*c.wave_generator->radial_deformation_m, 0.2e-3, 1e-9);  // the listed point at 0° (to print precision)
   // What describe_case prints reads back to the same list.
   const std::string text = describe_case(c);

@@ -31,7 +31,7 @@ TEST(RingCurve, TwoForceRatioMatchesRoarkDiametralLoad) {
   // Roark, thin ring under two diametral point loads (inextensible): change of the loaded diameter 0.1488·PR³/EI,
   // of the perpendicular one −0.1366·PR³/EI. Tolerance 2e-3 on the ratio: Roark prints four digits.
   sw::WaveGeneratorParams wg;
-  wg.model = sw::WaveGeneratorModel::TwoForce;
+  wg.model = sw::TwoForce{};
   const sw::NeutralCurve c = sw::generator_neutral_curve(kRm, kW0, wg);
   EXPECT_NEAR(c.at(0).w_m, kW0, 1e-15);
   EXPECT_NEAR(c.at(kPi / 2).w_m / c.at(0).w_m, -0.1366 / 0.1488, 2e-3);

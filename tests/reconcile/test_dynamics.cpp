@@ -40,7 +40,7 @@ sw::Case small_case(PairMotion pairs) {
   p.load_ramp_start_s = 0.012;
   p.load_ramp_end_s = 0.0122;
   p.steady_from_s = 0.02;
-  c.dynamics = std::make_shared<const DynamicsParams>(p);
+  c.dynamics = p;
   return c;
 }
 
@@ -125,7 +125,7 @@ TEST(ReconcileDynamicsBaseline, IntegratesTighterThanALooseCase) {
   DynamicsParams p = *c.dynamics;
   p.relative_tolerance = 1e-5;
   p.absolute_tolerance_rad = 1e-9;
-  c.dynamics = std::make_shared<const DynamicsParams>(p);
+  c.dynamics = p;
   app::BaselineSources src;
   src.case_file = c;
   std::vector<std::string> notes;

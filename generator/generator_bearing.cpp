@@ -1,4 +1,4 @@
-#include "fem/generator_bearing.hpp"
+#include "generator/generator_bearing.hpp"
 
 #include <cmath>
 #include <limits>

@@ -8,7 +8,7 @@
 //             smoothly between the points.
 #include <vector>
 
-#include "common/params.hpp"
+#include "generator/wave_generator.hpp"
 
 namespace sw {
 
@@ -29,7 +29,9 @@ private:
 
 class CamSurface {
 public:
+  /// The cam of a cam generator `w` (throws std::bad_variant_access for another model).
   CamSurface(const WaveGeneratorParams& w, double bore_radius_m);
+  CamSurface(const Cam& cam, double w0_m, double bore_radius_m);
   double radius_m(double theta_rad) const;   ///< ρ(θ)
   double standoff_m(double theta_rad) const; ///< ρ(θ) − r − fit: > 0 where the cam would push the bore out
   double tilt(double theta_rad) const;       ///< ρ'/ρ: the normal n ∝ e_r − tilt·e_θ

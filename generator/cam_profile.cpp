@@ -1,4 +1,4 @@
-#include "fem/cam_profile.hpp"
+#include "generator/cam_profile.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -68,8 +68,11 @@ double cam_list_w0_m(const std::vector<CamPoint>& points, double bore_radius_m) 
 }
 
 CamSurface::CamSurface(const WaveGeneratorParams& w, double bore_radius_m)
-    : profile_(w.cam_profile), r_(bore_radius_m), w0_(w.radial_deformation_m.value_or(0.0)), fit_(w.cam_clearance_m) {
-  if (profile_ == CamProfile::List) list_.push_back(list_spline(w.cam_points));
+    : CamSurface(std::get<Cam>(w.model), w.radial_deformation_m.value_or(0.0), bore_radius_m) {}
+
+CamSurface::CamSurface(const Cam& cam, double w0_m, double bore_radius_m)
+    : profile_(cam.profile), r_(bore_radius_m), w0_(w0_m), fit_(cam.clearance_m) {
+  if (profile_ == CamProfile::List) list_.push_back(list_spline(cam.points));
 }
 
 double CamSurface::radius_m(double t) const {

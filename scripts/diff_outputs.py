@@ -2,10 +2,10 @@
 """Compares the JSON outputs of two runs of the shipped cases, figure by figure.
 
 Usage: scripts/diff_outputs.py REFERENCE_DIR NEW_DIR [--rel 1e-12]
-Each DIR holds one folder per case (as `strainwave run CASE --out DIR/<stem>` writes it). Every result.json,
-backlash.json, contact.json, dynamics.json and reconcile.json found in REFERENCE_DIR is compared with its namesake in
-NEW_DIR: the same keys, the same strings, numbers equal to a relative tolerance (default 1e-12: a refactor moves no
-figure). Timings, peak memory, the tool's version and the paths a run was given are left out. Exits 1 on the first
+Each DIR holds one folder per case (as `strainwave run CASE --out DIR/<stem>` writes it). For every case folder of
+NEW_DIR, each result.json, backlash.json, contact.json, dynamics.json and reconcile.json of REFERENCE_DIR's folder
+of that name is compared with its namesake in NEW_DIR: the same keys, the same strings, numbers equal to a relative tolerance (default 1e-12: a refactor moves no
+figure). Timings and rates, peak memory, the tool's version and the paths a run was given are left out. Exits 1 on the first
 case with a difference, after listing every difference of it (at most 40).
 """
 import json
@@ -13,15 +13,16 @@ import math
 import sys
 from pathlib import Path
 
+REF = NEW = Path()
 FILES = ["result.json", "backlash.json", "contact.json", "dynamics.json", "reconcile.json"]
-IGNORED_KEYS = {"timings_s", "peak_rss_bytes", "version", "case_path", "out_dir", "setup_s", "influence_s",
-                "contact_s", "check_s", "total_s", "seconds", "elapsed_s"}
+IGNORED_KEYS = {"timings_s", "peak_rss_bytes", "version", "setup_s", "influence_s", "contact_s", "check_s",
+                "real_time_factor"}
 
 
 def differences(a, b, path, rel, out):
     if isinstance(a, dict) and isinstance(b, dict):
         for k in sorted(set(a) | set(b)):
-            if k in IGNORED_KEYS or k.endswith("_s") and k.startswith("time"):
+            if k in IGNORED_KEYS or k.endswith("_per_s"):  # timings and rates
                 continue
             if k not in a or k not in b:
                 out.append(f"{path}.{k}: only in {'new' if k not in a else 'reference'}")
@@ -37,6 +38,9 @@ def differences(a, b, path, rel, out):
             return
         if abs(a - b) > rel * max(abs(a), abs(b)):
             out.append(f"{path}: {a!r} -> {b!r}")
+    elif isinstance(a, str) and isinstance(b, str):
+        if a.replace(str(REF), "DIR") != b.replace(str(NEW), "DIR"):  # the paths the runs were given
+            out.append(f"{path}: {a!r} -> {b!r}")
     elif a != b:
         out.append(f"{path}: {a!r} -> {b!r}")
 
@@ -50,11 +54,12 @@ def main():
     if len(args) != 2:
         print(__doc__.strip().splitlines()[2], file=sys.stderr)
         return 2
-    ref, new = Path(args[0]), Path(args[1])
+    global REF, NEW
+    ref, new = REF, NEW = Path(args[0]), Path(args[1])
     compared = 0
     failed = False
     for f in sorted(ref.glob("*/*.json")):
-        if f.name not in FILES:
+        if f.name not in FILES or not (new / f.parent.name).is_dir():
             continue
         g = new / f.parent.name / f.name
         if not g.exists():

@@ -35,13 +35,25 @@ Kkt solve_on(const ContactProblem& p, const std::vector<Eigen::Index>& S, double
   return k;
 }
 
-}  // namespace
+/// The iterate of the active-set method: the forces x (feasible: x ≥ 0, λᵀx = T), the passive set (contacts free to
+/// carry force) and the last multiplier ψ.
+struct ActiveSet {
+  Eigen::VectorXd x;
+  std::vector<bool> passive;
+  double psi = 0;
+};
 
-ContactSolution solve_contact(const ContactProblem& p, double T, const Eigen::VectorXd* warm) {
+std::vector<Eigen::Index> passive_indices(const std::vector<bool>& passive) {
+  std::vector<Eigen::Index> S;
+  for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(passive.size()); ++i)
+    if (passive[i]) S.push_back(i);
+  return S;
+}
+
+/// A feasible start: the whole torque on the contact that closes first in T's direction, or, when `warm` loads a set
+/// whose forces on it all come out positive, that set's solution. InputError when no contact closes in T's direction.
+ActiveSet feasible_start(const ContactProblem& p, double T, const Eigen::VectorXd* warm) {
   const Eigen::Index n = p.q.size();
-  if (p.A.rows() != n || p.A.cols() != n || p.lambda.size() != n)
-    throw std::invalid_argument("solve_contact: A, q and lambda sizes differ");
-  // A feasible start: the whole torque on the contact that closes first in T's direction.
   Eigen::Index first = -1;
   double first_turn = std::numeric_limits<double>::infinity();
   for (Eigen::Index i = 0; i < n; ++i)
@@ -49,82 +61,102 @@ ContactSolution solve_contact(const ContactProblem& p, double T, const Eigen::Ve
   if (first < 0)
     throw InputError("contact: no tooth flank can carry a torque of " + std::to_string(T) +
                      " N·m (no flank pair closes in that direction)");
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
-  x[first] = T / p.lambda[first];
-  std::vector<bool> passive(n, false);
-  passive[first] = true;
-  if (warm && warm->size() == n) {  // the warm set, if it gives a feasible start
-    std::vector<Eigen::Index> S;
-    for (Eigen::Index i = 0; i < n; ++i)
-      if ((*warm)[i] > 0) S.push_back(i);
-    if (!S.empty()) {
-      const Kkt k = solve_on(p, S, T);
-      if ((k.z.array() > 0).all() && k.z.allFinite()) {
-        x.setZero();
-        std::fill(passive.begin(), passive.end(), false);
-        for (std::size_t r = 0; r < S.size(); ++r) {
-          x[S[r]] = k.z[r];
-          passive[S[r]] = true;
-        }
-      }
-    }
+  ActiveSet s{Eigen::VectorXd::Zero(n), std::vector<bool>(n, false)};
+  s.x[first] = T / p.lambda[first];
+  s.passive[first] = true;
+  if (!warm || warm->size() != n) return s;
+  std::vector<Eigen::Index> S;
+  for (Eigen::Index i = 0; i < n; ++i)
+    if ((*warm)[i] > 0) S.push_back(i);
+  if (S.empty()) return s;
+  const Kkt k = solve_on(p, S, T);
+  if (!((k.z.array() > 0).all() && k.z.allFinite())) return s;
+  s.x.setZero();
+  std::fill(s.passive.begin(), s.passive.end(), false);
+  for (std::size_t r = 0; r < S.size(); ++r) {
+    s.x[S[r]] = k.z[r];
+    s.passive[S[r]] = true;
   }
-  const double scale = std::max(p.q.cwiseAbs().maxCoeff(), std::abs(T) * p.A.diagonal().maxCoeff() / p.lambda.cwiseAbs().maxCoeff());
-  const double tol = 1e-12 * std::max(scale, 1e-300);
-  ContactSolution out;
-  double psi = 0;
-  Eigen::Index added = -1;
-  bool stalled = false;
-  for (int outer = 0; outer < 6 * n + 20; ++outer) {
-    // Solve on the passive set, stepping back while a force would go negative (Lawson–Hanson inner loop).
-    for (bool first_pass = true;; first_pass = false) {
-      std::vector<Eigen::Index> S;
-      for (Eigen::Index i = 0; i < n; ++i)
-        if (passive[i]) S.push_back(i);
-      const Kkt k = solve_on(p, S, T);
-      if (first_pass && added >= 0) {
-        const auto r = std::find(S.begin(), S.end(), added) - S.begin();
-        if (k.z[r] <= 0) {  // round-off: the contact cannot carry force after all; the previous iterate is optimal
-          passive[added] = false;
-          stalled = true;
-          break;
-        }
+  return s;
+}
+
+/// Solves on the passive set, stepping back while a force would go negative (Lawson–Hanson inner loop); updates x,
+/// the passive set and ψ. False when the contact `added` last cannot carry force after all (round-off): it leaves the
+/// passive set and the previous iterate, left as it was, is optimal.
+bool solve_on_passive_set(const ContactProblem& p, double T, ActiveSet& s, Eigen::Index added) {
+  for (bool first_pass = true;; first_pass = false) {
+    const std::vector<Eigen::Index> S = passive_indices(s.passive);
+    const Kkt k = solve_on(p, S, T);
+    if (first_pass && added >= 0) {
+      const auto r = std::find(S.begin(), S.end(), added) - S.begin();
+      if (k.z[r] <= 0) {
+        s.passive[added] = false;
+        return false;
       }
-      psi = k.psi;
-      bool all_positive = true;
-      for (double v : k.z) all_positive = all_positive && v > 0;
-      if (all_positive) {
-        x.setZero();
-        for (std::size_t r = 0; r < S.size(); ++r) x[S[r]] = k.z[r];
-        break;
-      }
-      double alpha = 1.0;
-      for (std::size_t r = 0; r < S.size(); ++r)
-        if (k.z[r] <= 0) alpha = std::min(alpha, x[S[r]] / (x[S[r]] - k.z[r]));
-      for (std::size_t r = 0; r < S.size(); ++r) x[S[r]] += alpha * (k.z[r] - x[S[r]]);
-      const double xmax = x.cwiseAbs().maxCoeff();
-      for (Eigen::Index i : S)
-        if (x[i] <= 1e-14 * xmax) {
-          x[i] = 0;
-          passive[i] = false;
-        }
     }
-    // The most penetrating contact outside the passive set joins it; none: optimal.
-    const Eigen::VectorXd gap = p.A * x + p.q - psi * p.lambda;
-    Eigen::Index add = -1;
-    double worst = -tol;
-    for (Eigen::Index i = 0; i < n && !stalled; ++i)
-      if (!passive[i] && gap[i] < worst) worst = gap[add = i];
+    s.psi = k.psi;
+    bool all_positive = true;
+    for (double v : k.z) all_positive = all_positive && v > 0;
+    if (all_positive) {
+      s.x.setZero();
+      for (std::size_t r = 0; r < S.size(); ++r) s.x[S[r]] = k.z[r];
+      return true;
+    }
+    double alpha = 1.0;
+    for (std::size_t r = 0; r < S.size(); ++r)
+      if (k.z[r] <= 0) alpha = std::min(alpha, s.x[S[r]] / (s.x[S[r]] - k.z[r]));
+    for (std::size_t r = 0; r < S.size(); ++r) s.x[S[r]] += alpha * (k.z[r] - s.x[S[r]]);
+    const double xmax = s.x.cwiseAbs().maxCoeff();
+    for (Eigen::Index i : S)
+      if (s.x[i] <= 1e-14 * xmax) {
+        s.x[i] = 0;
+        s.passive[i] = false;
+      }
+  }
+}
+
+/// The gap below which a contact counts as penetrating: round-off of the problem's largest gap, or of the gap the
+/// torque opens through the largest compliance.
+double penetration_tolerance(const ContactProblem& p, double T) {
+  const double scale = std::max(p.q.cwiseAbs().maxCoeff(),
+                                std::abs(T) * p.A.diagonal().maxCoeff() / p.lambda.cwiseAbs().maxCoeff());
+  return 1e-12 * std::max(scale, 1e-300);
+}
+
+/// The most penetrating contact outside the passive set (gap below −tol), −1 when none.
+Eigen::Index most_penetrating(const Eigen::VectorXd& gap, const std::vector<bool>& passive, double tol) {
+  Eigen::Index add = -1;
+  double worst = -tol;
+  for (Eigen::Index i = 0; i < gap.size(); ++i)
+    if (!passive[i] && gap[i] < worst) worst = gap[add = i];
+  return add;
+}
+
+}  // namespace
+
+ContactSolution solve_contact(const ContactProblem& p, double T, const Eigen::VectorXd* warm) {
+  const Eigen::Index n = p.q.size();
+  if (p.A.rows() != n || p.A.cols() != n || p.lambda.size() != n)
+    throw std::invalid_argument("solve_contact: A, q and lambda sizes differ");
+  ActiveSet s = feasible_start(p, T, warm);
+  const double tol = penetration_tolerance(p, T);
+  Eigen::Index added = -1;
+  for (int outer = 0; outer < 6 * n + 20; ++outer) {
+    const bool stalled = !solve_on_passive_set(p, T, s, added);
+    // The most penetrating contact outside the passive set joins it; none (or a stalled step): optimal.
+    const Eigen::VectorXd gap = p.A * s.x + p.q - s.psi * p.lambda;
+    const Eigen::Index add = stalled ? -1 : most_penetrating(gap, s.passive, tol);
     if (add < 0) {
-      out.force_N = x;
+      ContactSolution out;
+      out.force_N = s.x;
       out.gap_m = gap;
       for (Eigen::Index i = 0; i < n; ++i)
-        if (passive[i]) out.gap_m[i] = 0;  // equal to zero to round-off by construction
-      out.twist_rad = psi;
+        if (s.passive[i]) out.gap_m[i] = 0;  // equal to zero to round-off by construction
+      out.twist_rad = s.psi;
       out.iterations = outer + 1;
       return out;
     }
-    passive[add] = true;
+    s.passive[add] = true;
     added = add;
   }
   throw std::runtime_error("solve_contact: the active-set iteration did not converge");

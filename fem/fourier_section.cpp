@@ -136,6 +136,142 @@ Block graded_block(Block b, std::vector<double> us, std::vector<double> vs) {
   return b;
 }
 
+/// The section's dimensions (m) and its cells: r_i, wall t_w, r_o, L, the rim's start z_r (L without a rim) and outer
+/// radius r_rim (r_o without a rim), the diaphragm t_d and fillet r_f (0 for a tube), boss r_b and h_b = 2 t_d; the
+/// layer count shared by every wall, the cell length along the wall and the diaphragm, the rim's extra layers beyond
+/// r_o, the grading levels toward the boss corners and the graded layer corners.
+struct SectionSizes {
+  bool cup = false, rim = false;
+  double ri, tw, ro, L, zr, rr, td, rf, rb, hb;
+  int layers;
+  double along_wall, along_diaphragm;
+  int extra, levels;
+  std::vector<double> lay;
+};
+
+SectionSizes section_sizes(const FlexsplineParams& f, const std::optional<GearParams>& gear, const MeshParams& mesh) {
+  SectionSizes s;
+  s.cup = f.shape == FlexsplineShape::Cup;
+  s.rim = s.cup || f.teeth != TeethModel::None;
+  s.ri = f.inner_radius_m;
+  s.tw = f.wall_thickness_m;
+  s.ro = s.ri + s.tw;
+  s.L = f.length_m;
+  s.zr = s.rim ? s.L - f.rim_width_m : s.L;
+  s.rr = s.rim ? rim_outer_radius(f, gear) : s.ro;
+  s.td = s.cup ? f.diaphragm_thickness_m : 0.0;
+  s.rf = s.cup ? f.fillet_radius_m : 0.0;
+  s.rb = f.boss_radius_m;
+  s.hb = 2.0 * s.td;
+  // Layers: the same count through every wall, so the blocks meet node to node.
+  s.layers = wall_size(s.tw, mesh).layers;
+  if (s.cup) s.layers = std::max(s.layers, wall_size(s.td, mesh).layers);
+  s.along_wall = std::min(mesh.size_m, kMaxLayerAspect * s.tw / s.layers);
+  s.along_diaphragm = s.cup ? std::min(mesh.size_m, kMaxLayerAspect * s.td / s.layers) : s.along_wall;
+  const double across = s.tw / s.layers;
+  s.extra = s.rr - s.ro > 1e-9 ? std::max(1, static_cast<int>(std::lround((s.rr - s.ro) / across))) : 0;
+  // The cup's boss/diaphragm junction is singular: at r = r_boss the clamped boss meets the free diaphragm faces, at
+  // z = 0 on a straight line (clamped → free) and at z = t_d in a 270° corner (φ₀ converges as h^0.6 on uniform
+  // sections). The cells at the junction are split geometrically (halving) toward it, in r in the diaphragm and the
+  // boss, in z through every wall's layers (the layers are shared by all walls, so their outermost layers are thin
+  // everywhere) and in the boss above the diaphragm. Levels: 2 + log2(layers), so the corner cell shrinks as h².
+  // mesh.corner_levels overrides the count (mesh/flexspline.hpp: the TET10 size field uses the same key).
+  s.levels = !s.cup ? 0
+             : mesh.corner_levels >= 0
+                 ? mesh.corner_levels
+                 : 2 + static_cast<int>(std::ceil(std::log2(static_cast<double>(s.layers))));
+  s.lay = graded(s.layers, s.levels, true, true);
+  return s;
+}
+
+/// The axial break lines of the body wall and rim: the body's start, the rim's shoulder, the generator band's edges
+/// (when inside the wall) and the open end, sorted and without repeats.
+std::vector<double> axial_breaks(const SectionSizes& s, std::optional<std::pair<double, double>> band) {
+  const double z_start = s.cup ? s.td + s.rf : 0.0;
+  std::vector<double> breaks = {z_start, s.L};
+  if (s.rim) breaks.push_back(s.zr);
+  if (band)
+    for (const double z : {band->first - 0.5 * band->second, band->first + 0.5 * band->second})
+      if (z > z_start + 1e-9 && z < s.L - 1e-9) breaks.push_back(z);
+  std::sort(breaks.begin(), breaks.end());
+  breaks.erase(std::unique(breaks.begin(), breaks.end(), [](double a, double c) { return std::abs(a - c) < 1e-9; }),
+               breaks.end());
+  return breaks;
+}
+
+/// Body wall and rim: a block through the wall per axial segment between the break lines, and in the rim a block
+/// from r_o out to the rim's outer radius.
+void add_wall_blocks(SectionBuilder& b, const SectionSizes& s, const std::vector<double>& breaks) {
+  for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
+    const double z0 = breaks[k], z1 = breaks[k + 1];
+    const bool in_rim = s.rim && z0 >= s.zr - 1e-12;
+    const int n = cells(z1 - z0, s.along_wall);
+    const int bottom = (!s.cup && k == 0) ? kSurfaceClamped : kInterior;
+    const int top = k + 2 == breaks.size() ? kSurfaceOpenEnd : kInterior;
+    const int right = !in_rim ? kSurfaceOuter : s.extra > 0 ? kInterior : kSurfaceRimOuter;
+    b.add(graded_block(rectangle(s.ri, s.ro, z0, z1, s.layers, n, in_rim ? 1 : 0, {bottom, right, top, kSurfaceInner}),
+                       s.lay, {}));
+    if (in_rim && s.extra > 0) {
+      const int shoulder = std::abs(z0 - s.zr) < 1e-12 ? kSurfaceRimStep : kInterior;
+      b.add(rectangle(s.ro, s.rr, z0, z1, s.extra, n, 1, {shoulder, kSurfaceRimOuter, top, kInterior}));
+    }
+  }
+}
+
+/// The fillet's centre (r_i - r_f, t_d + r_f).
+V2 fillet_centre(const SectionSizes& s) { return V2(s.ri - s.rf, s.td + s.rf); }
+
+/// One block of the fillet's elbow: rays from the fillet's centre O at angles a0..a1 (u), from the arc out to the
+/// diaphragm's bottom z = 0 (`to_bottom`) or to the body's outer wall r = r_o (v).
+Block elbow_block(const SectionSizes& s, double a0, double a1, bool to_bottom) {
+  const V2 O = fillet_centre(s);
+  const double ro = s.ro, rf = s.rf;
+  Block e;
+  e.map = [=](double u, double v) {
+    const double a = a0 + u * (a1 - a0);
+    const V2 dir(std::cos(a), std::sin(a));
+    const double t = to_bottom ? O.y() / -dir.y() : (ro - O.x()) / dir.x();
+    const V2 inner = O + rf * dir, outer = O + t * dir;
+    return V2(inner + v * (outer - inner));
+  };
+  const double outer_len = (e.map(1, 1) - e.map(0, 1)).norm(), arc_len = rf * std::abs(a1 - a0);
+  e.nu = cells(std::max(outer_len, arc_len), std::min(s.along_wall, s.along_diaphragm));
+  e.nv = s.layers;
+  e.region = to_bottom ? 2 : 0;
+  e.marker = {kSurfaceDiaphragm, kInterior, to_bottom ? kSurfaceDiaphragm : kSurfaceOuter, kInterior};
+  return e;
+}
+
+/// The cup's diaphragm/wall elbow. With a fillet, two blocks of rays from its centre: the first ends on the
+/// diaphragm's bottom, the second on the body's outer wall; they meet at the ray through the outer corner (r_o, 0).
+/// Without, a square corner block.
+void add_elbow_blocks(SectionBuilder& b, const SectionSizes& s) {
+  if (s.rf > 0) {
+    const V2 O = fillet_centre(s);
+    const double alpha_k = std::atan2(-O.y(), s.ro - O.x());
+    b.add(graded_block(elbow_block(s, -0.5 * kPi, alpha_k, true), {}, s.lay));
+    b.add(graded_block(elbow_block(s, alpha_k, 0.0, false), {}, s.lay));
+  } else {
+    b.add(graded_block(
+        rectangle(s.ri, s.ro, 0.0, s.td, s.layers, s.layers, 2, {kSurfaceDiaphragm, kSurfaceOuter, kInterior, kInterior}),
+        s.lay, s.lay));
+  }
+}
+
+/// The cup's diaphragm from the boss to the elbow and the boss below and above the diaphragm's top, graded toward
+/// the boss/diaphragm junction.
+void add_diaphragm_and_boss_blocks(SectionBuilder& b, const SectionSizes& s, const MeshParams& mesh) {
+  const double rb = s.rb, td = s.td, hb = s.hb, r_dia = s.ri - s.rf;
+  b.add(graded_block(rectangle(rb, r_dia, 0.0, td, 1, 1, 2, {kSurfaceDiaphragm, kInterior, kSurfaceDiaphragm, kInterior}),
+                     graded(cells(r_dia - rb, s.along_diaphragm), s.levels, true, false), s.lay));
+  const double s_boss = kBossSizeFactor * mesh.size_m;
+  const std::vector<double> boss_r = graded(cells(rb, s_boss), s.levels, false, true);
+  b.add(graded_block(rectangle(0.0, rb, 0.0, td, 1, 1, 3, {kSurfaceClamped, kInterior, kInterior, kInterior}), boss_r,
+                     s.lay));
+  b.add(graded_block(rectangle(0.0, rb, td, hb, 1, 1, 3, {kInterior, kSurfaceClamped, kSurfaceClamped, kInterior}), boss_r,
+                     graded(cells(hb - td, s_boss), s.levels, true, false)));
+}
+
 }  // namespace
 
 SectionMesh mesh_annulus_section(double r_inner_m, double r_outer_m, double length_m, int layers, int cells_along) {
@@ -151,94 +287,12 @@ SectionMesh mesh_flexspline_section(const FlexsplineParams& f, const std::option
   if (f.teeth == TeethModel::Explicit)
     throw InputError("flexspline.teeth = \"explicit\": the toothed rim is not a body of revolution; the harmonic "
                      "solver takes teeth = \"ring\" or \"none\" (solver.method = \"tet10\" takes explicit teeth)");
-  const bool cup = f.shape == FlexsplineShape::Cup;
-  const bool rim = cup || f.teeth != TeethModel::None;
-  const double ri = f.inner_radius_m, tw = f.wall_thickness_m, ro = ri + tw, L = f.length_m;
-  const double zr = rim ? L - f.rim_width_m : L;
-  const double rr = rim ? rim_outer_radius(f, gear) : ro;
-  const double td = cup ? f.diaphragm_thickness_m : 0.0, rf = cup ? f.fillet_radius_m : 0.0;
-  const double rb = f.boss_radius_m, hb = 2.0 * td;
-
-  // Layers: the same count through every wall, so the blocks meet node to node.
-  int layers = wall_size(tw, mesh).layers;
-  if (cup) layers = std::max(layers, wall_size(td, mesh).layers);
-  const double along_wall = std::min(mesh.size_m, kMaxLayerAspect * tw / layers);
-  const double along_diaphragm = cup ? std::min(mesh.size_m, kMaxLayerAspect * td / layers) : along_wall;
-  const double across = tw / layers;
-  const int extra = rr - ro > 1e-9 ? std::max(1, static_cast<int>(std::lround((rr - ro) / across))) : 0;
-  // The cup's boss/diaphragm junction is singular: at r = r_boss the clamped boss meets the free diaphragm faces, at
-  // z = 0 on a straight line (clamped → free) and at z = t_d in a 270° corner (φ₀ converges as h^0.6 on uniform
-  // sections). The cells at the junction are split geometrically (halving) toward it, in r in the diaphragm and the
-  // boss, in z through every wall's layers (the layers are shared by all walls, so their outermost layers are thin
-  // everywhere) and in the boss above the diaphragm. Levels: 2 + log2(layers), so the corner cell shrinks as h².
-  // mesh.corner_levels overrides the count (mesh/flexspline.hpp: the TET10 size field uses the same key).
-  const int levels = !cup ? 0
-                     : mesh.corner_levels >= 0 ? mesh.corner_levels
-                                               : 2 + static_cast<int>(std::ceil(std::log2(static_cast<double>(layers))));
-  const std::vector<double> lay = graded(layers, levels, true, true);
-
+  const SectionSizes s = section_sizes(f, gear, mesh);
   SectionBuilder b;
-  // Body wall and rim: axial segments between the break lines (body start, rim shoulder, generator band edges).
-  const double z_start = cup ? td + rf : 0.0;
-  std::vector<double> breaks = {z_start, L};
-  if (rim) breaks.push_back(zr);
-  if (band)
-    for (const double z : {band->first - 0.5 * band->second, band->first + 0.5 * band->second})
-      if (z > z_start + 1e-9 && z < L - 1e-9) breaks.push_back(z);
-  std::sort(breaks.begin(), breaks.end());
-  breaks.erase(std::unique(breaks.begin(), breaks.end(), [](double a, double c) { return std::abs(a - c) < 1e-9; }),
-               breaks.end());
-  for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
-    const double z0 = breaks[k], z1 = breaks[k + 1];
-    const bool in_rim = rim && z0 >= zr - 1e-12;
-    const int n = cells(z1 - z0, along_wall);
-    const int bottom = (!cup && k == 0) ? kSurfaceClamped : kInterior;
-    const int top = k + 2 == breaks.size() ? kSurfaceOpenEnd : kInterior;
-    const int right = !in_rim ? kSurfaceOuter : extra > 0 ? kInterior : kSurfaceRimOuter;
-    b.add(graded_block(rectangle(ri, ro, z0, z1, layers, n, in_rim ? 1 : 0, {bottom, right, top, kSurfaceInner}), lay, {}));
-    if (in_rim && extra > 0) {
-      const int shoulder = std::abs(z0 - zr) < 1e-12 ? kSurfaceRimStep : kInterior;
-      b.add(rectangle(ro, rr, z0, z1, extra, n, 1, {shoulder, kSurfaceRimOuter, top, kInterior}));
-    }
-  }
-  if (!cup) return b.finish();
-
-  // Cup: the diaphragm/wall elbow, the diaphragm, the boss.
-  if (rf > 0) {
-    // Rays from the fillet's centre O through the elbow: block 1 ends on the diaphragm's bottom z = 0, block 2 on the
-    // body's outer wall r = r_o; they meet at the ray through the outer corner (r_o, 0).
-    const V2 O(ri - rf, td + rf);
-    const double alpha_k = std::atan2(-O.y(), ro - O.x());
-    auto elbow = [&](double a0, double a1, bool to_bottom) {
-      Block e;
-      e.map = [=](double u, double v) {
-        const double a = a0 + u * (a1 - a0);
-        const V2 dir(std::cos(a), std::sin(a));
-        const double t = to_bottom ? O.y() / -dir.y() : (ro - O.x()) / dir.x();
-        const V2 inner = O + rf * dir, outer = O + t * dir;
-        return V2(inner + v * (outer - inner));
-      };
-      const double outer_len = (e.map(1, 1) - e.map(0, 1)).norm(), arc_len = rf * std::abs(a1 - a0);
-      e.nu = cells(std::max(outer_len, arc_len), std::min(along_wall, along_diaphragm));
-      e.nv = layers;
-      e.region = to_bottom ? 2 : 0;
-      e.marker = {kSurfaceDiaphragm, kInterior, to_bottom ? kSurfaceDiaphragm : kSurfaceOuter, kInterior};
-      return e;
-    };
-    b.add(graded_block(elbow(-0.5 * kPi, alpha_k, true), {}, lay));
-    b.add(graded_block(elbow(alpha_k, 0.0, false), {}, lay));
-  } else {
-    b.add(graded_block(rectangle(ri, ro, 0.0, td, layers, layers, 2, {kSurfaceDiaphragm, kSurfaceOuter, kInterior, kInterior}),
-                       lay, lay));
-  }
-  const double r_dia = ri - rf;
-  b.add(graded_block(rectangle(rb, r_dia, 0.0, td, 1, 1, 2, {kSurfaceDiaphragm, kInterior, kSurfaceDiaphragm, kInterior}),
-                     graded(cells(r_dia - rb, along_diaphragm), levels, true, false), lay));
-  const double s_boss = kBossSizeFactor * mesh.size_m;
-  const std::vector<double> boss_r = graded(cells(rb, s_boss), levels, false, true);
-  b.add(graded_block(rectangle(0.0, rb, 0.0, td, 1, 1, 3, {kSurfaceClamped, kInterior, kInterior, kInterior}), boss_r, lay));
-  b.add(graded_block(rectangle(0.0, rb, td, hb, 1, 1, 3, {kInterior, kSurfaceClamped, kSurfaceClamped, kInterior}), boss_r,
-                     graded(cells(hb - td, s_boss), levels, true, false)));
+  add_wall_blocks(b, s, axial_breaks(s, band));
+  if (!s.cup) return b.finish();
+  add_elbow_blocks(b, s);
+  add_diaphragm_and_boss_blocks(b, s, mesh);
   return b.finish();
 }
 

@@ -301,28 +301,36 @@ std::string mumps_ordering(PetscInt code) {
   }
 }
 
-/// Collective: partitions, assembles and sets up the solver. `free_node`: per node, 1 where its dofs are free.
-/// `dofs`: rank 0 only, for the map from its equations to PETSc's rows.
-void set_up(Distributed& d, const TetMesh& mesh, const std::vector<char>& free_node, const Material& material,
-            const DofMap* dofs) {
-  const Session& s = session();
-  Stopwatch clock;
-  std::vector<PetscInt> free_number(mesh.n_nodes(), -1);
-  PetscInt n_free = 0;
-  for (std::size_t i = 0; i < mesh.n_nodes(); ++i)
-    if (free_node[i]) free_number[i] = n_free++;
-  const Partition part = partition_nodes(mesh, free_number, n_free);
-  std::vector<PetscInt> number(mesh.n_nodes(), -1);  // new (PETSc block row) number of each node, −1 fixed
-  for (std::size_t i = 0; i < mesh.n_nodes(); ++i)
-    if (free_number[i] >= 0) number[i] = part.new_number[free_number[i]];
-  const PetscInt lo = part.first[s.rank], hi = part.first[s.rank + 1];
-  d.rows = 3 * n_free;
-  d.local_rows = 3 * (hi - lo);
+/// The PETSc numbering of the nodes: per node its block row (−1 for a fixed node), the number of free nodes and this
+/// rank's block rows [lo, hi).
+struct NodeRows {
+  std::vector<PetscInt> number;
+  PetscInt n_free = 0, lo = 0, hi = 0;
+};
 
-  // Preallocation from the node graph of this rank's rows: exact, so assembly never reallocates.
+/// Collective: numbers the free nodes and partitions them over the ranks (partition_nodes).
+NodeRows number_node_rows(const TetMesh& mesh, const std::vector<char>& free_node) {
+  const Session& s = session();
+  std::vector<PetscInt> free_number(mesh.n_nodes(), -1);
+  NodeRows rows;
+  for (std::size_t i = 0; i < mesh.n_nodes(); ++i)
+    if (free_node[i]) free_number[i] = rows.n_free++;
+  const Partition part = partition_nodes(mesh, free_number, rows.n_free);
+  rows.number.assign(mesh.n_nodes(), -1);
+  for (std::size_t i = 0; i < mesh.n_nodes(); ++i)
+    if (free_number[i] >= 0) rows.number[i] = part.new_number[free_number[i]];
+  rows.lo = part.first[s.rank];
+  rows.hi = part.first[s.rank + 1];
+  return rows;
+}
+
+/// Collective: creates d.A, a block-size-3 MATAIJ (or the -mat_type asked for) preallocated from the node graph of
+/// this rank's rows: exact, so assembly never reallocates.
+void create_matrix(Distributed& d, const TetMesh& mesh, const NodeRows& rows) {
+  const PetscInt lo = rows.lo, hi = rows.hi;
   std::vector<PetscInt> d_nnz(static_cast<std::size_t>(hi - lo)), o_nnz(static_cast<std::size_t>(hi - lo));
   {
-    const NodeGraph g = node_graph(mesh, number, lo, hi);
+    const NodeGraph g = node_graph(mesh, rows.number, lo, hi);
     for (PetscInt r = 0; r < hi - lo; ++r) {
       PetscInt inside = 1;  // the node itself
       for (PetscInt k = g.start[r]; k < g.start[r + 1]; ++k) inside += g.neighbour[k] >= lo && g.neighbour[k] < hi;
@@ -340,45 +348,48 @@ void set_up(Distributed& d, const TetMesh& mesh, const std::vector<char>& free_n
   PetscBool sbaij = PETSC_FALSE;
   check(PetscObjectTypeCompareAny(reinterpret_cast<PetscObject>(d.A), &sbaij, MATSBAIJ, MATSEQSBAIJ, MATMPISBAIJ, ""));
   if (sbaij) check(MatSetOption(d.A, MAT_IGNORE_LOWER_TRIANGULAR, PETSC_TRUE));
-  d.stats.analyse_s = clock.lap();
+}
 
-  // Each element is assembled once, by the rank that owns its lowest-numbered free node; entries of rows another
-  // rank owns travel to it at MatAssemblyEnd.
+/// Collective: assembles the stiffness into d.A. Each element is assembled once, by the rank that owns its
+/// lowest-numbered free node; entries of rows another rank owns travel to it at MatAssemblyEnd.
+void assemble_matrix(Distributed& d, const TetMesh& mesh, const NodeRows& rows, const Material& material) {
   const Matrix6d D = elasticity_matrix(material);
   for (std::size_t e = 0; e < mesh.tets.size(); ++e) {
     PetscInt idx[10], lowest = -1;
     for (int a = 0; a < 10; ++a) {
-      idx[a] = number[mesh.tets[e][a]];
+      idx[a] = rows.number[mesh.tets[e][a]];
       if (idx[a] >= 0 && (lowest < 0 || idx[a] < lowest)) lowest = idx[a];
     }
-    if (lowest < lo || lowest >= hi) continue;
+    if (lowest < rows.lo || lowest >= rows.hi) continue;
     const Matrix30d Ke = tet10_stiffness(element_coordinates(mesh, e), D);
     check(MatSetValuesBlocked(d.A, 10, idx, 10, idx, Ke.data(), ADD_VALUES));
   }
   check(MatAssemblyBegin(d.A, MAT_FINAL_ASSEMBLY));
   check(MatAssemblyEnd(d.A, MAT_FINAL_ASSEMBLY));
   check(MatSetOption(d.A, MAT_SPD, PETSC_TRUE));
+}
 
-  // The six rigid-body modes of the free nodes' coordinates, for algebraic multigrid.
-  check(MatCreateVecs(d.A, &d.x, &d.b));
-  {
-    Vec coordinates = nullptr;
-    check(VecDuplicate(d.x, &coordinates));
-    PetscScalar* c = nullptr;
-    check(VecGetArray(coordinates, &c));
-    for (std::size_t i = 0; i < mesh.n_nodes(); ++i)
-      if (number[i] >= lo && number[i] < hi)
-        for (int k = 0; k < 3; ++k) c[3 * (number[i] - lo) + k] = mesh.nodes(static_cast<Eigen::Index>(i), k);
-    check(VecRestoreArray(coordinates, &c));
-    MatNullSpace rigid = nullptr;
-    check(MatNullSpaceCreateRigidBody(coordinates, &rigid));
-    check(MatSetNearNullSpace(d.A, rigid));
-    MatNullSpaceDestroy(&rigid);
-    VecDestroy(&coordinates);
-  }
-  d.assemble_s = clock.lap();
+/// Collective: the six rigid-body modes of the free nodes' coordinates as d.A's near-null space, for algebraic
+/// multigrid. Needs d.x.
+void set_rigid_body_modes(Distributed& d, const TetMesh& mesh, const NodeRows& rows) {
+  Vec coordinates = nullptr;
+  check(VecDuplicate(d.x, &coordinates));
+  PetscScalar* c = nullptr;
+  check(VecGetArray(coordinates, &c));
+  for (std::size_t i = 0; i < mesh.n_nodes(); ++i)
+    if (rows.number[i] >= rows.lo && rows.number[i] < rows.hi)
+      for (int k = 0; k < 3; ++k) c[3 * (rows.number[i] - rows.lo) + k] = mesh.nodes(static_cast<Eigen::Index>(i), k);
+  check(VecRestoreArray(coordinates, &c));
+  MatNullSpace rigid = nullptr;
+  check(MatNullSpaceCreateRigidBody(coordinates, &rigid));
+  check(MatSetNearNullSpace(d.A, rigid));
+  MatNullSpaceDestroy(&rigid);
+  VecDestroy(&coordinates);
+}
 
-  // The solver: MUMPS Cholesky unless the options say otherwise.
+/// Collective: creates and sets up d.ksp on d.A, MUMPS Cholesky unless the options say otherwise (for a direct
+/// solver, the numeric factorisation). Returns its preconditioner. InputError when the preconditioner fails.
+PC set_up_solver(Distributed& d) {
   check(KSPCreate(PETSC_COMM_WORLD, &d.ksp));
   check(KSPSetOperators(d.ksp, d.A, d.A));
   check(KSPSetType(d.ksp, KSPPREONLY));
@@ -394,8 +405,12 @@ void set_up(Distributed& d, const TetMesh& mesh, const std::vector<char>& free_n
   if (failed != PC_NOERROR)
     throw InputError(std::string("setting up the preconditioner failed (") + PCFailedReasons[failed] +
                      "); a zero pivot means the supports leave a rigid-body motion free: check the boundary conditions");
-  d.stats.factor_s = clock.lap();
+  return pc;
+}
 
+/// The solver's figures in d.stats: the KSP and PC types (d.direct for KSPPREONLY), the factor's package and, for
+/// MUMPS, its entries, flops and ordering; the matrix's size and entries.
+void record_solver_stats(Distributed& d, PC pc) {
   KSPType ksp_type = nullptr;
   PCType pc_type = nullptr;
   check(KSPGetType(d.ksp, &ksp_type));
@@ -428,18 +443,40 @@ void set_up(Distributed& d, const TetMesh& mesh, const std::vector<char>& free_n
   MatInfo info;
   check(MatGetInfo(d.A, MAT_GLOBAL_SUM, &info));
   d.stats.backend = "petsc";
-  d.stats.ranks = s.size;
+  d.stats.ranks = session().size;
   d.stats.equations = d.rows;
   d.stats.matrix_nnz = static_cast<std::int64_t>(info.nz_used);
   d.stats.supernodal = false;
+}
 
+/// Rank 0: the PETSc row of each equation of `dofs`.
+std::vector<PetscInt> rows_of_equations(const TetMesh& mesh, const DofMap& dofs, const NodeRows& rows) {
+  std::vector<PetscInt> row(static_cast<std::size_t>(dofs.n_equations), -1);
+  for (std::size_t i = 0; i < mesh.n_nodes(); ++i)
+    for (int k = 0; k < 3; ++k)
+      if (const std::int64_t q = dofs.equation[3 * i + k]; q >= 0) row[q] = 3 * rows.number[i] + k;
+  return row;
+}
+
+/// Collective: partitions, assembles and sets up the solver. `free_node`: per node, 1 where its dofs are free.
+/// `dofs`: rank 0 only, for the map from its equations to PETSc's rows.
+void set_up(Distributed& d, const TetMesh& mesh, const std::vector<char>& free_node, const Material& material,
+            const DofMap* dofs) {
+  Stopwatch clock;
+  const NodeRows rows = number_node_rows(mesh, free_node);
+  d.rows = 3 * rows.n_free;
+  d.local_rows = 3 * (rows.hi - rows.lo);
+  create_matrix(d, mesh, rows);
+  d.stats.analyse_s = clock.lap();
+  assemble_matrix(d, mesh, rows, material);
+  check(MatCreateVecs(d.A, &d.x, &d.b));
+  set_rigid_body_modes(d, mesh, rows);
+  d.assemble_s = clock.lap();
+  const PC pc = set_up_solver(d);
+  d.stats.factor_s = clock.lap();
+  record_solver_stats(d, pc);
   check(VecScatterCreateToZero(d.x, &d.to_zero, &d.on_zero));
-  if (dofs) {
-    d.row_of_equation.assign(static_cast<std::size_t>(dofs->n_equations), -1);
-    for (std::size_t i = 0; i < mesh.n_nodes(); ++i)
-      for (int k = 0; k < 3; ++k)
-        if (const std::int64_t q = dofs->equation[3 * i + k]; q >= 0) d.row_of_equation[q] = 3 * number[i] + k;
-  }
+  if (dofs) d.row_of_equation = rows_of_equations(mesh, *dofs, rows);
 }
 
 /// Refuses options nobody read once the first solve has queried everything (-ksp_view etc. are read by KSPSolve).

@@ -172,6 +172,123 @@ void add_toothed_prism(RevolvedPlc& revolved, std::vector<ProfileSurface>& surfa
                          h * h * h / (6.0 * std::sqrt(2.0))});
 }
 
+// The cup or tube profile's radii, heights and edge sizes (m): r_i, r_o, the rim's outer radius r_rim, length L, rim
+// width w, the body/rim boundary z_r = L - w, the diaphragm's thickness t_d (0 for a tube), boss radius r_b and
+// height h_b = 2 t_d, fillet radius r_f; the body wall's, rim's and diaphragm's layering and the edge sizes along them.
+struct ProfileSizes {
+  double ri, ro, L, w, rr, zr, td, rb, hb, rf;
+  WallSize wb, wr, wd;
+  double sb, sr, sd, sboss;
+};
+
+ProfileSizes profile_sizes(const FlexsplineParams& f, const std::optional<GearParams>& gear, const MeshParams& mesh) {
+  const bool cup = f.shape == FlexsplineShape::Cup;
+  ProfileSizes s;
+  s.ri = f.inner_radius_m;
+  s.ro = s.ri + f.wall_thickness_m;
+  s.L = f.length_m;
+  s.w = f.rim_width_m;
+  s.rr = rim_outer_radius(f, gear);
+  s.zr = s.L - s.w;
+  s.td = cup ? f.diaphragm_thickness_m : 0.0;
+  s.rb = f.boss_radius_m;
+  s.hb = 2.0 * s.td;
+  s.rf = cup ? f.fillet_radius_m : 0.0;
+  s.wb = wall_size(s.ro - s.ri, mesh);
+  s.wr = wall_size(s.rr - s.ri, mesh);
+  s.wd = cup ? wall_size(s.td, mesh) : s.wb;
+  s.sb = s.wb.along_m;
+  s.sr = s.wr.along_m;
+  s.sd = s.wd.along_m;
+  s.sboss = kBossSizeFactor * mesh.size_m;
+  return s;
+}
+
+using V2 = Eigen::Vector2d;
+
+// Revolved part of an explicit toothed rim: inner wall, open end and layer cylinders up to the prism's inner radius
+// r_p (the prism itself is added to the PLC by add_toothed_prism).
+void add_toothed_rim_profile(ProfileBuilder& b, const ProfileSizes& s, const ToothedRim& teeth) {
+  const double rp = teeth.inner_radius_m, sp = teeth.axial_size_m;
+  b.line(V2(s.ri, s.L), V2(s.ri, s.zr), kSurfaceInner, std::min(s.sr, s.sb));
+  b.line(V2(s.ri, s.L), V2(rp, s.L), kSurfaceOpenEnd, s.sb);
+  b.line(V2(s.ri, s.zr), V2(s.ro, s.zr), kSurfaceOther, s.sb);
+  if (rp > s.ro) b.line(V2(s.ro, s.zr), V2(rp, s.zr), kSurfaceRimStep, s.sb);
+  double r0 = s.ri;
+  for (const double r : teeth.layer_radii_m) {
+    b.line(V2(r, s.zr), V2(r, s.L), kSurfaceOther, r == rp ? sp : s.sb);
+    b.region(0.5 * (r0 + r), s.L - 0.5 * s.w, 1, s.sb);
+    r0 = r;
+  }
+}
+
+// A revolved rim (teeth "none" or "ring"): inner wall, open end, outer surface, shoulder, body/rim interface, layer
+// lines.
+void add_revolved_rim_profile(ProfileBuilder& b, const ProfileSizes& s, const MeshParams& mesh) {
+  b.line(V2(s.ri, s.L), V2(s.ri, s.zr), kSurfaceInner, std::min(s.sr, s.sb));
+  b.line(V2(s.ri, s.L), V2(s.rr, s.L), kSurfaceOpenEnd, s.sr);
+  b.line(V2(s.rr, s.L), V2(s.rr, s.zr), kSurfaceRimOuter, s.sr);
+  b.line(V2(s.rr, s.zr), V2(s.ro, s.zr), kSurfaceRimStep, s.sr);
+  b.line(V2(s.ri, s.zr), V2(s.ro, s.zr), kSurfaceOther, std::min(s.sr, s.sb));
+  double r0 = s.ri;
+  for (const double r : rim_layer_radii(s.ri, s.ro, s.rr, mesh)) {
+    b.line(V2(r, s.zr), V2(r, s.L), kSurfaceOther, s.sr);
+    b.region(0.5 * (r0 + r), s.L - 0.5 * s.w, 1, s.sr);
+    r0 = r;
+  }
+  b.region(0.5 * (r0 + s.rr), s.L - 0.5 * s.w, 1, s.sr);
+}
+
+// Body: outer wall, layer lines, inner wall down to the fillet (or to z = 0 for the tube).
+void add_body_profile(ProfileBuilder& b, const ProfileSizes& s) {
+  const WallSize& wb = s.wb;
+  b.line(V2(s.ro, s.zr), V2(s.ro, s.td), kSurfaceOuter, s.sb);
+  for (int k = 1; k < wb.layers; ++k)
+    b.line(V2(s.ri + k * wb.across_m, s.td), V2(s.ri + k * wb.across_m, s.zr), kSurfaceOther, s.sb);
+  for (int k = 0; k < wb.layers; ++k) b.region(s.ri + (k + 0.5) * wb.across_m, 0.5 * (s.zr + s.td + s.rf), 0, s.sb);
+  b.line(V2(s.ri, s.zr), V2(s.ri, s.td + s.rf), kSurfaceInner, s.sb);
+}
+
+// Fillet: quarter circle from the diaphragm's top face (r_i - r_f, t_d) to the inner wall (r_i, t_d + r_f).
+void add_fillet_profile(ProfileBuilder& b, const ProfileSizes& s) {
+  if (!(s.rf > 0)) return;
+  ProfileSurface arc;
+  arc.kind = ProfileSurface::Kind::Circle;
+  arc.centre = V2(s.ri - s.rf, s.td + s.rf);
+  arc.radius = s.rf;
+  arc.marker = kSurfaceDiaphragm;
+  const int n = std::max(2, static_cast<int>(std::ceil(0.5 * kPi * s.rf / s.sb)));
+  for (int i = 0; i < n; ++i) {
+    const double a0 = -0.5 * kPi + 0.5 * kPi * i / n, a1 = -0.5 * kPi + 0.5 * kPi * (i + 1) / n;
+    b.add(arc.centre + s.rf * V2(std::cos(a0), std::sin(a0)), arc.centre + s.rf * V2(std::cos(a1), std::sin(a1)), arc,
+          s.sb);
+  }
+}
+
+// Diaphragm: top face, body/diaphragm interface, outer edge, bottom face, layer lines; then the boss: interface with
+// the diaphragm, clamped side, top and bottom, and the axis.
+void add_diaphragm_and_boss_profile(ProfileBuilder& b, const ProfileSizes& s) {
+  const double ri = s.ri, ro = s.ro, td = s.td, rb = s.rb, hb = s.hb, rf = s.rf, sd = s.sd;
+  b.line(V2(rb, td), V2(ri - rf, td), kSurfaceDiaphragm, sd);
+  b.line(V2(ri - rf, td), V2(ro, td), kSurfaceOther, std::min(s.sb, sd));
+  b.line(V2(ro, td), V2(ro, 0), kSurfaceOuter, std::min(s.sb, sd));
+  b.line(V2(ro, 0), V2(rb, 0), kSurfaceDiaphragm, sd);
+  for (int k = 1; k < s.wd.layers; ++k) b.line(V2(rb, k * s.wd.across_m), V2(ro, k * s.wd.across_m), kSurfaceOther, sd);
+  for (int k = 0; k < s.wd.layers; ++k) b.region(0.5 * (rb + ri - rf), (k + 0.5) * s.wd.across_m, 2, sd);
+  b.line(V2(rb, 0), V2(rb, td), kSurfaceOther, sd);  // the diaphragm's side sets the ring at rb
+  b.line(V2(rb, td), V2(rb, hb), kSurfaceClamped, sd);
+  b.line(V2(rb, hb), V2(0, hb), kSurfaceClamped, s.sboss);
+  b.line(V2(0, 0), V2(rb, 0), kSurfaceClamped, s.sboss);
+  b.line(V2(0, hb), V2(0, 0), kSurfaceOther, s.sboss);  // the axis: sweeps nothing
+  b.region(0.5 * rb, 0.5 * hb, 3, s.sboss);
+}
+
+// TetGen's node budget: as many added points as the estimate's TET10 nodes, about 7× the corner points expected
+// (the estimate is within a few per cent on the cases), so only a refinement that runs away is stopped.
+std::int64_t node_budget(const FlexsplineParams& f, const std::optional<GearParams>& gear, const MeshParams& mesh) {
+  return static_cast<std::int64_t>(std::ceil(estimate_model_size(f, gear, mesh).nodes)) + 1000;
+}
+
 }  // namespace
 
 ToothMeshSize tooth_mesh_size(const GearParams& g, const MeshParams& mesh) {
@@ -266,87 +383,24 @@ TetMesh mesh_flexspline(const FlexsplineParams& f, const std::optional<GearParam
   if (!cup && f.teeth == TeethModel::None)
     return mesh_tube(f.inner_radius_m, f.inner_radius_m + f.wall_thickness_m, f.length_m, mesh);
 
-  const double ri = f.inner_radius_m, ro = ri + f.wall_thickness_m, L = f.length_m, w = f.rim_width_m;
-  const double rr = rim_outer_radius(f, gear);
-  const double zr = L - w;                          // body / rim boundary
-  const double td = cup ? f.diaphragm_thickness_m : 0.0;
-  const double rb = f.boss_radius_m, hb = 2.0 * td, rf = cup ? f.fillet_radius_m : 0.0;
-  const WallSize wb = wall_size(ro - ri, mesh), wr = wall_size(rr - ri, mesh);
-  const WallSize wd = cup ? wall_size(td, mesh) : wb;
-  const double sb = wb.along_m, sr = wr.along_m, sd = wd.along_m, sboss = kBossSizeFactor * mesh.size_m;
-
+  const ProfileSizes s = profile_sizes(f, gear, mesh);
   ProfileBuilder b;
-  using V2 = Eigen::Vector2d;
   std::optional<ToothedRim> teeth;
   if (f.teeth == TeethModel::Explicit) {
-    // Revolved part of the rim: inner wall, open end and layer cylinders up to the prism's inner radius r_p.
     teeth = toothed_rim(f, *gear, mesh);
-    const double rp = teeth->inner_radius_m, sp = teeth->axial_size_m;
-    b.line(V2(ri, L), V2(ri, zr), kSurfaceInner, std::min(sr, sb));
-    b.line(V2(ri, L), V2(rp, L), kSurfaceOpenEnd, sb);
-    b.line(V2(ri, zr), V2(ro, zr), kSurfaceOther, sb);
-    if (rp > ro) b.line(V2(ro, zr), V2(rp, zr), kSurfaceRimStep, sb);
-    double r0 = ri;
-    for (const double r : teeth->layer_radii_m) {
-      b.line(V2(r, zr), V2(r, L), kSurfaceOther, r == rp ? sp : sb);
-      b.region(0.5 * (r0 + r), L - 0.5 * w, 1, sb);
-      r0 = r;
-    }
+    add_toothed_rim_profile(b, s, *teeth);
   } else {
-    // Rim: inner wall, open end, outer surface, shoulder, body/rim interface, layer lines.
-    b.line(V2(ri, L), V2(ri, zr), kSurfaceInner, std::min(sr, sb));
-    b.line(V2(ri, L), V2(rr, L), kSurfaceOpenEnd, sr);
-    b.line(V2(rr, L), V2(rr, zr), kSurfaceRimOuter, sr);
-    b.line(V2(rr, zr), V2(ro, zr), kSurfaceRimStep, sr);
-    b.line(V2(ri, zr), V2(ro, zr), kSurfaceOther, std::min(sr, sb));
-    double r0 = ri;
-    for (const double r : rim_layer_radii(ri, ro, rr, mesh)) {
-      b.line(V2(r, zr), V2(r, L), kSurfaceOther, sr);
-      b.region(0.5 * (r0 + r), L - 0.5 * w, 1, sr);
-      r0 = r;
-    }
-    b.region(0.5 * (r0 + rr), L - 0.5 * w, 1, sr);
+    add_revolved_rim_profile(b, s, mesh);
   }
-  // Body: outer wall, layer lines, inner wall down to the fillet (or to z = 0 for the tube).
-  b.line(V2(ro, zr), V2(ro, td), kSurfaceOuter, sb);
-  for (int k = 1; k < wb.layers; ++k) b.line(V2(ri + k * wb.across_m, td), V2(ri + k * wb.across_m, zr), kSurfaceOther, sb);
-  for (int k = 0; k < wb.layers; ++k) b.region(ri + (k + 0.5) * wb.across_m, 0.5 * (zr + td + rf), 0, sb);
-  b.line(V2(ri, zr), V2(ri, td + rf), kSurfaceInner, sb);
+  add_body_profile(b, s);
   if (!cup) {
-    b.line(V2(ri, 0), V2(ro, 0), kSurfaceClamped, sb);
+    b.line(V2(s.ri, 0), V2(s.ro, 0), kSurfaceClamped, s.sb);
   } else {
-    // Fillet: quarter circle from the diaphragm's top face (ri - rf, td) to the inner wall (ri, td + rf).
-    if (rf > 0) {
-      ProfileSurface arc;
-      arc.kind = ProfileSurface::Kind::Circle;
-      arc.centre = V2(ri - rf, td + rf);
-      arc.radius = rf;
-      arc.marker = kSurfaceDiaphragm;
-      const int n = std::max(2, static_cast<int>(std::ceil(0.5 * kPi * rf / sb)));
-      for (int i = 0; i < n; ++i) {
-        const double a0 = -0.5 * kPi + 0.5 * kPi * i / n, a1 = -0.5 * kPi + 0.5 * kPi * (i + 1) / n;
-        b.add(arc.centre + rf * V2(std::cos(a0), std::sin(a0)), arc.centre + rf * V2(std::cos(a1), std::sin(a1)), arc, sb);
-      }
-    }
-    // Diaphragm: top face, body/diaphragm interface, outer edge, bottom face, layer lines.
-    b.line(V2(rb, td), V2(ri - rf, td), kSurfaceDiaphragm, sd);
-    b.line(V2(ri - rf, td), V2(ro, td), kSurfaceOther, std::min(sb, sd));
-    b.line(V2(ro, td), V2(ro, 0), kSurfaceOuter, std::min(sb, sd));
-    b.line(V2(ro, 0), V2(rb, 0), kSurfaceDiaphragm, sd);
-    for (int k = 1; k < wd.layers; ++k) b.line(V2(rb, k * wd.across_m), V2(ro, k * wd.across_m), kSurfaceOther, sd);
-    for (int k = 0; k < wd.layers; ++k) b.region(0.5 * (rb + ri - rf), (k + 0.5) * wd.across_m, 2, sd);
-    // Boss: interface with the diaphragm, clamped side, top and bottom.
-    b.line(V2(rb, 0), V2(rb, td), kSurfaceOther, sd);  // the diaphragm's side sets the ring at rb
-    b.line(V2(rb, td), V2(rb, hb), kSurfaceClamped, sd);
-    b.line(V2(rb, hb), V2(0, hb), kSurfaceClamped, sboss);
-    b.line(V2(0, 0), V2(rb, 0), kSurfaceClamped, sboss);
-    b.line(V2(0, hb), V2(0, 0), kSurfaceOther, sboss);  // the axis: sweeps nothing
-    b.region(0.5 * rb, 0.5 * hb, 3, sboss);
+    add_fillet_profile(b, s);
+    add_diaphragm_and_boss_profile(b, s);
     b.p.refine = corner_size_field(f, mesh);
   }
-  // TetGen's node budget: as many added points as the estimate's TET10 nodes, about 7× the corner points expected
-  // (the estimate is within a few per cent on the cases), so only a refinement that runs away is stopped.
-  const auto budget = static_cast<std::int64_t>(std::ceil(estimate_model_size(f, gear, mesh).nodes)) + 1000;
+  const std::int64_t budget = node_budget(f, gear, mesh);
   if (!teeth) return mesh_revolved(b.p, mesh, budget);
   RevolvedPlc revolved = revolve_profile(b.p);
   std::vector<ProfileSurface> surfaces = b.p.surfaces;

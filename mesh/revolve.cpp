@@ -66,6 +66,20 @@ int find_root(std::vector<int>& parent, int i) {
   return i;
 }
 
+// The profile's length scale: the largest distance of a vertex from the origin.
+double profile_scale(const std::vector<Eigen::Vector2d>& vertices) {
+  double scale = 0.0;
+  for (const auto& v : vertices) scale = std::max(scale, v.norm());
+  return scale;
+}
+
+// The point indices first, first + 1, ..., first + count - 1 (one ring of the revolved PLC).
+std::vector<int> consecutive(int first, int count) {
+  std::vector<int> r(count);
+  std::iota(r.begin(), r.end(), first);
+  return r;
+}
+
 }  // namespace
 
 double ProfileSizeField::at(const Eigen::Vector2d& p, double edge_size_m) const {
@@ -173,29 +187,32 @@ void project_boundary(TetMesh& mesh, const std::vector<int>& face_surface,
 }
 
 std::vector<int> RevolvedPlc::ring(double r_m, double z_m) const {
-  double scale = 0.0;
-  for (const auto& v : vertex_rz) scale = std::max(scale, v.norm());
+  const double scale = profile_scale(vertex_rz);
   for (std::size_t v = 0; v < vertex_rz.size(); ++v)
-    if (first[v] >= 0 && count[v] > 1 && (vertex_rz[v] - Eigen::Vector2d(r_m, z_m)).norm() <= 1e-9 * scale) {
-      std::vector<int> r(count[v]);
-      std::iota(r.begin(), r.end(), first[v]);
-      return r;
-    }
+    if (first[v] >= 0 && count[v] > 1 && (vertex_rz[v] - Eigen::Vector2d(r_m, z_m)).norm() <= 1e-9 * scale)
+      return consecutive(first[v], count[v]);
   throw InputError("mesh: no ring of the revolved profile at r = " + std::to_string(r_m * 1e3) +
                    " mm, z = " + std::to_string(z_m * 1e3) + " mm to attach a facet to");
 }
 
-RevolvedPlc revolve_profile(const RevolvedProfile& profile) {
-  const auto& V = profile.vertices;
-  assert(profile.edge_size_m.size() == profile.edges.size());
-  double scale = 0.0;
-  for (const auto& v : V) scale = std::max(scale, v.norm());
-  const double eps = 1e-12 * scale;
+namespace {
 
-  // 1. Split every edge at the profile vertices lying on it (layer lines end on other edges), then into
-  //    sub-segments no longer than its size; points on Circle edges are put on the arc.
-  std::vector<Eigen::Vector2d> verts = V;
-  // Coincident profile vertices are one vertex (builders may repeat the corners they share).
+// A piece of a profile edge after splitting: its two vertices (indices into the split vertex list), the surface it
+// lies on, the edge's target size and whether it is horizontal (it then sweeps a planar annulus or disc).
+struct Segment {
+  int a, b, surface;
+  double size;
+  bool horizontal;
+};
+
+// The profile after step 1: its vertices (the profile's own, then the split points) and its segments.
+struct SplitProfile {
+  std::vector<Eigen::Vector2d> verts;
+  std::vector<Segment> segs;
+};
+
+// Per profile vertex the first vertex coincident with it (builders may repeat the corners they share).
+std::vector<int> coincident_vertices(const std::vector<Eigen::Vector2d>& V, double eps) {
   std::vector<int> same(V.size());
   for (std::size_t v = 0; v < V.size(); ++v) {
     same[v] = static_cast<int>(v);
@@ -205,14 +222,22 @@ RevolvedPlc revolve_profile(const RevolvedProfile& profile) {
         break;
       }
   }
-  struct Segment { int a, b, surface; double size; bool horizontal; };
-  std::vector<Segment> segs;
+  return same;
+}
+
+// Step 1: splits every edge at the profile vertices lying on it (layer lines end on other edges), then into
+// sub-segments no longer than its size; points on Circle edges are put on the arc. Edges along the axis are dropped
+// (they sweep nothing).
+SplitProfile split_edges(const RevolvedProfile& profile, double eps) {
+  const auto& V = profile.vertices;
+  const std::vector<int> same = coincident_vertices(V, eps);
+  SplitProfile out{V, {}};
   for (std::size_t e = 0; e < profile.edges.size(); ++e) {
     const ProfileEdge& E = profile.edges[e];
     const int v0 = same[E.v0], v1 = same[E.v1];
     const Eigen::Vector2d pa = V[v0], pb = V[v1];
     const double size = profile.edge_size_m[e];
-    if (pa.x() <= eps && pb.x() <= eps) continue;  // along the axis: sweeps nothing
+    if (pa.x() <= eps && pb.x() <= eps) continue;
     const Eigen::Vector2d d = pb - pa;
     std::vector<std::pair<double, int>> stops = {{0.0, v0}, {1.0, v1}};
     for (int v = 0; v < static_cast<int>(V.size()); ++v) {
@@ -234,79 +259,101 @@ RevolvedPlc revolve_profile(const RevolvedProfile& profile) {
           Eigen::Vector2d q = qa + (qb - qa) * cuts[i - 1];
           if (profile.surfaces[E.surface].kind == ProfileSurface::Kind::Circle)
             q = closest_profile_point(profile.surfaces[E.surface], q);
-          verts.push_back(q);
-          next = static_cast<int>(verts.size()) - 1;
+          out.verts.push_back(q);
+          next = static_cast<int>(out.verts.size()) - 1;
         }
-        segs.push_back({prev, next, E.surface, size, horizontal});
+        out.segs.push_back({prev, next, E.surface, size, horizontal});
         prev = next;
       }
     }
   }
+  return out;
+}
 
-  // 2. Angular counts: each ring from its radius and the smallest size of its segments; rings joined by swept
-  //    (non-horizontal) segments share the largest count of their group.
+// Points around a ring of radius r_m no farther apart than size_m: a multiple of 8 (so the axes x, y are node planes),
+// at least 8.
+int ring_count(double r_m, double size_m) {
+  const int n = static_cast<int>(std::ceil(2.0 * kPi * r_m / size_m - 1e-9));
+  return std::max(8, (n + 7) / 8 * 8);
+}
+
+// Step 2: the angular count per split vertex (0 on the axis). Each ring takes its count from its radius and the
+// smallest size of its segments; rings joined by swept (non-horizontal) segments share the largest count of their
+// group.
+std::vector<int> angular_counts(const SplitProfile& split, const ProfileSizeField& field, double eps) {
+  const auto& verts = split.verts;
   const int nv = static_cast<int>(verts.size());
+  auto on_axis = [&](int v) { return verts[v].x() <= eps; };
   std::vector<int> parent(nv);
   std::iota(parent.begin(), parent.end(), 0);
-  auto on_axis = [&](int v) { return verts[v].x() <= eps; };
-  for (const auto& s : segs)
+  for (const auto& s : split.segs)
     if (!s.horizontal && !on_axis(s.a) && !on_axis(s.b)) parent[find_root(parent, s.a)] = find_root(parent, s.b);
   std::vector<int> group_n(nv, 8);
-  auto ring_count = [&](double r, double size) {
-    const int n = static_cast<int>(std::ceil(2.0 * kPi * r / size - 1e-9));
-    return std::max(8, (n + 7) / 8 * 8);
-  };
-  const ProfileSizeField& field = profile.refine;
-  for (const auto& s : segs)
+  for (const auto& s : split.segs)
     for (int v : {s.a, s.b})
       if (!on_axis(v)) {
         const int g = find_root(parent, v);
         const double angular = std::min(s.size, std::max(1.0, field.max_aspect) * field.at(verts[v], s.size));
         group_n[g] = std::max(group_n[g], ring_count(verts[v].x(), angular));
       }
+  std::vector<int> n(nv, 0);
+  for (int v = 0; v < nv; ++v)
+    if (!on_axis(v)) n[v] = group_n[find_root(parent, v)];
+  return n;
+}
 
-  // 3. Points: a ring of N points per off-axis vertex (angle 2 pi k / N), one point per axis vertex.
-  Plc plc;
-  std::vector<int> first(nv, -1), count(nv, 0);
-  std::vector<int> ring_of_point, index_in_ring;  // per PLC point: its profile vertex (-1 on the axis), its k
+// Step 3: the PLC's points: a ring of N points per off-axis vertex (angle 2 pi k / N), one point per axis vertex that
+// a swept segment uses (discs need no axis point).
+RevolvedPlc ring_points(const SplitProfile& split, const std::vector<int>& angular_count, double eps) {
+  RevolvedPlc out;
+  out.vertex_rz = split.verts;
+  const auto& verts = out.vertex_rz;
+  const int nv = static_cast<int>(verts.size());
+  auto on_axis = [&](int v) { return verts[v].x() <= eps; };
+  out.first.assign(nv, -1);
+  out.count.assign(nv, 0);
   std::vector<bool> used(nv, false);
-  for (const auto& s : segs)
-    for (int v : {s.a, s.b}) used[v] = used[v] || !on_axis(v) || !s.horizontal;  // discs need no axis point
+  for (const auto& s : split.segs)
+    for (int v : {s.a, s.b}) used[v] = used[v] || !on_axis(v) || !s.horizontal;
   for (int v = 0; v < nv; ++v) {
     if (!used[v]) continue;
-    first[v] = static_cast<int>(plc.points.size());
+    out.first[v] = static_cast<int>(out.plc.points.size());
     if (on_axis(v)) {
-      count[v] = 1;
-      ring_of_point.push_back(-1);
-      index_in_ring.push_back(0);
-      plc.points.emplace_back(0.0, 0.0, verts[v].y());
+      out.count[v] = 1;
+      out.ring_of_point.push_back(-1);
+      out.index_in_ring.push_back(0);
+      out.plc.points.emplace_back(0.0, 0.0, verts[v].y());
       continue;
     }
-    const int n = group_n[find_root(parent, v)];
-    count[v] = n;
+    const int n = angular_count[v];
+    out.count[v] = n;
     for (int k = 0; k < n; ++k) {
-      ring_of_point.push_back(v);
-      index_in_ring.push_back(k);
+      out.ring_of_point.push_back(v);
+      out.index_in_ring.push_back(k);
       const double th = 2.0 * kPi * k / n;
-      plc.points.emplace_back(verts[v].x() * std::cos(th), verts[v].x() * std::sin(th), verts[v].y());
+      out.plc.points.emplace_back(verts[v].x() * std::cos(th), verts[v].x() * std::sin(th), verts[v].y());
     }
   }
-  auto ring = [&](int v) {
-    std::vector<int> r(count[v]);
-    std::iota(r.begin(), r.end(), first[v]);
-    return r;
-  };
+  return out;
+}
 
-  // 4. Facets; marker = surface index + 1 (TetGen uses 0 for "none").
+// Step 4: the facets each segment sweeps, marker = surface index + 1 (TetGen uses 0 for "none"): a horizontal segment
+// an annulus (or a disc from the axis), a segment to the axis a cone of triangles, any other a band of quadrilaterals.
+void add_swept_facets(RevolvedPlc& out, const std::vector<Segment>& segs, double eps) {
+  const auto& verts = out.vertex_rz;
+  const auto& first = out.first;
+  const auto& count = out.count;
+  auto on_axis = [&](int v) { return verts[v].x() <= eps; };
+  auto ring = [&](int v) { return consecutive(first[v], count[v]); };
   for (const auto& s : segs) {
     const int marker = s.surface + 1;
     if (s.horizontal) {
       int lo = s.a, hi = s.b;
       if (verts[lo].x() > verts[hi].x()) std::swap(lo, hi);
       if (on_axis(lo)) {
-        plc.facets.push_back({{ring(hi)}, {}, marker});
+        out.plc.facets.push_back({{ring(hi)}, {}, marker});
       } else {
-        plc.facets.push_back({{ring(hi), ring(lo)}, {Eigen::Vector3d(0, 0, verts[lo].y())}, marker});
+        out.plc.facets.push_back({{ring(hi), ring(lo)}, {Eigen::Vector3d(0, 0, verts[lo].y())}, marker});
       }
       continue;
     }
@@ -314,28 +361,37 @@ RevolvedPlc revolve_profile(const RevolvedProfile& profile) {
       const int tip = on_axis(s.a) ? s.a : s.b, base = on_axis(s.a) ? s.b : s.a;
       const int n = count[base];
       for (int k = 0; k < n; ++k)
-        plc.facets.push_back({{{first[tip], first[base] + k, first[base] + (k + 1) % n}}, {}, marker});
+        out.plc.facets.push_back({{{first[tip], first[base] + k, first[base] + (k + 1) % n}}, {}, marker});
       continue;
     }
     const int n = count[s.a];
     assert(count[s.b] == n);
     for (int k = 0; k < n; ++k) {
       const int k1 = (k + 1) % n;
-      plc.facets.push_back(
+      out.plc.facets.push_back(
           {{{first[s.a] + k, first[s.a] + k1, first[s.b] + k1, first[s.b] + k}}, {}, marker});
     }
   }
-  for (const auto& r : profile.regions) {
+}
+
+// The PLC's regions: each profile region's seed at polar angle 0, its tets bounded by the volume of a regular tet of
+// its size.
+void add_regions(Plc& plc, const std::vector<ProfileRegion>& regions) {
+  for (const auto& r : regions) {
     const double h = r.size_m;
     plc.regions.push_back({Eigen::Vector3d(r.seed.x(), 0.0, r.seed.y()), r.id, h * h * h / (6.0 * std::sqrt(2.0))});
   }
-  RevolvedPlc out;
-  out.plc = std::move(plc);
-  out.vertex_rz = std::move(verts);
-  out.first = std::move(first);
-  out.count = std::move(count);
-  out.ring_of_point = std::move(ring_of_point);
-  out.index_in_ring = std::move(index_in_ring);
+}
+
+}  // namespace
+
+RevolvedPlc revolve_profile(const RevolvedProfile& profile) {
+  assert(profile.edge_size_m.size() == profile.edges.size());
+  const double eps = 1e-12 * profile_scale(profile.vertices);
+  const SplitProfile split = split_edges(profile, eps);
+  RevolvedPlc out = ring_points(split, angular_counts(split, profile.refine, eps), eps);
+  add_swept_facets(out, split.segs, eps);
+  add_regions(out.plc, profile.regions);
   return out;
 }
 

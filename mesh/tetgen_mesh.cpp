@@ -250,34 +250,35 @@ double signed_volume6(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const 
   return (b - a).cross(c - a).dot(d - a);
 }
 
-}  // namespace
+// Face of a tet opposite corner k, ordered for an outward normal of a positively oriented tet.
+constexpr int kTetFaces[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
 
-TetMesh tetrahedralize_plc(const Plc& plc, const TetgenOptions& options) {
-  const std::string switches = switches_for(plc, options);
-  const std::string request = "TetGen -" + switches + " on a PLC of " + std::to_string(plc.points.size()) +
-                              " points, " + std::to_string(plc.facets.size()) + " facets, " +
-                              std::to_string(plc.regions.size()) + " regions";
-  if (plc.points.size() < 4 || plc.facets.size() < 4)
-    throw InputError("mesh: " + request + "; a closed PLC needs at least 4 points and 4 facets");
+// What TetGen was asked to do, for the messages: its switches and the PLC's size.
+std::string describe_request(const Plc& plc, const std::string& switches) {
+  return "TetGen -" + switches + " on a PLC of " + std::to_string(plc.points.size()) + " points, " +
+         std::to_string(plc.facets.size()) + " facets, " + std::to_string(plc.regions.size()) + " regions";
+}
 
-  const RawTetgenOutput out = run_tetgen_isolated(plc, switches, options.time_limit_s, request);
-  if (out.n_tets == 0)
-    throw InputError("mesh: " + request + " produced no tetrahedra; is the boundary closed?");
-  if (options.max_added_points > 0) {
-    std::vector<bool> corner(out.n_points, false);
-    for (int t = 0; t < out.n_tets; ++t)
-      for (int k = 0; k < 4; ++k) corner[out.tets[10 * static_cast<std::size_t>(t) + k]] = true;
-    const auto added = std::count(corner.begin(), corner.end(), true) - static_cast<std::int64_t>(plc.points.size());
-    if (added >= options.max_added_points)
-      throw InputError("mesh: " + request + " reached its node budget of " + std::to_string(options.max_added_points) +
-                       " added points, far beyond the model-size estimate; coarsen mesh.size_mm or check the geometry");
-  }
+// Refuses a run that reached its node budget: as many tet corners beyond the PLC's points as the budget allows
+// (TetGen's -S stops adding points there, leaving a mesh that is not the refinement asked for).
+void check_node_budget(const RawTetgenOutput& out, const Plc& plc, const TetgenOptions& options,
+                       const std::string& request) {
+  if (options.max_added_points <= 0) return;
+  std::vector<bool> corner(out.n_points, false);
+  for (int t = 0; t < out.n_tets; ++t)
+    for (int k = 0; k < 4; ++k) corner[out.tets[10 * static_cast<std::size_t>(t) + k]] = true;
+  const auto added = std::count(corner.begin(), corner.end(), true) - static_cast<std::int64_t>(plc.points.size());
+  if (added >= options.max_added_points)
+    throw InputError("mesh: " + request + " reached its node budget of " + std::to_string(options.max_added_points) +
+                     " added points, far beyond the model-size estimate; coarsen mesh.size_mm or check the geometry");
+}
 
+// The TET10 mesh of TetGen's nodes and tets, in VTK node order and positively oriented, with each tet's region.
+TetMesh tets_from_output(const RawTetgenOutput& out) {
   TetMesh mesh;
   mesh.nodes.resize(out.n_points, 3);
   for (int i = 0; i < out.n_points; ++i)
     for (int d = 0; d < 3; ++d) mesh.nodes(i, d) = out.points[3 * i + d];
-
   const int nt = out.n_tets;
   mesh.tets.resize(nt);
   mesh.region.assign(nt, 0);
@@ -295,48 +296,71 @@ TetMesh tetrahedralize_plc(const Plc& plc, const TetgenOptions& options) {
     }
     if (!out.region.empty()) mesh.region[t] = static_cast<int>(std::lround(out.region[t]));
   }
+  return mesh;
+}
 
-  // Markers of TetGen's output subfaces (boundary and region-interface faces).
-  std::unordered_map<std::uint64_t, int> marker_of;
-  marker_of.reserve(2 * static_cast<std::size_t>(out.n_trifaces));
-  for (int f = 0; f < out.n_trifaces; ++f) {
-    const int* v = out.trifaces.data() + 3 * f;
-    marker_of[face_key(v[0], v[1], v[2])] = out.trifacemarkers[f];
-  }
-
-  // Boundary faces = faces of exactly one tet. Face opposite corner k, ordered for an outward normal of a positive
-  // tet, with its midside nodes looked up from the tet's edges.
-  constexpr int kFaces[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-  auto edge_slot = [](int i, int j) {
-    for (int e = 0; e < 6; ++e)
-      if ((kTetEdges[e][0] == i && kTetEdges[e][1] == j) || (kTetEdges[e][0] == j && kTetEdges[e][1] == i))
-        return 4 + e;
-    return -1;
-  };
+// The boundary faces (faces of exactly one tet), as (tet, local face) sorted for a deterministic order.
+std::vector<std::pair<int, int>> boundary_tet_faces(const TetMesh& mesh) {
   std::unordered_map<std::uint64_t, std::pair<int, int>> seen;  // key -> (tet, local face), or tet = -1 if shared
-  seen.reserve(4 * static_cast<std::size_t>(nt));
-  for (int t = 0; t < nt; ++t)
+  seen.reserve(4 * mesh.tets.size());
+  for (int t = 0; t < static_cast<int>(mesh.tets.size()); ++t)
     for (int k = 0; k < 4; ++k) {
       const auto& tet = mesh.tets[t];
-      const auto key = face_key(tet[kFaces[k][0]], tet[kFaces[k][1]], tet[kFaces[k][2]]);
+      const auto key = face_key(tet[kTetFaces[k][0]], tet[kTetFaces[k][1]], tet[kTetFaces[k][2]]);
       auto [it, inserted] = seen.try_emplace(key, t, k);
       if (!inserted) it->second.first = -1;
     }
   std::vector<std::pair<int, int>> boundary;
   for (const auto& [key, tf] : seen)
     if (tf.first >= 0) boundary.push_back(tf);
-  std::sort(boundary.begin(), boundary.end());  // deterministic order
-  mesh.faces.reserve(boundary.size());
+  std::sort(boundary.begin(), boundary.end());
+  return boundary;
+}
+
+// The mesh's boundary faces with outward normals, their midside nodes looked up from the tets' edges, each marked
+// with the marker TetGen gave its subface (boundary and region-interface faces), kSurfaceOther where it gave none.
+std::vector<BoundaryFace> boundary_faces(const TetMesh& mesh, const RawTetgenOutput& out) {
+  std::unordered_map<std::uint64_t, int> marker_of;
+  marker_of.reserve(2 * static_cast<std::size_t>(out.n_trifaces));
+  for (int f = 0; f < out.n_trifaces; ++f) {
+    const int* v = out.trifaces.data() + 3 * f;
+    marker_of[face_key(v[0], v[1], v[2])] = out.trifacemarkers[f];
+  }
+  auto edge_slot = [](int i, int j) {
+    for (int e = 0; e < 6; ++e)
+      if ((kTetEdges[e][0] == i && kTetEdges[e][1] == j) || (kTetEdges[e][0] == j && kTetEdges[e][1] == i))
+        return 4 + e;
+    return -1;
+  };
+  const std::vector<std::pair<int, int>> boundary = boundary_tet_faces(mesh);
+  std::vector<BoundaryFace> faces;
+  faces.reserve(boundary.size());
   for (const auto& [t, k] : boundary) {
     const auto& tet = mesh.tets[t];
     BoundaryFace face;
-    const int* c = kFaces[k];
+    const int* c = kTetFaces[k];
     for (int i = 0; i < 3; ++i) face.nodes[i] = tet[c[i]];
     for (int i = 0; i < 3; ++i) face.nodes[3 + i] = tet[edge_slot(c[i], c[(i + 1) % 3])];
     const auto it = marker_of.find(face_key(face.nodes[0], face.nodes[1], face.nodes[2]));
     face.marker = it != marker_of.end() ? it->second : kSurfaceOther;
-    mesh.faces.push_back(face);
+    faces.push_back(face);
   }
+  return faces;
+}
+
+}  // namespace
+
+TetMesh tetrahedralize_plc(const Plc& plc, const TetgenOptions& options) {
+  const std::string switches = switches_for(plc, options);
+  const std::string request = describe_request(plc, switches);
+  if (plc.points.size() < 4 || plc.facets.size() < 4)
+    throw InputError("mesh: " + request + "; a closed PLC needs at least 4 points and 4 facets");
+  const RawTetgenOutput out = run_tetgen_isolated(plc, switches, options.time_limit_s, request);
+  if (out.n_tets == 0)
+    throw InputError("mesh: " + request + " produced no tetrahedra; is the boundary closed?");
+  check_node_budget(out, plc, options, request);
+  TetMesh mesh = tets_from_output(out);
+  mesh.faces = boundary_faces(mesh, out);
   mesh.quality = mesh_quality(mesh);
   return mesh;
 }
@@ -353,9 +377,8 @@ MeshQuality mesh_quality(const TetMesh& mesh) {
     // Outward face normals; the dihedral angle at edge (i,j) is pi minus the angle between the normals of the two
     // faces sharing it (faces opposite the other two corners).
     Eigen::Vector3d n[4];
-    constexpr int kFaces[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
     for (int k = 0; k < 4; ++k) {
-      n[k] = (p[kFaces[k][1]] - p[kFaces[k][0]]).cross(p[kFaces[k][2]] - p[kFaces[k][0]]);
+      n[k] = (p[kTetFaces[k][1]] - p[kTetFaces[k][0]]).cross(p[kTetFaces[k][2]] - p[kTetFaces[k][0]]);
       n[k].normalize();
     }
     double shortest = std::numeric_limits<double>::infinity();

@@ -1,7 +1,11 @@
 // The petsc backend through the command line under mpirun, against CHOLMOD on the same mesh: the tube in torsion and
 // the coarse seed cup with its cam in unilateral contact (the contact's influence coefficients are solves on the
-// backend), on 1 and 2 ranks, and the loaded tooth contact on that cup; bad PETSc options and a launch on several ranks with the one-process backend give one
-// line, a non-zero exit and nothing written.
+// backend), on 1 and 2 ranks, and the loaded tooth contact on that cup; bad PETSc options and a launch on several
+// ranks with the one-process backend give one line, a non-zero exit and nothing written.
+//
+// A build without PETSc (SW_WITH_PETSC off) keeps this test: the backend's tests report themselves skipped with the
+// reason, so the summary of every run says what was not checked, and the build's own promise is checked instead: the
+// backend and PETSc options are refused in one line that says how to rebuild.
 //
 // Tolerances: MUMPS and CHOLMOD are both double-precision Cholesky factorisations of the same matrix under different
 // orderings, so φ₀ agrees to round-off times the conditioning (measured 1e-14 to 4e-14): 1e-10. CG + GAMG stops at the
@@ -29,6 +33,11 @@ namespace {
 namespace fs = std::filesystem;
 using namespace sw::testing;
 
+#ifndef SW_MPIEXEC
+#define SW_MPIEXEC ""  // no MPI in a build without PETSc; the tests that launch ranks skip there
+#endif
+
+constexpr bool kPetscBuilt = SW_WITH_PETSC;
 constexpr double kDirectTol = 1e-10;
 constexpr double kKrylovTol = 1e-6;
 constexpr double kBalanceTol = 1e-8;
@@ -118,7 +127,17 @@ void expect_like_cholmod(const nlohmann::json& j, const fs::path& case_file, int
   EXPECT_NEAR(-j["reaction_torque_Nm"].get<double>() / j["torque_Nm"].get<double>(), 1.0, kBalanceTol);
 }
 
-TEST(PetscBackend, TubeTorsionWithMumpsOnOneAndTwoRanksEqualsCholmod) {
+/// The backend's tests: skipped, with the reason, in a build without PETSc.
+class PetscBackend : public ::testing::Test {
+protected:
+  void SetUp() override {
+    if (!kPetscBuilt)
+      GTEST_SKIP() << "this strainwave was built without PETSc (cmake -DSW_WITH_PETSC=OFF, or libpetsc-real-dev and "
+                      "openmpi-bin missing at configure time): the petsc backend is not there to test";
+  }
+};
+
+TEST_F(PetscBackend, TubeTorsionWithMumpsOnOneAndTwoRanksEqualsCholmod) {
   for (const int ranks : {1, 2}) {
     const auto j = fem(tube_case(), mpirun(ranks), "--backend petsc", "tube_mumps_" + std::to_string(ranks));
     expect_like_cholmod(j, tube_case(), ranks, kDirectTol);
@@ -127,14 +146,14 @@ TEST(PetscBackend, TubeTorsionWithMumpsOnOneAndTwoRanksEqualsCholmod) {
   }
 }
 
-TEST(PetscBackend, TubeTorsionWithGamgCgOnTwoRanksEqualsCholmod) {
+TEST_F(PetscBackend, TubeTorsionWithGamgCgOnTwoRanksEqualsCholmod) {
   const auto j = fem(tube_case(), mpirun(2), "--backend petsc -ksp_type cg -pc_type gamg", "tube_gamg");
   expect_like_cholmod(j, tube_case(), 2, kKrylovTol);
   EXPECT_EQ(j["solver"]["algorithm"], "cg + gamg");
   EXPECT_GT(j["solver"]["iterations"].get<int>(), 0);
 }
 
-TEST(PetscBackend, SeedCupWithCamContactOnOneAndTwoRanksEqualsCholmod) {
+TEST_F(PetscBackend, SeedCupWithCamContactOnOneAndTwoRanksEqualsCholmod) {
   const fs::path c = seed_case(true);
   for (const int ranks : {1, 2}) {
     const auto j = fem(c, mpirun(ranks), "--backend petsc", "seed_mumps_" + std::to_string(ranks));
@@ -146,7 +165,7 @@ TEST(PetscBackend, SeedCupWithCamContactOnOneAndTwoRanksEqualsCholmod) {
   }
 }
 
-TEST(PetscBackend, SeedCupTorqueCaseWithGamgCgOnTwoRanksEqualsCholmod) {
+TEST_F(PetscBackend, SeedCupTorqueCaseWithGamgCgOnTwoRanksEqualsCholmod) {
   const fs::path c = seed_case(false);
   expect_like_cholmod(fem(c, mpirun(2), "--backend petsc -ksp_type cg -pc_type gamg", "seed_gamg"), c, 2,
                       kKrylovTol);
@@ -154,7 +173,7 @@ TEST(PetscBackend, SeedCupTorqueCaseWithGamgCgOnTwoRanksEqualsCholmod) {
 
 // The loaded tooth contact solves its influence coefficients on the backend too (full solves on PETSc, half solves
 // on CHOLMOD's factor: round-off through the contact's active sets, measured 3e-7 on the twist): 1e-6.
-TEST(PetscBackend, LoadedToothContactOnTwoRanksEqualsCholmod) {
+TEST_F(PetscBackend, LoadedToothContactOnTwoRanksEqualsCholmod) {
   const fs::path c = seed_case(true);
   const fs::path p = write_case("seed_cam_petsc", read_text(c) + "\n[solver]\nbackend = \"petsc\"\n");
   nlohmann::json curve[2];
@@ -185,20 +204,32 @@ void expect_refused(const std::string& launch, const std::string& args, const st
   EXPECT_FALSE(fs::exists(out));
 }
 
-TEST(PetscBackend, AnUnknownSolverTypeIsOneLineAndNothingIsWritten) {
+TEST_F(PetscBackend, AnUnknownSolverTypeIsOneLineAndNothingIsWritten) {
   expect_refused(mpirun(2), "--backend petsc -pc_type nonsense", "PETSc: Unable to find requested PC type nonsense");
 }
 
-TEST(PetscBackend, AMisspeltOptionIsOneLineAndNothingIsWritten) {
+TEST_F(PetscBackend, AMisspeltOptionIsOneLineAndNothingIsWritten) {
   expect_refused(mpirun(2), "--backend petsc -ksp_rtoll 1e-8", "option -ksp_rtoll was not used by the solver");
 }
 
-TEST(PetscBackend, TheOneProcessBackendOnSeveralRanksIsRefused) {
+TEST_F(PetscBackend, TheOneProcessBackendOnSeveralRanksIsRefused) {
   expect_refused(mpirun(2), "", "solver.backend = \"cholmod\" runs in one process, but this run was launched on 2 MPI");
 }
 
-TEST(PetscBackend, TheHarmonicSolverIsNotDistributed) {
+// Checked with or without PETSc: the choice of solver is refused before any backend starts.
+TEST(PetscBackendChoice, TheHarmonicSolverIsNotDistributed) {
   expect_refused("", "--backend petsc --solver fourier", "the petsc backend solves the TET10 model");
 }
+
+/// A build without PETSc refuses the backend, and PETSc options, in one line that says how to rebuild.
+[[maybe_unused]] void expect_the_backend_refused_without_petsc() {
+  expect_refused("", "--backend petsc", "solver.backend = \"petsc\": this strainwave was built without PETSc");
+  expect_refused("", "--backend petsc -ksp_type cg", "PETSc option -ksp_type given, but this strainwave was built "
+                                                    "without PETSc");
+}
+
+#if !SW_WITH_PETSC
+TEST(PetscBackendChoice, WithoutPetscTheBackendIsRefusedInOneLine) { expect_the_backend_refused_without_petsc(); }
+#endif
 
 }  // namespace

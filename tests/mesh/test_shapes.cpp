@@ -1,9 +1,14 @@
 // Verification shapes: tube (also thick cylinder and short ring) and bar. Volumes and marked areas against the
-// analytic values, nodes on the true surfaces, layers through the wall, refinement, errors.
+// analytic values, each a conforming TET10 mesh with the tets its size asks for, nodes on the true surfaces, layers
+// through the wall, refinement, errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <numbers>
+#include <set>
+#include <utility>
 
 #include "common/error.hpp"
 #include "mesh/revolve.hpp"
@@ -29,13 +34,51 @@ MeshParams params(double size_mm, int layers) {
 
 double radius(const TetMesh& m, int node) { return std::hypot(m.nodes(node, 0), m.nodes(node, 1)); }
 
+/// `m` is a conforming TET10 mesh: it has tets, a region per tet and boundary faces, and every node is a corner or the
+/// one midside node of its edge (shared by every tet on that edge), so n_nodes = corners + edges. An empty mesh or one
+/// with unused or duplicated nodes fails here.
+void expect_tet10_mesh(const TetMesh& m) {
+  ASSERT_FALSE(m.tets.empty());
+  EXPECT_EQ(m.region.size(), m.tets.size());
+  EXPECT_FALSE(m.faces.empty());
+  std::set<int> corners;
+  std::map<std::pair<int, int>, int> midside_of_edge;
+  for (const auto& t : m.tets) {
+    for (int k = 0; k < 4; ++k) corners.insert(t[k]);
+    for (int e = 0; e < 6; ++e) {
+      const int a = t[kTetEdges[e][0]], b = t[kTetEdges[e][1]];
+      const auto [it, inserted] = midside_of_edge.try_emplace({std::min(a, b), std::max(a, b)}, t[4 + e]);
+      ASSERT_EQ(it->second, t[4 + e]) << "edge " << a << "-" << b << " has two midside nodes";
+    }
+  }
+  std::set<int> midsides;
+  for (const auto& [edge, node] : midside_of_edge) midsides.insert(node);
+  EXPECT_EQ(midsides.size(), midside_of_edge.size()) << "a midside node shared by two edges";
+  EXPECT_EQ(m.n_nodes(), corners.size() + midside_of_edge.size()) << "nodes that no tet uses";
+}
+
+std::size_t faces_marked(const TetMesh& m, int marker) {
+  return static_cast<std::size_t>(
+      std::count_if(m.faces.begin(), m.faces.end(), [&](const BoundaryFace& f) { return f.marker == marker; }));
+}
+
+/// Fewest triangles that can cover `area_m2` when no triangle exceeds half a cell of a × b (m): 2·area / (a·b).
+double fewest_triangles(double area_m2, double a_m, double b_m) { return 2.0 * area_m2 / (a_m * b_m); }
+
 struct TubeDims { double ri, ro, length; };
 
 class TubeShapes : public ::testing::TestWithParam<TubeDims> {};
 
 TEST_P(TubeShapes, VolumeAndMarkedAreasMatchTheAnnulus) {
   const auto [ri, ro, L] = GetParam();
-  const TetMesh m = mesh_tube(ri, ro, L, params(2.0, 1));
+  const MeshParams mesh = params(2.0, 1);
+  const TetMesh m = mesh_tube(ri, ro, L, mesh);
+  expect_tet10_mesh(m);
+  // The cylinders are swept quads no longer than `along` axially and no wider than `across` around (each ring gets
+  // at least 2π r / across points), each split into two triangles.
+  const WallSize w = wall_size(ro - ri, mesh);
+  EXPECT_GE(faces_marked(m, kSurfaceInner), fewest_triangles(2 * kPi * ri * L, w.along_m, w.across_m));
+  EXPECT_GE(faces_marked(m, kSurfaceOuter), fewest_triangles(2 * kPi * ro * L, w.along_m, w.across_m));
   EXPECT_NEAR(mesh_volume(m) / (kPi * (ro * ro - ri * ri) * L), 1.0, kCurvedGeometryTol);
   EXPECT_NEAR(boundary_area(m, kSurfaceInner) / (2 * kPi * ri * L), 1.0, kCurvedGeometryTol);
   EXPECT_NEAR(boundary_area(m, kSurfaceOuter) / (2 * kPi * ro * L), 1.0, kCurvedGeometryTol);
@@ -68,10 +111,24 @@ TEST(MeshTube, EveryBoundaryNodeOfACylinderLiesOnIt) {
 }
 
 TEST(MeshTube, WallHasTheRequestedNumberOfLayers) {
-  const double ri = 18.4e-3, ro = 19.0e-3;
+  const double ri = 18.4e-3, ro = 19.0e-3, L = 1.5e-3;
   for (int layers : {1, 2, 3}) {
-    const TetMesh m = mesh_tube(ri, ro, 1.5e-3, params(0.6, layers));
+    const TetMesh m = mesh_tube(ri, ro, L, params(0.6, layers));
     const double across = (ro - ri) / layers;
+    expect_tet10_mesh(m);
+    EXPECT_NEAR(mesh_volume(m) / (kPi * (ro * ro - ri * ri) * L), 1.0, kCurvedGeometryTol);
+    // Every layer cylinder r_i + k·across (k = 0..layers) carries corner nodes between the ends (the end annuli have
+    // rings at these radii whether or not the layers exist): at least one ring, 8 points (revolve.cpp's fewest).
+    for (int k = 0; k <= layers; ++k) {
+      const double r = ri + k * across;
+      std::set<int> on_cylinder;
+      for (const auto& t : m.tets)
+        for (int c = 0; c < 4; ++c)
+          if (std::abs(radius(m, t[c]) / r - 1.0) < kOnSurfaceTol && m.nodes(t[c], 2) > 1e-9 &&
+              m.nodes(t[c], 2) < L - 1e-9)
+            on_cylinder.insert(t[c]);
+      EXPECT_GE(on_cylinder.size(), 8u) << "layer cylinder " << k << " of " << layers;
+    }
     // No tet reaches across more than one layer, so every radial line crosses at least `layers` tets.
     double widest = 0.0;
     for (const auto& t : m.tets) {
@@ -90,6 +147,7 @@ TEST(MeshTube, WallHasTheRequestedNumberOfLayers) {
 TEST(MeshTube, RefinementGivesMoreNodes) {
   const TetMesh coarse = mesh_tube(10e-3, 11e-3, 5e-3, params(1.0, 1));
   const TetMesh fine = mesh_tube(10e-3, 11e-3, 5e-3, params(0.5, 2));
+  ASSERT_GT(coarse.n_nodes(), 0u);
   EXPECT_GT(fine.n_nodes(), 3 * coarse.n_nodes());
 }
 
@@ -110,7 +168,12 @@ TEST(MeshTube, RejectsInvertedRadiiAndZeroLayers) {
 
 TEST(MeshBar, VolumeAndEndAreasAreExactAndMarked) {
   const double L = 20e-3, w = 2e-3, h = 3e-3;
-  const TetMesh m = mesh_bar(L, w, h, params(1.0, 2));
+  const MeshParams mesh = params(1.0, 2);
+  const TetMesh m = mesh_bar(L, w, h, mesh);
+  expect_tet10_mesh(m);
+  // Every face is pre-split into a grid of spacing at most the edge size, each square two triangles.
+  const double edge = wall_size(std::min(w, h), mesh).across_m;
+  EXPECT_GE(m.faces.size(), fewest_triangles(2 * (L * w + L * h + w * h), edge, edge));
   // Straight-sided: exact up to round-off.
   EXPECT_NEAR(mesh_volume(m) / (L * w * h), 1.0, 1e-12);
   EXPECT_NEAR(boundary_area(m, kSurfaceClamped) / (w * h), 1.0, 1e-12);

@@ -11,7 +11,6 @@
 #include <string>
 
 #include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
 
 #include "app/commands.hpp"
 #include "app/dynamics_job.hpp"
@@ -21,6 +20,7 @@
 #include "dynamics/report.hpp"
 #include "io/atomic_file.hpp"
 #include "io/case.hpp"
+#include "io/dynamics_output.hpp"
 
 namespace sw::app {
 namespace {
@@ -58,7 +58,7 @@ void run_dynamics(const std::string& case_path, std::string out_dir, const std::
   const std::filesystem::path dir(out_dir);
   write_file_atomic(dir / "dynamics.csv", dynamics_csv(m, s));
   info.total_time_s = total.lap();
-  write_file_atomic(dir / "dynamics.json", dynamics_json(m, s, r, info));
+  write_file_atomic(dir / "dynamics.json", dynamics_json(dynamics_result(m, s, r, info)));
   write_file_atomic(dir / "dynamics.svg", dynamics_svg(m, s, r, info));
   std::printf("dynamics %s (%s, %d/%d teeth, %s): %.3g s simulated in %.3g s (real-time factor %.3g)\n",
               case_path.c_str(), to_string(p.configuration), m.teeth_flexspline, m.teeth_circular, source.c_str(),

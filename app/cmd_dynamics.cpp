@@ -74,8 +74,8 @@ void print_summary(const DynamicsModel& m, const DynamicsSummary& r, const Dynam
   std::printf("torque balance %.2e; energy balance %.2e\n", r.torque_balance_error_rel, r.energy_error_rel);
   std::printf("  mesh frequency %.2f Hz; strongest line %s\n", r.theory.mesh_frequency_Hz,
               r.lines.empty() ? "none" : (std::to_string(r.lines[0].frequency_Hz) + " Hz").c_str());
-  std::printf("  steady window: mesh deflection %.4g to %.4g mrad, largest flank force %.4g N, %g to %g flanks in contact, "
-              "transmission error %.4g µrad peak to peak\n", r.deflection_min_rad * 1e3, r.deflection_max_rad * 1e3,
+  std::printf("  steady window: mesh deflection %.4g to %.4g mrad, largest flank force %.4g N, %g to %g flanks in "
+              "contact, transmission error %.4g µrad peak to peak\n", r.deflection_min_rad * 1e3, r.deflection_max_rad * 1e3,
               r.max_pair_force_N, r.flanks_in_contact_min, r.flanks_in_contact_max, r.te_peak_to_peak_rad * 1e6);
   print_lines(r);
   std::printf("  wrote %s/dynamics.{csv,json,svg}\n", out_dir.c_str());

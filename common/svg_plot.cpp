@@ -217,8 +217,9 @@ std::size_t data_hidden_by(const LinePlot& p, const Frame& f, const LegendBox& b
     for (std::size_t i : drawn_points(ser)) {
       const bool ok = drawable(p, ser.x[i], ser.y[i]);
       const double qx = ok ? f.X(ser.x[i]) : NAN, qy = ok ? f.Y(ser.y[i]) : NAN;
-      if (ok && (ser.markers ? box.holds(qx, qy, ser.marker_radius) : std::isfinite(px) && box.crossed_by(px, py, qx, qy)))
-        ++hidden;
+      const bool under = ser.markers ? box.holds(qx, qy, ser.marker_radius)
+                                     : std::isfinite(px) && box.crossed_by(px, py, qx, qy);
+      if (ok && under) ++hidden;
       px = qx;
       py = qy;
     }
@@ -270,14 +271,17 @@ void draw_axes(std::ostream& s, const LinePlot& p, const Frame& f) {
   const double W = f.W, H = f.H, L = f.L, R = f.R, T = f.T, B = f.B;
   s << "<text x='" << L << "' y='18' font-size='14' font-weight='bold'>" << html_escape(p.title) << "</text>\n";
   for (const auto& [a, b] : p.x_bands) {
-    const double xa = f.X(std::clamp(std::min(a, b), f.ax.lo, f.ax.hi)), xb = f.X(std::clamp(std::max(a, b), f.ax.lo, f.ax.hi));
+    const double xa = f.X(std::clamp(std::min(a, b), f.ax.lo, f.ax.hi));
+    const double xb = f.X(std::clamp(std::max(a, b), f.ax.lo, f.ax.hi));
     s << "<rect x='" << f1(xa) << "' y='" << T << "' width='" << f1(std::max(2.0, xb - xa)) << "' height='" << H - T - B
       << "' fill='#fd6' opacity='0.35'/>\n";
   }
   const double xs = f.ax.ticks.size() > 1 ? f.ax.ticks[1] - f.ax.ticks[0] : 1;
   for (double v : f.ax.ticks) {
-    s << "<line x1='" << f1(f.X(v)) << "' y1='" << T << "' x2='" << f1(f.X(v)) << "' y2='" << H - B << "' stroke='#eee'/>";
-    s << "<text x='" << f1(f.X(v)) << "' y='" << H - B + 16 << "' text-anchor='middle'>" << tick_label(v, xs) << "</text>\n";
+    s << "<line x1='" << f1(f.X(v)) << "' y1='" << T << "' x2='" << f1(f.X(v)) << "' y2='" << H - B
+      << "' stroke='#eee'/>";
+    s << "<text x='" << f1(f.X(v)) << "' y='" << H - B + 16 << "' text-anchor='middle'>" << tick_label(v, xs)
+      << "</text>\n";
   }
   const double ys = f.ay.ticks.size() > 1 ? f.ay.ticks[1] - f.ay.ticks[0] : 1;
   for (double v : f.ay.ticks) {
@@ -352,7 +356,8 @@ std::string plot_body(const LinePlot& p) {
   const Frame f = frame_and_legend(p, legend);
   std::ostringstream s;
   s.precision(6);
-  s << "<g font-family='sans-serif' font-size='12'>\n<rect width='" << f.W << "' height='" << f.H << "' fill='white'/>\n";
+  s << "<g font-family='sans-serif' font-size='12'>\n<rect width='" << f.W << "' height='" << f.H
+    << "' fill='white'/>\n";
   draw_axes(s, p, f);
   draw_data(s, p, f);
   draw_legend(s, p, legend);

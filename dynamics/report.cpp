@@ -106,7 +106,8 @@ namespace {
 std::vector<OrderLine> in_orders(const std::vector<SpectralLine>& lines, double fm, double fg) {
   std::vector<OrderLine> out;
   for (const auto& l : lines)
-    out.push_back({l.frequency_Hz, l.amplitude_N, fm > 0 ? l.frequency_Hz / fm : 0.0, fg > 0 ? l.frequency_Hz / fg : 0.0});
+    out.push_back({l.frequency_Hz, l.amplitude_N, fm > 0 ? l.frequency_Hz / fm : 0.0,
+                   fg > 0 ? l.frequency_Hz / fg : 0.0});
   return out;
 }
 
@@ -148,7 +149,8 @@ DynamicsResult dynamics_result(const DynamicsModel& m, const DynamicsSeries& s, 
   d.max_speed_error_rel = r.max_speed_error_rel;
   d.pair_forces = r.pair_forces;
   if (!m.moving) d.max_pair_force_error_rel = r.max_pair_force_error_rel;  // frozen pairs only: see summarize()
-  for (const auto& tp : m.pairs) d.pairs_in_interference += (tp.clearance_drive_m < 0 || tp.clearance_coast_m < 0) ? 1 : 0;
+  for (const auto& tp : m.pairs)
+    d.pairs_in_interference += (tp.clearance_drive_m < 0 || tp.clearance_coast_m < 0) ? 1 : 0;
   d.total_force_at_rest_N = s.total_force_N.empty() ? 0.0 : s.total_force_N.front();
   d.mesh_torque_Nm = r.mesh_torque_Nm;
   d.mesh_torque_theory_Nm = r.theory.mesh_torque_Nm;
@@ -245,8 +247,9 @@ LinePlot speeds_panel(const DynamicsModel& m, const DynamicsSeries& s, const Dyn
 /// Pair forces: the strongest four in colour, the rest grey beneath them; moving pairs: every tooth's force as it
 /// travels through the zones.
 LinePlot pair_forces_panel(const DynamicsModel& m, const DynamicsSeries& s, const DynamicsSummary& r) {
-  LinePlot pf = time_panel("Tooth-pair forces (signed: drive flank positive), " + std::to_string(m.pairs.size()) + " pairs",
-                           "pair force (N)", s);
+  LinePlot pf = time_panel(
+      "Tooth-pair forces (signed: drive flank positive), " + std::to_string(m.pairs.size()) + " pairs",
+      "pair force (N)", s);
   const auto& t = s.time_s;
   std::vector<std::size_t> order(m.pairs.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
@@ -265,7 +268,8 @@ LinePlot pair_forces_panel(const DynamicsModel& m, const DynamicsSeries& s, cons
   for (std::size_t i = 0; i < s.pair_force_N.size(); ++i)
     pf.series.push_back(line(t, s.pair_force_N[i], i % 8 == 0 ? kColors[(i / 8) % 8] : "#bbb", i % 8 == 0 ? 1.2 : 0.6,
                              i % 8 == 0 && i < 32 ? "tooth " + std::to_string(i) : ""));
-  pf.title = "Tooth forces (signed: ccw flank positive), " + std::to_string(s.pair_force_N.size()) + " teeth travelling";
+  pf.title =
+      "Tooth forces (signed: ccw flank positive), " + std::to_string(s.pair_force_N.size()) + " teeth travelling";
   return pf;
 }
 
@@ -285,8 +289,9 @@ LinePlot flanks_panel(const DynamicsSeries& s) {
 }
 
 LinePlot total_force_panel(const DynamicsSeries& s, const DynamicsSummary& r) {
-  LinePlot tf = time_panel("Total meshing force Σ|F_i| (mean in the steady window " + fmt(std::round(r.mean_total_force_N)) +
-                               " N, rms fluctuation " + fmt(r.force_fluctuation_N) + " N)",
+  LinePlot tf = time_panel("Total meshing force Σ|F_i| (mean in the steady window " +
+                               fmt(std::round(r.mean_total_force_N)) + " N, rms fluctuation " +
+                               fmt(r.force_fluctuation_N) + " N)",
                            "total force (N)", s);
   tf.series.push_back(line(s.time_s, s.total_force_N, "#1f77b4", 1.2));
   return tf;

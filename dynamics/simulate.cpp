@@ -311,7 +311,8 @@ private:
       double x = s.x_el[i];
       if (p_.damping_Ns_per_m > 0) {
         const double r1 = rate / n;
-        const double local = constant ? (m1 == 1.0 ? x / k : std::pow(x / k, 1.0 / m1)) : x * series_compliance(in, i, k) / n;
+        const double local =
+            constant ? (m1 == 1.0 ? x / k : std::pow(x / k, 1.0 / m1)) : x * series_compliance(in, i, k) / n;
         double fd = p_.damping_Ns_per_m * r1;
         if (p_.exponent_damping != 0) fd *= std::pow(std::abs(r1), p_.exponent_damping);
         if (p_.exponent_indentation != 0) fd *= std::pow(local, p_.exponent_indentation);
@@ -616,7 +617,8 @@ DynamicsSeries simulate(const DynamicsModel& m) {
     const double tout = i == grid.last ? p.duration_s : i * grid.dt;
     cvode.advance_to(tout);
     recorder.record(i, tout, cvode.state());
-    if (i == grid.last) energy = energy_at_end(cvode.state() + 2 * ev.free_bodies().size(), recorder.last(), potential0);
+    if (i == grid.last)
+      energy = energy_at_end(cvode.state() + 2 * ev.free_bodies().size(), recorder.last(), potential0);
   }
   DynamicsSeries out = std::move(recorder).finish();
   out.energy = energy;

@@ -104,8 +104,8 @@ TEST(DynamicsOutput, MovingPairsHaveNoPairForceErrorKey) {
 }
 
 // Files written by `strainwave dynamics` before the typed writer: cases/mbd_26_28.toml as shipped (moving pairs on a
-// rigid rim, cs_fixed), and the same case with configuration = "all_free", a compliant flexspline (C_tau 2e-5 rad/(N m))
-// and a varying k, pairs frozen (four bodies, every pair's check, the pair-force error key).
+// rigid rim, cs_fixed), and the same case with configuration = "all_free", a compliant flexspline (C_tau 2e-5
+// rad/(N m)) and a varying k, pairs frozen (four bodies, every pair's check, the pair-force error key).
 TEST(DynamicsOutput, FilesTheToolWroteReadAndWriteAgainToTheSameText) {
   for (const char* name : {"mbd_26_28_moving.json", "mbd_26_28_all_free_compliant_frozen.json"}) {
     const std::filesystem::path path = std::filesystem::path("tests/dynamics/data") / name;

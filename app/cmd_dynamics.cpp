@@ -11,7 +11,6 @@
 #include <string>
 
 #include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
 
 #include "app/commands.hpp"
 #include "app/dynamics_job.hpp"
@@ -21,61 +20,31 @@
 #include "dynamics/report.hpp"
 #include "io/atomic_file.hpp"
 #include "io/case.hpp"
+#include "io/dynamics_output.hpp"
 
 namespace sw::app {
 namespace {
 
-void run_dynamics(const std::string& case_path, std::string out_dir, const std::string& clearances,
-                  const std::string& fem_result, const std::string& interference, const std::string& pairs_option,
-                  const std::string& rim_option) {
-  Stopwatch total;
-  const Case c = load_case(case_path);
-  if (!c.gear) throw InputError(case_path + ": [gear] is missing; the dynamics needs the tooth numbers and module");
+/// The case's [dynamics] table (or its defaults) with the command line's --pairs and --rim.
+DynamicsParams resolved_params(const Case& c, const std::string& pairs_option, const std::string& rim_option) {
   DynamicsParams p = c.dynamics ? *c.dynamics : DynamicsParams{};
   if (!pairs_option.empty()) p.pair_motion = pairs_option == "moving" ? PairMotion::Moving : PairMotion::Frozen;
   if (!rim_option.empty()) p.rim = rim_option == "fem" ? RimCoupling::Fem : RimCoupling::Rigid;
-  if (out_dir.empty()) out_dir = default_out_dir(c).string();
-  progress("case:\n" + describe(p));
-  DynamicsModelOptions o;
-  o.clearances = clearances;
-  o.interference = interference;
-  o.fem_result = fem_result;
-  DynamicsJobModel job = dynamics_model(c, p, o, out_dir);
-  const DynamicsModel& m = job.model;
-  const std::string& source = job.source;
-  progress("dynamics: " + std::string(to_string(p.configuration)) + ", " + std::to_string(m.pairs.size()) +
-           " tooth pairs (" + source + "), " + std::to_string(std::lround(p.duration_s / p.output_step_s)) +
-           " output steps");
-  Stopwatch sim;
-  const DynamicsSeries s = simulate(m);
-  DynamicsReportInfo info;
-  info.case_path = case_path;
-  info.clearance_source = source;
-  info.simulate_time_s = sim.lap();
-  progress("dynamics: integrated " + std::to_string(p.duration_s) + " s in " + std::to_string(info.simulate_time_s) +
-           " s (" + std::to_string(s.stats.steps) + " steps)");
-  const DynamicsSummary r = summarize(m, s);
-  const std::filesystem::path dir(out_dir);
+  return p;
+}
+
+/// dynamics.csv, dynamics.json and dynamics.svg in `dir`, each written atomically; the command's wall clock (`total`)
+/// is read for dynamics.json.
+void write_outputs(const std::filesystem::path& dir, const DynamicsModel& m, const DynamicsSeries& s,
+                   const DynamicsSummary& r, DynamicsReportInfo& info, Stopwatch& total) {
   write_file_atomic(dir / "dynamics.csv", dynamics_csv(m, s));
   info.total_time_s = total.lap();
-  write_file_atomic(dir / "dynamics.json", dynamics_json(m, s, r, info));
+  write_file_atomic(dir / "dynamics.json", dynamics_json(dynamics_result(m, s, r, info)));
   write_file_atomic(dir / "dynamics.svg", dynamics_svg(m, s, r, info));
-  std::printf("dynamics %s (%s, %d/%d teeth, %s): %.3g s simulated in %.3g s (real-time factor %.3g)\n",
-              case_path.c_str(), to_string(p.configuration), m.teeth_flexspline, m.teeth_circular, source.c_str(),
-              p.duration_s, info.simulate_time_s, p.duration_s / info.simulate_time_s);
-  for (const auto& sc : r.speeds)
-    std::printf("  speed %-16s %12.6f rpm (theory %12.6f, error %.2e)\n", sc.body.c_str(), sc.simulated_rpm,
-                sc.theory_rpm, sc.error_rel);
-  if (!m.moving)  // moving pairs: the quasi-static comparison is a test (slow run against the loaded contact)
-    std::printf("  pair forces vs quasi-static: max error %.2e; ", r.max_pair_force_error_rel);
-  else
-    std::printf("  ");
-  std::printf("torque balance %.2e; energy balance %.2e\n", r.torque_balance_error_rel, r.energy_error_rel);
-  std::printf("  mesh frequency %.2f Hz; strongest line %s\n", r.theory.mesh_frequency_Hz,
-              r.lines.empty() ? "none" : (std::to_string(r.lines[0].frequency_Hz) + " Hz").c_str());
-  std::printf("  steady window: mesh deflection %.4g to %.4g mrad, largest flank force %.4g N, %g to %g flanks in contact, "
-              "transmission error %.4g µrad peak to peak\n", r.deflection_min_rad * 1e3, r.deflection_max_rad * 1e3,
-              r.max_pair_force_N, r.flanks_in_contact_min, r.flanks_in_contact_max, r.te_peak_to_peak_rad * 1e6);
+}
+
+/// The strongest three lines of the total force and of the transmission error, in orders and above their floors.
+void print_lines(const DynamicsSummary& r) {
   const double fm = r.theory.mesh_frequency_Hz, fg = r.generator_frequency_Hz;
   for (std::size_t i = 0; i < std::min<std::size_t>(3, r.lines.size()); ++i)
     std::printf("  force line %zu: %.2f Hz (mesh order %.3f, generator order %.2f), %.4g N, %.1f dB above the floor "
@@ -86,7 +55,61 @@ void run_dynamics(const std::string& case_path, std::string out_dir, const std::
                 "above the floor\n", i + 1, r.te_lines[i].frequency_Hz, r.te_lines[i].frequency_Hz / fm,
                 r.te_lines[i].frequency_Hz / fg, r.te_lines[i].amplitude_N * 1e6,
                 20 * std::log10(r.te_lines[i].amplitude_N / r.te_noise_floor_rad));
+}
+
+/// The run's figures on stdout: speeds against kinematics, the balances, the steady window and the spectral lines.
+void print_summary(const DynamicsModel& m, const DynamicsSummary& r, const DynamicsReportInfo& info,
+                   const std::string& out_dir) {
+  const DynamicsParams& p = m.params;
+  std::printf("dynamics %s (%s, %d/%d teeth, %s): %.3g s simulated in %.3g s (real-time factor %.3g)\n",
+              info.case_path.c_str(), to_string(p.configuration), m.teeth_flexspline, m.teeth_circular,
+              info.clearance_source.c_str(), p.duration_s, info.simulate_time_s, p.duration_s / info.simulate_time_s);
+  for (const auto& sc : r.speeds)
+    std::printf("  speed %-16s %12.6f rpm (theory %12.6f, error %.2e)\n", sc.body.c_str(), sc.simulated_rpm,
+                sc.theory_rpm, sc.error_rel);
+  if (!m.moving)  // moving pairs: the quasi-static comparison is a test (slow run against the loaded contact)
+    std::printf("  pair forces vs quasi-static: max error %.2e; ", r.max_pair_force_error_rel);
+  else
+    std::printf("  ");
+  std::printf("torque balance %.2e; energy balance %.2e\n", r.torque_balance_error_rel, r.energy_error_rel);
+  std::printf("  mesh frequency %.2f Hz; strongest line %s\n", r.theory.mesh_frequency_Hz,
+              r.lines.empty() ? "none" : (std::to_string(r.lines[0].frequency_Hz) + " Hz").c_str());
+  std::printf("  steady window: mesh deflection %.4g to %.4g mrad, largest flank force %.4g N, %g to %g flanks in "
+              "contact, transmission error %.4g µrad peak to peak\n", r.deflection_min_rad * 1e3, r.deflection_max_rad * 1e3,
+              r.max_pair_force_N, r.flanks_in_contact_min, r.flanks_in_contact_max, r.te_peak_to_peak_rad * 1e6);
+  print_lines(r);
   std::printf("  wrote %s/dynamics.{csv,json,svg}\n", out_dir.c_str());
+}
+
+void run_dynamics(const std::string& case_path, std::string out_dir, const std::string& clearances,
+                  const std::string& fem_result, const std::string& interference, const std::string& pairs_option,
+                  const std::string& rim_option) {
+  Stopwatch total;
+  const Case c = load_case(case_path);
+  if (!c.gear) throw InputError(case_path + ": [gear] is missing; the dynamics needs the tooth numbers and module");
+  const DynamicsParams p = resolved_params(c, pairs_option, rim_option);
+  if (out_dir.empty()) out_dir = default_out_dir(c).string();
+  progress("case:\n" + describe(p));
+  DynamicsModelOptions o;
+  o.clearances = clearances;
+  o.interference = interference;
+  o.fem_result = fem_result;
+  const DynamicsJobModel job = dynamics_model(c, p, o, out_dir);
+  const DynamicsModel& m = job.model;
+  progress("dynamics: " + std::string(to_string(p.configuration)) + ", " + std::to_string(m.pairs.size()) +
+           " tooth pairs (" + job.source + "), " + std::to_string(std::lround(p.duration_s / p.output_step_s)) +
+           " output steps");
+  Stopwatch sim;
+  const DynamicsSeries s = simulate(m);
+  DynamicsReportInfo info;
+  info.case_path = case_path;
+  info.clearance_source = job.source;
+  info.simulate_time_s = sim.lap();
+  progress("dynamics: integrated " + std::to_string(p.duration_s) + " s in " + std::to_string(info.simulate_time_s) +
+           " s (" + std::to_string(s.stats.steps) + " steps)");
+  const DynamicsSummary r = summarize(m, s);
+  write_outputs(out_dir, m, s, r, info, total);
+  print_summary(m, r, info, out_dir);
 }
 
 }  // namespace

@@ -159,81 +159,136 @@ struct LegendBox {
   }
 };
 
-/// The plot's elements in a width x height box at the origin.
-std::string plot_body(const LinePlot& p) {
+/// A point is drawn where both coordinates are finite (and y positive on a log axis).
+bool drawable(const LinePlot& p, double x, double y) {
+  return std::isfinite(x) && std::isfinite(y) && (!p.log_y || y > 0);
+}
+
+/// The drawable data's extent; infinite (lo > hi) when there is none.
+struct Extent {
   double xlo = std::numeric_limits<double>::infinity(), xhi = -xlo, ylo = xlo, yhi = -xlo;
+};
+
+Extent data_extent(const LinePlot& p) {
+  Extent e;
   for (const auto& s : p.series)
     for (size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
-      if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i]) || (p.log_y && !(s.y[i] > 0))) continue;
-      xlo = std::min(xlo, s.x[i]); xhi = std::max(xhi, s.x[i]);
-      ylo = std::min(ylo, s.y[i]); yhi = std::max(yhi, s.y[i]);
+      if (!drawable(p, s.x[i], s.y[i])) continue;
+      e.xlo = std::min(e.xlo, s.x[i]); e.xhi = std::max(e.xhi, s.x[i]);
+      e.ylo = std::min(e.ylo, s.y[i]); e.yhi = std::max(e.yhi, s.y[i]);
     }
-  const bool degrees = p.x_label.find("(deg)") != std::string::npos;
-  const Axis ax = make_axis(xlo, xhi, p.x_range, false, degrees, 8);
-  Axis ay = make_axis(ylo, yhi, p.y_range, p.log_y, false, 6);
-  const double W = p.width, H = p.height, L = 78, R = 20, T = 30, B = 48;
-  auto X = [&](double x) { return L + ax.unit(x) * (W - L - R); };
-  auto Y = [&](double y) { return T + (1.0 - ay.unit(y)) * (H - T - B); };
-  // The legend, as wide as its longest label (about 6.6 px a character at 12 px), in the corner of the plot area
-  // where it hides the least data (as matplotlib's loc='best'): fewest markers and line segments under it, top right
-  // first when corners tie. When every corner hides data and the y range is free, the range grows upwards by the
-  // legend's height so the legend sits above the data.
-  std::size_t chars = 0, entries = 0;
+  return e;
+}
+
+/// The plot area in a width x height box (margins for the title, ticks and labels) and the map of data onto it.
+struct Frame {
+  double W = 0, H = 0, L = 78, R = 20, T = 30, B = 48;
+  Axis ax, ay;
+  double X(double x) const { return L + ax.unit(x) * (W - L - R); }
+  double Y(double y) const { return T + (1.0 - ay.unit(y)) * (H - T - B); }
+};
+
+/// The legend: as wide as its longest label (about 6.6 px a character at 12 px), 16 px a labelled series, its top left
+/// corner at (x, y).
+struct Legend {
+  std::size_t entries = 0;
+  double width = 0, height = 0, x = 0, y = 0;
+};
+
+Legend legend_size(const LinePlot& p) {
+  std::size_t chars = 0;
+  Legend l;
   for (const auto& ser : p.series) {
     std::size_t n = 0;
     for (unsigned char c : ser.label) n += (c & 0xC0) != 0x80;  // UTF-8 characters
     chars = std::max(chars, n);
-    entries += !ser.label.empty();
+    l.entries += !ser.label.empty();
   }
-  const double lw = 44 + 6.6 * chars, lh = 16.0 * entries;
-  double lx = W - R - 4 - lw, ly0 = T + 4;
-  auto place_legend = [&] {
-    std::size_t fewest = std::numeric_limits<std::size_t>::max();
-    for (const auto& [cx, cy] : {std::pair{W - R - 4 - lw, T + 4}, std::pair{L + 4, T + 4},
-                                 std::pair{W - R - 4 - lw, H - B - 4 - lh}, std::pair{L + 4, H - B - 4 - lh}}) {
-      const LegendBox box{cx, cy, cx + lw, cy + lh};
-      std::size_t hidden = 0;
-      for (const auto& ser : p.series) {
-        double px = NAN, py = NAN;
-        for (std::size_t i : drawn_points(ser)) {
-          const bool ok = std::isfinite(ser.x[i]) && std::isfinite(ser.y[i]) && (!p.log_y || ser.y[i] > 0);
-          const double qx = ok ? X(ser.x[i]) : NAN, qy = ok ? Y(ser.y[i]) : NAN;
-          if (ok && (ser.markers ? box.holds(qx, qy, ser.marker_radius) : std::isfinite(px) && box.crossed_by(px, py, qx, qy)))
-            ++hidden;
-          px = qx;
-          py = qy;
-        }
-      }
-      if (hidden < fewest) { fewest = hidden; lx = cx; ly0 = cy; }
+  l.width = 44 + 6.6 * chars;
+  l.height = 16.0 * l.entries;
+  return l;
+}
+
+/// How many markers lie under the box and line segments cross it.
+std::size_t data_hidden_by(const LinePlot& p, const Frame& f, const LegendBox& box) {
+  std::size_t hidden = 0;
+  for (const auto& ser : p.series) {
+    double px = NAN, py = NAN;
+    for (std::size_t i : drawn_points(ser)) {
+      const bool ok = drawable(p, ser.x[i], ser.y[i]);
+      const double qx = ok ? f.X(ser.x[i]) : NAN, qy = ok ? f.Y(ser.y[i]) : NAN;
+      const bool under = ser.markers ? box.holds(qx, qy, ser.marker_radius)
+                                     : std::isfinite(px) && box.crossed_by(px, py, qx, qy);
+      if (ok && under) ++hidden;
+      px = qx;
+      py = qy;
     }
-    return fewest;
-  };
-  const double area = H - T - B, room = lh + 8;
-  if (entries > 0 && place_legend() > 0 && !(p.y_range.second > p.y_range.first) && !p.log_y && area > 2 * room &&
-      std::isfinite(yhi)) {
-    ay = make_axis(ylo, ay.lo + (std::max(yhi, ay.hi) - ay.lo) * area / (area - room), p.y_range, false, false, 6);
-    place_legend();
   }
-  std::ostringstream s;
-  s.precision(6);
-  s << "<g font-family='sans-serif' font-size='12'>\n<rect width='" << W << "' height='" << H << "' fill='white'/>\n";
+  return hidden;
+}
+
+/// Puts the legend in the corner of the plot area where it hides the least data (as matplotlib's loc='best'), top
+/// right first when corners tie. Returns how much data it hides there.
+std::size_t place_legend(const LinePlot& p, const Frame& f, Legend& l) {
+  std::size_t fewest = std::numeric_limits<std::size_t>::max();
+  const double right = f.W - f.R - 4 - l.width, left = f.L + 4, top = f.T + 4, bottom = f.H - f.B - 4 - l.height;
+  for (const auto& [cx, cy] : {std::pair{right, top}, std::pair{left, top}, std::pair{right, bottom},
+                               std::pair{left, bottom}}) {
+    const std::size_t hidden = data_hidden_by(p, f, LegendBox{cx, cy, cx + l.width, cy + l.height});
+    if (hidden < fewest) { fewest = hidden; l.x = cx; l.y = cy; }
+  }
+  return fewest;
+}
+
+/// The axes over the data's extent (or the fixed ranges) and the legend's place. When every corner hides data and
+/// the y range is free, the range grows upwards by the legend's height so the legend sits above the data.
+Frame frame_and_legend(const LinePlot& p, Legend& legend) {
+  const Extent e = data_extent(p);
+  Frame f;
+  f.W = p.width;
+  f.H = p.height;
+  const bool degrees = p.x_label.find("(deg)") != std::string::npos;
+  f.ax = make_axis(e.xlo, e.xhi, p.x_range, false, degrees, 8);
+  f.ay = make_axis(e.ylo, e.yhi, p.y_range, p.log_y, false, 6);
+  legend.x = f.W - f.R - 4 - legend.width;
+  legend.y = f.T + 4;
+  const double area = f.H - f.T - f.B, room = legend.height + 8;
+  if (legend.entries > 0 && place_legend(p, f, legend) > 0 && !(p.y_range.second > p.y_range.first) && !p.log_y &&
+      area > 2 * room && std::isfinite(e.yhi)) {
+    f.ay = make_axis(e.ylo, f.ay.lo + (std::max(e.yhi, f.ay.hi) - f.ay.lo) * area / (area - room), p.y_range, false,
+                     false, 6);
+    place_legend(p, f, legend);
+  }
+  return f;
+}
+
+std::string opacity_attribute(double opacity) {
+  return opacity < 1 ? " opacity='" + std::to_string(opacity) + "'" : "";
+}
+
+/// Title, shaded bands, grid lines with tick labels, the plot area's border and the axis labels.
+void draw_axes(std::ostream& s, const LinePlot& p, const Frame& f) {
+  const double W = f.W, H = f.H, L = f.L, R = f.R, T = f.T, B = f.B;
   s << "<text x='" << L << "' y='18' font-size='14' font-weight='bold'>" << html_escape(p.title) << "</text>\n";
   for (const auto& [a, b] : p.x_bands) {
-    const double xa = X(std::clamp(std::min(a, b), ax.lo, ax.hi)), xb = X(std::clamp(std::max(a, b), ax.lo, ax.hi));
+    const double xa = f.X(std::clamp(std::min(a, b), f.ax.lo, f.ax.hi));
+    const double xb = f.X(std::clamp(std::max(a, b), f.ax.lo, f.ax.hi));
     s << "<rect x='" << f1(xa) << "' y='" << T << "' width='" << f1(std::max(2.0, xb - xa)) << "' height='" << H - T - B
       << "' fill='#fd6' opacity='0.35'/>\n";
   }
-  const double xs = ax.ticks.size() > 1 ? ax.ticks[1] - ax.ticks[0] : 1;
-  for (double v : ax.ticks) {
-    s << "<line x1='" << f1(X(v)) << "' y1='" << T << "' x2='" << f1(X(v)) << "' y2='" << H - B << "' stroke='#eee'/>";
-    s << "<text x='" << f1(X(v)) << "' y='" << H - B + 16 << "' text-anchor='middle'>" << tick_label(v, xs) << "</text>\n";
+  const double xs = f.ax.ticks.size() > 1 ? f.ax.ticks[1] - f.ax.ticks[0] : 1;
+  for (double v : f.ax.ticks) {
+    s << "<line x1='" << f1(f.X(v)) << "' y1='" << T << "' x2='" << f1(f.X(v)) << "' y2='" << H - B
+      << "' stroke='#eee'/>";
+    s << "<text x='" << f1(f.X(v)) << "' y='" << H - B + 16 << "' text-anchor='middle'>" << tick_label(v, xs)
+      << "</text>\n";
   }
-  const double ys = ay.ticks.size() > 1 ? ay.ticks[1] - ay.ticks[0] : 1;
-  for (double v : ay.ticks) {
-    s << "<line x1='" << L << "' y1='" << f1(Y(v)) << "' x2='" << W - R << "' y2='" << f1(Y(v)) << "' stroke='"
+  const double ys = f.ay.ticks.size() > 1 ? f.ay.ticks[1] - f.ay.ticks[0] : 1;
+  for (double v : f.ay.ticks) {
+    s << "<line x1='" << L << "' y1='" << f1(f.Y(v)) << "' x2='" << W - R << "' y2='" << f1(f.Y(v)) << "' stroke='"
       << (p.zero_line && v == 0.0 ? "#000" : "#eee") << "'/>";
-    s << "<text x='" << L - 6 << "' y='" << f1(Y(v) + 4) << "' text-anchor='end'>"
-      << (ay.log ? decade_label(v) : tick_label(v, ys)) << "</text>\n";
+    s << "<text x='" << L - 6 << "' y='" << f1(f.Y(v) + 4) << "' text-anchor='end'>"
+      << (f.ay.log ? decade_label(v) : tick_label(v, ys)) << "</text>\n";
   }
   s << "<rect x='" << L << "' y='" << T << "' width='" << W - L - R << "' height='" << H - T - B
     << "' fill='none' stroke='#333'/>\n";
@@ -241,51 +296,71 @@ std::string plot_body(const LinePlot& p) {
     << "</text>\n";
   s << "<text transform='translate(16," << (T + H - B) / 2 << ") rotate(-90)' text-anchor='middle'>"
     << html_escape(p.y_label) << "</text>\n";
-  // The data, clipped to the plot area by an inner viewport with the same coordinates.
+}
+
+/// One series: a dot per point, or a path broken where a point is not drawable.
+void draw_series(std::ostream& s, const LinePlot& p, const Frame& f, const PlotSeries& ser) {
+  const std::vector<std::size_t> idx = drawn_points(ser);
+  if (idx.empty()) return;  // a legend entry only
+  if (ser.markers) {
+    for (std::size_t i : idx)
+      if (drawable(p, ser.x[i], ser.y[i]))
+        s << "<circle cx='" << f1(f.X(ser.x[i])) << "' cy='" << f1(f.Y(ser.y[i])) << "' r='" << ser.marker_radius
+          << "' fill='" << ser.colour << "'" << opacity_attribute(ser.opacity) << "/>";
+    s << "\n";
+    return;
+  }
+  std::string d;
+  bool pen = false;
+  for (std::size_t i : idx) {
+    if (!drawable(p, ser.x[i], ser.y[i])) { pen = false; continue; }
+    d += (pen ? " L" : " M") + f1(f.X(ser.x[i])) + "," + f1(f.Y(ser.y[i]));
+    pen = true;
+  }
+  s << "<path d='" << d << "' fill='none' stroke='" << ser.colour << "' stroke-width='" << ser.line_width << "'"
+    << (ser.dashed ? " stroke-dasharray='6,4'" : "") << opacity_attribute(ser.opacity) << "/>\n";
+}
+
+/// The data and the marker lines, clipped to the plot area by an inner viewport with the same coordinates.
+void draw_data(std::ostream& s, const LinePlot& p, const Frame& f) {
+  const double W = f.W, H = f.H, L = f.L, R = f.R, T = f.T, B = f.B;
   s << "<svg x='" << L << "' y='" << T << "' width='" << W - L - R << "' height='" << H - T - B << "' viewBox='" << L
     << " " << T << " " << W - L - R << " " << H - T - B << "'>\n";
   for (double v : p.x_marks)
-    if (v >= ax.lo && v <= ax.hi)
-      s << "<line x1='" << f1(X(v)) << "' y1='" << T << "' x2='" << f1(X(v)) << "' y2='" << H - B
+    if (v >= f.ax.lo && v <= f.ax.hi)
+      s << "<line x1='" << f1(f.X(v)) << "' y1='" << T << "' x2='" << f1(f.X(v)) << "' y2='" << H - B
         << "' stroke='#555' stroke-dasharray='4,4'/>\n";
-  for (const auto& ser : p.series) {
-    const std::vector<std::size_t> idx = drawn_points(ser);
-    if (idx.empty()) continue;  // a legend entry only
-    auto drawable = [&](std::size_t i) { return std::isfinite(ser.x[i]) && std::isfinite(ser.y[i]) && (!p.log_y || ser.y[i] > 0); };
-    if (ser.markers) {
-      for (std::size_t i : idx)
-        if (drawable(i))
-          s << "<circle cx='" << f1(X(ser.x[i])) << "' cy='" << f1(Y(ser.y[i])) << "' r='" << ser.marker_radius
-            << "' fill='" << ser.colour << "'" << (ser.opacity < 1 ? " opacity='" + std::to_string(ser.opacity) + "'" : "")
-            << "/>";
-      s << "\n";
-      continue;
-    }
-    std::string d;
-    bool pen = false;
-    for (std::size_t i : idx) {
-      if (!drawable(i)) { pen = false; continue; }
-      d += (pen ? " L" : " M") + f1(X(ser.x[i])) + "," + f1(Y(ser.y[i]));
-      pen = true;
-    }
-    s << "<path d='" << d << "' fill='none' stroke='" << ser.colour << "' stroke-width='" << ser.line_width << "'"
-      << (ser.dashed ? " stroke-dasharray='6,4'" : "")
-      << (ser.opacity < 1 ? " opacity='" + std::to_string(ser.opacity) + "'" : "") << "/>\n";
-  }
+  for (const auto& ser : p.series) draw_series(s, p, f, ser);
   s << "</svg>\n";
-  int legend = 0;
+}
+
+void draw_legend(std::ostream& s, const LinePlot& p, const Legend& l) {
+  int row = 0;
   for (const auto& ser : p.series) {
     if (ser.label.empty()) continue;
-    const double ly = ly0 + 10 + 16 * legend++;
-    s << "<rect x='" << f1(lx) << "' y='" << ly - 10 << "' width='" << f1(lw) << "' height='16' fill='white' "
+    const double ly = l.y + 10 + 16 * row++;
+    s << "<rect x='" << f1(l.x) << "' y='" << ly - 10 << "' width='" << f1(l.width) << "' height='16' fill='white' "
       << "opacity='0.85'/>";
     if (ser.markers)
-      s << "<circle cx='" << f1(lx + 21) << "' cy='" << ly << "' r='3' fill='" << ser.colour << "'/>";
+      s << "<circle cx='" << f1(l.x + 21) << "' cy='" << ly << "' r='3' fill='" << ser.colour << "'/>";
     else
-      s << "<line x1='" << f1(lx + 6) << "' y1='" << ly << "' x2='" << f1(lx + 36) << "' y2='" << ly << "' stroke='"
+      s << "<line x1='" << f1(l.x + 6) << "' y1='" << ly << "' x2='" << f1(l.x + 36) << "' y2='" << ly << "' stroke='"
         << ser.colour << "' stroke-width='2'" << (ser.dashed ? " stroke-dasharray='6,4'" : "") << "/>";
-    s << "<text x='" << f1(lx + 42) << "' y='" << ly + 4 << "'>" << html_escape(ser.label) << "</text>\n";
+    s << "<text x='" << f1(l.x + 42) << "' y='" << ly + 4 << "'>" << html_escape(ser.label) << "</text>\n";
   }
+}
+
+/// The plot's elements in a width x height box at the origin.
+std::string plot_body(const LinePlot& p) {
+  Legend legend = legend_size(p);
+  const Frame f = frame_and_legend(p, legend);
+  std::ostringstream s;
+  s.precision(6);
+  s << "<g font-family='sans-serif' font-size='12'>\n<rect width='" << f.W << "' height='" << f.H
+    << "' fill='white'/>\n";
+  draw_axes(s, p, f);
+  draw_data(s, p, f);
+  draw_legend(s, p, legend);
   s << "</g>\n";
   return s.str();
 }

@@ -1,9 +1,9 @@
 #pragma once
-// The one SVG plotting helper of the tool's pages and figures (report.html, backlash.svg, dynamics.svg,
+// The one SVG plotting helper of the tool's pages and figures (report.html, backlash.svg, contact.svg, dynamics.svg,
 // reconcile.html, sweep.svg): nice tick values (1-2-5 steps; 15/30/45/90 on axes in degrees), axis labels with units,
 // a legend, shaded ranges and marker lines, log axes, long series thinned so a page stays small; self-contained SVG
-// text (no scripts, no network). A small library of its own (sw::svg_plot) so every stage can draw without linking
-// the FEM.
+// text (no scripts, no network). Part of sw::common, the floor below every stage, so every stage can draw without
+// linking another.
 #include <string>
 #include <utility>
 #include <vector>

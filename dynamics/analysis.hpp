@@ -71,6 +71,10 @@ Spectrum amplitude_spectrum(const std::vector<double>& signal, double dt_s);
 /// Local maxima of the spectrum above min_frequency_Hz, strongest first, at most max_lines.
 std::vector<SpectralLine> spectral_lines(const Spectrum& s, double min_frequency_Hz, int max_lines);
 
+/// The bodies whose speeds are reported, in order: wave generator, flexspline rim (when compliant), flexspline
+/// (flange), circular spline.
+std::vector<BodyId> reported_bodies(const DynamicsParams& p);
+
 /// Everything dynamics.json reports, over the steady window: from steady_from_s (moved later to span a whole number of
 /// mesh periods) to duration_s.
 DynamicsSummary summarize(const DynamicsModel& m, const DynamicsSeries& series);

@@ -50,15 +50,23 @@ std::vector<double> node_slopes(const std::vector<double>& y, double h) {
   return out;
 }
 
+/// A cubic Hermite segment over a ∈ [0, 1] (a step h long) with end values y0, y1 and end slopes m0, m1 per unit a:
+/// its value and its derivative per unit of the step's variable.
+struct HermitePoint {
+  double value, slope;
+};
+
+HermitePoint hermite_segment(double y0, double m0, double y1, double m1, double a, double h) {
+  const double a2 = a * a, a3 = a2 * a;
+  return {(2 * a3 - 3 * a2 + 1) * y0 + (a3 - 2 * a2 + a) * m0 + (-2 * a3 + 3 * a2) * y1 + (a3 - a2) * m1,
+          ((6 * a2 - 6 * a) * y0 + (3 * a2 - 4 * a + 1) * m0 + (-6 * a2 + 6 * a) * y1 + (3 * a2 - 2 * a) * m1) / h};
+}
+
 /// Cubic Hermite interpolation on [j, j + 1] at fraction a with the node slopes above: value and
 /// derivative in φ, continuous across grid points. A linear interpolation kinks every flank at every grid point, all
 /// teeth at once (they sit one pitch apart on a grid of pitch/n), and each kink cut the integrator's step.
-void hermite(const std::vector<double>& y, const std::vector<double>& dy, int j, double a, double h, double& value,
-             double& slope) {
-  const double m0 = dy[j] * h, m1 = dy[j + 1] * h;
-  const double a2 = a * a, a3 = a2 * a;
-  value = (2 * a3 - 3 * a2 + 1) * y[j] + (a3 - 2 * a2 + a) * m0 + (-2 * a3 + 3 * a2) * y[j + 1] + (a3 - a2) * m1;
-  slope = ((6 * a2 - 6 * a) * y[j] + (3 * a2 - 4 * a + 1) * m0 + (-6 * a2 + 6 * a) * y[j + 1] + (3 * a2 - 2 * a) * m1) / h;
+HermitePoint hermite(const std::vector<double>& y, const std::vector<double>& dy, int j, double a, double h) {
+  return hermite_segment(y[j], dy[j] * h, y[j + 1], dy[j + 1] * h, a, h);
 }
 
 /// The table at φ; false where the flank cannot close on either grid angle.
@@ -68,9 +76,10 @@ bool lookup(const FlankTable& t, int side, double phi, TableValue& v) {
   if (j < 0 || j + 1 >= t.size()) return false;
   const double a = u - j;
   if (std::isnan(t.q_m[side][j]) || std::isnan(t.q_m[side][j + 1])) return false;
-  hermite(t.q_m[side], t.q_slope[side], j, a, t.step_rad, v.q, v.dq_dphi);
-  hermite(t.lambda_m[side], t.lambda_slope[side], j, a, t.step_rad, v.lambda, v.dlambda_dphi);
-  hermite(t.compliance_m_per_N[side], t.compliance_slope[side], j, a, t.step_rad, v.compliance, v.dcompliance_dphi);
+  const HermitePoint q = hermite(t.q_m[side], t.q_slope[side], j, a, t.step_rad);
+  const HermitePoint lambda = hermite(t.lambda_m[side], t.lambda_slope[side], j, a, t.step_rad);
+  const HermitePoint c = hermite(t.compliance_m_per_N[side], t.compliance_slope[side], j, a, t.step_rad);
+  v = {q.value, q.slope, lambda.value, lambda.slope, c.value, c.slope};
   return true;
 }
 
@@ -104,16 +113,41 @@ FlankTable make_flank_table(double phi_start, double phi_end, double step, int t
   return t;
 }
 
-void mesh_instant(const MovingMesh& m, double sigma, MeshInstant& out) {
-  out.tooth.clear();
-  out.side.clear();
+namespace {
+
+/// Where σ falls: the whole pitches turned (teeth renamed by them), the rest r in [0, pitch), and on a coupled rim the
+/// compliance phase whose interval holds r and the fraction a of that interval.
+struct MeshPlace {
+  int shift = 0;
+  double r = 0;
+  int phase = 0, next_phase = 0;
+  double a = 0;
+};
+
+MeshPlace place_of(const MovingMesh& m, double sigma) {
   const int period = m.key_period();
   const double p = m.pitch_rad;
   const double turns = std::floor(sigma / p);
-  const double r = sigma - turns * p;
-  const int shift = static_cast<int>(std::fmod(turns, period) + period) % period;  // teeth renamed by whole pitches
+  MeshPlace at;
+  at.r = sigma - turns * p;
+  at.shift = static_cast<int>(std::fmod(turns, period) + period) % period;
+  if (m.coupled()) {
+    const int S = static_cast<int>(m.phases.size());
+    const double h = p / S;
+    at.phase = std::min(static_cast<int>(std::floor(at.r / h)), S - 1);
+    at.next_phase = (at.phase + 1) % S;
+    at.a = (at.r - m.phases[at.phase].shift_rad) / h;
+  }
+  return at;
+}
+
+/// The flanks that can close at σ with their table values (tooth and side into `out`): both flanks of every tooth
+/// on a rigid rim; the phase's continuing flanks on a coupled rim, with their places among those in `kept`.
+std::vector<TableValue> flanks_at(const MovingMesh& m, double sigma, const MeshPlace& at, MeshInstant& out,
+                                  std::vector<int>& kept) {
+  out.tooth.clear();
+  out.side.clear();
   std::vector<TableValue> values;
-  std::vector<int> kept;  // coupled: the flanks' places among phase s's continuing flanks
   auto add = [&](int tooth, int side, double phi) {
     TableValue v;
     if (!lookup(m.table, side, wrap_phi(phi, m.teeth_per_unknown), v)) return false;
@@ -122,24 +156,23 @@ void mesh_instant(const MovingMesh& m, double sigma, MeshInstant& out) {
     values.push_back(v);
     return true;
   };
-  int s = 0, s1 = 0;
-  double a = 0;
+  const int period = m.key_period();
   if (!m.coupled()) {
     for (int k = 0; k < period; ++k)
       for (int side = 0; side < 2; ++side) add(k, side, 2 * kPi * k / m.teeth_flexspline - sigma);
-  } else {
-    const int S = static_cast<int>(m.phases.size());
-    const double h = p / S;
-    s = std::min(static_cast<int>(std::floor(r / h)), S - 1);
-    s1 = (s + 1) % S;
-    a = (r - m.phases[s].shift_rad) / h;
-    const MeshPhase& ph = m.phases[s];
-    for (std::size_t c = 0; c < ph.continuing.size(); ++c) {
-      const int i = ph.continuing[c];
-      if (add((ph.key[i] + shift) % period, ph.side[i], ph.phi_rad[i] - (r - ph.shift_rad)))
-        kept.push_back(static_cast<int>(c));
-    }
+    return values;
   }
+  const MeshPhase& ph = m.phases[at.phase];
+  for (std::size_t c = 0; c < ph.continuing.size(); ++c) {
+    const int i = ph.continuing[c];
+    if (add((ph.key[i] + at.shift) % period, ph.side[i], ph.phi_rad[i] - (at.r - ph.shift_rad)))
+      kept.push_back(static_cast<int>(c));
+  }
+  return values;
+}
+
+/// The flanks' gaps, arms and compliances with their σ-derivatives (φ = 2πk/z_f − σ).
+void set_flank_values(const std::vector<TableValue>& values, MeshInstant& out) {
   const int nf = static_cast<int>(values.size());
   out.q.resize(nf);
   out.dq.resize(nf);
@@ -150,23 +183,24 @@ void mesh_instant(const MovingMesh& m, double sigma, MeshInstant& out) {
   for (int i = 0; i < nf; ++i) {
     const TableValue& v = values[i];
     out.q[i] = v.q;
-    out.dq[i] = -v.dq_dphi;  // φ = 2πk/z_f − σ
+    out.dq[i] = -v.dq_dphi;
     out.lambda[i] = v.lambda;
     out.dlambda[i] = -v.dlambda_dphi;
     out.compliance[i] = v.compliance;
     out.dcompliance[i] = -v.dcompliance_dphi;
   }
-  if (!m.coupled()) {
-    out.cubic = nullptr;
-    out.stations = 0;
-    return;
-  }
-  const MeshPhase& P0 = m.phases[s];
-  const MeshPhase& P1 = m.phases[s1];
-  const double h = p / m.phases.size();
+}
+
+/// Coupled rim: the phase's body-compliance cubic over the kept flanks and the stations (columns formed on demand),
+/// and each flank's gap correction (the generator's own state) added to its gap and rate.
+void set_body(const MovingMesh& m, const MeshPlace& at, const std::vector<int>& kept, MeshInstant& out) {
+  const MeshPhase& P0 = m.phases[at.phase];
+  const MeshPhase& P1 = m.phases[at.next_phase];
+  const double h = m.pitch_rad / m.phases.size();
+  const int nf = out.flanks();
   const auto nc = static_cast<int>(P0.continuing.size());
   out.cubic = P0.A_cubic;
-  out.a = a;
+  out.a = at.a;
   out.h = h;
   out.rows.clear();
   if (nf != nc) {  // a continuing flank is off the table here: a subset of the gathered block
@@ -178,14 +212,27 @@ void mesh_instant(const MovingMesh& m, double sigma, MeshInstant& out) {
   if (out.A.rows() < n) out.A.resize(n, n);  // kept between instants: only the first n rows of a column are used
   out.formed.assign(n, 0);
   out.series.setZero(n);
-  const double a2 = a * a, a3 = a2 * a;
   for (int k = 0; k < nf; ++k) {
     const int c = kept[k], i = P0.continuing[c];
-    const double c0 = P0.q_correction[i], c1 = P1.q_correction[P0.next[i]];
-    const double m0 = P0.q_slope_start[c] * h, m1 = P0.q_slope_end[c] * h;
-    out.q[k] += (2 * a3 - 3 * a2 + 1) * c0 + (a3 - 2 * a2 + a) * m0 + (-2 * a3 + 3 * a2) * c1 + (a3 - a2) * m1;
-    out.dq[k] += ((6 * a2 - 6 * a) * c0 + (3 * a2 - 4 * a + 1) * m0 + (-6 * a2 + 6 * a) * c1 + (3 * a2 - 2 * a) * m1) / h;
+    const HermitePoint g = hermite_segment(P0.q_correction[i], P0.q_slope_start[c] * h,
+                                           P1.q_correction[P0.next[i]], P0.q_slope_end[c] * h, at.a, h);
+    out.q[k] += g.value;
+    out.dq[k] += g.slope;
   }
+}
+
+}  // namespace
+
+void mesh_instant(const MovingMesh& m, double sigma, MeshInstant& out) {
+  const MeshPlace at = place_of(m, sigma);
+  std::vector<int> kept;  // coupled: the flanks' places among the phase's continuing flanks
+  set_flank_values(flanks_at(m, sigma, at, out, kept), out);
+  if (!m.coupled()) {
+    out.cubic = nullptr;
+    out.stations = 0;
+    return;
+  }
+  set_body(m, at, kept, out);
 }
 
 const double* MeshInstant::column(int j) {

@@ -6,20 +6,12 @@
 #include <numbers>
 #include <sstream>
 
-#include <nlohmann/json.hpp>
-
 #include "common/svg_plot.hpp"
 
 namespace sw {
 namespace {
 
 constexpr double kRpmPerRadS = 60.0 / (2.0 * std::numbers::pi);
-
-std::vector<BodyId> reported_bodies(const DynamicsModel& m) {
-  std::vector<BodyId> b{BodyId::WaveGenerator, BodyId::FlexsplineFlange, BodyId::CircularSpline};
-  if (m.params.flexspline_compliance_rad_per_Nm > 0) b.insert(b.begin() + 1, BodyId::FlexsplineRim);
-  return b;
-}
 
 void append(std::string& out, double v) {
   char buf[32];
@@ -60,7 +52,7 @@ LinePlot panel(const std::string& title, const std::string& x_label, const std::
 
 std::string dynamics_csv(const DynamicsModel& m, const DynamicsSeries& s) {
   std::string out;
-  const auto bodies = reported_bodies(m);
+  const auto bodies = reported_bodies(m.params);
   out += "time_s";
   for (BodyId b : bodies) out += std::string(",") + body_name(b) + "_speed_rpm";
   for (std::size_t i = 0; i < s.pair_force_N.size(); ++i)
@@ -108,94 +100,106 @@ std::string dynamics_recording(const DynamicsModel& m, const DynamicsSeries& s,
   return out;
 }
 
-std::string dynamics_json(const DynamicsModel& m, const DynamicsSeries& s, const DynamicsSummary& r,
-                          const DynamicsReportInfo& info) {
-  using nlohmann::json;
-  const auto& p = m.params;
-  json j;
-  j["case"] = info.case_path;
-  j["configuration"] = to_string(p.configuration);
-  j["teeth"] = {{"flexspline", m.teeth_flexspline}, {"circular_spline", m.teeth_circular}};
-  j["speeds"] = json::array();
-  for (const auto& c : r.speeds)
-    j["speeds"].push_back({{"body", c.body}, {"simulated_rpm", c.simulated_rpm}, {"theory_rpm", c.theory_rpm},
-                           {"error_rel", c.error_rel}});
-  j["max_speed_error_rel"] = r.max_speed_error_rel;
-  j["pair_forces"] = json::array();
-  for (const auto& c : r.pair_forces)
-    j["pair_forces"].push_back({{"pair", c.pair}, {"angle_deg", c.angle_deg}, {"arm_m", c.arm_m},
-                                {"mean_N", c.mean_N}, {"quasi_static_N", c.quasi_static_N}, {"error_rel", c.error_rel}});
-  if (!m.moving) j["max_pair_force_error_rel"] = r.max_pair_force_error_rel;  // frozen pairs only: see summarize()
-  int interfering = 0;
-  for (const auto& tp : m.pairs) interfering += (tp.clearance_drive_m < 0 || tp.clearance_coast_m < 0) ? 1 : 0;
-  j["pairs_in_interference"] = interfering;  // negative clearance at rest: carried as contact preload
-  j["total_force_at_rest_N"] = s.total_force_N.empty() ? 0.0 : s.total_force_N.front();
-  j["mesh_torque_Nm"] = r.mesh_torque_Nm;
-  j["mesh_torque_theory_Nm"] = r.theory.mesh_torque_Nm;
-  j["load_torque_Nm"] = r.theory.load_torque_Nm;
-  j["torque_balance_error_rel"] = r.torque_balance_error_rel;
-  j["energy_error_rel"] = r.energy_error_rel;
-  j["energy_J"] = {{"input", s.energy.input_J}, {"parametric", s.energy.parametric_J}, {"output", s.energy.output_J},
-                   {"dissipated", s.energy.dissipated_J}, {"kinetic", s.energy.kinetic_J},
-                   {"potential", s.energy.potential_J}};
-  j["mesh_frequency_Hz"] = r.theory.mesh_frequency_Hz;
-  j["mean_total_force_N"] = r.mean_total_force_N;
-  j["force_fluctuation_N"] = r.force_fluctuation_N;
-  j["spectrum_resolution_Hz"] = r.spectrum.resolution_Hz;
-  j["spectral_lines"] = json::array();
-  for (const auto& l : r.lines) j["spectral_lines"].push_back({{"frequency_Hz", l.frequency_Hz}, {"amplitude_N", l.amplitude_N}});
-  j["steady_window_s"] = {r.window_start_s, p.duration_s};
-  j["pairs"] = m.moving ? "moving" : "frozen";
-  j["mesh_deflection_rad"] = {{"min", r.deflection_min_rad}, {"max", r.deflection_max_rad}};
-  j["max_pair_force_N"] = r.max_pair_force_N;
-  j["flanks_in_contact"] = {{"min", r.flanks_in_contact_min}, {"max", r.flanks_in_contact_max}};
-  j["transmission_error_peak_to_peak_rad"] = r.te_peak_to_peak_rad;
-  j["generator_frequency_Hz"] = r.generator_frequency_Hz;
-  j["force_noise_floor_N"] = r.noise_floor_N;
-  j["transmission_error_noise_floor_rad"] = r.te_noise_floor_rad;
-  const double fm = r.theory.mesh_frequency_Hz, fg = r.generator_frequency_Hz;
-  auto orders = [&](const std::vector<SpectralLine>& lines) {
-    json a = json::array();
-    for (const auto& l : lines)
-      a.push_back({{"frequency_Hz", l.frequency_Hz}, {"amplitude", l.amplitude_N},
-                   {"mesh_order", fm > 0 ? l.frequency_Hz / fm : 0.0}, {"generator_order", fg > 0 ? l.frequency_Hz / fg : 0.0}});
-    return a;
-  };
-  j["force_lines_in_orders"] = orders(r.lines);
-  j["transmission_error_lines_in_orders"] = orders(r.te_lines);
-  j["output_sampling"] = {{"oversampling", p.oversampling},
-                          {"filter", "Blackman-windowed sinc, flat to 0.4/output_step_s, >= 74 dB from 0.5/output_step_s"}};
-  j["clearance_source"] = info.clearance_source;
-  json inertia;
-  for (int b = 0; b < kBodyCount; ++b) inertia[body_name(BodyId(b))] = m.inertia.kgm2[b];
-  j["inertia_kgm2"] = inertia;
-  j["parameters"] = {{"drive_speed_rpm", p.drive_speed_rpm}, {"drive_ramp_s", {p.drive_ramp_start_s, p.drive_ramp_end_s}},
-                     {"load_torque_Nm", p.load_torque_Nm}, {"load_ramp_s", {p.load_ramp_start_s, p.load_ramp_end_s}},
-                     {"ramp", to_string(p.ramp_shape)}, {"stiffness_N_per_m", p.stiffness_N_per_m},
-                     {"stiffness_variation_N_per_m", p.stiffness_variation_N_per_m},
-                     {"damping_Ns_per_m", p.damping_Ns_per_m},
-                     {"exponents", {p.exponent_stiffness, p.exponent_damping, p.exponent_indentation}},
-                     {"flexspline_compliance_rad_per_Nm", p.flexspline_compliance_rad_per_Nm},
-                     {"output_step_s", p.output_step_s}, {"duration_s", p.duration_s},
-                     {"relative_tolerance", p.relative_tolerance}};
-  j["solver"] = {{"method", "CVODE BDF (SUNDIALS), dense Newton"}, {"steps", s.stats.steps},
-                 {"rhs_evals", s.stats.rhs_evals}, {"jacobian_evals", s.stats.jac_evals},
-                 {"error_test_fails", s.stats.error_test_fails}, {"newton_fails", s.stats.newton_fails}};
-  j["timings_s"] = {{"simulate", info.simulate_time_s}, {"total", info.total_time_s}};
-  j["real_time_factor"] = info.simulate_time_s > 0 ? p.duration_s / info.simulate_time_s : 0.0;
-  return j.dump(2) + "\n";
+namespace {
+
+/// Frequencies of the lines in orders of f_m and f_g.
+std::vector<OrderLine> in_orders(const std::vector<SpectralLine>& lines, double fm, double fg) {
+  std::vector<OrderLine> out;
+  for (const auto& l : lines)
+    out.push_back({l.frequency_Hz, l.amplitude_N, fm > 0 ? l.frequency_Hz / fm : 0.0,
+                   fg > 0 ? l.frequency_Hz / fg : 0.0});
+  return out;
 }
 
-std::string dynamics_svg(const DynamicsModel& m, const DynamicsSeries& s, const DynamicsSummary& r,
-                         const DynamicsReportInfo& info) {
+DynamicsRunParameters run_parameters(const DynamicsParams& p) {
+  DynamicsRunParameters q;
+  q.drive_speed_rpm = p.drive_speed_rpm;
+  q.drive_ramp_start_s = p.drive_ramp_start_s;
+  q.drive_ramp_end_s = p.drive_ramp_end_s;
+  q.load_torque_Nm = p.load_torque_Nm;
+  q.load_ramp_start_s = p.load_ramp_start_s;
+  q.load_ramp_end_s = p.load_ramp_end_s;
+  q.ramp = p.ramp_shape;
+  q.stiffness_N_per_m = p.stiffness_N_per_m;
+  q.stiffness_variation_N_per_m = p.stiffness_variation_N_per_m;
+  q.damping_Ns_per_m = p.damping_Ns_per_m;
+  q.exponent_stiffness = p.exponent_stiffness;
+  q.exponent_damping = p.exponent_damping;
+  q.exponent_indentation = p.exponent_indentation;
+  q.flexspline_compliance_rad_per_Nm = p.flexspline_compliance_rad_per_Nm;
+  q.output_step_s = p.output_step_s;
+  q.duration_s = p.duration_s;
+  q.relative_tolerance = p.relative_tolerance;
+  return q;
+}
+
+}  // namespace
+
+DynamicsResult dynamics_result(const DynamicsModel& m, const DynamicsSeries& s, const DynamicsSummary& r,
+                               const DynamicsReportInfo& info) {
   const auto& p = m.params;
-  Figure fig;
+  DynamicsResult d;
+  d.case_path = info.case_path;
+  d.configuration = p.configuration;
+  d.teeth_flexspline = m.teeth_flexspline;
+  d.teeth_circular = m.teeth_circular;
+  d.pairs = m.moving ? PairMotion::Moving : PairMotion::Frozen;
+  d.clearance_source = info.clearance_source;
+  d.speeds = r.speeds;
+  d.max_speed_error_rel = r.max_speed_error_rel;
+  d.pair_forces = r.pair_forces;
+  if (!m.moving) d.max_pair_force_error_rel = r.max_pair_force_error_rel;  // frozen pairs only: see summarize()
+  for (const auto& tp : m.pairs)
+    d.pairs_in_interference += (tp.clearance_drive_m < 0 || tp.clearance_coast_m < 0) ? 1 : 0;
+  d.total_force_at_rest_N = s.total_force_N.empty() ? 0.0 : s.total_force_N.front();
+  d.mesh_torque_Nm = r.mesh_torque_Nm;
+  d.mesh_torque_theory_Nm = r.theory.mesh_torque_Nm;
+  d.load_torque_Nm = r.theory.load_torque_Nm;
+  d.torque_balance_error_rel = r.torque_balance_error_rel;
+  d.energy_error_rel = r.energy_error_rel;
+  d.energy = s.energy;
+  d.mesh_frequency_Hz = r.theory.mesh_frequency_Hz;
+  d.generator_frequency_Hz = r.generator_frequency_Hz;
+  d.mean_total_force_N = r.mean_total_force_N;
+  d.force_fluctuation_N = r.force_fluctuation_N;
+  d.spectrum_resolution_Hz = r.spectrum.resolution_Hz;
+  d.spectral_lines = r.lines;
+  d.force_noise_floor_N = r.noise_floor_N;
+  d.transmission_error_noise_floor_rad = r.te_noise_floor_rad;
+  d.force_lines_in_orders = in_orders(r.lines, r.theory.mesh_frequency_Hz, r.generator_frequency_Hz);
+  d.transmission_error_lines_in_orders = in_orders(r.te_lines, r.theory.mesh_frequency_Hz, r.generator_frequency_Hz);
+  d.steady_window_start_s = r.window_start_s;
+  d.steady_window_end_s = p.duration_s;
+  d.mesh_deflection_min_rad = r.deflection_min_rad;
+  d.mesh_deflection_max_rad = r.deflection_max_rad;
+  d.max_pair_force_N = r.max_pair_force_N;
+  d.flanks_in_contact_min = r.flanks_in_contact_min;
+  d.flanks_in_contact_max = r.flanks_in_contact_max;
+  d.transmission_error_peak_to_peak_rad = r.te_peak_to_peak_rad;
+  d.oversampling = p.oversampling;
+  d.output_filter = "Blackman-windowed sinc, flat to 0.4/output_step_s, >= 74 dB from 0.5/output_step_s";
+  d.inertia = m.inertia;
+  d.parameters = run_parameters(p);
+  d.solver_method = "CVODE BDF (SUNDIALS), dense Newton";
+  d.solver = s.stats;
+  d.simulate_time_s = info.simulate_time_s;
+  d.total_time_s = info.total_time_s;
+  d.real_time_factor = info.simulate_time_s > 0 ? p.duration_s / info.simulate_time_s : 0.0;
+  return d;
+}
+
+namespace {
+
+/// The figure's title line, the drive, load and contact law, and the checks over the steady window.
+std::vector<std::string> svg_header(const DynamicsModel& m, const DynamicsSummary& r, const DynamicsReportInfo& info) {
+  const auto& p = m.params;
+  std::vector<std::string> lines;
   char head[512];
   const std::string pairs = m.moving ? std::to_string(m.moving->key_period()) + " teeth travelling"
                                      : std::to_string(m.pairs.size()) + " tooth pairs";
   std::snprintf(head, sizeof head, "strainwave dynamics: %s (z_f/z_c = %d/%d, %s, %s)", info.case_path.c_str(),
                 m.teeth_flexspline, m.teeth_circular, to_string(p.configuration), pairs.c_str());
-  fig.header.push_back(head);
+  lines.push_back(head);
   std::snprintf(head, sizeof head,
                 "drive %.0f rpm (ramp %g–%g s, %s STEP), load %g N·m (ramp %g–%g s); contact k = %.3g%s N/m, c = %.3g "
                 "N·s/m, m1/m2/m3 = %g/%g/%g",
@@ -204,23 +208,31 @@ std::string dynamics_svg(const DynamicsModel& m, const DynamicsSeries& s, const 
                 p.stiffness_variation_N_per_m > 0
                     ? (" ± " + fmt(p.stiffness_variation_N_per_m) + " sin(2π f_m t)").c_str() : "",
                 p.damping_Ns_per_m, p.exponent_stiffness, p.exponent_damping, p.exponent_indentation);
-  fig.header.push_back(head);
+  lines.push_back(head);
   char quasi_static[64] = "";  // frozen pairs only: moving pairs meet the loaded contact in a slow run (tests)
   if (!m.moving) std::snprintf(quasi_static, sizeof quasi_static, "pair forces vs quasi-static %.2e, ", r.max_pair_force_error_rel);
   std::snprintf(head, sizeof head,
                 "steady window %g–%g s: speed error %.2e, %storque balance %.2e, energy balance %.2e, f_m = %.2f Hz",
                 r.window_start_s, p.duration_s, r.max_speed_error_rel, quasi_static, r.torque_balance_error_rel,
                 r.energy_error_rel, r.theory.mesh_frequency_Hz);
-  fig.header.push_back(head);
-  const auto& t = s.time_s;
-  const double tmax = t.empty() ? 1.0 : t.back();
+  lines.push_back(head);
+  return lines;
+}
 
-  // 1. Speeds, each relative to its steady theory value, so a 1000 rpm input and a 10 rpm output share one axis.
-  LinePlot sp = panel("Speeds (each divided by its steady kinematic value)", "time (s)", "speed / steady speed");
-  sp.x_range = {0.0, tmax};
+/// A panel over the run's time.
+LinePlot time_panel(const std::string& title, const std::string& y_label, const DynamicsSeries& s) {
+  LinePlot p = panel(title, "time (s)", y_label);
+  p.x_range = {0.0, s.time_s.empty() ? 1.0 : s.time_s.back()};
+  return p;
+}
+
+/// Speeds, each relative to its steady theory value, so a 1000 rpm input and a 10 rpm output share one axis.
+LinePlot speeds_panel(const DynamicsModel& m, const DynamicsSeries& s, const DynamicsSummary& r) {
+  LinePlot sp = time_panel("Speeds (each divided by its steady kinematic value)", "speed / steady speed", s);
   sp.y_range = {-0.1, 1.2};
+  const auto& t = s.time_s;
   int row = 0;
-  for (BodyId b : reported_bodies(m)) {
+  for (BodyId b : reported_bodies(m.params)) {
     const double th = r.theory.speed_rad_s[int(b)];
     if (th == 0.0) continue;
     std::vector<double> y(t.size());
@@ -229,12 +241,16 @@ std::string dynamics_svg(const DynamicsModel& m, const DynamicsSeries& s, const 
                              std::string(body_name(b)) + " (steady " + fmt(th * kRpmPerRadS) + " rpm)"));
     ++row;
   }
-  fig.panels.push_back(sp);
+  return sp;
+}
 
-  // 2. Pair forces: the strongest four in colour, the rest grey beneath them.
-  LinePlot pf = panel("Tooth-pair forces (signed: drive flank positive), " + std::to_string(m.pairs.size()) + " pairs",
-                      "time (s)", "pair force (N)");
-  pf.x_range = {0.0, tmax};
+/// Pair forces: the strongest four in colour, the rest grey beneath them; moving pairs: every tooth's force as it
+/// travels through the zones.
+LinePlot pair_forces_panel(const DynamicsModel& m, const DynamicsSeries& s, const DynamicsSummary& r) {
+  LinePlot pf = time_panel(
+      "Tooth-pair forces (signed: drive flank positive), " + std::to_string(m.pairs.size()) + " pairs",
+      "pair force (N)", s);
+  const auto& t = s.time_s;
   std::vector<std::size_t> order(m.pairs.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::sort(order.begin(), order.end(), [&](auto a, auto b) {
@@ -248,36 +264,42 @@ std::string dynamics_svg(const DynamicsModel& m, const DynamicsSeries& s, const 
                                  fmt(std::round(r.pair_forces[i].angle_deg * 10) / 10) + "°: mean " +
                                  fmt(std::round(r.pair_forces[i].mean_N)) + " N"));
   }
-  if (s.per_tooth) {  // moving pairs: every tooth's force as it travels through the zones
-    for (std::size_t i = 0; i < s.pair_force_N.size(); ++i)
-      pf.series.push_back(line(t, s.pair_force_N[i], i % 8 == 0 ? kColors[(i / 8) % 8] : "#bbb", i % 8 == 0 ? 1.2 : 0.6,
-                               i % 8 == 0 && i < 32 ? "tooth " + std::to_string(i) : ""));
-    pf.title = "Tooth forces (signed: ccw flank positive), " + std::to_string(s.pair_force_N.size()) + " teeth travelling";
-    LinePlot te = panel("Transmission error (output angle minus the kinematic one) and flanks in contact", "time (s)",
-                        "transmission error (µrad)");
-    te.x_range = {0.0, tmax};
-    std::vector<double> y(t.size());
-    for (std::size_t j = 0; j < t.size(); ++j) y[j] = s.transmission_error_rad[j] * 1e6;
-    te.series.push_back(line(t, y, "#2ca02c", 1.2, "transmission error"));
-    fig.panels.push_back(te);
-    LinePlot nc = panel("Tooth flanks in contact", "time (s)", "flanks");
-    nc.x_range = {0.0, tmax};
-    nc.series.push_back(line(t, s.flanks_in_contact, "#9467bd", 1.2));
-    fig.panels.insert(fig.panels.end() - 1, pf);
-    fig.panels.push_back(nc);
-  } else {
-    fig.panels.push_back(pf);
-  }
+  if (!s.per_tooth) return pf;
+  for (std::size_t i = 0; i < s.pair_force_N.size(); ++i)
+    pf.series.push_back(line(t, s.pair_force_N[i], i % 8 == 0 ? kColors[(i / 8) % 8] : "#bbb", i % 8 == 0 ? 1.2 : 0.6,
+                             i % 8 == 0 && i < 32 ? "tooth " + std::to_string(i) : ""));
+  pf.title =
+      "Tooth forces (signed: ccw flank positive), " + std::to_string(s.pair_force_N.size()) + " teeth travelling";
+  return pf;
+}
 
-  // 3. Total meshing force.
-  LinePlot tf = panel("Total meshing force Σ|F_i| (mean in the steady window " + fmt(std::round(r.mean_total_force_N)) +
-                          " N, rms fluctuation " + fmt(r.force_fluctuation_N) + " N)",
-                      "time (s)", "total force (N)");
-  tf.x_range = {0.0, tmax};
-  tf.series.push_back(line(t, s.total_force_N, "#1f77b4", 1.2));
-  fig.panels.push_back(tf);
+LinePlot transmission_error_panel(const DynamicsSeries& s) {
+  LinePlot te = time_panel("Transmission error (output angle minus the kinematic one) and flanks in contact",
+                           "transmission error (µrad)", s);
+  std::vector<double> y(s.time_s.size());
+  for (std::size_t j = 0; j < y.size(); ++j) y[j] = s.transmission_error_rad[j] * 1e6;
+  te.series.push_back(line(s.time_s, y, "#2ca02c", 1.2, "transmission error"));
+  return te;
+}
 
-  // 4. Spectrum of the total force in the steady window, eight decades below its strongest line.
+LinePlot flanks_panel(const DynamicsSeries& s) {
+  LinePlot nc = time_panel("Tooth flanks in contact", "flanks", s);
+  nc.series.push_back(line(s.time_s, s.flanks_in_contact, "#9467bd", 1.2));
+  return nc;
+}
+
+LinePlot total_force_panel(const DynamicsSeries& s, const DynamicsSummary& r) {
+  LinePlot tf = time_panel("Total meshing force Σ|F_i| (mean in the steady window " +
+                               fmt(std::round(r.mean_total_force_N)) + " N, rms fluctuation " +
+                               fmt(r.force_fluctuation_N) + " N)",
+                           "total force (N)", s);
+  tf.series.push_back(line(s.time_s, s.total_force_N, "#1f77b4", 1.2));
+  return tf;
+}
+
+/// Spectrum of the total force in the steady window, eight decades below its strongest line, with f_m and its
+/// harmonics marked and the three strongest lines in the legend.
+LinePlot spectrum_panel(const DynamicsSummary& r) {
   const auto& sa = r.spectrum.amplitude_N;
   double amax = 1e-300;
   for (std::size_t k = 1; k < sa.size(); ++k) amax = std::max(amax, sa[k]);
@@ -295,12 +317,27 @@ std::string dynamics_svg(const DynamicsModel& m, const DynamicsSeries& s, const 
     fy.push_back(sa[k]);
   }
   fs.series.push_back(line(fx, fy, "#d62728", 1.0));
-  for (std::size_t k = 0; k < r.lines.size() && k < 3; ++k)  // the strongest lines, in the legend
+  for (std::size_t k = 0; k < r.lines.size() && k < 3; ++k)
     fs.series.push_back(line({}, {}, "#d62728", 1.0, fmt(std::round(r.lines[k].frequency_Hz * 10) / 10) + " Hz: " +
                                                         fmt(r.lines[k].amplitude_N) + " N"));
   for (int h = 1; h * r.theory.mesh_frequency_Hz <= fmax_plot; ++h) fs.x_marks.push_back(h * r.theory.mesh_frequency_Hz);
-  fig.panels.push_back(fs);
+  return fs;
+}
 
+}  // namespace
+
+std::string dynamics_svg(const DynamicsModel& m, const DynamicsSeries& s, const DynamicsSummary& r,
+                         const DynamicsReportInfo& info) {
+  Figure fig;
+  fig.header = svg_header(m, r, info);
+  fig.panels.push_back(speeds_panel(m, s, r));
+  fig.panels.push_back(pair_forces_panel(m, s, r));
+  if (s.per_tooth) {
+    fig.panels.push_back(transmission_error_panel(s));
+    fig.panels.push_back(flanks_panel(s));
+  }
+  fig.panels.push_back(total_force_panel(s, r));
+  fig.panels.push_back(spectrum_panel(r));
   std::ostringstream foot;
   foot << "clearances: " << info.clearance_source << "; integrator CVODE BDF, " << s.stats.steps
        << " steps; wall time " << fmt(info.simulate_time_s) << " s";

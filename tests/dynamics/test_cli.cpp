@@ -5,8 +5,8 @@
 #include <string>
 
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
+#include "io/dynamics_output.hpp"
 #include "tests/cli.hpp"
 
 namespace {
@@ -28,14 +28,17 @@ TEST(DynamicsCli, SmallGearCaseRunsAndMeetsItsTolerances) {
   const CommandRun r = run_strainwave("--quiet dynamics cases/mbd_26_28.toml --pairs frozen --out " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   for (const char* f : {"dynamics.csv", "dynamics.json", "dynamics.svg"}) EXPECT_TRUE(fs::exists(out / f)) << f;
-  const auto j = nlohmann::json::parse(read_text(out / "dynamics.json"));
-  for (const auto& s : j.at("speeds")) EXPECT_LT(s.at("error_rel").get<double>(), kSpeedTolerance) << s.dump();
-  EXPECT_LT(j.at("max_pair_force_error_rel").get<double>(), kPairForceTolerance);
-  EXPECT_LT(j.at("torque_balance_error_rel").get<double>(), kTorqueTolerance);
-  EXPECT_LT(j.at("energy_error_rel").get<double>(), kEnergyTolerance);
-  EXPECT_NEAR(j.at("mesh_frequency_Hz").get<double>(), 28 * 1000.0 / 60.0, 1e-9);  // cs_fixed: z_c·n_w/60
+  const sw::DynamicsResult j = sw::read_dynamics_json(out / "dynamics.json");
+  ASSERT_EQ(j.speeds.size(), 3u);  // wave generator, flexspline, circular spline
+  for (const auto& s : j.speeds) EXPECT_LT(s.error_rel, kSpeedTolerance) << s.body;
+  ASSERT_TRUE(j.max_pair_force_error_rel.has_value());
+  EXPECT_LT(*j.max_pair_force_error_rel, kPairForceTolerance);
+  EXPECT_LT(j.torque_balance_error_rel, kTorqueTolerance);
+  EXPECT_LT(j.energy_error_rel, kEnergyTolerance);
+  EXPECT_NEAR(j.mesh_frequency_Hz, 28 * 1000.0 / 60.0, 1e-9);  // cs_fixed: z_c·n_w/60
   // Flexspline: −(z_c − z_f)/z_f · 1000 rpm.
-  EXPECT_NEAR(j.at("speeds").at(1).at("theory_rpm").get<double>(), -2.0 / 26.0 * 1000.0, 1e-9);
+  EXPECT_EQ(j.speeds[1].body, "flexspline");
+  EXPECT_NEAR(j.speeds[1].theory_rpm, -2.0 / 26.0 * 1000.0, 1e-9);
   // The CSV has one row per 1e-5 s over 0.1 s plus its header.
   const std::string csv = read_text(out / "dynamics.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 10002);
@@ -75,17 +78,19 @@ TEST(DynamicsCli, SeedGearRunsEndToEndOnKinematicClearances) {
     const CommandRun r = run_strainwave("--quiet dynamics " + (dir / "seed.toml").string() + " --pairs frozen --interference " +
                                         policy + " --out " + out.string());
     ASSERT_EQ(r.exit_code, 0) << r.output;
-    const auto j = nlohmann::json::parse(read_text(out / "dynamics.json"));
-    for (const auto& s : j.at("speeds")) EXPECT_LT(s.at("error_rel").get<double>(), kSpeedTolerance) << s.dump();
-    EXPECT_LT(j.at("max_pair_force_error_rel").get<double>(), kPairForceTolerance) << policy;
-    EXPECT_LT(j.at("torque_balance_error_rel").get<double>(), kTorqueTolerance) << policy;
-    EXPECT_LT(j.at("energy_error_rel").get<double>(), kEnergyTolerance) << policy;
-    EXPECT_NEAR(j.at("mesh_torque_Nm").get<double>(), 100.0, 100.0 * kTorqueTolerance);  // cs_fixed: Σ F·a = load
-    EXPECT_NEAR(j.at("mesh_frequency_Hz").get<double>(), 3200.0, 1e-9);
-    EXPECT_LT(j.at("timings_s").at("simulate").get<double>(), 10.0);  // performance bound
-    if (policy == "drop") EXPECT_EQ(j.at("total_force_at_rest_N").get<double>(), 0.0);
-    std::printf("  %s: %zu pairs, %d in interference, simulate %.3f s\n", policy.c_str(), j.at("pair_forces").size(),
-                j.at("pairs_in_interference").get<int>(), j.at("timings_s").at("simulate").get<double>());
+    const sw::DynamicsResult j = sw::read_dynamics_json(out / "dynamics.json");
+    ASSERT_EQ(j.speeds.size(), 3u) << policy;
+    for (const auto& s : j.speeds) EXPECT_LT(s.error_rel, kSpeedTolerance) << policy << " " << s.body;
+    ASSERT_TRUE(j.max_pair_force_error_rel.has_value()) << policy;
+    EXPECT_LT(*j.max_pair_force_error_rel, kPairForceTolerance) << policy;
+    EXPECT_LT(j.torque_balance_error_rel, kTorqueTolerance) << policy;
+    EXPECT_LT(j.energy_error_rel, kEnergyTolerance) << policy;
+    EXPECT_NEAR(j.mesh_torque_Nm, 100.0, 100.0 * kTorqueTolerance);  // cs_fixed: Σ F·a = load
+    EXPECT_NEAR(j.mesh_frequency_Hz, 3200.0, 1e-9);
+    EXPECT_LT(j.simulate_time_s, 10.0);  // performance bound
+    if (policy == "drop") EXPECT_EQ(j.total_force_at_rest_N, 0.0);
+    std::printf("  %s: %zu pairs, %d in interference, simulate %.3f s\n", policy.c_str(), j.pair_forces.size(),
+                j.pairs_in_interference, j.simulate_time_s);
   }
   fs::remove_all(dir);
 }

@@ -286,6 +286,10 @@ TEST(MovingMesh, ConstantStiffnessPutsTheStrongestLinesAtTheMeshFrequencyFrozenP
   const double order = r.te_lines[1].frequency_Hz / fm;
   EXPECT_NEAR(order, std::round(order), r.te_spectrum.resolution_Hz / fm);
   EXPECT_TRUE(f.lines.empty() || f.lines[0].amplitude_N < 1e-3 * r.lines[0].amplitude_N);
+  // The frozen run's spectrum at f_m itself (on a bin: the window spans whole mesh periods), with or without lines.
+  const std::size_t fm_bin = std::lround(fm / f.spectrum.resolution_Hz);
+  ASSERT_LT(fm_bin, f.spectrum.amplitude_N.size());
+  EXPECT_LT(f.spectrum.amplitude_N[fm_bin], 1e-3 * r.lines[0].amplitude_N);
 }
 
 // An odd tooth count (the 26/28 case with z_f = 25, z_c = 27): the two zones are half a pitch apart, so the f_m

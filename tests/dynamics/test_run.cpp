@@ -29,6 +29,14 @@ DynamicsSummary run(const DynamicsModel& m, DynamicsSeries* keep = nullptr) {
 }
 
 const char* name(DynamicsConfiguration c) { return to_string(c); }
+
+/// Pairs whose quasi-static force is not zero: the ones max_pair_force_error_rel is taken over.
+int loaded_pairs(const DynamicsSummary& r) {
+  int loaded = 0;
+  for (const auto& c : r.pair_forces)
+    if (std::abs(c.quasi_static_N) > 0) ++loaded;
+  return loaded;
+}
 }  // namespace
 
 class EveryConfiguration : public ::testing::TestWithParam<DynamicsConfiguration> {};
@@ -41,6 +49,7 @@ TEST_P(EveryConfiguration, SteadySpeedsMatchTheKinematicRelations) {
       m.params.flexspline_torsion_damping_Nms_per_rad = 0.5;
     }
     const auto r = run(m);
+    ASSERT_EQ(r.speeds.size(), compliant ? 4u : 3u);  // wave generator, (rim,) flexspline, circular spline
     for (const auto& c : r.speeds) {
       std::printf("  %s%s %-16s simulated %14.8f rpm  theory %14.8f rpm  error %.2e\n", name(GetParam()),
                   compliant ? "+C" : "  ", c.body.c_str(), c.simulated_rpm, c.theory_rpm, c.error_rel);
@@ -64,15 +73,14 @@ TEST_P(EveryConfiguration, OutputDragAddsToTheMeshTorqueAndKeepsTheBalances) {
               r.torque_balance_error_rel, r.energy_error_rel);
   EXPECT_NEAR(std::abs(r.mesh_torque_Nm), expected, kTorqueBalanceTolerance * expected);
   EXPECT_LT(r.max_speed_error_rel, kSpeedTolerance);
+  EXPECT_GE(loaded_pairs(r), 4);  // the pair-force error is taken over loaded pairs: there are some
   EXPECT_LT(r.max_pair_force_error_rel, kPairForceTolerance);
   EXPECT_LT(r.energy_error_rel, kEnergyTolerance);
 }
 
 TEST_P(EveryConfiguration, MeanPairForcesMatchQuasiStaticSharingAndBalanceTheLoad) {
   const auto r = run(test::seed_model(GetParam()));
-  int loaded = 0;
-  for (const auto& c : r.pair_forces)
-    if (std::abs(c.quasi_static_N) > 0) ++loaded;
+  const int loaded = loaded_pairs(r);
   std::printf("  %s: %d of %zu pairs loaded, max pair error %.2e, torque balance %.2e, energy %.2e\n", name(GetParam()),
               loaded, r.pair_forces.size(), r.max_pair_force_error_rel, r.torque_balance_error_rel, r.energy_error_rel);
   EXPECT_GE(loaded, 4);  // load sharing is exercised, not a single pair
@@ -91,6 +99,7 @@ TEST(DynamicsForces, WithoutLoadNoPairCarriesForceAndTheCubicRampReachesTheSameS
   m.params.load_torque_Nm = 0.0;
   m.params.ramp_shape = RampShape::Cubic;
   const auto r = run(m);
+  ASSERT_EQ(r.pair_forces.size(), 6u);  // the small gear's three pairs per zone
   std::printf("  no load: max speed error %.2e, mesh torque %.3e N m, largest |mean pair force| ", r.max_speed_error_rel,
               r.mesh_torque_Nm);
   double largest = 0.0;
@@ -110,6 +119,8 @@ TEST(DynamicsForces, SmallGearWithNonlinearContactSharesTheLoadAsStaticsSays) {
   for (const auto& c : r.pair_forces)
     std::printf("  pair %d at %7.2f deg: mean %10.3f N, quasi-static %10.3f N, error %.2e\n", c.pair, c.angle_deg,
                 c.mean_N, c.quasi_static_N, c.error_rel);
+  ASSERT_EQ(r.pair_forces.size(), 6u);  // the small gear's three pairs per zone
+  EXPECT_EQ(loaded_pairs(r), 6);        // all carry load: the pair-force error is taken over all six
   EXPECT_LT(r.max_pair_force_error_rel, kPairForceTolerance);
   EXPECT_LT(r.torque_balance_error_rel, kTorqueBalanceTolerance);
   EXPECT_LT(r.energy_error_rel, kEnergyTolerance);
@@ -158,6 +169,10 @@ TEST(DynamicsSpectrum, VaryingStiffnessPutsTheStrongestLineAtTheMeshFrequencyCon
     for (const auto& l : constant.lines) {
       EXPECT_LT(l.amplitude_N, 1e-3 * varying.lines[0].amplitude_N) << l.frequency_Hz;
     }
+    // The constant run's spectrum at f_m itself (on a bin: the window spans whole mesh periods), with or without lines.
+    const std::size_t fm_bin = std::lround(fm / constant.spectrum.resolution_Hz);
+    ASSERT_LT(fm_bin, constant.spectrum.amplitude_N.size());
+    EXPECT_LT(constant.spectrum.amplitude_N[fm_bin], 1e-3 * varying.lines[0].amplitude_N);
     if (!constant.lines.empty()) EXPECT_GT(std::abs(constant.lines[0].frequency_Hz - fm), bin);
   }
 }

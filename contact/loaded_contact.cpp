@@ -154,96 +154,199 @@ FaceSection section_at_rest(const GearParams& g, const NeutralCurve& curve, doub
   return fs;
 }
 
-ContactAnalysis analyse_within_reach(const FlexsplineModel& c, const TetMesh& mesh, const FlexsplineSystem& sys,
-                                    const FlexsplineSolution& fem, const ContactOptions& opt, double reach_factor) {
-  check_contact_model(c);
-  if (!fem.neutral_curve) throw InputError("contact needs the FEM's generator-deformed neutral curve");
-  if (!(opt.rated_torque_Nm > 0)) throw InputError("contact needs a rated torque > 0");
-  const GearParams& g = *c.gear;
-  const auto& w = *c.wave_generator;
-  Stopwatch clock;
-  ContactAnalysis out;
-  out.rated_torque_Nm = opt.rated_torque_Nm;
+/// One loaded-contact analysis with the flanks within `reach_factor` body twists at rated torque of the first one on
+/// their side. run() is the pipeline; each step is one member function over the state the steps share.
+class ContactAnalyser {
+public:
+  ContactAnalyser(const FlexsplineModel& c, const TetMesh& mesh, const FlexsplineSystem& sys,
+                  const FlexsplineSolution& fem, const ContactOptions& opt, double reach_factor)
+      : c_(c), g_(*c.gear), mesh_(mesh), sys_(sys), fem_(fem), opt_(opt), reach_factor_(reach_factor),
+        loads_(mesh, 2 * kPi / c.gear->teeth_flexspline) {}
 
-  // The gear on the rim as the generator leaves it.
-  const NeutralCurveSamples& nc = *fem.neutral_curve;
-  const NeutralCurve curve = fit_neutral_curve(nc.radius_m, nc.phi_rad, nc.w_wg_m, nc.v_wg_m, nc.mu_wg_rad, "FEM");
-  const BacklashModel model = make_backlash_model(g, curve);
-  out.half_turn_pairs = g.teeth_flexspline % 2 == 0;
-  const double n_teeth = out.half_turn_pairs ? 2.0 : 1.0;  // teeth per unknown
+  /// The analysis; empty when the twist reaches a flank left out (the caller widens the reach). The model has passed
+  /// check_contact_model, the solution has its neutral curve, the rated torque is > 0.
+  std::optional<ContactAnalysis> run() {
+    read_rim_at_rest();
+    select_flanks();
+    watch_zone_edges();
+    compute_influence();
+    set_up_problem();
+    step_through_torques();
+    if (twist_reaches_flanks_left_out()) return std::nullopt;
+    describe_curve();
+    split_compliance();
+    measure_zone_edge_teeth();
+    out_.contact_s += clock_.lap();
+    check_independently();
+    out_.check_s = clock_.lap();
+    progress("contact: " + std::to_string(torques_.size()) + " torque steps on " + std::to_string(out_.unknowns) +
+             " contacts in " + std::to_string(out_.contact_s) + " s");
+    return std::move(out_);
+  }
 
-  // The face width in axial slices, each with the rim as the generator leaves it at the slice's centre (the FEM's
-  // generator case read there: the cup's coning). One slice is the centre section's curve itself.
-  const int n_slices = std::max(1, opt.face_slices);
-  if (n_slices > 1 && fem.cases.empty())
-    throw InputError("contact.face_slices = " + std::to_string(n_slices) +
-                     " reads the FEM's rim at every slice, and a result read back (--fem) has only its centre section; "
-                     "run contact without --fem (or face_slices = 1)");
-  const double face = c.flexspline.rim_width_m;
+private:
   struct Slice {
     double z_lo, z_hi;
     NeutralCurve curve;
     BacklashModel model;
     std::vector<PairClearance> rest;
   };
-  // Sections read from the FEM's generator case in one pass: the face's ends, then the slices' centres (if sliced).
-  std::vector<double> z_read;
-  if (!fem.cases.empty()) z_read = {nc.z_m - face / 2, nc.z_m + face / 2};
-  for (int j = 0; j < n_slices && n_slices > 1; ++j) z_read.push_back(nc.z_m - face / 2 + face * (j + 0.5) / n_slices);
-  std::vector<NeutralCurve> read;
-  if (!z_read.empty())
-    for (const NeutralCurveSamples& at : neutral_curves_at(c, mesh, fem.cases.front().u, z_read))
-      read.push_back(fit_neutral_curve(at.radius_m, at.phi_rad, at.w_wg_m, at.v_wg_m, at.mu_wg_rad, "FEM"));
-  std::vector<Slice> slices;
-  for (int j = 0; j < n_slices; ++j) {
-    const double z_lo = nc.z_m - face / 2 + face * j / n_slices, z_hi = z_lo + face / n_slices;
-    const NeutralCurve& cj = n_slices > 1 ? read[2 + j] : curve;
-    slices.push_back({z_lo, z_hi, cj, n_slices > 1 ? make_backlash_model(g, cj) : model, {}});
-  }
-  out.face_slices = n_slices;
-  // The face's ends and centre at rest: how the coning moves the teeth's clearance across the face.
-  if (!fem.cases.empty())
-    for (const auto& [z, cz] : {std::pair<double, const NeutralCurve&>{nc.z_m - face / 2, read[0]}, {nc.z_m, curve},
-                                {nc.z_m + face / 2, read[1]}})
-      out.face_sections.push_back(section_at_rest(g, cz, z, opt.wg_angle_rad));
 
-  // The flanks that can close: within reach of the first one on their side (over every slice).
-  double first_closing[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
-  std::vector<PairClearance> rest(g.teeth_flexspline);
-  for (int k = 0; k < g.teeth_flexspline; ++k) rest[k] = pair_clearance(model, tooth_material_angle(g, k, opt.wg_angle_rad), 0.0);
-  for (Slice& sl : slices) {
-    sl.rest.resize(g.teeth_flexspline);
-    for (int k = 0; k < g.teeth_flexspline; ++k) {
-      const double phi = tooth_material_angle(g, k, opt.wg_angle_rad);
-      sl.rest[k] = n_slices == 1 ? rest[k] : pair_clearance(sl.model, phi, 0.0);
-      if (!sl.rest[k].engaged) continue;
-      for (const Flank side : {Flank::Ccw, Flank::Cw})
-        first_closing[side == Flank::Cw] =
-            std::min(first_closing[side == Flank::Cw], closing_angle_rad(sl.model, phi, 0.0, side));
-    }
-  }
-  // Teeth within `pitches` of a change of engagement (the mesh zones' edges) at the centre section.
-  const int zf = g.teeth_flexspline;
-  auto near_edge_in = [&](const std::vector<PairClearance>& r, int k, int pitches) {
+  double tooth_angle(int k) const { return tooth_material_angle(g_, k, opt_.wg_angle_rad); }
+  /// Teeth at θ and θ + π are one unknown: only the half turn around the major axis's first end is kept.
+  bool on_other_half(double phi) const { return out_.half_turn_pairs && !(phi > -kPi / 2 && phi <= kPi / 2); }
+  /// Within `pitches` of a change of engagement (a mesh zone's edge) among the clearances `r`.
+  bool near_edge_in(const std::vector<PairClearance>& r, int k, int pitches) const {
+    const int zf = g_.teeth_flexspline;
     for (int d = -pitches; d <= pitches; ++d)
       if (r[(k + d + zf) % zf].engaged != r[k].engaged) return true;
     return false;
-  };
-  auto near_edge = [&](int k, int pitches) { return near_edge_in(rest, k, pitches); };
-  const double reach = reach_factor * std::abs(fem.compliance_rad_per_Nm) * opt.rated_torque_Nm;
-  out.reach_rad = reach;
-  std::vector<Eigen::VectorXd> columns;
-  std::vector<double> q_flank;
-  const FlankLoads loads(mesh, 2 * kPi / g.teeth_flexspline);
-  for (int j = 0; j < n_slices; ++j) {
-    const Slice& sl = slices[j];
+  }
+  bool near_edge(int k, int pitches) const { return near_edge_in(rest_, k, pitches); }
+
+  void read_rim_at_rest();
+  void read_face_sections(std::vector<NeutralCurve>& read);
+  void select_flanks();
+  void add_flank(FlankContact f, const FlankClearance& fc, int k, int j, const FlankLoads& slice_loads);
+  void watch_zone_edges();
+  void compute_influence();
+  void set_up_problem();
+  ContactSolution solve_step(const ContactProblem& base, Eigen::Index n_fl, double T, const Eigen::VectorXd* warm);
+  double approach(double p) const {
+    return 2 * opt_.series.bearing_approach_m(std::max(p, 0.0) * ball_per_N_);
+  }
+  double secant(double x, double p, double p_ref) const;
+  double output_torque(const Eigen::VectorXd& moments, const ContactSolution& s) const {
+    return moments.head(s.force_N.size()).dot(s.force_N) - rest_moment_Nm_;
+  }
+  std::pair<ContactSolution, double> solve_torque(const ContactProblem& base, Eigen::Index n_fl,
+                                                  const Eigen::VectorXd& moments, double T, const Eigen::VectorXd* warm);
+  /// The output's twist: the contact problem's plus the circular spline's torsion.
+  double twist_rad(const ContactSolution& s, double T) const {
+    return s.twist_rad + opt_.series.circular_spline_rad_per_Nm * T;
+  }
+  void step_through_torques();
+  TorqueStep torque_step(double T, const ContactSolution& s);
+  void follow_edge_teeth(const ContactSolution& s);
+  bool twist_reaches_flanks_left_out();
+  void describe_curve();
+  void split_compliance();
+  void measure_zone_edge_teeth();
+  void check_independently();
+
+  const FlexsplineModel& c_;
+  const GearParams& g_;
+  const TetMesh& mesh_;
+  const FlexsplineSystem& sys_;
+  const FlexsplineSolution& fem_;
+  const ContactOptions& opt_;
+  const double reach_factor_;
+  const FlankLoads loads_;  // the whole face's flank patterns (and the edge teeth's observers)
+  Stopwatch clock_;
+  ContactAnalysis out_;
+  double n_teeth_ = 1;  // teeth per unknown
+  int n_slices_ = 1;
+  // The gear on the rim as the generator leaves it: the centre section, and each slice of the face.
+  NeutralCurve curve_;
+  std::optional<BacklashModel> model_;
+  std::vector<PairClearance> rest_;
+  std::vector<Slice> slices_;
+  double first_closing_[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  double reach_ = 0;
+  // The patterns: flanks' columns and gaps, the edge teeth's radial observers.
+  std::vector<Eigen::VectorXd> columns_, observers_;
+  std::vector<double> q_flank_;
+  Eigen::Index nf_ = 0, nb_ = 0, no_ = 0;
+  // Influence coefficients.
+  GeneratorStations gen_;
+  bool unilateral_ = false;
+  Eigen::SparseMatrix<double> L_, L_all_;
+  Eigen::MatrixXd A_all_, A_body_, R_edge_;
+  Eigen::VectorXd lambda_;
+  // The contact problem, its generator state and the bearing's secants.
+  ContactProblem P_;
+  Eigen::VectorXd p0_;
+  Eigen::MatrixXd band_solve_, A_noseries_;
+  bool bearing_ = false;
+  double ball_per_N_ = 0;
+  Eigen::VectorXd bearing_c_;
+  // The torque steps.
+  std::vector<double> torques_;
+  int N_ = 1;
+  double T_R_ = 0, rest_moment_Nm_ = 0;
+  ContactSolution at_rated_;
+  double flanks_torque_at_rated_ = 0;
+};
+
+void ContactAnalyser::read_rim_at_rest() {
+  out_.rated_torque_Nm = opt_.rated_torque_Nm;
+  const NeutralCurveSamples& nc = *fem_.neutral_curve;
+  curve_ = fit_neutral_curve(nc.radius_m, nc.phi_rad, nc.w_wg_m, nc.v_wg_m, nc.mu_wg_rad, "FEM");
+  model_.emplace(make_backlash_model(g_, curve_));
+  out_.half_turn_pairs = g_.teeth_flexspline % 2 == 0;
+  n_teeth_ = out_.half_turn_pairs ? 2.0 : 1.0;
+  // The face width in axial slices, each with the rim as the generator leaves it at the slice's centre (the FEM's
+  // generator case read there: the cup's coning). One slice is the centre section's curve itself.
+  n_slices_ = std::max(1, opt_.face_slices);
+  if (n_slices_ > 1 && fem_.cases.empty())
+    throw InputError("contact.face_slices = " + std::to_string(n_slices_) +
+                     " reads the FEM's rim at every slice, and a result read back (--fem) has only its centre section; "
+                     "run contact without --fem (or face_slices = 1)");
+  std::vector<NeutralCurve> read;
+  read_face_sections(read);
+  const double face = c_.flexspline.rim_width_m;
+  for (int j = 0; j < n_slices_; ++j) {
+    const double z_lo = nc.z_m - face / 2 + face * j / n_slices_, z_hi = z_lo + face / n_slices_;
+    const NeutralCurve& cj = n_slices_ > 1 ? read[2 + j] : curve_;
+    slices_.push_back({z_lo, z_hi, cj, n_slices_ > 1 ? make_backlash_model(g_, cj) : *model_, {}});
+  }
+  out_.face_slices = n_slices_;
+  // The flanks that can close: within reach of the first one on their side (over every slice).
+  rest_.resize(g_.teeth_flexspline);
+  for (int k = 0; k < g_.teeth_flexspline; ++k) rest_[k] = pair_clearance(*model_, tooth_angle(k), 0.0);
+  for (Slice& sl : slices_) {
+    sl.rest.resize(g_.teeth_flexspline);
+    for (int k = 0; k < g_.teeth_flexspline; ++k) {
+      const double phi = tooth_angle(k);
+      sl.rest[k] = n_slices_ == 1 ? rest_[k] : pair_clearance(sl.model, phi, 0.0);
+      if (!sl.rest[k].engaged) continue;
+      for (const Flank side : {Flank::Ccw, Flank::Cw})
+        first_closing_[side == Flank::Cw] =
+            std::min(first_closing_[side == Flank::Cw], closing_angle_rad(sl.model, phi, 0.0, side));
+    }
+  }
+}
+
+/// Sections read from the FEM's generator case in one pass: the face's ends, then the slices' centres (if sliced);
+/// the face's ends and centre at rest: how the coning moves the teeth's clearance across the face.
+void ContactAnalyser::read_face_sections(std::vector<NeutralCurve>& read) {
+  const NeutralCurveSamples& nc = *fem_.neutral_curve;
+  const double face = c_.flexspline.rim_width_m;
+  std::vector<double> z_read;
+  if (!fem_.cases.empty()) z_read = {nc.z_m - face / 2, nc.z_m + face / 2};
+  for (int j = 0; j < n_slices_ && n_slices_ > 1; ++j)
+    z_read.push_back(nc.z_m - face / 2 + face * (j + 0.5) / n_slices_);
+  if (!z_read.empty())
+    for (const NeutralCurveSamples& at : neutral_curves_at(c_, mesh_, fem_.cases.front().u, z_read))
+      read.push_back(fit_neutral_curve(at.radius_m, at.phi_rad, at.w_wg_m, at.v_wg_m, at.mu_wg_rad, "FEM"));
+  if (!fem_.cases.empty())
+    for (const auto& [z, cz] : {std::pair<double, const NeutralCurve&>{nc.z_m - face / 2, read[0]}, {nc.z_m, curve_},
+                                {nc.z_m + face / 2, read[1]}})
+      out_.face_sections.push_back(section_at_rest(g_, cz, z, opt_.wg_angle_rad));
+}
+
+void ContactAnalyser::select_flanks() {
+  reach_ = reach_factor_ * std::abs(fem_.compliance_rad_per_Nm) * opt_.rated_torque_Nm;
+  out_.reach_rad = reach_;
+  for (int j = 0; j < n_slices_; ++j) {
+    const Slice& sl = slices_[j];
     // One slice loads the whole face (the observers' patterns); more, each its own band of the rim's faces.
     std::optional<FlankLoads> band;
-    if (n_slices > 1) band.emplace(mesh, 2 * kPi / g.teeth_flexspline, sl.z_lo, sl.z_hi);
-    const FlankLoads& slice_loads = band ? *band : loads;
-    for (int k = 0; k < g.teeth_flexspline; ++k) {
-      const double phi = tooth_material_angle(g, k, opt.wg_angle_rad);
-      if (out.half_turn_pairs && !(phi > -kPi / 2 && phi <= kPi / 2)) continue;
+    if (n_slices_ > 1) band.emplace(mesh_, 2 * kPi / g_.teeth_flexspline, sl.z_lo, sl.z_hi);
+    const FlankLoads& slice_loads = band ? *band : loads_;
+    for (int k = 0; k < g_.teeth_flexspline; ++k) {
+      const double phi = tooth_angle(k);
+      if (on_other_half(phi)) continue;
       const PairClearance& pc = sl.rest[k];
       // The rim moves radially under load and the zones widen: the free teeth within two pitches of an edge take
       // part. Their gap is the exact rigid turn that closes the flank, as for the engaged teeth, and not the distance
@@ -254,341 +357,354 @@ ContactAnalysis analyse_within_reach(const FlexsplineModel& c, const TetMesh& me
       const bool edge = near_edge_in(sl.rest, k, 2);
       for (const Flank side : {Flank::Ccw, Flank::Cw}) {
         std::optional<FlankContact> cand = candidate_flank(sl.model, sl.curve, pc, phi, side, edge);
-        if (!cand || (pc.engaged && cand->closing_angle_rad > first_closing[side == Flank::Cw] + reach)) continue;
-        FlankContact& f = *cand;
-        const FlankClearance& fc = side == Flank::Ccw ? pc.ccw : pc.cw;
-        f.tooth = k;
-        f.slice = j;
-        f.compliance_m_per_N = opt.series.tooth_pair_m_per_N
-                                   ? n_slices * opt.series.tooth_pair_m_per_N(f.contact_radius_m, f.contact_radius_c_m)
-                                   : 0.0;
-        const double s = std::atan2(fc.point_f.y(), fc.point_f.x());
-        std::vector<double> stations{s};
-        if (out.half_turn_pairs) stations.push_back(s + kPi);
-        columns.push_back(slice_loads.pattern(stations, -fc.normal, fc.point_f.norm()));
-        q_flank.push_back(n_teeth * std::abs(f.lever_m) * f.closing_angle_rad);
-        out.flanks.push_back(f);
+        if (!cand || (pc.engaged && cand->closing_angle_rad > first_closing_[side == Flank::Cw] + reach_)) continue;
+        add_flank(*cand, side == Flank::Ccw ? pc.ccw : pc.cw, k, j, slice_loads);
       }
     }
   }
-  if (out.flanks.empty()) throw InputError("contact: no tooth flank in the mesh zone can close");
-  out.min_closing_rad = std::min(first_closing[0], first_closing[1]);
-  for (const auto& f : out.flanks) out.overlap_at_rest_m = std::max(out.overlap_at_rest_m, -std::abs(f.lever_m) * f.closing_angle_rad);
-  const auto nf = static_cast<Eigen::Index>(out.flanks.size());
+  if (out_.flanks.empty()) throw InputError("contact: no tooth flank in the mesh zone can close");
+  out_.min_closing_rad = std::min(first_closing_[0], first_closing_[1]);
+  for (const auto& f : out_.flanks)
+    out_.overlap_at_rest_m = std::max(out_.overlap_at_rest_m, -std::abs(f.lever_m) * f.closing_angle_rad);
+  nf_ = static_cast<Eigen::Index>(out_.flanks.size());
+}
 
-  // The zones' edges: the teeth within two pitches of a change of engagement. Whether such a tooth can touch at all is
-  // its radial overlap, which the rim's radial motion under load changes: a radial observer pattern at its tip reads
-  // that motion at every step (the tooth's own bending moves its tip along the pitch circle, not radially, and is
-  // left out).
-  std::vector<Eigen::VectorXd> observers;
-  for (int k = 0; k < zf; ++k) {
-    const double phi = tooth_material_angle(g, k, opt.wg_angle_rad);
-    if (out.half_turn_pairs && !(phi > -kPi / 2 && phi <= kPi / 2)) continue;
-    if (!near_edge(k, 3)) continue;
-    const ToothPlacement place = place_tooth(curve, phi, 0.0);
-    const Eigen::Vector2d tip = Eigen::Rotation2Dd(place.angle_rad) * Eigen::Vector2d(model.radii.tip_f, 0.0) + place.offset_m;
+/// The flank of tooth k in slice j: its pair's compliance in series, its load pattern and its gap.
+void ContactAnalyser::add_flank(FlankContact f, const FlankClearance& fc, int k, int j,
+                                const FlankLoads& slice_loads) {
+  f.tooth = k;
+  f.slice = j;
+  f.compliance_m_per_N = opt_.series.tooth_pair_m_per_N
+                             ? n_slices_ * opt_.series.tooth_pair_m_per_N(f.contact_radius_m, f.contact_radius_c_m)
+                             : 0.0;
+  const double s = std::atan2(fc.point_f.y(), fc.point_f.x());
+  std::vector<double> stations{s};
+  if (out_.half_turn_pairs) stations.push_back(s + kPi);
+  columns_.push_back(slice_loads.pattern(stations, -fc.normal, fc.point_f.norm()));
+  q_flank_.push_back(n_teeth_ * std::abs(f.lever_m) * f.closing_angle_rad);
+  out_.flanks.push_back(f);
+}
+
+/// The zones' edges: the teeth within three pitches of a change of engagement. Whether such a tooth can touch at all
+/// is its radial overlap, which the rim's radial motion under load changes: a radial observer pattern at its tip reads
+/// that motion at every step (the tooth's own bending moves its tip along the pitch circle, not radially, and is left
+/// out).
+void ContactAnalyser::watch_zone_edges() {
+  for (int k = 0; k < g_.teeth_flexspline; ++k) {
+    const double phi = tooth_angle(k);
+    if (on_other_half(phi) || !near_edge(k, 3)) continue;
+    const ToothPlacement place = place_tooth(curve_, phi, 0.0);
+    const Eigen::Vector2d tip =
+        Eigen::Rotation2Dd(place.angle_rad) * Eigen::Vector2d(model_->radii.tip_f, 0.0) + place.offset_m;
     const double s = std::atan2(tip.y(), tip.x());
     std::vector<double> stations{s};
-    if (out.half_turn_pairs) stations.push_back(s + kPi);
-    observers.push_back(loads.pattern(stations, Eigen::Vector2d(std::cos(s), std::sin(s)), tip.norm()) / n_teeth);
+    if (out_.half_turn_pairs) stations.push_back(s + kPi);
+    observers_.push_back(loads_.pattern(stations, Eigen::Vector2d(std::cos(s), std::sin(s)), tip.norm()) / n_teeth_);
     EdgeTooth e;
     e.tooth = k;
     e.phi_rad = phi;
-    e.engaged = rest[k].engaged;
-    e.overlap_at_rest_m = e.overlap_min_m = e.overlap_max_m = rest[k].depth_m;
-    e.candidate = std::any_of(out.flanks.begin(), out.flanks.end(), [&](const FlankContact& f) { return f.tooth == k; });
-    out.edges.push_back(e);
+    e.engaged = rest_[k].engaged;
+    e.overlap_at_rest_m = e.overlap_min_m = e.overlap_max_m = rest_[k].depth_m;
+    e.candidate =
+        std::any_of(out_.flanks.begin(), out_.flanks.end(), [&](const FlankContact& f) { return f.tooth == k; });
+    out_.edges.push_back(e);
   }
-  const auto no = static_cast<Eigen::Index>(observers.size());
+  no_ = static_cast<Eigen::Index>(observers_.size());
+}
 
-  // The generator's stations, and the influence coefficients of every pattern.
-  const GeneratorStations gen = generator_stations(c, mesh);
-  const bool unilateral = gen.unilateral;
-  const Eigen::SparseMatrix<double> L = sparse_columns(columns, gen.stations.loads);
-  const auto nb = gen.stations.loads.cols();
-  out.setup_s = clock.lap();
-  progress("contact: influence of " + std::to_string(nf) + " flank patterns, " + std::to_string(nb) +
-           " generator stations and " + std::to_string(no) + " zone-edge observers");
-  const Eigen::SparseMatrix<double> L_all = sparse_columns(observers, L);
-  const Eigen::MatrixXd A_all = sys.influence(L_all);
-  const Eigen::MatrixXd A_body = A_all.bottomRightCorner(nf + nb, nf + nb);
-  const Eigen::MatrixXd R_edge = A_all.topRightCorner(no, nf + nb);  // radial motion at the edge teeth's tips
-  out.influence_s = clock.lap();
-  Eigen::VectorXd lambda(nf + nb);
-  const std::vector<bool> all(mesh.n_nodes(), true);
-  for (Eigen::Index j = 0; j < nf + nb; ++j) lambda[j] = -moment_about_z(mesh, Eigen::VectorXd(L.col(j)), all);
+/// The generator's stations, and the influence coefficients of every pattern.
+void ContactAnalyser::compute_influence() {
+  gen_ = generator_stations(c_, mesh_);
+  unilateral_ = gen_.unilateral;
+  L_ = sparse_columns(columns_, gen_.stations.loads);
+  nb_ = gen_.stations.loads.cols();
+  out_.setup_s = clock_.lap();
+  progress("contact: influence of " + std::to_string(nf_) + " flank patterns, " + std::to_string(nb_) +
+           " generator stations and " + std::to_string(no_) + " zone-edge observers");
+  L_all_ = sparse_columns(observers_, L_);
+  A_all_ = sys_.influence(L_all_);
+  A_body_ = A_all_.bottomRightCorner(nf_ + nb_, nf_ + nb_);
+  R_edge_ = A_all_.topRightCorner(no_, nf_ + nb_);  // radial motion at the edge teeth's tips
+  out_.influence_s = clock_.lap();
+  lambda_.resize(nf_ + nb_);
+  const std::vector<bool> all(mesh_.n_nodes(), true);
+  for (Eigen::Index j = 0; j < nf_ + nb_; ++j) lambda_[j] = -moment_about_z(mesh_, Eigen::VectorXd(L_.col(j)), all);
+}
 
-  // The contact problem. Unilateral generator: flanks and stations together, the stations' gaps against the
-  // generator's surface, the flanks' gaps measured in the generator's state (p0). Force idealisation: the band held
-  // radially (bilateral), eliminated.
-  ContactProblem P;
-  Eigen::VectorXd p0, obstacle;
-  Eigen::MatrixXd band_solve;  // force idealisation: x_b = band_solve · x_f
-  if (unilateral) {
-    obstacle = fem.generator->obstacle_m;
-    p0 = unilateral_contact(A_body.bottomRightCorner(nb, nb), obstacle).force_N;
-    P.A = A_body;
-    P.q.resize(nf + nb);
-    P.q.head(nf) = Eigen::Map<const Eigen::VectorXd>(q_flank.data(), nf) - A_body.topRightCorner(nf, nb) * p0;
-    P.q.tail(nb) = -obstacle;
+/// The contact problem. Unilateral generator: flanks and stations together, the stations' gaps against the
+/// generator's surface, the flanks' gaps measured in the generator's state (p0). Force idealisation: the band held
+/// radially (bilateral), eliminated.
+void ContactAnalyser::set_up_problem() {
+  const Eigen::Index nf = nf_, nb = nb_;
+  if (unilateral_) {
+    const Eigen::VectorXd obstacle = fem_.generator->obstacle_m;
+    p0_ = unilateral_contact(A_body_.bottomRightCorner(nb, nb), obstacle).force_N;
+    P_.A = A_body_;
+    P_.q.resize(nf + nb);
+    P_.q.head(nf) = Eigen::Map<const Eigen::VectorXd>(q_flank_.data(), nf) - A_body_.topRightCorner(nf, nb) * p0_;
+    P_.q.tail(nb) = -obstacle;
     // A turn of the output leaves the stations' gaps alone: the flexspline turns on the generator's bearing while
     // the deformation wave stays with the cam. (In the linear model a rigid turn would also turn the wave, and a
     // non-circular cam would then hold the output back with a stiffness it does not have.) The stations' forces still
     // have a moment about the axis through the cam's tilted normal: the locked generator's share of the torque.
-    P.lambda = lambda;
-    P.lambda.tail(nb).setZero();
-    out.generator_support = "the generator's contact (" + fem.generator->model + ", unilateral) in the same problem";
+    P_.lambda = lambda_;
+    P_.lambda.tail(nb).setZero();
+    out_.generator_support = "the generator's contact (" + fem_.generator->model + ", unilateral) in the same problem";
   } else {
-    const Eigen::LDLT<Eigen::MatrixXd> bb(A_body.bottomRightCorner(nb, nb));
-    band_solve = -bb.solve(A_body.bottomLeftCorner(nb, nf));
-    P.A = A_body.topLeftCorner(nf, nf) + A_body.topRightCorner(nf, nb) * band_solve;
-    P.A = 0.5 * (P.A + P.A.transpose()).eval();
-    P.q = Eigen::Map<const Eigen::VectorXd>(q_flank.data(), nf);
-    P.lambda = lambda.head(nf);
-    out.generator_support = "the band held radially at the stations (the paper's given-force idealisation)";
+    const Eigen::LDLT<Eigen::MatrixXd> bb(A_body_.bottomRightCorner(nb, nb));
+    band_solve_ = -bb.solve(A_body_.bottomLeftCorner(nb, nf));
+    P_.A = A_body_.topLeftCorner(nf, nf) + A_body_.topRightCorner(nf, nb) * band_solve_;
+    P_.A = 0.5 * (P_.A + P_.A.transpose()).eval();
+    P_.q = Eigen::Map<const Eigen::VectorXd>(q_flank_.data(), nf);
+    P_.lambda = lambda_.head(nf);
+    out_.generator_support = "the band held radially at the stations (the paper's given-force idealisation)";
   }
-  const Eigen::MatrixXd A_noseries = P.A;
-  for (Eigen::Index i = 0; i < nf; ++i) P.A(i, i) += n_teeth * out.flanks[i].compliance_m_per_N;
-  out.unknowns = static_cast<int>(P.q.size());
-  out.problem = P;
-
+  A_noseries_ = P_.A;
+  for (Eigen::Index i = 0; i < nf; ++i) P_.A(i, i) += n_teeth_ * out_.flanks[i].compliance_m_per_N;
+  out_.unknowns = static_cast<int>(P_.q.size());
+  out_.problem = P_;
   // Bearing balls in series with the stations (unilateral generators): the secant of the Hertzian approach from the
   // generator's state, iterated to a fixed point.
-  const bool bearing = unilateral && opt.series.bearing_approach_m && opt.series.bearing_balls > 0;
-  const double ball_per_N = bearing ? 2 * kPi / (opt.series.bearing_balls * gen.stations.half_width_rad) : 0.0;
-  auto approach = [&](double p) { return 2 * opt.series.bearing_approach_m(std::max(p, 0.0) * ball_per_N); };
-  Eigen::VectorXd bearing_c = Eigen::VectorXd::Zero(nb);
-  // The secant of the approach between the preload p and x; where the two are too close for a difference quotient to
-  // be exact (near zero torque), the tangent at their midpoint: the same value to O(h²), without the round-off that
-  // made the fixed point below cycle.
-  auto secant = [&](double x, double p, double p_ref) {
-    const double d = x - p, h = 1e-4 * std::max(std::abs(p), 1e-3 * p_ref);
-    if (std::abs(d) > h) return (approach(x) - approach(p)) / d;
-    const double m = 0.5 * (x + p);
-    return (approach(m + h) - approach(m - h)) / (2 * h);
-  };
-  // One torque on a problem whose first n_fl unknowns are flanks and whose last nb are the generator's stations.
-  auto solve_step = [&](const ContactProblem& base, Eigen::Index n_fl, double T, const Eigen::VectorXd* warm) {
-    if (!bearing) return solve_contact(base, T, warm);
-    ContactProblem Pb = base;
-    const double p_ref = std::max(p0.maxCoeff(), 1.0);
-    for (Eigen::Index k = 0; k < nb; ++k) bearing_c[k] = secant(p0[k], p0[k], p_ref);  // start: the tangent at the preload
-    // The secants' fixed point, relaxed: where a station lifts off and lands again from one pass to the next the plain
-    // iteration cycles between two states (size 17 at w0 + 14 %), so the step is halved whenever the residual does
-    // not shrink. Converged when every station's secant reproduces its Hertzian approach to 1e-6 of the largest
-    // preload's (picometres; round-off of the contact solve sits near 1e-7): the secant itself need not settle where a station carries (almost) nothing, as its Q^(2/3) law has
-    // no finite slope at zero load, and a station that ends up unloaded carries nothing whatever its secant.
-    const double tol_m = 1e-6 * approach(p_ref);
-    ContactSolution s;
-    double relax = 1.0, last = std::numeric_limits<double>::infinity();
-    for (int it = 0;; ++it) {
-      for (Eigen::Index k = 0; k < nb; ++k) {
-        Pb.A(n_fl + k, n_fl + k) = base.A(n_fl + k, n_fl + k) + bearing_c[k];
-        Pb.q[n_fl + k] = base.q[n_fl + k] - bearing_c[k] * p0[k];
-      }
-      s = solve_contact(Pb, T, it == 0 ? warm : &s.force_N);
-      double residual = 0;
-      Eigen::VectorXd c_new(nb);
-      for (Eigen::Index k = 0; k < nb; ++k) {
-        const double x = s.force_N[n_fl + k];
-        c_new[k] = secant(x, p0[k], p_ref);
-        residual = std::max(residual, std::abs(bearing_c[k] * (x - p0[k]) - (approach(x) - approach(p0[k]))));
-      }
-      if (residual <= tol_m) break;
-      if (residual >= last) relax = std::max(relax / 2, 1.0 / 1024);
-      last = residual;
-      bearing_c += relax * (c_new - bearing_c);
-      if (it == 400)
-        throw InputError("contact: the generator bearing's Hertzian secant did not settle at T = " +
-                         std::to_string(T) + " N·m (approach off by " + std::to_string(residual * 1e9) + " nm)");
-    }
-    return s;
-  };
+  bearing_ = unilateral_ && opt_.series.bearing_approach_m && opt_.series.bearing_balls > 0;
+  ball_per_N_ = bearing_ ? 2 * kPi / (opt_.series.bearing_balls * gen_.stations.half_width_rad) : 0.0;
+  bearing_c_ = Eigen::VectorXd::Zero(nb);
+}
 
-  // Torque steps from −rated to +rated, the two limits at zero (a drive with play jumps there).
-  const int N = std::max(1, opt.steps);
-  const double T_R = opt.rated_torque_Nm;
-  std::vector<double> torques;
-  for (int s = -N; s <= N; ++s) {
+/// The secant of the approach between the preload p and x; where the two are too close for a difference quotient to
+/// be exact (near zero torque), the tangent at their midpoint: the same value to O(h²), without the round-off that
+/// made the fixed point below cycle.
+double ContactAnalyser::secant(double x, double p, double p_ref) const {
+  const double d = x - p, h = 1e-4 * std::max(std::abs(p), 1e-3 * p_ref);
+  if (std::abs(d) > h) return (approach(x) - approach(p)) / d;
+  const double m = 0.5 * (x + p);
+  return (approach(m + h) - approach(m - h)) / (2 * h);
+}
+
+/// One torque on a problem whose first n_fl unknowns are flanks and whose last nb are the generator's stations.
+ContactSolution ContactAnalyser::solve_step(const ContactProblem& base, Eigen::Index n_fl, double T,
+                                            const Eigen::VectorXd* warm) {
+  if (!bearing_) return solve_contact(base, T, warm);
+  ContactProblem Pb = base;
+  const double p_ref = std::max(p0_.maxCoeff(), 1.0);
+  for (Eigen::Index k = 0; k < nb_; ++k) bearing_c_[k] = secant(p0_[k], p0_[k], p_ref);  // the tangent at the preload
+  // The secants' fixed point, relaxed: where a station lifts off and lands again from one pass to the next the plain
+  // iteration cycles between two states (size 17 at w0 + 14 %), so the step is halved whenever the residual does
+  // not shrink. Converged when every station's secant reproduces its Hertzian approach to 1e-6 of the largest
+  // preload's (picometres; round-off of the contact solve sits near 1e-7): the secant itself need not settle where a
+  // station carries (almost) nothing, as its Q^(2/3) law has no finite slope at zero load, and a station that ends
+  // up unloaded carries nothing whatever its secant.
+  const double tol_m = 1e-6 * approach(p_ref);
+  ContactSolution s;
+  double relax = 1.0, last = std::numeric_limits<double>::infinity();
+  for (int it = 0;; ++it) {
+    for (Eigen::Index k = 0; k < nb_; ++k) {
+      Pb.A(n_fl + k, n_fl + k) = base.A(n_fl + k, n_fl + k) + bearing_c_[k];
+      Pb.q[n_fl + k] = base.q[n_fl + k] - bearing_c_[k] * p0_[k];
+    }
+    s = solve_contact(Pb, T, it == 0 ? warm : &s.force_N);
+    double residual = 0;
+    Eigen::VectorXd c_new(nb_);
+    for (Eigen::Index k = 0; k < nb_; ++k) {
+      const double x = s.force_N[n_fl + k];
+      c_new[k] = secant(x, p0_[k], p_ref);
+      residual = std::max(residual, std::abs(bearing_c_[k] * (x - p0_[k]) - (approach(x) - approach(p0_[k]))));
+    }
+    if (residual <= tol_m) break;
+    if (residual >= last) relax = std::max(relax / 2, 1.0 / 1024);
+    last = residual;
+    bearing_c_ += relax * (c_new - bearing_c_);
+    if (it == 400)
+      throw InputError("contact: the generator bearing's Hertzian secant did not settle at T = " + std::to_string(T) +
+                       " N·m (approach off by " + std::to_string(residual * 1e9) + " nm)");
+  }
+  return s;
+}
+
+/// The output's torque is what the flanks carry plus the locked generator's share (λ with the stations' moment arms)
+/// beyond its moment at rest: find the flanks' torque that gives T. The share is about 1/ratio of it, so T_out is
+/// nearly affine in T_flanks: secant steps. Returns the solution and the flanks' torque. `warm`: the forces of a nearby
+/// solution of the same problem (the previous torque step), where the active set starts.
+std::pair<ContactSolution, double> ContactAnalyser::solve_torque(const ContactProblem& base, Eigen::Index n_fl,
+                                                                 const Eigen::VectorXd& moments, double T,
+                                                                 const Eigen::VectorXd* warm) {
+  ContactSolution s;
+  double T_flanks = T, prev_flanks = 0, prev_out = 0;
+  for (int it = 0;; ++it) {
+    s = solve_step(base, n_fl, T_flanks, it == 0 ? warm : &s.force_N);
+    const double T_out = output_torque(moments, s);
+    if (std::abs(T_out - T) <= 1e-13 * std::abs(T)) break;
+    const double slope = it == 0 || T_out == prev_out ? 1.0 : (T_flanks - prev_flanks) / (T_out - prev_out);
+    if (it == 50) {
+      if (std::abs(T_out - T) <= 1e-10 * T_R_) break;  // round-off of the moments at a limit at zero
+      throw InputError("contact: the flanks' share of T = " + std::to_string(T) +
+                       " N·m did not settle (the output carries " + std::to_string(T_out) + " N·m)");
+    }
+    prev_flanks = T_flanks;
+    prev_out = T_out;
+    T_flanks += slope * (T - T_out);
+  }
+  return {s, T_flanks};
+}
+
+/// Torque steps from −rated to +rated, the two limits at zero (a drive with play jumps there).
+void ContactAnalyser::step_through_torques() {
+  N_ = std::max(1, opt_.steps);
+  T_R_ = opt_.rated_torque_Nm;
+  flanks_torque_at_rated_ = T_R_;
+  for (int s = -N_; s <= N_; ++s) {
     if (s == 0) {
-      torques.push_back(-1e-6 * T_R);
-      torques.push_back(1e-6 * T_R);
+      torques_.push_back(-1e-6 * T_R_);
+      torques_.push_back(1e-6 * T_R_);
     } else {
-      torques.push_back(T_R * s / N);
+      torques_.push_back(T_R_ * s / N_);
     }
   }
   // The generator's preload has a moment about the axis only through the mesh's round-off (zero by symmetry: 1e-3 N·m
   // on a coarse size-17 cup); the output's torque is counted from it, so that the limits at zero stay either side of
   // the play instead of on the side the round-off picks.
-  const double rest_moment_Nm = unilateral ? lambda.tail(nb).dot(p0) : 0.0;
-  // The output's torque: the moments (`moments`, the stations' included) of the forces beyond the preload's.
-  auto output_torque = [&](const Eigen::VectorXd& moments, const ContactSolution& s) {
-    return moments.head(s.force_N.size()).dot(s.force_N) - rest_moment_Nm;
-  };
-  // The output's torque is what the flanks carry plus the locked generator's share (λ with the stations' moment arms)
-  // beyond its moment at rest: find the flanks' torque that gives T. The share is about 1/ratio of it, so T_out is
-  // nearly affine in T_flanks: secant steps. Returns the solution and the flanks' torque. `warm`: the forces of a
-  // nearby solution of the same problem (the previous torque step), where the active set starts.
-  auto solve_torque = [&](const ContactProblem& base, Eigen::Index n_fl, const Eigen::VectorXd& moments, double T,
-                          const Eigen::VectorXd* warm) {
-    ContactSolution s;
-    double T_flanks = T, prev_flanks = 0, prev_out = 0;
-    for (int it = 0;; ++it) {
-      s = solve_step(base, n_fl, T_flanks, it == 0 ? warm : &s.force_N);
-      const double T_out = output_torque(moments, s);
-      if (std::abs(T_out - T) <= 1e-13 * std::abs(T)) break;
-      const double slope = it == 0 || T_out == prev_out ? 1.0 : (T_flanks - prev_flanks) / (T_out - prev_out);
-      if (it == 50) {
-        if (std::abs(T_out - T) <= 1e-10 * T_R) break;  // round-off of the moments at a limit at zero
-        throw InputError("contact: the flanks' share of T = " + std::to_string(T) +
-                         " N·m did not settle (the output carries " + std::to_string(T_out) + " N·m)");
-      }
-      prev_flanks = T_flanks;
-      prev_out = T_out;
-      T_flanks += slope * (T - T_out);
-    }
-    return std::make_pair(s, T_flanks);
-  };
-  // The output's twist: the contact problem's plus the circular spline's torsion.
-  auto twist_rad = [&](const ContactSolution& s, double T) { return s.twist_rad + opt.series.circular_spline_rad_per_Nm * T; };
-  ContactSolution at_rated;
-  double flanks_torque_at_rated = T_R;
+  rest_moment_Nm_ = unilateral_ ? lambda_.tail(nb_).dot(p0_) : 0.0;
   Eigen::VectorXd previous;  // the last step's forces: the next step starts from its contact set
-  for (const double T : torques) {
-    const auto [s, T_flanks] = solve_torque(P, nf, lambda, T, previous.size() ? &previous : nullptr);
+  for (const double T : torques_) {
+    const auto [s, T_flanks] = solve_torque(P_, nf_, lambda_, T, previous.size() ? &previous : nullptr);
     previous = s.force_N;
-    TorqueStep st;
-    st.torque_Nm = T;
-    st.twist_rad = twist_rad(s, T);
-    st.flank_force_N.assign(s.force_N.data(), s.force_N.data() + nf);
-    if (unilateral) st.station_force_N.assign(s.force_N.data() + nf, s.force_N.data() + nf + nb);
-    for (Eigen::Index i = 0; i < nf; ++i)
-      if (s.force_N[i] > 0) {
-        st.pairs_in_contact += static_cast<int>(n_teeth);
-        st.max_pair_force_N = std::max(st.max_pair_force_N, s.force_N[i]);
-      }
-    // The edge teeth's radial overlap in this state (from the generator's state at rest).
-    {
-      Eigen::VectorXd dx(nf + nb);
-      if (unilateral) dx << s.force_N.head(nf), s.force_N.tail(nb) - p0;
-      else dx << s.force_N, band_solve * s.force_N;
-      const Eigen::VectorXd du = R_edge * dx;
-      for (Eigen::Index e = 0; e < no; ++e) {
-        EdgeTooth& et = out.edges[e];
-        const double overlap = et.overlap_at_rest_m + du[e];
-        et.overlap_min_m = std::min(et.overlap_min_m, overlap);
-        et.overlap_max_m = std::max(et.overlap_max_m, overlap);
-        bool loaded = false;
-        for (Eigen::Index i = 0; i < nf; ++i) loaded = loaded || (out.flanks[i].tooth == et.tooth && s.force_N[i] > 0);
-        if (et.engaged && loaded && overlap < 0) et.slips = true;
-        if (!et.candidate && overlap > 0) et.enters = true;
-      }
-    }
-    st.balance_error_rel = std::abs(output_torque(lambda, s) - T) / std::abs(T);
-    out.torque_balance_error_rel = std::max(out.torque_balance_error_rel, st.balance_error_rel);
-    out.steps.push_back(st);
-    out.curve.torque_Nm.push_back(st.torque_Nm);
-    out.curve.twist_rad.push_back(st.twist_rad);
-    if (T == torques.back()) {
-      at_rated = s;
-      flanks_torque_at_rated = T_flanks;
+    const TorqueStep st = torque_step(T, s);
+    out_.torque_balance_error_rel = std::max(out_.torque_balance_error_rel, st.balance_error_rel);
+    out_.steps.push_back(st);
+    out_.curve.torque_Nm.push_back(st.torque_Nm);
+    out_.curve.twist_rad.push_back(st.twist_rad);
+    if (T == torques_.back()) {
+      at_rated_ = s;
+      flanks_torque_at_rated_ = T_flanks;
     }
   }
   // The limits at zero stand for T = 0 from either side.
-  for (std::size_t i = 0; i < out.steps.size(); ++i)
-    if (std::abs(out.steps[i].torque_Nm) < 1e-3 * T_R) out.curve.torque_Nm[i] = out.steps[i].torque_Nm = 0.0;
-  out.contact_s = clock.lap();
-  // Every flank left out must stay open: the twist never reaches its closing angle.
-  const double twist_max = std::max(std::abs(out.curve.twist_rad.front()), std::abs(out.curve.twist_rad.back()));
-  if (twist_max > std::min(first_closing[0], first_closing[1]) + reach) {
-    progress("contact: the twist reaches flanks left out; again with twice the reach");
-    return analyse_within_reach(c, mesh, sys, fem, opt, 2 * reach_factor);
-  }
-  for (const EdgeTooth& e : out.edges) out.zone_edges_hold = out.zone_edges_hold && !e.slips && !e.enters;
-  out.play_rad = out.curve.twist_rad[N + 1] - out.curve.twist_rad[N];
-  out.lost_motion_rad = lost_motion_rad(out.curve, T_R);
-  out.catalog = opt.catalog_t1_Nm > 0 && opt.catalog_t2_Nm > opt.catalog_t1_Nm && opt.catalog_t2_Nm < T_R
-                    ? segment_law(out.curve, opt.catalog_t1_Nm, opt.catalog_t2_Nm, T_R)
-                    : fitted_segment_law(out.curve, T_R);
+  for (std::size_t i = 0; i < out_.steps.size(); ++i)
+    if (std::abs(out_.steps[i].torque_Nm) < 1e-3 * T_R_) out_.curve.torque_Nm[i] = out_.steps[i].torque_Nm = 0.0;
+  out_.contact_s = clock_.lap();
+}
 
-  // Split of the twist at rated torque: the tangent line there (active set fixed) by energy, the intercept is
-  // engagement.
-  {
-    std::vector<Eigen::Index> S;
-    for (Eigen::Index i = 0; i < at_rated.force_N.size(); ++i)
-      if (at_rated.force_N[i] > 0) S.push_back(i);
-    const auto n = static_cast<Eigen::Index>(S.size());
-    Eigen::MatrixXd M(n, n), Mb(n, n);
-    Eigen::VectorXd l(n), teeth(n), brg(n);
-    for (Eigen::Index r = 0; r < n; ++r) {
-      l[r] = P.lambda[S[r]];
-      teeth[r] = S[r] < nf ? n_teeth * out.flanks[S[r]].compliance_m_per_N : 0.0;
-      brg[r] = S[r] >= nf && bearing ? bearing_c[S[r] - nf] : 0.0;
-      for (Eigen::Index q = 0; q < n; ++q) Mb(r, q) = A_noseries(S[r], S[q]);
+TorqueStep ContactAnalyser::torque_step(double T, const ContactSolution& s) {
+  TorqueStep st;
+  st.torque_Nm = T;
+  st.twist_rad = twist_rad(s, T);
+  st.flank_force_N.assign(s.force_N.data(), s.force_N.data() + nf_);
+  if (unilateral_) st.station_force_N.assign(s.force_N.data() + nf_, s.force_N.data() + nf_ + nb_);
+  for (Eigen::Index i = 0; i < nf_; ++i)
+    if (s.force_N[i] > 0) {
+      st.pairs_in_contact += static_cast<int>(n_teeth_);
+      st.max_pair_force_N = std::max(st.max_pair_force_N, s.force_N[i]);
     }
-    M = Mb;
-    M.diagonal() += teeth + brg;
-    const Eigen::VectorXd Ml = M.ldlt().solve(l);
-    const double C_t = 1.0 / l.dot(Ml);
-    const Eigen::VectorXd dz = Ml * C_t;
-    const double total = out.curve.twist_rad.back(), T_fl = flanks_torque_at_rated;
-    out.split.body = dz.dot(Mb * dz) * T_fl / total;
-    out.split.teeth = dz.cwiseProduct(teeth).dot(dz) * T_fl / total;
-    out.split.generator = dz.cwiseProduct(brg).dot(dz) * T_fl / total;
-    out.split.circular_spline = opt.series.circular_spline_rad_per_Nm * T_R / total;
-    out.split.engagement =
-        1.0 - out.split.body - out.split.teeth - out.split.generator - out.split.circular_spline;
-  }
+  follow_edge_teeth(s);
+  st.balance_error_rel = std::abs(output_torque(lambda_, s) - T) / std::abs(T);
+  return st;
+}
 
-  // What the teeth at the zones' edges hold: their flanks' share of +rated torque, and the twist at +rated without them.
-  // They are engaged a few µm deep or not at all at rest and touch at their tips; on sharp corners they can carry much
-  // of the torque where a rounded tip would let them ride over, so the curve's stiffness should not rest on them
-  // unseen. After the split: the re-solve moves the bearing's secants.
-  {
-    std::vector<Eigen::Index> keep;
-    double edge_moment = 0;
-    for (Eigen::Index i = 0; i < nf; ++i) {
-      if (near_edge(out.flanks[i].tooth, 2)) edge_moment += lambda[i] * at_rated.force_N[i];
-      else keep.push_back(i);
-    }
-    const auto kept_flanks = static_cast<Eigen::Index>(keep.size());
-    for (Eigen::Index k = nf; k < P.q.size(); ++k) keep.push_back(k);
-    out.edge_teeth_torque_share = edge_moment / T_R;
-    out.twist_at_rated_without_edge_teeth_rad = out.curve.twist_rad.back();
-    if (kept_flanks < nf) {
-      ContactProblem Pe;
-      Pe.A = P.A(keep, keep);
-      Pe.q = P.q(keep);
-      Pe.lambda = P.lambda(keep);
-      const Eigen::VectorXd moments = lambda(keep);
-      try {
-        const ContactSolution s = solve_torque(Pe, kept_flanks, moments, T_R, nullptr).first;
-        out.twist_at_rated_without_edge_teeth_rad = twist_rad(s, T_R);
-      } catch (const InputError&) {
-        out.twist_at_rated_without_edge_teeth_rad = std::numeric_limits<double>::infinity();  // nothing else carries it
-      }
-    }
+/// The edge teeth's radial overlap in the state `s` (from the generator's state at rest).
+void ContactAnalyser::follow_edge_teeth(const ContactSolution& s) {
+  Eigen::VectorXd dx(nf_ + nb_);
+  if (unilateral_) dx << s.force_N.head(nf_), s.force_N.tail(nb_) - p0_;
+  else dx << s.force_N, band_solve_ * s.force_N;
+  const Eigen::VectorXd du = R_edge_ * dx;
+  for (Eigen::Index e = 0; e < no_; ++e) {
+    EdgeTooth& et = out_.edges[e];
+    const double overlap = et.overlap_at_rest_m + du[e];
+    et.overlap_min_m = std::min(et.overlap_min_m, overlap);
+    et.overlap_max_m = std::max(et.overlap_max_m, overlap);
+    bool loaded = false;
+    for (Eigen::Index i = 0; i < nf_; ++i) loaded = loaded || (out_.flanks[i].tooth == et.tooth && s.force_N[i] > 0);
+    if (et.engaged && loaded && overlap < 0) et.slips = true;
+    if (!et.candidate && overlap > 0) et.enters = true;
   }
-  out.contact_s += clock.lap();
+}
 
-  // Independent check at +rated: the contact forces as nodal loads on the FEM, the clamp's reaction moment.
-  {
-    Eigen::VectorXd x(nf + nb);
-    if (unilateral) x = at_rated.force_N;  // the whole loaded state, the generator's preload included
-    else x << at_rated.force_N, band_solve * at_rated.force_N;
-    const Eigen::VectorXd f = L * x;
-    const Eigen::VectorXd u = sys.solve(f).col(0);
-    Eigen::VectorXd x_all = Eigen::VectorXd::Zero(no + nf + nb);  // the observers carry no force
-    x_all.tail(nf + nb) = x;
-    const Eigen::VectorXd d_direct = L_all.transpose() * u, d_influence = A_all * x_all;
-    out.superposition_error_rel = (d_direct - d_influence).cwiseAbs().maxCoeff() / d_direct.cwiseAbs().maxCoeff();
-    const Eigen::VectorXd reactions = internal_forces(mesh, c.material, u) - f;
-    out.fem_reaction_torque_Nm = moment_about_z(mesh, reactions, sys.clamped);
+/// Every flank left out must stay open: the twist never reaches its closing angle.
+bool ContactAnalyser::twist_reaches_flanks_left_out() {
+  const double twist_max = std::max(std::abs(out_.curve.twist_rad.front()), std::abs(out_.curve.twist_rad.back()));
+  return twist_max > std::min(first_closing_[0], first_closing_[1]) + reach_;
+}
+
+/// The curve in the catalog's terms: play, lost motion, the three-segment law.
+void ContactAnalyser::describe_curve() {
+  for (const EdgeTooth& e : out_.edges) out_.zone_edges_hold = out_.zone_edges_hold && !e.slips && !e.enters;
+  out_.play_rad = out_.curve.twist_rad[N_ + 1] - out_.curve.twist_rad[N_];
+  out_.lost_motion_rad = lost_motion_rad(out_.curve, T_R_);
+  out_.catalog = opt_.catalog_t1_Nm > 0 && opt_.catalog_t2_Nm > opt_.catalog_t1_Nm && opt_.catalog_t2_Nm < T_R_
+                     ? segment_law(out_.curve, opt_.catalog_t1_Nm, opt_.catalog_t2_Nm, T_R_)
+                     : fitted_segment_law(out_.curve, T_R_);
+}
+
+/// Split of the twist at rated torque: the tangent line there (active set fixed) by energy, the intercept is
+/// engagement.
+void ContactAnalyser::split_compliance() {
+  std::vector<Eigen::Index> S;
+  for (Eigen::Index i = 0; i < at_rated_.force_N.size(); ++i)
+    if (at_rated_.force_N[i] > 0) S.push_back(i);
+  const auto n = static_cast<Eigen::Index>(S.size());
+  Eigen::MatrixXd M(n, n), Mb(n, n);
+  Eigen::VectorXd l(n), teeth(n), brg(n);
+  for (Eigen::Index r = 0; r < n; ++r) {
+    l[r] = P_.lambda[S[r]];
+    teeth[r] = S[r] < nf_ ? n_teeth_ * out_.flanks[S[r]].compliance_m_per_N : 0.0;
+    brg[r] = S[r] >= nf_ && bearing_ ? bearing_c_[S[r] - nf_] : 0.0;
+    for (Eigen::Index q = 0; q < n; ++q) Mb(r, q) = A_noseries_(S[r], S[q]);
   }
-  out.check_s = clock.lap();
-  progress("contact: " + std::to_string(torques.size()) + " torque steps on " + std::to_string(out.unknowns) +
-           " contacts in " + std::to_string(out.contact_s) + " s");
-  return out;
+  M = Mb;
+  M.diagonal() += teeth + brg;
+  const Eigen::VectorXd Ml = M.ldlt().solve(l);
+  const double C_t = 1.0 / l.dot(Ml);
+  const Eigen::VectorXd dz = Ml * C_t;
+  const double total = out_.curve.twist_rad.back(), T_fl = flanks_torque_at_rated_;
+  ComplianceSplit& split = out_.split;
+  split.body = dz.dot(Mb * dz) * T_fl / total;
+  split.teeth = dz.cwiseProduct(teeth).dot(dz) * T_fl / total;
+  split.generator = dz.cwiseProduct(brg).dot(dz) * T_fl / total;
+  split.circular_spline = opt_.series.circular_spline_rad_per_Nm * T_R_ / total;
+  split.engagement = 1.0 - split.body - split.teeth - split.generator - split.circular_spline;
+}
+
+/// What the teeth at the zones' edges hold: their flanks' share of +rated torque, and the twist at +rated without
+/// them. They are engaged a few µm deep or not at all at rest and touch at their tips; on sharp corners they can carry
+/// much of the torque where a rounded tip would let them ride over, so the curve's stiffness should not rest on them
+/// unseen. After the split: the re-solve moves the bearing's secants.
+void ContactAnalyser::measure_zone_edge_teeth() {
+  std::vector<Eigen::Index> keep;
+  double edge_moment = 0;
+  for (Eigen::Index i = 0; i < nf_; ++i) {
+    if (near_edge(out_.flanks[i].tooth, 2)) edge_moment += lambda_[i] * at_rated_.force_N[i];
+    else keep.push_back(i);
+  }
+  const auto kept_flanks = static_cast<Eigen::Index>(keep.size());
+  for (Eigen::Index k = nf_; k < P_.q.size(); ++k) keep.push_back(k);
+  out_.edge_teeth_torque_share = edge_moment / T_R_;
+  out_.twist_at_rated_without_edge_teeth_rad = out_.curve.twist_rad.back();
+  if (kept_flanks == nf_) return;
+  ContactProblem Pe;
+  Pe.A = P_.A(keep, keep);
+  Pe.q = P_.q(keep);
+  Pe.lambda = P_.lambda(keep);
+  const Eigen::VectorXd moments = lambda_(keep);
+  try {
+    const ContactSolution s = solve_torque(Pe, kept_flanks, moments, T_R_, nullptr).first;
+    out_.twist_at_rated_without_edge_teeth_rad = twist_rad(s, T_R_);
+  } catch (const InputError&) {
+    out_.twist_at_rated_without_edge_teeth_rad = std::numeric_limits<double>::infinity();  // nothing else carries it
+  }
+}
+
+/// Independent check at +rated: the contact forces as nodal loads on the FEM, the clamp's reaction moment, and the
+/// contacts' displacements by a direct solve against the influence coefficients'.
+void ContactAnalyser::check_independently() {
+  Eigen::VectorXd x(nf_ + nb_);
+  if (unilateral_) x = at_rated_.force_N;  // the whole loaded state, the generator's preload included
+  else x << at_rated_.force_N, band_solve_ * at_rated_.force_N;
+  const Eigen::VectorXd f = L_ * x;
+  const Eigen::VectorXd u = sys_.solve(f).col(0);
+  Eigen::VectorXd x_all = Eigen::VectorXd::Zero(no_ + nf_ + nb_);  // the observers carry no force
+  x_all.tail(nf_ + nb_) = x;
+  const Eigen::VectorXd d_direct = L_all_.transpose() * u, d_influence = A_all_ * x_all;
+  out_.superposition_error_rel = (d_direct - d_influence).cwiseAbs().maxCoeff() / d_direct.cwiseAbs().maxCoeff();
+  const Eigen::VectorXd reactions = internal_forces(mesh_, c_.material, u) - f;
+  out_.fem_reaction_torque_Nm = moment_about_z(mesh_, reactions, sys_.clamped);
 }
 
 }  // namespace
@@ -624,7 +740,13 @@ void check_contact_model(const FlexsplineModel& c) {
 
 ContactAnalysis analyse_contact(const FlexsplineModel& c, const TetMesh& mesh, const FlexsplineSystem& sys,
                                 const FlexsplineSolution& fem, const ContactOptions& opt) {
-  return analyse_within_reach(c, mesh, sys, fem, opt, opt.reach_factor);
+  check_contact_model(c);
+  if (!fem.neutral_curve) throw InputError("contact needs the FEM's generator-deformed neutral curve");
+  if (!(opt.rated_torque_Nm > 0)) throw InputError("contact needs a rated torque > 0");
+  for (double reach_factor = opt.reach_factor;; reach_factor *= 2) {
+    if (std::optional<ContactAnalysis> a = ContactAnalyser(c, mesh, sys, fem, opt, reach_factor).run()) return *a;
+    progress("contact: the twist reaches flanks left out; again with twice the reach");
+  }
 }
 
 }  // namespace sw

@@ -17,6 +17,7 @@
 #include "design/catalog.hpp"
 #include "generator/cam_profile.hpp"
 #include "gear/tooth_profile.hpp"
+#include "mesh/flexspline.hpp"
 
 namespace sw {
 namespace {
@@ -176,25 +177,25 @@ FlexsplineParams read_flexspline(TableReader r) {
   FlexsplineParams f;
   const std::string shape = r.choice("shape", "cup", {"cup", "tube"});
   f.shape = shape == "cup" ? FlexsplineShape::Cup : FlexsplineShape::Tube;
-  f.inner_radius_m = r.positive("inner_radius_mm", f.inner_radius_m / kMm) * kMm;
-  f.wall_thickness_m = r.positive("wall_thickness_mm", f.wall_thickness_m / kMm) * kMm;
-  f.length_m = r.positive("length_mm", f.length_m / kMm) * kMm;
+  // Ranges and consistency: mesh/flexspline.hpp validate_flexspline, once the mesh table is read (parse_case).
+  f.inner_radius_m = r.number("inner_radius_mm", f.inner_radius_m / kMm) * kMm;
+  f.wall_thickness_m = r.number("wall_thickness_mm", f.wall_thickness_m / kMm) * kMm;
+  f.length_m = r.number("length_mm", f.length_m / kMm) * kMm;
   const std::string teeth = r.choice("teeth", shape == "cup" ? "ring" : "none", {"none", "ring", "explicit"});
   f.teeth = teeth == "none" ? TeethModel::None : teeth == "ring" ? TeethModel::Ring : TeethModel::Explicit;
   const bool has_rim = f.teeth != TeethModel::None;
-  f.rim_width_m = (has_rim ? r.positive("rim_width_mm", f.rim_width_m / kMm) : r.non_negative("rim_width_mm", 0.0)) * kMm;
-  f.rim_thickness_m = (has_rim ? r.positive("rim_thickness_mm", f.rim_thickness_m / kMm)
-                               : r.non_negative("rim_thickness_mm", f.wall_thickness_m / kMm)) * kMm;
+  // Without teeth a tube has no rim: its rim keys are accepted when >= 0 and not used.
+  f.rim_width_m = (has_rim ? r.number("rim_width_mm", f.rim_width_m / kMm) : r.non_negative("rim_width_mm", 0.0)) * kMm;
+  if (has_rim) f.rim_thickness_m = r.number("rim_thickness_mm", f.rim_thickness_m / kMm) * kMm;
+  else if (const auto t = r.number("rim_thickness_mm"); t && !(*t >= 0)) r.fail_value("rim_thickness_mm", *t, "must be >= 0");
+  else f.rim_thickness_m = t ? *t * kMm : f.wall_thickness_m;  // derived, not checked: a tube without teeth has no rim
   if (f.shape == FlexsplineShape::Cup) {
-    f.diaphragm_thickness_m = r.positive("diaphragm_thickness_mm", f.diaphragm_thickness_m / kMm) * kMm;
-    f.boss_radius_m = r.positive("boss_radius_mm", f.boss_radius_m / kMm) * kMm;
-    f.fillet_radius_m = r.non_negative("fillet_radius_mm", f.fillet_radius_m / kMm) * kMm;
+    f.diaphragm_thickness_m = r.number("diaphragm_thickness_mm", f.diaphragm_thickness_m / kMm) * kMm;
+    f.boss_radius_m = r.number("boss_radius_mm", f.boss_radius_m / kMm) * kMm;
+    f.fillet_radius_m = r.number("fillet_radius_mm", f.fillet_radius_m / kMm) * kMm;
   }
   // A tube has no diaphragm, boss or fillet: those keys stay unknown for it and are rejected as such.
   r.reject_unknown();
-  if (has_rim && f.rim_width_m > f.length_m)
-    r.fail_value("rim_width_mm", f.rim_width_m / kMm,
-                 "must be <= flexspline.length_mm = " + format_number(f.length_m / kMm));
   return f;
 }
 
@@ -371,9 +372,11 @@ LoadParams read_load(TableReader r) {
 
 MeshParams read_mesh(TableReader r) {
   MeshParams m;
-  m.size_m = r.positive("size_mm", m.size_m / kMm) * kMm;
-  m.wall_layers = r.integer("wall_layers", m.wall_layers, 1);
-  m.corner_levels = r.integer("corner_levels", m.corner_levels, -1);  // the upper bound: mesh/flexspline.cpp
+  // size_mm, wall_layers and corner_levels: their ranges are the mesh's (mesh/shapes.hpp wall_size,
+  // mesh/flexspline.hpp corner_levels), checked with the flexspline's.
+  m.size_m = r.number("size_mm", m.size_m / kMm) * kMm;
+  m.wall_layers = r.integer("wall_layers", m.wall_layers, std::numeric_limits<int>::min());
+  m.corner_levels = r.integer("corner_levels", m.corner_levels, std::numeric_limits<int>::min());
   m.max_radius_edge_ratio = r.number("max_radius_edge_ratio", m.max_radius_edge_ratio);
   if (!(m.max_radius_edge_ratio >= 1.1)) r.fail_value("max_radius_edge_ratio", m.max_radius_edge_ratio, "must be >= 1.1");
   m.min_dihedral_deg = r.number("min_dihedral_deg", m.min_dihedral_deg);
@@ -545,6 +548,24 @@ void require_ascii_syntax(const std::string& text, const std::string& path) {
   }
 }
 
+/// Calls f(); an InputError it throws about a key of the file ("table.key = value; ...", a stage's own validation)
+/// gets the file and the key's line in front, as the reader's own messages have them.
+template <class F>
+void locating_key(const toml::table& root, const std::string& path, F&& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    const std::size_t dot = what.find('.'), eq = what.find(" = ");
+    std::string line;
+    if (dot != std::string::npos && eq != std::string::npos && dot < eq)
+      if (const toml::node* table = root.get(what.substr(0, dot)); table && table->is_table())
+        if (const toml::node* key = table->as_table()->get(what.substr(dot + 1, eq - dot - 1)); key && key->source().begin)
+          line = ":" + std::to_string(key->source().begin.line);
+    throw InputError(path + line + ": " + what);
+  }
+}
+
 }  // namespace
 
 Case parse_case(const std::string& toml_text, const std::string& path) {
@@ -596,6 +617,7 @@ Case parse_case(const std::string& toml_text, const std::string& path) {
     throw InputError(path + ": flexspline.teeth = \"" +
                      std::string(c.flexspline.teeth == TeethModel::Ring ? "ring" : "explicit") +
                      "\" needs a [gear] table (module and teeth), or set teeth = \"none\"");
+  locating_key(root, path, [&] { validate_flexspline(c.flexspline, c.gear, c.mesh); });
   if (c.solver.method == SolverMethod::Fourier && c.flexspline.teeth == TeethModel::Explicit)
     throw InputError(path + ": solver.method = \"fourier\" needs a body of revolution; flexspline.teeth = \"explicit\" "
                             "is not one (use teeth = \"ring\" or \"none\", or method = \"tet10\")");

@@ -301,9 +301,9 @@ ToothMeshSize tooth_mesh_size(const GearParams& g, const MeshParams& mesh) {
 }
 
 int corner_levels(const FlexsplineParams& f, const MeshParams& mesh) {
-  if (mesh.corner_levels > kMaxCornerLevels)
-    throw InputError("mesh.corner_levels = " + std::to_string(mesh.corner_levels) + "; must be <= " +
-                     std::to_string(kMaxCornerLevels) + " (-1: the default grading, 0: none)");
+  if (mesh.corner_levels < -1 || mesh.corner_levels > kMaxCornerLevels)
+    throw InputError("mesh.corner_levels = " + std::to_string(mesh.corner_levels) + "; must be in [-1, " +
+                     std::to_string(kMaxCornerLevels) + "] (-1: the default grading, 0: none)");
   if (f.shape != FlexsplineShape::Cup) return 0;
   return std::max(mesh.corner_levels, 0);
 }

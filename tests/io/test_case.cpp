@@ -238,7 +238,7 @@ TEST(CaseFile, AnIntegerBeyondTheRangeOfIntIsRefusedNotWrapped) {
 
 
 // A cup with teeth (the seed's gear set), for the keys that need [gear].
-constexpr const char* kCup = "[gear]\n[flexspline]\nshape = \"cup\"\nrim_thickness_mm = 0.7025\n";
+constexpr const char* kCup = "[gear]\n[flexspline]\nshape = \"cup\"\nrim_thickness_mm = 0.6425\n";  // on the root circle
 
 TEST(CaseFile, RatedTorqueFromTheCaseOrTheCatalogSize) {
   const Case own = parse_case(std::string(kTube) + "[load]\nrated_torque_Nm = 44.1\n", "t.toml");

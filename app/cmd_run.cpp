@@ -53,8 +53,9 @@ void print_summary(const Case& c, const FemJobResult& fem, const std::optional<B
                 a.catalog.k3_Nm_per_rad, a.lost_motion_rad * kArcmin,
                 a.overlap_at_rest_m > 0 ? "; the teeth overlap at rest: part of it is a preload from interference" : "");
   } else {
-    std::printf("  whole drive's twist: not computed (the loaded tooth contact needs [gear], [wave_generator], teeth = "
-                "\"ring\" and the tet10 solver)\n");
+    const std::optional<std::string> gap = contact_model_gap(flexspline_model(c));
+    std::printf("  whole drive's twist: not computed (%s)\n",
+                gap ? gap->c_str() : "the loaded tooth contact needs the factor in this process: backend = \"cholmod\"");
   }
   if (b) {
     const auto& rb = b->revolution_basic;
@@ -107,7 +108,7 @@ void add_run_command(CLI::App& app) {
       std::printf("run: no backlash for this case (it needs [gear] and [wave_generator] with radial_deformation_mm)\n");
     }
     std::optional<ContactAnalysis> contact;
-    if (backlash && fem.system && c.flexspline.teeth != TeethModel::Explicit) contact = run_contact_job(c, fem, dir);
+    if (fem.system && !contact_model_gap(flexspline_model(c))) contact = run_contact_job(c, fem, dir);
     write_file_atomic(dir / "report.html", run_report_html(report_inputs(c, dir)));
     print_summary(c, fem, backlash, contact, dir);
   });

@@ -726,16 +726,20 @@ std::function<double(double, double)> tooth_pair_compliance_of(const FlexsplineM
   };
 }
 
-void check_contact_model(const FlexsplineModel& c) {
-  if (!c.gear) throw InputError("contact needs a [gear] table (the teeth that carry the torque)");
+std::optional<std::string> contact_model_gap(const FlexsplineModel& c) {
+  if (!c.gear) return "contact needs a [gear] table (the teeth that carry the torque)";
   if (!c.wave_generator || !c.wave_generator->radial_deformation_m)
-    throw InputError("contact needs [wave_generator] with radial_deformation_mm (the mesh zones' shape)");
+    return "contact needs [wave_generator] with radial_deformation_mm (the mesh zones' shape)";
   if (c.flexspline.teeth == TeethModel::Explicit)
-    throw InputError("contact needs flexspline.teeth = \"ring\" or \"none\" (the teeth's own compliance is "
-                              "added in series; explicit teeth would count it twice)");
+    return "contact needs flexspline.teeth = \"ring\" or \"none\" (the teeth's own compliance is added in series; "
+           "explicit teeth would count it twice)";
   if (c.solver.method != SolverMethod::Tet10)
-    throw InputError("contact solves on the TET10 model; solver.method = \"fourier\" has no factor to reuse "
-                              "(use --solver tet10)");
+    return "contact solves on the TET10 model; solver.method = \"fourier\" has no factor to reuse (use --solver tet10)";
+  return std::nullopt;
+}
+
+void check_contact_model(const FlexsplineModel& c) {
+  if (const std::optional<std::string> gap = contact_model_gap(c)) throw InputError(*gap);
 }
 
 ContactAnalysis analyse_contact(const FlexsplineModel& c, const TetMesh& mesh, const FlexsplineSystem& sys,

@@ -205,6 +205,9 @@ struct ContactAnalysis {
   ContactProblem problem;
 };
 
+/// What keeps the model from the loaded contact, in one sentence; empty when nothing does.
+std::optional<std::string> contact_model_gap(const FlexsplineModel& model);
+
 /// Checks that the model can be analysed (a [gear], a [wave_generator] with radial_deformation_mm, teeth "ring" or
 /// "none", the tet10 solver) before any work is done. Throws InputError saying what is missing; the caller, which
 /// knows the case file, puts its name in front (as for every InputError of this module).

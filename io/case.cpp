@@ -652,25 +652,50 @@ void describe_cam(std::ostringstream& s, const Cam& cam) {
   s << "]\n";
 }
 
+void describe_gear(std::ostringstream& s, const GearParams& g) {
+  const auto mm = [](double m) { return m / kMm; };
+  s << "[gear]\nmodule_mm = " << mm(g.module_m) << "\nteeth_flexspline = " << g.teeth_flexspline
+    << "\nteeth_circular = " << g.teeth_circular << "\npressure_angle_deg = " << g.pressure_angle_rad / kDeg
+    << "\nprofile_shift_flexspline = " << g.profile_shift_flexspline
+    << "\nprofile_shift_circular = " << g.profile_shift_circular << "\ncutter_teeth = " << g.cutter_teeth
+    << "\naddendum_coefficient_flexspline = " << g.addendum_coefficient_flexspline
+    << "\naddendum_coefficient_circular = " << g.addendum_coefficient_circular
+    << "\ndedendum_coefficient_flexspline = " << g.dedendum_coefficient_flexspline
+    << "\ndedendum_coefficient_circular = " << g.dedendum_coefficient_circular
+    << "\ntip_rounding_flexspline_mm = " << mm(g.tip_rounding_flexspline_m)
+    << "\ntip_rounding_circular_mm = " << mm(g.tip_rounding_circular_m) << "\n";
+}
+
+void describe_wave_generator(std::ostringstream& s, const WaveGeneratorParams& w) {
+  const auto mm = [](double m) { return m / kMm; };
+  s << "[wave_generator]\nmodel = \"" << model_name(w.model) << "\"\n";
+  std::visit(overloaded{[&](const FourForce& f) { s << "beta_deg = " << f.beta_rad / kDeg << "\n"; },
+                        [&](const Rollers& r) { s << "beta_deg = " << r.beta_rad / kDeg << "\n"; },
+                        [](const TwoForce&) {}, [](const GivenForces&) {}, [](const Cam&) {}},
+             w.model);
+  if (w.radial_deformation_m) s << "radial_deformation_mm = " << mm(*w.radial_deformation_m) << "\n";
+  else s << "force_N = " << w.force_N << "\n";
+  s << "axial_position_mm = " << mm(w.axial_position_m) << "\nband_width_mm = " << mm(w.band_width_m) << "\n";
+  if (const Cam* cam = cam_of(w)) describe_cam(s, *cam);
+  if (const auto* g = std::get_if<GivenForces>(&w.model))
+    for (const auto& force : g->forces)
+      s << "forces += {angle_deg = " << force.angle_rad / kDeg << ", weight = " << force.weight << "}\n";
+  if (w.bearing)
+    s << "bearing = {balls = " << w.bearing->balls << ", ball_diameter_mm = " << mm(w.bearing->ball_diameter_m)
+      << ", inner_groove_conformity = " << w.bearing->inner_groove_conformity
+      << ", outer_groove_conformity = " << w.bearing->outer_groove_conformity << "}  # pitch radius "
+      << mm(w.bearing->pitch_radius_m) << " mm from the bore\n";
+  else
+    s << "# no bearing: the generator is rigid\n";
+}
+
 }  // namespace
 
 std::string describe_case(const Case& c) {
   std::ostringstream s;
   const auto mm = [](double m) { return m / kMm; };
   s << "# resolved case " << c.path << " (lengths in mm, defaults filled in)\n";
-  if (c.gear) {
-    const auto& g = *c.gear;
-    s << "[gear]\nmodule_mm = " << mm(g.module_m) << "\nteeth_flexspline = " << g.teeth_flexspline
-      << "\nteeth_circular = " << g.teeth_circular << "\npressure_angle_deg = " << g.pressure_angle_rad / kDeg
-      << "\nprofile_shift_flexspline = " << g.profile_shift_flexspline
-      << "\nprofile_shift_circular = " << g.profile_shift_circular << "\ncutter_teeth = " << g.cutter_teeth
-      << "\naddendum_coefficient_flexspline = " << g.addendum_coefficient_flexspline
-      << "\naddendum_coefficient_circular = " << g.addendum_coefficient_circular
-      << "\ndedendum_coefficient_flexspline = " << g.dedendum_coefficient_flexspline
-      << "\ndedendum_coefficient_circular = " << g.dedendum_coefficient_circular
-      << "\ntip_rounding_flexspline_mm = " << mm(g.tip_rounding_flexspline_m)
-      << "\ntip_rounding_circular_mm = " << mm(g.tip_rounding_circular_m) << "\n";
-  }
+  if (c.gear) describe_gear(s, *c.gear);
   const auto& f = c.flexspline;
   const bool cup = f.shape == FlexsplineShape::Cup;
   s << "[flexspline]\nshape = \"" << (cup ? "cup" : "tube") << "\"\ninner_radius_mm = " << mm(f.inner_radius_m)
@@ -685,28 +710,7 @@ std::string describe_case(const Case& c) {
   if (c.material.fatigue_limit_Pa)
     s << "fatigue_limit_MPa = " << *c.material.fatigue_limit_Pa / 1e6 << "\nultimate_strength_MPa = "
       << *c.material.ultimate_strength_Pa / 1e6 << "\n";
-  if (c.wave_generator) {
-    const auto& w = *c.wave_generator;
-    s << "[wave_generator]\nmodel = \"" << model_name(w.model) << "\"\n";
-    std::visit(overloaded{[&](const FourForce& f) { s << "beta_deg = " << f.beta_rad / kDeg << "\n"; },
-                          [&](const Rollers& r) { s << "beta_deg = " << r.beta_rad / kDeg << "\n"; },
-                          [](const TwoForce&) {}, [](const GivenForces&) {}, [](const Cam&) {}},
-               w.model);
-    if (w.radial_deformation_m) s << "radial_deformation_mm = " << mm(*w.radial_deformation_m) << "\n";
-    else s << "force_N = " << w.force_N << "\n";
-    s << "axial_position_mm = " << mm(w.axial_position_m) << "\nband_width_mm = " << mm(w.band_width_m) << "\n";
-    if (const Cam* cam = cam_of(w)) describe_cam(s, *cam);
-    if (const auto* g = std::get_if<GivenForces>(&w.model))
-      for (const auto& force : g->forces)
-        s << "forces += {angle_deg = " << force.angle_rad / kDeg << ", weight = " << force.weight << "}\n";
-    if (w.bearing)
-      s << "bearing = {balls = " << w.bearing->balls << ", ball_diameter_mm = " << mm(w.bearing->ball_diameter_m)
-        << ", inner_groove_conformity = " << w.bearing->inner_groove_conformity
-        << ", outer_groove_conformity = " << w.bearing->outer_groove_conformity << "}  # pitch radius "
-        << mm(w.bearing->pitch_radius_m) << " mm from the bore\n";
-    else
-      s << "# no bearing: the generator is rigid\n";
-  }
+  if (c.wave_generator) describe_wave_generator(s, *c.wave_generator);
   s << "[load]\ntorque_Nm = " << c.load.torque_Nm << "\ntorque_loading = \""
     << (c.load.torque_loading == TorqueLoading::Uniform ? "uniform" : "engagement_zones")
     << "\"\nengagement_half_angle_deg = " << c.load.engagement_half_angle_rad / kDeg << "\n";

@@ -44,7 +44,8 @@ void add_design_command(CLI::App& app) {
     const std::string text = design_case_toml(d);
     const std::string name = out.empty() ? "cup_size" + std::to_string(d.size) + ".toml" : out;
     const Case c = parse_case(text, name);  // the written case must load and validate as any other
-    validate_flexspline(c.flexspline, c.gear, c.mesh);
+    validate_flexspline(c.flexspline, c.mesh);
+    check_teeth_on_rim(c.flexspline, c.gear);
     if (out.empty()) {
       std::fputs(text.c_str(), stdout);
       return;

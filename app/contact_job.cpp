@@ -63,7 +63,7 @@ ContactAnalysis run_contact_job(const Case& c, const FemJobResult& fem, const st
       o.catalog_t2_Nm = d->t2_Nm;
     }
   const ContactAnalysis a =
-      naming_file(c.path, [&] { return analyse_contact(flexspline_model(c), *fem.mesh, *fem.system, fem.solution, o); });
+      naming_file(c.path, [&] { return analyse_contact(flexspline_model(c), *fem.mesh, *fem.system, fem_readout(fem.solution), o); });
   write_file_atomic(dir / "contact.json", contact_json(a, c.path, reference));
   write_file_atomic(dir / "torque_twist.csv", torque_twist_csv(a));
   write_file_atomic(dir / "contact.svg", contact_svg(a, reference));

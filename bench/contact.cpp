@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
     o.rated_torque_Nm = c.load.rated_torque_Nm.value_or(c.load.torque_Nm);
     o.steps = steps;
     const double cpu0 = bench::process_cpu_s();
-    const ContactAnalysis a = analyse_contact(sw::flexspline_model(c), mesh, system, fem, o);
+    const ContactAnalysis a = analyse_contact(sw::flexspline_model(c), mesh, system, sw::fem_readout(fem), o);
     const double t_contact = clock.lap(), cpu_contact = bench::process_cpu_s() - cpu0;
     std::printf("%s: %lld equations; mesh %.1f s, assembly + factor %.1f s (%.1f GF at %.1f GF/s), load cases %.1f s\n",
                 case_path.c_str(), static_cast<long long>(fem.timings.factor.equations), t_mesh, t_factor,

@@ -159,7 +159,7 @@ FaceSection section_at_rest(const GearParams& g, const NeutralCurve& curve, doub
 class ContactAnalyser {
 public:
   ContactAnalyser(const FlexsplineModel& c, const TetMesh& mesh, const FlexsplineSystem& sys,
-                  const FlexsplineSolution& fem, const ContactOptions& opt, double reach_factor)
+                  const FemReadout& fem, const ContactOptions& opt, double reach_factor)
       : c_(c), g_(*c.gear), mesh_(mesh), sys_(sys), fem_(fem), opt_(opt), reach_factor_(reach_factor),
         loads_(mesh, 2 * kPi / c.gear->teeth_flexspline) {}
 
@@ -238,7 +238,7 @@ private:
   const GearParams& g_;
   const TetMesh& mesh_;
   const FlexsplineSystem& sys_;
-  const FlexsplineSolution& fem_;
+  const FemReadout& fem_;
   const ContactOptions& opt_;
   const double reach_factor_;
   const FlankLoads loads_;  // the whole face's flank patterns (and the edge teeth's observers)
@@ -280,7 +280,7 @@ private:
 
 void ContactAnalyser::read_rim_at_rest() {
   out_.rated_torque_Nm = opt_.rated_torque_Nm;
-  const NeutralCurveSamples& nc = *fem_.neutral_curve;
+  const NeutralCurveSamples& nc = fem_.neutral_curve;
   curve_ = fit_neutral_curve(nc.radius_m, nc.phi_rad, nc.w_wg_m, nc.v_wg_m, nc.mu_wg_rad, "FEM");
   model_.emplace(make_backlash_model(g_, curve_));
   out_.half_turn_pairs = g_.teeth_flexspline % 2 == 0;
@@ -288,7 +288,7 @@ void ContactAnalyser::read_rim_at_rest() {
   // The face width in axial slices, each with the rim as the generator leaves it at the slice's centre (the FEM's
   // generator case read there: the cup's coning). One slice is the centre section's curve itself.
   n_slices_ = std::max(1, opt_.face_slices);
-  if (n_slices_ > 1 && fem_.cases.empty())
+  if (n_slices_ > 1 && !fem_.generator_u)
     throw InputError("contact.face_slices = " + std::to_string(n_slices_) +
                      " reads the FEM's rim at every slice, and a result read back (--fem) has only its centre section; "
                      "run contact without --fem (or face_slices = 1)");
@@ -320,16 +320,16 @@ void ContactAnalyser::read_rim_at_rest() {
 /// Sections read from the FEM's generator case in one pass: the face's ends, then the slices' centres (if sliced);
 /// the face's ends and centre at rest: how the coning moves the teeth's clearance across the face.
 void ContactAnalyser::read_face_sections(std::vector<NeutralCurve>& read) {
-  const NeutralCurveSamples& nc = *fem_.neutral_curve;
+  const NeutralCurveSamples& nc = fem_.neutral_curve;
   const double face = c_.flexspline.rim_width_m;
   std::vector<double> z_read;
-  if (!fem_.cases.empty()) z_read = {nc.z_m - face / 2, nc.z_m + face / 2};
+  if (fem_.generator_u) z_read = {nc.z_m - face / 2, nc.z_m + face / 2};
   for (int j = 0; j < n_slices_ && n_slices_ > 1; ++j)
     z_read.push_back(nc.z_m - face / 2 + face * (j + 0.5) / n_slices_);
   if (!z_read.empty())
-    for (const NeutralCurveSamples& at : neutral_curves_at(c_, mesh_, fem_.cases.front().u, z_read))
+    for (const NeutralCurveSamples& at : neutral_curves_at(c_, mesh_, *fem_.generator_u, z_read))
       read.push_back(fit_neutral_curve(at.radius_m, at.phi_rad, at.w_wg_m, at.v_wg_m, at.mu_wg_rad, "FEM"));
-  if (!fem_.cases.empty())
+  if (fem_.generator_u)
     for (const auto& [z, cz] : {std::pair<double, const NeutralCurve&>{nc.z_m - face / 2, read[0]}, {nc.z_m, curve_},
                                 {nc.z_m + face / 2, read[1]}})
       out_.face_sections.push_back(section_at_rest(g_, cz, z, opt_.wg_angle_rad));
@@ -437,7 +437,7 @@ void ContactAnalyser::compute_influence() {
 void ContactAnalyser::set_up_problem() {
   const Eigen::Index nf = nf_, nb = nb_;
   if (unilateral_) {
-    const Eigen::VectorXd obstacle = fem_.generator->obstacle_m;
+    const Eigen::VectorXd& obstacle = fem_.generator_obstacle_m;
     p0_ = unilateral_contact(A_body_.bottomRightCorner(nb, nb), obstacle).force_N;
     P_.A = A_body_;
     P_.q.resize(nf + nb);
@@ -449,7 +449,7 @@ void ContactAnalyser::set_up_problem() {
     // have a moment about the axis through the cam's tilted normal: the locked generator's share of the torque.
     P_.lambda = lambda_;
     P_.lambda.tail(nb).setZero();
-    out_.generator_support = "the generator's contact (" + fem_.generator->model + ", unilateral) in the same problem";
+    out_.generator_support = "the generator's contact (" + fem_.generator_model + ", unilateral) in the same problem";
   } else {
     const Eigen::LDLT<Eigen::MatrixXd> bb(A_body_.bottomRightCorner(nb, nb));
     band_solve_ = -bb.solve(A_body_.bottomLeftCorner(nb, nf));
@@ -726,6 +726,19 @@ std::function<double(double, double)> tooth_pair_compliance_of(const FlexsplineM
   };
 }
 
+FemReadout fem_readout(const FlexsplineSolution& s) {
+  if (!s.neutral_curve) throw InputError("contact needs the FEM's generator-deformed neutral curve");
+  FemReadout r;
+  r.neutral_curve = *s.neutral_curve;
+  r.compliance_rad_per_Nm = s.compliance_rad_per_Nm;
+  if (s.generator) {
+    r.generator_model = s.generator->model;
+    r.generator_obstacle_m = s.generator->obstacle_m;
+  }
+  if (!s.cases.empty()) r.generator_u = &s.cases.front().u;
+  return r;
+}
+
 std::optional<std::string> contact_model_gap(const FlexsplineModel& c) {
   if (!c.gear) return "contact needs a [gear] table (the teeth that carry the torque)";
   if (!c.wave_generator || !c.wave_generator->radial_deformation_m)
@@ -743,9 +756,8 @@ void check_contact_model(const FlexsplineModel& c) {
 }
 
 ContactAnalysis analyse_contact(const FlexsplineModel& c, const TetMesh& mesh, const FlexsplineSystem& sys,
-                                const FlexsplineSolution& fem, const ContactOptions& opt) {
+                                const FemReadout& fem, const ContactOptions& opt) {
   check_contact_model(c);
-  if (!fem.neutral_curve) throw InputError("contact needs the FEM's generator-deformed neutral curve");
   if (!(opt.rated_torque_Nm > 0)) throw InputError("contact needs a rated torque > 0");
   for (double reach_factor = opt.reach_factor;; reach_factor *= 2) {
     if (std::optional<ContactAnalysis> a = ContactAnalyser(c, mesh, sys, fem, opt, reach_factor).run()) return *a;

@@ -208,6 +208,22 @@ struct ContactAnalysis {
 /// What keeps the model from the loaded contact, in one sentence; empty when nothing does.
 std::optional<std::string> contact_model_gap(const FlexsplineModel& model);
 
+/// What the loaded contact reads of the flexspline's FEM: the generator-deformed neutral curve at the face's centre,
+/// C_τ, the generator's model and its stations' obstacle, and the generator case's displacement field, from which the
+/// face's other sections are read. A solution read back from result.json (`contact --fem`) has no field: null, and
+/// the face is then taken at its centre only.
+struct FemReadout {
+  NeutralCurveSamples neutral_curve;
+  double compliance_rad_per_Nm = 0;
+  std::string generator_model;
+  Eigen::VectorXd generator_obstacle_m;          ///< per station pair (unilateral generators)
+  const Eigen::VectorXd* generator_u = nullptr;  ///< 3·n_nodes of the generator case; null: read back
+};
+
+/// The readout of a solved FEM with a generator; its field points into `s`, which must outlive it. Throws InputError
+/// when the solution has no generator-deformed neutral curve.
+FemReadout fem_readout(const FlexsplineSolution& s);
+
 /// Checks that the model can be analysed (a [gear], a [wave_generator] with radial_deformation_mm, teeth "ring" or
 /// "none", the tet10 solver) before any work is done. Throws InputError saying what is missing; the caller, which
 /// knows the case file, puts its name in front (as for every InputError of this module).
@@ -216,6 +232,6 @@ void check_contact_model(const FlexsplineModel& model);
 /// The contact analysis of a model with a gear, a wave generator and teeth = "ring", on the system its FEM solution
 /// came from. Throws InputError for a model it cannot handle (no gear, explicit teeth, no flank in the mesh zone).
 ContactAnalysis analyse_contact(const FlexsplineModel& model, const TetMesh& mesh, const FlexsplineSystem& system,
-                                const FlexsplineSolution& fem, const ContactOptions& options);
+                                const FemReadout& fem, const ContactOptions& options);
 
 }  // namespace sw

@@ -79,17 +79,16 @@ MovingMesh rigid_rim_mesh(const GearParams& g, const NeutralCurve& curve, const 
 }
 
 MovingMesh fem_coupled_mesh(const FlexsplineModel& c, const TetMesh& mesh, const FlexsplineSystem& system,
-                            const FlexsplineSolution& fem, const ToothCompliance& teeth, double rated_torque_Nm,
+                            const FemReadout& fem, const ToothCompliance& teeth, double rated_torque_Nm,
                             int phases, int table_per_phase, double reach_factor) {
   check_contact_model(c);
-  if (!fem.neutral_curve) throw InputError("the moving mesh needs the FEM's generator-deformed neutral curve");
   if (phases < 1 || table_per_phase < 1) throw InputError("dynamics: phases and table samples must be >= 1");
   const GearParams& g = *c.gear;
   MovingMesh m;
   m.teeth_flexspline = g.teeth_flexspline;
   m.teeth_per_unknown = g.teeth_flexspline % 2 == 0 ? 2 : 1;
   m.pitch_rad = 2 * kPi / g.teeth_flexspline;
-  const NeutralCurveSamples& nc = *fem.neutral_curve;
+  const NeutralCurveSamples& nc = fem.neutral_curve;
   const NeutralCurve curve = fit_neutral_curve(nc.radius_m, nc.phi_rad, nc.w_wg_m, nc.v_wg_m, nc.mu_wg_rad, "FEM");
   m.table = table_on(g, curve, teeth, m.pitch_rad / (phases * table_per_phase), true);
   const int period = m.key_period();

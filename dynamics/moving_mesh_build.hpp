@@ -4,6 +4,7 @@
 #include <functional>
 
 #include "fem/flexspline_model.hpp"
+#include "contact/loaded_contact.hpp"
 #include "dynamics/moving_mesh.hpp"
 #include "fem/flexspline_analysis.hpp"
 #include "fem/flexspline_system.hpp"
@@ -25,7 +26,7 @@ MovingMesh rigid_rim_mesh(const GearParams& gear, const NeutralCurve& curve, con
 /// phases over one pitch, and the flank table on the FEM's generator-deformed neutral curve, sampled every
 /// pitch/(phases·table_per_phase) so that the phases fall on its grid.
 MovingMesh fem_coupled_mesh(const FlexsplineModel& model, const TetMesh& mesh, const FlexsplineSystem& system,
-                            const FlexsplineSolution& fem, const ToothCompliance& teeth, double rated_torque_Nm,
+                            const FemReadout& fem, const ToothCompliance& teeth, double rated_torque_Nm,
                             int phases, int table_per_phase, double reach_factor = 12.0);
 
 /// The generator angle `wg_angle_rad` of contact/ (against the fixed circular spline) for σ = θ_w − θ_f.

@@ -283,7 +283,8 @@ SectionMesh mesh_annulus_section(double r_inner_m, double r_outer_m, double leng
 
 SectionMesh mesh_flexspline_section(const FlexsplineParams& f, const std::optional<GearParams>& gear,
                                     const MeshParams& mesh, std::optional<std::pair<double, double>> band) {
-  validate_flexspline(f, gear, mesh);
+  validate_flexspline(f, mesh);
+  check_teeth_on_rim(f, gear);
   if (f.teeth == TeethModel::Explicit)
     throw InputError("flexspline.teeth = \"explicit\": the toothed rim is not a body of revolution; the harmonic "
                      "solver takes teeth = \"ring\" or \"none\" (solver.method = \"tet10\" takes explicit teeth)");

@@ -617,7 +617,7 @@ Case parse_case(const std::string& toml_text, const std::string& path) {
     throw InputError(path + ": flexspline.teeth = \"" +
                      std::string(c.flexspline.teeth == TeethModel::Ring ? "ring" : "explicit") +
                      "\" needs a [gear] table (module and teeth), or set teeth = \"none\"");
-  locating_key(root, path, [&] { validate_flexspline(c.flexspline, c.gear, c.mesh); });
+  locating_key(root, path, [&] { validate_flexspline(c.flexspline, c.mesh); });
   if (c.solver.method == SolverMethod::Fourier && c.flexspline.teeth == TeethModel::Explicit)
     throw InputError(path + ": solver.method = \"fourier\" needs a body of revolution; flexspline.teeth = \"explicit\" "
                             "is not one (use teeth = \"ring\" or \"none\", or method = \"tet10\")");

@@ -329,7 +329,7 @@ double rim_outer_radius(const FlexsplineParams& f, const std::optional<GearParam
   return root + 0.5 * (r.tip_f - r.root_f);
 }
 
-void validate_flexspline(const FlexsplineParams& f, const std::optional<GearParams>& gear, const MeshParams& mesh) {
+void validate_flexspline(const FlexsplineParams& f, const MeshParams& mesh) {
   wall_size(f.wall_thickness_m, mesh);  // mesh.size_mm > 0, mesh.wall_layers >= 1
   corner_levels(f, mesh);               // mesh.corner_levels <= kMaxCornerLevels
   if (!(f.inner_radius_m > 0)) reject("inner_radius_mm", f.inner_radius_m, "must be > 0");
@@ -361,24 +361,27 @@ void validate_flexspline(const FlexsplineParams& f, const std::optional<GearPara
              cup ? "must be < length_mm - diaphragm_thickness_mm - fillet_radius_mm = " + mm(below_rim)
                  : "must be < length_mm = " + mm(below_rim));
   }
-  if (f.teeth != TeethModel::None) {
-    if (!gear) throw InputError("flexspline.teeth needs the [gear] table (module, teeth, profile shift)");
-    const double root = gear_radii(*gear).root_f;
-    const double want = f.inner_radius_m + f.rim_thickness_m;
-    if (std::abs(root - want) > 0.25 * gear->module_m)
-      throw InputError("flexspline.rim_thickness_mm = " + mm(f.rim_thickness_m) + "; inner_radius_mm + rim_thickness_mm = " +
-                       mm(want) + " must match the teeth's root circle " + mm(root) +
-                       " mm (from [gear]) within 0.25 module = " + mm(0.25 * gear->module_m) + " mm");
-    const double ro = f.inner_radius_m + f.wall_thickness_m;
-    if (f.teeth == TeethModel::Explicit && !(root > ro))
-      throw InputError("flexspline.teeth = \"explicit\": the teeth's root circle " + mm(root) +
-                       " mm (from [gear]) must lie outside the body wall, inner_radius_mm + wall_thickness_mm = " +
-                       mm(ro) + " mm; reduce wall_thickness_mm or inner_radius_mm");
-  }
+}
+
+void check_teeth_on_rim(const FlexsplineParams& f, const std::optional<GearParams>& gear) {
+  if (f.teeth == TeethModel::None) return;
+  if (!gear) throw InputError("flexspline.teeth needs the [gear] table (module, teeth, profile shift)");
+  const double root = gear_radii(*gear).root_f;
+  const double want = f.inner_radius_m + f.rim_thickness_m;
+  if (std::abs(root - want) > 0.25 * gear->module_m)
+    throw InputError("flexspline.rim_thickness_mm = " + mm(f.rim_thickness_m) + "; inner_radius_mm + rim_thickness_mm = " +
+                     mm(want) + " must match the teeth's root circle " + mm(root) +
+                     " mm (from [gear]) within 0.25 module = " + mm(0.25 * gear->module_m) + " mm");
+  const double ro = f.inner_radius_m + f.wall_thickness_m;
+  if (f.teeth == TeethModel::Explicit && !(root > ro))
+    throw InputError("flexspline.teeth = \"explicit\": the teeth's root circle " + mm(root) +
+                     " mm (from [gear]) must lie outside the body wall, inner_radius_mm + wall_thickness_mm = " +
+                     mm(ro) + " mm; reduce wall_thickness_mm or inner_radius_mm");
 }
 
 TetMesh mesh_flexspline(const FlexsplineParams& f, const std::optional<GearParams>& gear, const MeshParams& mesh) {
-  validate_flexspline(f, gear, mesh);
+  validate_flexspline(f, mesh);
+  check_teeth_on_rim(f, gear);
   const bool cup = f.shape == FlexsplineShape::Cup;
   if (!cup && f.teeth == TeethModel::None)
     return mesh_tube(f.inner_radius_m, f.inner_radius_m + f.wall_thickness_m, f.length_m, mesh);

@@ -41,10 +41,14 @@ namespace sw {
 /// "explicit" has no gear.
 double rim_outer_radius(const FlexsplineParams& f, const std::optional<GearParams>& gear);
 
-/// Checks every dimension and combination of the flexspline keys (and the teeth against the gear: root circle
-/// within 0.25 module of inner_radius + rim_thickness; for "explicit" also outside inner_radius + wall_thickness). Throws InputError naming the keys in mm, e.g.
-/// "flexspline.fillet_radius_mm = 3; must be < inner_radius_mm - boss_radius_mm = 2.4".
-void validate_flexspline(const FlexsplineParams& f, const std::optional<GearParams>& gear, const MeshParams& mesh);
+/// Checks every dimension and combination of the flexspline keys and the mesh keys. Throws InputError naming the keys
+/// in mm, e.g. "flexspline.fillet_radius_mm = 3; must be < inner_radius_mm - boss_radius_mm = 2.4".
+void validate_flexspline(const FlexsplineParams& f, const MeshParams& mesh);
+
+/// Checks that the teeth sit on the rim to be meshed: their root circle within 0.25 module of inner_radius +
+/// rim_thickness (and, for "explicit", outside inner_radius + wall_thickness). Needed to mesh the teeth (ring or
+/// explicit), not by the stages that take the teeth on a neutral curve alone. Throws InputError naming the key.
+void check_teeth_on_rim(const FlexsplineParams& f, const std::optional<GearParams>& gear);
 
 /// Boss edge length over mesh.size: every boss face is clamped, so its tets carry no strain worth resolving; only the
 /// interface with the diaphragm (r = boss_radius) keeps the diaphragm's size. The harmonic section and the model-size

@@ -16,7 +16,7 @@ from pathlib import Path
 REF = NEW = Path()
 FILES = ["result.json", "backlash.json", "contact.json", "dynamics.json", "reconcile.json"]
 IGNORED_KEYS = {"timings_s", "peak_rss_bytes", "version", "setup_s", "influence_s", "contact_s", "check_s",
-                "real_time_factor"}
+                "real_time_factor", "factor_s"}
 
 
 def differences(a, b, path, rel, out):

@@ -74,7 +74,7 @@ const CoarseSeed& coarse_seed() {
 const MovingMesh& coarse_coupled() {
   static const MovingMesh* m = [] {
     const CoarseSeed& k = coarse_seed();
-    return new MovingMesh(fem_coupled_mesh(flexspline_model(k.c), k.mesh, k.system, k.fem, teeth_of(k.c), 44.1, 8, 8));
+    return new MovingMesh(fem_coupled_mesh(flexspline_model(k.c), k.mesh, k.system, fem_readout(k.fem), teeth_of(k.c), 44.1, 8, 8));
   }();
   return *m;
 }
@@ -224,7 +224,7 @@ TEST(MovingMesh, SlowRunReproducesTheLoadedContactAtEveryGeneratorAngle) {
     o.steps = 1;
     o.wg_angle_rad = contact_wg_angle_rad(*k.c.gear, sigma);
     o.series.tooth_pair_m_per_N = teeth;
-    const ContactAnalysis a = analyse_contact(flexspline_model(k.c), k.mesh, k.system, k.fem, o);
+    const ContactAnalysis a = analyse_contact(flexspline_model(k.c), k.mesh, k.system, fem_readout(k.fem), o);
     const double flank_torque = s.mesh_torque_Nm[j] - s.travel_torque_Nm[j];  // Σ λ_i x_i
     const ContactSolution qs = solve_contact(a.problem, flank_torque);
     std::vector<double> tooth(period, 0.0);

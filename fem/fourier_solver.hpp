@@ -25,7 +25,6 @@
 #include <Eigen/Core>
 
 #include "fem/flexspline_model.hpp"
-#include "fem/flexspline_model.hpp"
 #include "fem/cholmod_factor.hpp"
 #include "fem/flexspline_analysis.hpp"
 #include "fem/fourier_section.hpp"

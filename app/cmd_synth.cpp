@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,12 +33,9 @@ struct SynthArgs {
 
 void run_synth(SynthArgs a) {
   using reconcile::Kind;
-  Kind kind;
-  if (a.kind == "torsion") kind = Kind::Torsion;
-  else if (a.kind == "transmission") kind = Kind::Transmission;
-  else if (a.kind == "backlash") kind = Kind::Backlash;
-  else if (a.kind == "dynamics") kind = Kind::Dynamics;
-  else throw InputError("--kind = '" + a.kind + "'; expected torsion, transmission, backlash or dynamics");
+  const std::optional<Kind> parsed = reconcile::kind_from_name(a.kind);
+  if (!parsed) throw InputError("--kind = '" + a.kind + "'; expected torsion, transmission, backlash or dynamics");
+  const Kind kind = *parsed;
   BaselineSources src;
   if (!a.case_path.empty()) src.case_file = load_case(a.case_path);
   src.fem_result = a.fem;
@@ -51,7 +49,6 @@ void run_synth(SynthArgs a) {
   }
   src.recording = &meta;
   std::vector<std::string> notes;
-  a.o.kind = kind;
   a.o.baseline = make_baseline(kind, src, notes);
   // Per-kind noise defaults (response units): an encoder-like resolution and a mix of white and AR(1) noise.
   const double def_white = kind == Kind::Dynamics ? 5.0 : kind == Kind::Backlash ? 0.2 : kind == Kind::Torsion ? 1e-6 : 2e-6;

@@ -2,26 +2,17 @@
 // Synthetic recordings for proofs and demos: the baseline of a kind plus chosen hidden effects (the same model laws
 // reconcile fits), white + AR(1) noise, sensor gain error and encoder quantisation, and a truth record.
 #include <cstdint>
-#include <map>
 #include <string>
 #include <vector>
 
+#include "reconcile/catalog.hpp"
 #include "reconcile/experiment.hpp"
 #include "reconcile/recording.hpp"
 
 namespace sw::reconcile {
 
-/// One hidden effect: a catalog name, its harmonic order (0 if none) and its parameters in SPEC units. Missing
-/// parameters take defaults (see synth_effect_help()).
-struct SynthEffect {
-  std::string name;
-  int order = 0;
-  std::map<std::string, double> params;
-};
-
 struct SynthOptions {
-  Kind kind = Kind::Torsion;
-  Baseline baseline;                       ///< the simulated model the effects are added to
+  Baseline baseline;                       ///< the simulated model the effects are added to (its kind's recording)
   int samples = 4000;
   double cycles = 4.0;                     ///< torsion: torque cycles; transmission: output revolutions
   double torque_amplitude_Nm = 44.1;       ///< torsion: +-amplitude; backlash: highest torque level
@@ -49,7 +40,8 @@ struct SynthResult {
 /// (phi 0.8) noise of sd noise_N each on the meshing force, quantum noise_N / 5, 0.05 rpm white on both speeds.
 SynthOptions dynamics_proof_options(const Baseline& baseline, double noise_N, std::uint64_t seed);
 
-/// Generates a recording. Throws InputError for unknown effect names or parameters, or effects of another kind.
+/// Generates a recording of the baseline's kind. Throws InputError for unknown effect names or parameters, or effects
+/// of another kind.
 SynthResult synthesize(const SynthOptions& options);
 
 /// Parses "name[:key=value,...]" ("order" is a key too). Throws InputError naming the text and the expectation.

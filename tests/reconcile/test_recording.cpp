@@ -113,7 +113,7 @@ TEST(RecordingParser, RefusesASemicolonSeparatedFileNamingTheSeparator) {
 TEST(RecordingParser, TooFewSamplesAreRejectedByTheAnalysis) {
   const Recording r = parse_recording(kGood, "rec.csv");
   Baseline b;
-  b.compliance_rad_per_Nm = 1e-5;
+  b.prediction = TorsionPrediction{.compliance_rad_per_Nm = 1e-5};
   try {
     make_experiment(r, b);
     FAIL() << "expected InputError";

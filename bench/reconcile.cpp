@@ -44,7 +44,7 @@ int main(int argc, char** argv) {
     sw::quiet_progress() = true;
     SynthOptions o;
     o.samples = samples;
-    o.cycles = cycles;
+    o.rows = TorsionRows{.cycles = cycles};
     o.seed = static_cast<std::uint64_t>(seed);
     o.baseline.prediction = TorsionPrediction{.compliance_rad_per_Nm = 5e-5};
     o.white_sd = 1e-6;

@@ -176,7 +176,8 @@ void diagnose(const Baseline& b, const BenchOptions& o, const std::string& effec
   SynthOptions s = synth_options(b, o, effect, 1);
   const SynthResult noisy = synthesize(s);
   const nlohmann::json truth = nlohmann::json::parse(noisy.truth_json)["effects"][0]["params"];
-  s.white_sd = s.ar1_sd = s.quantum = s.speed_sd_rpm = 0.0;
+  s.white_sd = s.ar1_sd = s.quantum = 0.0;
+  s.rows = DynamicsRows{};
   s.concealment = 0.0;
   s.effects[0].params.clear();
   for (const auto& [k, v] : truth.items())

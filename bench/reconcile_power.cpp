@@ -42,7 +42,7 @@ SynthOptions base_options(Kind kind, std::uint64_t seed) {
   } else {
     o.baseline.gear = {.teeth_flexspline = 190, .teeth_circular = 192};
     o.baseline.prediction = TransmissionPrediction{};
-    o.cycles = 2.0;
+    o.rows = TransmissionRows{.output_revolutions = 2.0};
     o.white_sd = 2e-6; o.ar1_sd = 2e-6; o.quantum = 1e-6;
   }
   return o;

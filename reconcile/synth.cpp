@@ -80,7 +80,7 @@ nlohmann::json baseline_truth(const DriveGear&, const DynamicsPrediction& p) {
 std::string truth_text(const SynthOptions& o, int samples, const nlohmann::json& effects, double noise) {
   nlohmann::json noise_block = {{"white_sd", o.white_sd}, {"ar1_sd", o.ar1_sd}, {"ar1_phi", o.ar1_phi},
                                 {"quantum", o.quantum}, {"rms", noise}};
-  if (o.baseline.kind() == Kind::Dynamics) noise_block["speed_sd_rpm"] = o.speed_sd_rpm;
+  if (const auto* d = std::get_if<DynamicsRows>(&o.rows)) noise_block["speed_sd_rpm"] = d->speed_sd_rpm;
   const nlohmann::json truth = {
       {"kind", kind_name(o.baseline.kind())},
       {"seed", o.seed},
@@ -101,41 +101,39 @@ void number_rows(Recording& rec, int n) {
   for (int i = 0; i < n; ++i) rec.lines[i] = i + 1;
 }
 
-/// Torsion: a cosine torque cycle between -A and +A (starting at a reversal, -A).
-void lay_out_rows(const SynthOptions& o, const TorsionPrediction&, Recording& rec) {
+void lay_out_rows(const SynthOptions& o, const TorsionRows& rows, Recording& rec) {
   const int n = o.samples;
-  const double A = o.torque_amplitude_Nm;
+  const double A = rows.torque_amplitude_Nm;
   rec.columns = {"time_s", "torque_Nm", "twist_rad"};
   rec.values.assign(3, std::vector<double>(n));
   for (int i = 0; i < n; ++i) {
-    rec.values[0][i] = i * o.sample_period_s;
-    rec.values[1][i] = -A * std::cos(2.0 * M_PI * o.cycles * i / n);
+    rec.values[0][i] = i * rows.sample_period_s;
+    rec.values[1][i] = -A * std::cos(2.0 * M_PI * rows.cycles * i / n);
   }
   rec.metadata.push_back({"torque_amplitude_Nm", std::to_string(A)});
 }
 
-/// Transmission: the wave generator turning at constant speed through `cycles` output revolutions.
-void lay_out_rows(const SynthOptions& o, const TransmissionPrediction&, Recording& rec) {
+void lay_out_rows(const SynthOptions& o, const TransmissionRows& rows, Recording& rec) {
   const int n = o.samples;
   const DriveGear& g = o.baseline.gear;
   rec.columns = {"time_s", "wg_angle_rad", "output_angle_rad"};
   rec.values.assign(3, std::vector<double>(n));
-  const double wg_total = o.cycles * 2.0 * M_PI * g.teeth_flexspline / double(g.teeth_circular - g.teeth_flexspline);
+  const double wg_total =
+      rows.output_revolutions * 2.0 * M_PI * g.teeth_flexspline / double(g.teeth_circular - g.teeth_flexspline);
   for (int i = 0; i < n; ++i) {
-    rec.values[0][i] = i * o.sample_period_s;
+    rec.values[0][i] = i * rows.sample_period_s;
     rec.values[1][i] = wg_total * i / n;
   }
   rec.metadata.push_back({"teeth_flexspline", std::to_string(g.teeth_flexspline)});
   rec.metadata.push_back({"teeth_circular", std::to_string(g.teeth_circular)});
 }
 
-/// Backlash: one wave-generator revolution at each of `torque_levels` torques from 0 to the amplitude.
-void lay_out_rows(const SynthOptions& o, const BacklashPrediction&, Recording& rec) {
+void lay_out_rows(const SynthOptions& o, const BacklashRows& rows, Recording& rec) {
   const int n = o.samples;
-  const double A = o.torque_amplitude_Nm;
+  const double A = rows.torque_amplitude_Nm;
   rec.columns = {"wg_angle_deg", "torque_Nm", "backlash_um"};
   rec.values.assign(3, std::vector<double>(n));
-  const int levels = std::max(1, o.torque_levels);
+  const int levels = std::max(1, rows.torque_levels);
   const int per = (n + levels - 1) / levels;
   for (int i = 0; i < n; ++i) {
     const int level = i / per;
@@ -230,7 +228,8 @@ void add_dynamics_effect(const SynthOptions& o, const DynamicsPrediction& p, con
 
 /// Dynamics: the recording is a run of the dynamics model with the hidden effects (all at once), on the model's own
 /// time grid, plus noise on the meshing force (white, AR(1), quantum) and white noise of speed_sd_rpm on both speeds.
-SynthResult synthesize_dynamics(const SynthOptions& o, const DynamicsPrediction& p, Recording rec) {
+SynthResult synthesize_dynamics(const SynthOptions& o, const DynamicsPrediction& p, const DynamicsRows& rows,
+                                Recording rec) {
   if (!p.dynamics_run) throw InputError("synth: kind = dynamics needs the case's dynamics model (--case)");
   SynthResult out;
   out.noise_rms = noise_rms(o);
@@ -250,8 +249,8 @@ SynthResult synthesize_dynamics(const SynthOptions& o, const DynamicsPrediction&
   SensorNoise noise(o);
   for (int i = 0; i < n; ++i) {
     rec.values[3][i] = noise.record(rec.values[3][i]);
-    rec.values[1][i] += o.speed_sd_rpm * noise.normal();
-    rec.values[2][i] += o.speed_sd_rpm * noise.normal();
+    rec.values[1][i] += rows.speed_sd_rpm * noise.normal();
+    rec.values[2][i] += rows.speed_sd_rpm * noise.normal();
   }
   out.truth_json = truth_text(o, n, effects, out.noise_rms);
   out.recording = std::move(rec);
@@ -324,7 +323,7 @@ SynthOptions dynamics_proof_options(const Baseline& baseline, double noise_N, st
   o.white_sd = noise_N;
   o.ar1_sd = noise_N;
   o.quantum = 0.2 * noise_N;
-  o.speed_sd_rpm = 0.05;
+  o.rows = DynamicsRows{.speed_sd_rpm = 0.05};
   o.seed = seed;
   return o;
 }
@@ -342,15 +341,20 @@ SynthResult synthesize(const SynthOptions& o) {
                   {"source", "synthetic: strainwave synth (hidden effects and noise; see the truth file)"},
                   {"seed", std::to_string(o.seed)}};
   return std::visit(
-      [&](const auto& p) {
-        if constexpr (std::is_same_v<std::decay_t<decltype(p)>, DynamicsPrediction>) {
-          return synthesize_dynamics(o, p, std::move(rec));
+      [&](const auto& p, const auto& rows) -> SynthResult {
+        using P = std::decay_t<decltype(p)>;
+        using Rows = std::decay_t<decltype(rows)>;
+        if constexpr (P::kind != Rows::kind) {
+          throw InputError("synth: the rows are laid out for kind " + kind_name(Rows::kind) +
+                           "; the baseline is of kind " + kind_name(P::kind));
+        } else if constexpr (P::kind == Kind::Dynamics) {
+          return synthesize_dynamics(o, p, rows, std::move(rec));
         } else {
-          lay_out_rows(o, p, rec);
+          lay_out_rows(o, rows, rec);
           return synthesize_response(o, std::move(rec));
         }
       },
-      o.baseline.prediction);
+      o.baseline.prediction, o.rows);
 }
 
 }  // namespace sw::reconcile

@@ -41,12 +41,13 @@ SynthOptions options(Kind kind, int seed) {
     case Kind::Transmission:
       o.baseline.gear = {.teeth_flexspline = 190, .teeth_circular = 192};
       o.baseline.prediction = TransmissionPrediction{};
-      o.cycles = 2.0;
+      o.rows = TransmissionRows{.output_revolutions = 2.0};
       o.white_sd = 2e-6; o.ar1_sd = 2e-6; o.quantum = 1e-6;
       break;
     default:
       o.baseline.gear.pitch_radius_m = 0.019;
       o.baseline.prediction = BacklashPrediction{.backlash_um = basic_backlash_um};
+      o.rows = BacklashRows{};
       o.white_sd = 0.2; o.ar1_sd = 0.2; o.quantum = 0.1;
       break;
   }

@@ -73,7 +73,7 @@ const nlohmann::json& truth_params(const nlohmann::json& truth, const std::strin
 SynthOptions size17_loop(double white_sd, std::uint64_t seed) {
   SynthOptions o;
   o.baseline.prediction = TorsionPrediction{.compliance_rad_per_Nm = 1.89e-5};
-  o.torque_amplitude_Nm = 31.0;
+  o.rows = TorsionRows{.torque_amplitude_Nm = 31.0};
   o.white_sd = white_sd; o.ar1_sd = 4.85e-6; o.ar1_phi = 0.9; o.quantum = 1.498e-6;
   o.seed = seed;
   return o;
@@ -163,7 +163,7 @@ TEST(CatalogLostMotion, OfALinearDriveIsItsElasticTwistOverEightPercentOfRated) 
   // The reference's check: with no play at all, 2 * 0.04 * T_R / K1 = 0.85 arcmin for size 17.
   SynthOptions o;
   o.baseline.prediction = TorsionPrediction{.compliance_rad_per_Nm = 1e-4};  // K = 1e4 N*m/rad
-  o.torque_amplitude_Nm = 31.0;
+  o.rows = TorsionRows{.torque_amplitude_Nm = 31.0};
   const SynthResult s = synthesize(o);
   Recording rec = s.recording;
   rec.metadata.push_back({"size", "17"});
@@ -183,7 +183,7 @@ TEST(MultiEffect, FourTransmissionHarmonicsAtHighSnrAreAllFoundAndNothingElse) {
   SynthOptions o;
   o.baseline.gear = {.teeth_flexspline = 190, .teeth_circular = 192};
   o.baseline.prediction = TransmissionPrediction{};
-  o.cycles = 2.0;
+  o.rows = TransmissionRows{.output_revolutions = 2.0};
   o.white_sd = 2e-6; o.ar1_sd = 2e-6; o.quantum = 1e-6;
   o.seed = 51;
   o.effects = parse_synth_effects("wg_harmonic:order=1,amplitude_rad=4e-5,wg_harmonic:order=2,amplitude_rad=6e-5,"
@@ -211,6 +211,7 @@ TEST(MultiEffect, BacklashOffsetTorsionAndTwoHarmonicsAtHighSnrAreAllFound) {
   o.baseline.gear.pitch_radius_m = 0.019;
   o.baseline.prediction =
       BacklashPrediction{.backlash_um = [](double wg) { return 20.0 + 15.0 * std::cos(2.0 * wg); }};
+  o.rows = BacklashRows{};
   o.white_sd = 0.2; o.ar1_sd = 0.2; o.quantum = 0.1;
   o.seed = 52;
   o.effects = parse_synth_effects("uniform_clearance:offset_um=3,load_torsion:compliance_rad_per_Nm=2e-5,"

@@ -1,6 +1,6 @@
 // `strainwave synth --kind K --out FILE.csv [--effect NAME[:k=v,...]]... [noise flags]`: a synthetic recording of a
 // kind from its baseline plus hidden effects, white + AR(1) noise, encoder quantisation and sensor gain error, and a
-// truth file FILE.truth.json beside it (issue 5, proofs and demos).
+// truth file FILE.truth.json beside it (for proofs and demos).
 #include <cstdio>
 #include <filesystem>
 #include <memory>

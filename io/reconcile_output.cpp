@@ -1,5 +1,6 @@
 #include "io/reconcile_output.hpp"
 
+#include <cmath>
 #include <fstream>
 #include <sstream>
 

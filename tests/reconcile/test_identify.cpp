@@ -1,4 +1,4 @@
-// Proof on concealed effects (issue 5): synthetic recordings from the baseline plus hidden effects with white + AR(1)
+// Proof on concealed effects: synthetic recordings from the baseline plus hidden effects with white + AR(1)
 // noise and quantisation; reconcile must name each effect and recover its headline parameter, stay silent on null
 // recordings, find a masked harmonic and both effects of a two-effect case.
 //
@@ -21,7 +21,7 @@ using namespace sw::reconcile::testing;
 
 namespace {
 
-/// Headline parameters within 25 % at effect-RMS / noise-RMS = 0.5 (the issue's requirement).
+/// Headline parameters within 25 % at effect-RMS / noise-RMS = 0.5 (the requirement on concealed effects).
 constexpr double kParamTol = 0.25;
 /// Concealment of the identification cases: effect RMS / noise RMS.
 constexpr double kConcealment = 0.5;

@@ -23,7 +23,7 @@ using namespace sw::reconcile::testing;
 
 namespace {
 
-/// Stiffness of each segment within 15 % (the target; the rounded corners of size 17 move the best straight
+/// Stiffness of each segment within 15 % (the catalog-figure target; the rounded corners of size 17 move the best straight
 /// segments by a few per cent).
 constexpr double kStiffnessTol = 0.15;
 /// Hysteresis loss and play width within 20 % (friction structures other than the fitter's exponential included).

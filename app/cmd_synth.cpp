@@ -1,9 +1,11 @@
 // `strainwave synth --kind K --out FILE.csv [--effect NAME[:k=v,...]]... [noise flags]`: a synthetic recording of a
 // kind from its baseline plus hidden effects, white + AR(1) noise, encoder quantisation and sensor gain error, and a
-// truth file FILE.truth.json beside it (issue 5, proofs and demos).
+// truth file FILE.truth.json beside it (for proofs and demos).
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -27,17 +29,44 @@ struct SynthArgs {
   std::string effect_list;
   std::vector<std::string> meta;
   reconcile::SynthOptions o;
+  double cycles = 4.0, torque_Nm = 44.1, period_s = 0.01;
+  int levels = 3;
   double white = -1, ar1 = -1, quantum = -1;  // < 0: the kind's default
 };
 
+/// The recording's rows of a kind from the command line. Transmission: --cycles output revolutions, 2 unless given
+/// other than 4. Dynamics: 0.05 rpm white noise on both speeds.
+reconcile::SynthRows rows_of(reconcile::Kind kind, const SynthArgs& a) {
+  using reconcile::Kind;
+  switch (kind) {
+    case Kind::Torsion: return reconcile::TorsionRows{a.cycles, a.torque_Nm, a.period_s};
+    case Kind::Transmission: return reconcile::TransmissionRows{a.cycles == 4.0 ? 2.0 : a.cycles, a.period_s};
+    case Kind::Backlash: return reconcile::BacklashRows{a.torque_Nm, a.levels};
+    case Kind::Dynamics: return reconcile::DynamicsRows{0.05};
+  }
+  throw std::logic_error("rows_of: unknown kind");
+}
+
+/// Per-kind noise defaults (response units): white and AR(1) noise of one sd, and an encoder-like resolution.
+struct NoiseDefaults {
+  double sd, quantum;
+};
+NoiseDefaults noise_defaults(reconcile::Kind kind) {
+  using reconcile::Kind;
+  switch (kind) {
+    case Kind::Torsion: return {1e-6, 5e-7};
+    case Kind::Transmission: return {2e-6, 1e-6};
+    case Kind::Backlash: return {0.2, 0.1};
+    case Kind::Dynamics: return {5.0, 1.0};
+  }
+  throw std::logic_error("noise_defaults: unknown kind");
+}
+
 void run_synth(SynthArgs a) {
   using reconcile::Kind;
-  Kind kind;
-  if (a.kind == "torsion") kind = Kind::Torsion;
-  else if (a.kind == "transmission") kind = Kind::Transmission;
-  else if (a.kind == "backlash") kind = Kind::Backlash;
-  else if (a.kind == "dynamics") kind = Kind::Dynamics;
-  else throw InputError("--kind = '" + a.kind + "'; expected torsion, transmission, backlash or dynamics");
+  const std::optional<Kind> parsed = reconcile::kind_from_name(a.kind);
+  if (!parsed) throw InputError("--kind = '" + a.kind + "'; expected torsion, transmission, backlash or dynamics");
+  const Kind kind = *parsed;
   BaselineSources src;
   if (!a.case_path.empty()) src.case_file = load_case(a.case_path);
   src.fem_result = a.fem;
@@ -51,16 +80,12 @@ void run_synth(SynthArgs a) {
   }
   src.recording = &meta;
   std::vector<std::string> notes;
-  a.o.kind = kind;
   a.o.baseline = make_baseline(kind, src, notes);
-  // Per-kind noise defaults (response units): an encoder-like resolution and a mix of white and AR(1) noise.
-  const double def_white = kind == Kind::Dynamics ? 5.0 : kind == Kind::Backlash ? 0.2 : kind == Kind::Torsion ? 1e-6 : 2e-6;
-  const double def_q = kind == Kind::Dynamics ? 1.0 : kind == Kind::Backlash ? 0.1 : kind == Kind::Torsion ? 5e-7 : 1e-6;
-  if (kind == Kind::Dynamics) a.o.speed_sd_rpm = 0.05;
-  a.o.white_sd = a.white >= 0 ? a.white : def_white;
-  a.o.ar1_sd = a.ar1 >= 0 ? a.ar1 : def_white;
-  a.o.quantum = a.quantum >= 0 ? a.quantum : def_q;
-  if (kind == Kind::Transmission && a.o.cycles == 4.0) a.o.cycles = 2.0;
+  a.o.rows = rows_of(kind, a);
+  const NoiseDefaults noise = noise_defaults(kind);
+  a.o.white_sd = a.white >= 0 ? a.white : noise.sd;
+  a.o.ar1_sd = a.ar1 >= 0 ? a.ar1 : noise.sd;
+  a.o.quantum = a.quantum >= 0 ? a.quantum : noise.quantum;
   for (const auto& e : a.effects) a.o.effects.push_back(reconcile::parse_synth_effect(e));
   if (!a.effect_list.empty())
     for (auto& e : reconcile::parse_synth_effects(a.effect_list)) a.o.effects.push_back(std::move(e));
@@ -112,11 +137,11 @@ void add_synth_command(CLI::App& app) {
                   "rescale each effect so its RMS = this times the noise RMS (0: use the given amplitudes)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--samples", a->o.samples, "rows")->capture_default_str();
-  cmd->add_option("--period", a->o.sample_period_s, "time_s step, s (torsion, transmission)")->capture_default_str();
-  cmd->add_option("--cycles", a->o.cycles, "torsion: torque cycles; transmission: output revolutions (default 2)")
+  cmd->add_option("--period", a->period_s, "time_s step, s (torsion, transmission)")->capture_default_str();
+  cmd->add_option("--cycles", a->cycles, "torsion: torque cycles; transmission: output revolutions (default 2)")
       ->capture_default_str();
-  cmd->add_option("--torque", a->o.torque_amplitude_Nm, "torsion amplitude / backlash top level, N*m")->capture_default_str();
-  cmd->add_option("--levels", a->o.torque_levels, "backlash: torque levels 0..--torque")->capture_default_str();
+  cmd->add_option("--torque", a->torque_Nm, "torsion amplitude / backlash top level, N*m")->capture_default_str();
+  cmd->add_option("--levels", a->levels, "backlash: torque levels 0..--torque")->capture_default_str();
   cmd->add_option("--white", a->white, "white noise sd (response units)");
   cmd->add_option("--ar1", a->ar1, "AR(1) noise: process sd (response units)");
   cmd->add_option("--ar1-phi", a->o.ar1_phi, "AR(1) coefficient")->capture_default_str();

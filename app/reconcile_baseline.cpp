@@ -53,6 +53,7 @@ double end_slope(const TorqueTwistCurve& c, bool top) {
 /// The torsion baseline from the contact stage's torque-twist curve: its loop's middle line, checked to cover the
 /// recording's torque range.
 void contact_baseline(const BaselineSources& src, reconcile::Baseline& b, std::vector<std::string>& notes) {
+  reconcile::TorsionPrediction p;
   const TorqueTwistCurve curve = read_torque_twist(src.contact_result);
   const double lo = curve.torque_Nm.front(), hi = curve.torque_Nm.back();
   const double tol = kCurveEndTolerance * curve.rated_torque_Nm;
@@ -73,16 +74,17 @@ void contact_baseline(const BaselineSources& src, reconcile::Baseline& b, std::v
     notes.push_back("C_tau (--fem, --compliance) is not used: the torsion baseline is the contact curve");
   b.model = "contact";
   b.source = src.contact_result;
-  b.twist_rad = [curve, tol](double T) { return twist_at(curve, T, tol); };
-  b.compliance_rad_per_Nm = 0.5 * (end_slope(curve, false) + end_slope(curve, true));
-  if (!(b.compliance_rad_per_Nm > 0.0))
+  p.twist_rad = [curve, tol](double T) { return twist_at(curve, T, tol); };
+  p.compliance_rad_per_Nm = 0.5 * (end_slope(curve, false) + end_slope(curve, true));
+  if (!(p.compliance_rad_per_Nm > 0.0))
     throw InputError(src.contact_result + ": torque_twist: the curve's end slopes give " +
-                     num(b.compliance_rad_per_Nm) + " rad/(N*m); twist must rise with torque");
-  b.curve_t1_Nm = curve.catalog_t1_Nm;
-  b.curve_t2_Nm = curve.catalog_t2_Nm;
+                     num(p.compliance_rad_per_Nm) + " rad/(N*m); twist must rise with torque");
+  p.curve_t1_Nm = curve.catalog_t1_Nm;
+  p.curve_t2_Nm = curve.catalog_t2_Nm;
   notes.push_back("torsion baseline: the drive's torque-twist curve of " + src.contact_result + " (middle line, " +
                   std::to_string(curve.torque_Nm.size()) + " points over [" + num(lo) + ", " + num(hi) +
-                  "] N*m; end slope " + num(b.compliance_rad_per_Nm) + " rad/(N*m))");
+                  "] N*m; end slope " + num(p.compliance_rad_per_Nm) + " rad/(N*m))");
+  b.prediction = p;
 }
 
 std::optional<int> meta_int(const reconcile::Recording* r, const std::string& key) {
@@ -154,18 +156,17 @@ TorsionBaseline parse_torsion_baseline(const std::string& text) {
 
 reconcile::Baseline dynamics_baseline(const DynamicsModel& model) {
   reconcile::Baseline b;
-  b.teeth_flexspline = model.teeth_flexspline;
-  b.teeth_circular = model.teeth_circular;
-  const SteadyState ss = steady_state(model);
-  b.damping_Ns_per_m = model.params.damping_Ns_per_m;
-  b.mesh_frequency_Hz = ss.mesh_frequency_Hz;
-  b.steady_from_s = model.params.steady_from_s;
-  b.drive_ramp_end_s = model.params.drive_ramp_end_s;
-  b.load_torque_Nm = model.params.load_torque_Nm;
-  b.output_speed_rad_s = std::abs(ss.speed_rad_s[static_cast<int>(ss.output)]);
-  if (model.moving) b.analysis_from_s = model.params.steady_from_s;
+  b.gear.teeth_flexspline = model.teeth_flexspline;
+  b.gear.teeth_circular = model.teeth_circular;
   b.source = pair_model_name(model);
-  b.dynamics_run = [model, ss](const reconcile::DynamicsVariation& v) {
+  const SteadyState ss = steady_state(model);
+  reconcile::DynamicsPrediction p;
+  p.damping_Ns_per_m = model.params.damping_Ns_per_m;
+  p.mesh_frequency_Hz = ss.mesh_frequency_Hz;
+  p.load_torque_Nm = model.params.load_torque_Nm;
+  p.output_speed_rad_s = std::abs(ss.speed_rad_s[static_cast<int>(ss.output)]);
+  if (model.moving) p.analysis_from_s = model.params.steady_from_s;
+  p.dynamics_run = [model, ss](const reconcile::DynamicsVariation& v) {
     const DynamicsModel m = varied_model(model, ss, v);
     const DynamicsSeries s = simulate(m);
     reconcile::DynamicsRun r;
@@ -183,112 +184,138 @@ reconcile::Baseline dynamics_baseline(const DynamicsModel& model) {
     }
     return r;
   };
+  b.prediction = p;
   return b;
 }
+
+namespace {
+
+/// The drive's gear: the case's when it has one (the recording's metadata checked against it), else the teeth the
+/// recording's metadata gives.
+reconcile::DriveGear drive_gear(const BaselineSources& src, std::vector<std::string>& notes) {
+  reconcile::DriveGear g;
+  const Case* c = src.case_file ? &*src.case_file : nullptr;
+  const auto zf_meta = meta_int(src.recording, "teeth_flexspline");
+  const auto zc_meta = meta_int(src.recording, "teeth_circular");
+  if (c && c->gear) {
+    g.teeth_flexspline = c->gear->teeth_flexspline;
+    g.teeth_circular = c->gear->teeth_circular;
+    g.pitch_radius_m = 0.5 * c->gear->module_m * c->gear->teeth_flexspline;
+    if ((zf_meta && *zf_meta != g.teeth_flexspline) || (zc_meta && *zc_meta != g.teeth_circular))
+      notes.push_back("the case (" + c->path + ") has teeth z_f = " + std::to_string(g.teeth_flexspline) +
+                      ", z_c = " + std::to_string(g.teeth_circular) + " but the recording's metadata says z_f = " +
+                      (zf_meta ? std::to_string(*zf_meta) : "?") + ", z_c = " + (zc_meta ? std::to_string(*zc_meta) : "?") +
+                      "; the case is used");
+  } else {
+    if (zf_meta) g.teeth_flexspline = *zf_meta;
+    if (zc_meta) g.teeth_circular = *zc_meta;
+  }
+  return g;
+}
+
+/// Torsion: C_tau T of the flexspline body (--compliance, or the FEM's result.json), or the contact curve.
+void torsion_baseline(const BaselineSources& src, reconcile::Baseline& b, std::vector<std::string>& notes) {
+  if (src.torsion == TorsionBaseline::Contact) return contact_baseline(src, b, notes);
+  reconcile::TorsionPrediction p;
+  b.model = "fem";
+  if (src.compliance) {
+    p.compliance_rad_per_Nm = *src.compliance;
+    notes.push_back("C_tau = " + std::to_string(*src.compliance) + " rad/(N*m) from --compliance");
+  } else if (!src.fem_result.empty()) {
+    p.compliance_rad_per_Nm = compliance_from_fem(src.fem_result);
+    b.source = src.fem_result;
+    notes.push_back("C_tau from " + src.fem_result);
+  } else {
+    throw InputError("--fem: missing; a torsion baseline needs C_tau: give --fem DIR/result.json (from "
+                     "`strainwave fem CASE.toml`) or --compliance RAD_PER_NM");
+  }
+  b.prediction = p;
+}
+
+std::string case_name(const Case* c) { return c ? c->path : std::string("case"); }
+
+/// Transmission: the ideal ratio of the drive's teeth.
+void transmission_baseline(const Case* c, reconcile::Baseline& b) {
+  if (b.gear.teeth_flexspline <= 0 || b.gear.teeth_circular <= 0)
+    throw InputError(case_name(c) + ": [gear] teeth missing; the transmission baseline needs z_f and z_c (case [gear] "
+                     "or the recording's teeth_flexspline/teeth_circular metadata)");
+  b.prediction = reconcile::TransmissionPrediction{};
+}
+
+/// Backlash: the basic kinematic model (phi0 = 0) of the case's gear on its neutral curve.
+void backlash_baseline(const Case* c, reconcile::Baseline& b, std::vector<std::string>& notes) {
+  if (!c || !c->gear)
+    throw InputError(case_name(c) +
+                     ": [gear] missing; the backlash baseline (basic kinematic model) needs the gear and flexspline");
+  const double rm = rim_mean_radius(c->flexspline);
+  const NeutralCurve curve = c->wave_generator
+                                 ? generator_neutral_curve(rm, radial_deformation_m(flexspline_model(*c)), *c->wave_generator)
+                                 : cam_neutral_curve(rm, radial_deformation_m(flexspline_model(*c)));
+  const BacklashModel model = make_backlash_model(*c->gear, curve);
+  reconcile::BacklashPrediction p;
+  p.backlash_um = [model](double wg_angle_rad) { return 1e6 * min_backlash_m(model, wg_angle_rad, 0.0); };
+  b.prediction = p;
+  notes.push_back("backlash baseline: basic kinematic model (phi0 = 0) of " + c->path);
+}
+
+/// The case's [dynamics] parameters as the baseline runs them: constant mesh stiffness, and integrated tightly.
+DynamicsParams baseline_dynamics_params(const Case& c, std::vector<std::string>& notes) {
+  DynamicsParams q = c.dynamics ? *c.dynamics : DynamicsParams{};
+  if (q.stiffness_variation_N_per_m != 0.0)
+    notes.push_back("the case has dynamics.stiffness_variation_N_per_m = " +
+                    std::to_string(q.stiffness_variation_N_per_m) + "; the baseline uses constant mesh stiffness");
+  q.stiffness_variation_N_per_m = 0.0;
+  // The experiment reads every effect from differences between runs, so the integrator's own error must sit far
+  // below them: a case's display tolerance does not. At the seed case's 1e-6 / 1e-9 rad, changing any parameter by
+  // 1e-8 moved its meshing force by 0.25 N RMS (another step sequence), against 4e-5 N at 1e-8 / 1e-13; a
+  // concealed effect at the noise level is about 7 N.
+  if (q.relative_tolerance > kBaselineRelativeTolerance || q.absolute_tolerance_rad > kBaselineAbsoluteTolerance_rad) {
+    q.relative_tolerance = std::min(q.relative_tolerance, kBaselineRelativeTolerance);
+    q.absolute_tolerance_rad = std::min(q.absolute_tolerance_rad, kBaselineAbsoluteTolerance_rad);
+    notes.push_back("the baseline integrates at relative_tolerance " + num(q.relative_tolerance) +
+                    ", absolute_tolerance_rad " + num(q.absolute_tolerance_rad) +
+                    " (tighter than the case's): its effects are differences between runs");
+  }
+  return q;
+}
+
+/// Dynamics: the model `strainwave dynamics` builds from the case, its runs remembered.
+void dynamics_baseline_of(const Case* c, const BaselineSources& src, reconcile::Baseline& b,
+                          std::vector<std::string>& notes) {
+  if (!c || !c->gear)
+    throw InputError(case_name(c) + ": [gear] missing; the dynamics baseline needs the case's gear and [dynamics] table");
+  const DynamicsParams q = baseline_dynamics_params(*c, notes);
+  DynamicsModelOptions o;
+  o.fem_result = src.fem_result;
+  const std::filesystem::path fem_dir = default_out_dir(*c);
+  if (q.pair_motion == PairMotion::Moving && q.rim == RimCoupling::Fem)
+    notes.push_back("rim = \"fem\": the flexspline body's compliance from the FEM solved first, its result in " +
+                    fem_dir.string() + " (each of the ~40 runs of the experiment then integrates the coupled mesh)");
+  const DynamicsJobModel job = dynamics_model(*c, q, o, fem_dir);
+  const reconcile::Baseline d = dynamics_baseline(job.model);
+  const auto& p = std::get<reconcile::DynamicsPrediction>(d.prediction);
+  b.source = c->path + ": " + d.source;
+  b.prediction = reconcile::with_remembered_runs(p);  // synth and the experiment share runs
+  if (p.analysis_from_s > 0.0)
+    notes.push_back("moving tooth pairs: the recording is compared from dynamics.steady_from_s = " +
+                    num(p.analysis_from_s) + " s on (in the run-up and at load steps the teeth separate and "
+                    "strike again, and the meshing force answers the model's parameters by the impacts' timing)");
+  notes.push_back("dynamics baseline: the [dynamics] model of " + c->path + " (" + to_string(q.configuration) + ", " +
+                  d.source + ", constant mesh stiffness; " + job.source + "); f_m = " +
+                  std::to_string(p.mesh_frequency_Hz) + " Hz");
+}
+
+}  // namespace
 
 reconcile::Baseline make_baseline(Kind kind, const BaselineSources& src, std::vector<std::string>& notes) {
   reconcile::Baseline b;
   const Case* c = src.case_file ? &*src.case_file : nullptr;
-  // Teeth: the case wins; the recording's metadata fills in and is checked against it.
-  const auto zf_meta = meta_int(src.recording, "teeth_flexspline");
-  const auto zc_meta = meta_int(src.recording, "teeth_circular");
-  if (c && c->gear) {
-    b.teeth_flexspline = c->gear->teeth_flexspline;
-    b.teeth_circular = c->gear->teeth_circular;
-    b.pitch_radius_m = 0.5 * c->gear->module_m * c->gear->teeth_flexspline;
-    if ((zf_meta && *zf_meta != b.teeth_flexspline) || (zc_meta && *zc_meta != b.teeth_circular))
-      notes.push_back("the case (" + c->path + ") has teeth z_f = " + std::to_string(b.teeth_flexspline) +
-                      ", z_c = " + std::to_string(b.teeth_circular) + " but the recording's metadata says z_f = " +
-                      (zf_meta ? std::to_string(*zf_meta) : "?") + ", z_c = " + (zc_meta ? std::to_string(*zc_meta) : "?") +
-                      "; the case is used");
-  } else {
-    if (zf_meta) b.teeth_flexspline = *zf_meta;
-    if (zc_meta) b.teeth_circular = *zc_meta;
-  }
+  b.gear = drive_gear(src, notes);
   switch (kind) {
-    case Kind::Torsion:
-      if (src.torsion == TorsionBaseline::Contact) {
-        contact_baseline(src, b, notes);
-        break;
-      }
-      b.model = "fem";
-      if (src.compliance) {
-        b.compliance_rad_per_Nm = *src.compliance;
-        notes.push_back("C_tau = " + std::to_string(*src.compliance) + " rad/(N*m) from --compliance");
-      } else if (!src.fem_result.empty()) {
-        b.compliance_rad_per_Nm = compliance_from_fem(src.fem_result);
-        b.source = src.fem_result;
-        notes.push_back("C_tau from " + src.fem_result);
-      } else {
-        throw InputError("--fem: missing; a torsion baseline needs C_tau: give --fem DIR/result.json (from "
-                         "`strainwave fem CASE.toml`) or --compliance RAD_PER_NM");
-      }
-      break;
-    case Kind::Transmission:
-      if (b.teeth_flexspline <= 0 || b.teeth_circular <= 0)
-        throw InputError((c ? c->path : std::string("case")) +
-                         ": [gear] teeth missing; the transmission baseline needs z_f and z_c (case [gear] or the "
-                         "recording's teeth_flexspline/teeth_circular metadata)");
-      break;
-    case Kind::Backlash: {
-      if (!c || !c->gear)
-        throw InputError((c ? c->path : std::string("case")) +
-                         ": [gear] missing; the backlash baseline (basic kinematic model) needs the gear and flexspline");
-      const double rm = rim_mean_radius(c->flexspline);
-      const NeutralCurve curve = c->wave_generator
-                                     ? generator_neutral_curve(rm, radial_deformation_m(flexspline_model(*c)), *c->wave_generator)
-                                     : cam_neutral_curve(rm, radial_deformation_m(flexspline_model(*c)));
-      const BacklashModel model = make_backlash_model(*c->gear, curve);
-      b.backlash_um = [model](double wg_angle_rad) { return 1e6 * min_backlash_m(model, wg_angle_rad, 0.0); };
-      notes.push_back("backlash baseline: basic kinematic model (phi0 = 0) of " + c->path);
-      break;
-    }
-    case Kind::Dynamics: {
-      if (!c || !c->gear)
-        throw InputError((c ? c->path : std::string("case")) +
-                         ": [gear] missing; the dynamics baseline needs the case's gear and [dynamics] table");
-      DynamicsParams q = c->dynamics ? *c->dynamics : DynamicsParams{};
-      if (q.stiffness_variation_N_per_m != 0.0)
-        notes.push_back("the case has dynamics.stiffness_variation_N_per_m = " +
-                        std::to_string(q.stiffness_variation_N_per_m) + "; the baseline uses constant mesh stiffness");
-      q.stiffness_variation_N_per_m = 0.0;
-      // The experiment reads every effect from differences between runs, so the integrator's own error must sit far
-      // below them: a case's display tolerance does not. At the seed case's 1e-6 / 1e-9 rad, changing any parameter by
-      // 1e-8 moved its meshing force by 0.25 N RMS (another step sequence), against 4e-5 N at 1e-8 / 1e-13; a
-      // concealed effect at the noise level is about 7 N.
-      if (q.relative_tolerance > kBaselineRelativeTolerance || q.absolute_tolerance_rad > kBaselineAbsoluteTolerance_rad) {
-        q.relative_tolerance = std::min(q.relative_tolerance, kBaselineRelativeTolerance);
-        q.absolute_tolerance_rad = std::min(q.absolute_tolerance_rad, kBaselineAbsoluteTolerance_rad);
-        notes.push_back("the baseline integrates at relative_tolerance " + num(q.relative_tolerance) +
-                        ", absolute_tolerance_rad " + num(q.absolute_tolerance_rad) +
-                        " (tighter than the case's): its effects are differences between runs");
-      }
-      DynamicsModelOptions o;
-      o.fem_result = src.fem_result;
-      const std::filesystem::path fem_dir = default_out_dir(*c);
-      if (q.pair_motion == PairMotion::Moving && q.rim == RimCoupling::Fem)
-        notes.push_back("rim = \"fem\": the flexspline body's compliance from the FEM solved first, its result in " +
-                        fem_dir.string() + " (each of the ~40 runs of the experiment then integrates the coupled mesh)");
-      const DynamicsJobModel job = dynamics_model(*c, q, o, fem_dir);
-      reconcile::Baseline d = dynamics_baseline(job.model);
-      b.source = c->path + ": " + d.source;
-      b.dynamics_run = reconcile::with_remembered_runs(d).dynamics_run;  // synth and the experiment share runs
-      b.damping_Ns_per_m = d.damping_Ns_per_m;
-      b.mesh_frequency_Hz = d.mesh_frequency_Hz;
-      b.steady_from_s = d.steady_from_s;
-      b.drive_ramp_end_s = d.drive_ramp_end_s;
-      b.load_torque_Nm = d.load_torque_Nm;
-      b.output_speed_rad_s = d.output_speed_rad_s;
-      b.analysis_from_s = d.analysis_from_s;
-      if (d.analysis_from_s > 0.0)
-        notes.push_back("moving tooth pairs: the recording is compared from dynamics.steady_from_s = " +
-                        num(d.analysis_from_s) + " s on (in the run-up and at load steps the teeth separate and "
-                        "strike again, and the meshing force answers the model's parameters by the impacts' timing)");
-      notes.push_back("dynamics baseline: the [dynamics] model of " + c->path + " (" + to_string(q.configuration) +
-                      ", " + d.source + ", constant mesh stiffness; " + job.source + "); f_m = " +
-                      std::to_string(d.mesh_frequency_Hz) + " Hz");
-      break;
-    }
+    case Kind::Torsion: torsion_baseline(src, b, notes); break;
+    case Kind::Transmission: transmission_baseline(c, b); break;
+    case Kind::Backlash: backlash_baseline(c, b, notes); break;
+    case Kind::Dynamics: dynamics_baseline_of(c, src, b, notes); break;
   }
   return b;
 }

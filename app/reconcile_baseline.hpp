@@ -28,8 +28,8 @@ struct BaselineSources {
   const reconcile::Recording* recording = nullptr;  ///< metadata used where the case is silent
 };
 
-/// The dynamics baseline of a model (its run with a variation, f_m, c0, steady output speed); the model's own
-/// stiffness variation should be 0 (constant mesh stiffness).
+/// The dynamics baseline of a model (a DynamicsPrediction: its run with a variation, f_m, c0, steady output speed;
+/// the source names the pair model); the model's own stiffness variation should be 0 (constant mesh stiffness).
 reconcile::Baseline dynamics_baseline(const DynamicsModel& model);
 
 /// A torque beyond the contact curve by at most this fraction of its rated torque (a torque sensor's overshoot at the

@@ -43,11 +43,10 @@ int main(int argc, char** argv) {
   try {
     sw::quiet_progress() = true;
     SynthOptions o;
-    o.kind = Kind::Torsion;
     o.samples = samples;
-    o.cycles = cycles;
+    o.rows = TorsionRows{.cycles = cycles};
     o.seed = static_cast<std::uint64_t>(seed);
-    o.baseline.compliance_rad_per_Nm = 5e-5;
+    o.baseline.prediction = TorsionPrediction{.compliance_rad_per_Nm = 5e-5};
     o.white_sd = 1e-6;
     o.ar1_sd = 1e-6;
     o.ar1_phi = 0.8;

@@ -70,6 +70,9 @@ sw::Case bench_case(const BenchOptions& o) {
   return c;
 }
 
+/// The dynamics model of the baseline.
+const DynamicsPrediction& model(const Baseline& b) { return std::get<DynamicsPrediction>(b.prediction); }
+
 SynthOptions synth_options(const Baseline& b, const BenchOptions& o, const std::string& effect, std::uint64_t seed) {
   SynthOptions s = dynamics_proof_options(b, o.noise_N, seed);
   s.concealment = o.concealment;
@@ -173,7 +176,8 @@ void diagnose(const Baseline& b, const BenchOptions& o, const std::string& effec
   SynthOptions s = synth_options(b, o, effect, 1);
   const SynthResult noisy = synthesize(s);
   const nlohmann::json truth = nlohmann::json::parse(noisy.truth_json)["effects"][0]["params"];
-  s.white_sd = s.ar1_sd = s.quantum = s.speed_sd_rpm = 0.0;
+  s.white_sd = s.ar1_sd = s.quantum = 0.0;
+  s.rows = DynamicsRows{};
   s.concealment = 0.0;
   s.effects[0].params.clear();
   for (const auto& [k, v] : truth.items())
@@ -199,8 +203,8 @@ void diagnose(const Baseline& b, const BenchOptions& o, const std::string& effec
               "(whitened)\n", name.c_str(), std::sqrt(d.squaredNorm() / d.size()), noisy.noise_rms, ar.order(),
               100 * std::sqrt(ols.rss_w / d.squaredNorm()), 100 * std::sqrt(gls.rss_w / dw));
   if (name == "damping") {
-    const double c = truth["coefficient_Ns_per_m"].get<double>(), c0 = b.damping_Ns_per_m;
-    const Vec table = (c - c0) * damping_secant(ec, c);
+    const double c = truth["coefficient_Ns_per_m"].get<double>(), c0 = model(b).damping_Ns_per_m;
+    const Vec table = (c - c0) * damping_secant(as<DynamicsExperiment>(ec), c);
     std::printf("    the table's interpolant at the true c misses %.1f %% of the response (RMS)\n",
                 100 * (table - d).norm() / d.norm());
   }
@@ -213,9 +217,10 @@ void diagnose(const Baseline& b, const BenchOptions& o, const std::string& effec
 /// RMS (N) of the meshing-force change for a drag, a damping change and a k(t) amplitude over several decades: a
 /// model whose force is smooth in its parameters shows a change proportional to the step; a floor shows jitter.
 void response_scaling(const Baseline& b) {
-  const sw::reconcile::DynamicsRun r0 = b.dynamics_run(DynamicsVariation{});
+  const auto& run = model(b).dynamics_run;
+  const sw::reconcile::DynamicsRun r0 = run(DynamicsVariation{});
   auto rms_change = [&](const DynamicsVariation& v) {
-    const sw::reconcile::DynamicsRun r = b.dynamics_run(v);
+    const sw::reconcile::DynamicsRun r = run(v);
     double s2 = 0;
     for (std::size_t i = 0; i < r.mesh_force_N.size(); ++i) s2 += std::pow(r.mesh_force_N[i] - r0.mesh_force_N[i], 2);
     return std::sqrt(s2 / r.mesh_force_N.size());
@@ -223,7 +228,7 @@ void response_scaling(const Baseline& b) {
   {
     DynamicsVariation drag;
     drag.drag_coulomb_Nm = 1e-4;
-    const sw::reconcile::DynamicsRun r = b.dynamics_run(drag);
+    const sw::reconcile::DynamicsRun r = run(drag);
     std::printf("drag 1e-4 N*m: RMS change per 2 ms window:");
     const std::size_t w = 200;
     for (std::size_t a = 0; a + w <= r.mesh_force_N.size(); a += w) {
@@ -240,7 +245,7 @@ void response_scaling(const Baseline& b) {
   for (double step : {1e-8, 1e-6, 1e-4, 1e-2, 1e0}) {
     DynamicsVariation drag, damp, stiff;
     drag.drag_coulomb_Nm = step;
-    damp.damping_Ns_per_m = b.damping_Ns_per_m * (1.0 + step);
+    damp.damping_Ns_per_m = model(b).damping_Ns_per_m * (1.0 + step);
     stiff.stiffness_ratio = 0.1 * step;
     std::printf("    step %.0e: drag %.0e N*m %.4g N, damping x(1 + %.0e) %.4g N, k(t) ratio %.0e %.4g N\n", step, step,
                 rms_change(drag), step, rms_change(damp), 0.1 * step, rms_change(stiff));

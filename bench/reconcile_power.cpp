@@ -33,16 +33,16 @@ using namespace sw::reconcile;
 
 SynthOptions base_options(Kind kind, std::uint64_t seed) {
   SynthOptions o;
-  o.kind = kind;
   o.samples = 4000;
   o.seed = seed;
   o.ar1_phi = 0.8;
   if (kind == Kind::Torsion) {
-    o.baseline.compliance_rad_per_Nm = 5e-5;
+    o.baseline.prediction = TorsionPrediction{.compliance_rad_per_Nm = 5e-5};
     o.white_sd = 1e-6; o.ar1_sd = 1e-6; o.quantum = 5e-7;
   } else {
-    o.baseline.teeth_flexspline = 190; o.baseline.teeth_circular = 192;
-    o.cycles = 2.0;
+    o.baseline.gear = {.teeth_flexspline = 190, .teeth_circular = 192};
+    o.baseline.prediction = TransmissionPrediction{};
+    o.rows = TransmissionRows{.output_revolutions = 2.0};
     o.white_sd = 2e-6; o.ar1_sd = 2e-6; o.quantum = 1e-6;
   }
   return o;
@@ -75,6 +75,78 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
+/// What the recordings of one cell (kind, number of effects, SNR) gave.
+struct Cell {
+  int detected = 0, found = 0, present = 0, extra = 0;
+  double seconds = 0;
+  std::vector<double> errors;  ///< relative error of each named effect's headline
+};
+
+/// The harmonic order of a truth entry (0: none).
+int truth_order(const nlohmann::json& t) {
+  return t["params"].contains("order") ? t["params"]["order"].get<int>() : 0;
+}
+
+/// Scores one analysis against its truth: the effects named, those named that were not hidden, the headline errors.
+void score(const Result& r, const nlohmann::json& truth, Cell& cell) {
+  std::set<std::string> want;
+  for (const auto& e : truth["effects"]) want.insert(key_of(e["name"], truth_order(e)));
+  int hits = 0;
+  for (const auto& e : r.effects) {
+    int order = 0;
+    std::vector<std::pair<std::string, double>> p;
+    for (const auto& h : e.params) {
+      if (h.name == "order") order = static_cast<int>(std::lround(h.value));
+      p.emplace_back(h.name, h.value);
+    }
+    const std::string key = key_of(e.name, order);
+    if (!want.count(key)) { ++cell.extra; continue; }
+    ++hits;
+    for (const auto& t : truth["effects"]) {
+      if (key_of(t["name"], truth_order(t)) != key) continue;
+      std::vector<std::pair<std::string, double>> tp;
+      for (const auto& [n, v] : t["params"].items()) tp.emplace_back(n, v.get<double>());
+      // Stiffness: the truth's K's hold C_tau only; the fit's hold the series compliance too: the headline compares
+      // the step.
+      cell.errors.push_back(std::abs(headline(e.name, p) - headline(e.name, tp)) / std::abs(headline(e.name, tp)));
+    }
+  }
+  cell.found += hits;
+  cell.present += static_cast<int>(want.size());
+  if (hits == static_cast<int>(want.size())) ++cell.detected;
+}
+
+/// `replicates` recordings with the first k effects of the kind's pool at an SNR.
+Cell run_cell(Kind kind, int k, double snr, int replicates) {
+  Cell cell;
+  for (int rep = 0; rep < replicates; ++rep) {
+    SynthOptions o = base_options(kind, 1000 + 100 * k + rep);
+    o.concealment = snr;
+    for (int i = 0; i < k; ++i) o.effects.push_back(parse_synth_effect(pool(kind)[i]));
+    const SynthResult s = synthesize(o);
+    const Result r = reconcile(make_experiment(s.recording, o.baseline));
+    cell.seconds += r.seconds;
+    score(r, nlohmann::json::parse(s.truth_json), cell);
+  }
+  return cell;
+}
+
+/// False positives on recordings without a hidden effect.
+void run_nulls(Kind kind, int nulls) {
+  int fp = 0;
+  double seconds = 0;
+  for (int rep = 0; rep < nulls; ++rep) {
+    SynthOptions o = base_options(kind, 5000 + rep);
+    const SynthResult s = synthesize(o);
+    const Result r = reconcile(make_experiment(s.recording, o.baseline));
+    seconds += r.seconds;
+    if (r.verdict != "no_significant_mismatch") ++fp;
+  }
+  std::printf("%-12s null recordings: false positives %d / %d = %.1f %% (target <= 5 %%), %.2f s/rec\n",
+              kind_name(kind).c_str(), fp, nulls, 100.0 * fp / std::max(1, nulls), seconds / std::max(1, nulls));
+  std::fflush(stdout);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -93,66 +165,13 @@ int main(int argc, char** argv) {
       if (kinds.find(kind_name(kind)) == std::string::npos) continue;
       for (int k : {2, 3, 4})
         for (double snr : {1.0, 5.0, 20.0}) {
-          int detected = 0, found = 0, present = 0, extra = 0;
-          double seconds = 0;
-          std::vector<double> errors;
-          for (int rep = 0; rep < replicates; ++rep) {
-            SynthOptions o = base_options(kind, 1000 + 100 * k + rep);
-            o.concealment = snr;
-            for (int i = 0; i < k; ++i) o.effects.push_back(parse_synth_effect(pool(kind)[i]));
-            const SynthResult s = synthesize(o);
-            const nlohmann::json truth = nlohmann::json::parse(s.truth_json);
-            const Result r = reconcile(make_experiment(s.recording, o.baseline));
-            seconds += r.seconds;
-            std::set<std::string> want;
-            for (const auto& e : truth["effects"])
-              want.insert(key_of(e["name"], e["params"].contains("order") ? e["params"]["order"].get<int>() : 0));
-            int hits = 0;
-            for (const auto& e : r.effects) {
-              int order = 0;
-              std::vector<std::pair<std::string, double>> p;
-              for (const auto& h : e.params) {
-                if (h.name == "order") order = static_cast<int>(std::lround(h.value));
-                p.emplace_back(h.name, h.value);
-              }
-              const std::string key = key_of(e.name, order);
-              if (!want.count(key)) { ++extra; continue; }
-              ++hits;
-              for (const auto& t : truth["effects"]) {
-                const int to = t["params"].contains("order") ? t["params"]["order"].get<int>() : 0;
-                if (key_of(t["name"], to) != key) continue;
-                std::vector<std::pair<std::string, double>> tp;
-                for (const auto& [n, v] : t["params"].items()) tp.emplace_back(n, v.get<double>());
-                if (e.name == "stiffness_nonlinearity") {
-                  // The truth's K's hold C_tau only; the fit's hold the series compliance too: compare the step.
-                  const double a = headline(e.name, p), b = headline(e.name, tp);
-                  errors.push_back(std::abs(a - b) / std::abs(b));
-                } else {
-                  errors.push_back(std::abs(headline(e.name, p) - headline(e.name, tp)) / std::abs(headline(e.name, tp)));
-                }
-              }
-            }
-            found += hits;
-            present += static_cast<int>(want.size());
-            if (hits == static_cast<int>(want.size())) ++detected;
-          }
+          const Cell c = run_cell(kind, k, snr, replicates);
           std::printf("%-12s %7d %5.0f %9.0f%% %10.0f%% %11.2f %11.1f%% %8.2f\n", kind_name(kind).c_str(), k, snr,
-                      100.0 * detected / replicates, 100.0 * found / std::max(1, present),
-                      double(extra) / replicates, 100.0 * median(errors), seconds / replicates);
+                      100.0 * c.detected / replicates, 100.0 * c.found / std::max(1, c.present),
+                      double(c.extra) / replicates, 100.0 * median(c.errors), c.seconds / replicates);
           std::fflush(stdout);
         }
-      int fp = 0;
-      double seconds = 0;
-      for (int rep = 0; rep < nulls; ++rep) {
-        SynthOptions o = base_options(kind, 5000 + rep);
-        const SynthResult s = synthesize(o);
-        const Result r = reconcile(make_experiment(s.recording, o.baseline));
-        seconds += r.seconds;
-        if (r.verdict != "no_significant_mismatch") ++fp;
-      }
-      std::printf("%-12s null recordings: false positives %d / %d = %.1f %% (target <= 5 %%), %.2f s/rec\n",
-                  kind_name(kind).c_str(), fp, nulls, 100.0 * fp / std::max(1, nulls), seconds / std::max(1, nulls));
-      std::fflush(stdout);
+      run_nulls(kind, nulls);
     }
   } catch (const std::exception& ex) {
     std::fprintf(stderr, "bench_reconcile_power: %s\n", ex.what());

@@ -2,31 +2,40 @@
 // The catalog of effects reconcile can name (SPEC.md "Effects reconcile can name") and the signatures that point to
 // them. Both are tables: adding a kind (e.g. dynamics) means appending rows, not changing the algorithm.
 //
-// Every effect is separable: its contribution to the residual (recording - baseline) is columns(theta) * beta, with
-// beta entering linearly (fitted by least squares) and theta a few bounded nonlinear parameters (breakpoints,
-// transition widths), fitted by bounded Levenberg-Marquardt from several starts.
-#include <cmath>
+// An effect is one row holding its law once, for the fit and for synth alike. For the fit every effect is separable:
+// its contribution to the residual (recording - baseline) is columns(theta) * beta, with beta entering linearly
+// (fitted by least squares) and theta a few bounded nonlinear parameters (breakpoints, transition widths), fitted by
+// bounded Levenberg-Marquardt from several starts. For synth the row's generators add the law (or another structure
+// that imitates it) to a recording, so that a synthetic effect is exactly representable.
 #include <functional>
+#include <map>
+#include <optional>
 #include <string>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include <Eigen/Dense>
 
 #include "design/catalog.hpp"
 #include "reconcile/experiment.hpp"
+#include "reconcile/laws.hpp"
 
 namespace sw::reconcile {
 
-struct FitResult;  // fit.hpp
+struct FitResult;       // fit.hpp
+struct CatalogReading;  // below
 
 using NamedValues = std::vector<std::pair<std::string, double>>;
 
+/// One variant of an effect's law as the fit sees it: a harmonic order, or a number of breakpoints or friction
+/// elements of one law.
 struct EffectSpec {
   std::string name;                          ///< SPEC name, e.g. "wg_harmonic"
   Kind kind = Kind::Torsion;
-  int order = 0;                             ///< harmonic order (0: not a harmonic)
+  int order = 0;                             ///< harmonic order, or the variant's number (0: the only one)
   std::string physics;                       ///< plain words: the physics the simulation left out
+  std::string label;                         ///< the name with its variant, for messages
   int n_linear = 1;                          ///< columns of columns()
   std::vector<std::string> nonlinear_names;  ///< theta's names (empty: linear effect)
   /// Bounds of theta for this experiment (lo, hi), and a start grid per parameter.
@@ -35,6 +44,9 @@ struct EffectSpec {
   std::function<Eigen::MatrixXd(const Experiment&, const Eigen::VectorXd& theta)> columns;
   /// The headline parameters (SPEC units) of term `term` of a fitted model.
   std::function<NamedValues(const Experiment&, const FitResult&, int term)> headline;
+  /// Torsion: adds term `term` of a fitted model to the catalog figures and the loop's middle line (empty: the
+  /// effect is not read in catalog terms).
+  std::function<void(const Experiment&, const FitResult&, int term, CatalogReading&)> catalog;
   /// Number of sibling hypotheses this one was chosen among (harmonic orders): its p-value is multiplied by it.
   int multiplicity = 1;
   /// Variants of one law (stiffness with one or two breakpoints) exclude each other in a model; harmonic orders
@@ -46,6 +58,80 @@ struct EffectSpec {
   bool conflicts(const EffectSpec& o) const { return exclusive_variants && o.name == name && o.id() != id(); }
   int n_nonlinear() const { return static_cast<int>(nonlinear_names.size()); }
 };
+
+/// One hidden effect synth adds: a generator's name, its harmonic order (0 if none) and its parameters in SPEC units.
+/// Missing parameters take defaults (see synth_effect_help()).
+struct SynthEffect {
+  std::string name;
+  int order = 0;
+  std::map<std::string, double> params;
+};
+
+/// An effect a synthetic law implies besides itself (a stiffness law's last slope other than 1/C_tau is series
+/// compliance): its name and parameter, its contribution per unit parameter, and the parameter at an amplitude.
+struct ImpliedEffect {
+  std::string name, parameter;
+  Eigen::VectorXd column;
+  std::function<double(double amplitude)> value;
+};
+
+/// A hidden effect of a kind with a response column (torsion, transmission, backlash): its contribution per unit
+/// amplitude, the amplitude asked for, and the truth's parameters at an amplitude.
+struct SynthShape {
+  Eigen::VectorXd column;
+  double amplitude = 0.0;
+  std::function<NamedValues(double amplitude)> truth;
+  std::optional<ImpliedEffect> implied;
+};
+
+/// A hidden dynamics effect: `vary(v, scale)` sets the effect's own fields of v at `scale` times the parameters asked
+/// for; the truth's parameters at a scale.
+struct SynthVariation {
+  std::function<void(DynamicsVariation& v, double scale)> vary;
+  std::function<NamedValues(double scale)> truth;
+};
+
+using ColumnLaw = std::function<SynthShape(const SynthEffect&, const Experiment&)>;
+using VariationLaw = std::function<SynthVariation(const SynthEffect&, const DynamicsPrediction&)>;
+
+/// How synth generates an effect: the effect's own law, or another structure the fit's law lacks (named in the truth
+/// as the effect it imitates). Its law throws InputError for parameters out of range.
+struct SynthGenerator {
+  std::string name;                 ///< --effect name
+  std::vector<std::string> keys;    ///< the parameters it takes ("order" for harmonics)
+  std::string help;                 ///< its parameters with their defaults, for synth_effect_help()
+  bool names_generator = false;     ///< the truth entry names the generator beside the effect
+  std::variant<ColumnLaw, VariationLaw> law;
+};
+
+/// One effect of the catalog: its fit variants and its synth generators (the law itself first).
+struct Effect {
+  std::string name;
+  Kind kind = Kind::Torsion;
+  std::vector<EffectSpec> variants;
+  std::vector<SynthGenerator> generators;
+};
+
+/// Largest harmonic order searched in wave-generator and output angle.
+inline constexpr int kMaxHarmonicOrder = 4;
+
+/// The effects of a kind, in the order the fit tries them.
+const std::vector<Effect>& effect_table(Kind kind);
+
+/// Every fit variant of a kind's effects (harmonics appear once per order), in table order.
+const std::vector<EffectSpec>& effect_catalog(Kind kind);
+
+/// A synth generator and the effect it is named as in the truth.
+struct SynthLaw {
+  const Effect* effect = nullptr;
+  const SynthGenerator* generator = nullptr;
+};
+/// The generator of `fx` among a kind's effects, its parameters checked against the generator's. Throws InputError
+/// for a name that is not a generator of the kind or an unknown parameter.
+SynthLaw synth_law(Kind kind, const SynthEffect& fx);
+
+/// A parameter of a hidden effect, or its default.
+double synth_param(const SynthEffect& fx, const std::string& key, double fallback);
 
 /// A residual pattern tested against the current model: does `basis` (given `condition`) explain more than noise?
 struct SignatureSpec {
@@ -61,27 +147,12 @@ struct SignatureSpec {
   bool periodic = false;
 };
 
-/// Largest harmonic order searched in wave-generator and output angle.
-inline constexpr int kMaxHarmonicOrder = 4;
-
-/// The effects of a kind (harmonics appear once per order).
-const std::vector<EffectSpec>& effect_catalog(Kind kind);
-
 /// The signatures of a kind.
 const std::vector<SignatureSpec>& signature_catalog(Kind kind);
 
 /// Columns that are part of every model of a kind (not physics): torsion: twist offset; transmission: angle offset
-/// and ratio/encoder scale; backlash: none.
+/// and ratio/encoder scale; backlash, dynamics: none.
 Eigen::MatrixXd nuisance_columns(const Experiment& e);
-
-// Model laws shared by synth and the fit (so a synthetic effect is exactly representable).
-
-/// Soft-start column of the catalog law: clamp(T, -T1, T1) in N*m (times the compliance step 1/K1 - 1/K2).
-/// The whole three-segment law is twist = T/K3 + (1/K2 - 1/K3) clamp(T, T2) + (1/K1 - 1/K2) clamp(T, T1).
-Eigen::VectorXd soft_start_column(const Eigen::VectorXd& torque_Nm, double t1_Nm);
-
-/// Twist of the catalog's three-segment law at torque T (odd in T), rad.
-double segment_law_twist(double torque_Nm, double k1, double k2, double k3, double t1_Nm, double t2_Nm);
 
 /// The catalog row of a recording's size when it lists the size's stiffness (design/catalog.hpp); nullptr otherwise.
 const CatalogDrive* catalog_stiffness(int size);
@@ -90,7 +161,6 @@ const CatalogDrive* catalog_stiffness(int size);
 /// arcmin. The catalog's lost motion is the twist between -4 % and +4 % of rated torque read on the loop's middle
 /// line: it includes elastic twist and is not the play effect `lost_motion` (width_rad).
 struct CatalogFigures {
-  bool valid = false;
   int segments = 1;                       ///< 1: one slope (no soft start); 2: K1, K2 (T1); 3: K1, K2, K3 (T1, T2)
   double k1 = 0, k2 = 0, k3 = 0, t1 = 0, t2 = 0;
   double rated_torque_Nm = 0;             ///< the torque the loss and lost motion are read at
@@ -100,16 +170,18 @@ struct CatalogFigures {
   double catalog_lost_motion_arcmin = 0;  ///< twist between +-4 % rated on the middle line (includes elastic twist)
   const CatalogDrive* reference = nullptr;///< the catalog row of the recording's size (metadata `size`), if any
 };
-/// The catalog figures of a fitted torsion model (baseline C_tau plus its effects).
-CatalogFigures catalog_figures(const Experiment& e, const FitResult& model);
 
-inline constexpr double kArcminPerRad = 10800.0 / M_PI;
-/// Friction hysteresis column (Dahl-type branch transition): -dir * (1/2 - exp(-|T - T_reversal| / T_h)), unitless
-/// (times the saturated branch gap h in rad). Loading branch below, unloading above.
-Eigen::VectorXd hysteresis_column(const Experiment& e, double transition_Nm);
-/// Branch gap at zero torque of a hysteresis with saturated gap h and transition T_h after reversals at +-A.
-double hysteresis_loss_rad(double h_rad, double transition_Nm, double amplitude_Nm);
-/// Lost-motion column: tanh(T / T_s) / 2 (times the width in rad).
-Eigen::VectorXd lost_motion_column(const Eigen::VectorXd& torque_Nm, double transition_Nm);
+/// The figures and the loop's middle line after cycling to +-rated torque (everything but the branch-dependent part of
+/// hysteresis), as the terms of a fitted model add to them.
+struct CatalogReading {
+  CatalogFigures figures;
+  std::function<double(double torque_Nm)> middle_twist_rad;
+};
+
+/// The catalog figures of a fitted torsion model (baseline C_tau plus its effects); nullopt for other kinds.
+std::optional<CatalogFigures> catalog_figures(const Experiment& e, const FitResult& model);
+
+/// The series compliance a fitted model adds to the baseline (its series_compliance term; 0 without one), rad/(N*m).
+double added_series_compliance(const FitResult& model);
 
 }  // namespace sw::reconcile

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include <unsupported/Eigen/LevenbergMarquardt>
@@ -123,9 +124,11 @@ Vec model_contribution(const Experiment& e, const FitResult& m) {
   return X.cols() ? Vec(X * beta) : Vec(Vec::Zero(e.n));
 }
 
-FitResult fit_model(const Experiment& e, const Vec& y, std::vector<Term> terms, const ArModel& ar,
-                    const FitOptions& opt) {
-  const int rows = opt.rows < 0 ? e.n : opt.rows;
+namespace {
+
+/// The problem of fitting `terms` to the first `rows` rows of y: each term's theta at its start (the middle of its
+/// bounds when it has none yet) and the bounds of every free nonlinear parameter.
+Problem make_problem(const Experiment& e, const Vec& y, std::vector<Term>& terms, const ArModel& ar, int rows) {
   Problem prob{e, terms, ar, rows, whiten(ar, Vec(y.head(rows))), {}, {}, {}};
   std::vector<double> lo, hi;
   for (std::size_t i = 0; i < terms.size(); ++i) {
@@ -144,60 +147,66 @@ FitResult fit_model(const Experiment& e, const Vec& y, std::vector<Term> terms, 
   }
   prob.lo = Eigen::Map<Vec>(lo.data(), lo.size());
   prob.hi = Eigen::Map<Vec>(hi.data(), hi.size());
+  return prob;
+}
+
+/// Starts of the search: the given thetas, or (multistart_last) the best points of a grid over the last term's
+/// nonlinear parameters (16 points; for two, 20 x 20, or its upper triangle when they share one range and enter
+/// symmetrically): breakpoint pairs have several local minima at high signal-to-noise. The best `starts` (+2 for two)
+/// are polished by LM.
+std::vector<Vec> search_starts(const Problem& prob, const Vec& theta_free, const FitOptions& opt) {
+  const Term& last = prob.terms.back();
+  const int nl = last.spec->n_nonlinear();
+  if (!opt.multistart_last || (nl != 1 && nl != 2)) return {theta_free};
+  const int nfree = static_cast<int>(theta_free.size());
+  const auto [l, h] = last.spec->bounds(prob.e);
+  std::vector<std::pair<double, Vec>> scored;
+  const std::vector<double> g0 = start_grid(l[0], h[0], nl == 1 ? 16 : 20);
+  const std::vector<double> g1 = nl == 2 ? start_grid(l[1], h[1], 20) : std::vector<double>{0.0};
+  const bool symmetric = nl == 2 && l[0] == l[1] && h[0] == h[1];
+  for (std::size_t i = 0; i < g0.size(); ++i)
+    for (std::size_t j = symmetric ? i + 1 : 0; j < g1.size(); ++j) {
+      Vec th = theta_free;
+      th[nfree - nl] = g0[i];
+      if (nl == 2) th[nfree - 1] = g1[j];
+      scored.emplace_back(prob.solve(th).rss, th);
+    }
+  std::sort(scored.begin(), scored.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<Vec> starts;
+  const int keep = opt.starts + (nl == 2 && opt.starts > 1 ? 2 : 0);
+  for (int s = 0; s < std::min<int>(keep, scored.size()); ++s) starts.push_back(scored[s].second);
+  return starts;
+}
+
+/// The best free thetas reached by Levenberg-Marquardt from each start (or the start itself, when LM made it worse).
+Vec polish(const Problem& prob, const std::vector<Vec>& starts, Vec best_theta) {
   const int nfree = static_cast<int>(prob.slot.size());
-  Vec theta_free(nfree);
-  for (int s = 0; s < nfree; ++s) theta_free[s] = terms[prob.slot[s].first].theta[prob.slot[s].second];
-
-  Vec best_theta = theta_free;
-  if (nfree > 0) {
-    // Starts: the given thetas, plus the best grid points of the last term's nonlinear parameters.
-    std::vector<Vec> starts{theta_free};
-    const Term& last = terms.back();
-    const int nl = last.spec->n_nonlinear();
-    if (opt.multistart_last && (nl == 1 || nl == 2)) {
-      // A grid over the last term's nonlinear parameters (16 points; for two, 20 x 20, or its upper triangle when
-      // they share one range and enter symmetrically), the best `starts` (+2 for two) polished by LM: breakpoint
-      // pairs have several local minima at high signal-to-noise.
-      const auto [l, h] = last.spec->bounds(e);
-      std::vector<std::pair<double, Vec>> scored;
-      const std::vector<double> g0 = start_grid(l[0], h[0], nl == 1 ? 16 : 20);
-      const std::vector<double> g1 = nl == 2 ? start_grid(l[1], h[1], 20) : std::vector<double>{0.0};
-      const bool symmetric = nl == 2 && l[0] == l[1] && h[0] == h[1];
-      for (std::size_t i = 0; i < g0.size(); ++i)
-        for (std::size_t j = symmetric ? i + 1 : 0; j < g1.size(); ++j) {
-          Vec th = theta_free;
-          th[nfree - nl] = g0[i];
-          if (nl == 2) th[nfree - 1] = g1[j];
-          scored.emplace_back(prob.solve(th).rss, th);
-        }
-      std::sort(scored.begin(), scored.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-      starts.clear();
-      const int keep = opt.starts + (nl == 2 && opt.starts > 1 ? 2 : 0);
-      for (int s = 0; s < std::min<int>(keep, scored.size()); ++s) starts.push_back(scored[s].second);
-    }
-    double best_rss = std::numeric_limits<double>::infinity();
-    for (const Vec& s : starts) {
-      LmFunctor functor(&prob, nfree, static_cast<int>(prob.yw.size()));
-      // Central differences with a step of 1e-4 in the logistic variable: the variable projection re-solves a nearly
-      // collinear least-squares problem at each point, and the default step (1e-8) drowns in its round-off.
-      Eigen::NumericalDiff<LmFunctor, Eigen::Central> nd(functor, 1e-8);
-      Eigen::LevenbergMarquardt<Eigen::NumericalDiff<LmFunctor, Eigen::Central>> lm(nd);
-      lm.setMaxfev(60 * (nfree + 1));
-      Vec u = prob.u_of(s);
-      lm.minimize(u);
-      const Vec th = prob.theta_of(u);
-      const double rss = prob.solve(th).rss;
-      const double rss_start = prob.solve(s).rss;
-      if (rss < best_rss) { best_rss = rss; best_theta = th; }
-      if (rss_start < best_rss) { best_rss = rss_start; best_theta = s; }
-    }
+  double best_rss = std::numeric_limits<double>::infinity();
+  for (const Vec& s : starts) {
+    LmFunctor functor(&prob, nfree, static_cast<int>(prob.yw.size()));
+    // Central differences with a step of 1e-4 in the logistic variable: the variable projection re-solves a nearly
+    // collinear least-squares problem at each point, and the default step (1e-8) drowns in its round-off.
+    Eigen::NumericalDiff<LmFunctor, Eigen::Central> nd(functor, 1e-8);
+    Eigen::LevenbergMarquardt<Eigen::NumericalDiff<LmFunctor, Eigen::Central>> lm(nd);
+    lm.setMaxfev(60 * (nfree + 1));
+    Vec u = prob.u_of(s);
+    lm.minimize(u);
+    const Vec th = prob.theta_of(u);
+    const double rss = prob.solve(th).rss;
+    const double rss_start = prob.solve(s).rss;
+    if (rss < best_rss) { best_rss = rss; best_theta = th; }
+    if (rss_start < best_rss) { best_rss = rss_start; best_theta = s; }
   }
-  const auto thetas = prob.thetas_from(best_theta);
-  for (std::size_t i = 0; i < terms.size(); ++i) terms[i].theta = thetas[i];
-  const LsResult ls = prob.solve(best_theta);
+  return best_theta;
+}
 
+/// The fitted model at the free thetas: every term's theta and beta, the whitened RSS and the parameter count.
+FitResult fitted_model(const Problem& prob, std::vector<Term> terms, const Vec& theta) {
+  const auto thetas = prob.thetas_from(theta);
+  for (std::size_t i = 0; i < terms.size(); ++i) terms[i].theta = thetas[i];
+  const LsResult ls = prob.solve(theta);
   FitResult out;
-  const int nn = static_cast<int>(nuisance_columns(e).cols());
+  const int nn = static_cast<int>(nuisance_columns(prob.e).cols());
   out.nuisance_beta = ls.beta.head(nn);
   int c = nn;
   for (auto& t : terms) {
@@ -207,44 +216,63 @@ FitResult fit_model(const Experiment& e, const Vec& y, std::vector<Term> terms, 
   out.terms = terms;
   out.rss_w = ls.rss;
   out.n_w = static_cast<int>(prob.yw.size());
-  out.k = ls.rank + nfree;
-  out.contribution = model_contribution(e, out);
+  out.k = ls.rank + static_cast<int>(theta.size());
+  out.contribution = model_contribution(prob.e, out);
+  return out;
+}
 
-  if (opt.covariance && out.params().size() > 0) {
-    // Jacobian of the whitened prediction with respect to params() (central differences for theta).
-    const Vec p0 = out.params();
-    Mat J(out.n_w, p0.size());
-    for (int j = 0; j < p0.size(); ++j) {
-      FitResult a = out, b = out;
-      Vec pa = p0, pb = p0;
-      double h = 1e-6 * std::max(std::abs(p0[j]), 1e-12);
-      // Theta steps relative to their bound width.
-      {
-        int idx = nn;
-        for (std::size_t ti = 0; ti < out.terms.size(); ++ti) {
-          idx += out.terms[ti].spec->n_linear;
-          for (int q = 0; q < out.terms[ti].spec->n_nonlinear(); ++q, ++idx)
-            if (idx == j) {
-              const auto [l, hh] = out.terms[ti].spec->bounds(e);
-              h = 1e-4 * (hh[q] - l[q]);
-            }
-        }
+/// The central-difference step of parameter j of params(): relative to its value, for a theta to its bound width.
+double covariance_step(const Experiment& e, const FitResult& f, const Vec& p0, int j) {
+  double h = 1e-6 * std::max(std::abs(p0[j]), 1e-12);
+  int idx = static_cast<int>(f.nuisance_beta.size());
+  for (std::size_t ti = 0; ti < f.terms.size(); ++ti) {
+    idx += f.terms[ti].spec->n_linear;
+    for (int q = 0; q < f.terms[ti].spec->n_nonlinear(); ++q, ++idx)
+      if (idx == j) {
+        const auto [l, hh] = f.terms[ti].spec->bounds(e);
+        h = 1e-4 * (hh[q] - l[q]);
       }
-      pa[j] += h;
-      pb[j] -= h;
-      a.set_params(pa);
-      b.set_params(pb);
-      J.col(j) = whiten(ar, Vec((model_contribution(e, a) - model_contribution(e, b)).head(rows))) / (2.0 * h);
-    }
-    const double s2 = out.rss_w / std::max(1, out.n_w - out.k);
-    const Mat JtJ = J.transpose() * J;
-    // Scale for conditioning, then pseudo-inverse.
-    Vec d = JtJ.diagonal().cwiseMax(1e-300).cwiseSqrt();
-    const Mat S = d.cwiseInverse().asDiagonal() * JtJ * d.cwiseInverse().asDiagonal();
-    Eigen::CompleteOrthogonalDecomposition<Mat> cod(S);
-    cod.setThreshold(1e-12);
-    out.cov = s2 * d.cwiseInverse().asDiagonal() * Mat(cod.pseudoInverse()) * d.cwiseInverse().asDiagonal();
   }
+  return h;
+}
+
+/// Covariance of params() (whitened Gauss-Newton, s^2 (J^T J)^+) from the Jacobian of the whitened prediction of the
+/// first `rows` rows (central differences).
+Mat parameter_covariance(const Experiment& e, const FitResult& out, const ArModel& ar, int rows) {
+  const Vec p0 = out.params();
+  Mat J(out.n_w, p0.size());
+  for (int j = 0; j < p0.size(); ++j) {
+    FitResult a = out, b = out;
+    Vec pa = p0, pb = p0;
+    const double h = covariance_step(e, out, p0, j);
+    pa[j] += h;
+    pb[j] -= h;
+    a.set_params(pa);
+    b.set_params(pb);
+    J.col(j) = whiten(ar, Vec((model_contribution(e, a) - model_contribution(e, b)).head(rows))) / (2.0 * h);
+  }
+  const double s2 = out.rss_w / std::max(1, out.n_w - out.k);
+  const Mat JtJ = J.transpose() * J;
+  // Scale for conditioning, then pseudo-inverse.
+  Vec d = JtJ.diagonal().cwiseMax(1e-300).cwiseSqrt();
+  const Mat S = d.cwiseInverse().asDiagonal() * JtJ * d.cwiseInverse().asDiagonal();
+  Eigen::CompleteOrthogonalDecomposition<Mat> cod(S);
+  cod.setThreshold(1e-12);
+  return s2 * d.cwiseInverse().asDiagonal() * Mat(cod.pseudoInverse()) * d.cwiseInverse().asDiagonal();
+}
+
+}  // namespace
+
+FitResult fit_model(const Experiment& e, const Vec& y, std::vector<Term> terms, const ArModel& ar,
+                    const FitOptions& opt) {
+  const int rows = opt.rows < 0 ? e.n : opt.rows;
+  const Problem prob = make_problem(e, y, terms, ar, rows);
+  const int nfree = static_cast<int>(prob.slot.size());
+  Vec theta_free(nfree);
+  for (int s = 0; s < nfree; ++s) theta_free[s] = terms[prob.slot[s].first].theta[prob.slot[s].second];
+  const Vec best_theta = nfree > 0 ? polish(prob, search_starts(prob, theta_free, opt), theta_free) : theta_free;
+  FitResult out = fitted_model(prob, terms, best_theta);
+  if (opt.covariance && out.params().size() > 0) out.cov = parameter_covariance(e, out, ar, rows);
   return out;
 }
 

@@ -28,12 +28,6 @@ double rms(const Vec& v) { return v.size() ? std::sqrt(v.squaredNorm() / v.size(
 /// the bootstrap (see Analysis::effect_test).
 constexpr double kSearchValuesPerParameter = 100.0;
 
-std::string effect_label(const EffectSpec& s) {
-  if (s.name == "stiffness_nonlinearity") return s.name + (s.order == 2 ? " (three segments)" : " (two segments)");
-  if (s.name == "hysteresis") return s.name + (s.order == 2 ? " (two friction elements)" : " (one friction element)");
-  return s.order ? s.name + " (order " + std::to_string(s.order) + ")" : s.name;
-}
-
 const EffectSpec* effect_by_id(Kind kind, const std::string& id) {
   for (const auto& s : effect_catalog(kind))
     if (s.id() == id) return &s;
@@ -95,7 +89,7 @@ struct Analysis {
   std::uint64_t salt = 0;
 
   Analysis(const Experiment& ex, const Options& o)
-      : e(ex), opt(o), y(ex.residual()), sigs(signature_catalog(ex.kind)), m(static_cast<int>(sigs.size())) {
+      : e(ex), opt(o), y(ex.residual()), sigs(signature_catalog(ex.kind())), m(static_cast<int>(sigs.size())) {
     const int hold = std::max(1, static_cast<int>(std::lround(e.n * opt.heldout_fraction)));
     train = e.n - hold;
   }
@@ -260,7 +254,7 @@ void fit_noise(Analysis& a, Result& r) {
   }
   r.noise = a.ar;
   r.calibration = a.cal;
-  progress("reconcile: " + kind_name(a.e.kind) + ", " + std::to_string(a.e.n) + " samples, noise AR(" +
+  progress("reconcile: " + kind_name(a.e.kind()) + ", " + std::to_string(a.e.n) + " samples, noise AR(" +
            std::to_string(a.ar.order()) + ") sd " + fmt("%.3g", a.ar.process_sd));
 }
 
@@ -303,7 +297,7 @@ std::string simpler_rival(Analysis& a, const EffectSpec& spec, const FitResult& 
       needed = a.significant(i, rv_fit.terms) && !a.significant(i, alt.terms);
     }
     if (!needed && (!(dbic_rv < -a.opt.min_delta_bic) || !(h_alt < h_rv)))
-      return effect_label(*rv) + " explains as much (BIC " + fmt("%.1f", dbic_rv) + " vs it, held-out " +
+      return rv->label + " explains as much (BIC " + fmt("%.1f", dbic_rv) + " vs it, held-out " +
              fmt("%.4g", h_rv) + " -> " + fmt("%.4g", h_alt) + ")";
   }
   return "";
@@ -316,7 +310,7 @@ void admit_one_at_a_time(Analysis& a) {
   while (static_cast<int>(a.cur.terms.size()) < a.opt.max_effects) {
     std::vector<std::pair<const EffectSpec*, FitResult>> evals;
     for (const auto& id : a.candidates) {
-      const EffectSpec* spec = effect_by_id(a.e.kind, id);
+      const EffectSpec* spec = effect_by_id(a.e.kind(), id);
       if (!spec || has(a.cur.terms, id)) continue;
       bool richer_present = false;
       for (const auto& t : a.cur.terms)
@@ -330,7 +324,7 @@ void admit_one_at_a_time(Analysis& a) {
       if (ev.second.bic() - a.cur.bic() < -bar) passing.push_back(ev);
     bool added = false;
     for (const auto& [spec, alt] : evals) {
-      const std::string id = spec->id(), label = effect_label(*spec);
+      const std::string id = spec->id(), label = spec->label;
       const double dbic = alt.bic() - a.cur.bic();
       if (!(dbic < -bar)) {
         a.rejected[id] = label + ": BIC changes by " + fmt("%.1f", dbic) + " (needs < -" + fmt("%.0f", bar) + ")";
@@ -395,7 +389,7 @@ void admit_jointly(Analysis& a) {
   // effect any located signature points to (the richest variant). The one with the lower BIC that passes is kept.
   auto joint_set = [&](const std::vector<bool>& from, bool richest) {
     std::vector<const EffectSpec*> add;
-    for (const auto& spec : effect_catalog(a.e.kind)) {
+    for (const auto& spec : effect_catalog(a.e.kind())) {
       bool pointed = false;
       for (int i = 0; i < a.m; ++i) pointed = pointed || (from[i] && triggers(a.sigs[i], spec.id()));
       if (!pointed || has(a.cur.terms, spec.id())) continue;
@@ -423,7 +417,7 @@ void admit_jointly(Analysis& a) {
     std::string names;
     for (const EffectSpec* s : add) {
       joint = a.fit(with(joint.terms, s));
-      names += (names.empty() ? "" : ", ") + effect_label(*s);
+      names += (names.empty() ? "" : ", ") + s->label;
     }
     joint = a.refine(joint);
     const double dbic = joint.bic() - a.cur.bic();
@@ -443,7 +437,7 @@ void admit_jointly(Analysis& a) {
     for (const auto& add : sets)
       for (const EffectSpec* s : add)
         if (!a.rejected.count(s->id()))
-          a.rejected[s->id()] = effect_label(*s) + ": admitted jointly, the model does not improve: " + failed;
+          a.rejected[s->id()] = s->label + ": admitted jointly, the model does not improve: " + failed;
     return;
   }
   progress("reconcile: admitted jointly " + best_names + " (dBIC " + fmt("%.1f", best.bic() - a.cur.bic()) + ")");
@@ -470,7 +464,7 @@ void prune(Analysis& a) {
       const EffectSpec& spec = *a.cur.terms[i].spec;
       // Reductions: drop it; or replace it by a poorer exclusive variant.
       std::vector<std::pair<FitResult, int>> reductions{{a.fit(without(a.cur.terms, i), false), spec.n_nonlinear()}};
-      for (const auto& v : effect_catalog(a.e.kind))
+      for (const auto& v : effect_catalog(a.e.kind()))
         if (spec.conflicts(v) && complexity(v) < complexity(spec))
           reductions.emplace_back(a.fit(with(without(a.cur.terms, i), &v)), spec.n_nonlinear() - v.n_nonlinear());
       for (auto& [red, nl_extra] : reductions) {
@@ -507,8 +501,8 @@ void prune(Analysis& a) {
     const EffectSpec* variant = nullptr;  // the poorer variant that replaces it, if any
     for (const auto& t : best->reduced.terms)
       if (gone.conflicts(*t.spec)) variant = t.spec;
-    a.rejected[gone.id()] = effect_label(gone) + ": pruned, " +
-                            (variant ? "replacing it by " + effect_label(*variant) : std::string("removing it")) +
+    a.rejected[gone.id()] = gone.label + ": pruned, " +
+                            (variant ? "replacing it by " + variant->label : std::string("removing it")) +
                             " costs nothing significant (" + best->why + ")";
     a.accepted.erase(gone.id());
     if (variant) a.accept(*variant, 0.0, 1.0, "pruned to");
@@ -536,7 +530,7 @@ bool prefer_simpler(Analysis& a) {
     std::vector<std::vector<const EffectSpec*>> rival_sets;
     std::vector<const EffectSpec*> all;
     std::pair<int, int> total{0, 0};
-    for (const auto& rv : effect_catalog(a.e.kind)) {
+    for (const auto& rv : effect_catalog(a.e.kind())) {
       if (!usable(rv)) continue;
       rival_sets.push_back({&rv});
       bool clash = false;
@@ -552,7 +546,7 @@ bool prefer_simpler(Analysis& a) {
       std::string label;
       for (const EffectSpec* rv : rivals) {
         sw = a.fit(with(sw.terms, rv));
-        label += (label.empty() ? "" : " + ") + effect_label(*rv);
+        label += (label.empty() ? "" : " + ") + rv->label;
       }
       const double dbic = a.cur.bic() - sw.bic();
       const double h_cx = a.heldout(a.cur.terms), h_rv = a.heldout(sw.terms);
@@ -575,7 +569,7 @@ bool prefer_simpler(Analysis& a) {
       } else {
         for (const EffectSpec* rv : rivals) a.accept(*rv, 0.0, 1.0, "swap");  // tested by prune()
       }
-      a.rejected[cx.id()] = effect_label(cx) + ": with the other effects in, the simpler " + label +
+      a.rejected[cx.id()] = cx.label + ": with the other effects in, the simpler " + label +
                             " explains as much (BIC " + fmt("%.1f", dbic) + " vs it, held-out " + fmt("%.4g", h_rv) +
                             " -> " + fmt("%.4g", h_cx) + ")";
       a.accepted.erase(cx.id());
@@ -630,26 +624,15 @@ void finalise(Analysis& a, Result& r) {
 
 }  // namespace
 
-std::string baseline_model(const Experiment& e) {
-  if (!e.model.model.empty()) return e.model.model;
-  switch (e.kind) {
-    case Kind::Torsion: return e.model.twist_rad ? "curve" : "fem";
-    case Kind::Transmission: return "ideal_ratio";
-    case Kind::Backlash: return "kinematic";
-    case Kind::Dynamics: return "dynamics_model";
-  }
-  return "";
-}
-
 int signature_count(Kind kind) { return static_cast<int>(signature_catalog(kind).size()); }
 
 Result reconcile(const Experiment& e, const Options& opt) {
   Stopwatch clock;
   Result r;
-  r.kind = e.kind;
+  r.kind = e.kind();
   r.samples = e.n;
-  r.baseline_model = baseline_model(e);
-  r.baseline_source = e.model.source;
+  r.baseline_model = e.baseline_model;
+  r.baseline_source = e.baseline_source;
   Analysis a(e, opt);
   r.heldout_rows = e.n - a.train;
   fit_noise(a, r);

@@ -5,6 +5,7 @@
 // confidence intervals and keep only those whose removal costs significantly (BIC, held-out block, significance
 // against the estimated noise).
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -51,12 +52,13 @@ struct AcceptedEffect {
 struct Rejected {
   std::string name;
   std::string reason;
+  bool operator==(const Rejected&) const = default;
 };
 
 struct Result {
   Kind kind = Kind::Torsion;
   int samples = 0;
-  std::string baseline_model;            ///< what the recording was held against (baseline_model())
+  std::string baseline_model;            ///< what the recording was held against (Experiment::baseline_model)
   std::string baseline_source;           ///< where the baseline was read ("" when given directly)
   int heldout_rows = 0;                  ///< the last rows, never used to fit what is scored on them
   double baseline_rms = 0.0, baseline_heldout_rms = 0.0;
@@ -74,16 +76,12 @@ struct Result {
   Eigen::VectorXd final_prediction;      ///< baseline + final model (n)
   Eigen::VectorXd baseline_prediction;   ///< baseline + nuisance fit (n)
   FitResult final_model;
-  CatalogFigures catalog;                ///< torsion: the final model in the catalog's terms
+  std::optional<CatalogFigures> catalog;  ///< torsion: the final model in the catalog's terms
   double seconds = 0.0;
 };
 
 /// Runs the whole analysis. Deterministic for a given options.seed.
 Result reconcile(const Experiment& e, const Options& options = {});
-
-/// The name of the experiment's baseline: Baseline::model, or by kind (torsion "fem" for C_tau T, "curve" for a
-/// torque-twist curve; "ideal_ratio", "kinematic", "dynamics_model").
-std::string baseline_model(const Experiment& e);
 
 /// Number of locations/unexplained signatures tested for a kind (the Bonferroni factor).
 int signature_count(Kind kind);

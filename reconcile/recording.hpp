@@ -12,8 +12,14 @@ namespace sw::reconcile {
 
 enum class Kind { Torsion, Transmission, Backlash, Dynamics };
 
+/// Every kind, in the order above.
+inline constexpr Kind kKinds[] = {Kind::Torsion, Kind::Transmission, Kind::Backlash, Kind::Dynamics};
+
 /// "torsion", "transmission", "backlash", "dynamics".
 std::string kind_name(Kind kind);
+
+/// The kind of a name kind_name() gives; nullopt for any other text.
+std::optional<Kind> kind_from_name(const std::string& name);
 
 /// The columns of a kind, in file order, without the optional leading `time_s`.
 std::vector<std::string> kind_columns(Kind kind);

@@ -5,7 +5,6 @@
 #include <cstdio>
 
 #include <fftw3.h>
-#include <nlohmann/json.hpp>
 
 #include "common/svg_plot.hpp"
 #include "reconcile/catalog.hpp"
@@ -20,10 +19,6 @@ std::string num(double v, const char* f = "%.4g") {
   char buf[64];
   std::snprintf(buf, sizeof buf, f, v);
   return buf;
-}
-
-nlohmann::json location_json(const Location& l) {
-  return {{"domain", l.domain}, {"description", l.description}, {"p_value", l.p_value}};
 }
 
 /// The response as people read it: angles in arcmin, the rest as recorded.
@@ -66,32 +61,46 @@ std::string plot(const std::string& title, const std::string& x_label, const std
   return svg_line_plot(p);
 }
 
-nlohmann::json catalog_json(const CatalogFigures& c) {
-  nlohmann::json j = {{"segments", c.segments},
-                      {"K1_Nm_per_rad", c.k1},
-                      {"K2_Nm_per_rad", c.k2},
-                      {"K3_Nm_per_rad", c.k3},
-                      {"T1_Nm", c.t1},
-                      {"T2_Nm", c.t2},
-                      {"rated_torque_Nm", c.rated_torque_Nm},
-                      {"rated_torque_from", c.rated_from},
-                      {"hysteresis_loss_arcmin", c.hysteresis_loss_arcmin},
-                      {"play_width_arcmin", c.play_arcmin},
-                      {"catalog_lost_motion_arcmin", c.catalog_lost_motion_arcmin},
-                      {"note", "catalog_lost_motion_arcmin is the twist between -4 % and +4 % of rated torque on the "
-                               "loop's middle line (it includes elastic twist); play_width_arcmin is the dead band of "
-                               "the effect lost_motion (width_rad)"}};
-  if (c.reference)
-    j["reference"] = {{"size", c.reference->size},
-                      {"K1_Nm_per_rad", c.reference->k1_Nm_per_rad},
-                      {"K2_Nm_per_rad", c.reference->k2_Nm_per_rad},
-                      {"K3_Nm_per_rad", c.reference->k3_Nm_per_rad},
-                      {"T1_Nm", c.reference->t1_Nm},
-                      {"T2_Nm", c.reference->t2_Nm},
-                      {"rated_torque_Nm", c.reference->rated_torque_Nm},
-                      {"hysteresis_loss_max_arcmin", 1.0},
-                      {"lost_motion_max_arcmin", 1.0}};
-  return j;
+/// The catalog's limits of hysteresis loss and lost motion, arcmin.
+constexpr double kCatalogLossMaxArcmin = 1.0, kCatalogLostMotionMaxArcmin = 1.0;
+
+ReportCatalogReference reference_of(const CatalogDrive& d) {
+  return {d.size, d.k1_Nm_per_rad, d.k2_Nm_per_rad, d.k3_Nm_per_rad, d.t1_Nm, d.t2_Nm, d.rated_torque_Nm,
+          kCatalogLossMaxArcmin, kCatalogLostMotionMaxArcmin};
+}
+
+ReportCatalog catalog_of(const CatalogFigures& c, double final_rms) {
+  ReportCatalog k{.segments = c.segments,
+                  .k1_Nm_per_rad = c.k1,
+                  .k2_Nm_per_rad = c.k2,
+                  .k3_Nm_per_rad = c.k3,
+                  .t1_Nm = c.t1,
+                  .t2_Nm = c.t2,
+                  .rated_torque_Nm = c.rated_torque_Nm,
+                  .rated_torque_from = c.rated_from,
+                  .hysteresis_loss_arcmin = c.hysteresis_loss_arcmin,
+                  .play_width_arcmin = c.play_arcmin,
+                  .catalog_lost_motion_arcmin = c.catalog_lost_motion_arcmin,
+                  .note = "catalog_lost_motion_arcmin is the twist between -4 % and +4 % of rated torque on the "
+                          "loop's middle line (it includes elastic twist); play_width_arcmin is the dead band of the "
+                          "effect lost_motion (width_rad)"};
+  if (c.reference) k.reference = reference_of(*c.reference);
+  // Identifiability of K1: the twist its segment spans over the final residual RMS.
+  if (c.segments >= 2 && final_rms > 0.0) k.k1_segment_twist_over_noise = c.t1 / c.k1 / final_rms;
+  return k;
+}
+
+ReportEffect effect_of(const AcceptedEffect& e) {
+  ReportEffect x{e.name, e.physics, std::nullopt, {}, {}, e.delta_bic, e.p_value};
+  for (const auto& h : e.params) {
+    if (h.name == "order") {
+      x.order = static_cast<int>(h.value);
+      continue;
+    }
+    x.params[h.name] = h.value;
+    x.ci95[h.name] = {h.lo, h.hi};
+  }
+  return x;
 }
 
 std::string catalog_html(const CatalogFigures& c) {
@@ -116,19 +125,185 @@ std::string catalog_html(const CatalogFigures& c) {
 }
 
 /// The baseline in words, for the page.
-std::string baseline_description(const Experiment& e) {
-  const std::string model = baseline_model(e);
-  std::string d;
-  if (model == "fem") d = "C_tau T, the flexspline body's torsional compliance (C_tau = " + num(e.model.compliance_rad_per_Nm) + " rad/(N*m))";
-  else if (model == "contact") d = "the drive's torque-twist curve from the loaded tooth contact (middle line of its loop)";
-  else if (model == "curve") d = "a torque-twist curve";
-  else if (model == "ideal_ratio") d = "the ideal ratio, output = -wg (z_c - z_f)/z_f";
-  else if (model == "kinematic") d = "the basic kinematic backlash model (phi0 = 0)";
-  else if (model == "dynamics_model") d = "the dynamics model with constant mesh stiffness";
-  else d = model;
-  return d + (e.model.source.empty() ? "" : ", from " + e.model.source);
+std::string described(const Experiment& e, const TorsionExperiment& t) {
+  if (e.baseline_model == "fem")
+    return "C_tau T, the flexspline body's torsional compliance (C_tau = " + num(t.model.compliance_rad_per_Nm) +
+           " rad/(N*m))";
+  if (e.baseline_model == "contact")
+    return "the drive's torque-twist curve from the loaded tooth contact (middle line of its loop)";
+  if (e.baseline_model == "curve") return "a torque-twist curve";
+  return e.baseline_model;
+}
+std::string described(const Experiment& e, const TransmissionExperiment&) {
+  return e.baseline_model == "ideal_ratio" ? "the ideal ratio, output = -wg (z_c - z_f)/z_f" : e.baseline_model;
+}
+std::string described(const Experiment& e, const BacklashExperiment&) {
+  return e.baseline_model == "kinematic" ? "the basic kinematic backlash model (phi0 = 0)" : e.baseline_model;
+}
+std::string described(const Experiment& e, const DynamicsExperiment&) {
+  return e.baseline_model == "dynamics_model" ? "the dynamics model with constant mesh stiffness" : e.baseline_model;
 }
 
+std::string baseline_description(const Experiment& e) {
+  const std::string d = std::visit([&](const auto& k) { return described(e, k); }, e.data);
+  return d + (e.baseline_source.empty() ? "" : ", from " + e.baseline_source);
+}
+
+// ---- the page ---------------------------------------------------------------------------------------------------
+
+/// What the page's plots share: the experiment, its result, the response's display and the abscissa of the
+/// response plots (torsion: shaded where a signature located the mismatch in torque).
+struct Page {
+  const Experiment& e;
+  const Result& r;
+  Display d;
+  Vec x;
+  std::string x_label;
+  std::vector<std::pair<double, double>> shade;
+};
+
+void set_abscissa(Page& p, const TorsionExperiment& t) {
+  p.x = t.torque_Nm;
+  p.x_label = "torque (N·m)";
+  for (const auto& l : p.r.locations)
+    if (l.has_range && l.domain != "time") p.shade.emplace_back(l.lo, l.hi);
+}
+void set_abscissa(Page& p, const TransmissionExperiment& t) {
+  p.x = t.wg_angle_rad * (180.0 / M_PI);
+  p.x_label = "wave-generator angle (deg)";
+}
+void set_abscissa(Page& p, const BacklashExperiment& b) {
+  p.x = b.wg_angle_rad * (180.0 / M_PI);
+  p.x_label = "wave-generator angle (deg)";
+}
+void set_abscissa(Page& p, const DynamicsExperiment&) {
+  p.x = p.e.time;
+  p.x_label = "time (s)";
+}
+
+/// Recording, baseline and reconciled model against the abscissa.
+std::string response_plot(const Page& p, const std::string& title) {
+  return plot(title, p.x_label, p.d.label,
+              {series("recording", "#888", p.x, p.e.measured, p.d.scale, true),
+               series("baseline", "#36c", p.x, p.r.baseline_prediction, p.d.scale),
+               series("reconciled", "#c33", p.x, p.r.final_prediction, p.d.scale)},
+              p.shade);
+}
+
+std::string main_plot(const Page& p, const TorsionExperiment& t) {
+  return response_plot(p, "torque-twist loop: recording, baseline (" +
+                              (t.model.twist_rad ? std::string("torque-twist curve") : "C_tau T") +
+                              ") and the fitted model");
+}
+std::string main_plot(const Page& p, const TransmissionExperiment&) {
+  // The ideal line hides everything; show the transmission error instead.
+  const Experiment& e = p.e;
+  return plot("transmission error: recording and models minus the ideal ratio", p.x_label, p.d.label,
+              {series("recording - ideal", "#888", p.x, e.measured - e.baseline, p.d.scale, true),
+               series("baseline (offset, ratio)", "#36c", p.x, p.r.baseline_prediction - e.baseline, p.d.scale),
+               series("reconciled", "#c33", p.x, p.r.final_prediction - e.baseline, p.d.scale)});
+}
+std::string main_plot(const Page& p, const BacklashExperiment&) {
+  return response_plot(p, "recording vs baseline vs reconciled model");
+}
+std::string main_plot(const Page& p, const DynamicsExperiment&) {
+  return response_plot(p, "recording vs baseline vs reconciled model");
+}
+
+/// The residual's amplitude spectrum before and after in the orders of an angle.
+std::string spectrum_plot(const Page& p, const std::string& title, const std::string& axis, const Vec& angle) {
+  const Spectrum a = order_spectrum(angle, p.r.residual_before, 6.0);
+  const Spectrum b = order_spectrum(angle, p.r.residual_after, 6.0);
+  auto ser = [&](const std::string& label, const std::string& colour, const Spectrum& sp) {
+    return series(label, colour, Eigen::Map<const Vec>(sp.order.data(), sp.order.size()),
+                  Eigen::Map<const Vec>(sp.amplitude.data(), sp.amplitude.size()), p.d.scale);
+  };
+  return "<br>" + plot(title, axis, "amplitude: " + p.d.label, {ser("before", "#36c", a), ser("after", "#c33", b)});
+}
+
+const char* kWgOrders = "order (per wave-generator revolution)";
+
+std::string spectra(const Page&, const TorsionExperiment&) { return ""; }
+std::string spectra(const Page& p, const TransmissionExperiment& t) {
+  return spectrum_plot(p, "residual spectrum in wave-generator orders", kWgOrders, t.wg_angle_rad) +
+         spectrum_plot(p, "residual spectrum in output orders", "order (per output revolution)", -t.output_angle_rad);
+}
+std::string spectra(const Page& p, const BacklashExperiment& b) {
+  return spectrum_plot(p, "residual spectrum in wave-generator orders", kWgOrders, b.wg_angle_rad);
+}
+std::string spectra(const Page&, const DynamicsExperiment&) { return ""; }
+
+std::string plots_html(const Experiment& e, const Result& r) {
+  Page p{e, r, display_of(e), {}, {}, {}};
+  std::visit([&](const auto& k) { set_abscissa(p, k); }, e.data);
+  std::string h = "<h2>Plots</h2>";
+  h += std::visit([&](const auto& k) { return main_plot(p, k); }, e.data);
+  h += "<br>" + plot("residual before (baseline) and after (reconciled); shaded: located region", p.x_label, p.d.label,
+                     {series("before", "#36c", p.x, r.residual_before, p.d.scale, true),
+                      series("after", "#c33", p.x, r.residual_after, p.d.scale, true)},
+                     p.shade);
+  h += "<br>" + plot("residual over the recording (time order)", e.has_time ? "time (s)" : "row", p.d.label,
+                     {series("before", "#36c", e.time, r.residual_before, p.d.scale),
+                      series("after", "#c33", e.time, r.residual_after, p.d.scale)});
+  return h + std::visit([&](const auto& k) { return spectra(p, k); }, e.data);
+}
+
+std::string page_head(const Experiment& e, const Recording& rec, const Result& r,
+                      const std::vector<std::string>& notes) {
+  std::string h = "<!DOCTYPE html><html><head><meta charset='utf-8'><title>strainwave reconcile: " + html_escape(rec.path) +
+                  "</title><style>body{font-family:sans-serif;max-width:820px;margin:2em auto;color:#222}"
+                  "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:3px 8px;font-size:13px}"
+                  ".v{font-size:20px;font-weight:bold}</style></head><body>";
+  h += "<h1>Reconcile: " + html_escape(rec.path) + "</h1>";
+  h += "<p class='v'>Verdict: " + html_escape(r.verdict) + "</p>";
+  h += "<p>Baseline: " + html_escape(baseline_description(e)) + "</p>";
+  for (const auto& n : notes) h += "<p style='color:#a40'>Note: " + html_escape(n) + "</p>";
+  h += "<h2>Recording</h2><table>";
+  for (const auto& [k, v] : rec.metadata) h += "<tr><td>" + html_escape(k) + "</td><td>" + html_escape(v) + "</td></tr>";
+  h += "<tr><td>samples</td><td>" + std::to_string(r.samples) + "</td></tr>";
+  h += "<tr><td>noise model (estimated)</td><td>AR(" + std::to_string(r.noise.order()) + "), sd " +
+       num(r.noise.process_sd) + " " + e.response_unit + ", innovation sd " + num(r.noise.innovation_sd) + "</td></tr></table>";
+  return h;
+}
+
+std::string mismatch_html(const Result& r) {
+  std::string h = "<h2>Where the mismatch is</h2>";
+  if (r.locations.empty()) return h + "<p>No signature differs from the estimated noise.</p>";
+  h += "<table><tr><th>domain</th><th>what</th><th>p (Bonferroni)</th></tr>";
+  for (const auto& l : r.locations)
+    h += "<tr><td>" + html_escape(l.domain) + "</td><td>" + html_escape(l.description) + "</td><td>" + num(l.p_value, "%.2g") + "</td></tr>";
+  return h + "</table>";
+}
+
+std::string effects_html(const Result& r) {
+  std::string h = "<h2>Missing physics</h2>";
+  if (r.effects.empty()) h += "<p>No catalog effect passed every test.</p>";
+  for (const auto& f : r.effects) {
+    h += "<h3>" + html_escape(f.name) + "</h3><p>" + html_escape(f.physics) + "</p><table><tr><th>parameter</th><th>value</th><th>95 % interval</th></tr>";
+    for (const auto& p : f.params)
+      h += "<tr><td>" + html_escape(p.name) + "</td><td>" + num(p.value) + "</td><td>" +
+           (p.name == "order" ? std::string("exact") : "[" + num(p.lo) + ", " + num(p.hi) + "]") + "</td></tr>";
+    h += "</table><p>BIC change " + num(f.delta_bic, "%.1f") + ", p = " + num(f.p_value, "%.3g") + " (" + html_escape(f.test) + ")</p>";
+  }
+  if (!r.unexplained.empty()) {
+    h += "<p><b>Still unexplained:</b></p><ul>";
+    for (const auto& u : r.unexplained) h += "<li>" + html_escape(u.description) + " (p " + num(u.p_value, "%.2g") + ")</li>";
+    h += "</ul>";
+  }
+  if (!r.rejected.empty()) {
+    h += "<h3>Considered and rejected</h3><ul>";
+    for (const auto& x : r.rejected) h += "<li>" + html_escape(x.reason) + "</li>";
+    h += "</ul>";
+  }
+  return h;
+}
+
+std::string heldout_html(const Result& r) {
+  return "<h2>Fit on held-out data</h2><p>The last " + std::to_string(r.heldout_rows) +
+         " rows were never used to fit the model that is scored on them.</p><table><tr><th></th><th>RMS (all)</th><th>RMS (held out)</th></tr>"
+         "<tr><td>baseline</td><td>" + num(r.baseline_rms) + "</td><td>" + num(r.baseline_heldout_rms) + "</td></tr>"
+         "<tr><td>reconciled</td><td>" + num(r.final_rms) + "</td><td>" + num(r.final_heldout_rms) + "</td></tr></table>";
+}
 
 }  // namespace
 
@@ -169,48 +344,24 @@ Spectrum order_spectrum(const Vec& angle_rad, const Vec& y, double max_order) {
   return out;
 }
 
-std::string report_json(const Result& r) {
-  nlohmann::json j;
-  j["kind"] = kind_name(r.kind);
-  j["samples"] = r.samples;
-  j["baseline"] = {{"model", r.baseline_model}, {"rms", r.baseline_rms}, {"heldout_rms", r.baseline_heldout_rms}};
-  if (!r.baseline_source.empty()) j["baseline"]["source"] = r.baseline_source;
-  nlohmann::json locs = nlohmann::json::array();
-  for (const auto& l : r.locations) locs.push_back(location_json(l));
-  for (const auto& l : r.unexplained) {
-    nlohmann::json u = location_json(l);
-    u["description"] = "unexplained after the final model: " + l.description;
-    locs.push_back(u);
-  }
-  j["mismatch"] = {{"significant", r.significant}, {"locations", locs}};
-  nlohmann::json fx = nlohmann::json::array();
-  for (const auto& e : r.effects) {
-    nlohmann::json params = nlohmann::json::object(), ci = nlohmann::json::object();
-    for (const auto& h : e.params) {
-      if (h.name == "order") {
-        params[h.name] = static_cast<int>(h.value);
-        continue;
-      }
-      params[h.name] = h.value;
-      ci[h.name] = {h.lo, h.hi};
-    }
-    fx.push_back({{"name", e.name}, {"physics", e.physics}, {"params", params}, {"ci95", ci},
-                  {"delta_bic", e.delta_bic}, {"p_value", e.p_value}});
-  }
-  j["effects"] = fx;
-  nlohmann::json rej = nlohmann::json::array();
-  for (const auto& x : r.rejected) rej.push_back({{"name", x.name}, {"reason", x.reason}});
-  j["rejected"] = rej;
-  j["final"] = {{"rms", r.final_rms}, {"heldout_rms", r.final_heldout_rms}};
-  if (r.catalog.valid) {
-    j["catalog"] = catalog_json(r.catalog);
-    // Identifiability of K1: the twist its segment spans over the final residual RMS (below ~10 the soft start is
-    // hard to tell from the next segment).
-    if (r.catalog.segments >= 2 && r.final_rms > 0.0)
-      j["catalog"]["K1_segment_twist_over_noise"] = r.catalog.t1 / r.catalog.k1 / r.final_rms;
-  }
-  j["verdict"] = r.verdict;
-  return j.dump(2) + "\n";
+Report report_of(const Result& r) {
+  Report rep{.kind = r.kind,
+             .samples = r.samples,
+             .baseline_model = r.baseline_model,
+             .baseline_source = r.baseline_source,
+             .baseline_rms = r.baseline_rms,
+             .baseline_heldout_rms = r.baseline_heldout_rms,
+             .significant = r.significant,
+             .rejected = r.rejected,
+             .final_rms = r.final_rms,
+             .final_heldout_rms = r.final_heldout_rms,
+             .verdict = r.verdict};
+  for (const auto& l : r.locations) rep.locations.push_back({l.domain, l.description, l.p_value});
+  for (const auto& l : r.unexplained)
+    rep.locations.push_back({l.domain, "unexplained after the final model: " + l.description, l.p_value});
+  for (const auto& e : r.effects) rep.effects.push_back(effect_of(e));
+  if (r.catalog) rep.catalog = catalog_of(*r.catalog, r.final_rms);
+  return rep;
 }
 
 std::string report_summary(const Result& r) {
@@ -225,8 +376,8 @@ std::string report_summary(const Result& r) {
     s += "\n";
   }
   for (const auto& u : r.unexplained) s += "  still unexplained: " + u.description + "\n";
-  if (r.catalog.valid && !r.effects.empty()) {
-    const CatalogFigures& c = r.catalog;
+  if (r.catalog && !r.effects.empty()) {
+    const CatalogFigures& c = *r.catalog;
     s += "  catalog terms: K1 " + num(c.k1) + (c.segments >= 2 ? ", K2 " + num(c.k2) : std::string()) +
          (c.segments == 3 ? ", K3 " + num(c.k3) : std::string()) + " N*m/rad";
     if (c.segments >= 2) s += ", T1 " + num(c.t1) + (c.segments == 3 ? ", T2 " + num(c.t2) : std::string()) + " N*m";
@@ -240,103 +391,9 @@ std::string report_summary(const Result& r) {
 }
 
 std::string report_html(const Experiment& e, const Recording& rec, const Result& r, const std::vector<std::string>& notes) {
-  std::string h = "<!DOCTYPE html><html><head><meta charset='utf-8'><title>strainwave reconcile: " + html_escape(rec.path) +
-                  "</title><style>body{font-family:sans-serif;max-width:820px;margin:2em auto;color:#222}"
-                  "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:3px 8px;font-size:13px}"
-                  ".v{font-size:20px;font-weight:bold}</style></head><body>";
-  h += "<h1>Reconcile: " + html_escape(rec.path) + "</h1>";
-  h += "<p class='v'>Verdict: " + html_escape(r.verdict) + "</p>";
-  h += "<p>Baseline: " + html_escape(baseline_description(e)) + "</p>";
-  for (const auto& n : notes) h += "<p style='color:#a40'>Note: " + html_escape(n) + "</p>";
-  h += "<h2>Recording</h2><table>";
-  for (const auto& [k, v] : rec.metadata) h += "<tr><td>" + html_escape(k) + "</td><td>" + html_escape(v) + "</td></tr>";
-  h += "<tr><td>samples</td><td>" + std::to_string(r.samples) + "</td></tr>";
-  h += "<tr><td>noise model (estimated)</td><td>AR(" + std::to_string(r.noise.order()) + "), sd " +
-       num(r.noise.process_sd) + " " + e.response_unit + ", innovation sd " + num(r.noise.innovation_sd) + "</td></tr></table>";
-
-  h += "<h2>Where the mismatch is</h2>";
-  if (r.locations.empty()) h += "<p>No signature differs from the estimated noise.</p>";
-  else {
-    h += "<table><tr><th>domain</th><th>what</th><th>p (Bonferroni)</th></tr>";
-    for (const auto& l : r.locations)
-      h += "<tr><td>" + html_escape(l.domain) + "</td><td>" + html_escape(l.description) + "</td><td>" + num(l.p_value, "%.2g") + "</td></tr>";
-    h += "</table>";
-  }
-  h += "<h2>Missing physics</h2>";
-  if (r.effects.empty()) h += "<p>No catalog effect passed every test.</p>";
-  for (const auto& f : r.effects) {
-    h += "<h3>" + html_escape(f.name) + "</h3><p>" + html_escape(f.physics) + "</p><table><tr><th>parameter</th><th>value</th><th>95 % interval</th></tr>";
-    for (const auto& p : f.params)
-      h += "<tr><td>" + html_escape(p.name) + "</td><td>" + num(p.value) + "</td><td>" +
-           (p.name == "order" ? std::string("exact") : "[" + num(p.lo) + ", " + num(p.hi) + "]") + "</td></tr>";
-    h += "</table><p>BIC change " + num(f.delta_bic, "%.1f") + ", p = " + num(f.p_value, "%.3g") + " (" + html_escape(f.test) + ")</p>";
-  }
-  if (!r.unexplained.empty()) {
-    h += "<p><b>Still unexplained:</b></p><ul>";
-    for (const auto& u : r.unexplained) h += "<li>" + html_escape(u.description) + " (p " + num(u.p_value, "%.2g") + ")</li>";
-    h += "</ul>";
-  }
-  if (!r.rejected.empty()) {
-    h += "<h3>Considered and rejected</h3><ul>";
-    for (const auto& x : r.rejected) h += "<li>" + html_escape(x.reason) + "</li>";
-    h += "</ul>";
-  }
-  if (r.catalog.valid) h += catalog_html(r.catalog);
-  h += "<h2>Fit on held-out data</h2><p>The last " + std::to_string(r.heldout_rows) +
-       " rows were never used to fit the model that is scored on them.</p><table><tr><th></th><th>RMS (all)</th><th>RMS (held out)</th></tr>"
-       "<tr><td>baseline</td><td>" + num(r.baseline_rms) + "</td><td>" + num(r.baseline_heldout_rms) + "</td></tr>"
-       "<tr><td>reconciled</td><td>" + num(r.final_rms) + "</td><td>" + num(r.final_heldout_rms) + "</td></tr></table>";
-
-  // Plots.
-  const Display d = display_of(e);
-  Vec x;
-  std::string xl;
-  if (e.kind == Kind::Torsion) { x = e.torque_Nm; xl = "torque (N·m)"; }
-  else if (e.kind == Kind::Dynamics) { x = e.time; xl = "time (s)"; }
-  else { x = e.wg_angle_rad * (180.0 / M_PI); xl = "wave-generator angle (deg)"; }
-  std::vector<std::pair<double, double>> shade;
-  for (const auto& l : r.locations)
-    if (l.has_range && e.kind == Kind::Torsion && l.domain != "time") shade.emplace_back(l.lo, l.hi);
-  h += "<h2>Plots</h2>";
-  if (e.kind == Kind::Transmission) {
-    // Transmission: the ideal line hides everything; show the transmission error instead.
-    h += plot("transmission error: recording and models minus the ideal ratio", xl, d.label,
-              {series("recording - ideal", "#888", x, e.measured - e.baseline, d.scale, true),
-               series("baseline (offset, ratio)", "#36c", x, r.baseline_prediction - e.baseline, d.scale),
-               series("reconciled", "#c33", x, r.final_prediction - e.baseline, d.scale)});
-  } else {
-    h += plot(e.kind == Kind::Torsion ? "torque-twist loop: recording, baseline (" +
-                                            (e.model.twist_rad ? std::string("torque-twist curve") : "C_tau T") +
-                                            ") and the fitted model"
-                                      : "recording vs baseline vs reconciled model",
-              xl, d.label,
-              {series("recording", "#888", x, e.measured, d.scale, true),
-               series("baseline", "#36c", x, r.baseline_prediction, d.scale),
-               series("reconciled", "#c33", x, r.final_prediction, d.scale)},
-              shade);
-  }
-  h += "<br>" + plot("residual before (baseline) and after (reconciled); shaded: located region", xl, d.label,
-                     {series("before", "#36c", x, r.residual_before, d.scale, true),
-                      series("after", "#c33", x, r.residual_after, d.scale, true)},
-                     shade);
-  h += "<br>" + plot("residual over the recording (time order)", e.has_time ? "time (s)" : "row", d.label,
-                     {series("before", "#36c", e.time, r.residual_before, d.scale),
-                      series("after", "#c33", e.time, r.residual_after, d.scale)});
-  if (e.kind != Kind::Torsion && e.kind != Kind::Dynamics) {
-    auto spectrum_plot = [&](const std::string& title, const std::string& axis, const Vec& angle) {
-      const Spectrum a = order_spectrum(angle, r.residual_before, 6.0);
-      const Spectrum b = order_spectrum(angle, r.residual_after, 6.0);
-      auto ser = [&](const std::string& label, const std::string& colour, const Spectrum& sp) {
-        return series(label, colour, Eigen::Map<const Vec>(sp.order.data(), sp.order.size()),
-                      Eigen::Map<const Vec>(sp.amplitude.data(), sp.amplitude.size()), d.scale);
-      };
-      return "<br>" + plot(title, axis, "amplitude: " + d.label, {ser("before", "#36c", a), ser("after", "#c33", b)});
-    };
-    h += spectrum_plot("residual spectrum in wave-generator orders", "order (per wave-generator revolution)",
-                       e.wg_angle_rad);
-    if (e.kind == Kind::Transmission)
-      h += spectrum_plot("residual spectrum in output orders", "order (per output revolution)", -e.output_angle_rad);
-  }
+  std::string h = page_head(e, rec, r, notes) + mismatch_html(r) + effects_html(r);
+  if (r.catalog) h += catalog_html(*r.catalog);
+  h += heldout_html(r) + plots_html(e, r);
   h += "<p style='font-size:11px;color:#777'>Tests: signatures by GLS F-tests under the estimated AR noise "
        "(Bonferroni over the kind's signatures). Effects enter one at a time (BIC lower by more than 10, held-out RMS "
        "lower, a signature removed) or, where overlapping effects only together remove their signatures, jointly; "

@@ -2,38 +2,58 @@
 // Synthetic recordings for proofs and demos: the baseline of a kind plus chosen hidden effects (the same model laws
 // reconcile fits), white + AR(1) noise, sensor gain error and encoder quantisation, and a truth record.
 #include <cstdint>
-#include <map>
 #include <string>
+#include <variant>
 #include <vector>
 
+#include "reconcile/catalog.hpp"
 #include "reconcile/experiment.hpp"
 #include "reconcile/recording.hpp"
 
 namespace sw::reconcile {
 
-/// One hidden effect: a catalog name, its harmonic order (0 if none) and its parameters in SPEC units. Missing
-/// parameters take defaults (see synth_effect_help()).
-struct SynthEffect {
-  std::string name;
-  int order = 0;
-  std::map<std::string, double> params;
+/// Torsion: torque cycles between -A and +A (a cosine, starting at the reversal -A).
+struct TorsionRows {
+  static constexpr Kind kind = Kind::Torsion;
+  double cycles = 4.0;
+  double torque_amplitude_Nm = 44.1;
+  double sample_period_s = 0.01;           ///< time_s step
 };
 
+/// Transmission: the wave generator turning at constant speed through a number of output revolutions.
+struct TransmissionRows {
+  static constexpr Kind kind = Kind::Transmission;
+  double output_revolutions = 2.0;
+  double sample_period_s = 0.01;           ///< time_s step
+};
+
+/// Backlash: one wave-generator revolution at each torque level 0 .. the highest, equally spaced.
+struct BacklashRows {
+  static constexpr Kind kind = Kind::Backlash;
+  double torque_amplitude_Nm = 44.1;       ///< highest torque level
+  int torque_levels = 3;
+};
+
+/// Dynamics: the dynamics model's run on its own time grid, with white noise on both speed columns.
+struct DynamicsRows {
+  static constexpr Kind kind = Kind::Dynamics;
+  double speed_sd_rpm = 0.0;
+};
+
+/// How a synthetic recording's rows run, per kind.
+using SynthRows = std::variant<TorsionRows, TransmissionRows, BacklashRows, DynamicsRows>;
+
 struct SynthOptions {
-  Kind kind = Kind::Torsion;
-  Baseline baseline;                       ///< the simulated model the effects are added to
-  int samples = 4000;
-  double cycles = 4.0;                     ///< torsion: torque cycles; transmission: output revolutions
-  double torque_amplitude_Nm = 44.1;       ///< torsion: +-amplitude; backlash: highest torque level
-  int torque_levels = 3;                   ///< backlash: levels 0 .. amplitude, equally spaced
-  double sample_period_s = 0.01;           ///< time_s step (torsion, transmission)
+  Baseline baseline;                       ///< the simulated model the effects are added to (its kind's recording)
+  /// How the recording's rows run, for the baseline's kind.
+  SynthRows rows;
+  int samples = 4000;                      ///< rows (torsion, transmission, backlash)
   std::vector<SynthEffect> effects;
   double concealment = 0.0;                ///< > 0: each effect scaled so effect RMS = concealment * noise RMS
   double white_sd = 0.0;                   ///< white noise sd (response units)
   double ar1_sd = 0.0;                     ///< AR(1) component: process sd (response units)
   double ar1_phi = 0.8;                    ///< AR(1) coefficient, |phi| < 1
   double quantum = 0.0;                    ///< encoder/sensor resolution (response units); 0: none
-  double speed_sd_rpm = 0.0;               ///< dynamics: white noise on both speed columns, rpm
   double gain_error = 0.0;                 ///< measured response = (1 + gain_error) * true response
   std::uint64_t seed = 1;
 };
@@ -49,7 +69,8 @@ struct SynthResult {
 /// (phi 0.8) noise of sd noise_N each on the meshing force, quantum noise_N / 5, 0.05 rpm white on both speeds.
 SynthOptions dynamics_proof_options(const Baseline& baseline, double noise_N, std::uint64_t seed);
 
-/// Generates a recording. Throws InputError for unknown effect names or parameters, or effects of another kind.
+/// Generates a recording of the baseline's kind. Throws InputError when the rows are of another kind, for unknown
+/// effect names or parameters, or effects of another kind.
 SynthResult synthesize(const SynthOptions& options);
 
 /// Parses "name[:key=value,...]" ("order" is a key too). Throws InputError naming the text and the expectation.

@@ -112,7 +112,7 @@ TEST(ReconcileDynamicsBaseline, FollowsTheCasePairModel) {
     const std::string want = pm == PairMotion::Moving ? "moving tooth pairs on a rigid rim" : "frozen tooth pairs";
     EXPECT_NE(b.source.find(want), std::string::npos) << b.source;
     EXPECT_NE(notes.back().find(want), std::string::npos) << notes.back();
-    EXPECT_NEAR(b.mesh_frequency_Hz, 28 * 1000 / 60.0, 1e-9);  // cs_fixed: z_c n_w / 60
+    EXPECT_NEAR(std::get<DynamicsPrediction>(b.prediction).mesh_frequency_Hz, 28 * 1000 / 60.0, 1e-9);  // cs_fixed: z_c n_w / 60
   }
 }
 
@@ -135,7 +135,8 @@ TEST(ReconcileDynamicsBaseline, IntegratesTighterThanALooseCase) {
   EXPECT_TRUE(said);
   DynamicsVariation drag;
   drag.drag_coulomb_Nm = 1e-8;
-  const DynamicsRun r0 = b.dynamics_run(DynamicsVariation{}), r1 = b.dynamics_run(drag);
+  const auto& run = std::get<DynamicsPrediction>(b.prediction).dynamics_run;
+  const DynamicsRun r0 = run(DynamicsVariation{}), r1 = run(drag);
   ASSERT_EQ(r0.mesh_force_N.size(), r1.mesh_force_N.size());
   double s2 = 0;
   for (std::size_t i = 0; i < r0.mesh_force_N.size(); ++i) s2 += std::pow(r1.mesh_force_N[i] - r0.mesh_force_N[i], 2);
@@ -161,7 +162,7 @@ TEST(ReconcileDynamicsBaseline, WithoutGearSaysWhatIsMissing) {
 // in one line that says so.
 TEST(ReconcileDynamicsBaseline, RecordingWithTooLittleSteadyRunningIsRefused) {
   Recording rec = synthesize(dynamics_proof_options(moving_baseline(), 5.0, 1)).recording;
-  const double steady_s = moving_baseline().analysis_from_s;
+  const double steady_s = std::get<DynamicsPrediction>(moving_baseline().prediction).analysis_from_s;
   ASSERT_GT(steady_s, 0.0);
   std::size_t keep = 0;
   while (keep < rec.rows() && rec.values[0][keep] < steady_s + 50 * 1.0e-5) ++keep;  // 50 steady rows

@@ -1,4 +1,4 @@
-// Proof on concealed effects (issue 5): synthetic recordings from the baseline plus hidden effects with white + AR(1)
+// Proof on concealed effects: synthetic recordings from the baseline plus hidden effects with white + AR(1)
 // noise and quantisation; reconcile must name each effect and recover its headline parameter, stay silent on null
 // recordings, find a masked harmonic and both effects of a two-effect case.
 //
@@ -21,7 +21,7 @@ using namespace sw::reconcile::testing;
 
 namespace {
 
-/// Headline parameters within 25 % at effect-RMS / noise-RMS = 0.5 (the issue's requirement).
+/// Headline parameters within 25 % at effect-RMS / noise-RMS = 0.5 (the requirement on concealed effects).
 constexpr double kParamTol = 0.25;
 /// Concealment of the identification cases: effect RMS / noise RMS.
 constexpr double kConcealment = 0.5;
@@ -30,23 +30,24 @@ double basic_backlash_um(double wg_rad) { return 20.0 + 15.0 * std::cos(2.0 * wg
 
 SynthOptions options(Kind kind, int seed) {
   SynthOptions o;
-  o.kind = kind;
   o.samples = 4000;
   o.seed = seed;
   o.ar1_phi = 0.8;
   switch (kind) {
     case Kind::Torsion:
-      o.baseline.compliance_rad_per_Nm = 5e-5;
+      o.baseline.prediction = TorsionPrediction{.compliance_rad_per_Nm = 5e-5};
       o.white_sd = 1e-6; o.ar1_sd = 1e-6; o.quantum = 5e-7;
       break;
     case Kind::Transmission:
-      o.baseline.teeth_flexspline = 190; o.baseline.teeth_circular = 192;
-      o.cycles = 2.0;
+      o.baseline.gear = {.teeth_flexspline = 190, .teeth_circular = 192};
+      o.baseline.prediction = TransmissionPrediction{};
+      o.rows = TransmissionRows{.output_revolutions = 2.0};
       o.white_sd = 2e-6; o.ar1_sd = 2e-6; o.quantum = 1e-6;
       break;
     default:
-      o.baseline.pitch_radius_m = 0.019;
-      o.baseline.backlash_um = basic_backlash_um;
+      o.baseline.gear.pitch_radius_m = 0.019;
+      o.baseline.prediction = BacklashPrediction{.backlash_um = basic_backlash_um};
+      o.rows = BacklashRows{};
       o.white_sd = 0.2; o.ar1_sd = 0.2; o.quantum = 0.1;
       break;
   }

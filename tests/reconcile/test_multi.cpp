@@ -23,7 +23,7 @@ using namespace sw::reconcile::testing;
 
 namespace {
 
-/// Stiffness of each segment within 15 % (the target; the rounded corners of size 17 move the best straight
+/// Stiffness of each segment within 15 % (the catalog-figure target; the rounded corners of size 17 move the best straight
 /// segments by a few per cent).
 constexpr double kStiffnessTol = 0.15;
 /// Hysteresis loss and play width within 20 % (friction structures other than the fitter's exponential included).
@@ -72,9 +72,8 @@ const nlohmann::json& truth_params(const nlohmann::json& truth, const std::strin
 /// (phi 0.9) plus `white_sd`, quantised to 2 pi / 2^22 rad.
 SynthOptions size17_loop(double white_sd, std::uint64_t seed) {
   SynthOptions o;
-  o.kind = Kind::Torsion;
-  o.baseline.compliance_rad_per_Nm = 1.89e-5;
-  o.torque_amplitude_Nm = 31.0;
+  o.baseline.prediction = TorsionPrediction{.compliance_rad_per_Nm = 1.89e-5};
+  o.rows = TorsionRows{.torque_amplitude_Nm = 31.0};
   o.white_sd = white_sd; o.ar1_sd = 4.85e-6; o.ar1_phi = 0.9; o.quantum = 1.498e-6;
   o.seed = seed;
   return o;
@@ -98,7 +97,7 @@ TEST_P(ShippedRecording, IsExplainedByEveryEffectItHoldsWithTheCatalogFiguresRec
   const nlohmann::json truth = read_json(stem + ".truth.json");
   ASSERT_EQ(rec.meta_number("size").value(), size);
   Baseline base;
-  base.compliance_rad_per_Nm = rec.meta_number("baseline_compliance_rad_per_Nm").value();
+  base.prediction = TorsionPrediction{.compliance_rad_per_Nm = rec.meta_number("baseline_compliance_rad_per_Nm").value()};
   const Experiment e = make_experiment(rec, base);
   const Result r = reconcile(e);
   SCOPED_TRACE(names(r));
@@ -109,7 +108,8 @@ TEST_P(ShippedRecording, IsExplainedByEveryEffectItHoldsWithTheCatalogFiguresRec
   // Stiffness: the catalog's three segments. The K1 segment spans T1/K1 of twist (0.43, 0.39, 0.44 mrad for sizes
   // 14, 17, 20), 30-90 times the encoder noise: identifiable at this noise.
   const auto& ts = truth_params(truth, "stiffness_nonlinearity");
-  const CatalogFigures& c = r.catalog;
+  ASSERT_TRUE(r.catalog.has_value());
+  const CatalogFigures& c = *r.catalog;
   ASSERT_EQ(c.segments, 3);
   std::printf("[catalog] size %d: K1 %.4g (%.4g), K2 %.4g (%.4g), K3 %.4g (%.4g), T1 %.3g (%.3g), T2 %.3g (%.3g); "
               "loss %.3f arcmin (%.3f), play %.3f arcmin (%.3f), catalog lost motion %.3f arcmin; held-out RMS %.3g "
@@ -146,30 +146,33 @@ TEST(OtherStructures, RoundedStiffnessCornersStillGiveTheCatalogSlopes) {
                                   "lost_motion:width_rad=5.82e-5,transition_Nm=0.4");
   const SynthResult s = synthesize(o);
   const Result r = reconcile(make_experiment(s.recording, o.baseline));
+  ASSERT_TRUE(r.catalog.has_value());
+  const CatalogFigures& c = *r.catalog;
   std::printf("[smooth] %s; K1 %.4g K2 %.4g K3 %.4g, loss %.3f arcmin, play %.3f arcmin\n", names(r).c_str(),
-              r.catalog.k1, r.catalog.k2, r.catalog.k3, r.catalog.hysteresis_loss_arcmin, r.catalog.play_arcmin);
+              c.k1, c.k2, c.k3, c.hysteresis_loss_arcmin, c.play_arcmin);
   SCOPED_TRACE(names(r));
-  ASSERT_EQ(r.catalog.segments, 3);
-  EXPECT_LT(rel_err(r.catalog.k1, 1e4), kStiffnessTol);
-  EXPECT_LT(rel_err(r.catalog.k2, 1.4e4), kStiffnessTol);
-  EXPECT_LT(rel_err(r.catalog.k3, 1.6e4), kStiffnessTol);
-  EXPECT_LT(rel_err(r.catalog.hysteresis_loss_arcmin, 0.6), kLossTol);
+  ASSERT_EQ(c.segments, 3);
+  EXPECT_LT(rel_err(c.k1, 1e4), kStiffnessTol);
+  EXPECT_LT(rel_err(c.k2, 1.4e4), kStiffnessTol);
+  EXPECT_LT(rel_err(c.k3, 1.6e4), kStiffnessTol);
+  EXPECT_LT(rel_err(c.hysteresis_loss_arcmin, 0.6), kLossTol);
   EXPECT_FALSE(time_flagged(r));
 }
 
 TEST(CatalogLostMotion, OfALinearDriveIsItsElasticTwistOverEightPercentOfRated) {
   // The reference's check: with no play at all, 2 * 0.04 * T_R / K1 = 0.85 arcmin for size 17.
   SynthOptions o;
-  o.kind = Kind::Torsion;
-  o.baseline.compliance_rad_per_Nm = 1e-4;  // K = 1e4 N*m/rad
-  o.torque_amplitude_Nm = 31.0;
+  o.baseline.prediction = TorsionPrediction{.compliance_rad_per_Nm = 1e-4};  // K = 1e4 N*m/rad
+  o.rows = TorsionRows{.torque_amplitude_Nm = 31.0};
   const SynthResult s = synthesize(o);
   Recording rec = s.recording;
   rec.metadata.push_back({"size", "17"});
   const Experiment e = make_experiment(rec, o.baseline);
   FitResult none;
   none.nuisance_beta = Eigen::VectorXd::Zero(1);
-  const CatalogFigures c = catalog_figures(e, none);
+  const std::optional<CatalogFigures> figures = catalog_figures(e, none);
+  ASSERT_TRUE(figures.has_value());
+  const CatalogFigures& c = *figures;
   EXPECT_NEAR(c.catalog_lost_motion_arcmin, 0.853, 0.001);
   EXPECT_EQ(c.rated_torque_Nm, 31.0);
   EXPECT_EQ(c.play_arcmin, 0.0);
@@ -178,10 +181,9 @@ TEST(CatalogLostMotion, OfALinearDriveIsItsElasticTwistOverEightPercentOfRated) 
 TEST(MultiEffect, FourTransmissionHarmonicsAtHighSnrAreAllFoundAndNothingElse) {
   sw::quiet_progress() = true;
   SynthOptions o;
-  o.kind = Kind::Transmission;
-  o.baseline.teeth_flexspline = 190;
-  o.baseline.teeth_circular = 192;
-  o.cycles = 2.0;
+  o.baseline.gear = {.teeth_flexspline = 190, .teeth_circular = 192};
+  o.baseline.prediction = TransmissionPrediction{};
+  o.rows = TransmissionRows{.output_revolutions = 2.0};
   o.white_sd = 2e-6; o.ar1_sd = 2e-6; o.quantum = 1e-6;
   o.seed = 51;
   o.effects = parse_synth_effects("wg_harmonic:order=1,amplitude_rad=4e-5,wg_harmonic:order=2,amplitude_rad=6e-5,"
@@ -206,9 +208,10 @@ TEST(MultiEffect, FourTransmissionHarmonicsAtHighSnrAreAllFoundAndNothingElse) {
 TEST(MultiEffect, BacklashOffsetTorsionAndTwoHarmonicsAtHighSnrAreAllFound) {
   sw::quiet_progress() = true;
   SynthOptions o;
-  o.kind = Kind::Backlash;
-  o.baseline.pitch_radius_m = 0.019;
-  o.baseline.backlash_um = [](double wg) { return 20.0 + 15.0 * std::cos(2.0 * wg); };
+  o.baseline.gear.pitch_radius_m = 0.019;
+  o.baseline.prediction =
+      BacklashPrediction{.backlash_um = [](double wg) { return 20.0 + 15.0 * std::cos(2.0 * wg); }};
+  o.rows = BacklashRows{};
   o.white_sd = 0.2; o.ar1_sd = 0.2; o.quantum = 0.1;
   o.seed = 52;
   o.effects = parse_synth_effects("uniform_clearance:offset_um=3,load_torsion:compliance_rad_per_Nm=2e-5,"
@@ -240,7 +243,8 @@ TEST(MultiEffect, OverlappingTorsionEffectsAreAdmittedTogetherAndNoDriftIsInvent
   EXPECT_EQ(r.verdict, "explained");
   EXPECT_EQ(found_names(r), (std::set<std::string>{"series_compliance", "stiffness_nonlinearity", "hysteresis"}));
   EXPECT_FALSE(time_flagged(r));
-  EXPECT_LT(rel_err(r.catalog.k1, 1e4), kStiffnessTol);
-  EXPECT_LT(rel_err(r.catalog.k2, 1.4e4), kStiffnessTol);
-  EXPECT_LT(rel_err(r.catalog.k3, 1.6e4), kStiffnessTol);
+  ASSERT_TRUE(r.catalog.has_value());
+  EXPECT_LT(rel_err(r.catalog->k1, 1e4), kStiffnessTol);
+  EXPECT_LT(rel_err(r.catalog->k2, 1.4e4), kStiffnessTol);
+  EXPECT_LT(rel_err(r.catalog->k3, 1.6e4), kStiffnessTol);
 }

@@ -1,10 +1,12 @@
 // Recording parser: accepts the SPEC format (metadata kept, time optional) and rejects every malformed input with
-// one line naming file:line, the column, the value and the expectation.
+// one line naming file:line, the column, the value and the expectation; a recording, its baseline and a synthetic
+// recording's rows must be of one kind.
 #include <gtest/gtest.h>
 
 #include "common/error.hpp"
 #include "reconcile/experiment.hpp"
 #include "reconcile/recording.hpp"
+#include "reconcile/synth.hpp"
 
 using namespace sw::reconcile;
 
@@ -113,7 +115,7 @@ TEST(RecordingParser, RefusesASemicolonSeparatedFileNamingTheSeparator) {
 TEST(RecordingParser, TooFewSamplesAreRejectedByTheAnalysis) {
   const Recording r = parse_recording(kGood, "rec.csv");
   Baseline b;
-  b.compliance_rad_per_Nm = 1e-5;
+  b.prediction = TorsionPrediction{.compliance_rad_per_Nm = 1e-5};
   try {
     make_experiment(r, b);
     FAIL() << "expected InputError";
@@ -121,4 +123,31 @@ TEST(RecordingParser, TooFewSamplesAreRejectedByTheAnalysis) {
     EXPECT_EQ(std::string(e.what()).rfind("rec.csv: rows = 3; reconcile needs at least 100 samples", 0), 0u)
         << e.what();
   }
+}
+
+TEST(KindMismatch, ARecordingHeldAgainstAnotherKindsBaselineIsRefusedNamingBoth) {
+  const Recording r = parse_recording(kGood, "rec.csv");
+  Baseline b;
+  b.gear = {.teeth_flexspline = 190, .teeth_circular = 192};
+  b.prediction = TransmissionPrediction{};
+  try {
+    make_experiment(r, b);
+    FAIL() << "expected InputError";
+  } catch (const sw::InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "rec.csv: kind = torsion; the baseline is of kind transmission");
+  }
+}
+
+TEST(KindMismatch, SynthRowsOfAnotherKindThanTheBaselineAreRefused) {
+  SynthOptions o;
+  o.baseline.prediction = TorsionPrediction{.compliance_rad_per_Nm = 5e-5};
+  o.rows = BacklashRows{};
+  try {
+    synthesize(o);
+    FAIL() << "expected InputError";
+  } catch (const sw::InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "synth: the rows are laid out for kind backlash; the baseline is of kind torsion");
+  }
+  o.rows = TorsionRows{};
+  EXPECT_EQ(synthesize(o).recording.kind, Kind::Torsion);
 }

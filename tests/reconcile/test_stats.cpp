@@ -1,15 +1,12 @@
-// Statistics building blocks: F tail, AR estimation and whitening, branch detection, report keys.
+// Statistics building blocks: F tail, AR estimation and whitening, branch detection.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <random>
 
-#include <nlohmann/json.hpp>
-
 #include "reconcile/experiment.hpp"
 #include "reconcile/reconcile.hpp"
-#include "reconcile/report.hpp"
 #include "reconcile/stats.hpp"
 
 using namespace sw::reconcile;
@@ -58,29 +55,6 @@ TEST(Branches, SplitATorqueCycleAtItsReversalsOnly) {
   for (int k = 0; k < 4; ++k) EXPECT_NEAR(b.reversals[k], 125 + 250 * k, 15);
   EXPECT_EQ(b.direction[50], 1);
   EXPECT_EQ(b.direction[200], -1);
-}
-
-TEST(Report, JsonHasExactlyTheSpecKeys) {
-  Result r;
-  r.verdict = "no_significant_mismatch";
-  Location l;
-  l.domain = "torque";
-  r.locations.push_back(l);
-  AcceptedEffect e;
-  e.name = "hysteresis";
-  e.params = {{"loss_rad", 1e-4, 0.9e-4, 1.1e-4}};
-  r.effects.push_back(e);
-  r.rejected.push_back({"lost_motion", "x"});
-  const auto j = nlohmann::json::parse(report_json(r));
-  std::vector<std::string> keys;
-  for (const auto& [k, v] : j.items()) keys.push_back(k);
-  EXPECT_EQ(keys, (std::vector<std::string>{"baseline", "effects", "final", "kind", "mismatch", "rejected", "samples",
-                                            "verdict"}));
-  EXPECT_TRUE(j["baseline"].contains("heldout_rms"));
-  EXPECT_TRUE(j["mismatch"]["locations"][0].contains("p_value"));
-  for (const char* k : {"name", "physics", "params", "ci95", "delta_bic", "p_value"})
-    EXPECT_TRUE(j["effects"][0].contains(k)) << k;
-  EXPECT_EQ(j["effects"][0]["ci95"]["loss_rad"].size(), 2u);
 }
 
 TEST(SpectralCalibration, MakesTheMeanOffsetTestNominalUnderAr1PlusWhiteNoise) {

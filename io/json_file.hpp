@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -164,7 +165,9 @@ T read_value(const JsonIn& j) {
   } else if constexpr (std::is_integral_v<T> && std::is_unsigned_v<T>) {
     return static_cast<T>(j.count());
   } else if constexpr (std::is_integral_v<T>) {
-    return static_cast<T>(j.integer());
+    const std::int64_t v = j.integer();
+    if (v < std::numeric_limits<T>::min() || v > std::numeric_limits<T>::max()) j.fail("a whole number in range");
+    return static_cast<T>(v);
   } else if constexpr (std::is_same_v<T, std::string>) {
     return j.text();
   } else if constexpr (json_detail::is_list<T>::value) {

@@ -1,6 +1,9 @@
-// libFuzzer target: sw::read_fem_compensation (result.json written by `strainwave fem`) on arbitrary bytes.
+// libFuzzer target: the readers of result.json (written by `strainwave fem`) on arbitrary bytes: sw::read_fem_result,
+// the typed value, and sw::read_fem_compensation. What reads as a typed value must be written and read again to the
+// same text (the reader and the writer share one field table).
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 
 #include "bench/fuzz/fuzz_file.hpp"
 #include "common/error.hpp"
@@ -10,6 +13,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const auto path = sw::fuzz::write_input(data, size, "result.json");
   try {
     (void)sw::read_fem_compensation(path);
+  } catch (const sw::InputError&) {
+  }
+  try {
+    const std::string text = sw::fem_result_json(sw::read_fem_result(path));
+    const auto again = sw::fuzz::write_input(reinterpret_cast<const std::uint8_t*>(text.data()), text.size(), "again.json");
+    if (sw::fem_result_json(sw::read_fem_result(again)) != text) std::abort();
   } catch (const sw::InputError&) {
   }
   return 0;

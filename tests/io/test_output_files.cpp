@@ -93,6 +93,10 @@ TEST(OutputFiles, AResultJsonOfAnotherShapeIsOneLineNamingFileKeyAndValue) {
   EXPECT_NE(m.find("result.json: solver.equations = \"many\"; expected a whole number in the result.json of "
                    "`strainwave fem`"), std::string::npos) << m;
   EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+  std::string ranks = sw::fem_result_json(sample_fem_result());
+  ranks.replace(ranks.find("\"ranks\": 2"), 10, "\"ranks\": 99999999999");
+  EXPECT_NE(result_json_error(ranks).find("solver.ranks = 99999999999; expected a whole number in range"),
+            std::string::npos) << result_json_error(ranks);
   const std::string missing = result_json_error(R"({"case": "x.toml"})");
   EXPECT_NE(missing.find("result.json: torque_Nm is missing; expected the result.json of `strainwave fem`"),
             std::string::npos) << missing;

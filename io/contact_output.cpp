@@ -2,8 +2,8 @@
 
 #include <cmath>
 #include <cstdio>
-#include <numbers>
 #include <map>
+#include <numbers>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -19,21 +19,14 @@ constexpr double kArcmin = 10800.0 / std::numbers::pi;
 
 double law_twist(const CatalogLaw& k, double T) { return k.law().twist_rad(T); }
 
-}  // namespace
-
-namespace {
-
 ContactResult::Catalog catalog_figures(const SegmentLaw& k) {
   return {k.t1_Nm, k.t2_Nm, k.k1_Nm_per_rad, k.k2_Nm_per_rad, k.k3_Nm_per_rad,
           k.breakpoints_fitted ? "fitted to the curve" : "the catalog's T1 and T2"};
 }
 
 ContactResult::CatalogReference reference_figures(const CatalogLaw& k, double rated_torque_Nm) {
-  return {k.size,          k.t1_Nm,
-          k.t2_Nm,         k.k1_Nm_per_rad,
-          k.k2_Nm_per_rad, k.k3_Nm_per_rad,
-          law_twist(k, k.t1_Nm), law_twist(k, k.t2_Nm),
-          law_twist(k, rated_torque_Nm)};
+  return {k.size, k.t1_Nm, k.t2_Nm, k.k1_Nm_per_rad, k.k2_Nm_per_rad, k.k3_Nm_per_rad,
+          law_twist(k, k.t1_Nm), law_twist(k, k.t2_Nm), law_twist(k, rated_torque_Nm)};
 }
 
 ContactResult::FaceSection face_section_figures(const FaceSection& f) {

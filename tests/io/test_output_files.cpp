@@ -1,7 +1,8 @@
 // result.json, backlash.json and contact.json: what the writer writes, the reader reads back into the same typed
 // value (written again it is the same text), and a file of another shape is one line naming the file, key and value.
-// With SW_GOLDEN_DIR set to a folder of <case>/{result,backlash,contact}.json written by the tool, every such file is
-// read and written again unchanged: the typed values hold every key the tool writes.
+// With SW_GOLDEN_DIR (environment, or cmake -DSW_GOLDEN_DIR=) naming a folder of <case>/{result,backlash,contact}.json
+// written by the tool, every such file is read and written again unchanged: the typed values hold every key the tool
+// writes.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -118,7 +119,12 @@ std::string first_difference(const std::string& a, const std::string& b) {
 
 TEST(OutputFiles, PreRedesignFilesReadAndWriteBackUnchanged) {
   const char* golden = std::getenv("SW_GOLDEN_DIR");
-  if (!golden) GTEST_SKIP() << "set SW_GOLDEN_DIR to a folder of <case>/{result,backlash,contact}.json to read back";
+#ifdef SW_GOLDEN_DIR
+  if (!golden) golden = SW_GOLDEN_DIR;
+#endif
+  if (!golden)
+    GTEST_SKIP() << "set SW_GOLDEN_DIR (environment, or cmake -DSW_GOLDEN_DIR=) to a folder of "
+                    "<case>/{result,backlash,contact}.json to read back";
   const std::map<std::string, std::function<std::string(const fs::path&)>> again = {
       {"result.json", [](const fs::path& p) { return sw::fem_result_json(sw::read_fem_result(p)); }},
       {"backlash.json", [](const fs::path& p) { return sw::backlash_json(sw::read_backlash_result(p)); }},

@@ -17,18 +17,13 @@ namespace sw::app {
 
 namespace fs = std::filesystem;
 
-BacklashReport run_backlash_job(const Case& c, const BacklashJobOptions& o, const fs::path& out_dir) {
-  constexpr double kPi = std::numbers::pi;
-  if (!c.gear) throw InputError(c.path + ": [gear] is missing; the backlash model needs the tooth data");
-  if (!c.wave_generator || !c.wave_generator->radial_deformation_m)
-    throw InputError(c.path + ": wave_generator.radial_deformation_mm is missing; the backlash model needs w0");
-  const double rm = rim_mean_radius(c.flexspline);
-  const double w0 = *c.wave_generator->radial_deformation_m;
+namespace {
 
-  BacklashReport r;
-  r.case_path = c.path;
-  r.module_m = c.gear->module_m;
-  r.torque_Nm = c.load.torque_Nm;
+constexpr double kPi = std::numbers::pi;
+constexpr double kArcmin = 180.0 / kPi * 60.0;
+
+/// φ₀ and where it came from: --phi0, else C_τ·T of the FEM's result.json, else its φ₀, else none.
+void set_phi0(BacklashReport& r, const Case& c, const BacklashJobOptions& o) {
   std::optional<FemCompensation> fem;
   if (o.fem_result) fem = read_fem_compensation(*o.fem_result);
   if (o.phi0_rad) {
@@ -44,25 +39,21 @@ BacklashReport run_backlash_job(const Case& c, const BacklashJobOptions& o, cons
     r.phi0_source = "none (no --fem, no --phi0): compensated = basic";
   }
   if (fem) r.compliance_rad_per_Nm = fem->compliance_rad_per_Nm;
+}
 
-  NeutralCurve curve;
-  if (o.fem_curve) {
-    if (!o.fem_result) throw InputError("--curve fem needs --fem DIR/result.json (neutral_curve.csv is read beside it)");
-    const fs::path csv = o.fem_result->parent_path() / "neutral_curve.csv";
-    const NeutralCurveSamples s = read_neutral_curve_csv(csv);
-    curve = fit_neutral_curve(rm, s.phi_rad, s.w_wg_m, s.v_wg_m, s.mu_wg_rad,
-                              "FEM neutral curve " + csv.string() + " (generator alone)");
-  } else {
-    curve = generator_neutral_curve(rm, w0, *c.wave_generator);
-  }
-  r.curve_source = curve.source;
-  const BacklashModel m = make_backlash_model(*c.gear, curve);
-  progress("backlash: " + curve.source + ", r_m = " + std::to_string(rm * 1e3) + " mm, phi0 = " +
-           std::to_string(r.phi0_rad) + " rad");
+/// The deformed neutral curve: the FEM's (neutral_curve.csv beside result.json) or the generator model's.
+NeutralCurve backlash_curve(const Case& c, const BacklashJobOptions& o, double rm, double w0) {
+  if (!o.fem_curve) return generator_neutral_curve(rm, w0, *c.wave_generator);
+  if (!o.fem_result) throw InputError("--curve fem needs --fem DIR/result.json (neutral_curve.csv is read beside it)");
+  const fs::path csv = o.fem_result->parent_path() / "neutral_curve.csv";
+  const NeutralCurveSamples s = read_neutral_curve_csv(csv);
+  return fit_neutral_curve(rm, s.phi_rad, s.w_wg_m, s.v_wg_m, s.mu_wg_rad,
+                           "FEM neutral curve " + csv.string() + " (generator alone)");
+}
 
+/// The paper's table, every pair position over a turn and a revolution of the generator, basic and compensated.
+void sweep(BacklashReport& r, const BacklashModel& m, int revolution_steps) {
   Stopwatch clock;
-  r.geometry = check_geometry(*c.gear, curve);
-  progress("backlash: geometry check in " + std::to_string(clock.lap()) + " s");
   for (double pos : {0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 90.0}) {
     const double phi = (90.0 - pos) * kPi / 180.0;
     r.table.push_back({pos, pair_clearance(m, phi, 0.0), pair_clearance(m, phi, r.phi0_rad)});
@@ -73,19 +64,16 @@ BacklashReport run_backlash_job(const Case& c, const BacklashJobOptions& o, cons
     r.positions_compensated.push_back(pair_clearance(m, phi, r.phi0_rad));
   }
   const double t_positions = clock.lap();
-  r.revolution_basic = sweep_revolution(m, 0.0, o.revolution_steps);
-  r.revolution_compensated = sweep_revolution(m, r.phi0_rad, o.revolution_steps);
+  r.revolution_basic = sweep_revolution(m, 0.0, revolution_steps);
+  r.revolution_compensated = sweep_revolution(m, r.phi0_rad, revolution_steps);
   const double t_rev = clock.lap();
   progress("backlash: 1440 pair positions in " + std::to_string(t_positions) + " s; revolution (" +
-           std::to_string(o.revolution_steps) + " steps x 2) in " + std::to_string(t_rev) + " s");
+           std::to_string(revolution_steps) + " steps x 2) in " + std::to_string(t_rev) + " s");
+}
 
-  write_file_atomic(out_dir / "backlash.json", backlash_json(r));
-  write_file_atomic(out_dir / "backlash.csv", backlash_csv(r));
-  write_file_atomic(out_dir / "backlash.svg", backlash_svg(r));
-  write_profiles_vtp(out_dir / "profiles.vtp", m, r.phi0_rad);
-
-  constexpr double kArcmin = 180.0 / kPi * 60.0;
-  std::printf("backlash %s: %s\n", c.path.c_str(), curve.source.c_str());
+/// The geometry check, the play over a revolution and the paper's table, on stdout.
+void print_backlash_summary(const Case& c, const BacklashReport& r) {
+  std::printf("backlash %s: %s\n", c.path.c_str(), r.curve_source.c_str());
   std::printf("%s", geometry_check_text(r.geometry, r.module_m).c_str());
   const auto& rb = r.revolution_basic;
   std::printf("  geometric angular play of the output over a revolution: %.3f .. %.3f arcmin (teeth and rim rigid; "
@@ -115,6 +103,38 @@ BacklashReport run_backlash_job(const Case& c, const BacklashJobOptions& o, cons
   std::printf("  min over pairs in mesh and a revolution: basic %.5f mm (j/m %.5f), compensated %.5f mm (j/m %.5f)\n",
               rb.min_m * 1e3, rb.min_m / r.module_m, r.revolution_compensated.min_m * 1e3,
               r.revolution_compensated.min_m / r.module_m);
+}
+
+}  // namespace
+
+BacklashReport run_backlash_job(const Case& c, const BacklashJobOptions& o, const fs::path& out_dir) {
+  if (!c.gear) throw InputError(c.path + ": [gear] is missing; the backlash model needs the tooth data");
+  if (!c.wave_generator || !c.wave_generator->radial_deformation_m)
+    throw InputError(c.path + ": wave_generator.radial_deformation_mm is missing; the backlash model needs w0");
+  const double rm = rim_mean_radius(c.flexspline);
+  const double w0 = *c.wave_generator->radial_deformation_m;
+
+  BacklashReport r;
+  r.case_path = c.path;
+  r.module_m = c.gear->module_m;
+  r.torque_Nm = c.load.torque_Nm;
+  set_phi0(r, c, o);
+  const NeutralCurve curve = backlash_curve(c, o, rm, w0);
+  r.curve_source = curve.source;
+  const BacklashModel m = make_backlash_model(*c.gear, curve);
+  progress("backlash: " + curve.source + ", r_m = " + std::to_string(rm * 1e3) + " mm, phi0 = " +
+           std::to_string(r.phi0_rad) + " rad");
+
+  Stopwatch clock;
+  r.geometry = check_geometry(*c.gear, curve);
+  progress("backlash: geometry check in " + std::to_string(clock.lap()) + " s");
+  sweep(r, m, o.revolution_steps);
+
+  write_file_atomic(out_dir / "backlash.json", backlash_json(backlash_result(r)));
+  write_file_atomic(out_dir / "backlash.csv", backlash_csv(r));
+  write_file_atomic(out_dir / "backlash.svg", backlash_svg(r));
+  write_profiles_vtp(out_dir / "profiles.vtp", m, r.phi0_rad);
+  print_backlash_summary(c, r);
   std::printf("  wrote %s\n", out_dir.string().c_str());
   return r;
 }

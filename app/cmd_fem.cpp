@@ -65,49 +65,35 @@ void add_backend_option(CLI::App* cmd, std::string& backend) {
       ->check(CLI::IsMember({"cholmod", "petsc"}));
 }
 
-FemJobResult run_fem_job(const Case& c, const fs::path& out_dir, const FemJobOptions& options) {
-  if (c.solver.method == SolverMethod::Fourier) {
-    if (options.export_inp)
-      throw InputError("--export-inp writes a TET10 deck; it needs [solver] method = \"tet10\" (or --solver tet10)");
-    return run_fourier_fem_job(c, out_dir, options.write_vtk);
-  }
-  const double t_start = elapsed_s();
-  RunInfo run;
-  run.blas = detect_blas();
-  progress("BLAS: " + run.blas.description);
-  if (run.blas.is_reference)
+namespace {
+
+/// The BLAS CHOLMOD runs on, with a warning when it is the reference one.
+BlasInfo blas_for_the_factor() {
+  BlasInfo blas = detect_blas();
+  progress("BLAS: " + blas.description);
+  if (blas.is_reference)
     std::fprintf(stderr,
                  "strainwave: warning: CHOLMOD runs on the reference BLAS (%s), which is 10-50x slower; install "
                  "libopenblas0-pthread (scripts/setup.sh does)\n",
-                 run.blas.description.c_str());
-  Stopwatch clock;
-  progress("mesh: " + c.path);
-  const auto mesh_ptr = std::make_shared<const TetMesh>(mesh_for_case(c, options.max_memory_gb));
-  const TetMesh& mesh = *mesh_ptr;
-  run.mesh_s = clock.lap();
-  progress("mesh: " + std::to_string(mesh.n_nodes()) + " nodes, " + std::to_string(mesh.tets.size()) +
-           " TET10, min dihedral " + std::to_string(mesh.quality.min_dihedral_deg) + " deg");
-  FemJobResult job;
-  const FlexsplineModel model = flexspline_model(c);
-  auto system = std::make_shared<const FlexsplineSystem>(assemble_and_factorise(model, mesh));
-  job.solution = analyse_flexspline(model, mesh, *system);
-  job.mesh = mesh_ptr;
-  job.system = system;
-  clock.lap();
+                 blas.description.c_str());
+  return blas;
+}
+
+/// The VTK files, the CalculiX deck (--export-inp) and neutral_curve.csv.
+void write_fem_files(const Case& c, const fs::path& out_dir, const FemJobOptions& options,
+                     const FlexsplineModel& model, const TetMesh& mesh, const FlexsplineSolution& s) {
   progress("output: " + out_dir.string());
-  if (options.write_vtk) write_fem_vtk(out_dir, c, mesh, job.solution);
+  if (options.write_vtk) write_fem_vtk(out_dir, c, mesh, s);
   if (options.export_inp) {
     write_inp_deck(*options.export_inp, c, mesh, clamped_nodes(mesh), torque_load_vector(model, mesh, c.load.torque_Nm),
                    "fem --export-inp (clamp and torque only; no generator)");
     progress("deck: " + options.export_inp->string());
   }
-  if (job.solution.neutral_curve) write_file_atomic(out_dir / "neutral_curve.csv", neutral_curve_csv(*job.solution.neutral_curve));
-  run.output_s = clock.lap();
-  run.total_s = elapsed_s() - t_start;
-  run.peak_rss_bytes = peak_rss_bytes();
-  job.result_json_path = out_dir / "result.json";
-  write_file_atomic(job.result_json_path, fem_result_json(c, mesh, job.solution, run));
-  const auto& s = job.solution;
+  if (s.neutral_curve) write_file_atomic(out_dir / "neutral_curve.csv", neutral_curve_csv(*s.neutral_curve));
+}
+
+/// The model's size and cost, φ₀ against the closed form, the torque balance.
+void print_fem_headline(const Case& c, const TetMesh& mesh, const FlexsplineSolution& s, const RunInfo& run) {
   const FactorStats& factor = s.timings.factor;
   std::printf("fem %s: %zu nodes, %lld equations, factor %.2f GF in %.2f s (%.1f GF/s), total %.1f s, peak %.0f MB\n",
               c.path.c_str(), mesh.n_nodes(), static_cast<long long>(factor.equations), factor.factor_gflop,
@@ -123,32 +109,38 @@ FemJobResult run_fem_job(const Case& c, const fs::path& out_dir, const FemJobOpt
               th.body_length_m * 1e3, th.rim_rad, th.rim_length_m * 1e3, s.checks.phi0_theory_rad);
   std::printf("  reaction torque %.9g N·m (clamp and generator) vs applied %.9g N·m\n", s.checks.reaction_torque_Nm,
               s.checks.applied_torque_Nm);
-  if (s.generator) {
-    const auto& g = *s.generator;
-    std::string zones;
-    for (const auto& [from, to] : g.zones_wg_deg) {
-      char z[64];
-      std::snprintf(z, sizeof z, "%s[%.0f, %.0f]", zones.empty() ? "" : " ", from, to);
-      zones += z;
-    }
-    std::printf("  generator (%s, %s): total radial force %.1f N, smallest contact force %.3g N, zones (deg from "
-                "the major axis) %s\n",
-                g.model.c_str(), g.unilateral ? "unilateral contact" : "the paper's given forces",
-                g.total_radial_force_N, g.min_contact_force_N, zones.c_str());
-    std::printf("  generator: w at the major axis %.4f mm, at the minor axis %.4f mm, net rim rotation %.2e rad; "
-                "it carries %.4g N·m of the torque\n",
-                g.w_major_m * 1e3, g.w_minor_m * 1e3, s.checks.generator_rotation_rad, g.reaction_torque_Nm);
-    if (g.bearing_max_ball_load_N > 0)
-      std::printf("  generator bearing in series: largest ball load %.0f N, its Hertzian approach %.2f um\n",
-                  g.bearing_max_ball_load_N, g.bearing_max_approach_m * 1e6);
-    std::printf("  hoop stress (generator): nominal bending %+.1f MPa at the minor axis, z = %.1f mm (thin ring theory "
-                "%+.1f MPa), membrane %+.1f MPa; local peaks %+.1f MPa at %.0f deg, z = %.2f mm and %+.1f MPa at "
-                "%.0f deg, z = %.2f mm\n",
-                s.hoop.nominal_bending_Pa / 1e6, s.hoop.profile_z_m * 1e3, s.hoop.ring_theory_bending_Pa / 1e6,
-                s.hoop.nominal_membrane_Pa / 1e6, s.hoop.max_tensile_Pa / 1e6, s.hoop.max_tensile_angle_deg,
-                s.hoop.max_tensile_z_m * 1e3, s.hoop.max_compressive_Pa / 1e6, s.hoop.max_compressive_angle_deg,
-                s.hoop.max_compressive_z_m * 1e3);
+}
+
+/// What the generator does: its forces and zones, the rim's shape, the bearing, the hoop stress it causes.
+void print_generator(const FlexsplineSolution& s) {
+  const auto& g = *s.generator;
+  std::string zones;
+  for (const auto& [from, to] : g.zones_wg_deg) {
+    char z[64];
+    std::snprintf(z, sizeof z, "%s[%.0f, %.0f]", zones.empty() ? "" : " ", from, to);
+    zones += z;
   }
+  std::printf("  generator (%s, %s): total radial force %.1f N, smallest contact force %.3g N, zones (deg from "
+              "the major axis) %s\n",
+              g.model.c_str(), g.unilateral ? "unilateral contact" : "the paper's given forces",
+              g.total_radial_force_N, g.min_contact_force_N, zones.c_str());
+  std::printf("  generator: w at the major axis %.4f mm, at the minor axis %.4f mm, net rim rotation %.2e rad; "
+              "it carries %.4g N·m of the torque\n",
+              g.w_major_m * 1e3, g.w_minor_m * 1e3, s.checks.generator_rotation_rad, g.reaction_torque_Nm);
+  if (g.bearing_max_ball_load_N > 0)
+    std::printf("  generator bearing in series: largest ball load %.0f N, its Hertzian approach %.2f um\n",
+                g.bearing_max_ball_load_N, g.bearing_max_approach_m * 1e6);
+  std::printf("  hoop stress (generator): nominal bending %+.1f MPa at the minor axis, z = %.1f mm (thin ring theory "
+              "%+.1f MPa), membrane %+.1f MPa; local peaks %+.1f MPa at %.0f deg, z = %.2f mm and %+.1f MPa at "
+              "%.0f deg, z = %.2f mm\n",
+              s.hoop.nominal_bending_Pa / 1e6, s.hoop.profile_z_m * 1e3, s.hoop.ring_theory_bending_Pa / 1e6,
+              s.hoop.nominal_membrane_Pa / 1e6, s.hoop.max_tensile_Pa / 1e6, s.hoop.max_tensile_angle_deg,
+              s.hoop.max_tensile_z_m * 1e3, s.hoop.max_compressive_Pa / 1e6, s.hoop.max_compressive_angle_deg,
+              s.hoop.max_compressive_z_m * 1e3);
+}
+
+/// The hoop stress around the rim and the fatigue of its worst points.
+void print_hoop_profile_and_fatigue(const FlexsplineSolution& s) {
   if (!s.hoop.inner_Pa.empty())
     std::printf("  hoop stress at z = %.1f mm (%s case), inner/outer wall, MPa: 0 deg %+.0f/%+.0f, 30 deg %+.0f/%+.0f, "
                 "45 deg %+.0f/%+.0f, 90 deg %+.0f/%+.0f\n",
@@ -156,18 +148,53 @@ FemJobResult run_fem_job(const Case& c, const fs::path& out_dir, const FemJobOpt
                 s.hoop.outer_Pa[0] / 1e6, s.hoop.inner_Pa[30] / 1e6, s.hoop.outer_Pa[30] / 1e6,
                 s.hoop.inner_Pa[45] / 1e6, s.hoop.outer_Pa[45] / 1e6, s.hoop.inner_Pa[90] / 1e6,
                 s.hoop.outer_Pa[90] / 1e6);
-  if (s.fatigue) {
-    std::vector<const FatiguePoint*> points{&s.fatigue->rim};
-    if (s.fatigue->diaphragm) points.push_back(&*s.fatigue->diaphragm);
-    for (const FatiguePoint* p : points) {
-      std::printf("  fatigue over a generator revolution (%s case), %s at r = %.2f mm, z = %.2f mm: hoop %.1f ± %.1f "
-                  "MPa, meridional %.1f ± %.1f MPa",
-                  s.cases.back().name.c_str(), p->place.c_str(), p->r_m * 1e3, p->z_m * 1e3, p->hoop.mean_Pa / 1e6,
-                  p->hoop.alternating_Pa / 1e6, p->meridional.mean_Pa / 1e6, p->meridional.alternating_Pa / 1e6);
-      if (p->safety_factor > 0) std::printf(", Goodman safety factor %.2f", p->safety_factor);
-      std::printf("\n");
-    }
+  if (!s.fatigue) return;
+  std::vector<const FatiguePoint*> points{&s.fatigue->rim};
+  if (s.fatigue->diaphragm) points.push_back(&*s.fatigue->diaphragm);
+  for (const FatiguePoint* p : points) {
+    std::printf("  fatigue over a generator revolution (%s case), %s at r = %.2f mm, z = %.2f mm: hoop %.1f ± %.1f "
+                "MPa, meridional %.1f ± %.1f MPa",
+                s.cases.back().name.c_str(), p->place.c_str(), p->r_m * 1e3, p->z_m * 1e3, p->hoop.mean_Pa / 1e6,
+                p->hoop.alternating_Pa / 1e6, p->meridional.mean_Pa / 1e6, p->meridional.alternating_Pa / 1e6);
+    if (p->safety_factor > 0) std::printf(", Goodman safety factor %.2f", p->safety_factor);
+    std::printf("\n");
   }
+}
+
+}  // namespace
+
+FemJobResult run_fem_job(const Case& c, const fs::path& out_dir, const FemJobOptions& options) {
+  if (c.solver.method == SolverMethod::Fourier) {
+    if (options.export_inp)
+      throw InputError("--export-inp writes a TET10 deck; it needs [solver] method = \"tet10\" (or --solver tet10)");
+    return run_fourier_fem_job(c, out_dir, options.write_vtk);
+  }
+  const double t_start = elapsed_s();
+  RunInfo run;
+  run.blas = blas_for_the_factor();
+  Stopwatch clock;
+  progress("mesh: " + c.path);
+  const auto mesh_ptr = std::make_shared<const TetMesh>(mesh_for_case(c, options.max_memory_gb));
+  const TetMesh& mesh = *mesh_ptr;
+  run.mesh_s = clock.lap();
+  progress("mesh: " + std::to_string(mesh.n_nodes()) + " nodes, " + std::to_string(mesh.tets.size()) +
+           " TET10, min dihedral " + std::to_string(mesh.quality.min_dihedral_deg) + " deg");
+  FemJobResult job;
+  const FlexsplineModel model = flexspline_model(c);
+  auto system = std::make_shared<const FlexsplineSystem>(assemble_and_factorise(model, mesh));
+  job.solution = analyse_flexspline(model, mesh, *system);
+  job.mesh = mesh_ptr;
+  job.system = system;
+  clock.lap();
+  write_fem_files(c, out_dir, options, model, mesh, job.solution);
+  run.output_s = clock.lap();
+  run.total_s = elapsed_s() - t_start;
+  run.peak_rss_bytes = peak_rss_bytes();
+  job.result_json_path = out_dir / "result.json";
+  write_file_atomic(job.result_json_path, fem_result_json(fem_result(c, mesh, job.solution, run)));
+  print_fem_headline(c, mesh, job.solution, run);
+  if (job.solution.generator) print_generator(job.solution);
+  print_hoop_profile_and_fatigue(job.solution);
   std::printf("  wrote %s\n", out_dir.string().c_str());
   return job;
 }

@@ -18,7 +18,6 @@
 #include <sstream>
 #include <thread>
 
-#include <nlohmann/json.hpp>
 #include <toml++/toml.h>
 
 #include "app/commands.hpp"
@@ -27,6 +26,7 @@
 #include "common/progress.hpp"
 #include "io/atomic_file.hpp"
 #include "io/case.hpp"
+#include "io/fem_output.hpp"
 #include "common/svg_plot.hpp"
 
 extern char** environ;
@@ -106,13 +106,13 @@ std::string read_text(const fs::path& p) {
   return s.str();
 }
 
-/// A finished point: result.json parses and was made from this case text.
+/// A finished point: its result.json reads and was made from this case text.
 bool finished(const fs::path& dir, const std::string& case_text) {
   if (read_text(dir / "case.toml") != case_text || !fs::exists(dir / "result.json")) return false;
   try {
-    (void)nlohmann::json::parse(read_text(dir / "result.json"));
+    (void)read_fem_result(dir / "result.json");
     return true;
-  } catch (const std::exception&) {
+  } catch (const InputError&) {
     return false;
   }
 }
@@ -183,31 +183,35 @@ std::vector<const Point*> run_points(const std::vector<const Point*>& todo, int 
   return failed;
 }
 
+/// A figure of a point's result; NaN where the point has none (no generator).
+using ResultFigure = double (*)(const FemResult&);
+
+double phi0(const FemResult& r) { return r.phi0_rad; }
+double compliance(const FemResult& r) { return r.compliance_rad_per_Nm; }
+double max_hoop_stress(const FemResult& r) { return r.max_hoop_stress_Pa; }
+double min_hoop_stress(const FemResult& r) { return r.min_hoop_stress_Pa; }
+double generator_force(const FemResult& r) {  // any model (a cam has no points)
+  return r.generator ? r.generator->total_radial_force_N : std::nan("");
+}
+double generator_w0(const FemResult& r) { return r.wave_generator ? r.wave_generator->w0_reached_mm : std::nan(""); }
+double total_time(const FemResult& r) { return r.timings_s.total; }
+
 struct Column {
   std::string name;
-  std::vector<std::string> path;  ///< in result.json
+  ResultFigure value;
 };
 const std::vector<Column> kColumns = {
-    {"phi0_rad", {"phi0_rad"}},
-    {"compliance_rad_per_Nm", {"compliance_rad_per_Nm"}},
-    {"max_hoop_stress_Pa", {"max_hoop_stress_Pa"}},
-    {"min_hoop_stress_Pa", {"min_hoop_stress_Pa"}},
-    {"generator_total_radial_force_N", {"generator", "total_radial_force_N"}},  // any model (a cam has no points)
-    {"generator_w0_mm", {"wave_generator", "w0_reached_mm"}},
-    {"total_s", {"timings_s", "total"}},
+    {"phi0_rad", phi0},
+    {"compliance_rad_per_Nm", compliance},
+    {"max_hoop_stress_Pa", max_hoop_stress},
+    {"min_hoop_stress_Pa", min_hoop_stress},
+    {"generator_total_radial_force_N", generator_force},
+    {"generator_w0_mm", generator_w0},
+    {"total_s", total_time},
 };
 
-double value_at(const nlohmann::json& j, const std::vector<std::string>& path) {
-  const nlohmann::json* n = &j;
-  for (const auto& k : path) {
-    if (!n->is_object() || !n->contains(k)) return std::nan("");
-    n = &(*n)[k];
-  }
-  return n->is_number() ? n->get<double>() : std::nan("");
-}
-
 std::string sweep_csv(const std::vector<SweepAxis>& axes, const std::vector<Point>& points,
-                      const std::vector<nlohmann::json>& results) {
+                      const std::vector<FemResult>& results) {
   std::ostringstream s;
   s << "point";
   for (const auto& a : axes) s << "," << a.name();
@@ -221,7 +225,7 @@ std::string sweep_csv(const std::vector<SweepAxis>& axes, const std::vector<Poin
       s << buf;
     }
     for (const auto& c : kColumns) {
-      std::snprintf(buf, sizeof buf, ",%.9e", value_at(results[i], c.path));
+      std::snprintf(buf, sizeof buf, ",%.9e", c.value(results[i]));
       s << buf;
     }
     s << "\n";
@@ -232,16 +236,16 @@ std::string sweep_csv(const std::vector<SweepAxis>& axes, const std::vector<Poin
 /// Four panels (φ₀, C_τ, max hoop stress, generator force) against the first key; one line per combination of the
 /// other keys.
 std::string sweep_svg(const std::vector<SweepAxis>& axes, const std::vector<Point>& points,
-                      const std::vector<nlohmann::json>& results) {
+                      const std::vector<FemResult>& results) {
   struct Panel {
     std::string title;
-    std::vector<std::string> path;  ///< in result.json
-    double scale;                   ///< to the unit in the title
+    ResultFigure value;
+    double scale;  ///< to the unit in the title
   };
-  const std::vector<Panel> panels = {{"φ₀ (rad)", {"phi0_rad"}, 1.0},
-                                     {"C_τ (rad/(N·m))", {"compliance_rad_per_Nm"}, 1.0},
-                                     {"max hoop stress (MPa)", {"max_hoop_stress_Pa"}, 1e-6},
-                                     {"generator radial force (N)", {"generator", "total_radial_force_N"}, 1.0}};
+  const std::vector<Panel> panels = {{"φ₀ (rad)", phi0, 1.0},
+                                     {"C_τ (rad/(N·m))", compliance, 1.0},
+                                     {"max hoop stress (MPa)", max_hoop_stress, 1e-6},
+                                     {"generator radial force (N)", generator_force, 1.0}};
   static const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e377c2"};
   const std::size_t per_line = axes[0].values.size(), lines = points.size() / per_line;
   Figure f;
@@ -270,7 +274,7 @@ std::string sweep_svg(const std::vector<SweepAxis>& axes, const std::vector<Poin
         // Points are numbered with the first key slowest: point = i·lines + l.
         const std::size_t idx = i * lines + l;
         s.x.push_back(points[idx].values[0]);
-        s.y.push_back(value_at(results[idx], panel.path) * panel.scale);
+        s.y.push_back(panel.value(results[idx]) * panel.scale);
       }
       p.series.push_back(s);
     }
@@ -279,98 +283,130 @@ std::string sweep_svg(const std::vector<SweepAxis>& axes, const std::vector<Poin
   return svg_figure(f);
 }
 
+/// --shard K/N as (K, N); (1, 1) when not given.
+std::pair<int, int> parse_shard(const std::string& shard) {
+  int shard_k = 1, shard_n = 1;
+  if (shard.empty()) return {shard_k, shard_n};
+  char slash = 0;
+  std::stringstream ss(shard);
+  if (!(ss >> shard_k >> slash >> shard_n) || slash != '/' || !ss.eof() || shard_n < 1 || shard_k < 1 ||
+      shard_k > shard_n)
+    throw InputError("--shard " + shard + "; expected K/N with 1 <= K <= N (e.g. 2/8)");
+  return {shard_k, shard_n};
+}
+
+/// The grid's points, first key slowest; each point's case is validated before anything runs.
+std::vector<Point> grid_points(const toml::table& base, const std::vector<SweepAxis>& axes, const fs::path& dir,
+                               const std::string& case_path, const std::string& solver) {
+  std::vector<Point> points;
+  std::size_t total = 1;
+  for (const auto& a : axes) total *= a.values.size();
+  for (std::size_t i = 0; i < total; ++i) {
+    Point p;
+    p.index = i;
+    std::size_t rest = i;
+    p.values.resize(axes.size());
+    for (std::size_t k = axes.size(); k-- > 0;) {
+      p.values[k] = axes[k].values[rest % axes[k].values.size()];
+      rest /= axes[k].values.size();
+    }
+    p.dir = dir / point_name(i);
+    p.case_text = point_case_text(base, axes, p.values);
+    Case pc = parse_case(p.case_text, "--set (point " + std::to_string(i) + " of " + case_path + ")");
+    apply_solver_option(pc, solver);
+    points.push_back(std::move(p));
+  }
+  return points;
+}
+
+/// The points of this shard not finished before, each with its case.toml written and an old result.json removed.
+std::vector<const Point*> points_to_run(const std::vector<Point>& points, std::pair<int, int> shard,
+                                       std::size_t& skipped) {
+  std::vector<const Point*> todo;
+  for (const auto& p : points) {
+    if (static_cast<int>(p.index % static_cast<std::size_t>(shard.second)) != shard.first - 1) continue;
+    if (finished(p.dir, p.case_text)) {
+      ++skipped;
+      continue;
+    }
+    fs::create_directories(p.dir);
+    fs::remove(p.dir / "result.json");
+    write_file_atomic(p.dir / "case.toml", p.case_text);
+    todo.push_back(&p);
+  }
+  return todo;
+}
+
+/// One line naming how many points failed and the last line of the first one's log.
+InputError failed_points(const std::vector<const Point*>& failed) {
+  std::string lines = read_text(failed.front()->dir / "fem.log");
+  while (!lines.empty() && lines.back() == '\n') lines.pop_back();
+  const auto last = lines.rfind('\n');
+  return InputError("sweep: " + std::to_string(failed.size()) + " point(s) failed, e.g. " +
+                    failed.front()->dir.string() + ": " + (last == std::string::npos ? lines : lines.substr(last + 1)));
+}
+
+/// Every point's result.json merged into sweep.csv and sweep.svg.
+void merge_points(const fs::path& dir, const std::vector<SweepAxis>& axes, const std::vector<Point>& points) {
+  std::vector<FemResult> results;
+  for (const auto& p : points) results.push_back(read_fem_result(p.dir / "result.json"));
+  write_file_atomic(dir / "sweep.csv", sweep_csv(axes, points, results));
+  write_file_atomic(dir / "sweep.svg", sweep_svg(axes, points, results));
+  std::printf("  wrote %s (sweep.csv, sweep.svg, %zu points' result.json)\n", dir.string().c_str(), points.size());
+}
+
+struct SweepOptions {
+  std::string case_path, out, shard, solver;
+  std::vector<std::string> sets;
+  int jobs = 0;
+};
+
+void run_sweep(const SweepOptions& o) {
+  Case base_case = load_case(o.case_path);  // the base case must be valid itself
+  toml::table base;
+  try {
+    base = toml::parse_file(o.case_path);
+  } catch (const toml::parse_error& e) {
+    throw InputError(o.case_path + ": malformed TOML: " + std::string(e.description()));
+  }
+  std::vector<SweepAxis> axes;
+  for (const auto& s : o.sets) axes.push_back(parse_set(s));
+  const std::pair<int, int> shard = parse_shard(o.shard);
+  const int jobs = o.jobs > 0 ? o.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const fs::path dir = o.out.empty() ? fs::path(default_out_dir(base_case).string() + "_sweep") : fs::path(o.out);
+
+  const std::vector<Point> points = grid_points(base, axes, dir, o.case_path, o.solver);
+  fs::create_directories(dir);
+  std::size_t skipped = 0;
+  const std::vector<const Point*> todo = points_to_run(points, shard, skipped);
+  progress("sweep: " + std::to_string(points.size()) + " points, " + std::to_string(skipped) +
+           " finished before, " + std::to_string(todo.size()) + " to run, " + std::to_string(jobs) + " at a time");
+  const double t0 = elapsed_s();
+  const auto failed = run_points(todo, jobs, o.solver);
+  const double wall = elapsed_s() - t0;
+  if (!failed.empty()) throw failed_points(failed);
+  std::printf("sweep %s: %zu points run in %.2f s (%zu finished before)\n", o.case_path.c_str(), todo.size(), wall,
+              skipped);
+  if (shard.second > 1) {
+    std::printf("  shard %d/%d done; run again without --shard to merge into sweep.csv\n", shard.first, shard.second);
+    return;
+  }
+  merge_points(dir, axes, points);
+}
+
 }  // namespace
 
 void add_sweep_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("sweep", "run a case over a grid of one or more keys (sweep.csv, sweep.svg)");
-  static std::string case_path, out, shard, solver;
-  static std::vector<std::string> sets;
-  static int jobs = 0;
-  cmd->add_option("case", case_path, "case file (TOML)")->required();
-  cmd->add_option("--set", sets, "TABLE.KEY=FROM:TO:N, N values from FROM to TO (repeat for a grid)")->required();
-  cmd->add_option("--shard", shard, "K/N: run only the points i with i mod N = K - 1 (no sweep.csv)");
-  cmd->add_option("--jobs", jobs, "points at a time (default: the machine's cores)");
-  cmd->add_option("--solver", solver, "tet10 | fourier (overrides [solver] method)")
+  static SweepOptions o;
+  cmd->add_option("case", o.case_path, "case file (TOML)")->required();
+  cmd->add_option("--set", o.sets, "TABLE.KEY=FROM:TO:N, N values from FROM to TO (repeat for a grid)")->required();
+  cmd->add_option("--shard", o.shard, "K/N: run only the points i with i mod N = K - 1 (no sweep.csv)");
+  cmd->add_option("--jobs", o.jobs, "points at a time (default: the machine's cores)");
+  cmd->add_option("--solver", o.solver, "tet10 | fourier (overrides [solver] method)")
       ->check(CLI::IsMember({"tet10", "fourier"}));
-  cmd->add_option("--out", out, "output directory (default out/<case stem>_sweep/)");
-  cmd->callback([] {
-    Case base_case = load_case(case_path);  // the base case must be valid itself
-    toml::table base;
-    try {
-      base = toml::parse_file(case_path);
-    } catch (const toml::parse_error& e) {
-      throw InputError(case_path + ": malformed TOML: " + std::string(e.description()));
-    }
-    std::vector<SweepAxis> axes;
-    for (const auto& s : sets) axes.push_back(parse_set(s));
-    int shard_k = 1, shard_n = 1;
-    if (!shard.empty()) {
-      char slash = 0;
-      std::stringstream ss(shard);
-      if (!(ss >> shard_k >> slash >> shard_n) || slash != '/' || !ss.eof() || shard_n < 1 || shard_k < 1 ||
-          shard_k > shard_n)
-        throw InputError("--shard " + shard + "; expected K/N with 1 <= K <= N (e.g. 2/8)");
-    }
-    if (jobs <= 0) jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-    const fs::path dir = out.empty() ? fs::path(default_out_dir(base_case).string() + "_sweep") : fs::path(out);
-
-    // Points, first key slowest; each point's case is validated before anything runs.
-    std::vector<Point> points;
-    std::size_t total = 1;
-    for (const auto& a : axes) total *= a.values.size();
-    for (std::size_t i = 0; i < total; ++i) {
-      Point p;
-      p.index = i;
-      std::size_t rest = i;
-      p.values.resize(axes.size());
-      for (std::size_t k = axes.size(); k-- > 0;) {
-        p.values[k] = axes[k].values[rest % axes[k].values.size()];
-        rest /= axes[k].values.size();
-      }
-      p.dir = dir / point_name(i);
-      p.case_text = point_case_text(base, axes, p.values);
-      Case pc = parse_case(p.case_text, "--set (point " + std::to_string(i) + " of " + case_path + ")");
-      apply_solver_option(pc, solver);
-      points.push_back(std::move(p));
-    }
-    fs::create_directories(dir);
-    std::vector<const Point*> todo;
-    std::size_t skipped = 0;
-    for (const auto& p : points) {
-      if (static_cast<int>(p.index % static_cast<std::size_t>(shard_n)) != shard_k - 1) continue;
-      if (finished(p.dir, p.case_text)) {
-        ++skipped;
-        continue;
-      }
-      fs::create_directories(p.dir);
-      fs::remove(p.dir / "result.json");
-      write_file_atomic(p.dir / "case.toml", p.case_text);
-      todo.push_back(&p);
-    }
-    progress("sweep: " + std::to_string(points.size()) + " points, " + std::to_string(skipped) +
-             " finished before, " + std::to_string(todo.size()) + " to run, " + std::to_string(jobs) + " at a time");
-    const double t0 = elapsed_s();
-    const auto failed = run_points(todo, jobs, solver);
-    const double wall = elapsed_s() - t0;
-    if (!failed.empty()) {
-      std::string lines = read_text(failed.front()->dir / "fem.log");
-      while (!lines.empty() && lines.back() == '\n') lines.pop_back();
-      const auto last = lines.rfind('\n');
-      throw InputError("sweep: " + std::to_string(failed.size()) + " point(s) failed, e.g. " +
-                       failed.front()->dir.string() + ": " + (last == std::string::npos ? lines : lines.substr(last + 1)));
-    }
-    std::printf("sweep %s: %zu points run in %.2f s (%zu finished before)\n", case_path.c_str(), todo.size(), wall,
-                skipped);
-    if (shard_n > 1) {
-      std::printf("  shard %d/%d done; run again without --shard to merge into sweep.csv\n", shard_k, shard_n);
-      return;
-    }
-    std::vector<nlohmann::json> results;
-    for (const auto& p : points) results.push_back(nlohmann::json::parse(read_text(p.dir / "result.json")));
-    write_file_atomic(dir / "sweep.csv", sweep_csv(axes, points, results));
-    write_file_atomic(dir / "sweep.svg", sweep_svg(axes, points, results));
-    std::printf("  wrote %s (sweep.csv, sweep.svg, %zu points' result.json)\n", dir.string().c_str(), points.size());
-  });
+  cmd->add_option("--out", o.out, "output directory (default out/<case stem>_sweep/)");
+  cmd->callback([] { run_sweep(o); });
 }
 
 }  // namespace sw::app

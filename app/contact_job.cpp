@@ -48,25 +48,18 @@ SeriesParts series_parts(const Case& c) {
   return s;
 }
 
-ContactAnalysis run_contact_job(const Case& c, const FemJobResult& fem, const std::filesystem::path& dir) {
-  if (!fem.system || !fem.mesh)
-    throw InputError(c.path + ": contact solves on the TET10 model (solver.method = \"tet10\")");
-  ContactOptions o;
-  o.rated_torque_Nm = c.load.rated_torque_Nm.value_or(c.load.torque_Nm);
-  o.series = series_parts(c);
-  o.face_slices = c.contact.face_slices;
-  std::optional<CatalogLaw> reference;
-  if (c.catalog_size)
-    if (const CatalogDrive* d = catalog_drive(*c.catalog_size); d && d->has_stiffness()) {
-      reference = CatalogLaw{d->size, d->t1_Nm, d->t2_Nm, d->k1_Nm_per_rad, d->k2_Nm_per_rad, d->k3_Nm_per_rad};
-      o.catalog_t1_Nm = d->t1_Nm;
-      o.catalog_t2_Nm = d->t2_Nm;
-    }
-  const ContactAnalysis a =
-      naming_file(c.path, [&] { return analyse_contact(flexspline_model(c), *fem.mesh, *fem.system, fem_readout(fem.solution), o); });
-  write_file_atomic(dir / "contact.json", contact_json(a, c.path, reference));
-  write_file_atomic(dir / "torque_twist.csv", torque_twist_csv(a));
-  write_file_atomic(dir / "contact.svg", contact_svg(a, reference));
+namespace {
+
+/// The catalog's law of the case's catalog size, when the catalog gives its stiffness.
+std::optional<CatalogLaw> catalog_reference(const Case& c) {
+  if (!c.catalog_size) return std::nullopt;
+  const CatalogDrive* d = catalog_drive(*c.catalog_size);
+  if (!d || !d->has_stiffness()) return std::nullopt;
+  return CatalogLaw{d->size, d->t1_Nm, d->t2_Nm, d->k1_Nm_per_rad, d->k2_Nm_per_rad, d->k3_Nm_per_rad};
+}
+
+/// The problem's size, the twist at rated torque and the flank carrying the most there, the three segments.
+void print_contact_headline(const Case& c, const ContactAnalysis& a, const std::string& teeth_source) {
   const TorqueStep& r = a.steps.back();
   std::size_t top = 0;  // the flank carrying the largest force at +rated, where it is and what touches
   for (std::size_t i = 0; i < a.flanks.size(); ++i)
@@ -79,22 +72,28 @@ ContactAnalysis run_contact_job(const Case& c, const FemJobResult& fem, const st
   std::printf("  twist at rated torque %.4g N·m: %.3f arcmin; %d %s in contact, largest force on one %.1f N at "
               "%.1f deg (the flexspline's %s on the circular spline's %s); teeth: %s\n", a.rated_torque_Nm,
               r.twist_rad * kArcmin, r.pairs_in_contact, unit, r.max_pair_force_N, tf.phi_rad * 180 / std::numbers::pi,
-              part_name(tf.part_f), part_name(tf.part_c), o.series.teeth_source.c_str());
+              part_name(tf.part_f), part_name(tf.part_c), teeth_source.c_str());
   std::printf("  three segments (%s): T1 %.3g N·m, T2 %.3g N·m, K1 %.4g, K2 %.4g, K3 %.4g N·m/rad\n",
               a.catalog.breakpoints_fitted ? "breakpoints fitted" : "the catalog's breakpoints", a.catalog.t1_Nm,
               a.catalog.t2_Nm, a.catalog.k1_Nm_per_rad, a.catalog.k2_Nm_per_rad, a.catalog.k3_Nm_per_rad);
-  if (reference) {
-    const SegmentLaw catalog = reference->law();
-    const auto law = [&](double T) { return catalog.twist_rad(T); };
-    std::printf("  against catalog size %d: twist at T1 %.3g N·m %.3f vs %.3f arcmin, at T2 %.3g N·m %.3f vs %.3f "
-                "arcmin, at rated %.4g N·m %.3f vs %.3f arcmin (computed vs catalog); K1/K2/K3 %.3g/%.3g/%.3g vs "
-                "%.3g/%.3g/%.3g N·m/rad\n",
-                reference->size, reference->t1_Nm, twist_at(a.curve, reference->t1_Nm) * kArcmin,
-                law(reference->t1_Nm) * kArcmin, reference->t2_Nm, twist_at(a.curve, reference->t2_Nm) * kArcmin,
-                law(reference->t2_Nm) * kArcmin, a.rated_torque_Nm, a.curve.twist_rad.back() * kArcmin,
-                law(a.rated_torque_Nm) * kArcmin, a.catalog.k1_Nm_per_rad, a.catalog.k2_Nm_per_rad,
-                a.catalog.k3_Nm_per_rad, reference->k1_Nm_per_rad, reference->k2_Nm_per_rad, reference->k3_Nm_per_rad);
-  }
+}
+
+/// The computed curve against the catalog's law of the case's size.
+void print_against_catalog(const ContactAnalysis& a, const CatalogLaw& reference) {
+  const SegmentLaw catalog = reference.law();
+  const auto law = [&](double T) { return catalog.twist_rad(T); };
+  std::printf("  against catalog size %d: twist at T1 %.3g N·m %.3f vs %.3f arcmin, at T2 %.3g N·m %.3f vs %.3f "
+              "arcmin, at rated %.4g N·m %.3f vs %.3f arcmin (computed vs catalog); K1/K2/K3 %.3g/%.3g/%.3g vs "
+              "%.3g/%.3g/%.3g N·m/rad\n",
+              reference.size, reference.t1_Nm, twist_at(a.curve, reference.t1_Nm) * kArcmin,
+              law(reference.t1_Nm) * kArcmin, reference.t2_Nm, twist_at(a.curve, reference.t2_Nm) * kArcmin,
+              law(reference.t2_Nm) * kArcmin, a.rated_torque_Nm, a.curve.twist_rad.back() * kArcmin,
+              law(a.rated_torque_Nm) * kArcmin, a.catalog.k1_Nm_per_rad, a.catalog.k2_Nm_per_rad,
+              a.catalog.k3_Nm_per_rad, reference.k1_Nm_per_rad, reference.k2_Nm_per_rad, reference.k3_Nm_per_rad);
+}
+
+/// Lost motion and play, and what the twist at rated torque is made of.
+void print_lost_motion_and_split(const ContactAnalysis& a) {
   std::printf("  lost motion (twist between ±4 %% of rated, middle line) %.3f arcmin; play (dead band at zero torque) "
               "%.3f arcmin\n", a.lost_motion_rad * kArcmin, a.play_rad * kArcmin);
   // The split reads the tangent at rated torque: its intercept is what the pairs' engagement adds (play taken up,
@@ -105,77 +104,118 @@ ContactAnalysis run_contact_job(const Case& c, const FemJobResult& fem, const st
               100 * a.split.teeth, 100 * a.split.generator, 100 * a.split.circular_spline, 100 * a.split.engagement,
               a.split.engagement >= 0 ? "engagement: play taken up and pairs closing one after another"
                                       : "below the origin: the curve softens toward rated torque");
-  if (!a.edges.empty()) {
-    // The zone's edge: the loaded edge tooth with the least radial overlap left, the free one that comes closest.
-    const EdgeTooth* held = nullptr;
-    const EdgeTooth* free = nullptr;
-    int beyond = 0, beyond_loaded = 0;
-    for (const EdgeTooth& e : a.edges) {
-      if (e.engaged && (!held || e.overlap_min_m < held->overlap_min_m)) held = &e;
-      if (!e.candidate && (!free || e.overlap_max_m > free->overlap_max_m)) free = &e;
-    }
-    for (std::size_t i = 0; i < a.flanks.size(); ++i)
-      if (a.flanks[i].beyond_tip_circle) {
-        ++beyond;
-        beyond_loaded += a.steps.front().flank_force_N[i] > 0 || a.steps.back().flank_force_N[i] > 0;
-      }
-    std::string line = a.zone_edges_hold ? "  mesh-zone edges hold under load:" : "  WARNING: a mesh-zone edge moves under load:";
-    char buf[256];
-    if (held) {
-      std::snprintf(buf, sizeof buf, " the last engaged tooth (%.1f deg) keeps %.2f of its %.2f µm radial overlap%s;",
-                    held->phi_rad * 180 / std::numbers::pi, held->overlap_min_m * 1e6, held->overlap_at_rest_m * 1e6,
-                    held->slips ? " and loses it while loaded (its tip would slip over the circular spline's tip)" : "");
-      line += buf;
-    }
-    if (beyond > 0) {
-      std::snprintf(buf, sizeof buf, " %d flanks short of the circular spline's tip circle at rest take part, %d loaded at "
-                    "±rated;", beyond, beyond_loaded);
-      line += buf;
-    }
-    if (free) {
-      std::snprintf(buf, sizeof buf, " the nearest tooth left out (%.1f deg) stays %.2f µm clear of the circular spline's tip circle%s",
-                    free->phi_rad * 180 / std::numbers::pi, -free->overlap_max_m * 1e6,
-                    free->enters ? " (negative: it comes into mesh)" : "");
-      line += buf;
-    }
-    std::printf("%s\n", line.c_str());
-    // What the curve rests on at the edges: teeth engaged a few µm deep, touching at their tips.
-    const double without = a.twist_at_rated_without_edge_teeth_rad, with = a.curve.twist_rad.back();
-    char rest[96] = "not defined (no other flank carries it)";
-    if (std::isfinite(without))
-      std::snprintf(rest, sizeof rest, "%.3f arcmin (%+.1f %%)", without * kArcmin, 100 * (without / with - 1));
-    const bool sharp = c.gear->tip_rounding_flexspline_m == 0 && c.gear->tip_rounding_circular_m == 0;
-    std::printf("  the teeth within two pitches of the zones' edges carry %.1f %% of the rated torque%s; without them "
-                "the twist at rated torque is %s\n", 100 * a.edge_teeth_torque_share,
-                sharp ? " on sharp tip corners (real tips are rounded: [gear] tip_rounding_flexspline_mm, "
-                        "tip_rounding_circular_mm)"
-                      : "",
-                rest);
+}
+
+/// Whether the mesh zones' edges hold under load: the last engaged tooth, the flanks beyond the tip circle, the
+/// nearest tooth left out.
+void print_zone_edges_hold(const ContactAnalysis& a) {
+  // The zone's edge: the loaded edge tooth with the least radial overlap left, the free one that comes closest.
+  const EdgeTooth* held = nullptr;
+  const EdgeTooth* free = nullptr;
+  int beyond = 0, beyond_loaded = 0;
+  for (const EdgeTooth& e : a.edges) {
+    if (e.engaged && (!held || e.overlap_min_m < held->overlap_min_m)) held = &e;
+    if (!e.candidate && (!free || e.overlap_max_m > free->overlap_max_m)) free = &e;
   }
-  if (a.face_sections.size() == 3) {
-    // The cup's coning across the face: the rim's deflection and the teeth's clearance at the ends and the centre.
-    const FaceSection *d = &a.face_sections[0], *m = &a.face_sections[1], *o = &a.face_sections[2];
-    auto closing = [](const FaceSection& f) {
-      char b[64];
-      if (f.overlap_m > 0)
-        std::snprintf(b, sizeof b, "overlap %.2f µm (%.1f deg)", f.overlap_m * 1e6, f.overlap_phi_rad * 180 / std::numbers::pi);
-      else std::snprintf(b, sizeof b, "first flank closes at %.3f arcmin", f.first_closing_rad * kArcmin);
-      return std::string(b);
-    };
-    std::printf("  coning across the face (diaphragm end / centre / open end): the rim's radial deflection at the major "
-                "axis %.1f / %.1f / %.1f µm; at rest %s / %s / %s; %s\n", d->w_major_m * 1e6, m->w_major_m * 1e6,
-                o->w_major_m * 1e6, closing(*d).c_str(), closing(*m).c_str(), closing(*o).c_str(),
-                a.face_slices > 1
-                    ? ("the contact meshes straight teeth in " + std::to_string(a.face_slices) + " axial slices").c_str()
-                    : "the contact takes the teeth as relieved along the face for it (every section meshing as the "
-                      "centre; [contact] face_slices meshes straight teeth)");
+  for (std::size_t i = 0; i < a.flanks.size(); ++i)
+    if (a.flanks[i].beyond_tip_circle) {
+      ++beyond;
+      beyond_loaded += a.steps.front().flank_force_N[i] > 0 || a.steps.back().flank_force_N[i] > 0;
+    }
+  std::string line = a.zone_edges_hold ? "  mesh-zone edges hold under load:" : "  WARNING: a mesh-zone edge moves under load:";
+  char buf[256];
+  if (held) {
+    std::snprintf(buf, sizeof buf, " the last engaged tooth (%.1f deg) keeps %.2f of its %.2f µm radial overlap%s;",
+                  held->phi_rad * 180 / std::numbers::pi, held->overlap_min_m * 1e6, held->overlap_at_rest_m * 1e6,
+                  held->slips ? " and loses it while loaded (its tip would slip over the circular spline's tip)" : "");
+    line += buf;
   }
+  if (beyond > 0) {
+    std::snprintf(buf, sizeof buf, " %d flanks short of the circular spline's tip circle at rest take part, %d loaded at "
+                  "±rated;", beyond, beyond_loaded);
+    line += buf;
+  }
+  if (free) {
+    std::snprintf(buf, sizeof buf, " the nearest tooth left out (%.1f deg) stays %.2f µm clear of the circular spline's tip circle%s",
+                  free->phi_rad * 180 / std::numbers::pi, -free->overlap_max_m * 1e6,
+                  free->enters ? " (negative: it comes into mesh)" : "");
+    line += buf;
+  }
+  std::printf("%s\n", line.c_str());
+}
+
+/// What the curve rests on at the edges: teeth engaged a few µm deep, touching at their tips.
+void print_edge_teeth_share(const Case& c, const ContactAnalysis& a) {
+  const double without = a.twist_at_rated_without_edge_teeth_rad, with = a.curve.twist_rad.back();
+  char rest[96] = "not defined (no other flank carries it)";
+  if (std::isfinite(without))
+    std::snprintf(rest, sizeof rest, "%.3f arcmin (%+.1f %%)", without * kArcmin, 100 * (without / with - 1));
+  const bool sharp = c.gear->tip_rounding_flexspline_m == 0 && c.gear->tip_rounding_circular_m == 0;
+  std::printf("  the teeth within two pitches of the zones' edges carry %.1f %% of the rated torque%s; without them "
+              "the twist at rated torque is %s\n", 100 * a.edge_teeth_torque_share,
+              sharp ? " on sharp tip corners (real tips are rounded: [gear] tip_rounding_flexspline_mm, "
+                      "tip_rounding_circular_mm)"
+                    : "",
+              rest);
+}
+
+/// The cup's coning across the face: the rim's deflection and the teeth's clearance at the ends and the centre.
+void print_coning(const ContactAnalysis& a) {
+  const FaceSection *d = &a.face_sections[0], *m = &a.face_sections[1], *o = &a.face_sections[2];
+  auto closing = [](const FaceSection& f) {
+    char b[64];
+    if (f.overlap_m > 0)
+      std::snprintf(b, sizeof b, "overlap %.2f µm (%.1f deg)", f.overlap_m * 1e6, f.overlap_phi_rad * 180 / std::numbers::pi);
+    else std::snprintf(b, sizeof b, "first flank closes at %.3f arcmin", f.first_closing_rad * kArcmin);
+    return std::string(b);
+  };
+  std::printf("  coning across the face (diaphragm end / centre / open end): the rim's radial deflection at the major "
+              "axis %.1f / %.1f / %.1f µm; at rest %s / %s / %s; %s\n", d->w_major_m * 1e6, m->w_major_m * 1e6,
+              o->w_major_m * 1e6, closing(*d).c_str(), closing(*m).c_str(), closing(*o).c_str(),
+              a.face_slices > 1
+                  ? ("the contact meshes straight teeth in " + std::to_string(a.face_slices) + " axial slices").c_str()
+                  : "the contact takes the teeth as relieved along the face for it (every section meshing as the "
+                    "centre; [contact] face_slices meshes straight teeth)");
+}
+
+/// A warning for teeth overlapping at rest, and the torque balance.
+void print_overlap_and_balance(const ContactAnalysis& a) {
   if (a.overlap_at_rest_m > 0)
     std::printf("  WARNING: the teeth overlap at rest by %.2f µm on the FEM's neutral curve, so part of the curve above is a "
                 "preload from that interference, not a property of the drive; remove the interference first (the "
                 "backlash stage's geometry check gives the remedy)\n", a.overlap_at_rest_m * 1e6);
   std::printf("  torque balance: flank moments vs torque %.1e (relative, worst step); clamp reaction in a direct FEM "
               "solve %.6g N·m vs %.6g N·m\n", a.torque_balance_error_rel, a.fem_reaction_torque_Nm, a.rated_torque_Nm);
+}
+
+}  // namespace
+
+ContactAnalysis run_contact_job(const Case& c, const FemJobResult& fem, const std::filesystem::path& dir) {
+  if (!fem.system || !fem.mesh)
+    throw InputError(c.path + ": contact solves on the TET10 model (solver.method = \"tet10\")");
+  ContactOptions o;
+  o.rated_torque_Nm = c.load.rated_torque_Nm.value_or(c.load.torque_Nm);
+  o.series = series_parts(c);
+  o.face_slices = c.contact.face_slices;
+  const std::optional<CatalogLaw> reference = catalog_reference(c);
+  if (reference) {
+    o.catalog_t1_Nm = reference->t1_Nm;
+    o.catalog_t2_Nm = reference->t2_Nm;
+  }
+  const ContactAnalysis a = naming_file(
+      c.path, [&] { return analyse_contact(flexspline_model(c), *fem.mesh, *fem.system, fem_readout(fem.solution), o); });
+  write_file_atomic(dir / "contact.json", contact_json(contact_result(a, c.path, reference)));
+  write_file_atomic(dir / "torque_twist.csv", torque_twist_csv(a));
+  write_file_atomic(dir / "contact.svg", contact_svg(a, reference));
+  print_contact_headline(c, a, o.series.teeth_source);
+  if (reference) print_against_catalog(a, *reference);
+  print_lost_motion_and_split(a);
+  if (!a.edges.empty()) {
+    print_zone_edges_hold(a);
+    print_edge_teeth_share(c, a);
+  }
+  if (a.face_sections.size() == 3) print_coning(a);
+  print_overlap_and_balance(a);
   return a;
 }
 

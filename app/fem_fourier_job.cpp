@@ -1,10 +1,9 @@
 // The fem job on the harmonic solver (solver.method = "fourier"): the flexspline's meridian section, harmonics
-// 0..N, the same outputs as the tet10 path (result.json with the same keys, neutral_curve.csv, flexspline.pvd with one
-// .vtu per load case on the section revolved into a TET10 grid).
+// 0..N, the same outputs as the tet10 path (result.json with the same figures, its mesh the section and its solver
+// the harmonics; neutral_curve.csv; flexspline.pvd with one .vtu per load case on the section revolved into a TET10
+// grid).
 #include <algorithm>
 #include <cstdio>
-
-#include <nlohmann/json.hpp>
 
 #include "app/fem_job.hpp"
 #include "common/progress.hpp"
@@ -31,9 +30,7 @@ FemJobResult run_fourier_fem_job(const Case& c, const fs::path& out_dir, bool wr
       analyse_flexspline_fourier(flexspline_model(c), write_vtk ? grid_sectors(c.solver.harmonics) : 0);
   run.mesh_s = fourier.section_s;
   clock.lap();
-  FemJobResult job;
-  job.solution = std::move(fourier.figures);
-  const auto& s = job.solution;
+  const FlexsplineSolution& s = fourier.figures;
   progress("output: " + out_dir.string());
   if (write_vtk) write_fem_vtk(out_dir, c, fourier.grid, s);
   if (s.neutral_curve) write_file_atomic(out_dir / "neutral_curve.csv", neutral_curve_csv(*s.neutral_curve));
@@ -41,30 +38,15 @@ FemJobResult run_fourier_fem_job(const Case& c, const fs::path& out_dir, bool wr
   run.total_s = elapsed_s() - t_start;
   run.peak_rss_bytes = peak_rss_bytes();
 
-  nlohmann::json j = nlohmann::json::parse(fem_result_json(c, fourier.grid, s, run));
-  const auto& sec = fourier.section;
-  j["mesh"] = {{"kind", "meridian section, 6-node triangles"},
-               {"nodes", sec.n_nodes()},
-               {"elements", sec.triangles.size()},
-               {"grid_nodes", fourier.grid.n_nodes()},
-               {"grid_elements", fourier.grid.tets.size()}};
-  std::int64_t equations = 0;
-  nlohmann::json per = nlohmann::json::array();
-  for (const auto& h : fourier.harmonics) {
-    equations += h.equations;
-    per.push_back({{"n", h.n}, {"equations", h.equations}, {"factor_nnz", h.factor_nnz}, {"factor_s", h.factor_s}});
-  }
-  j["solver"]["dofs"] = 3 * sec.n_nodes() * static_cast<std::size_t>(fourier.harmonics_kept + 1);
-  j["solver"]["equations"] = equations;
-  j["solver"]["harmonics"] = fourier.harmonics_kept;
-  j["solver"]["harmonics_solved"] = per;
+  FemJobResult job;
+  const FemResult result = fem_result(c, fourier, run);
   job.result_json_path = out_dir / "result.json";
-  write_file_atomic(job.result_json_path, j.dump(2) + "\n");
+  write_file_atomic(job.result_json_path, fem_result_json(result));
 
   std::printf("fem %s (fourier): section %zu nodes, harmonics 0..%d (%zu solved, %lld equations in all), factor "
               "%.3f GF, total %.2f s, peak %.0f MB\n",
-              c.path.c_str(), sec.n_nodes(), fourier.harmonics_kept, fourier.harmonics.size(),
-              static_cast<long long>(equations), s.timings.factor.factor_gflop, run.total_s, run.peak_rss_bytes / 1e6);
+              c.path.c_str(), fourier.section.n_nodes(), fourier.harmonics_kept, fourier.harmonics.size(),
+              static_cast<long long>(result.solver.equations), s.timings.factor.factor_gflop, run.total_s, run.peak_rss_bytes / 1e6);
   std::printf("  phi0 = %.6e rad at T = %g N·m (C_tau = %.6e rad/N·m); theory T·L/(G·J) = %.6e rad (FEM/theory %.4f)\n",
               s.phi0_rad, s.torque_Nm, s.compliance_rad_per_Nm, s.checks.phi0_theory_rad,
               s.checks.phi0_theory_rad != 0 ? s.phi0_rad / s.checks.phi0_theory_rad : 0.0);
@@ -77,6 +59,7 @@ FemJobResult run_fourier_fem_job(const Case& c, const fs::path& out_dir, bool wr
                 s.hoop.max_tensile_Pa / 1e6, s.hoop.max_tensile_angle_deg, s.hoop.max_compressive_Pa / 1e6,
                 s.hoop.max_compressive_angle_deg);
   std::printf("  wrote %s\n", out_dir.string().c_str());
+  job.solution = std::move(fourier.figures);
   return job;
 }
 

@@ -17,7 +17,7 @@
 #include "dynamics/simulate.hpp"
 #include "kinematics/backlash.hpp"
 #include "kinematics/neutral_curve.hpp"
-#include "io/contact_curve.hpp"
+#include "io/contact_output.hpp"
 #include "io/fem_output.hpp"
 
 namespace sw::app {
@@ -38,7 +38,7 @@ std::string num(double v) {
 }
 
 /// Slope (rad per N*m) of the polyline's first or last segment with a torque step.
-double end_slope(const TorqueTwistCurve& c, bool top) {
+double end_slope(const TorqueTwist& c, bool top) {
   const auto& t = c.torque_Nm;
   std::size_t a = 0;
   if (top) {
@@ -54,16 +54,17 @@ double end_slope(const TorqueTwistCurve& c, bool top) {
 /// recording's torque range.
 void contact_baseline(const BaselineSources& src, reconcile::Baseline& b, std::vector<std::string>& notes) {
   reconcile::TorsionPrediction p;
-  const TorqueTwistCurve curve = read_torque_twist(src.contact_result);
+  const ContactCurve contact = read_contact_curve(src.contact_result);
+  const TorqueTwist& curve = contact.middle_line;
   const double lo = curve.torque_Nm.front(), hi = curve.torque_Nm.back();
-  const double tol = kCurveEndTolerance * curve.rated_torque_Nm;
+  const double tol = kCurveEndTolerance * contact.rated_torque_Nm;
   const std::vector<double>* torque = src.recording ? src.recording->column("torque_Nm") : nullptr;
   if (torque && !torque->empty()) {
     const auto [tmin, tmax] = std::minmax_element(torque->begin(), torque->end());
     if (*tmin < lo - tol || *tmax > hi + tol)
       throw InputError(src.recording->path + ": torque_Nm spans [" + num(*tmin) + ", " + num(*tmax) +
                        "] N*m but the torque-twist curve of " + src.contact_result + " covers [" + num(lo) + ", " +
-                       num(hi) + "] N*m (rated " + num(curve.rated_torque_Nm) +
+                       num(hi) + "] N*m (rated " + num(contact.rated_torque_Nm) +
                        " N*m); the curve is not extrapolated: record within it, or compare with --baseline fem");
     if (*tmin < lo || *tmax > hi)
       notes.push_back("the recording's torque [" + num(*tmin) + ", " + num(*tmax) + "] N*m passes the curve's ends [" +
@@ -79,8 +80,8 @@ void contact_baseline(const BaselineSources& src, reconcile::Baseline& b, std::v
   if (!(p.compliance_rad_per_Nm > 0.0))
     throw InputError(src.contact_result + ": torque_twist: the curve's end slopes give " +
                      num(p.compliance_rad_per_Nm) + " rad/(N*m); twist must rise with torque");
-  p.curve_t1_Nm = curve.catalog_t1_Nm;
-  p.curve_t2_Nm = curve.catalog_t2_Nm;
+  p.curve_t1_Nm = contact.catalog_t1_Nm;
+  p.curve_t2_Nm = contact.catalog_t2_Nm;
   notes.push_back("torsion baseline: the drive's torque-twist curve of " + src.contact_result + " (middle line, " +
                   std::to_string(curve.torque_Nm.size()) + " points over [" + num(lo) + ", " + num(hi) +
                   "] N*m; end slope " + num(p.compliance_rad_per_Nm) + " rad/(N*m))");

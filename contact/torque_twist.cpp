@@ -1,33 +1,100 @@
 #include "contact/torque_twist.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
+#include <string>
+
+#include "common/error.hpp"
 
 namespace sw {
+namespace {
 
-double twist_at(const TorqueTwist& c, double T) {
+/// The analysis samples its curve at T_R·s/N: the ends may differ from ±T_R by rounding. The curve's own readings at
+/// ±T_R (the segment law) pass an end by this fraction of the end torque, along the end segment.
+constexpr double kEndRounding = 1e-12;
+
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+/// Twist along segment (k, k + 1) at torque T.
+double along(const TorqueTwist& c, std::size_t k, double T) {
   const auto& t = c.torque_Nm;
-  if (t.empty() || T < t.front() - 1e-12 * std::abs(t.front()) || T > t.back() + 1e-12 * std::abs(t.back()))
-    throw std::out_of_range("twist_at: torque outside the curve");
-  if (T == 0) {  // the mean of the limits from both sides
-    double lo = 0, hi = 0;
-    for (std::size_t i = 0; i < t.size(); ++i) {
-      if (t[i] <= 0) lo = c.twist_rad[i];
-      if (t[t.size() - 1 - i] >= 0) hi = c.twist_rad[t.size() - 1 - i];
+  const double s = (T - t[k]) / (t[k + 1] - t[k]);
+  return c.twist_rad[k] + s * (c.twist_rad[k + 1] - c.twist_rad[k]);
+}
+
+}  // namespace
+
+std::pair<double, double> twist_limits(const TorqueTwist& c, double T) {
+  const auto& t = c.torque_Nm;
+  const std::size_t i = std::lower_bound(t.begin(), t.end(), T) - t.begin();
+  const std::size_t j = std::upper_bound(t.begin(), t.end(), T) - t.begin();
+  if (j - i >= 2) return {c.twist_rad[i], c.twist_rad[j - 1]};  // a vertical step at T
+  const double v = along(c, std::max<std::size_t>(i, 1) - 1, T);  // the first segment with a torque step holding T
+  return {v, v};
+}
+
+double twist_at(const TorqueTwist& c, double T, double end_tolerance_Nm) {
+  const auto& t = c.torque_Nm;
+  assert(t.size() >= 2 && t.size() == c.twist_rad.size() && t.front() < t.back());
+  if (!(T >= t.front() - end_tolerance_Nm && T <= t.back() + end_tolerance_Nm))
+    throw InputError("torque " + num(T) + " N*m is beyond the torque-twist curve, which covers [" + num(t.front()) +
+                     ", " + num(t.back()) + "] N*m; the curve is not extrapolated");
+  if (T <= t.front() || T >= t.back()) {
+    // At or just beyond an end: the end segment (the first/last with a torque step), extended.
+    std::size_t a = 0;
+    if (T <= t.front()) {
+      while (t[a + 1] == t.front()) ++a;
+    } else {
+      a = t.size() - 2;
+      while (t[a] == t.back()) --a;
     }
-    return 0.5 * (lo + hi);
+    return along(c, a, T);
   }
-  // The segment [i, i+1] holding T, excluding the zero-width jump at T = 0.
-  for (std::size_t i = 0; i + 1 < t.size(); ++i) {
-    if (t[i + 1] == t[i]) continue;
-    if (T >= t[i] && T <= t[i + 1]) {
-      const double s = (T - t[i]) / (t[i + 1] - t[i]);
-      return c.twist_rad[i] + s * (c.twist_rad[i + 1] - c.twist_rad[i]);
+  const auto [left, right] = twist_limits(c, T);
+  return 0.5 * (left + right);
+}
+
+bool spans_torque(const TorqueTwist& b) { return b.torque_Nm.size() >= 2 && b.torque_Nm.back() > b.torque_Nm.front(); }
+
+TorqueTwist middle_line(const TorqueTwist& loading, const TorqueTwist& unloading) {
+  std::vector<const TorqueTwist*> branches{&loading};
+  if (spans_torque(unloading)) branches.push_back(&unloading);
+  const double lo = std::max(loading.torque_Nm.front(), branches.back()->torque_Nm.front());
+  const double hi = std::min(loading.torque_Nm.back(), branches.back()->torque_Nm.back());
+  assert(hi > lo);
+  std::vector<double> grid;  // the union of the branches' torques
+  for (const TorqueTwist* b : branches)
+    for (double x : b->torque_Nm)
+      if (x >= lo && x <= hi) grid.push_back(x);
+  std::sort(grid.begin(), grid.end());
+  grid.erase(std::unique(grid.begin(), grid.end()), grid.end());
+  TorqueTwist m;
+  for (double x : grid) {
+    double left = 0.0, right = 0.0;
+    for (const TorqueTwist* b : branches) {
+      const auto [l, r] = twist_limits(*b, x);
+      left += l / branches.size();
+      right += r / branches.size();
+    }
+    // Both limits where the line steps (a dead band crossed at x); at the ends only the side inside the curve.
+    if (x > lo || right == left) {
+      m.torque_Nm.push_back(x);
+      m.twist_rad.push_back(left);
+    }
+    if (right != left && x < hi) {
+      m.torque_Nm.push_back(x);
+      m.twist_rad.push_back(right);
     }
   }
-  return T < 0 ? c.twist_rad.front() : c.twist_rad.back();
+  return m;
 }
 
 double lost_motion_rad(const TorqueTwist& c, double T_R, double fraction) {
@@ -41,7 +108,12 @@ double SegmentLaw::twist_rad(double T) const {
 }
 
 namespace {
-double odd(const TorqueTwist& c, double T) { return 0.5 * (twist_at(c, T) - twist_at(c, -T)); }
+/// The curve's odd part at T (up to its ends' rounding beyond ±T).
+double odd(const TorqueTwist& c, double T) {
+  const double rounding_Nm =
+      kEndRounding * std::max(std::abs(c.torque_Nm.front()), std::abs(c.torque_Nm.back()));
+  return 0.5 * (twist_at(c, T, rounding_Nm) - twist_at(c, -T, rounding_Nm));
+}
 }  // namespace
 
 SegmentLaw segment_law(const TorqueTwist& c, double t1, double t2, double T_R) {

@@ -1,21 +1,39 @@
 #pragma once
-// The torque–twist curve of a drive in the catalog's terms: three straight segments (K1 up to T1, K2 up to T2, K3
-// beyond), lost motion as catalogs measure it (twist between ±4 % of rated torque on the loop's middle line, so it
-// holds the elastic twist and any play), read off a computed curve.
+// The torque–twist curve of a drive and its readings in the catalog's terms: three straight segments (K1 up to T1, K2
+// up to T2, K3 beyond), lost motion as catalogs measure it (twist between ±4 % of rated torque on the loop's middle
+// line, so it holds the elastic twist and any play), and the middle line of a loop measured both ways.
+#include <utility>
 #include <vector>
 
 namespace sw {
 
-/// A torque–twist curve sampled in increasing torque, negative and positive; at T = 0 a drive with play has two
-/// points (the twist where the first flank closes one way and the other way). The middle line of a loop without
-/// friction is the curve itself.
+/// A torque–twist curve: points in non-decreasing torque, negative and positive. Two or more points at one torque are
+/// a vertical step of the twist (a dead band crossed at that torque): at T = 0 a drive with play has two, the twist
+/// where the first flank closes one way and the other way. The middle line of a loop without friction is the curve
+/// itself.
 struct TorqueTwist {
-  std::vector<double> torque_Nm, twist_rad;
+  std::vector<double> torque_Nm, twist_rad;  ///< same length, at least 2, torque_Nm.front() < torque_Nm.back()
 };
 
-/// Twist at torque T by linear interpolation (T = 0: the mean of the two limits). Throws std::out_of_range outside
-/// the sampled torque range.
-double twist_at(const TorqueTwist& c, double torque_Nm);
+/// Twist (rad) on the curve at `torque_Nm`: linear along the first segment with a torque step whose range holds it; at
+/// a vertical step strictly inside the curve, the step's middle. Within `end_tolerance_Nm` beyond either end the end
+/// segment is extended; further out it throws InputError naming the torque and the curve's range (never silent
+/// extrapolation).
+double twist_at(const TorqueTwist& c, double torque_Nm, double end_tolerance_Nm = 0.0);
+
+/// Twist just below and just above `torque_Nm` (front ≤ T ≤ back): they differ only at a vertical step, where they
+/// are its first and last point; elsewhere both are twist_at's value.
+std::pair<double, double> twist_limits(const TorqueTwist& c, double torque_Nm);
+
+/// True when the points (ascending torque) span a torque range: 2 or more, the last torque above the first.
+bool spans_torque(const TorqueTwist& branch);
+
+/// The middle line of a loop: `loading` and `unloading` (both with ascending torque; an unloading branch that does not
+/// span a torque range counts as absent, and the loading branch alone is the curve) averaged over the torque range
+/// both cover, on the union of their torques: exact for piecewise-linear branches. A vertical step of the mean keeps
+/// both its limits, but at the range's ends only the side inside it. Precondition: `loading` spans a torque range that
+/// overlaps the unloading branch's, when it counts (as the two branches of one loop do: both hold its top).
+TorqueTwist middle_line(const TorqueTwist& loading, const TorqueTwist& unloading);
 
 /// Twist between −fraction·T_R and +fraction·T_R (catalogs: 4 %), rad.
 double lost_motion_rad(const TorqueTwist& c, double rated_torque_Nm, double fraction = 0.04);
@@ -28,6 +46,7 @@ struct SegmentLaw {
   /// φ of the law at T, odd in T (the mirror image for negative torque, as catalogs draw it).
   double twist_rad(double torque_Nm) const;
 };
+/// The law's secants at T1, T2 and T_R (±T_R: the curve's ends, read with their rounding, kEndRounding).
 SegmentLaw segment_law(const TorqueTwist& c, double t1_Nm, double t2_Nm, double rated_torque_Nm);
 
 /// The segment law whose breakpoints 0 < T1 < T2 < T_R (on a grid of T_R/200) best fit the curve's odd part in the

@@ -16,8 +16,9 @@
 #include <vtkXMLPolyDataWriter.h>
 
 #include "common/error.hpp"
-#include "io/atomic_file.hpp"
 #include "common/svg_plot.hpp"
+#include "io/atomic_file.hpp"
+#include "io/json_file.hpp"
 
 namespace sw {
 
@@ -30,48 +31,102 @@ double change_percent(double basic, double comp) { return basic != 0 ? 100.0 * (
 
 constexpr double kArcmin = kDeg * 60.0;
 
-nlohmann::json pair_json(const PairClearance& p) {
-  auto side = [](const FlankClearance& c) {
-    return nlohmann::json{{"clearance_um", c.clearance_m * 1e6},
-                          {"lever_arm_mm", c.lever_arm_m * 1e3},
-                          {"nearest", std::string(part_name(c.part_f)) + " / " + part_name(c.part_c)}};
-  };
-  return {{"phi_deg", p.phi_rad * kDeg},
-          {"in_mesh", p.engaged},
-          {"depth_mm", p.depth_m * 1e3},
-          {"j_t1_mm", p.ccw.clearance_m * 1e3},
-          {"j_t2_mm", p.cw.clearance_m * 1e3},
-          {"total_play_um", p.total_play_m() * 1e6},
-          {"t1", side(p.ccw)},
-          {"t2", side(p.cw)}};
+BacklashResult::Side side_figures(const FlankClearance& c) {
+  return {c.clearance_m * 1e6, c.lever_arm_m * 1e3, std::string(part_name(c.part_f)) + " / " + part_name(c.part_c)};
 }
 
-nlohmann::json geometry_json(const GeometryCheck& g) {
+BacklashResult::Pair pair_figures(const PairClearance& p) {
+  BacklashResult::Pair o;
+  o.phi_deg = p.phi_rad * kDeg;
+  o.in_mesh = p.engaged;
+  o.depth_mm = p.depth_m * 1e3;
+  o.j_t1_mm = p.ccw.clearance_m * 1e3;
+  o.j_t2_mm = p.cw.clearance_m * 1e3;
+  o.total_play_um = p.total_play_m() * 1e6;
+  o.t1 = side_figures(p.ccw);
+  o.t2 = side_figures(p.cw);
+  return o;
+}
+
+BacklashResult::Geometry geometry_figures(const GeometryCheck& g) {
   const auto& r = g.radii;
-  nlohmann::json j = {
-      {"flexspline", {{"tip_radius_mm", r.tip_f * 1e3}, {"root_radius_mm", r.root_f * 1e3}, {"form_radius_mm", r.form_f * 1e3}}},
-      {"circular_spline", {{"tip_radius_mm", r.tip_c * 1e3}, {"root_radius_mm", r.root_c * 1e3}, {"form_radius_mm", r.form_c * 1e3}}},
-      {"w_major_axis_mm", g.w_major_m * 1e3},
-      {"w_minor_axis_mm", g.w_minor_m * 1e3},
-      {"working_depth_mm", g.working_depth_m * 1e3},
-      {"two_w0_mm", g.two_w0_m * 1e3},
-      {"minor_axis_tip_clearance_mm", g.minor_axis_tip_clearance_m * 1e3},
-      {"major_axis_tip_to_root_mm", g.major_axis_tip_root_m * 1e3},
-      {"major_axis_root_to_tip_mm", g.major_axis_root_tip_m * 1e3},
-      {"major_axis_pair", pair_json(g.major_axis)},
-      {"major_axis_play_arcmin", g.major_axis_play_rad * kArcmin},
-      {"interference_at_rest", g.interference},
-      {"smallest_clearance_um", g.worst_clearance_m * 1e6},
-      {"smallest_clearance_at", pair_json(g.worst)}};
-  if (g.interference) {
-    j["remedy"] = {{"addendum_scale_free_of_interference", g.addendum_scale_free},
-                   {"addendum_coefficient_flexspline_max", g.addendum_free_flexspline},
-                   {"addendum_coefficient_circular_max", g.addendum_free_circular},
-                   {"w0_scale_free_of_interference", {g.w0_scale_free_lo, g.w0_scale_free_hi}},
-                   {"definition", "largest common factor on both addenda, and the range of factors on the generator's "
-                                  "deformation w0, that leave no interference (0: none found)"}};
+  BacklashResult::Geometry o;
+  o.flexspline = {r.tip_f * 1e3, r.root_f * 1e3, r.form_f * 1e3};
+  o.circular_spline = {r.tip_c * 1e3, r.root_c * 1e3, r.form_c * 1e3};
+  o.w_major_axis_mm = g.w_major_m * 1e3;
+  o.w_minor_axis_mm = g.w_minor_m * 1e3;
+  o.working_depth_mm = g.working_depth_m * 1e3;
+  o.two_w0_mm = g.two_w0_m * 1e3;
+  o.minor_axis_tip_clearance_mm = g.minor_axis_tip_clearance_m * 1e3;
+  o.major_axis_tip_to_root_mm = g.major_axis_tip_root_m * 1e3;
+  o.major_axis_root_to_tip_mm = g.major_axis_root_tip_m * 1e3;
+  o.major_axis_pair = pair_figures(g.major_axis);
+  o.major_axis_play_arcmin = g.major_axis_play_rad * kArcmin;
+  o.interference_at_rest = g.interference;
+  o.smallest_clearance_um = g.worst_clearance_m * 1e6;
+  o.smallest_clearance_at = pair_figures(g.worst);
+  if (g.interference)
+    o.remedy = BacklashResult::Remedy{
+        g.addendum_scale_free, g.addendum_free_flexspline, g.addendum_free_circular,
+        {g.w0_scale_free_lo, g.w0_scale_free_hi},
+        "largest common factor on both addenda, and the range of factors on the generator's deformation w0, that "
+        "leave no interference (0: none found)"};
+  return o;
+}
+
+BacklashResult::Row table_row(const BacklashTableRow& row, double module_m) {
+  BacklashResult::Row e;
+  e.position_deg = row.position_deg;
+  e.in_mesh = row.basic.engaged;
+  if (row.basic.engaged) {
+    const double b = row.basic.backlash_m() / module_m, c = row.compensated.backlash_m() / module_m;
+    e.basic_over_m = b;
+    e.compensated_over_m = c;
+    e.change_percent = change_percent(b, c);
+    e.compensated_state = b < 0 ? "interference (basic model)" : c <= 0 ? "loaded flank in contact" : "clearance";
+  } else {
+    e.compensated_state = "not in mesh";  // the teeth face tip to tip: there is no backlash
   }
-  return j;
+  e.basic = pair_figures(row.basic);
+  e.compensated = pair_figures(row.compensated);
+  return e;
+}
+
+BacklashResult::MeshAt mesh_at(const MeshState& st) {
+  BacklashResult::MeshAt m;
+  m.wg_deg = st.wg_angle_rad * kDeg;
+  m.pairs_in_mesh = st.engaged_pairs;
+  m.min_backlash_um = st.min_backlash_m * 1e6;
+  m.angular_play_arcmin = st.angular_play_rad() * kArcmin;
+  m.closing_t1_arcmin = st.closing_ccw_rad * kArcmin;
+  m.closing_t2_arcmin = st.closing_cw_rad * kArcmin;
+  m.pairs_within_1_5_10_um_t1 = {st.near_ccw[0], st.near_ccw[1], st.near_ccw[2]};
+  m.pairs_within_1_5_10_um_t2 = {st.near_cw[0], st.near_cw[1], st.near_cw[2]};
+  return m;
+}
+
+BacklashResult::Revolution revolution_figures(const RevolutionSweep& rb, const RevolutionSweep& rc) {
+  BacklashResult::Revolution v;
+  v.steps = rb.wg_angle_rad.size();
+  v.distinct_positions = rb.distinct_positions;
+  v.min_basic_at_wg_deg = rb.min_at_rad * kDeg;
+  v.min_compensated_at_wg_deg = rc.min_at_rad * kDeg;
+  v.engaged_pairs = {rb.engaged_pairs_min, rb.engaged_pairs_max};
+  v.definition = "min over pairs in the mesh zone (flexspline tip beyond the circular-spline tip circle) of "
+                 "min(j_t1, j_t2), then min/max over the revolution";
+  for (const MeshState& st : rb.period) v.period_basic.push_back(mesh_at(st));
+  return v;
+}
+
+/// Where the unloaded teeth (basic model) interfere, over the pairs in the mesh zone.
+std::vector<BacklashResult::Location> interference_locations(const std::vector<PairClearance>& positions) {
+  std::vector<BacklashResult::Location> locs;
+  for (const auto& p : positions)
+    if (p.engaged)
+      for (const auto& i : interferences(p))
+        locs.push_back({i.phi_rad * kDeg, p.position_deg, i.where, i.depth_m * 1e6, i.point.x() * 1e3,
+                        i.point.y() * 1e3});
+  return locs;
 }
 
 }  // namespace
@@ -129,83 +184,146 @@ std::string geometry_check_text(const GeometryCheck& g, double module_m) {
   return out;
 }
 
-std::string backlash_json(const BacklashReport& r) {
-  nlohmann::json j;
-  j["case"] = r.case_path;
-  j["neutral_curve"] = r.curve_source;
-  j["module_mm"] = r.module_m * 1e3;
-  j["phi0_rad"] = r.phi0_rad;
-  j["phi0_source"] = r.phi0_source;
-  j["torque_Nm"] = r.torque_Nm;
-  if (r.compliance_rad_per_Nm) j["compliance_rad_per_Nm"] = *r.compliance_rad_per_Nm;
-  j["geometry_check"] = geometry_json(r.geometry);
-  j["table_model"] = "the backlash paper's model: teeth rigid, the rim turned rigidly by phi0 (compensated); "
-                     "backlash = min(j_t1, j_t2) of the pair in the mesh zone";
-  j["table"] = nlohmann::json::array();
-  for (const auto& row : r.table) {
-    nlohmann::json e = {{"position_deg", row.position_deg}, {"in_mesh", row.basic.engaged}};
-    if (row.basic.engaged) {
-      const double b = row.basic.backlash_m() / r.module_m, c = row.compensated.backlash_m() / r.module_m;
-      e["basic_over_m"] = b;
-      e["compensated_over_m"] = c;
-      e["change_percent"] = change_percent(b, c);
-      e["compensated_state"] = b < 0 ? "interference (basic model)" : c <= 0 ? "loaded flank in contact" : "clearance";
-    } else {
-      e["basic_over_m"] = nullptr;  // out of the mesh zone: the teeth face tip to tip, there is no backlash
-      e["compensated_over_m"] = nullptr;
-      e["compensated_state"] = "not in mesh";
-    }
-    e["basic"] = pair_json(row.basic);
-    e["compensated"] = pair_json(row.compensated);
-    j["table"].push_back(e);
-  }
+BacklashResult backlash_result(const BacklashReport& r) {
+  BacklashResult o;
+  o.case_path = r.case_path;
+  o.neutral_curve = r.curve_source;
+  o.module_mm = r.module_m * 1e3;
+  o.phi0_rad = r.phi0_rad;
+  o.phi0_source = r.phi0_source;
+  o.torque_Nm = r.torque_Nm;
+  o.compliance_rad_per_Nm = r.compliance_rad_per_Nm;
+  o.geometry_check = geometry_figures(r.geometry);
+  o.table_model = "the backlash paper's model: teeth rigid, the rim turned rigidly by phi0 (compensated); "
+                  "backlash = min(j_t1, j_t2) of the pair in the mesh zone";
+  for (const auto& row : r.table) o.table.push_back(table_row(row, r.module_m));
   const auto& rb = r.revolution_basic;
   const auto& rc = r.revolution_compensated;
-  j["min_backlash_basic_mm"] = rb.min_m * 1e3;
-  j["min_backlash_compensated_mm"] = rc.min_m * 1e3;
-  j["max_backlash_basic_mm"] = rb.max_m * 1e3;
-  j["max_backlash_compensated_mm"] = rc.max_m * 1e3;
-  j["angular_play_arcmin"] = {
-      {"min", rb.angular_play_min_rad * kArcmin},
-      {"max", rb.angular_play_max_rad * kArcmin},
-      {"with_phi0", {rc.angular_play_min_rad * kArcmin, rc.angular_play_max_rad * kArcmin}},
-      {"definition", "geometric play: free rotation of the output (circular spline fixed, generator locked, teeth and "
-                     "rim rigid) from first contact one way to first contact the other, the sum of the two smallest "
-                     "closing angles over the pairs in mesh; not the catalog's lost motion, which includes the "
-                     "elastic twist at +-4 % of rated torque. A rigid turn phi0 does not change it."}};
-  nlohmann::json period = nlohmann::json::array();
-  for (const MeshState& st : rb.period)
-    period.push_back({{"wg_deg", st.wg_angle_rad * kDeg},
-                      {"pairs_in_mesh", st.engaged_pairs},
-                      {"min_backlash_um", st.min_backlash_m * 1e6},
-                      {"angular_play_arcmin", st.angular_play_rad() * kArcmin},
-                      {"closing_t1_arcmin", st.closing_ccw_rad * kArcmin},
-                      {"closing_t2_arcmin", st.closing_cw_rad * kArcmin},
-                      {"pairs_within_1_5_10_um_t1", {st.near_ccw[0], st.near_ccw[1], st.near_ccw[2]}},
-                      {"pairs_within_1_5_10_um_t2", {st.near_cw[0], st.near_cw[1], st.near_cw[2]}}});
-  j["revolution"] = {{"steps", rb.wg_angle_rad.size()},
-                     {"distinct_positions", rb.distinct_positions},
-                     {"min_basic_at_wg_deg", rb.min_at_rad * kDeg},
-                     {"min_compensated_at_wg_deg", rc.min_at_rad * kDeg},
-                     {"engaged_pairs", {rb.engaged_pairs_min, rb.engaged_pairs_max}},
-                     {"definition", "min over pairs in the mesh zone (flexspline tip beyond the circular-spline tip "
-                                    "circle) of min(j_t1, j_t2), then min/max over the revolution"},
-                     {"period_basic", period}};
-  nlohmann::json locs = nlohmann::json::array();
-  for (const auto& p : r.positions_basic)
-    if (p.engaged)
-      for (const auto& i : interferences(p))
-        locs.push_back({{"phi_deg", i.phi_rad * kDeg},
-                        {"position_deg", p.position_deg},
-                        {"where", i.where},
-                        {"depth_um", i.depth_m * 1e6},
-                        {"x_mm", i.point.x() * 1e3},
-                        {"y_mm", i.point.y() * 1e3}});
+  o.min_backlash_basic_mm = rb.min_m * 1e3;
+  o.min_backlash_compensated_mm = rc.min_m * 1e3;
+  o.max_backlash_basic_mm = rb.max_m * 1e3;
+  o.max_backlash_compensated_mm = rc.max_m * 1e3;
+  o.angular_play_arcmin = {
+      rb.angular_play_min_rad * kArcmin, rb.angular_play_max_rad * kArcmin,
+      {rc.angular_play_min_rad * kArcmin, rc.angular_play_max_rad * kArcmin},
+      "geometric play: free rotation of the output (circular spline fixed, generator locked, teeth and rim rigid) "
+      "from first contact one way to first contact the other, the sum of the two smallest closing angles over the "
+      "pairs in mesh; not the catalog's lost motion, which includes the elastic twist at +-4 % of rated torque. A "
+      "rigid turn phi0 does not change it."};
+  o.revolution = revolution_figures(rb, rc);
+  o.interference_locations = interference_locations(r.positions_basic);
   // Interference is a property of the unloaded geometry (basic model). A compensated clearance at or below zero is
   // the loaded flank in contact, not interference.
-  j["interference"] = r.geometry.interference || !locs.empty() || rb.min_m < 0;
-  j["interference_locations"] = locs;
-  return j.dump(2) + "\n";
+  o.interference = r.geometry.interference || !o.interference_locations.empty() || rb.min_m < 0;
+  return o;
+}
+
+// ---- backlash.json's field tables: its keys, each with the member that holds it
+
+static auto fields(std::type_identity<BacklashResult::Side>) {
+  using T = BacklashResult::Side;
+  return std::tuple{field("clearance_um", &T::clearance_um), field("lever_arm_mm", &T::lever_arm_mm),
+                    field("nearest", &T::nearest)};
+}
+
+static auto fields(std::type_identity<BacklashResult::Pair>) {
+  using T = BacklashResult::Pair;
+  return std::tuple{field("phi_deg", &T::phi_deg), field("in_mesh", &T::in_mesh), field("depth_mm", &T::depth_mm),
+                    field("j_t1_mm", &T::j_t1_mm),  field("j_t2_mm", &T::j_t2_mm), field("total_play_um", &T::total_play_um),
+                    field("t1", &T::t1),            field("t2", &T::t2)};
+}
+
+static auto fields(std::type_identity<BacklashResult::Radii>) {
+  using T = BacklashResult::Radii;
+  return std::tuple{field("tip_radius_mm", &T::tip_radius_mm), field("root_radius_mm", &T::root_radius_mm),
+                    field("form_radius_mm", &T::form_radius_mm)};
+}
+
+static auto fields(std::type_identity<BacklashResult::Remedy>) {
+  using T = BacklashResult::Remedy;
+  return std::tuple{field("addendum_scale_free_of_interference", &T::addendum_scale_free_of_interference),
+                    field("addendum_coefficient_flexspline_max", &T::addendum_coefficient_flexspline_max),
+                    field("addendum_coefficient_circular_max", &T::addendum_coefficient_circular_max),
+                    field("w0_scale_free_of_interference", &T::w0_scale_free_of_interference),
+                    field("definition", &T::definition)};
+}
+
+static auto fields(std::type_identity<BacklashResult::Geometry>) {
+  using T = BacklashResult::Geometry;
+  return std::tuple{field("flexspline", &T::flexspline), field("circular_spline", &T::circular_spline),
+                    field("w_major_axis_mm", &T::w_major_axis_mm), field("w_minor_axis_mm", &T::w_minor_axis_mm),
+                    field("working_depth_mm", &T::working_depth_mm), field("two_w0_mm", &T::two_w0_mm),
+                    field("minor_axis_tip_clearance_mm", &T::minor_axis_tip_clearance_mm),
+                    field("major_axis_tip_to_root_mm", &T::major_axis_tip_to_root_mm),
+                    field("major_axis_root_to_tip_mm", &T::major_axis_root_to_tip_mm),
+                    field("major_axis_pair", &T::major_axis_pair),
+                    field("major_axis_play_arcmin", &T::major_axis_play_arcmin),
+                    field("interference_at_rest", &T::interference_at_rest),
+                    field("smallest_clearance_um", &T::smallest_clearance_um),
+                    field("smallest_clearance_at", &T::smallest_clearance_at), field("remedy", &T::remedy)};
+}
+
+static auto fields(std::type_identity<BacklashResult::Row>) {
+  using T = BacklashResult::Row;
+  return std::tuple{field("position_deg", &T::position_deg), field("in_mesh", &T::in_mesh),
+                    null_when_absent("basic_over_m", &T::basic_over_m),
+                    null_when_absent("compensated_over_m", &T::compensated_over_m),
+                    field("change_percent", &T::change_percent), field("compensated_state", &T::compensated_state),
+                    field("basic", &T::basic), field("compensated", &T::compensated)};
+}
+
+static auto fields(std::type_identity<BacklashResult::AngularPlay>) {
+  using T = BacklashResult::AngularPlay;
+  return std::tuple{field("min", &T::min), field("max", &T::max), field("with_phi0", &T::with_phi0),
+                    field("definition", &T::definition)};
+}
+
+static auto fields(std::type_identity<BacklashResult::MeshAt>) {
+  using T = BacklashResult::MeshAt;
+  return std::tuple{field("wg_deg", &T::wg_deg), field("pairs_in_mesh", &T::pairs_in_mesh),
+                    field("min_backlash_um", &T::min_backlash_um), field("angular_play_arcmin", &T::angular_play_arcmin),
+                    field("closing_t1_arcmin", &T::closing_t1_arcmin), field("closing_t2_arcmin", &T::closing_t2_arcmin),
+                    field("pairs_within_1_5_10_um_t1", &T::pairs_within_1_5_10_um_t1),
+                    field("pairs_within_1_5_10_um_t2", &T::pairs_within_1_5_10_um_t2)};
+}
+
+static auto fields(std::type_identity<BacklashResult::Revolution>) {
+  using T = BacklashResult::Revolution;
+  return std::tuple{field("steps", &T::steps), field("distinct_positions", &T::distinct_positions),
+                    field("min_basic_at_wg_deg", &T::min_basic_at_wg_deg),
+                    field("min_compensated_at_wg_deg", &T::min_compensated_at_wg_deg),
+                    field("engaged_pairs", &T::engaged_pairs), field("definition", &T::definition),
+                    field("period_basic", &T::period_basic)};
+}
+
+static auto fields(std::type_identity<BacklashResult::Location>) {
+  using T = BacklashResult::Location;
+  return std::tuple{field("phi_deg", &T::phi_deg), field("position_deg", &T::position_deg), field("where", &T::where),
+                    field("depth_um", &T::depth_um), field("x_mm", &T::x_mm), field("y_mm", &T::y_mm)};
+}
+
+static auto fields(std::type_identity<BacklashResult>) {
+  using T = BacklashResult;
+  return std::tuple{field("case", &T::case_path), field("neutral_curve", &T::neutral_curve),
+                    field("module_mm", &T::module_mm), field("phi0_rad", &T::phi0_rad),
+                    field("phi0_source", &T::phi0_source), field("torque_Nm", &T::torque_Nm),
+                    field("compliance_rad_per_Nm", &T::compliance_rad_per_Nm),
+                    field("geometry_check", &T::geometry_check), field("table_model", &T::table_model),
+                    field("table", &T::table), field("min_backlash_basic_mm", &T::min_backlash_basic_mm),
+                    field("min_backlash_compensated_mm", &T::min_backlash_compensated_mm),
+                    field("max_backlash_basic_mm", &T::max_backlash_basic_mm),
+                    field("max_backlash_compensated_mm", &T::max_backlash_compensated_mm),
+                    field("angular_play_arcmin", &T::angular_play_arcmin), field("revolution", &T::revolution),
+                    field("interference", &T::interference),
+                    field("interference_locations", &T::interference_locations)};
+}
+
+std::string backlash_json(const BacklashResult& r) { return to_json_object(r).dump(2) + "\n"; }
+
+BacklashResult read_backlash_result(const std::filesystem::path& path) {
+  return read_object<BacklashResult>(
+      JsonIn::open(path, "cannot open; give the backlash.json written by `strainwave backlash CASE.toml`",
+                   "the backlash.json of `strainwave backlash`"));
 }
 
 std::string backlash_csv(const BacklashReport& r) {

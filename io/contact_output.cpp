@@ -2,13 +2,15 @@
 
 #include <cmath>
 #include <cstdio>
-#include <numbers>
 #include <map>
+#include <numbers>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
+#include "common/error.hpp"
 #include "common/svg_plot.hpp"
+#include "io/json_file.hpp"
 
 namespace sw {
 namespace {
@@ -17,84 +19,240 @@ constexpr double kArcmin = 10800.0 / std::numbers::pi;
 
 double law_twist(const CatalogLaw& k, double T) { return k.law().twist_rad(T); }
 
-}  // namespace
+ContactResult::Catalog catalog_figures(const SegmentLaw& k) {
+  return {k.t1_Nm, k.t2_Nm, k.k1_Nm_per_rad, k.k2_Nm_per_rad, k.k3_Nm_per_rad,
+          k.breakpoints_fitted ? "fitted to the curve" : "the catalog's T1 and T2"};
+}
 
-std::string contact_json(const ContactAnalysis& a, const std::string& case_path,
-                         const std::optional<CatalogLaw>& reference) {
-  using nlohmann::json;
-  json j;
-  j["case"] = case_path;
-  j["rated_torque_Nm"] = a.rated_torque_Nm;
-  json tt = json::array();
-  for (const auto& s : a.steps)
-    tt.push_back({{"torque_Nm", s.torque_Nm}, {"twist_rad", s.twist_rad}, {"pairs_in_contact", s.pairs_in_contact},
-                  {"max_pair_force_N", s.max_pair_force_N}});
-  j["torque_twist"] = tt;
-  const SegmentLaw& k = a.catalog;
-  j["catalog"] = {{"T1_Nm", k.t1_Nm}, {"T2_Nm", k.t2_Nm}, {"K1_Nm_per_rad", k.k1_Nm_per_rad},
-                  {"K2_Nm_per_rad", k.k2_Nm_per_rad}, {"K3_Nm_per_rad", k.k3_Nm_per_rad},
-                  {"breakpoints", k.breakpoints_fitted ? "fitted to the curve" : "the catalog's T1 and T2"}};
-  if (reference)
-    j["catalog_reference"] = {{"size", reference->size},
-                              {"T1_Nm", reference->t1_Nm},
-                              {"T2_Nm", reference->t2_Nm},
-                              {"K1_Nm_per_rad", reference->k1_Nm_per_rad},
-                              {"K2_Nm_per_rad", reference->k2_Nm_per_rad},
-                              {"K3_Nm_per_rad", reference->k3_Nm_per_rad},
-                              {"twist_at_T1_rad", law_twist(*reference, reference->t1_Nm)},
-                              {"twist_at_T2_rad", law_twist(*reference, reference->t2_Nm)},
-                              {"twist_at_rated_rad", law_twist(*reference, a.rated_torque_Nm)}};
-  j["lost_motion_arcmin"] = a.lost_motion_rad * kArcmin;
-  j["play_arcmin"] = a.play_rad * kArcmin;
-  j["overlap_at_rest_um"] = a.overlap_at_rest_m * 1e6;
-  j["min_closing_angle_arcmin"] = a.min_closing_rad * kArcmin;
-  j["face_slices"] = a.face_slices;
-  json sections = json::array();
-  for (const auto& f : a.face_sections)
-    sections.push_back({{"z_mm", f.z_m * 1e3}, {"w_major_um", f.w_major_m * 1e6},
-                        {"first_closing_arcmin", f.first_closing_rad * kArcmin}, {"overlap_at_rest_um", f.overlap_m * 1e6},
-                        {"overlap_angle_deg", f.overlap_phi_rad * 180 / std::numbers::pi}});
-  j["face_sections"] = sections;
-  j["twist_at_rated_arcmin"] = a.curve.twist_rad.back() * kArcmin;
-  j["torque_balance_error_rel"] = a.torque_balance_error_rel;
-  j["fem_reaction_torque_Nm"] = a.fem_reaction_torque_Nm;
-  j["compliance_split"] = {{"engagement", a.split.engagement}, {"body", a.split.body}, {"teeth", a.split.teeth},
-                           {"generator", a.split.generator}, {"circular_spline", a.split.circular_spline}};
-  json edges = json::array();
+ContactResult::CatalogReference reference_figures(const CatalogLaw& k, double rated_torque_Nm) {
+  return {k.size, k.t1_Nm, k.t2_Nm, k.k1_Nm_per_rad, k.k2_Nm_per_rad, k.k3_Nm_per_rad,
+          law_twist(k, k.t1_Nm), law_twist(k, k.t2_Nm), law_twist(k, rated_torque_Nm)};
+}
+
+ContactResult::FaceSection face_section_figures(const FaceSection& f) {
+  return {f.z_m * 1e3, f.w_major_m * 1e6, f.first_closing_rad * kArcmin, f.overlap_m * 1e6,
+          f.overlap_phi_rad * 180 / std::numbers::pi};
+}
+
+ContactResult::ZoneEdges zone_edge_figures(const ContactAnalysis& a) {
+  ContactResult::ZoneEdges z;
+  z.hold = a.zone_edges_hold;
   for (const auto& e : a.edges)
-    edges.push_back({{"tooth", e.tooth}, {"angle_deg", e.phi_rad * 180 / std::numbers::pi}, {"engaged_at_rest", e.engaged}, {"contact_candidate", e.candidate},
-                     {"radial_overlap_at_rest_um", e.overlap_at_rest_m * 1e6},
-                     {"radial_overlap_min_um", e.overlap_min_m * 1e6}, {"radial_overlap_max_um", e.overlap_max_m * 1e6},
-                     {"slips_over_the_tip", e.slips}, {"comes_into_mesh", e.enters}});
-  j["zone_edges"] = {{"hold", a.zone_edges_hold}, {"teeth", edges},
-                     {"torque_share_at_rated", a.edge_teeth_torque_share},
-                     {"twist_at_rated_without_them_arcmin", std::isfinite(a.twist_at_rated_without_edge_teeth_rad)
-                                                                ? json(a.twist_at_rated_without_edge_teeth_rad * kArcmin)
-                                                                : json(nullptr)}};
-  j["generator_support"] = a.generator_support;
-  j["half_turn_pairs"] = a.half_turn_pairs;
-  json flanks = json::array();
+    z.teeth.push_back({e.tooth, e.phi_rad * 180 / std::numbers::pi, e.engaged, e.candidate, e.overlap_at_rest_m * 1e6,
+                       e.overlap_min_m * 1e6, e.overlap_max_m * 1e6, e.slips, e.enters});
+  z.torque_share_at_rated = a.edge_teeth_torque_share;
+  if (std::isfinite(a.twist_at_rated_without_edge_teeth_rad))
+    z.twist_at_rated_without_them_arcmin = a.twist_at_rated_without_edge_teeth_rad * kArcmin;
+  return z;
+}
+
+/// Each flank, with its force at −rated and +rated torque (the first and last step).
+std::vector<ContactResult::Flank> flank_figures(const ContactAnalysis& a) {
+  std::vector<ContactResult::Flank> out;
   const TorqueStep& neg = a.steps.front();
   const TorqueStep& pos = a.steps.back();
   for (std::size_t i = 0; i < a.flanks.size(); ++i) {
     const auto& f = a.flanks[i];
-    flanks.push_back({{"tooth", f.tooth},
-                      {"slice", f.slice},
-                      {"angle_deg", f.phi_rad * 180 / std::numbers::pi},
-                      {"flank", f.flank == Flank::Ccw ? "ccw" : "cw"},
-                      {"touching", std::string(part_name(f.part_f)) + " on " + part_name(f.part_c)},
-                      {"beyond_tip_circle_at_rest", f.beyond_tip_circle},
-                      {"closing_angle_rad", f.closing_angle_rad},
-                      {"lever_m", f.lever_m},
-                      {"contact_radius_m", f.contact_radius_m},
-                      {"tooth_pair_compliance_m_per_N", f.compliance_m_per_N},
-                      {"force_at_plus_rated_N", pos.flank_force_N[i]},
-                      {"force_at_minus_rated_N", neg.flank_force_N[i]}});
+    out.push_back({f.tooth, f.slice, f.phi_rad * 180 / std::numbers::pi, f.flank == Flank::Ccw ? "ccw" : "cw",
+                   std::string(part_name(f.part_f)) + " on " + part_name(f.part_c), f.beyond_tip_circle,
+                   f.closing_angle_rad, f.lever_m, f.contact_radius_m, f.compliance_m_per_N, pos.flank_force_N[i],
+                   neg.flank_force_N[i]});
   }
-  j["flanks"] = flanks;
-  j["timings_s"] = {{"setup", a.setup_s}, {"influence", a.influence_s}, {"contact", a.contact_s}, {"check", a.check_s}};
-  j["unknowns"] = a.unknowns;
-  return j.dump(2) + "\n";
+  return out;
+}
+
+}  // namespace
+
+ContactResult contact_result(const ContactAnalysis& a, const std::string& case_path,
+                             const std::optional<CatalogLaw>& reference) {
+  ContactResult r;
+  r.case_path = case_path;
+  r.rated_torque_Nm = a.rated_torque_Nm;
+  for (const auto& s : a.steps) r.torque_twist.push_back({s.torque_Nm, s.twist_rad, s.pairs_in_contact, s.max_pair_force_N});
+  r.catalog = catalog_figures(a.catalog);
+  if (reference) r.catalog_reference = reference_figures(*reference, a.rated_torque_Nm);
+  r.lost_motion_arcmin = a.lost_motion_rad * kArcmin;
+  r.play_arcmin = a.play_rad * kArcmin;
+  r.overlap_at_rest_um = a.overlap_at_rest_m * 1e6;
+  r.min_closing_angle_arcmin = a.min_closing_rad * kArcmin;
+  r.face_slices = a.face_slices;
+  for (const auto& f : a.face_sections) r.face_sections.push_back(face_section_figures(f));
+  r.twist_at_rated_arcmin = a.curve.twist_rad.back() * kArcmin;
+  r.torque_balance_error_rel = a.torque_balance_error_rel;
+  r.fem_reaction_torque_Nm = a.fem_reaction_torque_Nm;
+  r.compliance_split = {a.split.engagement, a.split.body, a.split.teeth, a.split.generator, a.split.circular_spline};
+  r.zone_edges = zone_edge_figures(a);
+  r.generator_support = a.generator_support;
+  r.half_turn_pairs = a.half_turn_pairs;
+  r.flanks = flank_figures(a);
+  r.timings_s = {a.setup_s, a.influence_s, a.contact_s, a.check_s};
+  r.unknowns = a.unknowns;
+  return r;
+}
+
+// ---- contact.json's field tables: its keys, each with the member that holds it
+
+static auto fields(std::type_identity<ContactResult::Step>) {
+  using T = ContactResult::Step;
+  return std::tuple{field("torque_Nm", &T::torque_Nm), field("twist_rad", &T::twist_rad),
+                    field("pairs_in_contact", &T::pairs_in_contact), field("max_pair_force_N", &T::max_pair_force_N)};
+}
+
+static auto fields(std::type_identity<ContactResult::Catalog>) {
+  using T = ContactResult::Catalog;
+  return std::tuple{field("T1_Nm", &T::T1_Nm), field("T2_Nm", &T::T2_Nm), field("K1_Nm_per_rad", &T::K1_Nm_per_rad),
+                    field("K2_Nm_per_rad", &T::K2_Nm_per_rad), field("K3_Nm_per_rad", &T::K3_Nm_per_rad),
+                    field("breakpoints", &T::breakpoints)};
+}
+
+static auto fields(std::type_identity<ContactResult::CatalogReference>) {
+  using T = ContactResult::CatalogReference;
+  return std::tuple{field("size", &T::size), field("T1_Nm", &T::T1_Nm), field("T2_Nm", &T::T2_Nm),
+                    field("K1_Nm_per_rad", &T::K1_Nm_per_rad), field("K2_Nm_per_rad", &T::K2_Nm_per_rad),
+                    field("K3_Nm_per_rad", &T::K3_Nm_per_rad), field("twist_at_T1_rad", &T::twist_at_T1_rad),
+                    field("twist_at_T2_rad", &T::twist_at_T2_rad), field("twist_at_rated_rad", &T::twist_at_rated_rad)};
+}
+
+static auto fields(std::type_identity<ContactResult::FaceSection>) {
+  using T = ContactResult::FaceSection;
+  return std::tuple{field("z_mm", &T::z_mm), field("w_major_um", &T::w_major_um),
+                    field("first_closing_arcmin", &T::first_closing_arcmin),
+                    field("overlap_at_rest_um", &T::overlap_at_rest_um),
+                    field("overlap_angle_deg", &T::overlap_angle_deg)};
+}
+
+static auto fields(std::type_identity<ContactResult::Split>) {
+  using T = ContactResult::Split;
+  return std::tuple{field("engagement", &T::engagement), field("body", &T::body), field("teeth", &T::teeth),
+                    field("generator", &T::generator), field("circular_spline", &T::circular_spline)};
+}
+
+static auto fields(std::type_identity<ContactResult::EdgeTooth>) {
+  using T = ContactResult::EdgeTooth;
+  return std::tuple{field("tooth", &T::tooth), field("angle_deg", &T::angle_deg),
+                    field("engaged_at_rest", &T::engaged_at_rest), field("contact_candidate", &T::contact_candidate),
+                    field("radial_overlap_at_rest_um", &T::radial_overlap_at_rest_um),
+                    field("radial_overlap_min_um", &T::radial_overlap_min_um),
+                    field("radial_overlap_max_um", &T::radial_overlap_max_um),
+                    field("slips_over_the_tip", &T::slips_over_the_tip), field("comes_into_mesh", &T::comes_into_mesh)};
+}
+
+static auto fields(std::type_identity<ContactResult::ZoneEdges>) {
+  using T = ContactResult::ZoneEdges;
+  return std::tuple{field("hold", &T::hold), field("teeth", &T::teeth),
+                    field("torque_share_at_rated", &T::torque_share_at_rated),
+                    null_when_absent("twist_at_rated_without_them_arcmin", &T::twist_at_rated_without_them_arcmin)};
+}
+
+static auto fields(std::type_identity<ContactResult::Flank>) {
+  using T = ContactResult::Flank;
+  return std::tuple{field("tooth", &T::tooth), field("slice", &T::slice), field("angle_deg", &T::angle_deg),
+                    field("flank", &T::flank), field("touching", &T::touching),
+                    field("beyond_tip_circle_at_rest", &T::beyond_tip_circle_at_rest),
+                    field("closing_angle_rad", &T::closing_angle_rad), field("lever_m", &T::lever_m),
+                    field("contact_radius_m", &T::contact_radius_m),
+                    field("tooth_pair_compliance_m_per_N", &T::tooth_pair_compliance_m_per_N),
+                    field("force_at_plus_rated_N", &T::force_at_plus_rated_N),
+                    field("force_at_minus_rated_N", &T::force_at_minus_rated_N)};
+}
+
+static auto fields(std::type_identity<ContactResult::Timings>) {
+  using T = ContactResult::Timings;
+  return std::tuple{field("setup", &T::setup), field("influence", &T::influence), field("contact", &T::contact),
+                    field("check", &T::check)};
+}
+
+static auto fields(std::type_identity<ContactResult>) {
+  using T = ContactResult;
+  return std::tuple{field("case", &T::case_path), field("rated_torque_Nm", &T::rated_torque_Nm),
+                    field("torque_twist", &T::torque_twist), field("catalog", &T::catalog),
+                    field("catalog_reference", &T::catalog_reference),
+                    field("lost_motion_arcmin", &T::lost_motion_arcmin), field("play_arcmin", &T::play_arcmin),
+                    field("overlap_at_rest_um", &T::overlap_at_rest_um),
+                    field("min_closing_angle_arcmin", &T::min_closing_angle_arcmin),
+                    field("face_slices", &T::face_slices), field("face_sections", &T::face_sections),
+                    field("twist_at_rated_arcmin", &T::twist_at_rated_arcmin),
+                    field("torque_balance_error_rel", &T::torque_balance_error_rel),
+                    field("fem_reaction_torque_Nm", &T::fem_reaction_torque_Nm),
+                    field("compliance_split", &T::compliance_split), field("zone_edges", &T::zone_edges),
+                    field("generator_support", &T::generator_support), field("half_turn_pairs", &T::half_turn_pairs),
+                    field("flanks", &T::flanks), field("timings_s", &T::timings_s), field("unknowns", &T::unknowns)};
+}
+
+std::string contact_json(const ContactResult& r) { return to_json_object(r).dump(2) + "\n"; }
+
+namespace {
+constexpr const char* kCannotOpen =
+    "cannot be read; give the contact.json written by `strainwave contact CASE.toml` (or `strainwave run`)";
+constexpr const char* kExpected = "the contact.json of `strainwave contact`";
+}  // namespace
+
+ContactResult read_contact_result(const std::filesystem::path& path) {
+  return read_object<ContactResult>(JsonIn::open(path, kCannotOpen, kExpected));
+}
+
+namespace {
+
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+/// The points of `torque_twist` in the file's order.
+TorqueTwist read_points(const JsonIn& list) {
+  const std::vector<JsonIn> points = list.elements();
+  if (points.size() < 2)
+    list.fail("a list of 2 or more {torque_Nm, twist_rad} from -rated to +rated torque (and back)");
+  TorqueTwist loop;
+  for (const JsonIn& p : points) {
+    loop.torque_Nm.push_back(p["torque_Nm"].finite());
+    loop.twist_rad.push_back(p["twist_rad"].finite());
+  }
+  return loop;
+}
+
+/// The loop's loading branch (torque rising to the largest) and unloading branch (falling back from there), both
+/// with ascending torque; InputError naming the point where the torque goes the wrong way. Both hold the largest
+/// torque, so where both span a torque range, the ranges overlap.
+std::pair<TorqueTwist, TorqueTwist> branches(const TorqueTwist& loop, const std::string& file) {
+  const auto& t = loop.torque_Nm;
+  const auto& phi = loop.twist_rad;
+  const std::size_t n = t.size();
+  std::size_t top = 0;
+  while (top + 1 < n && t[top + 1] >= t[top]) ++top;
+  auto wrong = [&](std::size_t i, const std::string& what) {
+    return InputError(file + ": torque_twist[" + std::to_string(i) + "].torque_Nm = " + num(t[i]) + " after " +
+                      num(t[i - 1]) + " " + what + "; expected torque rising from -rated to +rated (the loading "
+                      "branch), then optionally falling back (the unloading branch)");
+  };
+  if (top == 0) throw wrong(1, "falls at the start");
+  for (std::size_t i = top + 1; i < n; ++i)
+    if (t[i] > t[i - 1]) throw wrong(i, "rises again on the unloading branch");
+  TorqueTwist load{{t.begin(), t.begin() + top + 1}, {phi.begin(), phi.begin() + top + 1}};
+  TorqueTwist unload{{t.rbegin(), t.rend() - top}, {phi.rbegin(), phi.rend() - top}};  // ascending
+  return {load, unload};
+}
+
+}  // namespace
+
+ContactCurve read_contact_curve(const std::filesystem::path& path) {
+  const JsonIn j = JsonIn::open(path, kCannotOpen, kExpected);
+  const std::string& file = j.file();
+  ContactCurve c;
+  const JsonIn rated = j["rated_torque_Nm"];
+  c.rated_torque_Nm = rated.finite();
+  if (!(c.rated_torque_Nm > 0.0)) rated.fail("a rated torque > 0");
+  if (const auto k = j.find("catalog")) {
+    c.catalog_t1_Nm = (*k)["T1_Nm"].finite();
+    c.catalog_t2_Nm = (*k)["T2_Nm"].finite();
+  }
+  const auto [load, unload] = branches(read_points(j["torque_twist"]), file);
+  if (!spans_torque(load))
+    throw InputError(file + ": torque_twist: torque_Nm = " + num(load.torque_Nm.front()) + " at every point; expected "
+                     "a curve from -rated to +rated torque");
+  c.middle_line = middle_line(load, unload);
+  return c;
 }
 
 std::string torque_twist_csv(const ContactAnalysis& a) {

@@ -7,37 +7,22 @@
 #include <numbers>
 #include <sstream>
 
-#include <nlohmann/json.hpp>
-
 #include "common/error.hpp"
-#include "io/fem_output.hpp"
 #include "common/svg_plot.hpp"
+#include "io/backlash_output.hpp"
+#include "io/contact_output.hpp"
+#include "io/fem_output.hpp"
 
 namespace sw {
 
 namespace {
 
 namespace fs = std::filesystem;
-using nlohmann::json;
 constexpr double kDeg = 180.0 / std::numbers::pi;
-
-json read_json_file(const fs::path& p) {
-  std::ifstream in(p);
-  if (!in) throw InputError(p.string() + ": cannot open; the report needs the run's outputs");
-  try {
-    return json::parse(in);
-  } catch (const std::exception& e) {
-    throw InputError(p.string() + ": not valid JSON (" + std::string(e.what()) + ")");
-  }
-}
 
 std::string slurp(const fs::path& p) {
   std::ifstream in(p);
   return {std::istreambuf_iterator<char>(in), {}};
-}
-
-double num(const json& j, const char* key, double fallback = std::nan("")) {
-  return j.contains(key) && j[key].is_number() ? j[key].get<double>() : fallback;
 }
 
 std::string fmt(const char* f, double v) {
@@ -58,52 +43,72 @@ class Table {
   std::ostringstream s_;
 };
 
-std::string fem_section(const json& r) {
-  Table t;
-  const double phi0 = num(r, "phi0_rad"), theory = num(r, "phi0_theory_cup_rad");
+/// φ₀ and C_τ, against the closed form, and the torque balance.
+void add_wind_up_rows(Table& t, const FemResult& r) {
+  const double phi0 = r.phi0_rad, theory = r.phi0_theory_cup_rad;
   t.row("flexspline body wind-up φ₀ at the case torque", fmt("%.4e rad", phi0),
-        fmt("%.4g N·m; least-squares rigid rotation of the rim's neutral circle", num(r, "torque_Nm")));
-  t.row("flexspline body torsional stiffness 1/C_τ", fmt("%.4g N·m/rad", 1.0 / num(r, "compliance_rad_per_Nm")),
+        fmt("%.4g N·m; least-squares rigid rotation of the rim's neutral circle", r.torque_Nm));
+  t.row("flexspline body torsional stiffness 1/C_τ", fmt("%.4g N·m/rad", 1.0 / r.compliance_rad_per_Nm),
         "the body alone: teeth, generator bearing and circular spline are not in it");
   if (std::isfinite(theory))
     t.row("closed form (body wall + diaphragm + rim)", fmt("%.4e rad", theory), fmt("FEM / closed form = %.4f", phi0 / theory));
-  if (r.contains("phi0_engaged_rad"))
-    t.row("mean rotation over the engagement zones", fmt("%.4e rad", num(r, "phi0_engaged_rad")),
-          "what the teeth in mesh turn");
+  t.row("mean rotation over the engagement zones", fmt("%.4e rad", r.phi0_engaged_rad), "what the teeth in mesh turn");
   t.row("reaction torque (clamp and generator) vs applied",
-        fmt("%.9g N·m", num(r, "reaction_torque_Nm")) + " vs " + fmt("%.9g N·m", num(r, "applied_torque_Nm")),
-        r.contains("torque_balance_error_rel") ? fmt("balance error %.1e", num(r, "torque_balance_error_rel")) : "");
-  if (r.contains("mesh"))
-    t.row("mesh", fmt("%.0f nodes, ", num(r["mesh"], "nodes")) + fmt("%.0f TET10", num(r["mesh"], "elements")),
-          fmt("smallest dihedral angle %.1f°", num(r["mesh"], "min_dihedral_deg")));
-  if (r.contains("solver"))
-    t.row("solver", fmt("%.0f equations", num(r["solver"], "equations", num(r["solver"], "dofs"))),
-          fmt("factor %.3g GF", num(r["solver"], "factor_gflop")) + fmt(" in %.1f s", num(r["timings_s"], "factor")));
-  if (r.contains("timings_s"))
-    t.row("run time, peak memory", fmt("%.1f s", num(r["timings_s"], "total")),
-          fmt("%.0f MB", num(r, "peak_rss_bytes") / 1e6));
-  if (r.contains("generator")) {
-    const json& g = r["generator"];
-    std::string zones;
-    for (const auto& z : g.value("contact_zones_deg", json::array()))
-      zones += fmt(" [%.0f°, ", z[0].get<double>()) + fmt("%.0f°]", z[1].get<double>());
-    t.row("wave generator", g.value("model", std::string("?")), g.value("idealisation", std::string("")));
-    t.row("generator: total radial force", fmt("%.1f N", num(g, "total_radial_force_N")), "contact zones:" + zones);
-    t.row("w at the major / minor axis", fmt("%+.4f mm", num(g, "w_major_axis_mm")) + " / " +
-                                             fmt("%+.4f mm", num(g, "w_minor_axis_mm")), "");
+        fmt("%.9g N·m", r.reaction_torque_Nm) + " vs " + fmt("%.9g N·m", r.applied_torque_Nm),
+        fmt("balance error %.1e", r.torque_balance_error_rel));
+}
+
+/// The model's size, its solve and what the run took.
+void add_model_rows(Table& t, const FemResult& r) {
+  if (const auto* m = std::get_if<TetMeshFigures>(&r.mesh))
+    t.row("mesh", fmt("%.0f nodes, ", m->nodes) + fmt("%.0f TET10", m->elements),
+          fmt("smallest dihedral angle %.1f°", m->min_dihedral_deg));
+  if (const auto* m = std::get_if<SectionMeshFigures>(&r.mesh))
+    t.row("mesh", fmt("%.0f nodes, ", m->nodes) + fmt("%.0f 6-node triangles", m->elements),
+          "meridian section of the harmonic solver");
+  t.row("solver", fmt("%.0f equations", r.solver.equations),
+        fmt("factor %.3g GF", r.solver.factor_gflop) + fmt(" in %.1f s", r.timings_s.factor));
+  t.row("run time, peak memory", fmt("%.1f s", r.timings_s.total), fmt("%.0f MB", r.peak_rss_bytes / 1e6));
+}
+
+void add_generator_rows(Table& t, const FemResult::Generator& g) {
+  std::string zones;
+  for (const auto& z : g.contact_zones_deg) zones += fmt(" [%.0f°, ", z[0]) + fmt("%.0f°]", z[1]);
+  t.row("wave generator", g.model, g.idealisation);
+  t.row("generator: total radial force", fmt("%.1f N", g.total_radial_force_N), "contact zones:" + zones);
+  t.row("w at the major / minor axis",
+        fmt("%+.4f mm", g.w_major_axis_mm) + " / " + fmt("%+.4f mm", g.w_minor_axis_mm), "");
+}
+
+void add_hoop_rows(Table& t, const FemResult::HoopStressMPa& h) {
+  t.row("nominal hoop bending stress", fmt("%+.0f MPa", h.nominal_bending),
+        fmt("away from load application, %.0f° from the major axis; ", h.nominal_angle_deg) +
+            fmt("thin-ring theory %+.0f MPa", h.ring_theory_bending));
+  t.row("local hoop stress peaks", fmt("%+.0f", h.local_peak_tensile) + fmt(" / %+.0f MPa", h.local_peak_compressive),
+        "where the generator touches: a local effect of concentrated contact, not the part's nominal stress");
+}
+
+/// The Goodman safety factor at the rim's and the diaphragm's worst point over a generator revolution.
+void add_fatigue_rows(Table& t, const FemResult::Fatigue& f) {
+  std::vector<const FemResult::FatiguePoint*> points{&f.rim};
+  if (f.diaphragm) points.push_back(&*f.diaphragm);
+  for (const FemResult::FatiguePoint* p : points) {
+    if (p->goodman_safety_factor)
+      t.row("fatigue safety factor, " + p->place, fmt("%.2f", *p->goodman_safety_factor),
+            f.criterion + "; over a generator revolution (" + f.case_name + " case)");
+    else
+      t.row("fatigue safety factor, " + p->place, "not computed",
+            "needs [material] fatigue_limit_MPa and ultimate_strength_MPa");
   }
-  if (r.contains("hoop_stress_MPa")) {
-    const json& h = r["hoop_stress_MPa"];
-    t.row("nominal hoop bending stress", fmt("%+.0f MPa", num(h, "nominal_bending")),
-          fmt("away from load application, %.0f° from the major axis; ", num(h, "nominal_angle_deg")) +
-              fmt("thin-ring theory %+.0f MPa", num(h, "ring_theory_bending")));
-    t.row("local hoop stress peaks", fmt("%+.0f", num(h, "local_peak_tensile")) + fmt(" / %+.0f MPa", num(h, "local_peak_compressive")),
-          "where the generator touches: a local effect of concentrated contact, not the part's nominal stress");
-  }
-  if (r.contains("fatigue")) {
-    const json& f = r["fatigue"];
-    if (f.contains("safety_factor")) t.row("fatigue safety factor", fmt("%.2f", num(f, "safety_factor")), f.value("criterion", std::string("")));
-  }
+}
+
+std::string fem_section(const FemResult& r) {
+  Table t;
+  add_wind_up_rows(t, r);
+  add_model_rows(t, r);
+  if (r.generator) add_generator_rows(t, *r.generator);
+  add_hoop_rows(t, r.hoop_stress_MPa);
+  if (r.fatigue) add_fatigue_rows(t, *r.fatigue);
   return t.html();
 }
 
@@ -133,94 +138,101 @@ std::string neutral_curve_plot(const RunReportInputs& in) {
   return svg_line_plot(p);
 }
 
-std::string hoop_plot(const json& r) {
-  if (!r.contains("hoop_stress_profile")) return "";
-  const json& h = r["hoop_stress_profile"];
+std::string hoop_plot(const FemResult& r) {
+  const FemResult::HoopStressProfile& h = r.hoop_stress_profile;
   LinePlot p;
-  p.title = "Hoop stress around the rim at z = " + fmt("%.1f mm", num(h, "z_mm")) + " (" +
-            r.value("hoop_stress_case", std::string("generator")) + " case)";
+  p.title = "Hoop stress around the rim at z = " + fmt("%.1f mm", h.z_mm) + " (" + r.hoop_stress_case + " case)";
   p.x_label = "angle from the major axis (deg)";
   p.y_label = "hoop stress (MPa)";
   PlotSeries inner{"inner wall", {}, {}, "#1f77b4", false, false}, outer{"outer wall", {}, {}, "#d62728", true, false};
-  const auto& a = h["angle_deg"];
-  for (size_t i = 0; i < a.size(); ++i) {
-    inner.x.push_back(a[i].get<double>());
-    outer.x.push_back(a[i].get<double>());
-    inner.y.push_back(h["inner_Pa"][i].get<double>() / 1e6);
-    outer.y.push_back(h["outer_Pa"][i].get<double>() / 1e6);
+  for (size_t i = 0; i < h.angle_deg.size(); ++i) {
+    inner.x.push_back(h.angle_deg[i]);
+    outer.x.push_back(h.angle_deg[i]);
+    inner.y.push_back(h.inner_Pa[i] / 1e6);
+    outer.y.push_back(h.outer_Pa[i] / 1e6);
   }
   p.series = {inner, outer};
   return svg_line_plot(p);
 }
 
+/// The output's geometric angular play over one pitch of the generator.
+std::string angular_play_plot(const BacklashResult& b) {
+  LinePlot p;
+  p.title = "Output's geometric angular play over one circular-spline pitch of the generator (repeats)";
+  p.x_label = "wave-generator angle (deg)";
+  p.y_label = "angular play (arcmin)";
+  PlotSeries ser{"angular play", {}, {}, "#1f77b4"};
+  for (const auto& st : b.revolution.period_basic) {
+    ser.x.push_back(st.wg_deg);
+    ser.y.push_back(st.angular_play_arcmin);
+  }
+  p.series = {ser};
+  p.zero_line = false;
+  return svg_line_plot(p);
+}
+
 std::string backlash_section(const fs::path& dir) {
   if (!fs::exists(dir / "backlash.json")) return "";
-  const json b = read_json_file(dir / "backlash.json");
+  const BacklashResult b = read_backlash_result(dir / "backlash.json");
   std::ostringstream s;
-  s << "<h2>Backlash</h2>\n<p>Neutral curve used: " << html_escape(b.value("neutral_curve", std::string("?")))
-    << ".</p>\n";
+  s << "<h2>Backlash</h2>\n<p>Neutral curve used: " << html_escape(b.neutral_curve) << ".</p>\n";
   Table t;
-  const json& g = b["geometry_check"];
-  t.row("interference at rest", g.value("interference_at_rest", false) ? "yes" : "no",
-        fmt("smallest clearance %.2f µm", num(g, "smallest_clearance_um")));
-  t.row("working depth at the major axis", fmt("%.3f mm", num(g, "working_depth_mm")), fmt("against 2·w0 = %.3f mm", num(g, "two_w0_mm")));
-  t.row("major-axis pair: dead band", fmt("%.3f arcmin", num(g, "major_axis_play_arcmin")), "output rotation between the two flank contacts");
-  const json& play = b["angular_play_arcmin"];
-  t.row("geometric angular play over a revolution", fmt("%.3f", num(play, "min")) + fmt(" … %.3f arcmin", num(play, "max")),
+  const BacklashResult::Geometry& g = b.geometry_check;
+  t.row("interference at rest", g.interference_at_rest ? "yes" : "no",
+        fmt("smallest clearance %.2f µm", g.smallest_clearance_um));
+  t.row("working depth at the major axis", fmt("%.3f mm", g.working_depth_mm), fmt("against 2·w0 = %.3f mm", g.two_w0_mm));
+  t.row("major-axis pair: dead band", fmt("%.3f arcmin", g.major_axis_play_arcmin), "output rotation between the two flank contacts");
+  const BacklashResult::AngularPlay& play = b.angular_play_arcmin;
+  t.row("geometric angular play over a revolution", fmt("%.3f", play.min) + fmt(" … %.3f arcmin", play.max),
         "teeth and rim rigid; not the catalog's lost motion, which includes elastic twist at ±4 % of rated torque");
   t.row("smallest clearance over a revolution (basic, with φ₀)",
-        fmt("%.2f µm", num(b, "min_backlash_basic_mm") * 1e3) + fmt(" / %.2f µm", num(b, "min_backlash_compensated_mm") * 1e3),
+        fmt("%.2f µm", b.min_backlash_basic_mm * 1e3) + fmt(" / %.2f µm", b.min_backlash_compensated_mm * 1e3),
         "with φ₀ at or below zero: the loaded flank in contact, not interference");
   s << t.html();
-  if (b.contains("revolution") && b["revolution"].contains("period_basic")) {
-    LinePlot p;
-    p.title = "Output's geometric angular play over one circular-spline pitch of the generator (repeats)";
-    p.x_label = "wave-generator angle (deg)";
-    p.y_label = "angular play (arcmin)";
-    PlotSeries ser{"angular play", {}, {}, "#1f77b4"};
-    for (const auto& st : b["revolution"]["period_basic"]) {
-      ser.x.push_back(st["wg_deg"].get<double>());
-      ser.y.push_back(st["angular_play_arcmin"].get<double>());
-    }
-    p.series = {ser};
-    p.zero_line = false;
-    s << "<div class='fig'>" << svg_line_plot(p) << "</div>\n";
-  }
+  s << "<div class='fig'>" << angular_play_plot(b) << "</div>\n";
   if (fs::exists(dir / "backlash.svg")) s << "<div class='fig'>" << slurp(dir / "backlash.svg") << "</div>\n";
   return s.str();
 }
 
-std::string contact_section(const fs::path& dir) {
-  if (!fs::exists(dir / "contact.json")) return "";
-  const json a = read_json_file(dir / "contact.json");
-  std::ostringstream s;
-  s << "<h2>Whole drive under load (tooth contact)</h2>\n<p>Generator locked, the output turned against the circular "
-       "spline; "
-    << html_escape(a.value("generator_support", std::string())) << ". No friction: loading and unloading coincide.</p>\n";
-  Table t;
-  const json& k = a["catalog"];
-  t.row("twist at rated torque", fmt("%.3f arcmin", num(a, "twist_at_rated_arcmin")),
-        fmt("at %.4g N·m", num(a, "rated_torque_Nm")));
-  t.row("three segments", fmt("K1 %.4g", num(k, "K1_Nm_per_rad")) + fmt(", K2 %.4g", num(k, "K2_Nm_per_rad")) +
-        fmt(", K3 %.4g N·m/rad", num(k, "K3_Nm_per_rad")),
-        fmt("T1 %.3g N·m", num(k, "T1_Nm")) + fmt(", T2 %.3g N·m (", num(k, "T2_Nm")) +
-            k.value("breakpoints", std::string()) + ")");
-  t.row("lost motion", fmt("%.3f arcmin", num(a, "lost_motion_arcmin")),
+/// The drive's twist, its three segments, lost motion and play.
+void add_twist_rows(Table& t, const ContactResult& a) {
+  const ContactResult::Catalog& k = a.catalog;
+  t.row("twist at rated torque", fmt("%.3f arcmin", a.twist_at_rated_arcmin), fmt("at %.4g N·m", a.rated_torque_Nm));
+  t.row("three segments", fmt("K1 %.4g", k.K1_Nm_per_rad) + fmt(", K2 %.4g", k.K2_Nm_per_rad) +
+        fmt(", K3 %.4g N·m/rad", k.K3_Nm_per_rad),
+        fmt("T1 %.3g N·m", k.T1_Nm) + fmt(", T2 %.3g N·m (", k.T2_Nm) + k.breakpoints + ")");
+  t.row("lost motion", fmt("%.3f arcmin", a.lost_motion_arcmin),
         "twist between ±4 % of rated torque on the middle line (includes the elastic twist)");
-  t.row("play", fmt("%.3f arcmin", num(a, "play_arcmin")), "jump of the curve at zero torque");
-  if (num(a, "overlap_at_rest_um") > 0)
-    t.row("overlap at rest", fmt("%.2f µm", num(a, "overlap_at_rest_um")),
+  t.row("play", fmt("%.3f arcmin", a.play_arcmin), "jump of the curve at zero torque");
+  if (a.overlap_at_rest_um > 0)
+    t.row("overlap at rest", fmt("%.2f µm", a.overlap_at_rest_um),
           "the teeth overlap on the FEM's neutral curve: part of the curve is a preload from that interference");
-  const json& sp = a["compliance_split"];
-  t.row("twist at rated, by part", fmt("body %.0f %%", 100 * num(sp, "body")) + fmt(", teeth %.0f %%", 100 * num(sp, "teeth")) +
-        fmt(", generator %.0f %%", 100 * num(sp, "generator")) + fmt(", circular spline %.0f %%", 100 * num(sp, "circular_spline")) +
-        fmt(", tangent's intercept %.0f %%", 100 * num(sp, "engagement")),
-        num(sp, "engagement") >= 0
+}
+
+/// Where the twist at rated torque comes from, and the checks of the solve.
+void add_split_and_check_rows(Table& t, const ContactResult& a) {
+  const ContactResult::Split& sp = a.compliance_split;
+  t.row("twist at rated, by part", fmt("body %.0f %%", 100 * sp.body) + fmt(", teeth %.0f %%", 100 * sp.teeth) +
+        fmt(", generator %.0f %%", 100 * sp.generator) + fmt(", circular spline %.0f %%", 100 * sp.circular_spline) +
+        fmt(", tangent's intercept %.0f %%", 100 * sp.engagement),
+        sp.engagement >= 0
             ? "the tangent at rated torque split by energy; its intercept is the engagement (play, pairs engaging)"
             : "the tangent at rated torque split by energy; its intercept is below the origin: the curve softens "
               "toward rated torque");
-  t.row("checks", fmt("balance %.1e", num(a, "torque_balance_error_rel")),
-        fmt("clamp reaction in a direct FEM solve %.6g N·m", num(a, "fem_reaction_torque_Nm")));
+  t.row("checks", fmt("balance %.1e", a.torque_balance_error_rel),
+        fmt("clamp reaction in a direct FEM solve %.6g N·m", a.fem_reaction_torque_Nm));
+}
+
+std::string contact_section(const fs::path& dir) {
+  if (!fs::exists(dir / "contact.json")) return "";
+  const ContactResult a = read_contact_result(dir / "contact.json");
+  std::ostringstream s;
+  s << "<h2>Whole drive under load (tooth contact)</h2>\n<p>Generator locked, the output turned against the circular "
+       "spline; "
+    << html_escape(a.generator_support) << ". No friction: loading and unloading coincide.</p>\n";
+  Table t;
+  add_twist_rows(t, a);
+  add_split_and_check_rows(t, a);
   s << t.html();
   if (fs::exists(dir / "contact.svg")) s << "<div class='fig'>" << slurp(dir / "contact.svg") << "</div>\n";
   return s.str();
@@ -229,7 +241,7 @@ std::string contact_section(const fs::path& dir) {
 }  // namespace
 
 std::string run_report_html(const RunReportInputs& in) {
-  const json r = read_json_file(in.out_dir / "result.json");
+  const FemResult r = read_fem_result(in.out_dir / "result.json");
   std::ostringstream s;
   s << "<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'><title>strainwave: "
     << html_escape(in.case_path) << "</title>\n<style>body{font-family:sans-serif;max-width:1000px;margin:2em auto;"
@@ -249,11 +261,10 @@ std::string run_report_html(const RunReportInputs& in) {
   s << "<li>friction in the tooth contacts (hysteresis)</li><li>ratcheting torque</li><li>wave-generator bearing "
        "life</li></ul>\n";
   s << "<h2>3-D results</h2>\n<p><a href='flexspline.pvd'>flexspline.pvd</a> (one .vtu per load case):";
-  for (const auto& lc : r.value("load_cases", json::array()))
-    if (lc.contains("name")) {
-      const std::string f = "flexspline_" + lc["name"].get<std::string>() + ".vtu";
-      s << " <a href='" << html_escape(f) << "'>" << html_escape(f) << "</a>";
-    }
+  for (const auto& lc : r.load_cases) {
+    const std::string f = "flexspline_" + lc.name + ".vtu";
+    s << " <a href='" << html_escape(f) << "'>" << html_escape(f) << "</a>";
+  }
   s << ". In ParaView open the .pvd, apply Warp By Vector (the displacement is the active vector) and colour by "
        "stress_hoop; or render headless:</p>\n<pre>scripts/pvbatch.sh cases/view_flexspline.py "
     << html_escape(in.out_dir.string()) << " --case generator --field stress_hoop --png view.png</pre>\n";

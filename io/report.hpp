@@ -16,8 +16,10 @@ struct RunReportInputs {
   std::string theory_label;
 };
 
-/// The page's HTML. Reads the run's files from out_dir; a missing backlash.json leaves its section out. Throws
-/// InputError naming the file when result.json is missing or unreadable.
+/// The page's HTML. Reads the run's files from out_dir through their typed readers (read_fem_result,
+/// read_backlash_result, read_contact_result); a missing backlash.json or contact.json leaves its section out. Throws
+/// InputError naming the file, the key and the value when result.json is missing or any file read is not what its
+/// writer writes.
 std::string run_report_html(const RunReportInputs& in);
 
 }  // namespace sw

@@ -41,22 +41,12 @@ namespace sw {
 /// "explicit" has no gear.
 double rim_outer_radius(const FlexsplineParams& f, const std::optional<GearParams>& gear);
 
-/// Checks every dimension and combination of the flexspline keys and the mesh keys. Throws InputError naming the keys
-/// in mm, e.g. "flexspline.fillet_radius_mm = 3; must be < inner_radius_mm - boss_radius_mm = 2.4".
-void validate_flexspline(const FlexsplineParams& f, const MeshParams& mesh);
-
-/// Checks that the teeth sit on the rim to be meshed: their root circle within 0.25 module of inner_radius +
-/// rim_thickness (and, for "explicit", outside inner_radius + wall_thickness). Needed to mesh the teeth (ring or
-/// explicit), not by the stages that take the teeth on a neutral curve alone. Throws InputError naming the key.
-void check_teeth_on_rim(const FlexsplineParams& f, const std::optional<GearParams>& gear);
 
 /// Boss edge length over mesh.size: every boss face is clamped, so its tets carry no strain worth resolving; only the
 /// interface with the diaphragm (r = boss_radius) keeps the diaphragm's size. The harmonic section and the model-size
 /// estimate mesh and count the boss with it too.
 inline constexpr double kBossSizeFactor = 4.0;
 
-/// Largest mesh.corner_levels: 2^-8 of a layer is already far below any tooth or fillet a case resolves.
-inline constexpr int kMaxCornerLevels = 8;
 /// Growth of the edge length with the distance from a clamp corner (the size field's slope): 0.5 keeps neighbouring
 /// tets within TetGen's radius-edge bound without a cascade of Steiner points.
 inline constexpr double kCornerGrowth = 0.5;

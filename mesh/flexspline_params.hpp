@@ -1,6 +1,10 @@
 #pragma once
-// The flexspline's geometry and its mesh (the case file's [flexspline] and [mesh] tables), SI units. The mesh stage
-// owns them and checks them (mesh/flexspline.hpp validate_flexspline, corner_levels).
+// The flexspline's geometry and its mesh (the case file's [flexspline] and [mesh] tables), SI units, and their
+// validation: the mesh stage owns them.
+#include <optional>
+
+#include "gear/gear.hpp"
+
 namespace sw {
 
 enum class FlexsplineShape { Cup, Tube };
@@ -35,5 +39,21 @@ struct MeshParams {
   double min_dihedral_deg = 0.0;      ///< TetGen quality switch (0 = TetGen default)
   double max_radius_edge_ratio = 2.0; ///< TetGen -q bound
 };
+
+/// Largest mesh.corner_levels: 2^-8 of a layer is already far below any tooth or fillet a case resolves.
+inline constexpr int kMaxCornerLevels = 8;
+
+/// Checks the mesh keys: size_mm > 0, wall_layers >= 1, corner_levels in [-1, kMaxCornerLevels]. Throws InputError
+/// "mesh.<key> = value; expectation".
+void validate_mesh(const MeshParams& mesh);
+
+/// Checks every dimension and combination of the flexspline keys and the mesh keys. Throws InputError naming the keys
+/// in mm, e.g. "flexspline.fillet_radius_mm = 3; must be < inner_radius_mm - boss_radius_mm = 2.4".
+void validate_flexspline(const FlexsplineParams& f, const MeshParams& mesh);
+
+/// Checks that the teeth sit on the rim to be meshed: their root circle within 0.25 module of inner_radius +
+/// rim_thickness (and, for "explicit", outside inner_radius + wall_thickness). Needed to mesh the teeth (ring or
+/// explicit), not by the stages that take the teeth on a neutral curve alone. Throws InputError naming the key.
+void check_teeth_on_rim(const FlexsplineParams& f, const std::optional<GearParams>& gear);
 
 }  // namespace sw

@@ -25,9 +25,7 @@ void require_positive(const char* what, double value_m) {
 }  // namespace
 
 WallSize wall_size(double thickness_m, const MeshParams& mesh) {
-  if (!(mesh.size_m > 0.0)) throw InputError("mesh.size_mm = " + mm(mesh.size_m) + "; must be > 0");
-  if (mesh.wall_layers < 1)
-    throw InputError("mesh.wall_layers = " + std::to_string(mesh.wall_layers) + "; must be >= 1");
+  validate_mesh(mesh);
   WallSize w;
   // Thick walls get more layers, so no layer is thicker than the target size.
   w.layers = std::max(mesh.wall_layers, static_cast<int>(std::ceil(thickness_m / mesh.size_m - 1e-9)));

@@ -1,4 +1,6 @@
-// libFuzzer target: sw::read_fem_compensation (result.json written by `strainwave fem`) on arbitrary bytes.
+// libFuzzer target: the readers of result.json (written by `strainwave fem`) on arbitrary bytes: sw::read_fem_result,
+// the typed value, and sw::read_fem_compensation. What reads as a typed value must be written and read again to the
+// same text (the reader and the writer share one field table).
 #include <cstddef>
 #include <cstdint>
 
@@ -12,5 +14,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     (void)sw::read_fem_compensation(path);
   } catch (const sw::InputError&) {
   }
+  sw::fuzz::expect_written_back(path, sw::read_fem_result, sw::fem_result_json);
   return 0;
 }

@@ -1,6 +1,6 @@
 #pragma once
-// The FEM result readers take a path: the fuzz input is written to one file per process (in TMPDIR), rewritten on
-// every call.
+// The readers of the tool's outputs take a path: the fuzz input is written to one file per process (in TMPDIR),
+// rewritten on every call.
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -9,6 +9,8 @@
 #include <string>
 
 #include <unistd.h>
+
+#include "common/error.hpp"
 
 namespace sw::fuzz {
 
@@ -25,6 +27,18 @@ inline std::filesystem::path write_input(const std::uint8_t* data, std::size_t s
   out.close();
   if (!out) std::abort();
   return path;
+}
+
+/// What `read` makes of the file at `path`, written by `write` and read again, must write the same text (the reader
+/// and the writer share one field table): otherwise abort, a defect. InputError is the readers' answer to bad input.
+template <class Read, class Write>
+void expect_written_back(const std::filesystem::path& path, Read read, Write write) {
+  try {
+    const std::string text = write(read(path));
+    const auto again = write_input(reinterpret_cast<const std::uint8_t*>(text.data()), text.size(), "again.json");
+    if (write(read(again)) != text) std::abort();
+  } catch (const sw::InputError&) {
+  }
 }
 
 }  // namespace sw::fuzz

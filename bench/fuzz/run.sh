@@ -1,14 +1,16 @@
 #!/usr/bin/env bash
 # Runs the fuzz targets one after another, single process, at the lowest priority:
-#   run.sh BUILD_DIR SEED_DIR WORK_DIR SECONDS [TARGET...]     (TARGET: case recording fem_result neutral_curve)
+#   run.sh BUILD_DIR SEED_DIR WORK_DIR SECONDS [TARGET...]
+#     (TARGET: case recording fem_result neutral_curve backlash_result contact_result)
 # WORK_DIR/corpus/TARGET collects the inputs that reached new code, WORK_DIR/TARGET.log libFuzzer's output, and a
 # crashing input is written as WORK_DIR/crash-* (libFuzzer then stops that target).
 set -uo pipefail
 build=${1:?usage: run.sh BUILD_DIR SEED_DIR WORK_DIR SECONDS [TARGET...]}
 seeds=${2:?}; work=${3:?}; seconds=${4:?}; shift 4
-targets=("$@"); [[ ${#targets[@]} -gt 0 ]] || targets=(case recording fem_result neutral_curve)
+targets=("$@")
+[[ ${#targets[@]} -gt 0 ]] || targets=(case recording fem_result neutral_curve backlash_result contact_result)
 mkdir -p "$work"
-# The FEM result readers take a file: each input is written to $TMPDIR first. On tmpfs that costs microseconds; on
+# The readers of the tool's outputs take a file: each input is written to $TMPDIR first. On tmpfs that costs microseconds; on
 # ext4 it held them to ~250 runs/s here.
 if [[ -z ${TMPDIR:-} && -w /dev/shm ]]; then export TMPDIR=/dev/shm; fi
 work=$(cd "$work" && pwd)

@@ -15,10 +15,22 @@
 namespace sw::app {
 namespace {
 
+/// What the contact solves on: the TET10 model factorised, and the FEM's readout.
+struct ContactFem {
+  ContactFem() = default;
+  ContactFem(ContactFem&&) = default;  // a move keeps the readout's field pointer: the cases' buffer moves with it
+  ContactFem(const ContactFem&) = delete;
+  std::shared_ptr<const TetMesh> mesh;
+  std::shared_ptr<const FlexsplineSystem> system;
+  FemJobResult job;     ///< the FEM solved now (empty when read back)
+  FemReadout readout;   ///< of `job`'s solution, or read back
+};
+
 /// The FEM of an earlier run of the same case (--fem): the model is meshed and factorised again (the influence
 /// coefficients need the factor, which no file carries) and must have as many equations as that run's; the
-/// generator-deformed neutral curve and C_τ are read back instead of solving the load cases again.
-FemJobResult fem_from_run(const Case& c, const std::filesystem::path& result_json, double max_memory_gb) {
+/// generator-deformed neutral curve and C_τ are read back instead of solving the load cases again (no field: the
+/// face is taken at its centre).
+ContactFem fem_from_run(const Case& c, const std::filesystem::path& result_json, double max_memory_gb) {
   const FemRunForContact run = read_fem_run_for_contact(result_json);
   const WaveGeneratorParams& w = *c.wave_generator;
   const std::string model = model_name(w.model);
@@ -35,18 +47,26 @@ FemJobResult fem_from_run(const Case& c, const std::filesystem::path& result_jso
     throw InputError(result_json.string() + ": made from a model of " + std::to_string(run.equations) +
                      " equations, " + c.path + " gives " + std::to_string(system->dofs.n_equations) +
                      "; run `strainwave fem` on this case again or leave out --fem");
-  FemJobResult job;
-  job.result_json_path = result_json;
-  job.solution.compliance_rad_per_Nm = run.compliance_rad_per_Nm;
-  job.solution.neutral_curve = run.neutral_curve;
-  GeneratorReadout g;
-  g.model = model;
-  g.unilateral = cam_of(w) != nullptr;
-  if (g.unilateral) g.obstacle_m = generator_stations(flexspline_model(c), *mesh).obstacle_m;
-  job.solution.generator = g;
-  job.mesh = mesh;
-  job.system = system;
-  return job;
+  ContactFem fem;
+  fem.readout.compliance_rad_per_Nm = run.compliance_rad_per_Nm;
+  fem.readout.neutral_curve = run.neutral_curve;
+  fem.readout.generator_model = model;
+  if (cam_of(w)) fem.readout.generator_obstacle_m = generator_stations(flexspline_model(c), *mesh).obstacle_m;
+  fem.mesh = mesh;
+  fem.system = system;
+  return fem;
+}
+
+/// The FEM solved now on TET10.
+ContactFem fem_solved(const Case& c, const std::filesystem::path& dir, const FemJobOptions& options) {
+  ContactFem fem;
+  fem.job = run_fem_job(c, dir, options);
+  if (!fem.job.system || !fem.job.mesh)
+    throw InputError(c.path + ": contact solves on the TET10 model (solver.method = \"tet10\")");
+  fem.mesh = fem.job.mesh;
+  fem.system = fem.job.system;
+  fem.readout = fem_readout(fem.job.solution);
+  return fem;
 }
 
 }  // namespace
@@ -67,9 +87,9 @@ void add_contact_command(CLI::App& app) {
     naming_file(c.path, [&] { check_contact_model(flexspline_model(c)); });  // before any work: nothing is written for a case contact cannot take
     progress("case:\n" + describe_case(c));
     const std::filesystem::path dir = out.empty() ? default_out_dir(c) : std::filesystem::path(out);
-    const FemJobResult fem = fem_json.empty() ? run_fem_job(c, dir, fem_options)
-                                              : fem_from_run(c, fem_json, fem_options.max_memory_gb);
-    run_contact_job(c, fem, dir);
+    const ContactFem fem = fem_json.empty() ? fem_solved(c, dir, fem_options)
+                                            : fem_from_run(c, fem_json, fem_options.max_memory_gb);
+    run_contact_job(c, *fem.mesh, *fem.system, fem.readout, dir);
   });
 }
 

@@ -108,7 +108,8 @@ void add_run_command(CLI::App& app) {
       std::printf("run: no backlash for this case (it needs [gear] and [wave_generator] with radial_deformation_mm)\n");
     }
     std::optional<ContactAnalysis> contact;
-    if (fem.system && !contact_model_gap(flexspline_model(c))) contact = run_contact_job(c, fem, dir);
+    if (fem.system && !contact_model_gap(flexspline_model(c)))
+      contact = run_contact_job(c, *fem.mesh, *fem.system, fem_readout(fem.solution), dir);
     write_file_atomic(dir / "report.html", run_report_html(report_inputs(c, dir)));
     print_summary(c, fem, backlash, contact, dir);
   });

@@ -190,9 +190,8 @@ void print_overlap_and_balance(const ContactAnalysis& a) {
 
 }  // namespace
 
-ContactAnalysis run_contact_job(const Case& c, const FemJobResult& fem, const std::filesystem::path& dir) {
-  if (!fem.system || !fem.mesh)
-    throw InputError(c.path + ": contact solves on the TET10 model (solver.method = \"tet10\")");
+ContactAnalysis run_contact_job(const Case& c, const TetMesh& mesh, const FlexsplineSystem& system,
+                                const FemReadout& fem, const std::filesystem::path& dir) {
   ContactOptions o;
   o.rated_torque_Nm = c.load.rated_torque_Nm.value_or(c.load.torque_Nm);
   o.series = series_parts(c);
@@ -202,8 +201,8 @@ ContactAnalysis run_contact_job(const Case& c, const FemJobResult& fem, const st
     o.catalog_t1_Nm = reference->t1_Nm;
     o.catalog_t2_Nm = reference->t2_Nm;
   }
-  const ContactAnalysis a = naming_file(
-      c.path, [&] { return analyse_contact(flexspline_model(c), *fem.mesh, *fem.system, fem_readout(fem.solution), o); });
+  const ContactAnalysis a =
+      naming_file(c.path, [&] { return analyse_contact(flexspline_model(c), mesh, system, fem, o); });
   write_file_atomic(dir / "contact.json", contact_json(contact_result(a, c.path, reference)));
   write_file_atomic(dir / "torque_twist.csv", torque_twist_csv(a));
   write_file_atomic(dir / "contact.svg", contact_svg(a, reference));

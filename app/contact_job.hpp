@@ -11,8 +11,10 @@ namespace sw::app {
 /// What acts in series with the flexspline body, from the case (tooth pairs, generator bearing, circular spline).
 SeriesParts series_parts(const Case& c);
 
-/// Runs the contact analysis on the fem job's mesh and system, writes contact.json, torque_twist.csv and contact.svg
-/// under out_dir, prints the summary. The fem job must have kept its system (TET10).
-ContactAnalysis run_contact_job(const Case& c, const FemJobResult& fem, const std::filesystem::path& out_dir);
+/// Runs the contact analysis on the TET10 mesh and its factorised system with what the FEM gave (`fem`: solved now or
+/// read back from an earlier run's result.json), writes contact.json, torque_twist.csv and contact.svg under out_dir,
+/// prints the summary.
+ContactAnalysis run_contact_job(const Case& c, const TetMesh& mesh, const FlexsplineSystem& system,
+                                const FemReadout& fem, const std::filesystem::path& out_dir);
 
 }  // namespace sw::app

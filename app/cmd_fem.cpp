@@ -58,6 +58,19 @@ void apply_solver_option(Case& c, const std::string& solver, const std::string& 
                               "(use --solver tet10, or --backend cholmod)");
 }
 
+void add_solver_options(CLI::App* cmd, std::string& solver, std::string& backend) {
+  cmd->add_option("--solver", solver, "tet10 | fourier (overrides [solver] method)")
+      ->check(CLI::IsMember({"tet10", "fourier"}));
+  add_backend_option(cmd, backend);
+}
+
+Case load_case_with_solver(const std::string& path, const std::string& solver, const std::string& backend) {
+  Case c = load_case(path);
+  apply_solver_option(c, solver, backend);
+  progress("case:\n" + describe_case(c));
+  return c;
+}
+
 void add_backend_option(CLI::App* cmd, std::string& backend) {
   cmd->add_option("--backend", backend,
                   "cholmod | petsc (overrides [solver] backend); petsc under mpirun -np N distributes the TET10 solve, "
@@ -206,13 +219,9 @@ void add_fem_command(CLI::App& app) {
   cmd->add_option("case", case_path, "case file (TOML)")->required();
   add_fem_job_options(cmd, options);
   cmd->add_option("--out", out, "output directory (default out/<case stem>/)");
-  cmd->add_option("--solver", solver, "tet10 | fourier (overrides [solver] method)")
-      ->check(CLI::IsMember({"tet10", "fourier"}));
-  add_backend_option(cmd, backend);
+  add_solver_options(cmd, solver, backend);
   cmd->callback([] {
-    Case c = load_case(case_path);
-    apply_solver_option(c, solver, backend);
-    progress("case:\n" + describe_case(c));
+    const Case c = load_case_with_solver(case_path, solver, backend);
     run_fem_job(c, out.empty() ? default_out_dir(c) : fs::path(out), options);
   });
 }

@@ -89,13 +89,9 @@ void add_run_command(CLI::App& app) {
                   "(the generator model's thin-ring/cam curve)")
       ->check(CLI::IsMember({"generator", "fem"}));
   cmd->add_option("--out", out, "output directory (default out/<case stem>/)");
-  cmd->add_option("--solver", solver, "tet10 | fourier (overrides [solver] method)")
-      ->check(CLI::IsMember({"tet10", "fourier"}));
-  add_backend_option(cmd, backend);
+  add_solver_options(cmd, solver, backend);
   cmd->callback([] {
-    Case c = load_case(case_path);
-    apply_solver_option(c, solver, backend);
-    progress("case:\n" + describe_case(c));
+    const Case c = load_case_with_solver(case_path, solver, backend);
     const std::filesystem::path dir = out.empty() ? default_out_dir(c) : std::filesystem::path(out);
     const FemJobResult fem = run_fem_job(c, dir, fem_options);
     std::optional<BacklashReport> backlash;

@@ -52,4 +52,10 @@ void apply_solver_option(Case& c, const std::string& solver, const std::string& 
 /// Registers --backend cholmod | petsc on a subcommand.
 void add_backend_option(CLI::App* cmd, std::string& backend);
 
+/// --solver tet10 | fourier and --backend, overriding the case's [solver] keys.
+void add_solver_options(CLI::App* cmd, std::string& solver, std::string& backend);
+
+/// The case at `path` with the command line's solver and backend applied, its resolved keys shown as progress.
+Case load_case_with_solver(const std::string& path, const std::string& solver, const std::string& backend);
+
 }  // namespace sw::app

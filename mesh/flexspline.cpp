@@ -16,11 +16,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-std::string mm(double m) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", m * 1e3);
-  return buf;
-}
 
 
 // Profile under construction: edges are added once each; mesh_revolved merges repeated vertices and splits edges

@@ -2,6 +2,7 @@
 // The flexspline's geometry and its mesh (the case file's [flexspline] and [mesh] tables), SI units, and their
 // validation: the mesh stage owns them.
 #include <optional>
+#include <string>
 
 #include "gear/gear.hpp"
 
@@ -42,6 +43,9 @@ struct MeshParams {
 
 /// Largest mesh.corner_levels: 2^-8 of a layer is already far below any tooth or fillet a case resolves.
 inline constexpr int kMaxCornerLevels = 8;
+
+/// A length in millimetres for a message (6 significant digits).
+std::string mm_text(double length_m);
 
 /// Checks the mesh keys: size_mm > 0, wall_layers >= 1, corner_levels in [-1, kMaxCornerLevels]. Throws InputError
 /// "mesh.<key> = value; expectation".

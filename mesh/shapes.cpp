@@ -12,14 +12,9 @@
 namespace sw {
 namespace {
 
-std::string mm(double m) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", m * 1e3);
-  return buf;
-}
 
 void require_positive(const char* what, double value_m) {
-  if (!(value_m > 0.0)) throw InputError(std::string(what) + " = " + mm(value_m) + " mm; must be > 0");
+  if (!(value_m > 0.0)) throw InputError(std::string(what) + " = " + mm_text(value_m) + " mm; must be > 0");
 }
 
 }  // namespace
@@ -38,7 +33,7 @@ TetMesh mesh_tube(double r_inner_m, double r_outer_m, double length_m, const Mes
   require_positive("tube inner radius", r_inner_m);
   require_positive("tube length", length_m);
   if (!(r_outer_m > r_inner_m))
-    throw InputError("tube outer radius = " + mm(r_outer_m) + " mm; must be > inner radius = " + mm(r_inner_m) +
+    throw InputError("tube outer radius = " + mm_text(r_outer_m) + " mm; must be > inner radius = " + mm_text(r_inner_m) +
                      " mm");
   const WallSize w = wall_size(r_outer_m - r_inner_m, mesh);
   // Profile: bottom and top edges across the wall, inner and outer walls, and w.layers - 1 internal layer lines.

@@ -157,16 +157,30 @@ Eigen::MatrixXd hcat(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
   return out;
 }
 
-FTest f_test(const Eigen::MatrixXd& base, const Eigen::MatrixXd& extra, const Eigen::VectorXd& y) {
+namespace {
+
+/// The residual sums of squares without and with the extra columns, and the extra columns' degrees of freedom; the
+/// full model's rank in `rank_full`.
+FTest nested_fits(const Eigen::MatrixXd& base, const Eigen::MatrixXd& extra, const Eigen::VectorXd& y,
+                  int& rank_full) {
   FTest t;
   const LsResult r0 = least_squares(base, y);
   const LsResult r1 = least_squares(hcat(base, extra), y);
   t.rss_base = r0.rss;
   t.rss_full = r1.rss;
   t.df_extra = r1.rank - r0.rank;
-  t.df_resid = static_cast<int>(y.size()) - r1.rank;
-  if (t.df_extra <= 0 || t.df_resid <= 0 || !(r1.rss > 0.0)) return t;
-  t.f = std::max(0.0, (r0.rss - r1.rss) / t.df_extra) / (r1.rss / t.df_resid);
+  rank_full = r1.rank;
+  return t;
+}
+
+}  // namespace
+
+FTest f_test(const Eigen::MatrixXd& base, const Eigen::MatrixXd& extra, const Eigen::VectorXd& y) {
+  int rank_full = 0;
+  FTest t = nested_fits(base, extra, y, rank_full);
+  t.df_resid = static_cast<int>(y.size()) - rank_full;
+  if (t.df_extra <= 0 || t.df_resid <= 0 || !(t.rss_full > 0.0)) return t;
+  t.f = std::max(0.0, (t.rss_base - t.rss_full) / t.df_extra) / (t.rss_full / t.df_resid);
   t.p_value = f_upper_tail(t.f, t.df_extra, t.df_resid);
   return t;
 }
@@ -237,12 +251,8 @@ SpectralCalibration spectral_calibration(const Eigen::MatrixXd& rich_w, const Ei
 FTest calibrated_f_test(const SpectralCalibration& cal, const Eigen::MatrixXd& base, const Eigen::MatrixXd& extra,
                         const Eigen::VectorXd& y) {
   if (!cal.valid() || cal.n != y.size()) return f_test(base, extra, y);
-  FTest t;
-  const LsResult r0 = least_squares(base, y);
-  const LsResult r1 = least_squares(hcat(base, extra), y);
-  t.rss_base = r0.rss;
-  t.rss_full = r1.rss;
-  t.df_extra = r1.rank - r0.rank;
+  int rank_full = 0;
+  FTest t = nested_fits(base, extra, y, rank_full);
   if (t.df_extra <= 0) return t;
   // Orthonormal basis of the extra columns with base projected out: where the tested pattern's energy lies.
   const Eigen::MatrixXd qb = orthonormal_basis(base);
@@ -276,7 +286,7 @@ FTest calibrated_f_test(const SpectralCalibration& cal, const Eigen::MatrixXd& b
   const double nu = var > 0.0 ? 2.0 * mean * mean / var : 1e9;
   t.df_resid = static_cast<int>(std::max(1.0, std::floor(nu)));
   if (!(level > 0.0)) return t;
-  t.f = std::max(0.0, (r0.rss - r1.rss) / t.df_extra) / level;
+  t.f = std::max(0.0, (t.rss_base - t.rss_full) / t.df_extra) / level;
   t.p_value = f_upper_tail(t.f, t.df_extra, nu);
   return t;
 }

@@ -1,8 +1,8 @@
 // result.json, backlash.json and contact.json: what the writer writes, the reader reads back into the same typed
 // value (written again it is the same text), and a file of another shape is one line naming the file, key and value.
-// With SW_GOLDEN_DIR (environment, or cmake -DSW_GOLDEN_DIR=) naming a folder of <case>/{result,backlash,contact}.json
-// written by the tool, every such file is read and written again unchanged: the typed values hold every key the tool
-// writes.
+// Every <case>/{result,backlash,contact}.json of SW_GOLDEN_DIR (tests/io/data/written: the seed cup's and the tube's,
+// as the tool wrote them; the environment or cmake -DSW_GOLDEN_DIR= names another set) is read and written again
+// unchanged: the typed values hold every key the tool writes.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -117,7 +117,7 @@ std::string first_difference(const std::string& a, const std::string& b) {
   }
 }
 
-TEST(OutputFiles, PreRedesignFilesReadAndWriteBackUnchanged) {
+TEST(OutputFiles, FilesTheToolWroteReadAndWriteBackUnchanged) {
   const char* golden = std::getenv("SW_GOLDEN_DIR");
 #ifdef SW_GOLDEN_DIR
   if (!golden) golden = SW_GOLDEN_DIR;

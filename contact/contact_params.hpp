@@ -2,6 +2,8 @@
 // The loaded contact's own case keys (the case file's [contact] table) and their ranges.
 #include <string>
 
+#include "common/error.hpp"
+
 namespace sw {
 
 struct ContactParams {
@@ -12,5 +14,12 @@ struct ContactParams {
 
 /// Most slices of the face: each slice repeats the flanks' influence solves.
 inline constexpr int kMaxFaceSlices = 8;
+
+/// Checks face_slices in [1, kMaxFaceSlices]; throws InputError "contact.face_slices = 9; must be ...".
+inline void validate_contact_params(const ContactParams& p) {
+  if (p.face_slices < 1 || p.face_slices > kMaxFaceSlices)
+    throw InputError("contact.face_slices = " + std::to_string(p.face_slices) + "; must be in [1, " +
+                     std::to_string(kMaxFaceSlices) + "] (each slice repeats the flanks' influence solves)");
+}
 
 }  // namespace sw

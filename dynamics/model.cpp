@@ -187,7 +187,8 @@ template <class T>
 void require(bool ok, const std::string& where, const char* key, T value, const char* constraint) {
   if (ok) return;
   std::ostringstream os;
-  os << where << ": dynamics." << key << " = " << value << "; " << constraint;
+  if (!where.empty()) os << where << ": ";
+  os << "dynamics." << key << " = " << value << "; " << constraint;
   throw InputError(os.str());
 }
 }  // namespace

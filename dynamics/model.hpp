@@ -92,8 +92,8 @@ struct SteadyState {
   double mesh_frequency_Hz = 0.0;  ///< f_m = z_f·|ω_f − ω_w|/2π
 };
 
-/// Checks every [dynamics] value against its documented range; throws InputError naming `where` (the case file), the
-/// key, the value and the constraint ("cases/x.toml: dynamics.damping_Ns_per_m = -1; must be >= 0").
+/// Checks every [dynamics] value against its documented range; throws InputError naming `where` (the case file; empty:
+/// none), the key, the value and the constraint ("cases/x.toml: dynamics.damping_Ns_per_m = -1; must be >= 0").
 void validate(const DynamicsParams& p, const std::string& where);
 
 /// The moving pairs' own constraints (rim = "fem": no separate C_τ, m1 = 1; pair_stiffness = "teeth": m1 = 1).

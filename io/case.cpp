@@ -15,6 +15,7 @@
 #include "common/error.hpp"
 #include "common/overloaded.hpp"
 #include "design/catalog.hpp"
+#include "dynamics/model.hpp"
 #include "generator/cam_profile.hpp"
 #include "gear/tooth_profile.hpp"
 #include "mesh/flexspline.hpp"
@@ -424,17 +425,16 @@ CircularSplineParams read_circular_spline(TableReader r, const GearParams& gear,
   return c;
 }
 
-/// [contact] face_slices: 1 to kMaxFaceSlices (each slice adds the flanks' influence solves again).
+/// [contact] face_slices (its range: contact/contact_params.hpp, checked by parse_case with the key's line).
 ContactParams read_contact(TableReader r) {
   ContactParams p;
-  p.face_slices = r.integer("face_slices", p.face_slices, 1);
-  if (p.face_slices > kMaxFaceSlices)
-    r.fail_value("face_slices", p.face_slices,
-                 "must be <= " + std::to_string(kMaxFaceSlices) + " (each slice repeats the flanks' influence solves)");
+  p.face_slices = r.integer("face_slices", p.face_slices, std::numeric_limits<int>::min());
   r.reject_unknown();
   return p;
 }
 
+/// [dynamics]: the keys' types here; their ranges are the dynamics stage's own (dynamics/model.hpp validate), checked
+/// by parse_case with the key's line.
 DynamicsParams read_dynamics(TableReader r) {
   DynamicsParams d;
   const std::string conf = r.choice("configuration", to_string(d.configuration),
@@ -445,37 +445,37 @@ DynamicsParams read_dynamics(TableReader r) {
   d.pair_stiffness =
       r.choice("pair_stiffness", "teeth", {"teeth", "constant"}) == "teeth" ? PairStiffness::Teeth : PairStiffness::Constant;
   d.rim = r.choice("rim", "fem", {"fem", "rigid"}) == "fem" ? RimCoupling::Fem : RimCoupling::Rigid;
-  d.compliance_phases = r.integer("compliance_phases", d.compliance_phases, 1);
-  d.oversampling = r.integer("oversampling", d.oversampling, 1);
-  d.drive_speed_rpm = r.positive("drive_speed_rpm", d.drive_speed_rpm);
-  d.drive_ramp_start_s = r.non_negative("drive_ramp_start_s", d.drive_ramp_start_s);
-  d.drive_ramp_end_s = r.positive("drive_ramp_end_s", d.drive_ramp_end_s);
-  d.load_torque_Nm = r.non_negative("load_torque_Nm", d.load_torque_Nm);
-  d.load_ramp_start_s = r.non_negative("load_ramp_start_s", d.load_ramp_start_s);
-  d.load_ramp_end_s = r.positive("load_ramp_end_s", d.load_ramp_end_s);
-  d.stiffness_N_per_m = r.positive("stiffness_N_per_m", d.stiffness_N_per_m);
-  d.stiffness_variation_N_per_m = r.non_negative("stiffness_variation_N_per_m", d.stiffness_variation_N_per_m);
+  d.compliance_phases = r.integer("compliance_phases", d.compliance_phases, std::numeric_limits<int>::min());
+  d.oversampling = r.integer("oversampling", d.oversampling, std::numeric_limits<int>::min());
+  d.drive_speed_rpm = r.number("drive_speed_rpm", d.drive_speed_rpm);
+  d.drive_ramp_start_s = r.number("drive_ramp_start_s", d.drive_ramp_start_s);
+  d.drive_ramp_end_s = r.number("drive_ramp_end_s", d.drive_ramp_end_s);
+  d.load_torque_Nm = r.number("load_torque_Nm", d.load_torque_Nm);
+  d.load_ramp_start_s = r.number("load_ramp_start_s", d.load_ramp_start_s);
+  d.load_ramp_end_s = r.number("load_ramp_end_s", d.load_ramp_end_s);
+  d.stiffness_N_per_m = r.number("stiffness_N_per_m", d.stiffness_N_per_m);
+  d.stiffness_variation_N_per_m = r.number("stiffness_variation_N_per_m", d.stiffness_variation_N_per_m);
   d.stiffness_phase_deg = r.number("stiffness_phase_deg", d.stiffness_phase_deg);
-  d.damping_Ns_per_m = r.non_negative("damping_Ns_per_m", d.damping_Ns_per_m);
-  d.exponent_stiffness = r.positive("exponent_stiffness", d.exponent_stiffness);
-  d.exponent_damping = r.non_negative("exponent_damping", d.exponent_damping);
-  d.exponent_indentation = r.non_negative("exponent_indentation", d.exponent_indentation);
-  d.flexspline_compliance_rad_per_Nm = r.non_negative("flexspline_compliance_rad_per_Nm", d.flexspline_compliance_rad_per_Nm);
+  d.damping_Ns_per_m = r.number("damping_Ns_per_m", d.damping_Ns_per_m);
+  d.exponent_stiffness = r.number("exponent_stiffness", d.exponent_stiffness);
+  d.exponent_damping = r.number("exponent_damping", d.exponent_damping);
+  d.exponent_indentation = r.number("exponent_indentation", d.exponent_indentation);
+  d.flexspline_compliance_rad_per_Nm = r.number("flexspline_compliance_rad_per_Nm", d.flexspline_compliance_rad_per_Nm);
   d.flexspline_torsion_damping_Nms_per_rad =
-      r.non_negative("flexspline_torsion_damping_Nms_per_rad", d.flexspline_torsion_damping_Nms_per_rad);
-  d.circular_spline_drag_Nms_per_rad = r.positive("circular_spline_drag_Nms_per_rad", d.circular_spline_drag_Nms_per_rad);
-  d.load_inertia_kgm2 = r.non_negative("load_inertia_kgm2", d.load_inertia_kgm2);
-  d.output_drag_coulomb_Nm = r.non_negative("output_drag_coulomb_Nm", d.output_drag_coulomb_Nm);
-  d.output_drag_viscous_Nms_per_rad = r.non_negative("output_drag_viscous_Nms_per_rad", d.output_drag_viscous_Nms_per_rad);
-  d.drag_smoothing_rad_per_s = r.positive("drag_smoothing_rad_per_s", d.drag_smoothing_rad_per_s);
-  d.circular_spline_outer_radius_m = r.non_negative("circular_spline_outer_radius_mm", 0.0) * kMm;
-  d.circular_spline_width_m = r.non_negative("circular_spline_width_mm", 0.0) * kMm;
+      r.number("flexspline_torsion_damping_Nms_per_rad", d.flexspline_torsion_damping_Nms_per_rad);
+  d.circular_spline_drag_Nms_per_rad = r.number("circular_spline_drag_Nms_per_rad", d.circular_spline_drag_Nms_per_rad);
+  d.load_inertia_kgm2 = r.number("load_inertia_kgm2", d.load_inertia_kgm2);
+  d.output_drag_coulomb_Nm = r.number("output_drag_coulomb_Nm", d.output_drag_coulomb_Nm);
+  d.output_drag_viscous_Nms_per_rad = r.number("output_drag_viscous_Nms_per_rad", d.output_drag_viscous_Nms_per_rad);
+  d.drag_smoothing_rad_per_s = r.number("drag_smoothing_rad_per_s", d.drag_smoothing_rad_per_s);
+  d.circular_spline_outer_radius_m = r.number("circular_spline_outer_radius_mm", 0.0) * kMm;
+  d.circular_spline_width_m = r.number("circular_spline_width_mm", 0.0) * kMm;
   d.base_clearance_m = r.number("base_clearance_mm", 0.0) * kMm;
-  d.duration_s = r.positive("duration_s", d.duration_s);
-  d.output_step_s = r.positive("output_step_s", d.output_step_s);
-  d.steady_from_s = r.non_negative("steady_from_s", d.steady_from_s);
-  d.relative_tolerance = r.positive("relative_tolerance", d.relative_tolerance);
-  d.absolute_tolerance_rad = r.positive("absolute_tolerance_rad", d.absolute_tolerance_rad);
+  d.duration_s = r.number("duration_s", d.duration_s);
+  d.output_step_s = r.number("output_step_s", d.output_step_s);
+  d.steady_from_s = r.number("steady_from_s", d.steady_from_s);
+  d.relative_tolerance = r.number("relative_tolerance", d.relative_tolerance);
+  d.absolute_tolerance_rad = r.number("absolute_tolerance_rad", d.absolute_tolerance_rad);
   r.reject_unknown();
   return d;
 }
@@ -611,8 +611,14 @@ Case parse_case(const std::string& toml_text, const std::string& path) {
         c.flexspline.rim_width_m);
   else if (table("circular_spline"))
     throw InputError(path + ": [circular_spline] needs a [gear] table (its root circle comes from the teeth)");
-  if (auto t = table("contact")) c.contact = read_contact(TableReader(*t, "contact", path));
-  if (auto t = table("dynamics")) c.dynamics = read_dynamics(TableReader(*t, "dynamics", path));
+  if (auto t = table("contact")) {
+    c.contact = read_contact(TableReader(*t, "contact", path));
+    locating_key(root, path, [&] { validate_contact_params(c.contact); });
+  }
+  if (auto t = table("dynamics")) {
+    c.dynamics = read_dynamics(TableReader(*t, "dynamics", path));
+    locating_key(root, path, [&] { validate(*c.dynamics, ""); });
+  }
   if (c.flexspline.teeth != TeethModel::None && !c.gear)
     throw InputError(path + ": flexspline.teeth = \"" +
                      std::string(c.flexspline.teeth == TeethModel::Ring ? "ring" : "explicit") +

@@ -1,6 +1,8 @@
 // Case files: the values arrive in SI, and every kind of bad input is one clear line naming file, key and value.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 
 #include "common/error.hpp"
@@ -112,9 +114,9 @@ TEST(CaseFile, ContactFaceSlicesAreAnIntegerFromOneToEight) {
   EXPECT_EQ(parse_case(kTube, "cases/x.toml").contact.face_slices, 1);
   EXPECT_EQ(parse_case(std::string(kTube) + "[contact]\nface_slices = 3\n", "cases/x.toml").contact.face_slices, 3);
   const std::string zero = error_of(std::string(kTube) + "[contact]\nface_slices = 0\n");
-  EXPECT_NE(zero.find(": contact.face_slices = 0; must be >= 1"), std::string::npos) << zero;
+  EXPECT_NE(zero.find("x.toml:8: contact.face_slices = 0; must be in [1, 8]"), std::string::npos) << zero;
   const std::string many = error_of(std::string(kTube) + "[contact]\nface_slices = 9\n");
-  EXPECT_NE(many.find("contact.face_slices = 9; must be <= 8"), std::string::npos) << many;
+  EXPECT_NE(many.find("contact.face_slices = 9; must be in [1, 8]"), std::string::npos) << many;
   const std::string other = error_of(std::string(kTube) + "[contact]\nslices = 3\n");
   EXPECT_NE(other.find("contact.slices"), std::string::npos) << other;
 }
@@ -323,6 +325,15 @@ TEST(CaseFile, CircularSplineDefaultsToTheDesignRuleAndIsChecked) {
             std::string::npos);
   EXPECT_NE(error_of(std::string(kCup) + "[circular_spline]\nbolts = 6\n").find("circular_spline.bolts = 6; unknown key"),
             std::string::npos);
+}
+
+// A stage's own range check (here the dynamics stage's) reaches the user as the reader's own messages do: file, the
+// key's line, key, value, expectation.
+TEST(CaseFile, StageRangesAreReportedWithTheKeysLine) {
+  const std::string t = std::string(kTube) + "[dynamics]\nduration_s = 0.1\ndamping_Ns_per_m = -1\n";
+  const std::string e = error_of(t);
+  const auto lines = std::count(t.begin(), t.end(), '\n');  // the key is on the last line
+  EXPECT_EQ(e, "cases/x.toml:" + std::to_string(lines) + ": dynamics.damping_Ns_per_m = -1; must be >= 0") << e;
 }
 
 }  // namespace

@@ -620,7 +620,7 @@ void ContactAnalyser::follow_edge_teeth(const ContactSolution& s) {
 /// Every flank left out must stay open: the twist never reaches its closing angle.
 bool ContactAnalyser::twist_reaches_flanks_left_out() {
   const double twist_max = std::max(std::abs(out_.curve.twist_rad.front()), std::abs(out_.curve.twist_rad.back()));
-  return twist_max > std::min(first_closing_[0], first_closing_[1]) + reach_;
+  return twist_max > out_.min_closing_rad + reach_;
 }
 
 /// The curve in the catalog's terms: play, lost motion, the three-segment law.

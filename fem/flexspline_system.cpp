@@ -133,8 +133,7 @@ GeneratorStations generator_stations(const FlexsplineModel& c, const TetMesh& me
   const StationLayout layout = station_layout(w, r, spacing);
   g.unilateral = layout.unilateral;
   g.stations = band_stations(mesh, z, w.band_width_m, layout.angle_rad, spacing, layout.tilt);
-  g.obstacle_m = Eigen::Map<const Eigen::VectorXd>(layout.obstacle_m.data(),
-                                                   static_cast<Eigen::Index>(layout.obstacle_m.size()));
+  g.obstacle_m = layout.obstacle_m;
   if (!g.unilateral) g.force_load = generator_load(c, mesh);
   return g;
 }

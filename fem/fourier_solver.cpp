@@ -259,7 +259,7 @@ HarmonicStations harmonic_stations(const FlexsplineModel& c, const Eigen::Vector
   h.angle_rad = layout.angle_rad;
   const std::function<double(double)> tilt = layout.tilt ? layout.tilt : [](double) { return 0.0; };
   const Eigen::Index m = static_cast<Eigen::Index>(h.angle_rad.size());
-  h.obstacle_m = Eigen::Map<const Eigen::VectorXd>(layout.obstacle_m.data(), m);
+  h.obstacle_m = layout.obstacle_m;
   h.phi_sym.assign(N + 1, Eigen::MatrixXd::Zero(m, 2));
   h.phi_anti.assign(N + 1, Eigen::MatrixXd::Zero(m, 2));
   // θ moments by Gauss–Legendre (8 points) on pieces of the hat's two linear flanks short enough that N·piece ≤ 0.5:

@@ -52,19 +52,21 @@ StationLayout station_layout(const WaveGeneratorParams& w, double bore_radius_m,
   };
   const auto radial_support = [&] {  // the given forces: stations all round the band, for radial support
     every_spacing();
-    s.obstacle_m.assign(s.angle_rad.size(), 0.0);
+    s.obstacle_m = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(s.angle_rad.size()));
   };
   std::visit(overloaded{[&](const Cam&) {
                           const auto cam = std::make_shared<const CamSurface>(w, bore_radius_m);
                           every_spacing();
                           s.tilt = [cam](double t) { return cam->tilt(t); };
-                          for (const double a : s.angle_rad) s.obstacle_m.push_back(2 * cam->standoff_m(a));
+                          s.obstacle_m.resize(static_cast<Eigen::Index>(s.angle_rad.size()));
+                          for (std::size_t j = 0; j < s.angle_rad.size(); ++j)
+                            s.obstacle_m[static_cast<Eigen::Index>(j)] = 2 * cam->standoff_m(s.angle_rad[j]);
                         },
                         [&](const Rollers& r) {
                           // Two pairs: β with π + β, π − β with −β. A roller's normal passes through its centre:
                           // radial where it touches. 2 per metre the rollers stand out; scaled to w0.
                           s.angle_rad = {r.beta_rad, kPi - r.beta_rad};
-                          s.obstacle_m = {2.0, 2.0};
+                          s.obstacle_m = Eigen::Vector2d(2.0, 2.0);
                         },
                         [&](const FourForce&) { radial_support(); }, [&](const TwoForce&) { radial_support(); },
                         [&](const GivenForces&) { radial_support(); }},

@@ -9,6 +9,8 @@
 #include <variant>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "generator/generator_bearing.hpp"
 
 namespace sw {
@@ -91,7 +93,7 @@ struct StationLayout {
   bool unilateral = false;
   std::vector<double> angle_rad;
   std::function<double(double)> tilt;
-  std::vector<double> obstacle_m;
+  Eigen::VectorXd obstacle_m;
 };
 StationLayout station_layout(const WaveGeneratorParams& w, double bore_radius_m, double spacing_rad);
 

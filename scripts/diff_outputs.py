@@ -13,13 +13,14 @@ import math
 import sys
 from pathlib import Path
 
-REF = NEW = Path()
 FILES = ["result.json", "backlash.json", "contact.json", "dynamics.json", "reconcile.json"]
 IGNORED_KEYS = {"timings_s", "peak_rss_bytes", "version", "setup_s", "influence_s", "contact_s", "check_s",
                 "real_time_factor", "factor_s"}
 
 
-def differences(a, b, path, rel, out):
+def differences(a, b, path, rel, out, dirs):
+    """Appends to `out` every difference of a (in the reference run) and b; `dirs`: the two runs' folders, which
+    paths in strings may name."""
     if isinstance(a, dict) and isinstance(b, dict):
         for k in sorted(set(a) | set(b)):
             if k in IGNORED_KEYS or k.endswith("_per_s"):  # timings and rates
@@ -27,19 +28,19 @@ def differences(a, b, path, rel, out):
             if k not in a or k not in b:
                 out.append(f"{path}.{k}: only in {'new' if k not in a else 'reference'}")
             else:
-                differences(a[k], b[k], f"{path}.{k}", rel, out)
+                differences(a[k], b[k], f"{path}.{k}", rel, out, dirs)
     elif isinstance(a, list) and isinstance(b, list):
         if len(a) != len(b):
             out.append(f"{path}: {len(a)} items, now {len(b)}")
         for i, (x, y) in enumerate(zip(a, b)):
-            differences(x, y, f"{path}[{i}]", rel, out)
+            differences(x, y, f"{path}[{i}]", rel, out, dirs)
     elif isinstance(a, (int, float)) and isinstance(b, (int, float)) and not isinstance(a, bool):
         if a == b or (math.isnan(a) and math.isnan(b)):
             return
         if abs(a - b) > rel * max(abs(a), abs(b)):
             out.append(f"{path}: {a!r} -> {b!r}")
     elif isinstance(a, str) and isinstance(b, str):
-        if a.replace(str(REF), "DIR") != b.replace(str(NEW), "DIR"):  # the paths the runs were given
+        if a.replace(str(dirs[0]), "DIR") != b.replace(str(dirs[1]), "DIR"):  # the paths the runs were given
             out.append(f"{path}: {a!r} -> {b!r}")
     elif a != b:
         out.append(f"{path}: {a!r} -> {b!r}")
@@ -54,8 +55,7 @@ def main():
     if len(args) != 2:
         print(__doc__.strip().splitlines()[2], file=sys.stderr)
         return 2
-    global REF, NEW
-    ref, new = REF, NEW = Path(args[0]), Path(args[1])
+    ref, new = Path(args[0]), Path(args[1])
     compared = 0
     failed = False
     for f in sorted(ref.glob("*/*.json")):
@@ -67,7 +67,7 @@ def main():
             failed = True
             continue
         out = []
-        differences(json.loads(f.read_text()), json.loads(g.read_text()), f.parent.name + "/" + f.name, rel, out)
+        differences(json.loads(f.read_text()), json.loads(g.read_text()), f.parent.name + "/" + f.name, rel, out, (ref, new))
         compared += 1
         for line in out[:40]:
             print(line)

@@ -1,5 +1,7 @@
 // `strainwave contact CASE.toml [--fem DIR/result.json]`: the FEM of the flexspline, then the loaded tooth contact on
 // its system: how the teeth share the torque and the drive's torque–twist curve from −rated to +rated torque.
+#include <cstdio>
+#include <stdexcept>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -61,8 +63,8 @@ ContactFem fem_from_run(const Case& c, const std::filesystem::path& result_json,
 ContactFem fem_solved(const Case& c, const std::filesystem::path& dir, const FemJobOptions& options) {
   ContactFem fem;
   fem.job = run_fem_job(c, dir, options);
-  if (!fem.job.system || !fem.job.mesh)
-    throw InputError(c.path + ": contact solves on the TET10 model (solver.method = \"tet10\")");
+  if (!fem.job.system || !fem.job.mesh)  // contact_model_gap refuses the cases that leave none
+    throw std::logic_error("contact: the FEM job left no factorised TET10 model");
   fem.mesh = fem.job.mesh;
   fem.system = fem.job.system;
   fem.readout = fem_readout(fem.job.solution);
@@ -83,7 +85,11 @@ void add_contact_command(CLI::App& app) {
   cmd->add_option("--out", out, "output directory (default out/<case stem>/)");
   cmd->callback([] {
     Case c = load_case(case_path);
-    apply_solver_option(c, "tet10");
+    if (c.solver.method == SolverMethod::Fourier) {  // reported, not dropped silently
+      std::printf("note: %s: solver.method = \"fourier\" is not used by contact: the loaded contact reads its "
+                  "influence coefficients from the factorised TET10 model, which it solves here\n", c.path.c_str());
+      c.solver.method = SolverMethod::Tet10;
+    }
     naming_file(c.path, [&] { check_contact_model(flexspline_model(c)); });  // before any work: nothing is written for a case contact cannot take
     progress("case:\n" + describe_case(c));
     const std::filesystem::path dir = out.empty() ? default_out_dir(c) : std::filesystem::path(out);

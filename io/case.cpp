@@ -127,6 +127,8 @@ public:
 
   const std::string& name() const { return name_; }
   const std::string& file() const { return file_; }
+  /// Whether the file gives `key` in this table.
+  bool given(const std::string& key) const { return table_.get(key) != nullptr; }
 
 private:
   static std::string where(const toml::node* node) {
@@ -409,20 +411,27 @@ int read_catalog(TableReader r) {
   return size;
 }
 
-/// [circular_spline] (optional keys over the design rule's defaults, contact/circular_spline.hpp).
-CircularSplineParams read_circular_spline(TableReader r, const GearParams& gear, double face_width_m) {
-  CircularSplineParams c = default_circular_spline(gear, face_width_m);
-  c.outer_radius_m = r.positive("outer_radius_mm", c.outer_radius_m / kMm) * kMm;
-  c.width_m = r.positive("width_mm", c.width_m / kMm) * kMm;
+/// [circular_spline] (optional keys over the design rule's defaults, contact/circular_spline.hpp); the defaults a
+/// file leaves out are entered in `derived`. Its ranges: validate_circular_spline, checked by parse_case.
+CircularSplineParams read_circular_spline(TableReader r, const GearParams& gear, double face_width_m,
+                                          std::map<std::string, std::string>& derived) {
+  const CircularSplineParams rule = default_circular_spline(gear, face_width_m);
+  CircularSplineParams c;
+  c.outer_radius_m = r.number("outer_radius_mm", rule.outer_radius_m / kMm) * kMm;
+  c.width_m = r.number("width_mm", rule.width_m / kMm) * kMm;
   r.reject_unknown();
-  double root_m = 0;
-  try {
-    root_m = gear_radii(gear).root_c;
-  } catch (const InputError& e) {  // a set that cannot be cut: say which file
-    throw InputError(r.file() + ": " + e.what());
-  }
-  validate_circular_spline(c, root_m, r.file());
+  if (!r.given("outer_radius_mm"))
+    derived["circular_spline.outer_radius_mm"] =
+        format_number(kCircularSplineOuterDiameterPerPitchDiameter / 2) + " x the pitch diameter z_c m (design rule)";
+  if (!r.given("width_mm"))
+    derived["circular_spline.width_mm"] = "flexspline.rim_width_mm = " + format_number(face_width_m / kMm) +
+                                          " (the toothed face width)";
   return c;
+}
+
+/// The circular spline's ranges (its root circle from [gear]).
+void check_circular_spline(const CircularSplineParams& c, const GearParams& gear) {
+  validate_circular_spline(c, gear_radii(gear).root_c);
 }
 
 /// [contact] face_slices (its range: contact/contact_params.hpp, checked by parse_case with the key's line).
@@ -548,21 +557,26 @@ void require_ascii_syntax(const std::string& text, const std::string& path) {
   }
 }
 
-/// Calls f(); an InputError it throws about a key of the file ("table.key = value; ...", a stage's own validation)
-/// gets the file and the key's line in front, as the reader's own messages have them.
+/// Calls f(); an InputError it throws about a key ("table.key = value; ...", a stage's own validation) gets the file
+/// and the key's line in front, as the reader's own messages have them; about a key the file leaves out, what its
+/// value was derived from and the key to write.
 template <class F>
-void locating_key(const toml::table& root, const std::string& path, F&& f) {
+void locating_key(const toml::table& root, const std::string& path, const std::map<std::string, std::string>& derived,
+                  F&& f) {
   try {
     f();
   } catch (const InputError& e) {
     const std::string what = e.what();
-    const std::size_t dot = what.find('.'), eq = what.find(" = ");
-    std::string line;
-    if (dot != std::string::npos && eq != std::string::npos && dot < eq)
-      if (const toml::node* table = root.get(what.substr(0, dot)); table && table->is_table())
-        if (const toml::node* key = table->as_table()->get(what.substr(dot + 1, eq - dot - 1)); key && key->source().begin)
-          line = ":" + std::to_string(key->source().begin.line);
-    throw InputError(path + line + ": " + what);
+    const std::size_t dot = what.find('.'), eq = what.find(" = "), semi = what.find("; ", eq);
+    if (dot == std::string::npos || eq == std::string::npos || dot > eq) throw InputError(path + ": " + what);
+    const std::string key = what.substr(0, eq);
+    const toml::node* table = root.get(key.substr(0, dot));
+    const toml::node* node = table && table->is_table() ? table->as_table()->get(key.substr(dot + 1)) : nullptr;
+    if (node && node->source().begin) throw InputError(path + ":" + std::to_string(node->source().begin.line) + ": " + what);
+    const auto from = derived.find(key);
+    if (node || from == derived.end() || semi == std::string::npos) throw InputError(path + ": " + what);
+    throw InputError(path + ": " + what.substr(0, semi) + " (not in the file: derived from " + from->second + ")" +
+                     what.substr(semi) + "; write " + key + " to set it");
   }
 }
 
@@ -605,25 +619,27 @@ Case parse_case(const std::string& toml_text, const std::string& path) {
     c.load.rated_torque_Nm = catalog_drive(*c.catalog_size)->rated_torque_Nm;
     c.load.rated_torque_from = "catalog size " + std::to_string(*c.catalog_size);
   }
-  if (c.gear)
+  if (c.gear && (table("circular_spline") || c.flexspline.rim_width_m > 0)) {
     c.circular_spline = read_circular_spline(
         TableReader(table("circular_spline") ? *table("circular_spline") : kEmpty, "circular_spline", path), *c.gear,
-        c.flexspline.rim_width_m);
-  else if (table("circular_spline"))
+        c.flexspline.rim_width_m, c.derived_from);
+    locating_key(root, path, c.derived_from, [&] { check_circular_spline(*c.circular_spline, *c.gear); });
+  } else if (table("circular_spline")) {
     throw InputError(path + ": [circular_spline] needs a [gear] table (its root circle comes from the teeth)");
+  }
   if (auto t = table("contact")) {
     c.contact = read_contact(TableReader(*t, "contact", path));
-    locating_key(root, path, [&] { validate_contact_params(c.contact); });
+    locating_key(root, path, c.derived_from, [&] { validate_contact_params(c.contact); });
   }
   if (auto t = table("dynamics")) {
     c.dynamics = read_dynamics(TableReader(*t, "dynamics", path));
-    locating_key(root, path, [&] { validate(*c.dynamics, ""); });
+    locating_key(root, path, c.derived_from, [&] { validate(*c.dynamics, ""); });
   }
   if (c.flexspline.teeth != TeethModel::None && !c.gear)
     throw InputError(path + ": flexspline.teeth = \"" +
                      std::string(c.flexspline.teeth == TeethModel::Ring ? "ring" : "explicit") +
                      "\" needs a [gear] table (module and teeth), or set teeth = \"none\"");
-  locating_key(root, path, [&] { validate_flexspline(c.flexspline, c.mesh); });
+  locating_key(root, path, c.derived_from, [&] { validate_flexspline(c.flexspline, c.mesh); });
   if (c.solver.method == SolverMethod::Fourier && c.flexspline.teeth == TeethModel::Explicit)
     throw InputError(path + ": solver.method = \"fourier\" needs a body of revolution; flexspline.teeth = \"explicit\" "
                             "is not one (use teeth = \"ring\" or \"none\", or method = \"tet10\")");

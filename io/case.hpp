@@ -2,6 +2,7 @@
 // A case file (TOML) parsed into option structs. Lengths are millimetres in the file and metres here: converted once,
 // in load_case(). Unknown keys, wrong types and inconsistent values throw sw::InputError naming file, key, value and
 // the expectation.
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -33,11 +34,16 @@ struct Case {
   SolverParams solver;
   /// [catalog] size: the catalog size the case stands for (a row of design/catalog.hpp).
   std::optional<int> catalog_size;
-  /// [circular_spline]: the given keys, else the defaults of contact/circular_spline.hpp; absent without [gear].
+  /// [circular_spline]: the given keys, else the defaults of contact/circular_spline.hpp; absent without [gear], and
+  /// absent without a toothed face (rim_width 0: a tube without teeth) unless the table is given (its default width
+  /// is the toothed face's).
   std::optional<CircularSplineParams> circular_spline;
   ContactParams contact;
   /// [dynamics]: the dynamics stage's own options (dynamics/dynamics_params.hpp), absent when the table is.
   std::optional<DynamicsParams> dynamics;
+  /// Keys the file leaves out whose value is derived from other keys: "table.key" → what it was derived from. A
+  /// stage's message about such a value says so and names the key that sets it.
+  std::map<std::string, std::string> derived_from;
 };
 
 /// The case's tables the FEM reads, copied (the one place a Case becomes the FEM's input).

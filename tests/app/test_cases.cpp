@@ -392,6 +392,32 @@ TEST(CliErrors, BadCommandLineValuesGiveOneLineAndNoOutput) {
   fs::remove_all(dir);
 }
 
+// A plain tube with a [gear] table (to run backlash on its FEM rim) and no [circular_spline]: a tube without teeth has
+// no toothed face to derive a circular spline from, so no default of it can fail; fem and backlash run, and contact,
+// which needs that face, is refused with its reason.
+TEST(Cases, ATubeWithAGearRunsFemAndBacklashAndContactSaysWhyNot) {
+  const fs::path dir = fresh_dir("tube_gear");
+  fs::create_directories(dir);
+  const fs::path case_file = dir / "tube_gear.toml";
+  std::ofstream(case_file) << "[flexspline]\nshape = \"tube\"\ninner_radius_mm = 18.4\nwall_thickness_mm = 0.7\n"
+                              "length_mm = 30\nteeth = \"none\"\n[gear]\nmodule_mm = 0.2\nteeth_flexspline = 190\n"
+                              "teeth_circular = 192\ncutter_teeth = 80\n[wave_generator]\nmodel = \"cam\"\n"
+                              "radial_deformation_mm = 0.2\naxial_position_mm = 3\nband_width_mm = 4\n[load]\n"
+                              "torque_Nm = 10\n[mesh]\nsize_mm = 2\nwall_layers = 1\n";
+  const std::string out = (dir / "out").string();
+  const CommandRun fem = run_strainwave("fem --quiet --no-vtk " + case_file.string() + " --out " + out);
+  ASSERT_EQ(fem.exit_code, 0) << fem.output;
+  const CommandRun backlash = run_strainwave("backlash --quiet " + case_file.string() + " --fem " + out +
+                                             "/result.json --out " + out);
+  ASSERT_EQ(backlash.exit_code, 0) << backlash.output;
+  EXPECT_TRUE(fs::exists(dir / "out" / "backlash.json"));
+  const CommandRun contact = run_strainwave("contact --quiet " + case_file.string() + " --out " + out);
+  EXPECT_NE(contact.exit_code, 0);
+  EXPECT_NE(contact.output.find("contact needs a toothed face: flexspline.rim_width_mm > 0"), std::string::npos)
+      << contact.output;
+  fs::remove_all(dir);
+}
+
 TEST(CliErrors, ContactOnACaseWithoutTeethIsRefusedBeforeTheFem) {
   const fs::path dir = fresh_dir("contact_bad");
   expect_clean_failure("contact --quiet cases/tube_torsion.toml", "contact needs a [gear] table", dir / "out");

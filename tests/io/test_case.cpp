@@ -318,13 +318,49 @@ TEST(CaseFile, CircularSplineDefaultsToTheDesignRuleAndIsChecked) {
   EXPECT_NE(error_of(std::string(kTube) + "[circular_spline]\nwidth_mm = 8\n").find("[circular_spline] needs a [gear]"),
             std::string::npos);
   EXPECT_NE(error_of(std::string(kCup) + "[circular_spline]\nouter_radius_mm = 15\n")
-                .find("cases/x.toml: circular_spline.outer_radius_mm = 15; must be > the circular spline's root radius"),
+                .find("cases/x.toml:6: circular_spline.outer_radius_mm = 15; must be > the circular spline's root radius"),
             std::string::npos)
       << error_of(std::string(kCup) + "[circular_spline]\nouter_radius_mm = 15\n");
   EXPECT_NE(error_of(std::string(kCup) + "[circular_spline]\nwidth_mm = 0\n").find("circular_spline.width_mm = 0; must be > 0"),
             std::string::npos);
   EXPECT_NE(error_of(std::string(kCup) + "[circular_spline]\nbolts = 6\n").find("circular_spline.bolts = 6; unknown key"),
             std::string::npos);
+}
+
+// Every default derived from other keys, on the three kinds of flexspline: a tube without teeth that carries a [gear]
+// (for the backlash), a cup with ring teeth, a cup with explicit teeth. Each loads (the derived values pass the
+// stages' checks), each derived value is its rule's, and the case lists it with what it came from.
+TEST(CaseFile, DerivedDefaultsOfATubeARingCupAndAnExplicitCup) {
+  const std::string gear = "[gear]\n";  // 190/192 teeth, module 0.2 mm: the circular spline's pitch diameter 38.4 mm
+  const Case tube = parse_case(gear + kTube, "t.toml");
+  EXPECT_EQ(tube.flexspline.teeth, TeethModel::None);                                  // a tube's default teeth
+  EXPECT_DOUBLE_EQ(tube.flexspline.rim_thickness_m, tube.flexspline.wall_thickness_m);  // no rim: the wall
+  EXPECT_FALSE(tube.circular_spline.has_value());  // no toothed face to derive its width from; contact refuses it
+  EXPECT_TRUE(tube.derived_from.empty());
+  for (const char* teeth : {"ring", "explicit"}) {
+    const Case cup = parse_case(std::string(kCup) + "teeth = \"" + teeth + "\"\n", "c.toml");
+    ASSERT_TRUE(cup.circular_spline.has_value()) << teeth;
+    EXPECT_NEAR(cup.circular_spline->outer_radius_m, 0.7 * 192 * 0.2e-3, 1e-15) << teeth;
+    EXPECT_DOUBLE_EQ(cup.circular_spline->width_m, cup.flexspline.rim_width_m) << teeth;
+    EXPECT_EQ(cup.derived_from.at("circular_spline.outer_radius_mm"), "0.7 x the pitch diameter z_c m (design rule)");
+    EXPECT_EQ(cup.derived_from.at("circular_spline.width_mm"), "flexspline.rim_width_mm = 6 (the toothed face width)");
+  }
+  // The given keys are not derived.
+  const Case given = parse_case(std::string(kCup) + "[circular_spline]\nwidth_mm = 8\n", "c.toml");
+  EXPECT_EQ(given.derived_from.count("circular_spline.width_mm"), 0u);
+  EXPECT_EQ(given.derived_from.count("circular_spline.outer_radius_mm"), 1u);
+}
+
+// A derived value out of range names what it was derived from and the key that sets it. Eight and ten teeth with a
+// profile shift of 0.8 on the circular spline put its root circle (1.41 mm) just beyond the rule's outer radius 0.7·z_c·m (1.4 mm).
+TEST(CaseFile, ADerivedValueOutOfRangeSaysWhereItCameFromAndWhichKeyToWrite) {
+  const std::string gear = "[gear]\nmodule_mm = 0.2\nteeth_flexspline = 8\nteeth_circular = 10\ncutter_teeth = 8\n"
+                           "profile_shift_flexspline = 0\nprofile_shift_circular = 0.8\n";
+  const std::string e = error_of(gear + kTube + "[circular_spline]\nwidth_mm = 2\n");
+  EXPECT_NE(e.find("cases/x.toml: circular_spline.outer_radius_mm = 1.4 (not in the file: derived from 0.7 x the pitch "
+                   "diameter z_c m (design rule)); must be > the circular spline's root radius"),
+            std::string::npos) << e;
+  EXPECT_NE(e.find("; write circular_spline.outer_radius_mm to set it"), std::string::npos) << e;
 }
 
 // A stage's own range check (here the dynamics stage's) reaches the user as the reader's own messages do: file, the

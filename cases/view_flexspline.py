@@ -14,8 +14,8 @@ import os
 import sys
 import xml.etree.ElementTree as ET
 
-from paraview.simple import (Calculator, ColorBy, GetActiveViewOrCreate, GetColorTransferFunction, OpenDataFile,
-                             Render, ResetCamera, SaveScreenshot, Show, WarpByVector)
+from paraview.simple import (Calculator, ColorBy, GetActiveViewOrCreate, GetColorTransferFunction, GetScalarBar,
+                             OpenDataFile, Render, ResetCamera, SaveScreenshot, Show, WarpByVector)
 
 parser = argparse.ArgumentParser(description="render a strainwave result with ParaView")
 parser.add_argument("result", help="output folder of `strainwave fem`/`run`, or a profiles.vtp")
@@ -28,13 +28,42 @@ parser.add_argument("--whole", action="store_true", help="profiles: the whole ge
 args = parser.parse_args()
 
 view = GetActiveViewOrCreate("RenderView")
+view.OrientationAxesVisibility = 0
+view.UseColorPaletteForBackground = 0
+view.Background = [1.0, 1.0, 1.0]
 probe = {}
+
+
+def place_bar(bar, horizontal=False):
+    """The colour bar in the picture's right margin (the part is drawn left of it), or along its bottom edge (the
+    profiles' legend, under the teeth); dark text on white."""
+    bar.WindowLocation = "Any Location"
+    bar.Orientation = "Horizontal" if horizontal else "Vertical"
+    bar.Position = [0.15, 0.06] if horizontal else [0.84, 0.2]
+    bar.ScalarBarLength = 0.7 if horizontal else 0.6
+    bar.ScalarBarThickness = 12
+    bar.TitleFontSize = 16
+    bar.LabelFontSize = 14
+    bar.TitleColor = bar.LabelColor = [0.1, 0.1, 0.1]
+    bar.RangeLabelFormat = "%-#.3g"
+
 if args.result.endswith(".vtp"):
     if not os.path.exists(args.result):
         sys.exit(f"{args.result}: not found; run `strainwave backlash CASE.toml` first")
     profiles = OpenDataFile(args.result)
     display = Show(profiles, view)
     ColorBy(display, ("CELLS", "part"))
+    # Three parts, three colours that read on white, and lines thick enough to see the flanks' gaps.
+    lut = GetColorTransferFunction("part")
+    lut.InterpretValuesAsCategories = 1
+    lut.Annotations = ["0", "flexspline", "1", "flexspline turned by phi0", "2", "circular spline"]
+    lut.IndexedColors = [0.12, 0.35, 0.75, 0.90, 0.45, 0.05, 0.15, 0.15, 0.15]
+    display.LineWidth = 3.0
+    display.SetScalarBarVisibility(view, True)
+    bar = GetScalarBar(lut, view)
+    bar.Title = ""
+    bar.ComponentTitle = ""
+    place_bar(bar, horizontal=True)
     profiles.UpdatePipeline()
     probe["bounds"] = list(profiles.GetDataInformation().GetBounds())
     probe["field"] = "part"
@@ -64,6 +93,7 @@ else:
     lut = GetColorTransferFunction(field)
     lut.ApplyPreset("Cool to Warm", True)
     display.SetScalarBarVisibility(view, True)
+    place_bar(GetScalarBar(lut, view))
     probe["case"] = name
     probe["bounds"] = list(shown.GetDataInformation().GetBounds())
     probe["field"] = field
@@ -79,7 +109,7 @@ if args.result.endswith(".vtp") and not args.whole:
     view.CameraParallelScale = 0.06 * r / 1.5  # half the height of a 3:2 picture showing ±0.06 r across
 Render()
 if args.png:
-    SaveScreenshot(args.png, view, ImageResolution=[1200, 800])
+    SaveScreenshot(args.png, view, ImageResolution=[1200, 800], FontScaling="Do not scale fonts")
 if args.probe:
     with open(args.probe, "w") as f:
         json.dump(probe, f)

@@ -49,13 +49,14 @@ FemResult::HoopStressMPa hoop_stress_MPa(const HoopStressExtreme& h) {
   return m;
 }
 
-/// Every 15° from the major axis to the minor axis.
+/// Every degree over a half turn from the major axis (the generator's deformation repeats every half turn): enough
+/// to draw the local peaks where the generator touches, which are a few degrees wide.
 FemResult::HoopStressProfile hoop_stress_profile(const HoopStressExtreme& h) {
   FemResult::HoopStressProfile p;
   p.z_mm = h.profile_z_m * 1e3;
   p.inner_radius_mm = h.inner_radius_m * 1e3;
   p.outer_radius_mm = h.outer_radius_m * 1e3;
-  for (int deg : {0, 15, 30, 45, 60, 75, 90}) {
+  for (int deg = 0; deg <= 180; ++deg) {
     p.angle_deg.push_back(deg);
     p.inner_Pa.push_back(h.inner_Pa.at(deg));
     p.outer_Pa.push_back(h.outer_Pa.at(deg));

@@ -26,8 +26,8 @@ std::string slurp(const fs::path& p) {
 }
 
 std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
+  std::string buf(static_cast<std::size_t>(std::snprintf(nullptr, 0, f, v)), '\0');
+  std::snprintf(buf.data(), buf.size() + 1, f, v);
   return buf;
 }
 
@@ -158,7 +158,7 @@ std::string hoop_plot(const FemResult& r) {
 /// The output's geometric angular play over one pitch of the generator.
 std::string angular_play_plot(const BacklashResult& b) {
   LinePlot p;
-  p.title = "Output's geometric angular play over one circular-spline pitch of the generator (repeats)";
+  p.title = "Geometric angular play of the output over one circular-spline pitch of the generator";
   p.x_label = "wave-generator angle (deg)";
   p.y_label = "angular play (arcmin)";
   PlotSeries ser{"angular play", {}, {}, "#1f77b4"};

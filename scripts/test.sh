@@ -3,6 +3,6 @@
 # can share the two cores without collapsing each other.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/setup.sh
+bash scripts/setup.sh all
 cd build
 ctest --output-on-failure -j"$(nproc)" --timeout 1500

@@ -39,6 +39,7 @@ TetMesh extrude(const std::vector<Eigen::Vector2d>& pts, const std::vector<int>&
     plc.facets.push_back(quad);
   }
   TetgenOptions t;
+  t.time_limit_s = 10.0;
   t.max_radius_edge_ratio = 2.0;
   t.max_volume_m3 = max_edge * max_edge * max_edge / (6 * std::sqrt(2.0));
   return tetrahedralize_plc(plc, t);
@@ -65,6 +66,26 @@ void close_with_body(double top_m, double bore_m, double a_end, double spacing, 
     const double rad = bore_m + body * i / n_side;
     pts.emplace_back(rad * std::cos(-a_end), rad * std::sin(-a_end));
     seg_marker.push_back(kSurfaceRimStep);
+  }
+}
+
+/// The outline on top (points and markers, from angle −a_end to +a_end at radius `top_m`) closed with the body down to
+/// the bore and extruded. TetGen 1.5 rejects a few of these outlines in its segment recovery (an assertion), or stalls
+/// in its quality refinement (a thin ring under a fine outline), though the polygon is simple and evenly sampled; one
+/// more point on the sides and the bore arc meshes them. A slab meshes in well under a second: 10 s is the budget of
+/// an attempt, four attempts the most.
+ToothSlab extrude_with_retries(const std::vector<Eigen::Vector2d>& outline, const std::vector<int>& outline_markers,
+                               double top_m, const ToothSlabOptions& o, double a_end, double spacing) {
+  for (int attempt = 0;; ++attempt) {
+    std::vector<Eigen::Vector2d> pts = outline;
+    std::vector<int> seg_marker = outline_markers;
+    const double depth = o.depth_over_spacing * spacing;
+    close_with_body(top_m, o.bore_radius_m, a_end, spacing, attempt, pts, seg_marker);
+    try {
+      return ToothSlab{extrude(pts, seg_marker, depth, o.max_edge_over_spacing * spacing), depth};
+    } catch (const InputError&) {
+      if (attempt == 3) throw;
+    }
   }
 }
 
@@ -111,22 +132,8 @@ ToothSlab mesh_tooth_slab(const GearParams& g, const ToothSlabOptions& o) {
       seg_marker.push_back(k == 0 ? kSurfaceRimOuter : kSurfaceOther);
     }
   }
-  // TetGen 1.5 rejects a few of these outlines in its segment recovery (an assertion, not a geometric defect: the
-  // polygon is simple and evenly sampled); one more point on the sides and the bore arc meshes them.
-  const std::vector<Eigen::Vector2d> tooth_pts = pts;
-  const std::vector<int> tooth_markers = seg_marker;
-  for (int attempt = 0;; ++attempt) {
-    pts = tooth_pts;
-    seg_marker = tooth_markers;
-    const double a_end = (K + 0.5) * 2 * kPi / z;
-    const double depth = o.depth_over_spacing * spacing;
-    close_with_body(r.root_f, o.bore_radius_m, a_end, spacing, attempt, pts, seg_marker);
-    try {
-      return ToothSlab{extrude(pts, seg_marker, depth, o.max_edge_over_spacing * spacing), depth};
-    } catch (const InputError&) {
-      if (attempt == 3) throw;
-    }
-  }
+  const double a_end = (K + 0.5) * 2 * kPi / z;
+  return extrude_with_retries(pts, seg_marker, r.root_f, o, a_end, spacing);
 }
 
 ToothSlab mesh_ring_slab(const GearParams& g, const ToothSlabOptions& o, double r_o) {
@@ -149,9 +156,7 @@ ToothSlab mesh_ring_slab(const GearParams& g, const ToothSlabOptions& o, double 
     pts.emplace_back(r_o * std::cos(a), r_o * std::sin(a));
     seg_marker.push_back(kSurfaceRimOuter);
   }
-  close_with_body(r_o, o.bore_radius_m, a_end, spacing, 0, pts, seg_marker);
-  const double depth = o.depth_over_spacing * spacing;
-  return ToothSlab{extrude(pts, seg_marker, depth, o.max_edge_over_spacing * spacing), depth};
+  return extrude_with_retries(pts, seg_marker, r_o, o, a_end, spacing);
 }
 
 }  // namespace sw

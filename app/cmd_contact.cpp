@@ -1,5 +1,6 @@
 // `strainwave contact CASE.toml [--fem DIR/result.json]`: the FEM of the flexspline, then the loaded tooth contact on
 // its system: how the teeth share the torque and the drive's torque–twist curve from −rated to +rated torque.
+#include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -57,10 +58,10 @@ ContactFem fem_from_run(const Case& c, const std::filesystem::path& result_json,
   return fem;
 }
 
-/// The FEM solved now on TET10.
-ContactFem fem_solved(const Case& c, const std::filesystem::path& dir, const FemJobOptions& options) {
+/// The FEM solved now on TET10, its files written into `out`.
+ContactFem fem_solved(const Case& c, OutputSet& out, const FemJobOptions& options) {
   ContactFem fem;
-  fem.job = run_fem_job(c, dir, options);
+  fem.job = run_fem_job(c, out, options);
   if (!fem.job.system || !fem.job.mesh)
     throw InputError(c.path + ": contact solves on the TET10 model (solver.method = \"tet10\")");
   fem.mesh = fem.job.mesh;
@@ -86,10 +87,12 @@ void add_contact_command(CLI::App& app) {
     apply_solver_option(c, "tet10");
     naming_file(c.path, [&] { check_contact_model(flexspline_model(c)); });  // before any work: nothing is written for a case contact cannot take
     progress("case:\n" + describe_case(c));
-    const std::filesystem::path dir = out.empty() ? default_out_dir(c) : std::filesystem::path(out);
-    const ContactFem fem = fem_json.empty() ? fem_solved(c, dir, fem_options)
+    OutputSet outputs(out.empty() ? default_out_dir(c) : std::filesystem::path(out));
+    const ContactFem fem = fem_json.empty() ? fem_solved(c, outputs, fem_options)
                                             : fem_from_run(c, fem_json, fem_options.max_memory_gb);
-    run_contact_job(c, *fem.mesh, *fem.system, fem.readout, dir);
+    run_contact_job(c, *fem.mesh, *fem.system, fem.readout, outputs);
+    outputs.commit();
+    std::printf("  wrote %s\n", outputs.dir().string().c_str());
   });
 }
 

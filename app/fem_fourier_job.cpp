@@ -22,7 +22,7 @@ namespace {
 constexpr int kGridSectors = 32;
 }  // namespace
 
-FemJobResult run_fourier_fem_job(const Case& c, const fs::path& out_dir, bool write_vtk) {
+FemJobResult run_fourier_fem_job(const Case& c, OutputSet& out, bool write_vtk) {
   const double t_start = elapsed_s();
   RunInfo run;
   run.blas = detect_blas();
@@ -32,17 +32,17 @@ FemJobResult run_fourier_fem_job(const Case& c, const fs::path& out_dir, bool wr
   run.mesh_s = fourier.section_s;
   clock.lap();
   const FlexsplineSolution& s = fourier.figures;
-  progress("output: " + out_dir.string());
-  if (write_vtk) write_fem_vtk(out_dir, c, fourier.grid, s);
-  if (s.neutral_curve) write_file_atomic(out_dir / "neutral_curve.csv", neutral_curve_csv(*s.neutral_curve));
+  progress("output: " + out.dir().string());
+  if (write_vtk) write_fem_vtk(out.staging(), c, fourier.grid, s);
+  if (s.neutral_curve) write_file_atomic(out.staging() / "neutral_curve.csv", neutral_curve_csv(*s.neutral_curve));
   run.output_s = clock.lap();
   run.total_s = elapsed_s() - t_start;
   run.peak_rss_bytes = peak_rss_bytes();
 
   FemJobResult job;
   const FemResult result = fem_result(c, fourier, run);
-  job.result_json_path = out_dir / "result.json";
-  write_file_atomic(job.result_json_path, fem_result_json(result));
+  job.result_json_path = out.dir() / "result.json";
+  write_file_atomic(out.staging() / "result.json", fem_result_json(result));
 
   std::printf("fem %s (fourier): section %zu nodes, harmonics 0..%d (%zu solved, %lld equations in all), factor "
               "%.3f GF, total %.2f s, peak %.0f MB\n",
@@ -59,7 +59,6 @@ FemJobResult run_fourier_fem_job(const Case& c, const fs::path& out_dir, bool wr
                 s.generator_force_N, s.generator_w0_m * 1e3, s.checks.generator_rotation_rad,
                 s.hoop.max_tensile_Pa / 1e6, s.hoop.max_tensile_angle_deg, s.hoop.max_compressive_Pa / 1e6,
                 s.hoop.max_compressive_angle_deg);
-  std::printf("  wrote %s\n", out_dir.string().c_str());
   job.solution = std::move(fourier.figures);
   return job;
 }

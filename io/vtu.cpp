@@ -81,7 +81,7 @@ void write_vtu(const std::filesystem::path& path, const TetMesh& mesh, const std
     writer->SetDataModeToAppended();
     writer->EncodeAppendedDataOff();
     writer->SetCompressorTypeToLZ4();  // bench/README.md: as fast as none, a fifth smaller; zlib is 20x slower
-    writer->SetCompressionLevel(9);    // LZ4's strongest: the same speed as its fastest, 2-3 % smaller
+    writer->SetCompressionLevel(9);    // LZ4's strongest: the same speed as its fastest, a few per cent smaller
     if (writer->Write() != 1) throw InputError(path.string() + ": VTK could not write the file");
   });
 }

@@ -27,7 +27,8 @@ namespace fs = std::filesystem;
 fs::path default_out_dir(const Case& c) { return fs::path("out") / c.stem; }
 
 void add_fem_job_options(CLI::App* cmd, FemJobOptions& o) {
-  cmd->add_flag("--no-vtk", [&o](std::int64_t) { o.write_vtk = false; }, "leave out flexspline.pvd and the .vtu files");
+  cmd->add_flag("--no-vtk", [&o](std::int64_t) { o.write_vtk = false; },
+                "leave out flexspline.pvd and the .vtu files (an earlier run's go with the new set)");
   cmd->add_option_function<std::string>(
       "--export-inp", [&o](const std::string& f) { o.export_inp = f; },
       "also write the mesh, clamp and torque loads as a CalculiX/Abaqus deck (C3D10); the generator's contact is not "

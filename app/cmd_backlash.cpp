@@ -23,9 +23,9 @@ constexpr double kPi = std::numbers::pi;
 constexpr double kArcmin = 180.0 / kPi * 60.0;
 
 /// φ₀ and where it came from: --phi0, else C_τ·T of the FEM's result.json, else its φ₀, else none.
-void set_phi0(BacklashReport& r, const Case& c, const BacklashJobOptions& o) {
+void set_phi0(BacklashReport& r, const Case& c, const BacklashJobOptions& o, const OutputSet& out) {
   std::optional<FemCompensation> fem;
-  if (o.fem_result) fem = read_fem_compensation(*o.fem_result);
+  if (o.fem_result) fem = read_fem_compensation(out.read_path(*o.fem_result));
   if (o.phi0_rad) {
     r.phi0_rad = *o.phi0_rad;
     r.phi0_source = "--phi0";
@@ -42,11 +42,11 @@ void set_phi0(BacklashReport& r, const Case& c, const BacklashJobOptions& o) {
 }
 
 /// The deformed neutral curve: the FEM's (neutral_curve.csv beside result.json) or the generator model's.
-NeutralCurve backlash_curve(const Case& c, const BacklashJobOptions& o, double rm, double w0) {
+NeutralCurve backlash_curve(const Case& c, const BacklashJobOptions& o, const OutputSet& out, double rm, double w0) {
   if (!o.fem_curve) return generator_neutral_curve(rm, w0, *c.wave_generator);
   if (!o.fem_result) throw InputError("--curve fem needs --fem DIR/result.json (neutral_curve.csv is read beside it)");
   const fs::path csv = o.fem_result->parent_path() / "neutral_curve.csv";
-  const NeutralCurveSamples s = read_neutral_curve_csv(csv);
+  const NeutralCurveSamples s = read_neutral_curve_csv(out.read_path(csv));
   return fit_neutral_curve(rm, s.phi_rad, s.w_wg_m, s.v_wg_m, s.mu_wg_rad,
                            "FEM neutral curve " + csv.string() + " (generator alone)");
 }
@@ -107,7 +107,7 @@ void print_backlash_summary(const Case& c, const BacklashReport& r) {
 
 }  // namespace
 
-BacklashReport run_backlash_job(const Case& c, const BacklashJobOptions& o, const fs::path& out_dir) {
+BacklashReport run_backlash_job(const Case& c, const BacklashJobOptions& o, OutputSet& out) {
   if (!c.gear) throw InputError(c.path + ": [gear] is missing; the backlash model needs the tooth data");
   if (!c.wave_generator || !c.wave_generator->radial_deformation_m)
     throw InputError(c.path + ": wave_generator.radial_deformation_mm is missing; the backlash model needs w0");
@@ -118,8 +118,9 @@ BacklashReport run_backlash_job(const Case& c, const BacklashJobOptions& o, cons
   r.case_path = c.path;
   r.module_m = c.gear->module_m;
   r.torque_Nm = c.load.torque_Nm;
-  set_phi0(r, c, o);
-  const NeutralCurve curve = backlash_curve(c, o, rm, w0);
+  out.own(kBacklashJobFiles);
+  set_phi0(r, c, o, out);
+  const NeutralCurve curve = backlash_curve(c, o, out, rm, w0);
   r.curve_source = curve.source;
   const BacklashModel m = make_backlash_model(*c.gear, curve);
   progress("backlash: " + curve.source + ", r_m = " + std::to_string(rm * 1e3) + " mm, phi0 = " +
@@ -130,12 +131,11 @@ BacklashReport run_backlash_job(const Case& c, const BacklashJobOptions& o, cons
   progress("backlash: geometry check in " + std::to_string(clock.lap()) + " s");
   sweep(r, m, o.revolution_steps);
 
-  write_file_atomic(out_dir / "backlash.json", backlash_json(backlash_result(r)));
-  write_file_atomic(out_dir / "backlash.csv", backlash_csv(r));
-  write_file_atomic(out_dir / "backlash.svg", backlash_svg(r));
-  write_profiles_vtp(out_dir / "profiles.vtp", m, r.phi0_rad);
+  write_file_atomic(out.staging() / "backlash.json", backlash_json(backlash_result(r)));
+  write_file_atomic(out.staging() / "backlash.csv", backlash_csv(r));
+  write_file_atomic(out.staging() / "backlash.svg", backlash_svg(r));
+  write_profiles_vtp(out.staging() / "profiles.vtp", m, r.phi0_rad);
   print_backlash_summary(c, r);
-  std::printf("  wrote %s\n", out_dir.string().c_str());
   return r;
 }
 
@@ -158,7 +158,10 @@ void add_backlash_command(CLI::App& app) {
     if (phi0_opt->count() > 0) o.phi0_rad = phi0;
     o.fem_curve = curve == "fem";
     o.revolution_steps = steps;
-    run_backlash_job(c, o, out.empty() ? default_out_dir(c) : fs::path(out));
+    OutputSet outputs(out.empty() ? default_out_dir(c) : fs::path(out));
+    run_backlash_job(c, o, outputs);
+    outputs.commit();
+    std::printf("  wrote %s\n", outputs.dir().string().c_str());
   });
 }
 

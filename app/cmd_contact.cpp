@@ -59,10 +59,10 @@ ContactFem fem_from_run(const Case& c, const std::filesystem::path& result_json,
   return fem;
 }
 
-/// The FEM solved now on TET10.
-ContactFem fem_solved(const Case& c, const std::filesystem::path& dir, const FemJobOptions& options) {
+/// The FEM solved now on TET10, its files written into `out`.
+ContactFem fem_solved(const Case& c, OutputSet& out, const FemJobOptions& options) {
   ContactFem fem;
-  fem.job = run_fem_job(c, dir, options);
+  fem.job = run_fem_job(c, out, options);
   if (!fem.job.system || !fem.job.mesh)  // contact_model_gap refuses the cases that leave none
     throw std::logic_error("contact: the FEM job left no factorised TET10 model");
   fem.mesh = fem.job.mesh;
@@ -92,10 +92,12 @@ void add_contact_command(CLI::App& app) {
     }
     naming_file(c.path, [&] { check_contact_model(flexspline_model(c)); });  // before any work: nothing is written for a case contact cannot take
     progress("case:\n" + describe_case(c));
-    const std::filesystem::path dir = out.empty() ? default_out_dir(c) : std::filesystem::path(out);
-    const ContactFem fem = fem_json.empty() ? fem_solved(c, dir, fem_options)
+    OutputSet outputs(out.empty() ? default_out_dir(c) : std::filesystem::path(out));
+    const ContactFem fem = fem_json.empty() ? fem_solved(c, outputs, fem_options)
                                             : fem_from_run(c, fem_json, fem_options.max_memory_gb);
-    run_contact_job(c, *fem.mesh, *fem.system, fem.readout, dir);
+    run_contact_job(c, *fem.mesh, *fem.system, fem.readout, outputs);
+    outputs.commit();
+    std::printf("  wrote %s\n", outputs.dir().string().c_str());
   });
 }
 

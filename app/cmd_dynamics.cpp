@@ -33,8 +33,8 @@ DynamicsParams resolved_params(const Case& c, const std::string& pairs_option, c
   return p;
 }
 
-/// dynamics.csv, dynamics.json and dynamics.svg in `dir`, each written atomically; the command's wall clock (`total`)
-/// is read for dynamics.json.
+/// dynamics.csv, dynamics.json and dynamics.svg in the staging folder `dir`; the command's wall clock (`total`) is read
+/// for dynamics.json.
 void write_outputs(const std::filesystem::path& dir, const DynamicsModel& m, const DynamicsSeries& s,
                    const DynamicsSummary& r, DynamicsReportInfo& info, Stopwatch& total) {
   write_file_atomic(dir / "dynamics.csv", dynamics_csv(m, s));
@@ -81,20 +81,21 @@ void print_summary(const DynamicsModel& m, const DynamicsSummary& r, const Dynam
   std::printf("  wrote %s/dynamics.{csv,json,svg}\n", out_dir.c_str());
 }
 
-void run_dynamics(const std::string& case_path, std::string out_dir, const std::string& clearances,
+void run_dynamics(const std::string& case_path, const std::string& out_dir, const std::string& clearances,
                   const std::string& fem_result, const std::string& interference, const std::string& pairs_option,
                   const std::string& rim_option) {
   Stopwatch total;
   const Case c = load_case(case_path);
   if (!c.gear) throw InputError(case_path + ": [gear] is missing; the dynamics needs the tooth numbers and module");
   const DynamicsParams p = resolved_params(c, pairs_option, rim_option);
-  if (out_dir.empty()) out_dir = default_out_dir(c).string();
+  OutputSet outputs(out_dir.empty() ? default_out_dir(c) : std::filesystem::path(out_dir),
+                    {"dynamics.csv", "dynamics.json", "dynamics.svg"});
   progress("case:\n" + describe(p));
   DynamicsModelOptions o;
   o.clearances = clearances;
   o.interference = interference;
   o.fem_result = fem_result;
-  const DynamicsJobModel job = dynamics_model(c, p, o, out_dir);
+  const DynamicsJobModel job = dynamics_model(c, p, o, outputs);
   const DynamicsModel& m = job.model;
   progress("dynamics: " + std::string(to_string(p.configuration)) + ", " + std::to_string(m.pairs.size()) +
            " tooth pairs (" + job.source + "), " + std::to_string(std::lround(p.duration_s / p.output_step_s)) +
@@ -108,8 +109,9 @@ void run_dynamics(const std::string& case_path, std::string out_dir, const std::
   progress("dynamics: integrated " + std::to_string(p.duration_s) + " s in " + std::to_string(info.simulate_time_s) +
            " s (" + std::to_string(s.stats.steps) + " steps)");
   const DynamicsSummary r = summarize(m, s);
-  write_outputs(out_dir, m, s, r, info, total);
-  print_summary(m, r, info, out_dir);
+  write_outputs(outputs.staging(), m, s, r, info, total);
+  outputs.commit();
+  print_summary(m, r, info, outputs.dir().string());
 }
 
 }  // namespace

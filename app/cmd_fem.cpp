@@ -27,7 +27,8 @@ namespace fs = std::filesystem;
 fs::path default_out_dir(const Case& c) { return fs::path("out") / c.stem; }
 
 void add_fem_job_options(CLI::App* cmd, FemJobOptions& o) {
-  cmd->add_flag("--no-vtk", [&o](std::int64_t) { o.write_vtk = false; }, "leave out flexspline.pvd and the .vtu files");
+  cmd->add_flag("--no-vtk", [&o](std::int64_t) { o.write_vtk = false; },
+                "leave out flexspline.pvd and the .vtu files (an earlier run's go with the new set)");
   cmd->add_option_function<std::string>(
       "--export-inp", [&o](const std::string& f) { o.export_inp = f; },
       "also write the mesh, clamp and torque loads as a CalculiX/Abaqus deck (C3D10); the generator's contact is not "
@@ -93,16 +94,16 @@ BlasInfo blas_for_the_factor() {
 }
 
 /// The VTK files, the CalculiX deck (--export-inp) and neutral_curve.csv.
-void write_fem_files(const Case& c, const fs::path& out_dir, const FemJobOptions& options,
+void write_fem_files(const Case& c, const OutputSet& out, const FemJobOptions& options,
                      const FlexsplineModel& model, const TetMesh& mesh, const FlexsplineSolution& s) {
-  progress("output: " + out_dir.string());
-  if (options.write_vtk) write_fem_vtk(out_dir, c, mesh, s);
+  progress("output: " + out.dir().string());
+  if (options.write_vtk) write_fem_vtk(out.staging(), c, mesh, s);
   if (options.export_inp) {
     write_inp_deck(*options.export_inp, c, mesh, clamped_nodes(mesh), torque_load_vector(model, mesh, c.load.torque_Nm),
                    "fem --export-inp (clamp and torque only; no generator)");
     progress("deck: " + options.export_inp->string());
   }
-  if (s.neutral_curve) write_file_atomic(out_dir / "neutral_curve.csv", neutral_curve_csv(*s.neutral_curve));
+  if (s.neutral_curve) write_file_atomic(out.staging() / "neutral_curve.csv", neutral_curve_csv(*s.neutral_curve));
 }
 
 /// The model's size and cost, φ₀ against the closed form, the torque balance.
@@ -176,11 +177,12 @@ void print_hoop_profile_and_fatigue(const FlexsplineSolution& s) {
 
 }  // namespace
 
-FemJobResult run_fem_job(const Case& c, const fs::path& out_dir, const FemJobOptions& options) {
+FemJobResult run_fem_job(const Case& c, OutputSet& out, const FemJobOptions& options) {
+  out.own(kFemJobFiles);
   if (c.solver.method == SolverMethod::Fourier) {
     if (options.export_inp)
       throw InputError("--export-inp writes a TET10 deck; it needs [solver] method = \"tet10\" (or --solver tet10)");
-    return run_fourier_fem_job(c, out_dir, options.write_vtk);
+    return run_fourier_fem_job(c, out, options.write_vtk);
   }
   const double t_start = elapsed_s();
   RunInfo run;
@@ -199,16 +201,15 @@ FemJobResult run_fem_job(const Case& c, const fs::path& out_dir, const FemJobOpt
   job.mesh = mesh_ptr;
   job.system = system;
   clock.lap();
-  write_fem_files(c, out_dir, options, model, mesh, job.solution);
+  write_fem_files(c, out, options, model, mesh, job.solution);
   run.output_s = clock.lap();
   run.total_s = elapsed_s() - t_start;
   run.peak_rss_bytes = peak_rss_bytes();
-  job.result_json_path = out_dir / "result.json";
-  write_file_atomic(job.result_json_path, fem_result_json(fem_result(c, mesh, job.solution, run)));
+  job.result_json_path = out.dir() / "result.json";
+  write_file_atomic(out.staging() / "result.json", fem_result_json(fem_result(c, mesh, job.solution, run)));
   print_fem_headline(c, mesh, job.solution, run);
   if (job.solution.generator) print_generator(job.solution);
   print_hoop_profile_and_fatigue(job.solution);
-  std::printf("  wrote %s\n", out_dir.string().c_str());
   return job;
 }
 
@@ -222,7 +223,10 @@ void add_fem_command(CLI::App& app) {
   add_solver_options(cmd, solver, backend);
   cmd->callback([] {
     const Case c = load_case_with_solver(case_path, solver, backend);
-    run_fem_job(c, out.empty() ? default_out_dir(c) : fs::path(out), options);
+    OutputSet outputs(out.empty() ? default_out_dir(c) : fs::path(out));
+    run_fem_job(c, outputs, options);
+    outputs.commit();
+    std::printf("  wrote %s\n", outputs.dir().string().c_str());
   });
 }
 

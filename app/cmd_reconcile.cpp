@@ -49,16 +49,16 @@ void run_reconcile(const ReconcileArgs& a) {
   for (const auto& n : notes) progress("reconcile: " + n);
   const reconcile::Experiment e = reconcile::make_experiment(rec, base);
   const reconcile::Result r = reconcile::reconcile(e, a.options);
-  const std::filesystem::path dir = a.out.empty() ? default_out_dir(c) : std::filesystem::path(a.out);
-  const std::string json = reconcile_json(reconcile::report_of(r));
-  const std::string html = reconcile::report_html(e, rec, r, notes);
-  write_file_atomic(dir / "reconcile.json", json);
-  write_file_atomic(dir / "reconcile.html", html);
+  OutputSet outputs(a.out.empty() ? default_out_dir(c) : std::filesystem::path(a.out),
+                    {"reconcile.json", "reconcile.html"});
+  write_file_atomic(outputs.staging() / "reconcile.json", reconcile_json(reconcile::report_of(r)));
+  write_file_atomic(outputs.staging() / "reconcile.html", reconcile::report_html(e, rec, r, notes));
+  outputs.commit();
   std::fputs(reconcile::report_summary(r).c_str(), stdout);
   for (const auto& n : notes)
     if (n.find("disagree") != std::string::npos || n.find("but the recording") != std::string::npos)
       std::printf("  note: %s\n", n.c_str());
-  std::printf("  %.2f s; wrote %s/reconcile.{json,html}\n", r.seconds, dir.string().c_str());
+  std::printf("  %.2f s; wrote %s/reconcile.{json,html}\n", r.seconds, outputs.dir().string().c_str());
 }
 
 }  // namespace

@@ -19,9 +19,10 @@ namespace sw::app {
 
 namespace {
 
-RunReportInputs report_inputs(const Case& c, const std::filesystem::path& dir) {
+RunReportInputs report_inputs(const Case& c, const OutputSet& out) {
   RunReportInputs in;
-  in.out_dir = dir;
+  in.out_dir = out.staging();
+  in.shown_dir = out.dir();
   in.case_path = c.path;
   in.case_text = describe_case(c);
   if (c.wave_generator && c.wave_generator->radial_deformation_m) {
@@ -92,22 +93,26 @@ void add_run_command(CLI::App& app) {
   add_solver_options(cmd, solver, backend);
   cmd->callback([] {
     const Case c = load_case_with_solver(case_path, solver, backend);
-    const std::filesystem::path dir = out.empty() ? default_out_dir(c) : std::filesystem::path(out);
-    const FemJobResult fem = run_fem_job(c, dir, fem_options);
+    OutputSet outputs(out.empty() ? default_out_dir(c) : std::filesystem::path(out), {"report.html"});
+    outputs.own(kBacklashJobFiles);  // also when this case has no backlash or contact stage: none stays from before
+    outputs.own(kContactJobFiles);
+    const FemJobResult fem = run_fem_job(c, outputs, fem_options);
     std::optional<BacklashReport> backlash;
     if (c.gear && c.wave_generator && c.wave_generator->radial_deformation_m) {
       BacklashJobOptions options;
       options.fem_result = fem.result_json_path;
       options.fem_curve = curve == "fem";
-      backlash = run_backlash_job(c, options, dir);
+      backlash = run_backlash_job(c, options, outputs);
     } else {
       std::printf("run: no backlash for this case (it needs [gear] and [wave_generator] with radial_deformation_mm)\n");
     }
     std::optional<ContactAnalysis> contact;
     if (fem.system && !contact_model_gap(flexspline_model(c)))
-      contact = run_contact_job(c, *fem.mesh, *fem.system, fem_readout(fem.solution), dir);
-    write_file_atomic(dir / "report.html", run_report_html(report_inputs(c, dir)));
-    print_summary(c, fem, backlash, contact, dir);
+      contact = run_contact_job(c, *fem.mesh, *fem.system, fem_readout(fem.solution), outputs);
+    write_file_atomic(outputs.staging() / "report.html", run_report_html(report_inputs(c, outputs)));
+    outputs.commit();
+    std::printf("  wrote %s\n", outputs.dir().string().c_str());
+    print_summary(c, fem, backlash, contact, outputs.dir());
   });
 }
 

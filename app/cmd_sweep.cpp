@@ -350,8 +350,10 @@ InputError failed_points(const std::vector<const Point*>& failed) {
 void merge_points(const fs::path& dir, const std::vector<SweepAxis>& axes, const std::vector<Point>& points) {
   std::vector<FemResult> results;
   for (const auto& p : points) results.push_back(read_fem_result(p.dir / "result.json"));
-  write_file_atomic(dir / "sweep.csv", sweep_csv(axes, points, results));
-  write_file_atomic(dir / "sweep.svg", sweep_svg(axes, points, results));
+  OutputSet outputs(dir, {"sweep.csv", "sweep.svg"});  // each point's folder is a set of its own (`strainwave fem`)
+  write_file_atomic(outputs.staging() / "sweep.csv", sweep_csv(axes, points, results));
+  write_file_atomic(outputs.staging() / "sweep.svg", sweep_svg(axes, points, results));
+  outputs.commit();
   std::printf("  wrote %s (sweep.csv, sweep.svg, %zu points' result.json)\n", dir.string().c_str(), points.size());
 }
 

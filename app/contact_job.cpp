@@ -191,7 +191,7 @@ void print_overlap_and_balance(const ContactAnalysis& a) {
 }  // namespace
 
 ContactAnalysis run_contact_job(const Case& c, const TetMesh& mesh, const FlexsplineSystem& system,
-                                const FemReadout& fem, const std::filesystem::path& dir) {
+                                const FemReadout& fem, OutputSet& out) {
   ContactOptions o;
   o.rated_torque_Nm = c.load.rated_torque_Nm.value_or(c.load.torque_Nm);
   o.series = series_parts(c);
@@ -203,9 +203,10 @@ ContactAnalysis run_contact_job(const Case& c, const TetMesh& mesh, const Flexsp
   }
   const ContactAnalysis a =
       naming_file(c.path, [&] { return analyse_contact(flexspline_model(c), mesh, system, fem, o); });
-  write_file_atomic(dir / "contact.json", contact_json(contact_result(a, c.path, reference)));
-  write_file_atomic(dir / "torque_twist.csv", torque_twist_csv(a));
-  write_file_atomic(dir / "contact.svg", contact_svg(a, reference));
+  out.own(kContactJobFiles);
+  write_file_atomic(out.staging() / "contact.json", contact_json(contact_result(a, c.path, reference)));
+  write_file_atomic(out.staging() / "torque_twist.csv", torque_twist_csv(a));
+  write_file_atomic(out.staging() / "contact.svg", contact_svg(a, reference));
   print_contact_headline(c, a, o.series.teeth_source);
   if (reference) print_against_catalog(a, *reference);
   print_lost_motion_and_split(a);

@@ -1,20 +1,25 @@
 #pragma once
 // The contact job shared by `strainwave contact` and `strainwave run`: the loaded tooth contact on the FEM's own
 // system, its outputs and summary.
-#include <filesystem>
+#include <string>
+#include <vector>
 
 #include "app/fem_job.hpp"
 #include "contact/loaded_contact.hpp"
+#include "io/atomic_file.hpp"
 
 namespace sw::app {
+
+/// The files the contact job writes in its output folder: a command that runs it owns them (OutputSet).
+inline const std::vector<std::string> kContactJobFiles = {"contact.json", "torque_twist.csv", "contact.svg"};
 
 /// What acts in series with the flexspline body, from the case (tooth pairs, generator bearing, circular spline).
 SeriesParts series_parts(const Case& c);
 
 /// Runs the contact analysis on the TET10 mesh and its factorised system with what the FEM gave (`fem`: solved now or
-/// read back from an earlier run's result.json), writes contact.json, torque_twist.csv and contact.svg under out_dir,
-/// prints the summary.
+/// read back from an earlier run's result.json), writes contact.json, torque_twist.csv and contact.svg into the set
+/// `out` (owning kContactJobFiles), prints the summary.
 ContactAnalysis run_contact_job(const Case& c, const TetMesh& mesh, const FlexsplineSystem& system,
-                                const FemReadout& fem, const std::filesystem::path& out_dir);
+                                const FemReadout& fem, OutputSet& out);
 
 }  // namespace sw::app

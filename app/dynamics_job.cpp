@@ -60,8 +60,7 @@ std::vector<ToothPair> frozen_pairs(const Case& c, const DynamicsParams& p, cons
 
 }  // namespace
 
-std::shared_ptr<const MovingMesh> moving_mesh(const Case& c, const DynamicsParams& p,
-                                              const std::filesystem::path& out_dir) {
+std::shared_ptr<const MovingMesh> moving_mesh(const Case& c, const DynamicsParams& p, OutputSet& out) {
   const ToothCompliance teeth =
       p.pair_stiffness == PairStiffness::Teeth ? series_parts(c).tooth_pair_m_per_N : ToothCompliance{};
   if (p.rim == RimCoupling::Rigid) {
@@ -73,7 +72,7 @@ std::shared_ptr<const MovingMesh> moving_mesh(const Case& c, const DynamicsParam
   naming_file(c.path, [&] { check_contact_model(flexspline_model(c)); });
   FemJobOptions o;
   o.write_vtk = false;
-  const FemJobResult fem = run_fem_job(c, out_dir, o);
+  const FemJobResult fem = run_fem_job(c, out, o);
   if (!fem.mesh || !fem.system) throw InputError(c.path + ": rim = \"fem\" needs the TET10 solver (solver.method)");
   const double rated = c.load.rated_torque_Nm.value_or(c.load.torque_Nm);
   return std::make_shared<MovingMesh>(naming_file(c.path, [&] {  // the flank table every pitch/64: see test_moving
@@ -82,8 +81,7 @@ std::shared_ptr<const MovingMesh> moving_mesh(const Case& c, const DynamicsParam
   }));
 }
 
-DynamicsJobModel dynamics_model(const Case& c, DynamicsParams p, const DynamicsModelOptions& o,
-                                const std::filesystem::path& out_dir) {
+DynamicsJobModel dynamics_model(const Case& c, DynamicsParams p, const DynamicsModelOptions& o, OutputSet& out) {
   const bool moving = p.pair_motion == PairMotion::Moving;
   if (moving) validate_moving(p, c.path);
   if (!o.fem_result.empty()) {
@@ -96,7 +94,7 @@ DynamicsJobModel dynamics_model(const Case& c, DynamicsParams p, const DynamicsM
   r.model = make_model(*c.gear, c.flexspline, c.flexspline.shape == FlexsplineShape::Cup, c.material, p,
                        std::move(pairs), c.path);
   if (moving) {
-    r.model.moving = moving_mesh(c, p, out_dir);
+    r.model.moving = moving_mesh(c, p, out);
     r.model.pairs.clear();
     r.source = r.model.moving->source;
   }

@@ -2,10 +2,10 @@
 // The dynamics model of a case, built one way for `strainwave dynamics` and for reconcile's dynamics baseline: tooth
 // pairs frozen at generator angle 0 (clearances from the basic kinematic model or the stand-in) or moving through the
 // mesh (a rigid rim, or the rim coupled through the FEM's flexspline body, which solves the FEM first).
-#include <filesystem>
 #include <memory>
 #include <string>
 
+#include "io/atomic_file.hpp"
 #include "io/case.hpp"
 #include "dynamics/model.hpp"
 #include "dynamics/moving_mesh.hpp"
@@ -25,13 +25,12 @@ struct DynamicsJobModel {
 };
 
 /// The moving mesh of the case: a rigid rim on the case's generator curve (flank table every pitch/64), or, for
-/// rim = "fem", the rim coupled through the FEM's body (runs the FEM job in out_dir first; TET10 only).
-std::shared_ptr<const MovingMesh> moving_mesh(const Case& c, const DynamicsParams& p,
-                                              const std::filesystem::path& out_dir);
+/// rim = "fem", the rim coupled through the FEM's body (runs the FEM job first, its files into the set `out`; TET10
+/// only).
+std::shared_ptr<const MovingMesh> moving_mesh(const Case& c, const DynamicsParams& p, OutputSet& out);
 
 /// The model `strainwave dynamics` integrates: the case's [dynamics] values `p` (already resolved), pairs moving or
 /// frozen as p.pair_motion says. Precondition: c.gear is set. Throws InputError on invalid values (validate()).
-DynamicsJobModel dynamics_model(const Case& c, DynamicsParams p, const DynamicsModelOptions& options,
-                                const std::filesystem::path& out_dir);
+DynamicsJobModel dynamics_model(const Case& c, DynamicsParams p, const DynamicsModelOptions& options, OutputSet& out);
 
 }  // namespace sw::app

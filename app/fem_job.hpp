@@ -4,20 +4,26 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
-#include <string>
 
 #include "app/commands.hpp"
+#include "io/atomic_file.hpp"
 #include "io/case.hpp"
 #include "fem/flexspline_analysis.hpp"
 #include "mesh/tet_mesh.hpp"
 
 namespace sw::app {
 
+/// The files the fem job writes in its output folder (the VTK ones unless --no-vtk; neutral_curve.csv with a
+/// generator): a command that runs it owns them (OutputSet).
+inline const std::vector<std::string> kFemJobFiles = {"result.json", "neutral_curve.csv", "flexspline.pvd",
+                                                      "flexspline_*.vtu"};
+
 struct FemJobResult {
   FlexsplineSolution solution;
-  std::filesystem::path result_json_path;
+  std::filesystem::path result_json_path;  ///< where result.json appears (read it through the set's read_path)
   /// The TET10 mesh and its factorised system, kept for the stages that solve on it again (the tooth contact);
   /// null on the harmonic solver.
   std::shared_ptr<const TetMesh> mesh;
@@ -39,11 +45,12 @@ void add_fem_job_options(CLI::App* cmd, FemJobOptions& options);
 /// exceeds max_memory_gb (0: the machine's available memory), per machine the petsc backend's ranks run on.
 TetMesh mesh_for_case(const Case& c, double max_memory_gb = 0);
 
-/// Meshes, solves, writes every fem output under out_dir, prints the summary (by the case's solver.method).
-FemJobResult run_fem_job(const Case& c, const std::filesystem::path& out_dir, const FemJobOptions& options = {});
+/// Meshes, solves, writes every fem output into the set `out` (owning kFemJobFiles), prints the summary (by the
+/// case's solver.method).
+FemJobResult run_fem_job(const Case& c, OutputSet& out, const FemJobOptions& options = {});
 
 /// The same on the harmonic solver (solver.method = "fourier"; app/fem_fourier_job.cpp); VTU output optional.
-FemJobResult run_fourier_fem_job(const Case& c, const std::filesystem::path& out_dir, bool write_vtk = true);
+FemJobResult run_fourier_fem_job(const Case& c, OutputSet& out, bool write_vtk = true);
 
 /// Applies the `--solver` ("tet10" | "fourier") and `--backend` ("cholmod" | "petsc") command-line choices (empty:
 /// the case's) to the case.

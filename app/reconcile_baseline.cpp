@@ -17,6 +17,7 @@
 #include "dynamics/simulate.hpp"
 #include "kinematics/backlash.hpp"
 #include "kinematics/neutral_curve.hpp"
+#include "io/atomic_file.hpp"
 #include "io/contact_output.hpp"
 #include "io/fem_output.hpp"
 
@@ -292,7 +293,9 @@ void dynamics_baseline_of(const Case* c, const BaselineSources& src, reconcile::
   if (q.pair_motion == PairMotion::Moving && q.rim == RimCoupling::Fem)
     notes.push_back("rim = \"fem\": the flexspline body's compliance from the FEM solved first, its result in " +
                     fem_dir.string() + " (each of the ~40 runs of the experiment then integrates the coupled mesh)");
-  const DynamicsJobModel job = dynamics_model(*c, q, o, fem_dir);
+  OutputSet fem_outputs(fem_dir);  // rim = "fem": the FEM's files, brought in before the experiment runs
+  const DynamicsJobModel job = dynamics_model(*c, q, o, fem_outputs);
+  fem_outputs.commit();
   const reconcile::Baseline d = dynamics_baseline(job.model);
   const auto& p = std::get<reconcile::DynamicsPrediction>(d.prediction);
   b.source = c->path + ": " + d.source;

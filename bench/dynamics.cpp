@@ -63,8 +63,8 @@ int main(int argc, char** argv) {
     p.steady_from_s = std::min(p.steady_from_s, duration / 2);
     if (!pairs_mode.empty()) p.pair_motion = pairs_mode == "moving" ? sw::PairMotion::Moving : sw::PairMotion::Frozen;
     if (!rim_mode.empty()) p.rim = rim_mode == "fem" ? sw::RimCoupling::Fem : sw::RimCoupling::Rigid;
-    const auto out_dir = std::filesystem::temp_directory_path() / "bench_dynamics";
-    const sw::app::DynamicsJobModel job = sw::app::dynamics_model(c, p, {}, out_dir);
+    sw::OutputSet scratch(std::filesystem::temp_directory_path() / "bench_dynamics");  // never brought in
+    const sw::app::DynamicsJobModel job = sw::app::dynamics_model(c, p, {}, scratch);
     const sw::DynamicsModel& m = job.model;
     std::printf("bench_dynamics %s: %s, %d/%d teeth, %s; %.3g s simulated, output every %.3g s (sampled %d times per "
                 "step)\n", case_path.c_str(), sw::to_string(p.configuration), m.teeth_flexspline, m.teeth_circular,

@@ -468,26 +468,6 @@ struct Trig {
   }
 };
 
-/// Stress amplitudes (n_nodes × 6 per harmonic and family; see nodal_stress) at a probe, summed at an angle: the
-/// first four components go with cos nθ (sym) / sin nθ (anti), the shears with sin nθ (sym) / −cos nθ (anti).
-Eigen::Matrix<double, 6, 1> sum_stress(const std::vector<Eigen::MatrixXd>& sym, const std::vector<Eigen::MatrixXd>& anti,
-                                       const Probe& p, const Trig& trig) {
-  Eigen::Matrix<double, 6, 1> out = Eigen::Matrix<double, 6, 1>::Zero();
-  for (std::size_t n = 0; n < sym.size(); ++n) {
-    if (sym[n].size() == 0) continue;
-    Eigen::Matrix<double, 6, 1> as = Eigen::Matrix<double, 6, 1>::Zero(), aa = as;
-    for (int j = 0; j < 6; ++j)
-      if (p.weight[j] != 0) {
-        as += p.weight[j] * sym[n].row(p.node[j]).transpose();
-        aa += p.weight[j] * anti[n].row(p.node[j]).transpose();
-      }
-    const double c = trig.c[n], s = trig.s[n];
-    out.head<4>() += c * as.head<4>() + s * aa.head<4>();
-    out.tail<2>() += s * as.tail<2>() - c * aa.tail<2>();
-  }
-  return out;
-}
-
 /// (u_r, u_θ, u_z) of a field at a probe: a, c go with cos (sym), b with sin.
 Eigen::Vector3d displacement_at(const HarmonicField& f, const Probe& p, const Trig& trig) {
   Eigen::Vector3d u = Eigen::Vector3d::Zero();
@@ -551,8 +531,8 @@ void nodal_stress(const SectionMesh& s, const Material& m, const HarmonicField& 
           eta = (1 - 1e-6) * eta + 1e-6 / 3;
         }
         const StrainPoint p = strain_matrix(X, xi, eta, static_cast<int>(n));
-        sym[n].row(t[a]) += area[e] * (D * p.B * us).transpose();
-        anti[n].row(t[a]) += area[e] * (D * p.B * ua).transpose();
+        sym[n].row(t[a]) += area[e] * (D * (p.B * us)).transpose();
+        anti[n].row(t[a]) += area[e] * (D * (p.B * ua)).transpose();
       }
     }
     for (Eigen::Index i = 0; i < nn; ++i) {
@@ -592,22 +572,16 @@ Eigen::Matrix<double, 1, 6> cartesian_stress(const Eigen::Matrix<double, 6, 1>& 
 /// The section revolved into TET10: nodes = every section node at 2·sectors angular stations (corners at even
 /// stations are the prisms' corners; odd stations and midside nodes give every TET10 midside node exactly), each prism
 /// (triangle × sector) split into three tets by Dompierre's rule on global corner numbers (conforming). Tets that
-/// degenerate on the axis are dropped.
-TetMesh revolve_section(const SectionMesh& s, int sectors, std::vector<int>& station_of, std::vector<int>& node_of) {
+/// degenerate on the axis are dropped. Grid node k·n_section_nodes + i is section node i at station k (θ = kπ/sectors).
+TetMesh revolve_section(const SectionMesh& s, int sectors) {
   const int stations = 2 * sectors;
   const long ns = static_cast<long>(s.n_nodes());
   TetMesh g;
   g.nodes.resize(ns * stations, 3);
-  station_of.resize(static_cast<std::size_t>(ns * stations));
-  node_of.resize(static_cast<std::size_t>(ns * stations));
   for (int k = 0; k < stations; ++k) {
     const double t = kPi * k / sectors;
-    for (long i = 0; i < ns; ++i) {
-      const long id = k * ns + i;
-      g.nodes.row(id) << s.nodes(i, 0) * std::cos(t), s.nodes(i, 0) * std::sin(t), s.nodes(i, 1);
-      station_of[static_cast<std::size_t>(id)] = k;
-      node_of[static_cast<std::size_t>(id)] = static_cast<int>(i);
-    }
+    for (long i = 0; i < ns; ++i)
+      g.nodes.row(k * ns + i) << s.nodes(i, 0) * std::cos(t), s.nodes(i, 0) * std::sin(t), s.nodes(i, 1);
   }
   std::map<std::pair<int, int>, int> mid_of_edge;  // section corner pair -> midside node
   for (const auto& t : s.triangles)
@@ -662,6 +636,50 @@ TetMesh revolve_section(const SectionMesh& s, int sectors, std::vector<int>& sta
   return g;
 }
 
+
+/// A field's circumferential series as terms: term r is cos nθ (is_sine false) or sin nθ of n = harmonic[r], and
+/// column r of `amplitudes` its amplitude at every section node (9·n_section_nodes x n_terms, node by node: u_r, u_θ,
+/// u_z, σ_r, σ_z, σ_θ, τ_rz, τ_rθ, τ_θz). Harmonics not solved have no terms.
+struct SeriesTerms {
+  std::vector<int> harmonic;
+  std::vector<bool> is_sine;
+  Eigen::MatrixXd amplitudes;
+
+  /// The nine quantities at every section node at each angle: 9·n_section_nodes x angles, one product for them all.
+  Eigen::MatrixXd at(const std::vector<double>& theta) const {
+    Eigen::MatrixXd terms(amplitudes.cols(), static_cast<Eigen::Index>(theta.size()));
+    for (Eigen::Index k = 0; k < terms.cols(); ++k)
+      for (Eigen::Index r = 0; r < terms.rows(); ++r) {
+        const double nt = harmonic[static_cast<std::size_t>(r)] * theta[static_cast<std::size_t>(k)];
+        terms(r, k) = is_sine[static_cast<std::size_t>(r)] ? std::sin(nt) : std::cos(nt);
+      }
+    return amplitudes * terms;
+  }
+};
+SeriesTerms series_terms(Eigen::Index section_nodes, const HarmonicField& u,
+                         const std::vector<Eigen::MatrixXd>& stress_sym, const std::vector<Eigen::MatrixXd>& stress_anti) {
+  SeriesTerms t;
+  for (std::size_t n = 0; n < u.sym.size(); ++n)
+    if (u.sym[n].size() != 0)
+      for (bool sine : {false, true}) {
+        t.harmonic.push_back(static_cast<int>(n));
+        t.is_sine.push_back(sine);
+      }
+  t.amplitudes.resize(9 * section_nodes, static_cast<Eigen::Index>(t.harmonic.size()));
+  // u_r, u_z, the normal stresses and τ_rz go as a·cos + b·sin (a sym, b anti); u_θ, τ_rθ, τ_θz as a·sin − b·cos.
+  constexpr bool kGoesWithSine[9] = {false, true, false, false, false, false, false, true, true};
+  for (std::size_t r = 0; r < t.harmonic.size(); ++r) {
+    const std::size_t n = static_cast<std::size_t>(t.harmonic[r]);
+    for (Eigen::Index i = 0; i < section_nodes; ++i)
+      for (int q = 0; q < 9; ++q) {
+        const double a = q < 3 ? u.sym[n](i, q) : stress_sym[n](i, q - 3);
+        const double b = q < 3 ? u.anti[n](i, q) : stress_anti[n](i, q - 3);
+        const double with_cos = kGoesWithSine[q] ? -b : a, with_sin = kGoesWithSine[q] ? a : b;
+        t.amplitudes(9 * i + q, static_cast<Eigen::Index>(r)) = t.is_sine[r] ? with_sin : with_cos;
+      }
+  }
+  return t;
+}
 
 /// Generalised loads of a tangential traction ∝ r·e_θ over `edges` in `windows`, scaled to a unit moment about z.
 LoadTerm unit_moment_term(const SectionMesh& s, const std::vector<const SectionEdge*>& edges,
@@ -1244,30 +1262,28 @@ private:
     if (grid_sectors_ > 0) revolve_cases(cases);
   }
 
-  /// The section revolved into the TET10 grid, and each case's displacement and stress at every grid node.
+  /// The section revolved into the TET10 grid, and each case's displacement and stress at every grid node, the
+  /// series summed at all stations at once (SeriesTerms::at).
   void revolve_cases(const std::vector<NamedField>& cases) {
-    std::vector<int> station_of, node_of;
-    out_.grid = revolve_section(sec_, grid_sectors_, station_of, node_of);
-    const Eigen::Index gn = static_cast<Eigen::Index>(out_.grid.n_nodes());
-    std::vector<Trig> trigs_grid;
-    for (int k = 0; k < 2 * grid_sectors_; ++k)
-      trigs_grid.emplace_back(kPi * k / grid_sectors_, static_cast<std::size_t>(N_ + 1));
+    out_.grid = revolve_section(sec_, grid_sectors_);
+    const Eigen::Index ns = static_cast<Eigen::Index>(sec_.n_nodes());
+    std::vector<double> theta;
+    for (int k = 0; k < 2 * grid_sectors_; ++k) theta.push_back(kPi * k / grid_sectors_);
+    const Eigen::Index gn = static_cast<Eigen::Index>(theta.size()) * ns;
     for (std::size_t lc = 0; lc < cases.size(); ++lc) {
-      const HarmonicField& u = cases[lc].second;
       std::vector<Eigen::MatrixXd> ss, sa;
-      nodal_stress(sec_, c_.material, u, ss, sa);
+      nodal_stress(sec_, c_.material, cases[lc].second, ss, sa);
+      const Eigen::MatrixXd values = series_terms(ns, cases[lc].second, ss, sa).at(theta);
       Eigen::VectorXd U(3 * gn);
       RowMatrixX6d S(gn, 6);
-      for (Eigen::Index id = 0; id < gn; ++id) {
-        const int k = station_of[static_cast<std::size_t>(id)];
-        const double t = kPi * k / grid_sectors_;
-        const Probe p = probe_node(node_of[static_cast<std::size_t>(id)]);
-        U.segment<3>(3 * id) = to_cartesian(displacement_at(u, p, trigs_grid[k]), t);
-        const Eigen::Matrix<double, 6, 1> cyl = sum_stress(ss, sa, p, trigs_grid[k]);
-        S.row(id) = cartesian_stress(cyl, t);
-      }
-      fs_.cases[lc].u = U;
-      fs_.cases[lc].stress = S;
+      for (Eigen::Index k = 0; k < values.cols(); ++k)
+        for (Eigen::Index i = 0; i < ns; ++i) {
+          const Eigen::Matrix<double, 9, 1> v = values.col(k).segment<9>(9 * i);
+          U.segment<3>(3 * (k * ns + i)) = to_cartesian(v.head<3>(), theta[static_cast<std::size_t>(k)]);
+          S.row(k * ns + i) = cartesian_stress(v.tail<6>(), theta[static_cast<std::size_t>(k)]);
+        }
+      fs_.cases[lc].u = std::move(U);
+      fs_.cases[lc].stress = std::move(S);
     }
   }
 

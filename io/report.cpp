@@ -267,7 +267,8 @@ std::string run_report_html(const RunReportInputs& in) {
   }
   s << ". In ParaView open the .pvd, apply Warp By Vector (the displacement is the active vector) and colour by "
        "stress_hoop; or render headless:</p>\n<pre>scripts/pvbatch.sh cases/view_flexspline.py "
-    << html_escape(in.out_dir.string()) << " --case generator --field stress_hoop --png view.png</pre>\n";
+    << html_escape((in.shown_dir.empty() ? in.out_dir : in.shown_dir).string())
+    << " --case generator --field stress_hoop --png view.png</pre>\n";
   s << "<h2>Case</h2>\n<pre>" << html_escape(in.case_text) << "</pre>\n</body></html>\n";
   return s.str();
 }

@@ -10,6 +10,7 @@ namespace sw {
 
 struct RunReportInputs {
   std::filesystem::path out_dir;   ///< holds result.json, neutral_curve.csv, backlash.json/.svg of the run
+  std::filesystem::path shown_dir; ///< the folder the page names (where the run's files appear); empty: out_dir
   std::string case_path;
   std::string case_text;           ///< the resolved case (describe_case)
   std::vector<double> theory_phi_rad, theory_w_m;  ///< the generator model's neutral curve, for comparison

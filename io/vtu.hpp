@@ -1,5 +1,5 @@
 #pragma once
-// VTK output: quadratic tetrahedra with nodal fields in an XML .vtu (binary appended, zlib-compressed), and a .pvd
+// VTK output: quadratic tetrahedra with nodal fields in an XML .vtu (binary appended, LZ4-compressed), and a .pvd
 // collection of several load cases. Opens in ParaView; Warp By Vector on "displacement" shows the deformation.
 #include <filesystem>
 #include <string>

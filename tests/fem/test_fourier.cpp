@@ -160,7 +160,9 @@ TEST(FourierAxis, CupBossWithEveryHarmonic) {
 }
 
 // The revolved grid: its straight-edged TET10 volume approaches 2π ∫ r dA from below by the chord error of the
-// sectors, and the grid's displacement at a node equals the series there.
+// sectors, the grid's displacement at a node equals the series there, and the torque case's stress at a node is the
+// exact torsion shear τ_θz = T·r/J turned to the node's angle (σ_xz = −τ·sin θ, σ_yz = τ·cos θ, the rest 0; the
+// quadratic section reproduces torsion exactly, so to round-off: 1e-6 of τ).
 TEST(FourierGrid, RevolvedVolumeAndValues) {
   FlexsplineModel c = plain_tube();
   c.solver.harmonics = 4;
@@ -194,6 +196,14 @@ TEST(FourierGrid, RevolvedVolumeAndValues) {
   const Eigen::Vector3d cart(cyl[0] * std::cos(t) - cyl[1] * std::sin(t), cyl[0] * std::sin(t) + cyl[1] * std::cos(t),
                              cyl[2]);
   EXPECT_LT((s.figures.cases.front().u.segment<3>(3 * id) - cart).norm(), 1e-12 * cart.norm() + 1e-18);
+
+  const LoadCaseSolution& torque = s.figures.cases[1];
+  ASSERT_EQ(torque.name, "torque");
+  const double r = s.section.nodes(node, 0);
+  const double tau = c.load.torque_Nm * r / (kPi / 2 * (std::pow(ro, 4) - std::pow(f.inner_radius_m, 4)));
+  Eigen::Matrix<double, 1, 6> exact_stress;  // xx yy zz yz xz xy
+  exact_stress << 0, 0, 0, tau * std::cos(t), -tau * std::sin(t), 0;
+  EXPECT_LT((torque.stress.row(id) - exact_stress).norm(), 1e-6 * tau);
 }
 
 // The cam in unilateral contact on the harmonic basis: the generator pushes only (every station force ≥ 0), touches

@@ -45,6 +45,7 @@ class JsonIn {
 
   std::optional<double> optional_number(const std::string& key) const;  ///< number() of the member when present
 
+  const nlohmann::json& value() const { return *value_; }  ///< the value itself
   const std::string& file() const { return doc_->file; }
   const std::string& key_path() const { return path_; }  ///< "solver.equations", "torque_twist[3].twist_rad"
   /// Throws InputError "FILE: KEY = VALUE; expected <what> in <the file's kind>".

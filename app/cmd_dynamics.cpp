@@ -21,6 +21,7 @@
 #include "io/atomic_file.hpp"
 #include "io/case.hpp"
 #include "io/dynamics_output.hpp"
+#include "io/provenance.hpp"
 
 namespace sw::app {
 namespace {
@@ -34,12 +35,12 @@ DynamicsParams resolved_params(const Case& c, const std::string& pairs_option, c
 }
 
 /// dynamics.csv, dynamics.json and dynamics.svg in `dir`, each written atomically; the command's wall clock (`total`)
-/// is read for dynamics.json.
+/// is read for dynamics.json, with the case run (`resolved`: its [dynamics] as run).
 void write_outputs(const std::filesystem::path& dir, const DynamicsModel& m, const DynamicsSeries& s,
-                   const DynamicsSummary& r, DynamicsReportInfo& info, Stopwatch& total) {
+                   const DynamicsSummary& r, DynamicsReportInfo& info, Stopwatch& total, const Case& resolved) {
   write_file_atomic(dir / "dynamics.csv", dynamics_csv(m, s));
   info.total_time_s = total.lap();
-  write_file_atomic(dir / "dynamics.json", dynamics_json(dynamics_result(m, s, r, info)));
+  write_file_atomic(dir / "dynamics.json", dynamics_json(dynamics_result(m, s, r, info), provenance_of(resolved)));
   write_file_atomic(dir / "dynamics.svg", dynamics_svg(m, s, r, info));
 }
 
@@ -108,7 +109,9 @@ void run_dynamics(const std::string& case_path, std::string out_dir, const std::
   progress("dynamics: integrated " + std::to_string(p.duration_s) + " s in " + std::to_string(info.simulate_time_s) +
            " s (" + std::to_string(s.stats.steps) + " steps)");
   const DynamicsSummary r = summarize(m, s);
-  write_outputs(out_dir, m, s, r, info, total);
+  Case resolved = c;  // --pairs and --rim as run
+  resolved.dynamics = p;
+  write_outputs(out_dir, m, s, r, info, total, resolved);
   print_summary(m, r, info, out_dir);
 }
 

@@ -16,6 +16,7 @@
 #include "common/progress.hpp"
 #include "io/atomic_file.hpp"
 #include "io/case.hpp"
+#include "io/provenance.hpp"
 #include "io/reconcile_output.hpp"
 #include "reconcile/reconcile.hpp"
 #include "reconcile/report.hpp"
@@ -50,7 +51,7 @@ void run_reconcile(const ReconcileArgs& a) {
   const reconcile::Experiment e = reconcile::make_experiment(rec, base);
   const reconcile::Result r = reconcile::reconcile(e, a.options);
   const std::filesystem::path dir = a.out.empty() ? default_out_dir(c) : std::filesystem::path(a.out);
-  const std::string json = reconcile_json(reconcile::report_of(r));
+  const std::string json = reconcile_json(reconcile::report_of(r), provenance_of(c));
   const std::string html = reconcile::report_html(e, rec, r, notes);
   write_file_atomic(dir / "reconcile.json", json);
   write_file_atomic(dir / "reconcile.html", html);

@@ -12,6 +12,7 @@
 #include "io/atomic_file.hpp"
 #include "io/case.hpp"
 #include "io/fem_output.hpp"
+#include "io/provenance.hpp"
 
 namespace sw::app {
 
@@ -116,6 +117,7 @@ BacklashReport run_backlash_job(const Case& c, const BacklashJobOptions& o, Outp
 
   BacklashReport r;
   r.case_path = c.path;
+  r.provenance = provenance_of(c);
   r.module_m = c.gear->module_m;
   r.torque_Nm = c.load.torque_Nm;
   out.own(kBacklashJobFiles);

@@ -21,6 +21,7 @@
 #include "io/atomic_file.hpp"
 #include "io/case.hpp"
 #include "io/dynamics_output.hpp"
+#include "io/provenance.hpp"
 
 namespace sw::app {
 namespace {
@@ -34,12 +35,12 @@ DynamicsParams resolved_params(const Case& c, const std::string& pairs_option, c
 }
 
 /// dynamics.csv, dynamics.json and dynamics.svg in the staging folder `dir`; the command's wall clock (`total`) is read
-/// for dynamics.json.
+/// for dynamics.json, with the case run (`resolved`: its [dynamics] as run).
 void write_outputs(const std::filesystem::path& dir, const DynamicsModel& m, const DynamicsSeries& s,
-                   const DynamicsSummary& r, DynamicsReportInfo& info, Stopwatch& total) {
+                   const DynamicsSummary& r, DynamicsReportInfo& info, Stopwatch& total, const Case& resolved) {
   write_file_atomic(dir / "dynamics.csv", dynamics_csv(m, s));
   info.total_time_s = total.lap();
-  write_file_atomic(dir / "dynamics.json", dynamics_json(dynamics_result(m, s, r, info)));
+  write_file_atomic(dir / "dynamics.json", dynamics_json(dynamics_result(m, s, r, info), provenance_of(resolved)));
   write_file_atomic(dir / "dynamics.svg", dynamics_svg(m, s, r, info));
 }
 
@@ -109,7 +110,9 @@ void run_dynamics(const std::string& case_path, const std::string& out_dir, cons
   progress("dynamics: integrated " + std::to_string(p.duration_s) + " s in " + std::to_string(info.simulate_time_s) +
            " s (" + std::to_string(s.stats.steps) + " steps)");
   const DynamicsSummary r = summarize(m, s);
-  write_outputs(outputs.staging(), m, s, r, info, total);
+  Case resolved = c;  // --pairs and --rim as run
+  resolved.dynamics = p;
+  write_outputs(outputs.staging(), m, s, r, info, total, resolved);
   outputs.commit();
   print_summary(m, r, info, outputs.dir().string());
 }

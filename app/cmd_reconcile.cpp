@@ -16,6 +16,7 @@
 #include "common/progress.hpp"
 #include "io/atomic_file.hpp"
 #include "io/case.hpp"
+#include "io/provenance.hpp"
 #include "io/reconcile_output.hpp"
 #include "reconcile/reconcile.hpp"
 #include "reconcile/report.hpp"
@@ -51,7 +52,7 @@ void run_reconcile(const ReconcileArgs& a) {
   const reconcile::Result r = reconcile::reconcile(e, a.options);
   OutputSet outputs(a.out.empty() ? default_out_dir(c) : std::filesystem::path(a.out),
                     {"reconcile.json", "reconcile.html"});
-  write_file_atomic(outputs.staging() / "reconcile.json", reconcile_json(reconcile::report_of(r)));
+  write_file_atomic(outputs.staging() / "reconcile.json", reconcile_json(reconcile::report_of(r), provenance_of(c)));
   write_file_atomic(outputs.staging() / "reconcile.html", reconcile::report_html(e, rec, r, notes));
   outputs.commit();
   std::fputs(reconcile::report_summary(r).c_str(), stdout);

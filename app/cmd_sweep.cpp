@@ -367,7 +367,7 @@ void run_sweep(const SweepOptions& o) {
   Case base_case = load_case(o.case_path);  // the base case must be valid itself
   toml::table base;
   try {
-    base = toml::parse_file(o.case_path);
+    base = toml::parse(case_file_toml(o.case_path), o.case_path);
   } catch (const toml::parse_error& e) {
     throw InputError(o.case_path + ": malformed TOML: " + std::string(e.description()));
   }

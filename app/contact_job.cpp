@@ -204,7 +204,7 @@ ContactAnalysis run_contact_job(const Case& c, const TetMesh& mesh, const Flexsp
   const ContactAnalysis a =
       naming_file(c.path, [&] { return analyse_contact(flexspline_model(c), mesh, system, fem, o); });
   out.own(kContactJobFiles);
-  write_file_atomic(out.staging() / "contact.json", contact_json(contact_result(a, c.path, reference)));
+  write_file_atomic(out.staging() / "contact.json", contact_json(contact_result(a, c, reference)));
   write_file_atomic(out.staging() / "torque_twist.csv", torque_twist_csv(a));
   write_file_atomic(out.staging() / "contact.svg", contact_svg(a, reference));
   print_contact_headline(c, a, o.series.teeth_source);

@@ -187,6 +187,7 @@ std::string geometry_check_text(const GeometryCheck& g, double module_m) {
 BacklashResult backlash_result(const BacklashReport& r) {
   BacklashResult o;
   o.case_path = r.case_path;
+  o.provenance = r.provenance;
   o.neutral_curve = r.curve_source;
   o.module_mm = r.module_m * 1e3;
   o.phi0_rad = r.phi0_rad;
@@ -304,7 +305,7 @@ static auto fields(std::type_identity<BacklashResult::Location>) {
 
 static auto fields(std::type_identity<BacklashResult>) {
   using T = BacklashResult;
-  return std::tuple{field("case", &T::case_path), field("neutral_curve", &T::neutral_curve),
+  return std::tuple{field("neutral_curve", &T::neutral_curve),
                     field("module_mm", &T::module_mm), field("phi0_rad", &T::phi0_rad),
                     field("phi0_source", &T::phi0_source), field("torque_Nm", &T::torque_Nm),
                     field("compliance_rad_per_Nm", &T::compliance_rad_per_Nm),
@@ -315,7 +316,8 @@ static auto fields(std::type_identity<BacklashResult>) {
                     field("max_backlash_compensated_mm", &T::max_backlash_compensated_mm),
                     field("angular_play_arcmin", &T::angular_play_arcmin), field("revolution", &T::revolution),
                     field("interference", &T::interference),
-                    field("interference_locations", &T::interference_locations)};
+                    field("interference_locations", &T::interference_locations),
+                    field("case_file", &T::case_path), flattened(&T::provenance)};
 }
 
 std::string backlash_json(const BacklashResult& r) { return to_json_object(r).dump(2) + "\n"; }

@@ -1,12 +1,14 @@
 #pragma once
-// What `strainwave backlash` writes: backlash.json (its schema is BacklashResult below, writer and reader side by side),
-// backlash.csv (per tooth-pair position), backlash.svg (basic vs compensated), profiles.vtp (flanks).
+// What `strainwave backlash` writes: backlash.json (its schema is BacklashResult below, writer and reader side by side;
+// beside the figures the case it ran and the tool's version, io/provenance.hpp), backlash.csv (per tooth-pair
+// position), backlash.svg (basic vs compensated), profiles.vtp (flanks).
 #include <array>
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "io/provenance.hpp"
 #include "kinematics/backlash.hpp"
 
 namespace sw {
@@ -20,6 +22,7 @@ struct BacklashTableRow {
 /// Everything `strainwave backlash` reports.
 struct BacklashReport {
   std::string case_path;
+  Provenance provenance;                        ///< the case and the tool that made the report
   std::string curve_source;
   double module_m = 0;
   double phi0_rad = 0;
@@ -104,7 +107,8 @@ struct BacklashResult {
     double depth_um = 0, x_mm = 0, y_mm = 0;
   };
 
-  std::string case_path;  ///< key "case"
+  std::string case_path;  ///< key "case_file": the case file the run read
+  Provenance provenance;  ///< keys "case" (the resolved case) and "version"
   std::string neutral_curve;
   double module_mm = 0, phi0_rad = 0;
   std::string phi0_source;

@@ -1,15 +1,19 @@
 #include "io/case.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <set>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
 #include <toml++/toml.h>
 
 #include "common/error.hpp"
@@ -18,6 +22,7 @@
 #include "dynamics/model.hpp"
 #include "generator/cam_profile.hpp"
 #include "gear/tooth_profile.hpp"
+#include "io/json_file.hpp"
 #include "mesh/flexspline.hpp"
 
 namespace sw {
@@ -30,6 +35,12 @@ std::string format_number(double v) {
   std::ostringstream s;
   s << v;
   return s.str();
+}
+
+/// ":line" of a node in the file, "" for a node without one (a table made from an output's stored case).
+std::string where(const toml::node* node) {
+  if (!node || !node->source().begin) return "";
+  return ":" + std::to_string(node->source().begin.line);
 }
 
 /// Reads one table strictly: every key must be known, every value of the right type and range.
@@ -131,10 +142,6 @@ public:
   bool given(const std::string& key) const { return table_.get(key) != nullptr; }
 
 private:
-  static std::string where(const toml::node* node) {
-    if (!node || !node->source().begin) return "";
-    return ":" + std::to_string(node->source().begin.line);
-  }
   std::string allowed() const {
     std::string s;
     for (const auto& k : used_) s += (s.empty() ? "" : ", ") + k;
@@ -151,8 +158,7 @@ const toml::table* sub_table(const toml::table& root, const std::string& name, c
   const toml::node* node = root.get(name);
   if (!node) return nullptr;
   if (!node->is_table())
-    throw InputError(file + ":" + std::to_string(node->source().begin.line) + ": " + name + " must be a table ([" +
-                     name + "])");
+    throw InputError(file + where(node) + ": " + name + " must be a table ([" + name + "])");
   return node->as_table();
 }
 
@@ -580,18 +586,19 @@ void locating_key(const toml::table& root, const std::string& path, const std::m
   }
 }
 
-}  // namespace
-
-Case parse_case(const std::string& toml_text, const std::string& path) {
+toml::table parse_toml(const std::string& toml_text, const std::string& path) {
   require_ascii_syntax(toml_text, path);
-  toml::table root;
   try {
-    root = toml::parse(toml_text, path);
+    return toml::parse(toml_text, path);
   } catch (const toml::parse_error& e) {
     const auto& at = e.source().begin;
     throw InputError(path + ":" + std::to_string(at.line) + ":" + std::to_string(at.column) +
                      ": malformed TOML: " + std::string(e.description()));
   }
+}
+
+/// The case the tables of a case file give (the file's TOML, or an output's stored case).
+Case case_of(const toml::table& root, const std::string& path) {
   Case c;
   c.path = path;
   c.stem = std::filesystem::path(path).stem().string();
@@ -599,7 +606,7 @@ Case parse_case(const std::string& toml_text, const std::string& path) {
                                                 "solver", "catalog", "circular_spline", "contact", "dynamics"};
   for (const auto& [key, node] : root) {
     if (!kTables.count(std::string(key.str())))
-      throw InputError(path + ":" + std::to_string(node.source().begin.line) + ": [" + std::string(key.str()) +
+      throw InputError(path + where(&node) + ": [" + std::string(key.str()) +
                        "] is not a known table (allowed: [gear], [flexspline], [material], [wave_generator], "
                        "[load], [mesh], [solver], [catalog], [circular_spline], [contact], [dynamics])");
   }
@@ -653,105 +660,336 @@ Case parse_case(const std::string& toml_text, const std::string& path) {
   return c;
 }
 
-Case load_case(const std::string& path) {
+// ---- An output of the tool as a case file: the resolved case it stores under "case" (written by case_json below)
+// goes through the same table readers, as the TOML values a case file would hold.
+
+toml::table toml_table(const JsonIn& object);
+toml::array toml_array(const JsonIn& list);
+
+constexpr auto kInt64Max = static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max());
+
+/// Hands `put` the TOML value of a JSON value of a stored case: objects as tables, lists as arrays, numbers as
+/// integers or floats as written. null, which no case key takes, is refused naming the key.
+template <class Put>
+void put_toml_value(const JsonIn& v, Put&& put) {
+  const nlohmann::json& j = v.value();
+  if (j.is_object()) {
+    put(toml_table(v));
+  } else if (j.is_array()) {
+    put(toml_array(v));
+  } else if (j.is_string()) {
+    put(j.get<std::string>());
+  } else if (j.is_boolean()) {
+    put(j.get<bool>());
+  } else if (j.is_number_float()) {
+    put(j.get<double>());
+  } else if (j.is_number_integer() && (!j.is_number_unsigned() || j.get<std::uint64_t>() <= kInt64Max)) {
+    put(j.get<std::int64_t>());
+  } else {
+    v.fail("a number, text, true/false, list or table (the value of a case key)");
+  }
+}
+
+toml::table toml_table(const JsonIn& object) {
+  toml::table t;
+  for (const auto& item : object.value().items())
+    put_toml_value(object[item.key()], [&](auto&& x) { t.insert(item.key(), std::forward<decltype(x)>(x)); });
+  return t;
+}
+
+toml::array toml_array(const JsonIn& list) {
+  toml::array a;
+  for (const JsonIn& e : list.elements())
+    put_toml_value(e, [&a](auto&& x) { a.push_back(std::forward<decltype(x)>(x)); });
+  return a;
+}
+
+/// The resolved case an output of the tool stores under "case" (result.json, backlash.json, contact.json,
+/// dynamics.json, reconcile.json), named after the run's folder (where a run without --out writes again).
+Case load_stored_case(const std::string& path) {
+  const JsonIn stored =
+      JsonIn::open(path, "cannot open the output file (does it exist?)",
+                   "an output of strainwave holding its resolved case (\"case\")")["case"];
+  if (!stored.value().is_object())
+    stored.fail("the resolved case, a table of tables (an output written before outputs stored their case names the "
+                "case file only: run that file)");
+  Case c = case_of(toml_table(stored), path);
+  c.stem = std::filesystem::absolute(path).parent_path().filename().string();
+  return c;
+}
+
+bool is_output_json(const std::string& path) { return std::filesystem::path(path).extension() == ".json"; }
+
+std::string read_case_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot open the case file (does it exist?)");
   std::stringstream text;
   text << in.rdbuf();
-  return parse_case(text.str(), path);
+  return text.str();
 }
+
+}  // namespace
+
+Case parse_case(const std::string& toml_text, const std::string& path) {
+  return case_of(parse_toml(toml_text, path), path);
+}
+
+Case load_case(const std::string& path) {
+  if (is_output_json(path)) return load_stored_case(path);
+  return parse_case(read_case_text(path), path);
+}
+
+std::string case_file_toml(const std::string& path) {
+  return is_output_json(path) ? describe_case(load_stored_case(path)) : read_case_text(path);
+}
+
+// ---- The writer: the resolved case as the tables the reader reads, every key it accepts with its value (defaults
+// included) in the file's units, nothing it would refuse. An ordered JSON value holds them, so tables and keys keep
+// the reader's order; describe_case prints them as TOML, case_json as JSON, and both read back to the same case.
 
 namespace {
 
-void describe_cam(std::ostringstream& s, const Cam& cam) {
+using Tables = nlohmann::ordered_json;
+
+/// A value in the file's unit (the reader multiplies what it reads by `unit`): the shortest decimal the reader turns
+/// back into `si` exactly. A value no decimal reaches (a default derived in SI) becomes the shortest decimal of the
+/// value nearest to it that one reaches (1 ulp away), which is written the same again once read back.
+double file_value(double si, double unit = 1.0) {
+  const double exact = si / unit;
+  for (const double target : {si, exact * unit})
+    for (int digits = 1; digits <= 17; ++digits) {
+      char text[32];
+      std::snprintf(text, sizeof text, "%.*g", digits, exact);
+      if (const double v = std::strtod(text, nullptr); v * unit == target) return v;
+    }
+  return exact;  // not reached: `exact` itself, at 17 digits, reaches exact * unit
+}
+
+Tables gear_table(const GearParams& g) {
+  return Tables::object({{"module_mm", file_value(g.module_m, kMm)},
+                         {"teeth_flexspline", g.teeth_flexspline},
+                         {"teeth_circular", g.teeth_circular},
+                         {"pressure_angle_deg", file_value(g.pressure_angle_rad, kDeg)},
+                         {"profile_shift_flexspline", g.profile_shift_flexspline},
+                         {"profile_shift_circular", g.profile_shift_circular},
+                         {"cutter_teeth", g.cutter_teeth},
+                         {"addendum_coefficient_flexspline", g.addendum_coefficient_flexspline},
+                         {"addendum_coefficient_circular", g.addendum_coefficient_circular},
+                         {"dedendum_coefficient_flexspline", g.dedendum_coefficient_flexspline},
+                         {"dedendum_coefficient_circular", g.dedendum_coefficient_circular},
+                         {"tip_rounding_flexspline_mm", file_value(g.tip_rounding_flexspline_m, kMm)},
+                         {"tip_rounding_circular_mm", file_value(g.tip_rounding_circular_m, kMm)}});
+}
+
+/// A tube has no diaphragm, boss or fillet: the reader refuses those keys for it.
+Tables flexspline_table(const FlexsplineParams& f) {
+  const bool cup = f.shape == FlexsplineShape::Cup;
+  Tables t = Tables::object({{"shape", cup ? "cup" : "tube"},
+                             {"inner_radius_mm", file_value(f.inner_radius_m, kMm)},
+                             {"wall_thickness_mm", file_value(f.wall_thickness_m, kMm)},
+                             {"length_mm", file_value(f.length_m, kMm)},
+                             {"teeth", teeth_name(f.teeth)},
+                             {"rim_width_mm", file_value(f.rim_width_m, kMm)},
+                             {"rim_thickness_mm", file_value(f.rim_thickness_m, kMm)}});
+  if (cup) {
+    t["diaphragm_thickness_mm"] = file_value(f.diaphragm_thickness_m, kMm);
+    t["boss_radius_mm"] = file_value(f.boss_radius_m, kMm);
+    t["fillet_radius_mm"] = file_value(f.fillet_radius_m, kMm);
+  }
+  return t;
+}
+
+Tables material_table(const Material& m) {
+  Tables t = Tables::object({{"youngs_modulus_Pa", m.youngs_modulus_Pa},
+                             {"poisson_ratio", m.poisson_ratio},
+                             {"density_kg_m3", m.density_kg_m3}});
+  if (m.fatigue_limit_Pa && m.ultimate_strength_Pa) {  // both or neither (the reader's rule)
+    t["fatigue_limit_MPa"] = file_value(*m.fatigue_limit_Pa, 1e6);
+    t["ultimate_strength_MPa"] = file_value(*m.ultimate_strength_Pa, 1e6);
+  }
+  return t;
+}
+
+Tables bearing_table(const GeneratorBearing& b) {
+  return Tables::object({{"balls", b.balls},
+                         {"ball_diameter_mm", file_value(b.ball_diameter_m, kMm)},
+                         {"inner_groove_conformity", b.inner_groove_conformity},
+                         {"outer_groove_conformity", b.outer_groove_conformity}});
+}
+
+/// A list of key tables, one per element of `items`.
+template <class T, class F>
+Tables list_of(const std::vector<T>& items, F&& table) {
+  Tables a = Tables::array();
+  for (const T& item : items) a.push_back(table(item));
+  return a;
+}
+
+/// The model's own keys: β of the four forces and the rollers, the given forces' list, the cam's profile (its points
+/// for a list) and fit.
+void put_model_keys(Tables& t, const GeneratorModel& model) {
   static const char* kProfiles[] = {"polar", "ellipse", "list"};
-  s << "profile = \"" << kProfiles[static_cast<int>(cam.profile)] << "\"\nfit_um = " << cam.clearance_m * 1e6 << "\n";
-  if (cam.points.empty()) return;
-  s << "profile_points = [";
-  for (std::size_t i = 0; i < cam.points.size(); ++i)
-    s << (i ? ",\n  " : "\n  ") << "{angle_deg = " << cam.points[i].angle_rad / kDeg
-      << ", radius_mm = " << cam.points[i].radius_m / kMm << "}";
-  s << "]\n";
+  const auto force = [](const WaveGeneratorForce& f) {
+    return Tables::object({{"angle_deg", file_value(f.angle_rad, kDeg)}, {"weight", f.weight}});
+  };
+  const auto point = [](const CamPoint& p) {
+    return Tables::object({{"angle_deg", file_value(p.angle_rad, kDeg)}, {"radius_mm", file_value(p.radius_m, kMm)}});
+  };
+  std::visit(overloaded{[&](const FourForce& f) { t["beta_deg"] = file_value(f.beta_rad, kDeg); },
+                        [&](const Rollers& r) { t["beta_deg"] = file_value(r.beta_rad, kDeg); },
+                        [](const TwoForce&) {},
+                        [&](const GivenForces& g) { t["forces"] = list_of(g.forces, force); },
+                        [&](const Cam& cam) {
+                          t["profile"] = kProfiles[static_cast<int>(cam.profile)];
+                          if (cam.profile == CamProfile::List) t["profile_points"] = list_of(cam.points, point);
+                          t["fit_um"] = file_value(cam.clearance_m, 1e-6);
+                        }},
+             model);
 }
 
-void describe_gear(std::ostringstream& s, const GearParams& g) {
-  const auto mm = [](double m) { return m / kMm; };
-  s << "[gear]\nmodule_mm = " << mm(g.module_m) << "\nteeth_flexspline = " << g.teeth_flexspline
-    << "\nteeth_circular = " << g.teeth_circular << "\npressure_angle_deg = " << g.pressure_angle_rad / kDeg
-    << "\nprofile_shift_flexspline = " << g.profile_shift_flexspline
-    << "\nprofile_shift_circular = " << g.profile_shift_circular << "\ncutter_teeth = " << g.cutter_teeth
-    << "\naddendum_coefficient_flexspline = " << g.addendum_coefficient_flexspline
-    << "\naddendum_coefficient_circular = " << g.addendum_coefficient_circular
-    << "\ndedendum_coefficient_flexspline = " << g.dedendum_coefficient_flexspline
-    << "\ndedendum_coefficient_circular = " << g.dedendum_coefficient_circular
-    << "\ntip_rounding_flexspline_mm = " << mm(g.tip_rounding_flexspline_m)
-    << "\ntip_rounding_circular_mm = " << mm(g.tip_rounding_circular_m) << "\n";
+/// A list cam's w0 is its radius at 0° less the bore (read back from the points, the written key matches it); only
+/// the given forces take force_N.
+Tables wave_generator_table(const WaveGeneratorParams& w) {
+  Tables t = Tables::object({{"model", model_name(w.model)}});
+  if (w.radial_deformation_m) t["radial_deformation_mm"] = file_value(*w.radial_deformation_m, kMm);
+  if (!pushes_only(w.model)) t["force_N"] = w.force_N;
+  t["axial_position_mm"] = file_value(w.axial_position_m, kMm);
+  t["band_width_mm"] = file_value(w.band_width_m, kMm);
+  put_model_keys(t, w.model);
+  if (w.bearing) t["bearing"] = bearing_table(*w.bearing);
+  return t;
 }
 
-void describe_wave_generator(std::ostringstream& s, const WaveGeneratorParams& w) {
-  const auto mm = [](double m) { return m / kMm; };
-  s << "[wave_generator]\nmodel = \"" << model_name(w.model) << "\"\n";
-  std::visit(overloaded{[&](const FourForce& f) { s << "beta_deg = " << f.beta_rad / kDeg << "\n"; },
-                        [&](const Rollers& r) { s << "beta_deg = " << r.beta_rad / kDeg << "\n"; },
-                        [](const TwoForce&) {}, [](const GivenForces&) {}, [](const Cam&) {}},
-             w.model);
-  if (w.radial_deformation_m) s << "radial_deformation_mm = " << mm(*w.radial_deformation_m) << "\n";
-  else s << "force_N = " << w.force_N << "\n";
-  s << "axial_position_mm = " << mm(w.axial_position_m) << "\nband_width_mm = " << mm(w.band_width_m) << "\n";
-  if (const Cam* cam = cam_of(w)) describe_cam(s, *cam);
-  if (const auto* g = std::get_if<GivenForces>(&w.model))
-    for (const auto& force : g->forces)
-      s << "forces += {angle_deg = " << force.angle_rad / kDeg << ", weight = " << force.weight << "}\n";
-  if (w.bearing)
-    s << "bearing = {balls = " << w.bearing->balls << ", ball_diameter_mm = " << mm(w.bearing->ball_diameter_m)
-      << ", inner_groove_conformity = " << w.bearing->inner_groove_conformity
-      << ", outer_groove_conformity = " << w.bearing->outer_groove_conformity << "}  # pitch radius "
-      << mm(w.bearing->pitch_radius_m) << " mm from the bore\n";
-  else
-    s << "# no bearing: the generator is rigid\n";
+Tables load_table(const LoadParams& l) {
+  Tables t = Tables::object(
+      {{"torque_Nm", l.torque_Nm},
+       {"torque_loading", l.torque_loading == TorqueLoading::Uniform ? "uniform" : "engagement_zones"},
+       {"engagement_half_angle_deg", file_value(l.engagement_half_angle_rad, kDeg)}});
+  if (l.rated_torque_Nm) t["rated_torque_Nm"] = *l.rated_torque_Nm;
+  return t;
+}
+
+Tables mesh_table(const MeshParams& m) {
+  return Tables::object({{"size_mm", file_value(m.size_m, kMm)},
+                         {"wall_layers", m.wall_layers},
+                         {"corner_levels", m.corner_levels},
+                         {"max_radius_edge_ratio", m.max_radius_edge_ratio},
+                         {"min_dihedral_deg", m.min_dihedral_deg}});
+}
+
+Tables solver_table(const SolverParams& s) {
+  return Tables::object({{"method", s.method == SolverMethod::Fourier ? "fourier" : "tet10"},
+                         {"harmonics", s.harmonics},
+                         {"backend", s.backend == SolverBackend::Petsc ? "petsc" : "cholmod"}});
+}
+
+Tables dynamics_table(const DynamicsParams& d) {
+  return Tables::object(
+      {{"configuration", to_string(d.configuration)},
+       {"ramp", to_string(d.ramp_shape)},
+       {"pairs", to_string(d.pair_motion)},
+       {"pair_stiffness", to_string(d.pair_stiffness)},
+       {"rim", to_string(d.rim)},
+       {"compliance_phases", d.compliance_phases},
+       {"oversampling", d.oversampling},
+       {"drive_speed_rpm", d.drive_speed_rpm},
+       {"drive_ramp_start_s", d.drive_ramp_start_s},
+       {"drive_ramp_end_s", d.drive_ramp_end_s},
+       {"load_torque_Nm", d.load_torque_Nm},
+       {"load_ramp_start_s", d.load_ramp_start_s},
+       {"load_ramp_end_s", d.load_ramp_end_s},
+       {"stiffness_N_per_m", d.stiffness_N_per_m},
+       {"stiffness_variation_N_per_m", d.stiffness_variation_N_per_m},
+       {"stiffness_phase_deg", d.stiffness_phase_deg},
+       {"damping_Ns_per_m", d.damping_Ns_per_m},
+       {"exponent_stiffness", d.exponent_stiffness},
+       {"exponent_damping", d.exponent_damping},
+       {"exponent_indentation", d.exponent_indentation},
+       {"flexspline_compliance_rad_per_Nm", d.flexspline_compliance_rad_per_Nm},
+       {"flexspline_torsion_damping_Nms_per_rad", d.flexspline_torsion_damping_Nms_per_rad},
+       {"circular_spline_drag_Nms_per_rad", d.circular_spline_drag_Nms_per_rad},
+       {"load_inertia_kgm2", d.load_inertia_kgm2},
+       {"output_drag_coulomb_Nm", d.output_drag_coulomb_Nm},
+       {"output_drag_viscous_Nms_per_rad", d.output_drag_viscous_Nms_per_rad},
+       {"drag_smoothing_rad_per_s", d.drag_smoothing_rad_per_s},
+       {"circular_spline_outer_radius_mm", file_value(d.circular_spline_outer_radius_m, kMm)},
+       {"circular_spline_width_mm", file_value(d.circular_spline_width_m, kMm)},
+       {"base_clearance_mm", file_value(d.base_clearance_m, kMm)},
+       {"duration_s", d.duration_s},
+       {"output_step_s", d.output_step_s},
+       {"steady_from_s", d.steady_from_s},
+       {"relative_tolerance", d.relative_tolerance},
+       {"absolute_tolerance_rad", d.absolute_tolerance_rad}});
+}
+
+/// Every table of the case in the order of a case file, optional tables when the case has them.
+Tables case_tables(const Case& c) {
+  Tables t = Tables::object();
+  if (c.gear) t["gear"] = gear_table(*c.gear);
+  t["flexspline"] = flexspline_table(c.flexspline);
+  t["material"] = material_table(c.material);
+  if (c.wave_generator) t["wave_generator"] = wave_generator_table(*c.wave_generator);
+  t["load"] = load_table(c.load);
+  if (c.catalog_size) t["catalog"] = Tables::object({{"size", *c.catalog_size}});
+  if (c.circular_spline)
+    t["circular_spline"] = Tables::object({{"outer_radius_mm", file_value(c.circular_spline->outer_radius_m, kMm)},
+                                           {"width_mm", file_value(c.circular_spline->width_m, kMm)}});
+  t["contact"] = Tables::object({{"face_slices", c.contact.face_slices}});
+  t["mesh"] = mesh_table(c.mesh);
+  t["solver"] = solver_table(c.solver);
+  if (c.dynamics) t["dynamics"] = dynamics_table(*c.dynamics);
+  return t;
+}
+
+/// A value of the tables as TOML: a number as the shortest text that reads back to it, an object as an inline table,
+/// a list one element to a line.
+std::string toml_text(const Tables& v) {
+  if (v.is_number_float()) {
+    char text[32];
+    return std::string(text, std::to_chars(text, text + sizeof text, v.get<double>()).ptr);
+  }
+  if (v.is_object()) {
+    std::string s;
+    for (const auto& item : v.items()) s += (s.empty() ? "{" : ", ") + item.key() + " = " + toml_text(item.value());
+    return s.empty() ? "{}" : s + "}";
+  }
+  if (v.is_array()) {
+    std::string s = "[";
+    for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ",\n  " : "\n  ") + toml_text(v[i]);
+    return s + "]";
+  }
+  return v.dump();  // text, integers, true/false: JSON and TOML spell them alike
+}
+
+/// Where a value came from, printed beside its key ("table.key" -> note).
+std::map<std::string, std::string> case_notes(const Case& c) {
+  std::map<std::string, std::string> notes;
+  if (c.load.rated_torque_Nm) notes["load.rated_torque_Nm"] = "from " + c.load.rated_torque_from;
+  if (c.wave_generator && c.wave_generator->bearing)
+    notes["wave_generator.bearing"] =
+        "pitch radius " + format_number(c.wave_generator->bearing->pitch_radius_m / kMm) + " mm from the bore";
+  else if (c.wave_generator)
+    notes["wave_generator.model"] = "no bearing: the generator is rigid";
+  return notes;
 }
 
 }  // namespace
 
 std::string describe_case(const Case& c) {
-  std::ostringstream s;
-  const auto mm = [](double m) { return m / kMm; };
-  s << "# resolved case " << c.path << " (lengths in mm, defaults filled in)\n";
-  if (c.gear) describe_gear(s, *c.gear);
-  const auto& f = c.flexspline;
-  const bool cup = f.shape == FlexsplineShape::Cup;
-  s << "[flexspline]\nshape = \"" << (cup ? "cup" : "tube") << "\"\ninner_radius_mm = " << mm(f.inner_radius_m)
-    << "\nwall_thickness_mm = " << mm(f.wall_thickness_m) << "\nlength_mm = " << mm(f.length_m)
-    << "\nrim_width_mm = " << mm(f.rim_width_m) << "\nrim_thickness_mm = " << mm(f.rim_thickness_m) << "\nteeth = \""
-    << (f.teeth == TeethModel::None ? "none" : f.teeth == TeethModel::Ring ? "ring" : "explicit") << "\"\n";
-  if (cup)
-    s << "diaphragm_thickness_mm = " << mm(f.diaphragm_thickness_m) << "\nboss_radius_mm = " << mm(f.boss_radius_m)
-      << "\nfillet_radius_mm = " << mm(f.fillet_radius_m) << "\n";
-  s << "[material]\nyoungs_modulus_Pa = " << c.material.youngs_modulus_Pa << "\npoisson_ratio = "
-    << c.material.poisson_ratio << "\ndensity_kg_m3 = " << c.material.density_kg_m3 << "\n";
-  if (c.material.fatigue_limit_Pa)
-    s << "fatigue_limit_MPa = " << *c.material.fatigue_limit_Pa / 1e6 << "\nultimate_strength_MPa = "
-      << *c.material.ultimate_strength_Pa / 1e6 << "\n";
-  if (c.wave_generator) describe_wave_generator(s, *c.wave_generator);
-  s << "[load]\ntorque_Nm = " << c.load.torque_Nm << "\ntorque_loading = \""
-    << (c.load.torque_loading == TorqueLoading::Uniform ? "uniform" : "engagement_zones")
-    << "\"\nengagement_half_angle_deg = " << c.load.engagement_half_angle_rad / kDeg << "\n";
-  if (c.load.rated_torque_Nm)
-    s << "rated_torque_Nm = " << *c.load.rated_torque_Nm << "  # from " << c.load.rated_torque_from << "\n";
-  if (c.catalog_size) s << "[catalog]\nsize = " << *c.catalog_size << "\n";
-  if (c.circular_spline)
-    s << "[circular_spline]\nouter_radius_mm = " << mm(c.circular_spline->outer_radius_m)
-      << "\nwidth_mm = " << mm(c.circular_spline->width_m) << "\n";
-  if (c.contact.face_slices != 1) s << "[contact]\nface_slices = " << c.contact.face_slices << "\n";
-  s << "[mesh]\nsize_mm = " << mm(c.mesh.size_m) << "\nwall_layers = " << c.mesh.wall_layers
-    << "\ncorner_levels = " << c.mesh.corner_levels
-    << "\nmax_radius_edge_ratio = " << c.mesh.max_radius_edge_ratio << "\nmin_dihedral_deg = "
-    << c.mesh.min_dihedral_deg << "\n";
-  s << "[solver]\nmethod = \"" << (c.solver.method == SolverMethod::Fourier ? "fourier" : "tet10") << "\"\n";
-  if (c.solver.method == SolverMethod::Fourier) s << "harmonics = " << c.solver.harmonics << "\n";
-  else s << "backend = \"" << (c.solver.backend == SolverBackend::Petsc ? "petsc" : "cholmod") << "\"\n";
-  if (c.dynamics) s << describe(*c.dynamics);
-  return s.str();
+  const std::map<std::string, std::string> notes = case_notes(c);
+  const Tables tables = case_tables(c);
+  std::string s = "# resolved case " + c.path + " (lengths in mm, defaults filled in)\n";
+  for (const auto& table : tables.items()) {
+    s += "[" + table.key() + "]\n";
+    for (const auto& key : table.value().items()) {
+      s += key.key() + " = " + toml_text(key.value());
+      if (const auto note = notes.find(table.key() + "." + key.key()); note != notes.end()) s += "  # " + note->second;
+      s += "\n";
+    }
+  }
+  return s;
 }
+
+std::string case_json(const Case& c) { return case_tables(c).dump(); }
 
 }  // namespace sw

@@ -52,13 +52,27 @@ inline FlexsplineModel flexspline_model(const Case& c) {
 }
 
 
-/// Parses and validates a case file. Throws InputError (one line: "file: key = value; expectation").
+/// Parses and validates a case file. Throws InputError (one line: "file: key = value; expectation"). A `.json` file is
+/// an output of the tool (result.json, backlash.json, contact.json, dynamics.json, reconcile.json): the resolved case
+/// it stores under "case" is read as its case file would be, the messages name the JSON file, and the case's stem
+/// (its default output folder) is the name of the folder holding the file.
 Case load_case(const std::string& path);
 
 /// Same, from TOML text (path is used in messages only).
 Case parse_case(const std::string& toml_text, const std::string& path);
 
-/// The resolved case, defaults included, as TOML-like text (printed at the start of a run).
+/// A case file's text as TOML: a TOML file's own text, or, for an output of the tool (`.json`), its stored case as
+/// describe_case writes it. Throws InputError as load_case.
+std::string case_file_toml(const std::string& path);
+
+/// The resolved case as a case file (TOML): every key the reader accepts, with its value (defaults included), in the
+/// file's units, a comment beside a value that came from elsewhere (the catalog's rated torque). parse_case reads it
+/// back to the same case (printed at the start of a run).
 std::string describe_case(const Case& c);
+
+/// The same tables and keys as a JSON object's text (the "case" the outputs store); load_case reads it back from an
+/// output. A number is the shortest decimal that reads back to the same value; a default derived in SI that no
+/// decimal reaches is written 1 ulp away, and the same again once read back.
+std::string case_json(const Case& c);
 
 }  // namespace sw

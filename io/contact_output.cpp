@@ -63,10 +63,10 @@ std::vector<ContactResult::Flank> flank_figures(const ContactAnalysis& a) {
 
 }  // namespace
 
-ContactResult contact_result(const ContactAnalysis& a, const std::string& case_path,
-                             const std::optional<CatalogLaw>& reference) {
+ContactResult contact_result(const ContactAnalysis& a, const Case& c, const std::optional<CatalogLaw>& reference) {
   ContactResult r;
-  r.case_path = case_path;
+  r.case_path = c.path;
+  r.provenance = provenance_of(c);
   r.rated_torque_Nm = a.rated_torque_Nm;
   for (const auto& s : a.steps) r.torque_twist.push_back({s.torque_Nm, s.twist_rad, s.pairs_in_contact, s.max_pair_force_N});
   r.catalog = catalog_figures(a.catalog);
@@ -164,7 +164,7 @@ static auto fields(std::type_identity<ContactResult::Timings>) {
 
 static auto fields(std::type_identity<ContactResult>) {
   using T = ContactResult;
-  return std::tuple{field("case", &T::case_path), field("rated_torque_Nm", &T::rated_torque_Nm),
+  return std::tuple{field("rated_torque_Nm", &T::rated_torque_Nm),
                     field("torque_twist", &T::torque_twist), field("catalog", &T::catalog),
                     field("catalog_reference", &T::catalog_reference),
                     field("lost_motion_arcmin", &T::lost_motion_arcmin), field("play_arcmin", &T::play_arcmin),
@@ -176,7 +176,8 @@ static auto fields(std::type_identity<ContactResult>) {
                     field("fem_reaction_torque_Nm", &T::fem_reaction_torque_Nm),
                     field("compliance_split", &T::compliance_split), field("zone_edges", &T::zone_edges),
                     field("generator_support", &T::generator_support), field("half_turn_pairs", &T::half_turn_pairs),
-                    field("flanks", &T::flanks), field("timings_s", &T::timings_s), field("unknowns", &T::unknowns)};
+                    field("flanks", &T::flanks), field("timings_s", &T::timings_s), field("unknowns", &T::unknowns),
+                    field("case_file", &T::case_path), flattened(&T::provenance)};
 }
 
 std::string contact_json(const ContactResult& r) { return to_json_object(r).dump(2) + "\n"; }

@@ -1,13 +1,14 @@
 #pragma once
-// What `strainwave contact` writes: contact.json (its schema is ContactResult below, writer and reader side by side),
-// torque_twist.csv, contact.svg (the torque–twist curve with the catalog's three segments, and the force on every
-// flank at ± rated torque).
+// What `strainwave contact` writes: contact.json (its schema is ContactResult below, writer and reader side by side;
+// beside the figures the case it ran and the tool's version, io/provenance.hpp), torque_twist.csv, contact.svg (the
+// torque–twist curve with the catalog's three segments, and the force on every flank at ± rated torque).
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "contact/loaded_contact.hpp"
+#include "io/provenance.hpp"
 
 namespace sw {
 
@@ -68,7 +69,8 @@ struct ContactResult {
     double setup = 0, influence = 0, contact = 0, check = 0;
   };
 
-  std::string case_path;  ///< key "case"
+  std::string case_path;  ///< key "case_file": the case file the run read
+  Provenance provenance;  ///< keys "case" (the resolved case) and "version"
   double rated_torque_Nm = 0;
   std::vector<Step> torque_twist;
   Catalog catalog;
@@ -86,9 +88,8 @@ struct ContactResult {
   int unknowns = 0;
 };
 
-/// The file's figures of a contact analysis. `reference`: the catalog's law of the case's size, if any.
-ContactResult contact_result(const ContactAnalysis& a, const std::string& case_path,
-                             const std::optional<CatalogLaw>& reference);
+/// The file's figures of a contact analysis of the case `c`. `reference`: the catalog's law of the case's size, if any.
+ContactResult contact_result(const ContactAnalysis& a, const Case& c, const std::optional<CatalogLaw>& reference);
 
 /// contact.json text.
 std::string contact_json(const ContactResult& r);

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/error.hpp"
+#include "io/json_file.hpp"
 
 namespace sw {
 namespace {
@@ -139,7 +140,7 @@ void order_line_fields(Io& io, C& l) {
 /// The run's identity, its checks against kinematics and statics, and its balances.
 template <class Io, class R>
 void check_fields(Io& io, R& r) {
-  io("/case", r.case_path);
+  io("/case_file", r.case_path);
   io.spelling("/configuration", r.configuration, parse_configuration);
   io("/teeth/flexspline", r.teeth_flexspline);
   io("/teeth/circular_spline", r.teeth_circular);
@@ -236,10 +237,11 @@ void result_fields(Io& io, R& r) {
 
 }  // namespace
 
-std::string dynamics_json(const DynamicsResult& r) {
+std::string dynamics_json(const DynamicsResult& r, const std::optional<Provenance>& provenance) {
   json j;
   Writer w(j);
   result_fields(w, r);
+  if (provenance) j.update(to_json_object(*provenance));
   return j.dump(2) + "\n";
 }
 

@@ -164,6 +164,7 @@ FemResult fem_result(const Case& c, const TetMesh& mesh, const FlexsplineSolutio
   const FactorStats& factor = s.timings.factor;
   FemResult r;
   r.case_path = c.path;
+  r.provenance = provenance_of(c);
   r.torque_Nm = s.torque_Nm;
   r.phi0_rad = s.phi0_rad;
   r.compliance_rad_per_Nm = s.compliance_rad_per_Nm;
@@ -350,7 +351,7 @@ static auto fields(std::type_identity<FemResult::Timings>) {
 /// Every key but `mesh`, whose kind the solver tells.
 static auto fields(std::type_identity<FemResult>) {
   using T = FemResult;
-  return std::tuple{field("case", &T::case_path), field("torque_Nm", &T::torque_Nm), field("phi0_rad", &T::phi0_rad),
+  return std::tuple{field("torque_Nm", &T::torque_Nm), field("phi0_rad", &T::phi0_rad),
                     field("compliance_rad_per_Nm", &T::compliance_rad_per_Nm),
                     field("phi0_theory_rad", &T::phi0_theory_rad), field("phi0_theory_cup_rad", &T::phi0_theory_cup_rad),
                     field("phi0_theory_cup_terms", &T::phi0_theory_cup_terms),
@@ -366,7 +367,8 @@ static auto fields(std::type_identity<FemResult>) {
                     field("wave_generator", &T::wave_generator), field("torque_sweep", &T::torque_sweep),
                     field("generator", &T::generator), field("fatigue", &T::fatigue),
                     field("load_cases", &T::load_cases), field("solver", &T::solver),
-                    field("timings_s", &T::timings_s), field("peak_rss_bytes", &T::peak_rss_bytes)};
+                    field("timings_s", &T::timings_s), field("peak_rss_bytes", &T::peak_rss_bytes),
+                    field("case_file", &T::case_path), flattened(&T::provenance)};
 }
 
 std::string fem_result_json(const FemResult& r) {

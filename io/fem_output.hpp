@@ -1,6 +1,7 @@
 #pragma once
-// What `strainwave fem` writes: result.json (its schema is FemResult below, writer and reader side by side),
-// neutral_curve.csv (for the kinematics module), flexspline.pvd with one .vtu per load case.
+// What `strainwave fem` writes: result.json (its schema is FemResult below, writer and reader side by side; beside
+// the figures the case it ran and the tool's version, io/provenance.hpp), neutral_curve.csv (for the kinematics
+// module), flexspline.pvd with one .vtu per load case.
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "io/case.hpp"
+#include "io/provenance.hpp"
 #include "common/resources.hpp"
 #include "fem/cholmod_factor.hpp"
 #include "fem/flexspline_analysis.hpp"
@@ -136,7 +138,8 @@ struct FemResult {
     double mesh = 0, assemble = 0, analyse = 0, factor = 0, solve = 0, output = 0, total = 0;
   };
 
-  std::string case_path;  ///< key "case"
+  std::string case_path;  ///< key "case_file": the case file the run read (an output, when it ran a stored case)
+  Provenance provenance;  ///< keys "case" (the resolved case) and "version"
   double torque_Nm = 0, phi0_rad = 0, compliance_rad_per_Nm = 0;
   double phi0_theory_rad = 0, phi0_theory_cup_rad = 0;
   CupTheoryTerms phi0_theory_cup_terms;

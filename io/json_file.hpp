@@ -15,6 +15,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "io/provenance.hpp"
+
 namespace sw {
 
 /// A value of a JSON file being read, with the file and key path that lead to it.
@@ -45,6 +47,7 @@ class JsonIn {
 
   std::optional<double> optional_number(const std::string& key) const;  ///< number() of the member when present
 
+  const nlohmann::json& value() const { return *value_; }  ///< the value itself
   const std::string& file() const { return doc_->file; }
   const std::string& key_path() const { return path_; }  ///< "solver.equations", "torque_twist[3].twist_rad"
   /// Throws InputError "FILE: KEY = VALUE; expected <what> in <the file's kind>".
@@ -73,7 +76,8 @@ enum class Presence {
   kAsTyped,          ///< always written; an empty std::optional is left out
   kNullWhenAbsent,   ///< an empty std::optional is written as null
   kOmittedWhenEmpty, ///< an empty list is left out (and reads back empty)
-  kFlattened,        ///< a std::optional struct whose keys stand in the enclosing object, present by its first key
+  kFlattened,        ///< a struct whose keys stand in the enclosing object (a std::optional one: by its first key)
+  kObjectText,       ///< a std::string holding a JSON object's text, written as the object (read back as its text)
 };
 
 template <class S, class M, Presence P>
@@ -97,6 +101,10 @@ Field<S, M, Presence::kOmittedWhenEmpty> omitted_when_empty(const char* key, M S
 template <class S, class M>
 Field<S, M, Presence::kFlattened> flattened(M S::*member) {
   return {"", member};
+}
+template <class S>
+Field<S, std::string, Presence::kObjectText> object_text(const char* key, std::string S::*member) {
+  return {key, member};
 }
 
 namespace json_detail {
@@ -132,8 +140,12 @@ nlohmann::json to_json_value(const T& v) {
 template <class S, class M, Presence P>
 void write_field(nlohmann::json& j, const S& s, const Field<S, M, P>& f) {
   const M& v = s.*f.member;
-  if constexpr (P == Presence::kFlattened) {
+  if constexpr (P == Presence::kFlattened && json_detail::is_optional<M>::value) {
     if (v) j.update(to_json_object(*v));
+  } else if constexpr (P == Presence::kFlattened) {
+    j.update(to_json_object(v));
+  } else if constexpr (P == Presence::kObjectText) {
+    j[f.key] = nlohmann::json::parse(v);
   } else if constexpr (json_detail::is_optional<M>::value) {
     if (v) j[f.key] = to_json_value(*v);
     else if (P == Presence::kNullWhenAbsent) j[f.key] = nullptr;
@@ -187,9 +199,15 @@ T read_value(const JsonIn& j) {
 template <class S, class M, Presence P>
 void read_field(const JsonIn& j, S& s, const Field<S, M, P>& f) {
   M& v = s.*f.member;
-  if constexpr (P == Presence::kFlattened) {
+  if constexpr (P == Presence::kFlattened && json_detail::is_optional<M>::value) {
     using X = typename M::value_type;
     if (j.has(std::get<0>(fields(std::type_identity<X>{})).key)) v = read_object<X>(j);
+  } else if constexpr (P == Presence::kFlattened) {
+    v = read_object<M>(j);
+  } else if constexpr (P == Presence::kObjectText) {
+    const JsonIn e = j[f.key];
+    if (!e.value().is_object()) e.fail("an object");
+    v = e.value().dump();
   } else if constexpr (P == Presence::kNullWhenAbsent) {
     if (const JsonIn e = j[f.key]; !e.is_null()) v = read_value<typename M::value_type>(e);
   } else if constexpr (json_detail::is_optional<M>::value) {
@@ -207,6 +225,11 @@ S read_object(const JsonIn& j) {
   S s{};
   std::apply([&](const auto&... f) { (read_field(j, s, f), ...); }, fields(std::type_identity<S>{}));
   return s;
+}
+
+/// An output's provenance: "case" (the resolved case) and "version", beside the output's own keys (flattened).
+inline auto fields(std::type_identity<Provenance>) {
+  return std::tuple{object_text("case", &Provenance::resolved_case), field("version", &Provenance::version)};
 }
 
 }  // namespace sw

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/error.hpp"
+#include "io/json_file.hpp"
 
 namespace sw {
 
@@ -135,8 +136,9 @@ Report report_from(const json& j, const std::string& where) {
 
 }  // namespace
 
-std::string reconcile_json(const Report& r) {
+std::string reconcile_json(const Report& r, const std::optional<Provenance>& provenance) {
   json j;
+  if (provenance) j.update(to_json_object(*provenance));
   j["kind"] = reconcile::kind_name(r.kind);
   j["samples"] = r.samples;
   j["baseline"] = {{"model", r.baseline_model}, {"rms", r.baseline_rms}, {"heldout_rms", r.baseline_heldout_rms}};

@@ -5,7 +5,8 @@ Usage: scripts/diff_outputs.py REFERENCE_DIR NEW_DIR [--rel 1e-12]
 Each DIR holds one folder per case (as `strainwave run CASE --out DIR/<stem>` writes it). For every case folder of
 NEW_DIR, each result.json, backlash.json, contact.json, dynamics.json and reconcile.json of REFERENCE_DIR's folder
 of that name is compared with its namesake in NEW_DIR: the same keys, the same strings, numbers equal to a relative tolerance (default 1e-12: a refactor moves no
-figure). Timings and rates, peak memory, the tool's version and the paths a run was given are left out. Exits 1 on the first
+figure). Timings and rates, peak memory, the tool's version and the paths a run was given (`case_file`, the case file
+or output it ran) are left out. Exits 1 on the first
 case with a difference, after listing every difference of it (at most 40).
 """
 import json
@@ -14,7 +15,7 @@ import sys
 from pathlib import Path
 
 FILES = ["result.json", "backlash.json", "contact.json", "dynamics.json", "reconcile.json"]
-IGNORED_KEYS = {"timings_s", "peak_rss_bytes", "version", "setup_s", "influence_s", "contact_s", "check_s",
+IGNORED_KEYS = {"timings_s", "peak_rss_bytes", "version", "case_file", "setup_s", "influence_s", "contact_s", "check_s",
                 "real_time_factor", "factor_s"}
 
 

@@ -18,6 +18,11 @@ struct Figures {
   int whole() { return ++k; }
 };
 
+/// An output's stored case (as the reader takes it back: a JSON object's text, keys sorted) and the tool's version.
+inline Provenance sample_provenance() {
+  return {R"({"flexspline":{"shape":"tube","teeth":"none"},"load":{"torque_Nm":10.5}})", "v1.2-3-gabcdef0"};
+}
+
 /// A fresh folder under the temporary directory.
 inline std::filesystem::path scratch_dir(const std::string& name) {
   const auto d = std::filesystem::temp_directory_path() / ("sw_io_" + name + "_" + std::to_string(::getpid()));
@@ -37,6 +42,7 @@ inline FemResult sample_fem_result() {
   Figures f;
   FemResult r;
   r.case_path = "cases/sample.toml";
+  r.provenance = sample_provenance();
   r.torque_Nm = f(), r.phi0_rad = f(), r.compliance_rad_per_Nm = f(), r.phi0_theory_rad = f();
   r.phi0_theory_cup_rad = f();
   r.phi0_theory_cup_terms = {f(), f(), f(), {f(), f()}, f(), f(), f()};
@@ -92,6 +98,7 @@ inline BacklashResult sample_backlash_result() {
   Figures f;
   BacklashResult r;
   r.case_path = "cases/sample.toml";
+  r.provenance = sample_provenance();
   r.neutral_curve = "FEM neutral curve out/sample/neutral_curve.csv (generator alone)";
   r.module_mm = f(), r.phi0_rad = f();
   r.phi0_source = "C_tau x torque from out/sample/result.json";
@@ -121,6 +128,7 @@ inline ContactResult sample_contact_result() {
   Figures f;
   ContactResult r;
   r.case_path = "cases/sample.toml";
+  r.provenance = sample_provenance();
   r.rated_torque_Nm = 31.0;
   r.torque_twist = {{-31.0, -f(), f.whole(), f()}, {0.0, -f(), 0, 0.0}, {0.0, f(), 0, 0.0}, {31.0, f(), f.whole(), f()}};
   r.catalog = {f(), f(), f(), f(), f(), "fitted to the curve"};

@@ -1,5 +1,7 @@
 // result.json, backlash.json and contact.json: what the writer writes, the reader reads back into the same typed
 // value (written again it is the same text), and a file of another shape is one line naming the file, key and value.
+// Every output (those and dynamics.json, reconcile.json) holds the resolved case it ran and the tool's version, which
+// names the commit the tool was built from.
 // Every <case>/{result,backlash,contact}.json of SW_GOLDEN_DIR (tests/io/data/written: the seed cup's and the tube's,
 // as the tool wrote them; the environment or cmake -DSW_GOLDEN_DIR= names another set) is read and written again
 // unchanged: the typed values hold every key the tool writes.
@@ -13,7 +15,13 @@
 #include <sstream>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "common/error.hpp"
+#include "io/case.hpp"
+#include "io/dynamics_output.hpp"
+#include "io/provenance.hpp"
+#include "io/reconcile_output.hpp"
 #include "tests/cli.hpp"
 #include "tests/io/output_samples.hpp"
 
@@ -102,6 +110,69 @@ TEST(OutputFiles, AResultJsonOfAnotherShapeIsOneLineNamingFileKeyAndValue) {
   EXPECT_NE(missing.find("result.json: torque_Nm is missing; expected the result.json of `strainwave fem`"),
             std::string::npos) << missing;
   EXPECT_NE(result_json_error("[1, 2]").find("not a JSON object"), std::string::npos);
+}
+
+// Each output holds "case", the resolved case (load_case runs it again from the output), and "version"; the readers
+// take them as written.
+TEST(OutputFiles, EveryOutputHoldsTheCaseItRanAndTheToolsVersion) {
+  const sw::Case c = sw::load_case("cases/seed_190_192.toml");
+  const sw::Provenance p = sw::provenance_of(c);
+  EXPECT_EQ(p.version, sw::tool_version());
+  sw::FemResult fem = sample_fem_result();
+  sw::BacklashResult backlash = sample_backlash_result();
+  sw::ContactResult contact = sample_contact_result();
+  fem.provenance = backlash.provenance = contact.provenance = p;
+  const std::map<std::string, std::string> outputs = {
+      {"result.json", sw::fem_result_json(fem)},
+      {"backlash.json", sw::backlash_json(backlash)},
+      {"contact.json", sw::contact_json(contact)},
+      {"dynamics.json", sw::dynamics_json(sw::DynamicsResult{}, p)},
+      {"reconcile.json", sw::reconcile_json(sw::reconcile::Report{}, p)}};
+  const fs::path d = scratch_dir("provenance");
+  for (const auto& [name, text] : outputs) {
+    std::ofstream(d / name) << text;
+    const nlohmann::json j = nlohmann::json::parse(text);
+    EXPECT_EQ(j.at("version"), sw::tool_version()) << name;
+    EXPECT_EQ(j.at("case"), nlohmann::json::parse(sw::case_json(c))) << name;
+    EXPECT_EQ(sw::case_json(sw::load_case((d / name).string())), sw::case_json(c)) << name;
+  }
+  EXPECT_EQ(sw::read_fem_result(d / "result.json").provenance, p);
+  EXPECT_EQ(sw::read_backlash_result(d / "backlash.json").provenance, p);
+  EXPECT_EQ(sw::read_contact_result(d / "contact.json").provenance, p);
+  EXPECT_NO_THROW((void)sw::read_dynamics_json(d / "dynamics.json"));
+  EXPECT_NO_THROW((void)sw::read_reconcile_json(d / "reconcile.json"));
+  fs::remove_all(d);
+}
+
+/// What cmake/write_version.cmake writes for the source tree `source` into `out` ("" when it failed).
+std::string version_file(const fs::path& source, const fs::path& out) {
+  const CommandRun r = run_shell(std::string(SW_CMAKE_COMMAND) + " -DSOURCE_DIR='" + source.string() + "' -DOUTPUT='" +
+                                 out.string() + "' -P cmake/write_version.cmake");
+  return r.exit_code == 0 ? read_text(out) : "";
+}
+
+// The version is `git describe --always --dirty` of the source tree, "unknown" for a tree outside git: a tarball,
+// also one unpacked inside another repository. The file is rewritten only when its text changes (no rebuild).
+TEST(ToolVersion, NamesTheCommitOrIsUnknownOutsideAGitTree) {
+  const std::string version = sw::tool_version();
+  ASSERT_FALSE(version.empty());
+  const fs::path d = scratch_dir("version");
+  const std::string unknown = "return \"unknown\";";
+  EXPECT_NE(version_file(d, d / "version.cpp").find(unknown), std::string::npos);
+  EXPECT_NE(version_file(fs::current_path() / "tests", d / "inside.cpp").find(unknown), std::string::npos);
+  const auto written = fs::last_write_time(d / "version.cpp");
+  (void)version_file(d, d / "version.cpp");
+  EXPECT_EQ(fs::last_write_time(d / "version.cpp"), written);
+  const CommandRun described = run_shell("git describe --always --dirty");
+  if (described.exit_code == 0) {  // a git work tree: its description, and the build's names a commit of it
+    const std::string now = described.out.substr(0, described.out.find('\n'));
+    EXPECT_NE(version_file(fs::current_path(), d / "here.cpp").find("return \"" + now + "\";"), std::string::npos);
+    ASSERT_NE(version, "unknown");
+    std::string commit = version.substr(0, version.rfind("-dirty"));
+    if (const auto g = commit.rfind("-g"); g != std::string::npos) commit = commit.substr(g + 2);
+    EXPECT_EQ(run_shell("git cat-file -e '" + commit + "^{commit}'").exit_code, 0) << version;
+  }
+  fs::remove_all(d);
 }
 
 /// "" when the texts are the same, else the first line where they differ, from both.

@@ -11,6 +11,7 @@
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "fem/petsc_solver.hpp"
+#include "io/provenance.hpp"
 
 namespace {
 
@@ -40,6 +41,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.fallthrough();  // --quiet may follow the subcommand too
   app.add_flag("--quiet", sw::quiet_progress(), "no progress lines on stderr");
+  app.set_version_flag("--version", std::string("strainwave ") + sw::tool_version());
   sw::app::add_fem_command(app);
   sw::app::add_run_command(app);
   // Subcommands of the later modules register here (backlash, reconcile, synth, dynamics).
@@ -57,6 +59,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {  // one line, as for every other bad input (CLI11's own adds a second)
     std::string what = e.what();

@@ -9,6 +9,7 @@
 
 #include "common/error.hpp"
 #include "common/svg_plot.hpp"
+#include "io/provenance.hpp"
 #include "io/backlash_output.hpp"
 #include "io/contact_output.hpp"
 #include "io/fem_output.hpp"
@@ -248,7 +249,8 @@ std::string run_report_html(const RunReportInputs& in) {
     << "color:#222}table{border-collapse:collapse;margin:1em 0}td{border-bottom:1px solid #ddd;padding:4px 10px;"
     << "vertical-align:top}td.v{font-family:monospace;white-space:nowrap}td.n{color:#555;font-size:90%}"
     << "pre{background:#f6f6f6;padding:1em;font-size:85%;overflow:auto}.fig{margin:1em 0}</style></head><body>\n";
-  s << "<h1>strainwave run: " << html_escape(in.case_path) << "</h1>\n";
+  s << "<h1>strainwave run: " << html_escape(in.case_path) << "</h1>\n<p>strainwave " << html_escape(tool_version())
+    << "</p>\n";
   s << "<h2>Flexspline (FEM)</h2>\n" << fem_section(r);
   s << "<div class='fig'>" << neutral_curve_plot(in) << "</div>\n";
   s << "<div class='fig'>" << hoop_plot(r) << "</div>\n";

@@ -418,6 +418,19 @@ TEST(Cases, ATubeWithAGearRunsFemAndBacklashAndContactSaysWhyNot) {
   fs::remove_all(dir);
 }
 
+// --version prints the build's version, the same text every output JSON stores as "version".
+TEST(Cli, VersionIsTheOutputsVersion) {
+  const CommandRun r = run_strainwave("--version");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  ASSERT_EQ(r.out.rfind("strainwave ", 0), 0u) << r.out;
+  const std::string version = r.out.substr(11, r.out.find_last_not_of("\n") - 10);
+  EXPECT_FALSE(version.empty());
+  const fs::path out = fresh_dir("version");
+  ASSERT_EQ(run_strainwave("backlash --quiet cases/seed_190_192.toml --phi0 2e-4 --out " + out.string()).exit_code, 0);
+  EXPECT_EQ(read_json(out / "backlash.json")["version"].get<std::string>(), version);
+  fs::remove_all(out);
+}
+
 TEST(CliErrors, ContactOnACaseWithoutTeethIsRefusedBeforeTheFem) {
   const fs::path dir = fresh_dir("contact_bad");
   expect_clean_failure("contact --quiet cases/tube_torsion.toml", "contact needs a [gear] table", dir / "out");

@@ -770,9 +770,6 @@ std::optional<std::string> contact_model_gap(const FlexsplineModel& c) {
            "explicit teeth would count it twice)";
   if (c.solver.method != SolverMethod::Tet10)
     return "contact solves on the TET10 model; solver.method = \"fourier\" has no factor to reuse (use --solver tet10)";
-  if (c.solver.backend != SolverBackend::Cholmod)
-    return "contact reads its influence coefficients from a factor in this process; solver.backend = \"petsc\" keeps "
-           "none (set [solver] backend = \"cholmod\")";
   return std::nullopt;
 }
 

@@ -371,13 +371,16 @@ LoadParams read_load(TableReader r) {
   return l;
 }
 
-MeshParams read_mesh(TableReader r) {
-  MeshParams m;
+/// The keys the table gives; derive_mesh (mesh/flexspline_params.hpp) derives the others from the flexspline.
+MeshParams read_mesh(TableReader r, const FlexsplineParams& f) {
   // size_mm, wall_layers and corner_levels: their ranges are the mesh's (mesh/shapes.hpp wall_size,
-  // mesh/flexspline.hpp corner_levels), checked with the flexspline's.
-  m.size_m = r.number("size_mm", m.size_m / kMm) * kMm;
-  m.wall_layers = r.integer("wall_layers", m.wall_layers, std::numeric_limits<int>::min());
-  m.corner_levels = r.integer("corner_levels", m.corner_levels, std::numeric_limits<int>::min());
+  // mesh/flexspline.hpp corner_levels), checked with the flexspline's. kLeftOut marks a key the table does not give.
+  constexpr int kLeftOut = std::numeric_limits<int>::min();
+  MeshKeysGiven given;
+  if (const auto size = r.number("size_mm")) given.size_m = *size * kMm;
+  if (const int v = r.integer("wall_layers", kLeftOut, kLeftOut + 1); v != kLeftOut) given.wall_layers = v;
+  if (const int v = r.integer("corner_levels", kLeftOut, kLeftOut + 1); v != kLeftOut) given.corner_levels = v;
+  MeshParams m = derive_mesh(f, given);
   m.max_radius_edge_ratio = r.number("max_radius_edge_ratio", m.max_radius_edge_ratio);
   if (!(m.max_radius_edge_ratio >= 1.1)) r.fail_value("max_radius_edge_ratio", m.max_radius_edge_ratio, "must be >= 1.1");
   m.min_dihedral_deg = r.number("min_dihedral_deg", m.min_dihedral_deg);
@@ -598,7 +601,7 @@ Case parse_case(const std::string& toml_text, const std::string& path) {
   if (auto t = table("wave_generator"))
     c.wave_generator = read_wave_generator(TableReader(*t, "wave_generator", path), c.flexspline.inner_radius_m);
   c.load = read_load(TableReader(table("load") ? *table("load") : kEmpty, "load", path));
-  c.mesh = read_mesh(TableReader(table("mesh") ? *table("mesh") : kEmpty, "mesh", path));
+  c.mesh = read_mesh(TableReader(table("mesh") ? *table("mesh") : kEmpty, "mesh", path), c.flexspline);
   c.solver = read_solver(TableReader(table("solver") ? *table("solver") : kEmpty, "solver", path));
   if (auto t = table("catalog")) c.catalog_size = read_catalog(TableReader(*t, "catalog", path));
   if (!c.load.rated_torque_Nm && c.catalog_size && catalog_drive(*c.catalog_size)->has_rated_torque()) {
@@ -727,10 +730,11 @@ std::string describe_case(const Case& c) {
     s << "[circular_spline]\nouter_radius_mm = " << mm(c.circular_spline->outer_radius_m)
       << "\nwidth_mm = " << mm(c.circular_spline->width_m) << "\n";
   if (c.contact.face_slices != 1) s << "[contact]\nface_slices = " << c.contact.face_slices << "\n";
-  s << "[mesh]\nsize_mm = " << mm(c.mesh.size_m) << "\nwall_layers = " << c.mesh.wall_layers
-    << "\ncorner_levels = " << c.mesh.corner_levels
-    << "\nmax_radius_edge_ratio = " << c.mesh.max_radius_edge_ratio << "\nmin_dihedral_deg = "
-    << c.mesh.min_dihedral_deg << "\n";
+  const auto derived = [](const std::string& from) { return from.empty() ? from : "  # derived: " + from; };
+  s << "[mesh]\nsize_mm = " << mm(c.mesh.size_m) << derived(c.mesh.size_from) << "\nwall_layers = "
+    << c.mesh.wall_layers << derived(c.mesh.wall_layers_from) << "\ncorner_levels = " << c.mesh.corner_levels
+    << derived(c.mesh.corner_levels_from) << "\nmax_radius_edge_ratio = " << c.mesh.max_radius_edge_ratio
+    << "\nmin_dihedral_deg = " << c.mesh.min_dihedral_deg << "\n";
   s << "[solver]\nmethod = \"" << (c.solver.method == SolverMethod::Fourier ? "fourier" : "tet10") << "\"\n";
   if (c.solver.method == SolverMethod::Fourier) s << "harmonics = " << c.solver.harmonics << "\n";
   else s << "backend = \"" << (c.solver.backend == SolverBackend::Petsc ? "petsc" : "cholmod") << "\"\n";

@@ -65,7 +65,8 @@ int diaphragm_layers(const FlexsplineParams& f, const MeshParams& mesh) {
 
 int derived_corner_levels(const FlexsplineParams& f, const MeshParams& mesh) {
   if (f.shape != FlexsplineShape::Cup) return 0;
-  return kDerivedCornerLevels + static_cast<int>(std::floor(std::log2(static_cast<double>(diaphragm_layers(f, mesh)))));
+  const double layers = diaphragm_layers(f, mesh);
+  return kDerivedCornerLevels + static_cast<int>(std::floor(std::log2(layers)));
 }
 
 MeshParams derive_mesh(const FlexsplineParams& f, const MeshKeysGiven& given) {
@@ -89,11 +90,7 @@ MeshParams derive_mesh(const FlexsplineParams& f, const MeshKeysGiven& given) {
   return m;
 }
 
-std::string mm_text(double length_m) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", length_m * 1e3);
-  return buf;
-}
+std::string mm_text(double length_m) { return number_text(length_m * 1e3); }
 
 std::string mesh_size_text(const MeshParams& mesh) {
   auto key = [](const std::string& name, const std::string& value, const std::string& from) {

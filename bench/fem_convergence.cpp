@@ -1,8 +1,10 @@
 // bench_fem_convergence CASE.toml [--ratio 0.8] [--levels 3]
 // Mesh convergence of φ₀ for any case: solves the case at its own mesh.size_mm and at sizes × ratio, × ratio², ...
-// (wall_layers as the case gives them), prints φ₀ per mesh, the observed order p from the last three, the Richardson
-// extrapolated φ₀ and each mesh's estimated discretisation error relative to it. The case's default mesh (level 0) must
-// be within 1 % of the extrapolated value. Runs one solve at a time, BLAS threads as the environment says.
+// (wall_layers and corner_levels as the case gives or derives them: the corner edge, a fraction of the diaphragm's
+// layer, shrinks with the size), prints φ₀ per mesh, the observed order p from the last three, the Richardson
+// extrapolated φ₀ and each mesh's estimated discretisation error relative to it. The case's default mesh (level 0) is
+// to be within 0.5 % of the extrapolated value. Runs one solve at a time, BLAS threads as the environment says.
+// bench_fourier_vs_tet10 gives the converged value of a body of revolution more cheaply (harmonic sections).
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -28,7 +30,7 @@ int main(int argc, char** argv) {
   try {
     const sw::Case base = sw::load_case(case_path);
     std::vector<double> h, phi;
-    std::printf("%-10s %-8s %-10s %-16s %-10s\n", "size_mm", "layers", "nodes", "phi0_rad", "time_s");
+    std::printf("%-10s %-8s %-8s %-10s %-16s %-10s\n", "size_mm", "layers", "levels", "nodes", "phi0_rad", "time_s");
     for (int k = 0; k < levels; ++k) {
       sw::Case c = base;
       c.mesh.size_m = base.mesh.size_m * std::pow(ratio, k);
@@ -37,8 +39,8 @@ int main(int argc, char** argv) {
       const sw::FlexsplineSolution s = sw::analyse_flexspline(flexspline_model(c), mesh);
       h.push_back(c.mesh.size_m);
       phi.push_back(s.compliance_rad_per_Nm * (c.load.torque_Nm != 0 ? c.load.torque_Nm : 1.0));
-      std::printf("%-10.4f %-8d %-10zu %-16.9e %-10.1f\n", c.mesh.size_m * 1e3, c.mesh.wall_layers, mesh.n_nodes(),
-                  phi.back(), clock.lap());
+      std::printf("%-10.4f %-8d %-8d %-10zu %-16.9e %-10.1f\n", c.mesh.size_m * 1e3, c.mesh.wall_layers,
+                  sw::corner_levels(c.flexspline, c.mesh), mesh.n_nodes(), phi.back(), clock.lap());
       std::fflush(stdout);
     }
     const std::size_t n = phi.size();
@@ -59,7 +61,8 @@ int main(int argc, char** argv) {
     std::printf("observed order p = %.2f, extrapolated phi0 = %.9e rad\n", p, extrapolated);
     for (std::size_t k = 0; k < n; ++k)
       std::printf("  size %.4f mm: estimated error %+.3f %%\n", h[k] * 1e3, 100 * (phi[k] / extrapolated - 1));
-    std::printf("default mesh %s the 1 %% target\n", std::abs(phi[0] / extrapolated - 1) < 0.01 ? "meets" : "MISSES");
+    const bool meets = std::abs(phi[0] / extrapolated - 1) < 0.005;
+    std::printf("default mesh %s the 0.5 %% target\n", meets ? "meets" : "MISSES");
   } catch (const sw::InputError& e) {
     std::fprintf(stderr, "bench_fem_convergence: error: %s\n", e.what());
     return 2;

@@ -53,8 +53,6 @@ constexpr double kBallPerD = 0.09;               // [Estimate] ball diameter ≈
                                                  // grade balls in inch sizes): size 17 → 5/32" = 3.969 mm
 constexpr double kBallPitchPerBall = 1.2;        // [Estimate] ball spacing on the pitch circle ≥ 1.2·D (cage bars)
 constexpr double kInnerConformity = 0.52, kOuterConformity = 0.53;  // [Harris]
-constexpr double kMeshPerD = 1.0 / 54.0;         // element size d/54 (0.8 mm at size 17): same element count at every
-                                                 // size, meshes and solves in well under a minute
 
 std::string num(double v) {
   char b[32];
@@ -137,9 +135,6 @@ CupDesign design_cup(int size, int ratio) {
     c.rated_torque_from = "catalog size " + std::to_string(ref->size) + " scaled by (d/d_" +
                           std::to_string(ref->size) + ")^3 (tooth-root stress, ISO 6336-3)";
   }
-
-  c.mesh.size_m = kMeshPerD * d;
-  c.mesh.wall_layers = 1;
   return c;
 }
 
@@ -173,6 +168,7 @@ std::string design_case_toml(const CupDesign& c) {
     << "# - groove conformity 0.52 inner / 0.53 outer (Harris & Kotzalas, Rolling Bearing Analysis, ch. 2).\n"
     << "# - rated torque " << num(c.rated_torque_Nm) << " N m: " << c.rated_torque_from << ".\n"
     << "# Supports: the boss clamped; the cam pushes the bore over its band; the torque on the rim's engagement zones.\n"
+    << "# Mesh: no [mesh] table, so the mesh is derived from the part (the same at every size up to scale).\n"
     << "# Run: build/strainwave run CASE.toml (fem, backlash, contact)\n";
   s << "[gear]\nmodule_mm = " << mm(g.module_m) << "\nteeth_flexspline = " << g.teeth_flexspline
     << "\nteeth_circular = " << g.teeth_circular << "\npressure_angle_deg = " << num(kPressureAngleDeg)
@@ -200,9 +196,8 @@ std::string design_case_toml(const CupDesign& c) {
     << ", outer_groove_conformity = " << num(b.outer_groove_conformity) << " }\n\n";
   s << "[load]\ntorque_Nm = " << num(c.rated_torque_Nm) << "\nrated_torque_Nm = " << num(c.rated_torque_Nm) << "\n\n";
   s << "[circular_spline]\nouter_radius_mm = " << mm(c.circular_spline.outer_radius_m)
-    << "\nwidth_mm = " << mm(c.circular_spline.width_m) << "\n\n";
-  if (catalog_drive(c.size)) s << "[catalog]\nsize = " << c.size << "\n\n";
-  s << "[mesh]\nsize_mm = " << mm(c.mesh.size_m) << "\nwall_layers = " << c.mesh.wall_layers << "\n";
+    << "\nwidth_mm = " << mm(c.circular_spline.width_m) << "\n";
+  if (catalog_drive(c.size)) s << "\n[catalog]\nsize = " << c.size << "\n";
   return s.str();
 }
 

@@ -31,7 +31,6 @@ struct CupDesign {
   CircularSplineParams circular_spline;
   double rated_torque_Nm = 0;
   std::string rated_torque_from;  ///< "catalog size 17 (CSG, ratio 100)" or the scaling used
-  MeshParams mesh;
 };
 
 /// The design of a size (kDesignSizeMin..kDesignSizeMax) and ratio (kDesignRatioMin..kDesignRatioMax). Throws

@@ -174,12 +174,10 @@ SectionSizes section_sizes(const FlexsplineParams& f, const std::optional<GearPa
   // z = 0 on a straight line (clamped → free) and at z = t_d in a 270° corner (φ₀ converges as h^0.6 on uniform
   // sections). The cells at the junction are split geometrically (halving) toward it, in r in the diaphragm and the
   // boss, in z through every wall's layers (the layers are shared by all walls, so their outermost layers are thin
-  // everywhere) and in the boss above the diaphragm. Levels: 2 + log2(layers), so the corner cell shrinks as h².
-  // mesh.corner_levels overrides the count (mesh/flexspline.hpp: the TET10 size field uses the same key).
-  s.levels = !s.cup ? 0
-             : mesh.corner_levels >= 0
-                 ? mesh.corner_levels
-                 : 2 + static_cast<int>(std::ceil(std::log2(static_cast<double>(s.layers))));
+  // everywhere) and in the boss above the diaphragm. Levels: mesh.corner_levels, the TET10 size field's key
+  // (mesh/flexspline.hpp corner_levels: the rule's kDerivedCornerLevels + log2 of the diaphragm's layers unless the
+  // case gives it, so the corner cell shrinks about as h²).
+  s.levels = corner_levels(f, mesh);
   s.lay = graded(s.layers, s.levels, true, true);
   return s;
 }

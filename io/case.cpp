@@ -379,13 +379,16 @@ LoadParams read_load(TableReader r) {
   return l;
 }
 
-MeshParams read_mesh(TableReader r) {
-  MeshParams m;
+/// The keys the table gives; derive_mesh (mesh/flexspline_params.hpp) derives the others from the flexspline.
+MeshParams read_mesh(TableReader r, const FlexsplineParams& f) {
   // size_mm, wall_layers and corner_levels: their ranges are the mesh's (mesh/shapes.hpp wall_size,
-  // mesh/flexspline.hpp corner_levels), checked with the flexspline's.
-  m.size_m = r.number("size_mm", m.size_m / kMm) * kMm;
-  m.wall_layers = r.integer("wall_layers", m.wall_layers, std::numeric_limits<int>::min());
-  m.corner_levels = r.integer("corner_levels", m.corner_levels, std::numeric_limits<int>::min());
+  // mesh/flexspline.hpp corner_levels), checked with the flexspline's. kLeftOut marks a key the table does not give.
+  constexpr int kLeftOut = std::numeric_limits<int>::min();
+  MeshKeysGiven given;
+  if (const auto size = r.number("size_mm")) given.size_m = *size * kMm;
+  if (const int v = r.integer("wall_layers", kLeftOut, kLeftOut + 1); v != kLeftOut) given.wall_layers = v;
+  if (const int v = r.integer("corner_levels", kLeftOut, kLeftOut + 1); v != kLeftOut) given.corner_levels = v;
+  MeshParams m = derive_mesh(f, given);
   m.max_radius_edge_ratio = r.number("max_radius_edge_ratio", m.max_radius_edge_ratio);
   if (!(m.max_radius_edge_ratio >= 1.1)) r.fail_value("max_radius_edge_ratio", m.max_radius_edge_ratio, "must be >= 1.1");
   m.min_dihedral_deg = r.number("min_dihedral_deg", m.min_dihedral_deg);
@@ -619,7 +622,7 @@ Case case_of(const toml::table& root, const std::string& path) {
   if (auto t = table("wave_generator"))
     c.wave_generator = read_wave_generator(TableReader(*t, "wave_generator", path), c.flexspline.inner_radius_m);
   c.load = read_load(TableReader(table("load") ? *table("load") : kEmpty, "load", path));
-  c.mesh = read_mesh(TableReader(table("mesh") ? *table("mesh") : kEmpty, "mesh", path));
+  c.mesh = read_mesh(TableReader(table("mesh") ? *table("mesh") : kEmpty, "mesh", path), c.flexspline);
   c.solver = read_solver(TableReader(table("solver") ? *table("solver") : kEmpty, "solver", path));
   if (auto t = table("catalog")) c.catalog_size = read_catalog(TableReader(*t, "catalog", path));
   if (!c.load.rated_torque_Nm && c.catalog_size && catalog_drive(*c.catalog_size)->has_rated_torque()) {
@@ -970,6 +973,11 @@ std::map<std::string, std::string> case_notes(const Case& c) {
         "pitch radius " + format_number(c.wave_generator->bearing->pitch_radius_m / kMm) + " mm from the bore";
   else if (c.wave_generator)
     notes["wave_generator.model"] = "no bearing: the generator is rigid";
+  for (const auto& [key, from] : c.derived_from) notes[key] = "derived from " + from;
+  for (const auto& [key, from] : {std::pair{"mesh.size_mm", &c.mesh.size_from},
+                                  std::pair{"mesh.wall_layers", &c.mesh.wall_layers_from},
+                                  std::pair{"mesh.corner_levels", &c.mesh.corner_levels_from}})
+    if (!from->empty()) notes[key] = "derived: " + *from;
   return notes;
 }
 

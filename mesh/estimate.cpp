@@ -118,6 +118,7 @@ ModelSizeEstimate estimate_model_size(const FlexsplineParams& f, const std::opti
   e.equations = 3.0 * nodes;
   e.factor_nnz = kFactorCoefficient * std::pow(e.equations, 4.0 / 3.0);
   e.peak_bytes = kPeakOverFactor * 8.0 * e.factor_nnz + kBytesPerNode * nodes;
+  e.mesh_text = mesh_size_text(mesh);
   return e;
 }
 
@@ -138,11 +139,12 @@ void refuse_if_too_large(const ModelSizeEstimate& e, double limit_bytes, const s
   char buf[512];
   std::snprintf(buf, sizeof buf,
                 "%s: the TET10 model would have about %.3g nodes and %.3g equations and need about %.3g GB (factor "
-                "%.3g nonzeros); %s %.3g GB. Coarsen mesh.size_mm or mesh.wall_layers, use [solver] method = "
-                "\"fourier\" for a body of revolution, or raise --max-memory",
+                "%.3g nonzeros); %s %.3g GB. ",
                 file.c_str(), e.nodes, e.equations, e.peak_bytes / 1e9, e.factor_nnz,
                 machine ? "this machine has" : "--max-memory allows", limit / 1e9);
-  throw InputError(buf);
+  throw InputError(buf + std::string("At ") + e.mesh_text +
+                   ": coarsen mesh.size_mm or mesh.wall_layers, use [solver] method = \"fourier\" for a body of "
+                   "revolution, or raise --max-memory");
 }
 
 }  // namespace sw

@@ -15,6 +15,7 @@ struct ModelSizeEstimate {
   double equations = 0;
   double factor_nnz = 0;    ///< nonzeros of the Cholesky factor L
   double peak_bytes = 0;    ///< mesh + matrix + factor + solves, as measured on the benches
+  std::string mesh_text;    ///< the mesh sizes it was made for (mesh_size_text), for the refusal's message
 };
 
 /// The estimate for the case's flexspline (tube or cup, ring/none/explicit teeth) and mesh parameters.

@@ -295,7 +295,7 @@ ToothMeshSize tooth_mesh_size(const GearParams& g, const MeshParams& mesh) {
 int corner_levels(const FlexsplineParams& f, const MeshParams& mesh) {
   validate_mesh(mesh);
   if (f.shape != FlexsplineShape::Cup) return 0;
-  return std::max(mesh.corner_levels, 0);
+  return mesh.corner_levels == -1 ? derived_corner_levels(f, mesh) : mesh.corner_levels;
 }
 
 ProfileSizeField corner_size_field(const FlexsplineParams& f, const MeshParams& mesh) {

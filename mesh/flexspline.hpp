@@ -57,11 +57,13 @@ inline constexpr double kCornerGrowth = 0.5;
 /// and keeps better tets.
 inline constexpr double kCornerAspect = 4.0;
 
-/// Halvings of the diaphragm's layer toward the cup's clamp corners (mesh.corner_levels; the default -1 is none for
-/// TET10: the cases' recorded figures are at uniform meshes). Measured on the seed cup at 0.6 mm / 2 layers, torque
-/// alone, against the extrapolated harmonic solution: φ₀ −2.12 % uniform, −0.82 / −0.60 / −0.45 % at levels 2 / 3 / 4
-/// for +10 / +25 / +63 % nodes (each level doubles what the field adds). 0 for a tube. Throws InputError above
-/// kMaxCornerLevels.
+/// Halvings of the diaphragm's layer toward the cup's clamp corners: mesh.corner_levels, the rule's value
+/// (derived_corner_levels) for -1; 0 for a tube. Both solvers take it from here (the TET10 size field, the harmonic
+/// section's grading). Measured on the seed cup at 0.6 mm / 2 layers (3 diaphragm layers), cam in place, against the
+/// extrapolated harmonic solution: φ₀ −2.1 % uniform, −0.60 / −0.45 / −0.34 % at levels 3 / 4 / 5 for 228k / 298k /
+/// 483k nodes (183k uniform; each level about doubles what the field adds); size-17 cup at 0.8 mm / 1 layer: −2.4 %
+/// uniform, −0.78 / −0.56 / −0.41 / −0.29 % at levels 2 / 3 / 4 / 5 for 123k / 142k / 181k / 286k nodes (114k).
+/// Throws InputError above kMaxCornerLevels.
 int corner_levels(const FlexsplineParams& f, const MeshParams& mesh);
 
 /// The TET10 size field of a cup: graded toward the two corners where the clamped boss meets the free diaphragm,

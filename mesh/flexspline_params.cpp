@@ -1,39 +1,118 @@
 #include "mesh/flexspline_params.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <tuple>
+#include <utility>
 
 #include "common/error.hpp"
 #include "gear/tooth_profile.hpp"
+#include "mesh/shapes.hpp"
 
 namespace sw {
 namespace {
 
+constexpr double kPi = 3.14159265358979323846;
 
 [[noreturn]] void reject(const std::string& key, double value_m, const std::string& expectation) {
   throw InputError("flexspline." + key + " = " + mm_text(value_m) + "; " + expectation);
 }
 
-}  // namespace
-
-std::string mm_text(double length_m) {
+/// A number for a derivation's text (6 significant digits).
+std::string number_text(double v) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", length_m * 1e3);
+  std::snprintf(buf, sizeof buf, "%.6g", v);
   return buf;
 }
 
+/// The rule's size_mm and what it came from (MeshParams): as fine as kDerivedEdgesAround edges around the bore and
+/// kDerivedEdgesOverRim over a rim need, within [wall thickness, kMaxLayerAspect × wall thickness].
+std::pair<double, std::string> derived_size(const FlexsplineParams& f) {
+  const double t = f.wall_thickness_m;
+  const double around = 2.0 * kPi * f.inner_radius_m / kDerivedEdgesAround;
+  const bool rim = f.shape == FlexsplineShape::Cup || f.teeth != TeethModel::None;
+  const double over_rim = rim ? f.rim_width_m / kDerivedEdgesOverRim : around;
+  const double wanted = std::min(around, over_rim);
+  if (wanted >= kMaxLayerAspect * t)
+    return {kMaxLayerAspect * t, number_text(kMaxLayerAspect) + " x flexspline.wall_thickness_mm = " + mm_text(t)};
+  if (wanted <= t) return {t, "flexspline.wall_thickness_mm = " + mm_text(t) + " (one layer through the body wall)"};
+  if (around <= over_rim)
+    return {around, "2 pi x flexspline.inner_radius_mm = " + mm_text(f.inner_radius_m) + " over " +
+                        number_text(kDerivedEdgesAround) + " edges around"};
+  return {over_rim, "flexspline.rim_width_mm = " + mm_text(f.rim_width_m) + " over " +
+                        number_text(kDerivedEdgesOverRim) + " edges"};
+}
+
+/// "mesh.<key> = <value>; <expectation>", for a derived value with what it was derived from and the key that sets it
+/// (the case reader's form for derived keys).
+std::string mesh_key_message(const std::string& key, const std::string& value, const std::string& from,
+                             const std::string& expectation) {
+  if (from.empty()) return "mesh." + key + " = " + value + "; " + expectation;
+  return "mesh." + key + " = " + value + " (not in the file: derived from " + from + "); " + expectation +
+         "; write mesh." + key + " to set it";
+}
+
+/// Layers through the cup's diaphragm at the mesh's sizes (wall_size); 1 when the sizes are out of range
+/// (validate_mesh reports them).
+int diaphragm_layers(const FlexsplineParams& f, const MeshParams& mesh) {
+  if (!(mesh.size_m > 0) || mesh.wall_layers < 1) return 1;
+  return wall_size(f.diaphragm_thickness_m, mesh).layers;
+}
+
+}  // namespace
+
+int derived_corner_levels(const FlexsplineParams& f, const MeshParams& mesh) {
+  if (f.shape != FlexsplineShape::Cup) return 0;
+  const double layers = diaphragm_layers(f, mesh);
+  return kDerivedCornerLevels + static_cast<int>(std::floor(std::log2(layers)));
+}
+
+MeshParams derive_mesh(const FlexsplineParams& f, const MeshKeysGiven& given) {
+  MeshParams m;
+  if (given.size_m) {
+    m.size_m = *given.size_m;
+  } else {
+    std::tie(m.size_m, m.size_from) = derived_size(f);
+  }
+  m.wall_layers = given.wall_layers.value_or(kDerivedWallLayers);
+  if (!given.wall_layers) m.wall_layers_from = "the rule of one quadratic tet through each wall";
+  if (given.corner_levels && *given.corner_levels != -1) {
+    m.corner_levels = *given.corner_levels;
+  } else {
+    m.corner_levels = derived_corner_levels(f, m);
+    m.corner_levels_from = f.shape != FlexsplineShape::Cup
+                               ? "the shape: a tube has no clamp corner"
+                               : number_text(kDerivedCornerLevels) + " + log2 of the diaphragm's " +
+                                     std::to_string(diaphragm_layers(f, m)) + " layers, rounded down";
+  }
+  return m;
+}
+
+std::string mm_text(double length_m) { return number_text(length_m * 1e3); }
+
+std::string mesh_size_text(const MeshParams& mesh) {
+  auto key = [](const std::string& name, const std::string& value, const std::string& from) {
+    return "mesh." + name + " = " + value + (from.empty() ? "" : " (derived from " + from + ")");
+  };
+  return key("size_mm", mm_text(mesh.size_m), mesh.size_from) + ", " +
+         key("wall_layers", std::to_string(mesh.wall_layers), mesh.wall_layers_from);
+}
+
 void validate_mesh(const MeshParams& mesh) {
-  if (!(mesh.size_m > 0.0)) throw InputError("mesh.size_mm = " + mm_text(mesh.size_m) + "; must be > 0");
+  if (!(mesh.size_m > 0.0))
+    throw InputError(mesh_key_message("size_mm", mm_text(mesh.size_m), mesh.size_from, "must be > 0"));
   if (mesh.wall_layers < 1)
-    throw InputError("mesh.wall_layers = " + std::to_string(mesh.wall_layers) + "; must be >= 1");
+    throw InputError(
+        mesh_key_message("wall_layers", std::to_string(mesh.wall_layers), mesh.wall_layers_from, "must be >= 1"));
   if (mesh.corner_levels < -1 || mesh.corner_levels > kMaxCornerLevels)
-    throw InputError("mesh.corner_levels = " + std::to_string(mesh.corner_levels) + "; must be in [-1, " +
-                     std::to_string(kMaxCornerLevels) + "] (-1: the default grading, 0: none)");
+    throw InputError(mesh_key_message("corner_levels", std::to_string(mesh.corner_levels), mesh.corner_levels_from,
+                                      "must be in [-1, " + std::to_string(kMaxCornerLevels) +
+                                          "] (-1: the rule's value, 0: none)"));
 }
 
 void validate_flexspline(const FlexsplineParams& f, const MeshParams& mesh) {
-  validate_mesh(mesh);
   if (!(f.inner_radius_m > 0)) reject("inner_radius_mm", f.inner_radius_m, "must be > 0");
   if (!(f.wall_thickness_m > 0)) reject("wall_thickness_mm", f.wall_thickness_m, "must be > 0");
   if (!(f.length_m > 0)) reject("length_mm", f.length_m, "must be > 0");
@@ -63,6 +142,7 @@ void validate_flexspline(const FlexsplineParams& f, const MeshParams& mesh) {
              cup ? "must be < length_mm - diaphragm_thickness_mm - fillet_radius_mm = " + mm_text(below_rim)
                  : "must be < length_mm = " + mm_text(below_rim));
   }
+  validate_mesh(mesh);
 }
 
 void check_teeth_on_rim(const FlexsplineParams& f, const std::optional<GearParams>& gear) {

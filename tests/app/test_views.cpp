@@ -25,7 +25,8 @@ namespace {
 namespace fs = std::filesystem;
 using namespace sw::testing;
 
-/// A coarse seed cup run once for every test here (fem + backlash): the shipped case at 1.2 mm, one wall layer.
+/// A coarse seed cup run once for every test here (fem + backlash): the shipped case at 1.2 mm, one wall layer, no
+/// corner grading.
 const fs::path& coarse_seed_run() {
   static const fs::path out = [] {
     const fs::path dir = fs::temp_directory_path() / ("sw_views_" + std::to_string(::getpid()));
@@ -34,7 +35,7 @@ const fs::path& coarse_seed_run() {
     std::ifstream in("cases/seed_190_192.toml");
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     for (const auto& [from, to] : {std::pair<std::string, std::string>{"size_mm = 0.6", "size_mm = 1.2"},
-                                   {"wall_layers = 2", "wall_layers = 1"}})
+                                   {"wall_layers = 2", "wall_layers = 1\ncorner_levels = 0"}})
       text.replace(text.find(from), from.size(), to);
     { std::ofstream(dir / "seed_coarse.toml") << text; }
     const CommandRun r = run_shell(strainwave_binary() + " run --quiet " + (dir / "seed_coarse.toml").string() +

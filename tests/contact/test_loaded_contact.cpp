@@ -31,6 +31,7 @@ const Coarse& coarse_seed_cam() {
     s->c = load_case("cases/seed_190_192.toml");
     s->c.mesh.size_m = 1.2e-3;
     s->c.mesh.wall_layers = 1;
+    s->c.mesh.corner_levels = 0;  // uniform: the tooth contact, not the clamp corner's convergence
     s->c.wave_generator->model = Cam{};
     s->mesh = mesh_flexspline(s->c.flexspline, s->c.gear, s->c.mesh);
     s->system = assemble_and_factorise(flexspline_model(s->c), s->mesh);

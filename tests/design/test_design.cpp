@@ -11,6 +11,7 @@
 #include "io/case.hpp"
 #include "kinematics/backlash.hpp"
 #include "kinematics/neutral_curve.hpp"
+#include "mesh/estimate.hpp"
 #include "mesh/flexspline.hpp"
 
 namespace sw {
@@ -79,7 +80,29 @@ TEST(Design, ProportionsScaleWithThePitchDiameter) {
   EXPECT_NEAR(b.flexspline.inner_radius_m / a.flexspline.inner_radius_m, 2.0, 1e-12);
   EXPECT_NEAR(b.flexspline.length_m / a.flexspline.length_m, 2.0, 1e-12);
   EXPECT_NEAR(b.flexspline.wall_thickness_m / a.flexspline.wall_thickness_m, 2.0, 1e-12);
-  EXPECT_NEAR(b.mesh.size_m / a.mesh.size_m, 2.0, 1e-12);
+  // The written case has no [mesh]: the mesh derived from the part scales with it, corner grading included.
+  const Case ca = parse_case(design_case_toml(a), "a.toml"), cb = parse_case(design_case_toml(b), "b.toml");
+  EXPECT_NEAR(cb.mesh.size_m / ca.mesh.size_m, 2.0, 1e-8);  // 9 digits in the text
+  EXPECT_EQ(cb.mesh.wall_layers, ca.mesh.wall_layers);
+  EXPECT_EQ(cb.mesh.corner_levels, ca.mesh.corner_levels);
+}
+
+// A hand-written cup of catalog size 25 or 40 with no [mesh] (the design's proportions; `design` writes no [mesh]
+// either): the mesh derived from the part fits a 24 GB machine, estimated under 16 GB and not refused. The fixed
+// default it replaced (0.6 mm, 2 layers) needed 2.5e6 equations and 34 GB at size 25.
+TEST(Design, HandWrittenCupsOfSize25And40WithoutAMeshTableFitTheMachine) {
+  constexpr double kBudgetBytes = 16e9;
+  for (const int size : {25, 40}) {
+    const std::string text = design_case_toml(design_cup(size, 100));
+    ASSERT_EQ(text.find("\n[mesh]"), std::string::npos);
+    const Case c = parse_case(text, "size" + std::to_string(size) + ".toml");
+    EXPECT_FALSE(c.mesh.size_from.empty());
+    const ModelSizeEstimate e = estimate_model_size(c.flexspline, c.gear, c.mesh);
+    std::printf("size %d: mesh %.4g mm, %d layer, corner levels %d: %.3g equations, %.3g GB estimated\n", size,
+                c.mesh.size_m * 1e3, c.mesh.wall_layers, c.mesh.corner_levels, e.equations, e.peak_bytes / 1e9);
+    EXPECT_LT(e.peak_bytes, kBudgetBytes) << size;
+    EXPECT_NO_THROW(refuse_if_too_large(e, kBudgetBytes, c.path)) << size;
+  }
 }
 
 TEST(Design, BadSizeOrRatioIsOneClearLine) {

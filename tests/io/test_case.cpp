@@ -32,6 +32,28 @@ TEST(CaseFile, ConvertsMillimetresToMetresOnce) {
   EXPECT_FALSE(c.wave_generator.has_value());
 }
 
+// [mesh] keys the file leaves out are derived from the part (mesh/flexspline_params.hpp derive_mesh) and printed with
+// what they were derived from; a key the file gives stays as given and the others are still derived.
+TEST(CaseFile, MeshKeysLeftOutAreDerivedFromThePartAndSaySo) {
+  const Case c = parse_case(kTube, "t.toml");
+  EXPECT_DOUBLE_EQ(c.mesh.size_m, 1.0e-3);  // one layer through the 1 mm wall
+  EXPECT_EQ(c.mesh.wall_layers, 1);
+  EXPECT_EQ(c.mesh.corner_levels, 0);
+  const std::string d = describe_case(c);
+  EXPECT_NE(d.find("[mesh]\nsize_mm = 1  # derived: flexspline.wall_thickness_mm = 1 (one layer through the body "
+                   "wall)\nwall_layers = 1  # derived: the rule of one quadratic tet through each wall\n"
+                   "corner_levels = 0  # derived: the shape: a tube has no clamp corner\n"),
+            std::string::npos)
+      << d;
+  const Case given = parse_case(std::string(kTube) + "[mesh]\nsize_mm = 2\n", "t.toml");
+  EXPECT_DOUBLE_EQ(given.mesh.size_m, 2e-3);
+  EXPECT_TRUE(given.mesh.size_from.empty());
+  EXPECT_EQ(given.mesh.wall_layers, 1);
+  EXPECT_NE(describe_case(given).find("size_mm = 2\nwall_layers = 1  # derived"), std::string::npos);
+  EXPECT_EQ(error_of(std::string(kTube) + "[mesh]\nwall_layers = 0\n"),
+            "cases/x.toml:8: mesh.wall_layers = 0; must be >= 1");
+}
+
 TEST(CaseFile, NegativeThicknessNamesFileKeyAndValue) {
   std::string t = kTube;
   t.replace(t.find("1.0"), 3, "-0.4");

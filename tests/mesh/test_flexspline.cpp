@@ -294,6 +294,7 @@ TEST(MeshFlexsplineCornerRefinement, GradesTowardTheClampCornersWithinTheEstimat
   const FlexsplineParams f = seed_cup();
   const GearParams g;
   MeshParams mp = coarse();
+  mp.corner_levels = 0;
   const TetMesh uniform = mesh_flexspline(f, g, mp);
   mp.corner_levels = 3;
   const double corner_edge = std::ldexp(wall_size(f.diaphragm_thickness_m, mp).across_m, -3);

@@ -9,6 +9,7 @@
 #include "app/commands.hpp"
 #include "app/contact_job.hpp"
 #include "app/fem_job.hpp"
+#include "contact/harmonic_body.hpp"
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "io/case.hpp"
@@ -17,14 +18,13 @@
 namespace sw::app {
 namespace {
 
-/// What the contact solves on: the TET10 model factorised, and the FEM's readout.
+/// What the contact solves on: the FEM's model (the harmonic solution, or the TET10 model factorised), and its
+/// readout.
 struct ContactFem {
   ContactFem() = default;
   ContactFem(ContactFem&&) = default;  // a move keeps the readout's field pointer: the cases' buffer moves with it
   ContactFem(const ContactFem&) = delete;
-  std::shared_ptr<const TetMesh> mesh;
-  std::shared_ptr<const FlexsplineSystem> system;
-  FemJobResult job;     ///< the FEM solved now (empty when read back)
+  FemJobResult job;     ///< the FEM solved now, or (read back) its model solved again
   FemReadout readout;   ///< of `job`'s solution, or read back
 };
 
@@ -34,6 +34,7 @@ struct ContactFem {
 /// face is taken at its centre).
 ContactFem fem_from_run(const Case& c, const std::filesystem::path& result_json, double max_memory_gb) {
   const FemRunForContact run = read_fem_run_for_contact(result_json);
+  ContactFem fem;
   const WaveGeneratorParams& w = *c.wave_generator;
   const std::string model = model_name(w.model);
   if (run.generator_model != model)
@@ -42,6 +43,18 @@ ContactFem fem_from_run(const Case& c, const std::filesystem::path& result_json,
   if (std::holds_alternative<Rollers>(w.model))
     throw InputError(c.path + ": --fem cannot take rollers (their set-out comes from the FEM's generator case); run "
                               "contact without --fem");
+  fem.readout.compliance_rad_per_Nm = run.compliance_rad_per_Nm;
+  fem.readout.neutral_curve = run.neutral_curve;
+  fem.readout.generator_model = model;
+  if (c.solver.method == SolverMethod::Fourier) {  // the harmonic pass is seconds: solved again for its bands
+    progress("fourier: " + c.path + " (the model of " + result_json.string() + ")");
+    const FlexsplineModel m = flexspline_model(c);
+    auto harmonic = std::make_shared<FourierSolution>(
+        analyse_flexspline_fourier(m, 0, contact_band_request(m, c.contact.face_slices)));
+    if (harmonic->stations) fem.readout.generator_obstacle_m = harmonic->figures.generator->obstacle_m;
+    fem.job.harmonic = std::move(harmonic);
+    return fem;
+  }
   progress("mesh: " + c.path + " (the model of " + result_json.string() + ")");
   auto mesh = std::make_shared<const TetMesh>(mesh_for_case(c, max_memory_gb));
   auto system = std::make_shared<const FlexsplineSystem>(assemble_and_factorise(flexspline_model(c), *mesh));
@@ -49,24 +62,16 @@ ContactFem fem_from_run(const Case& c, const std::filesystem::path& result_json,
     throw InputError(result_json.string() + ": made from a model of " + std::to_string(run.equations) +
                      " equations, " + c.path + " gives " + std::to_string(system->dofs.n_equations) +
                      "; run `strainwave fem` on this case again or leave out --fem");
-  ContactFem fem;
-  fem.readout.compliance_rad_per_Nm = run.compliance_rad_per_Nm;
-  fem.readout.neutral_curve = run.neutral_curve;
-  fem.readout.generator_model = model;
   if (cam_of(w)) fem.readout.generator_obstacle_m = generator_stations(flexspline_model(c), *mesh).obstacle_m;
-  fem.mesh = mesh;
-  fem.system = system;
+  fem.job.mesh = mesh;
+  fem.job.system = system;
   return fem;
 }
 
-/// The FEM solved now on TET10, its files written into `out`.
+/// The FEM solved now, its files written into `out`.
 ContactFem fem_solved(const Case& c, OutputSet& out, const FemJobOptions& options) {
   ContactFem fem;
   fem.job = run_fem_job(c, out, options);
-  if (!fem.job.system || !fem.job.mesh)  // contact_model_gap refuses the cases that leave none
-    throw std::logic_error("contact: the FEM job left no factorised TET10 model");
-  fem.mesh = fem.job.mesh;
-  fem.system = fem.job.system;
   fem.readout = fem_readout(fem.job.solution);
   return fem;
 }
@@ -76,26 +81,21 @@ ContactFem fem_solved(const Case& c, OutputSet& out, const FemJobOptions& option
 void add_contact_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("contact", "loaded tooth contact: load sharing, the drive's torque-twist curve, "
                                             "lost motion");
-  static std::string case_path, out, fem_json;
+  static std::string case_path, out, fem_json, solver, backend;
   static FemJobOptions fem_options;
   cmd->add_option("case", case_path, "case file (TOML)")->required();
   add_fem_job_options(cmd, fem_options);
   cmd->add_option("--fem", fem_json, "result.json of an earlier `fem` run of this case: its neutral curve and C_tau "
                                      "are used and its load cases not solved again (the model is still factorised)");
   cmd->add_option("--out", out, "output directory (default out/<case stem>/)");
+  add_solver_options(cmd, solver, backend);
   cmd->callback([] {
-    Case c = load_case(case_path);
-    if (c.solver.method == SolverMethod::Fourier) {  // reported, not dropped silently
-      std::printf("note: %s: solver.method = \"fourier\" is not used by contact: the loaded contact reads its "
-                  "influence coefficients from the factorised TET10 model, which it solves here\n", c.path.c_str());
-      c.solver.method = SolverMethod::Tet10;
-    }
+    const Case c = load_case_with_solver(case_path, solver, backend);
     naming_file(c.path, [&] { check_contact_model(flexspline_model(c)); });  // before any work: nothing is written for a case contact cannot take
-    progress("case:\n" + describe_case(c));
     OutputSet outputs(out.empty() ? default_out_dir(c) : std::filesystem::path(out));
     const ContactFem fem = fem_json.empty() ? fem_solved(c, outputs, fem_options)
                                             : fem_from_run(c, fem_json, fem_options.max_memory_gb);
-    run_contact_job(c, *fem.mesh, *fem.system, fem.readout, outputs);
+    run_contact_job(c, *contact_body(c, fem.job, fem.readout.generator_u), fem.readout, outputs);
     outputs.commit();
     std::printf("  wrote %s\n", outputs.dir().string().c_str());
   });

@@ -107,8 +107,10 @@ void add_run_command(CLI::App& app) {
       std::printf("run: no backlash for this case (it needs [gear] and [wave_generator] with radial_deformation_mm)\n");
     }
     std::optional<ContactAnalysis> contact;
-    if (fem.system && !contact_model_gap(flexspline_model(c)))
-      contact = run_contact_job(c, *fem.mesh, *fem.system, fem_readout(fem.solution), outputs);
+    if (!contact_model_gap(flexspline_model(c))) {
+      const FemReadout readout = fem_readout(fem.solution);
+      contact = run_contact_job(c, *contact_body(c, fem, readout.generator_u), readout, outputs);
+    }
     write_file_atomic(outputs.staging() / "report.html", run_report_html(report_inputs(c, outputs)));
     outputs.commit();
     std::printf("  wrote %s\n", outputs.dir().string().c_str());

@@ -12,6 +12,8 @@
 #include "io/atomic_file.hpp"
 #include "io/contact_output.hpp"
 #include "contact/circular_spline.hpp"
+#include "contact/harmonic_body.hpp"
+#include "contact/tet10_body.hpp"
 #include "generator/generator_bearing.hpp"
 #include "design/catalog.hpp"
 #include "gear/tooth_profile.hpp"
@@ -190,8 +192,13 @@ void print_overlap_and_balance(const ContactAnalysis& a) {
 
 }  // namespace
 
-ContactAnalysis run_contact_job(const Case& c, const TetMesh& mesh, const FlexsplineSystem& system,
-                                const FemReadout& fem, OutputSet& out) {
+std::unique_ptr<ContactBody> contact_body(const Case& c, const FemJobResult& fem, const Eigen::VectorXd* fem_u) {
+  if (fem.harmonic) return std::make_unique<HarmonicBody>(flexspline_model(c), *fem.harmonic);
+  if (!fem.mesh || !fem.system) throw std::logic_error("contact: the FEM job left no model to solve on");
+  return std::make_unique<Tet10Body>(flexspline_model(c), *fem.mesh, *fem.system, fem_u);
+}
+
+ContactAnalysis run_contact_job(const Case& c, const ContactBody& body, const FemReadout& fem, OutputSet& out) {
   ContactOptions o;
   o.rated_torque_Nm = c.load.rated_torque_Nm.value_or(c.load.torque_Nm);
   o.series = series_parts(c);
@@ -202,7 +209,7 @@ ContactAnalysis run_contact_job(const Case& c, const TetMesh& mesh, const Flexsp
     o.catalog_t2_Nm = reference->t2_Nm;
   }
   const ContactAnalysis a =
-      naming_file(c.path, [&] { return analyse_contact(flexspline_model(c), mesh, system, fem, o); });
+      naming_file(c.path, [&] { return analyse_contact(flexspline_model(c), body, fem, o); });
   out.own(kContactJobFiles);
   write_file_atomic(out.staging() / "contact.json", contact_json(contact_result(a, c, reference)));
   write_file_atomic(out.staging() / "torque_twist.csv", torque_twist_csv(a));

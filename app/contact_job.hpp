@@ -1,6 +1,7 @@
 #pragma once
 // The contact job shared by `strainwave contact` and `strainwave run`: the loaded tooth contact on the FEM's own
 // system, its outputs and summary.
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -16,10 +17,14 @@ inline const std::vector<std::string> kContactJobFiles = {"contact.json", "torqu
 /// What acts in series with the flexspline body, from the case (tooth pairs, generator bearing, circular spline).
 SeriesParts series_parts(const Case& c);
 
-/// Runs the contact analysis on the TET10 mesh and its factorised system with what the FEM gave (`fem`: solved now or
-/// read back from an earlier run's result.json), writes contact.json, torque_twist.csv and contact.svg into the set
-/// `out` (owning kContactJobFiles), prints the summary.
-ContactAnalysis run_contact_job(const Case& c, const TetMesh& mesh, const FlexsplineSystem& system,
-                                const FemReadout& fem, OutputSet& out);
+/// The flexspline body the fem job left for the loaded contact: the harmonic solution's (HarmonicBody) or the TET10
+/// mesh and factor's (Tet10Body, reading the generator's field from `fem_u` when not null). Every argument must
+/// outlive it.
+std::unique_ptr<ContactBody> contact_body(const Case& c, const FemJobResult& fem, const Eigen::VectorXd* fem_u);
+
+/// Runs the contact analysis on the flexspline body with what the FEM gave (`fem`: solved now or read back from an
+/// earlier run's result.json), writes contact.json, torque_twist.csv and contact.svg into the set `out` (owning
+/// kContactJobFiles), prints the summary.
+ContactAnalysis run_contact_job(const Case& c, const ContactBody& body, const FemReadout& fem, OutputSet& out);
 
 }  // namespace sw::app

@@ -12,6 +12,7 @@
 #include "io/atomic_file.hpp"
 #include "io/case.hpp"
 #include "fem/flexspline_analysis.hpp"
+#include "fem/fourier_solver.hpp"
 #include "mesh/tet_mesh.hpp"
 
 namespace sw::app {
@@ -28,6 +29,8 @@ struct FemJobResult {
   /// null on the harmonic solver.
   std::shared_ptr<const TetMesh> mesh;
   std::shared_ptr<const FlexsplineSystem> system;
+  /// The harmonic solution (its bands' responses for the loaded contact); null on TET10.
+  std::shared_ptr<const FourierSolution> harmonic;
 };
 
 

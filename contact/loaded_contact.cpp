@@ -15,6 +15,7 @@
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "contact/contact_problem.hpp"
+#include "contact/tet10_body.hpp"
 #include "contact/tooth_fem.hpp"
 #include "fem/assembly.hpp"
 #include "fem/loads.hpp"
@@ -27,80 +28,6 @@ namespace sw {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-
-}  // namespace
-
-std::vector<const BoundaryFace*> FlankLoads::rim(const TetMesh& mesh, double z_lo_m, double z_hi_m) {
-  std::vector<const BoundaryFace*> faces;
-  for (const BoundaryFace* f : select_faces(mesh, kSurfaceRimOuter)) {
-    double z = 0;
-    for (int k = 0; k < 3; ++k) z += mesh.nodes(f->nodes[k], 2) / 3;
-    if (z >= z_lo_m && z <= z_hi_m) faces.push_back(f);
-  }
-  if (faces.empty()) throw InputError("contact: the flexspline mesh has no toothed rim surface" +
-                                      std::string(std::isfinite(z_lo_m) ? " in an axial slice; refine mesh.size_mm" : ""));
-  return faces;
-}
-
-FlankLoads::FlankLoads(const TetMesh& mesh, double pitch_rad, double z_lo_m, double z_hi_m)
-    : mesh_(mesh), half_(pitch_rad), hats_(mesh, rim(mesh, z_lo_m, z_hi_m)) {}
-
-Eigen::VectorXd FlankLoads::pattern(const std::vector<double>& stations, const Eigen::Vector2d& force_dir,
-                                    double contact_radius_m) const {
-  const auto radial_dir = [](double t) { return Eigen::Vector3d(std::cos(t), std::sin(t), 0); };
-  const auto tangential_dir = [](double t) { return Eigen::Vector3d(-std::sin(t), std::cos(t), 0); };
-  Eigen::VectorXd f = Eigen::VectorXd::Zero(3 * mesh_.n_nodes());
-  for (std::size_t i = 0; i < stations.size(); ++i) {
-    const double s = stations[i];
-    const Eigen::VectorXd radial = hats_.load(s, half_, radial_dir), tangential = hats_.load(s, half_, tangential_dir),
-                          outer = hats_.load(s + half_ / 2, half_ / 2, radial_dir),
-                          inner = hats_.load(s - half_ / 2, half_ / 2, radial_dir);
-    if (radial.size() == 0 || outer.size() == 0 || inner.size() == 0)
-      throw InputError("contact: no rim faces under the tooth at " + std::to_string(s * 180 / kPi) +
-                       " deg; refine mesh.size_mm");
-    // The contact force at this station (turned by π at the partner) and its moment about the axis: the three
-    // amplitudes reproduce both exactly. Every sum runs over the hats' nodes only (the radial hat's: the others lie
-    // within it); the full vectors are the mesh's size.
-    const Eigen::Vector2d F = i == 0 ? force_dir : Eigen::Vector2d(-force_dir);
-    const Eigen::Vector2d P = contact_radius_m * Eigen::Vector2d(std::cos(s), std::sin(s));
-    std::vector<Eigen::Index> nodes;
-    for (Eigen::Index n = 0; n < static_cast<Eigen::Index>(mesh_.n_nodes()); ++n)
-      if (radial.segment<3>(3 * n).any()) nodes.push_back(n);
-    const auto k = static_cast<Eigen::Index>(nodes.size());
-    Eigen::MatrixXd H(3 * k, 3);  // radial, tangential, couple (outer − inner) at those nodes
-    Eigen::Matrix3d R = Eigen::Matrix3d::Zero();
-    for (Eigen::Index j = 0; j < k; ++j) {
-      const Eigen::Index n = nodes[j];
-      H.block<3, 1>(3 * j, 0) = radial.segment<3>(3 * n);
-      H.block<3, 1>(3 * j, 1) = tangential.segment<3>(3 * n);
-      H.block<3, 1>(3 * j, 2) = outer.segment<3>(3 * n) - inner.segment<3>(3 * n);
-      for (int c = 0; c < 3; ++c) {
-        const double fx = H(3 * j, c), fy = H(3 * j + 1, c);
-        R.col(c) += Eigen::Vector3d(fx, fy, mesh_.nodes(n, 0) * fy - mesh_.nodes(n, 1) * fx);
-      }
-    }
-    const Eigen::Vector3d target(F.x(), F.y(), P.x() * F.y() - P.y() * F.x());
-    const Eigen::VectorXd h = H * R.fullPivLu().solve(target);
-    for (Eigen::Index j = 0; j < k; ++j) f.segment<3>(3 * nodes[j]) += h.segment<3>(3 * j);
-  }
-  return f;
-}
-
-namespace {
-
-Eigen::SparseMatrix<double> sparse_columns(const std::vector<Eigen::VectorXd>& cols, const Eigen::SparseMatrix<double>& more) {
-  std::vector<Eigen::Triplet<double>> t;
-  for (std::size_t j = 0; j < cols.size(); ++j)
-    for (Eigen::Index i = 0; i < cols[j].size(); ++i)
-      if (cols[j][i] != 0.0) t.emplace_back(static_cast<int>(i), static_cast<int>(j), cols[j][i]);
-  for (Eigen::Index j = 0; j < more.outerSize(); ++j)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(more, j); it; ++it)
-      t.emplace_back(static_cast<int>(it.row()), static_cast<int>(cols.size() + j), it.value());
-  Eigen::SparseMatrix<double> L(more.rows() ? more.rows() : (cols.empty() ? 0 : cols[0].size()),
-                                static_cast<Eigen::Index>(cols.size()) + more.cols());
-  L.setFromTriplets(t.begin(), t.end());
-  return L;
-}
 
 }  // namespace
 
@@ -158,10 +85,9 @@ FaceSection section_at_rest(const GearParams& g, const NeutralCurve& curve, doub
 /// their side. run() is the pipeline; each step is one member function over the state the steps share.
 class ContactAnalyser {
 public:
-  ContactAnalyser(const FlexsplineModel& c, const TetMesh& mesh, const FlexsplineSystem& sys,
-                  const FemReadout& fem, const ContactOptions& opt, double reach_factor)
-      : c_(c), g_(*c.gear), mesh_(mesh), sys_(sys), fem_(fem), opt_(opt), reach_factor_(reach_factor),
-        loads_(mesh, 2 * kPi / c.gear->teeth_flexspline) {}
+  ContactAnalyser(const FlexsplineModel& c, const ContactBody& body, const FemReadout& fem, const ContactOptions& opt,
+                  double reach_factor)
+      : c_(c), g_(*c.gear), body_(body), fem_(fem), opt_(opt), reach_factor_(reach_factor) {}
 
   /// The analysis; empty when the twist reaches a flank left out (the caller widens the reach). The model has passed
   /// check_contact_model, the solution has its neutral curve, the rated torque is > 0.
@@ -207,7 +133,7 @@ private:
   void read_rim_at_rest();
   void read_face_sections(std::vector<NeutralCurve>& read);
   void select_flanks();
-  void add_flank(FlankContact f, const FlankClearance& fc, int k, int j, const FlankLoads& slice_loads);
+  void add_flank(FlankContact f, const FlankClearance& fc, int k, int j);
   void watch_zone_edges();
   void compute_influence();
   void set_up_problem();
@@ -236,12 +162,10 @@ private:
 
   const FlexsplineModel& c_;
   const GearParams& g_;
-  const TetMesh& mesh_;
-  const FlexsplineSystem& sys_;
+  const ContactBody& body_;
   const FemReadout& fem_;
   const ContactOptions& opt_;
   const double reach_factor_;
-  const FlankLoads loads_;  // the whole face's flank patterns (and the edge teeth's observers)
   Stopwatch clock_;
   ContactAnalysis out_;
   double n_teeth_ = 1;  // teeth per unknown
@@ -254,14 +178,13 @@ private:
   double first_closing_[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
   double reach_ = 0;
   // The patterns: flanks' columns and gaps, the edge teeth's radial observers.
-  std::vector<Eigen::VectorXd> columns_, observers_;
+  std::vector<FlankPattern> patterns_, observers_;
   std::vector<double> q_flank_;
   Eigen::Index nf_ = 0, nb_ = 0, no_ = 0;
   // Influence coefficients.
-  GeneratorStations gen_;
   bool unilateral_ = false;
-  Eigen::SparseMatrix<double> L_, L_all_;
-  Eigen::MatrixXd A_all_, A_body_, R_edge_;
+  BodyInfluence influence_;
+  Eigen::MatrixXd A_body_, R_edge_;
   Eigen::VectorXd lambda_;
   // The contact problem, its generator state and the bearing's secants.
   ContactProblem P_;
@@ -288,12 +211,12 @@ void ContactAnalyser::read_rim_at_rest() {
   // The face width in axial slices, each with the rim as the generator leaves it at the slice's centre (the FEM's
   // generator case read there: the cup's coning). One slice is the centre section's curve itself.
   n_slices_ = std::max(1, opt_.face_slices);
-  if (n_slices_ > 1 && !fem_.generator_u)
+  std::vector<NeutralCurve> read;
+  read_face_sections(read);
+  if (n_slices_ > 1 && read.empty())
     throw InputError("contact.face_slices = " + std::to_string(n_slices_) +
                      " reads the FEM's rim at every slice, and a result read back (--fem) has only its centre section; "
                      "run contact without --fem (or face_slices = 1)");
-  std::vector<NeutralCurve> read;
-  read_face_sections(read);
   const double face = c_.flexspline.rim_width_m;
   for (int j = 0; j < n_slices_; ++j) {
     const double z_lo = nc.z_m - face / 2 + face * j / n_slices_, z_hi = z_lo + face / n_slices_;
@@ -322,14 +245,12 @@ void ContactAnalyser::read_rim_at_rest() {
 void ContactAnalyser::read_face_sections(std::vector<NeutralCurve>& read) {
   const NeutralCurveSamples& nc = fem_.neutral_curve;
   const double face = c_.flexspline.rim_width_m;
-  std::vector<double> z_read;
-  if (fem_.generator_u) z_read = {nc.z_m - face / 2, nc.z_m + face / 2};
+  std::vector<double> z_read = {nc.z_m - face / 2, nc.z_m + face / 2};
   for (int j = 0; j < n_slices_ && n_slices_ > 1; ++j)
     z_read.push_back(nc.z_m - face / 2 + face * (j + 0.5) / n_slices_);
-  if (!z_read.empty())
-    for (const NeutralCurveSamples& at : neutral_curves_at(c_, mesh_, *fem_.generator_u, z_read))
-      read.push_back(fit_neutral_curve(at.radius_m, at.phi_rad, at.w_wg_m, at.v_wg_m, at.mu_wg_rad, "FEM"));
-  if (fem_.generator_u)
+  for (const NeutralCurveSamples& at : body_.generator_curves_at(z_read))
+    read.push_back(fit_neutral_curve(at.radius_m, at.phi_rad, at.w_wg_m, at.v_wg_m, at.mu_wg_rad, "FEM"));
+  if (!read.empty())
     for (const auto& [z, cz] : {std::pair<double, const NeutralCurve&>{nc.z_m - face / 2, read[0]}, {nc.z_m, curve_},
                                 {nc.z_m + face / 2, read[1]}})
       out_.face_sections.push_back(section_at_rest(g_, cz, z, opt_.wg_angle_rad));
@@ -340,10 +261,6 @@ void ContactAnalyser::select_flanks() {
   out_.reach_rad = reach_;
   for (int j = 0; j < n_slices_; ++j) {
     const Slice& sl = slices_[j];
-    // One slice loads the whole face (the observers' patterns); more, each its own band of the rim's faces.
-    std::optional<FlankLoads> band;
-    if (n_slices_ > 1) band.emplace(mesh_, 2 * kPi / g_.teeth_flexspline, sl.z_lo, sl.z_hi);
-    const FlankLoads& slice_loads = band ? *band : loads_;
     for (int k = 0; k < g_.teeth_flexspline; ++k) {
       const double phi = tooth_angle(k);
       if (on_other_half(phi)) continue;
@@ -358,7 +275,7 @@ void ContactAnalyser::select_flanks() {
       for (const Flank side : {Flank::Ccw, Flank::Cw}) {
         std::optional<FlankContact> cand = candidate_flank(sl.model, sl.curve, pc, phi, side, edge);
         if (!cand || (pc.engaged && cand->closing_angle_rad > first_closing_[side == Flank::Cw] + reach_)) continue;
-        add_flank(*cand, side == Flank::Ccw ? pc.ccw : pc.cw, k, j, slice_loads);
+        add_flank(*cand, side == Flank::Ccw ? pc.ccw : pc.cw, k, j);
       }
     }
   }
@@ -370,8 +287,7 @@ void ContactAnalyser::select_flanks() {
 }
 
 /// The flank of tooth k in slice j: its pair's compliance in series, its load pattern and its gap.
-void ContactAnalyser::add_flank(FlankContact f, const FlankClearance& fc, int k, int j,
-                                const FlankLoads& slice_loads) {
+void ContactAnalyser::add_flank(FlankContact f, const FlankClearance& fc, int k, int j) {
   f.tooth = k;
   f.slice = j;
   f.compliance_m_per_N = opt_.series.tooth_pair_m_per_N
@@ -380,7 +296,8 @@ void ContactAnalyser::add_flank(FlankContact f, const FlankClearance& fc, int k,
   const double s = std::atan2(fc.point_f.y(), fc.point_f.x());
   std::vector<double> stations{s};
   if (out_.half_turn_pairs) stations.push_back(s + kPi);
-  columns_.push_back(slice_loads.pattern(stations, -fc.normal, fc.point_f.norm()));
+  // One slice loads the whole face; more, each its own band of the rim.
+  patterns_.push_back({stations, -fc.normal, fc.point_f.norm(), n_slices_ > 1 ? j : -1});
   q_flank_.push_back(n_teeth_ * std::abs(f.lever_m) * f.closing_angle_rad);
   out_.flanks.push_back(f);
 }
@@ -399,7 +316,7 @@ void ContactAnalyser::watch_zone_edges() {
     const double s = std::atan2(tip.y(), tip.x());
     std::vector<double> stations{s};
     if (out_.half_turn_pairs) stations.push_back(s + kPi);
-    observers_.push_back(loads_.pattern(stations, Eigen::Vector2d(std::cos(s), std::sin(s)), tip.norm()) / n_teeth_);
+    observers_.push_back({stations, Eigen::Vector2d(std::cos(s), std::sin(s)), tip.norm(), -1, 1 / n_teeth_});
     EdgeTooth e;
     e.tooth = k;
     e.phi_rad = phi;
@@ -414,21 +331,18 @@ void ContactAnalyser::watch_zone_edges() {
 
 /// The generator's stations, and the influence coefficients of every pattern.
 void ContactAnalyser::compute_influence() {
-  gen_ = generator_stations(c_, mesh_);
-  unilateral_ = gen_.unilateral;
-  L_ = sparse_columns(columns_, gen_.stations.loads);
-  nb_ = gen_.stations.loads.cols();
+  unilateral_ = body_.stations().unilateral;
+  nb_ = static_cast<Eigen::Index>(body_.stations().angle_rad.size());
   out_.setup_s = clock_.lap();
   progress("contact: influence of " + std::to_string(nf_) + " flank patterns, " + std::to_string(nb_) +
            " generator stations and " + std::to_string(no_) + " zone-edge observers");
-  L_all_ = sparse_columns(observers_, L_);
-  A_all_ = sys_.influence(L_all_);
-  A_body_ = A_all_.bottomRightCorner(nf_ + nb_, nf_ + nb_);
-  R_edge_ = A_all_.topRightCorner(no_, nf_ + nb_);  // radial motion at the edge teeth's tips
+  std::vector<FlankPattern> all = observers_;
+  all.insert(all.end(), patterns_.begin(), patterns_.end());
+  influence_ = body_.influence(all, n_slices_);
+  A_body_ = influence_.A.bottomRightCorner(nf_ + nb_, nf_ + nb_);
+  R_edge_ = influence_.A.topRightCorner(no_, nf_ + nb_);  // radial motion at the edge teeth's tips
   out_.influence_s = clock_.lap();
-  lambda_.resize(nf_ + nb_);
-  const std::vector<bool> all(mesh_.n_nodes(), true);
-  for (Eigen::Index j = 0; j < nf_ + nb_; ++j) lambda_[j] = -moment_about_z(mesh_, Eigen::VectorXd(L_.col(j)), all);
+  lambda_ = influence_.lever.tail(nf_ + nb_);
 }
 
 /// The contact problem. Unilateral generator: flanks and stations together, the stations' gaps against the
@@ -466,7 +380,7 @@ void ContactAnalyser::set_up_problem() {
   // Bearing balls in series with the stations (unilateral generators): the secant of the Hertzian approach from the
   // generator's state, iterated to a fixed point.
   bearing_ = unilateral_ && opt_.series.bearing_approach_m && opt_.series.bearing_balls > 0;
-  ball_per_N_ = bearing_ ? 2 * kPi / (opt_.series.bearing_balls * gen_.stations.half_width_rad) : 0.0;
+  ball_per_N_ = bearing_ ? 2 * kPi / (opt_.series.bearing_balls * body_.stations().half_width_rad) : 0.0;
   bearing_c_ = Eigen::VectorXd::Zero(nb);
 }
 
@@ -525,7 +439,7 @@ ContactSolution ContactAnalyser::solve_step(const ContactProblem& base, Eigen::I
   }
   const std::string where = "at T = " + std::to_string(T) + " N·m the generator bearing's ball loads did not settle in " +
                             std::to_string(kIterations) + " relaxed secant iterations: the station at " +
-                            std::to_string(gen_.stations.angle_rad[worst_station] * 180 / kPi) + " deg (" +
+                            std::to_string(body_.stations().angle_rad[worst_station] * 180 / kPi) + " deg (" +
                             std::to_string(best.force_N[n_fl + worst_station]) + " N, at rest " +
                             std::to_string(p0_[worst_station]) + " N) is off its Hertzian approach by " +
                             std::to_string(best_residual * 1e9) + " nm";
@@ -716,14 +630,11 @@ void ContactAnalyser::check_independently() {
   Eigen::VectorXd x(nf_ + nb_);
   if (unilateral_) x = at_rated_.force_N;  // the whole loaded state, the generator's preload included
   else x << at_rated_.force_N, band_solve_ * at_rated_.force_N;
-  const Eigen::VectorXd f = L_ * x;
-  const Eigen::VectorXd u = sys_.solve(f).col(0);
   Eigen::VectorXd x_all = Eigen::VectorXd::Zero(no_ + nf_ + nb_);  // the observers carry no force
   x_all.tail(nf_ + nb_) = x;
-  const Eigen::VectorXd d_direct = L_all_.transpose() * u, d_influence = A_all_ * x_all;
-  out_.superposition_error_rel = (d_direct - d_influence).cwiseAbs().maxCoeff() / d_direct.cwiseAbs().maxCoeff();
-  const Eigen::VectorXd reactions = internal_forces(mesh_, c_.material, u) - f;
-  out_.fem_reaction_torque_Nm = moment_about_z(mesh_, reactions, sys_.clamped);
+  const BodyCheck check = influence_.check(x_all);
+  out_.superposition_error_rel = check.superposition_error_rel;
+  out_.fem_reaction_torque_Nm = check.clamp_reaction_torque_Nm;
 }
 
 }  // namespace
@@ -768,8 +679,6 @@ std::optional<std::string> contact_model_gap(const FlexsplineModel& c) {
   if (c.flexspline.teeth == TeethModel::Explicit)
     return "contact needs flexspline.teeth = \"ring\" or \"none\" (the teeth's own compliance is added in series; "
            "explicit teeth would count it twice)";
-  if (c.solver.method != SolverMethod::Tet10)
-    return "contact solves on the TET10 model; solver.method = \"fourier\" has no factor to reuse (use --solver tet10)";
   return std::nullopt;
 }
 
@@ -779,10 +688,18 @@ void check_contact_model(const FlexsplineModel& c) {
 
 ContactAnalysis analyse_contact(const FlexsplineModel& c, const TetMesh& mesh, const FlexsplineSystem& sys,
                                 const FemReadout& fem, const ContactOptions& opt) {
+  return analyse_contact(c, Tet10Body(c, mesh, sys, fem.generator_u), fem, opt);
+}
+
+ContactAnalysis analyse_contact(const FlexsplineModel& c, const ContactBody& body, const FemReadout& fem,
+                                const ContactOptions& opt) {
   check_contact_model(c);
   if (!(opt.rated_torque_Nm > 0)) throw InputError("contact needs a rated torque > 0");
   for (double reach_factor = opt.reach_factor;; reach_factor *= 2) {
-    if (std::optional<ContactAnalysis> a = ContactAnalyser(c, mesh, sys, fem, opt, reach_factor).run()) return *a;
+    if (std::optional<ContactAnalysis> a = ContactAnalyser(c, body, fem, opt, reach_factor).run()) {
+      a->solver = body.solver();
+      return *a;
+    }
     progress("contact: the twist reaches flanks left out; again with twice the reach");
   }
 }

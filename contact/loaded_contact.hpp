@@ -27,7 +27,9 @@
 #include <Eigen/Core>
 
 #include "fem/flexspline_model.hpp"
+#include "contact/contact_body.hpp"
 #include "contact/contact_problem.hpp"
+#include "contact/tet10_body.hpp"
 #include "contact/torque_twist.hpp"
 #include "fem/flexspline_analysis.hpp"
 #include "fem/flexspline_system.hpp"
@@ -47,31 +49,6 @@ struct SeriesParts {
   std::function<double(double ball_load_N)> bearing_approach_m;
   int bearing_balls = 0;
   double circular_spline_rad_per_Nm = 0;  ///< torsion of the circular spline's body
-};
-
-/// Load patterns of the flanks on the rim's outer surface. A flexspline tooth is a short rigid post on the rim: a force
-/// at its flank reaches the rim as that force at the tooth's foot plus the moment of the force about the foot (force ×
-/// height above the surface). Per station (a contact's polar angle): a linear hat one tooth pitch wide of radial and of
-/// tangential traction, and the foot's moment as a radial couple (outward on one side of the station, inward on the
-/// other, each a hat half as wide), their amplitudes such that the station's load has exactly the resultant of the
-/// contact force: its force and its moment about the axis. Read work-conjugately (fᵀu), a pattern's displacement is
-/// the contact point's on a rigid tooth: the rim's turn under the tooth tilts it. Teeth at θ and θ + π (half-turn
-/// pairs) carry the force turned by π.
-class FlankLoads {
-public:
-  /// On the rim's faces whose centroid lies in [z_lo_m, z_hi_m] (an axial slice of the face width; the default: all).
-  FlankLoads(const TetMesh& mesh, double pitch_rad, double z_lo_m = -std::numeric_limits<double>::infinity(),
-             double z_hi_m = std::numeric_limits<double>::infinity());
-  /// Nodal loads of 1 N along `force_dir` (2-D, frame of the generator) at the point `contact_radius_m` out on the
-  /// radial line of stations[0], and of the same turned by π at a partner stations[1] = stations[0] + π.
-  Eigen::VectorXd pattern(const std::vector<double>& stations, const Eigen::Vector2d& force_dir,
-                          double contact_radius_m) const;
-
-private:
-  static std::vector<const BoundaryFace*> rim(const TetMesh& mesh, double z_lo_m, double z_hi_m);
-  const TetMesh& mesh_;
-  double half_;
-  AngularHats hats_;
 };
 
 /// The flexspline model's tooth pair compliance over the rim's face width (m/N) at the two contact radii: the flexspline's tooth
@@ -185,6 +162,7 @@ struct ContactAnalysis {
   /// Wall clock: building the patterns and gaps, the influence coefficients, the torque steps, the independent check.
   double setup_s = 0, influence_s = 0, contact_s = 0, check_s = 0;
   int unknowns = 0;
+  std::string solver;  ///< the flexspline body's model: "tet10" | "fourier"
   double reach_rad = 0;  ///< flanks closing this much later than the first on their side were left out
   double min_closing_rad = 0;  ///< smallest closing angle at rest over both sides (< 0: the teeth overlap at rest)
   double overlap_at_rest_m = 0;  ///< largest overlap at rest along a contact normal (0: none)
@@ -225,12 +203,16 @@ struct FemReadout {
 FemReadout fem_readout(const FlexsplineSolution& s);
 
 /// Checks that the model can be analysed (a [gear], a [wave_generator] with radial_deformation_mm, teeth "ring" or
-/// "none", the tet10 solver) before any work is done. Throws InputError saying what is missing; the caller, which
+/// "none") before any work is done. Throws InputError saying what is missing; the caller, which
 /// knows the case file, puts its name in front (as for every InputError of this module).
 void check_contact_model(const FlexsplineModel& model);
 
-/// The contact analysis of a model with a gear, a wave generator and teeth = "ring", on the system its FEM solution
-/// came from. Throws InputError for a model it cannot handle (no gear, explicit teeth, no flank in the mesh zone).
+/// The contact analysis of a model with a gear, a wave generator and teeth = "ring" or "none", on the body its FEM
+/// solution came from (contact/tet10_body.hpp, contact/harmonic_body.hpp). Throws InputError for a model it cannot
+/// handle (no gear, explicit teeth, no flank in the mesh zone).
+ContactAnalysis analyse_contact(const FlexsplineModel& model, const ContactBody& body, const FemReadout& fem,
+                                const ContactOptions& options);
+/// The same on the TET10 mesh and the system its FEM solution came from.
 ContactAnalysis analyse_contact(const FlexsplineModel& model, const TetMesh& mesh, const FlexsplineSystem& system,
                                 const FemReadout& fem, const ContactOptions& options);
 

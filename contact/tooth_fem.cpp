@@ -8,7 +8,7 @@
 
 #include "common/error.hpp"
 #include "common/progress.hpp"
-#include "contact/loaded_contact.hpp"
+#include "contact/tet10_body.hpp"
 #include "fem/assembly.hpp"
 #include "fem/cholmod_factor.hpp"
 #include "fem/loads.hpp"

@@ -169,77 +169,6 @@ void harmonic_loads(const std::vector<LoadTerm>& terms, int n, Eigen::MatrixXd& 
 // A station touches when it carries force or its gap is within 0.25 % of w0 (as the tet10 path).
 constexpr double kTouchingGap = 2.5e-3;
 
-/// The wave generator's contact stations (fem/flexspline_system.hpp's generator_stations) in the harmonic basis.
-/// Station pair j's unit load, 1 N of normal force spread by the hat at θ_j and at θ_j + π, uniform across the band,
-/// has the generalised loads of harmonic n
-///   symmetric family: Φs(j,0)·E_r + Φs(j,1)·E_θ,   antisymmetric family: Φa(j,0)·E_r + Φa(j,1)·E_θ,
-/// with E_r = (S, 0, 0), E_θ = (0, S, 0), S_i = ∫ N_i r ds over the band's inner-wall edges, and Φ the θ moments of
-/// the hat times the normal's components (Φs = (∫g_r cos nθ, ∫g_θ sin nθ), Φa = (∫g_r sin nθ, −∫g_θ cos nθ), g the
-/// traction per unit S). So every station's load of a harmonic lies in the span of E_r and E_θ: two solves per
-/// harmonic, U_r = K_n⁻¹E_r and U_θ = K_n⁻¹E_θ, give the whole influence matrix (exact up to the truncation at N)
-///   C = Σ_n Φs_n·G_n·Φs_nᵀ + Φa_n·G_n·Φa_nᵀ,   G_n(a, b) = E_aᵀ·U_b,
-/// and the displacement of any station forces p is Σ_n (Φs_nᵀp)·(U_r, U_θ) per family.
-struct HarmonicStations {
-  bool unilateral = false;
-  std::vector<double> angle_rad;      ///< first station of each pair (the other at + π)
-  double half_width_rad = 0;          ///< of each station's hat (the stations' spacing)
-  Eigen::VectorXd obstacle_m;         ///< per pair, as GeneratorStations::obstacle_m
-  Eigen::VectorXd S;                  ///< n_nodes
-  std::vector<Eigen::MatrixXd> phi_sym, phi_anti;  ///< per harmonic: pairs × 2
-
-  Eigen::MatrixXd unit(int component) const {
-    Eigen::MatrixXd E = Eigen::MatrixXd::Zero(S.size(), 3);
-    E.col(component) = S;
-    return E;
-  }
-  double load_norm(int n) const {
-    return std::max(phi_sym[n].cwiseAbs().maxCoeff(), phi_anti[n].cwiseAbs().maxCoeff()) * S.cwiseAbs().maxCoeff();
-  }
-  /// (E_rᵀu, E_θᵀu) of amplitudes u (n_nodes × 3).
-  Eigen::Vector2d moments(const Eigen::MatrixXd& u) const { return {S.dot(u.col(0)), S.dot(u.col(1))}; }
-  Eigen::MatrixXd influence(const std::vector<Eigen::MatrixXd>& Ur, const std::vector<Eigen::MatrixXd>& Ut) const {
-    const Eigen::Index m = static_cast<Eigen::Index>(angle_rad.size());
-    Eigen::MatrixXd C = Eigen::MatrixXd::Zero(m, m);
-    for (std::size_t n = 0; n < Ur.size(); ++n) {
-      if (Ur[n].size() == 0) continue;
-      Eigen::Matrix2d G;
-      G.col(0) = moments(Ur[n]);
-      G.col(1) = moments(Ut[n]);
-      C.noalias() += phi_sym[n] * G * phi_sym[n].transpose() + phi_anti[n] * G * phi_anti[n].transpose();
-    }
-    return 0.5 * (C + C.transpose());  // symmetric up to round-off (G_n is); make it exactly so
-  }
-  /// Work-conjugate displacement of each pair (f_jᵀu) in a field.
-  Eigen::VectorXd project(const HarmonicField& u) const {
-    Eigen::VectorXd v = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(angle_rad.size()));
-    for (std::size_t n = 0; n < u.sym.size(); ++n)
-      if (u.sym[n].size() != 0) v += phi_sym[n] * moments(u.sym[n]) + phi_anti[n] * moments(u.anti[n]);
-    return v;
-  }
-  HarmonicField field(const Eigen::VectorXd& p, const std::vector<Eigen::MatrixXd>& Ur,
-                      const std::vector<Eigen::MatrixXd>& Ut) const {
-    HarmonicField h;
-    h.sym.assign(Ur.size(), {});
-    h.anti.assign(Ur.size(), {});
-    for (std::size_t n = 0; n < Ur.size(); ++n) {
-      if (Ur[n].size() == 0) continue;
-      const Eigen::Vector2d s = phi_sym[n].transpose() * p, a = phi_anti[n].transpose() * p;
-      h.sym[n] = s[0] * Ur[n] + s[1] * Ut[n];
-      h.anti[n] = a[0] * Ur[n] + a[1] * Ut[n];
-    }
-    return h;
-  }
-  /// Adds the generalised loads of harmonic n of station forces p to sym, anti (n_nodes × 3).
-  void loads(const Eigen::VectorXd& p, int n, Eigen::MatrixXd& sym, Eigen::MatrixXd& anti) const {
-    if (p.size() == 0 || n >= static_cast<int>(phi_sym.size())) return;
-    const Eigen::Vector2d s = phi_sym[n].transpose() * p, a = phi_anti[n].transpose() * p;
-    sym.col(0) += s[0] * S;
-    sym.col(1) += s[1] * S;
-    anti.col(0) += a[0] * S;
-    anti.col(1) += a[1] * S;
-  }
-};
-
 /// The stations of the case's generator (angles, hats, normals and standoffs as fem/flexspline_system.cpp's
 /// generator_stations), but no finer than the series resolves: a hat of half-width Δ has its spectrum's main lobe up
 /// to n = 2π/Δ, so Δ ≥ 2π/N (pairs ≤ N/2). `S`: ∫ N_i r ds over the band's inner-wall edges.
@@ -693,15 +622,38 @@ LoadTerm unit_moment_term(const SectionMesh& s, const std::vector<const SectionE
   return t;
 }
 
-constexpr double kSweep[] = {0.25, 0.5, 1.0, 2.0};  // the sweep's torques, in T_ref (as the tet10 path)
+constexpr double kSweep[] = {0.25, 0.5, 1.0, 2.0};
+
+/// w, v and the normal's rotation μ = (v − dw/dθ)/r of field u on the circle of radius r through probe p, at 1°
+/// steps; dw/dθ exactly from the series (the θ-derivative of the radial amplitudes).
+void ring_curve(const HarmonicField& u, const Probe& p, double radius_m, std::vector<double>& wv,
+                std::vector<double>& vv, std::vector<double>& mu) {
+  for (int k = 0; k < kRingSamples; ++k) {
+    const double t = 2 * kPi * k / kRingSamples;
+    const Eigen::Vector3d d = displacement_at(u, p, t);
+    double dw = 0;
+    for (std::size_t n = 1; n < u.sym.size(); ++n) {
+      if (u.sym[n].size() == 0) continue;
+      double as = 0, aa = 0;
+      for (int j = 0; j < 6; ++j) {
+        as += p.weight[j] * u.sym[n](p.node[j], 0);
+        aa += p.weight[j] * u.anti[n](p.node[j], 0);
+      }
+      dw += n * (-as * std::sin(n * t) + aa * std::cos(n * t));
+    }
+    wv.push_back(d[0]);
+    vv.push_back(d[1]);
+    mu.push_back((d[1] - dw) / radius_m);
+  }
+}  // the sweep's torques, in T_ref (as the tet10 path)
 
 /// The harmonic analysis of a case on its section (analyse_section_fourier) as the steps of run(): supports, loads,
 /// the harmonics solved, the load cases built from them (the generator's contact or forces, the torque case) and the
 /// figures read from them. The members are what one step hands to the next.
 class SectionAnalyser {
 public:
-  SectionAnalyser(const FlexsplineModel& c, SectionMesh section, int grid_sectors)
-      : c_(c), f_(c.flexspline), N_(c.solver.harmonics), grid_sectors_(grid_sectors),
+  SectionAnalyser(const FlexsplineModel& c, SectionMesh section, int grid_sectors, const BandRequest& request)
+      : c_(c), f_(c.flexspline), N_(c.solver.harmonics), grid_sectors_(grid_sectors), request_(request),
         plain_tube_(f_.shape == FlexsplineShape::Tube && f_.teeth == TeethModel::None),
         has_generator_(c.wave_generator.has_value()),
         z_wg_(c.wave_generator ? f_.length_m - c.wave_generator->axial_position_m : 0.0),
@@ -720,6 +672,7 @@ public:
     set_supports();
     set_torque_load();
     if (has_generator_) set_generator_loads();
+    set_band_loads();
     solve_harmonics();
     set_reading_ring();
     read_torsion_theory();
@@ -739,11 +692,43 @@ public:
     out_.generator = gen_;
     read_hoop_stress();
     read_load_cases();
+    keep_for_contact();
     return std::move(out_);
   }
 
 private:
   Eigen::MatrixXd zeros() const { return Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nn_), 3); }
+
+  /// What the loaded contact reads: the stations with their band's responses, the bands', the clamp.
+  void keep_for_contact() {
+    out_.clamped = clamped_;
+    if (stations_) {
+      out_.stations = *stations_;
+      out_.station_band = {stations_->S, Ur_, Ut_};
+    }
+  }
+
+  /// The requested bands' spatial vectors S_i = ∫ N_i r ds (InputError for a band no edge lies in).
+  void set_band_loads() {
+    for (const SurfaceBand& b : request_.bands) {
+      const auto edges = select_edges(sec_, b.marker, [&](const Eigen::Vector2d& x) {
+        return x[1] >= b.z_lo_m && x[1] <= b.z_hi_m;
+      });
+      if (edges.empty())
+        throw InputError("no edge of the flexspline's section lies in the band z = " + std::to_string(b.z_lo_m * 1e3) +
+                         " .. " + std::to_string(b.z_hi_m * 1e3) + " mm of its surface; refine [mesh] size_mm");
+      BandResponse r;
+      r.S = edge_integral(sec_, edges, [](const Eigen::Vector2d&) { return Eigen::Vector3d(1, 0, 0); }).col(0);
+      r.Ur.assign(N_ + 1, {});
+      r.Ut.assign(N_ + 1, {});
+      out_.bands.push_back(std::move(r));
+    }
+  }
+
+  /// Harmonic n is solved when a load case has it, or a band is asked for (the odd ones only when asked).
+  bool solve_harmonic_n(int n) const {
+    return norm_[n] > kNoLoad * max_norm_ || (!request_.bands.empty() && (n % 2 == 0 || request_.odd_harmonics));
+  }
 
   /// Supports: the clamp, and the axis conditions.
   void set_supports() {
@@ -813,7 +798,7 @@ private:
     Stopwatch solve_clock;
     poly_ = element_polynomials(sec_, c_.material);
     for (int n = 0; n <= N_; ++n) {
-      if (!(norm_[n] > kNoLoad * max_norm_)) continue;
+      if (!solve_harmonic_n(n)) continue;
       const CholmodFactor& factor = factor_harmonic(n);
       solve_loads(n, numbering_[std::min(n, 2)]->dofs, factor);
     }
@@ -879,18 +864,32 @@ private:
   void solve_loads(int n, const HarmonicDofs& d, const CholmodFactor& factor) {
     const bool turn = n == 0 && turn_load_anti0_.size() != 0;
     const int cols = stations_ ? (turn ? 7 : 6) : 4;
-    Eigen::MatrixXd B(d.n_eq, cols);
+    const Eigen::Index bands = static_cast<Eigen::Index>(out_.bands.size());
+    Eigen::MatrixXd B(d.n_eq, cols + 2 * bands);
     for (int col = 0; col < 4; ++col) B.col(col) = to_equations(d, loads_[n][col]);
     if (stations_) {
       B.col(4) = to_equations(d, stations_->unit(0));
       B.col(5) = to_equations(d, stations_->unit(1));
     }
     if (turn) B.col(6) = to_equations(d, turn_load_anti0_);
+    for (Eigen::Index b = 0; b < bands; ++b) {
+      Eigen::MatrixXd E = zeros();
+      E.col(0) = out_.bands[static_cast<std::size_t>(b)].S;
+      B.col(cols + 2 * b) = to_equations(d, E);
+      E.col(1) = E.col(0);
+      E.col(0).setZero();
+      B.col(cols + 2 * b + 1) = to_equations(d, E);
+    }
     const Eigen::MatrixXd X = factor.solve(B);
     const Eigen::MatrixXd zero = zeros();
     Eigen::MatrixXd* targets[7] = {&torque_.sym[n], &torque_.anti[n], &force_gen_.sym[n], &force_gen_.anti[n],
                                    &Ur_[n],         &Ut_[n],          &turn_anti0_};
     for (int col = 0; col < cols; ++col) *targets[col] = to_nodes(d, X.col(col), zero);
+    for (Eigen::Index b = 0; b < bands; ++b) {
+      BandResponse& r = out_.bands[static_cast<std::size_t>(b)];
+      r.Ur[n] = to_nodes(d, X.col(cols + 2 * b), zero);
+      r.Ut[n] = to_nodes(d, X.col(cols + 2 * b + 1), zero);
+    }
   }
 
   /// Internal forces K·u of harmonic n (0 or 1) of one family's amplitudes.
@@ -1135,29 +1134,9 @@ private:
     NeutralCurveSamples nc;
     nc.radius_m = fs_.reading_radius_m;
     nc.z_m = z_mid_;
-    auto curve = [&](const HarmonicField& u, std::vector<double>& wv, std::vector<double>& vv, std::vector<double>& mu) {
-      // dw/dθ exactly from the series: the θ-derivative of the radial amplitudes.
-      for (int k = 0; k < kRingSamples; ++k) {
-        const double t = 2 * kPi * k / kRingSamples;
-        const Eigen::Vector3d d = displacement_at(u, mid_, t);
-        double dw = 0;
-        for (std::size_t n = 1; n < u.sym.size(); ++n) {
-          if (u.sym[n].size() == 0) continue;
-          double as = 0, aa = 0;
-          for (int j = 0; j < 6; ++j) {
-            as += mid_.weight[j] * u.sym[n](mid_.node[j], 0);
-            aa += mid_.weight[j] * u.anti[n](mid_.node[j], 0);
-          }
-          dw += n * (-as * std::sin(n * t) + aa * std::cos(n * t));
-        }
-        wv.push_back(d[0]);
-        vv.push_back(d[1]);
-        mu.push_back((d[1] - dw) / nc.radius_m);
-      }
-    };
     for (int k = 0; k < kRingSamples; ++k) nc.phi_rad.push_back(2 * kPi * k / kRingSamples);
-    curve(gen_, nc.w_wg_m, nc.v_wg_m, nc.mu_wg_rad);
-    curve(combined(), nc.w_comb_m, nc.v_comb_m, nc.mu_comb_rad);
+    ring_curve(gen_, mid_, nc.radius_m, nc.w_wg_m, nc.v_wg_m, nc.mu_wg_rad);
+    ring_curve(combined(), mid_, nc.radius_m, nc.w_comb_m, nc.v_comb_m, nc.mu_comb_rad);
     fs_.neutral_curve = nc;
   }
 
@@ -1291,6 +1270,7 @@ private:
   const FlexsplineParams& f_;
   const int N_;  ///< the harmonics kept, 0..N
   const int grid_sectors_;
+  const BandRequest& request_;
   const bool plain_tube_, has_generator_;
   const double z_wg_;   ///< the generator band's mid-plane
   const double z_mid_;  ///< the rim's mid-width
@@ -1383,20 +1363,50 @@ HarmonicField HarmonicField::operator*(double k) const {
   return f;
 }
 
-FourierSolution analyse_flexspline_fourier(const FlexsplineModel& c, int grid_sectors) {
+FourierSolution analyse_flexspline_fourier(const FlexsplineModel& c, int grid_sectors, const BandRequest& request) {
   Stopwatch clock;
   std::optional<std::pair<double, double>> band;
   if (c.wave_generator)
     band = std::pair{c.flexspline.length_m - c.wave_generator->axial_position_m, c.wave_generator->band_width_m};
   SectionMesh section = mesh_flexspline_section(c.flexspline, c.gear, c.mesh, band);
   const double section_s = clock.lap();
-  FourierSolution s = analyse_section_fourier(c, std::move(section), grid_sectors);
+  FourierSolution s = analyse_section_fourier(c, std::move(section), grid_sectors, request);
   s.section_s = section_s;
   return s;
 }
 
-FourierSolution analyse_section_fourier(const FlexsplineModel& c, SectionMesh section, int grid_sectors) {
-  return SectionAnalyser(c, std::move(section), grid_sectors).run();
+FourierSolution analyse_section_fourier(const FlexsplineModel& c, SectionMesh section, int grid_sectors,
+                                        const BandRequest& request) {
+  return SectionAnalyser(c, std::move(section), grid_sectors, request).run();
+}
+
+std::vector<NeutralCurveSamples> neutral_curves_at(const SectionMesh& s, const HarmonicField& u, double radius_m,
+                                                   const std::vector<double>& z_m) {
+  std::vector<NeutralCurveSamples> out;
+  for (const double z : z_m) {
+    NeutralCurveSamples nc;
+    nc.radius_m = radius_m;
+    nc.z_m = z;
+    for (int k = 0; k < kRingSamples; ++k) nc.phi_rad.push_back(2 * kPi * k / kRingSamples);
+    ring_curve(u, probe_at(s, {radius_m, z}), radius_m, nc.w_wg_m, nc.v_wg_m, nc.mu_wg_rad);
+    out.push_back(std::move(nc));
+  }
+  return out;
+}
+
+double clamp_reaction_moment(const SectionMesh& s, const Material& m, const std::vector<bool>& clamped,
+                             const HarmonicField& u, const Eigen::MatrixXd& anti0) {
+  Eigen::MatrixXd R = -anti0;
+  for (std::size_t e = 0; e < s.triangles.size(); ++e) {
+    const auto& t = s.triangles[e];
+    Eigen::Matrix<double, 18, 1> ue;
+    for (int a = 0; a < 6; ++a) ue.segment<3>(3 * a) = u.anti[0].row(t[a]).transpose();
+    const Eigen::Matrix<double, 18, 1> fe = harmonic_element_stiffness(coords(s, e), m, 0) * ue;
+    for (int a = 0; a < 6; ++a) R.row(t[a]) += fe.segment<3>(3 * a).transpose();
+  }
+  for (std::size_t i = 0; i < s.n_nodes(); ++i)
+    if (!clamped[i]) R.row(static_cast<Eigen::Index>(i)).setZero();
+  return moment_z(s, R);
 }
 
 }  // namespace sw

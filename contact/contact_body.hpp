@@ -1,0 +1,72 @@
+#pragma once
+// The flexspline body as the loaded contact sees it: the influence coefficients of the contacts' load patterns, read
+// off either model of the flexspline (contact/tet10_body.hpp: the TET10 mesh's one factorisation;
+// contact/harmonic_body.hpp: the harmonic solver's meridian section). The contact problem itself
+// (contact/loaded_contact.hpp) does not know which.
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "fem/flexspline_analysis.hpp"
+
+namespace sw {
+
+/// Where a contact's load acts, described for either model to build: 1 N along `force_dir` (in the generator's frame)
+/// at the point `contact_radius_m` out on the radial line at stations_rad[0], carried down a rigid tooth to the rim's
+/// outer surface (force and moment about the tooth's foot, spread one tooth pitch wide; contact/README.md), and the
+/// same turned by π at stations_rad[1] when the tooth has a half-turn partner. Scaled by `scale`.
+struct FlankPattern {
+  std::vector<double> stations_rad;
+  Eigen::Vector2d force_dir = Eigen::Vector2d::Zero();
+  double contact_radius_m = 0;
+  int slice = -1;     ///< axial slice of the face (of ContactBody::influence's `slices`); −1: the whole face
+  double scale = 1;
+};
+
+/// Axial range (from the closed end) of slice j of n of the toothed face (the whole face for n = 1).
+inline std::pair<double, double> face_slice_m(const FlexsplineParams& f, int j, int n) {
+  const double face = f.rim_width_m, lo = f.length_m - face;
+  return {lo + face * j / n, lo + face * (j + 1) / n};
+}
+
+/// The independent check of a body's influence coefficients at one loaded state.
+struct BodyCheck {
+  double superposition_error_rel = 0;  ///< |direct − influence| over the largest displacement
+  double clamp_reaction_torque_Nm = 0;  ///< moment about the axis of the clamp's reaction
+};
+
+/// The coefficients of patterns, then of the generator's stations (one unknown per station pair).
+struct BodyInfluence {
+  Eigen::MatrixXd A;       ///< work-conjugate displacement of each per unit force of each (m/N), symmetric
+  /// Lever of each (m): the output torque a unit force of it carries, minus the moment about the axis of its load on
+  /// the flexspline (the contact problem's λ).
+  Eigen::VectorXd lever;
+  /// The loads x (per column of A) applied to the body in one direct solve, read back independently of A.
+  std::function<BodyCheck(const Eigen::VectorXd& x)> check;
+};
+
+/// The generator's stations on the bore (angles of the pairs' first stations, their hats' half-width).
+struct BodyStations {
+  bool unilateral = false;  ///< a cam or rollers (contact), else the force idealisation (held radially)
+  std::vector<double> angle_rad;
+  double half_width_rad = 0;
+};
+
+class ContactBody {
+public:
+  virtual ~ContactBody() = default;
+  /// "tet10" or "fourier": which model of the flexspline the coefficients come from.
+  virtual std::string solver() const = 0;
+  virtual const BodyStations& stations() const = 0;
+  /// The influence coefficients of `patterns` on the face cut into `slices` axial slices (a pattern's slice, or the
+  /// whole face), and of the generator's stations after them.
+  virtual BodyInfluence influence(const std::vector<FlankPattern>& patterns, int slices) const = 0;
+  /// The rim's neutral curves of the generator case at axial sections z_m (from the closed end); empty when the
+  /// body has no generator field at hand (a solution read back from result.json).
+  virtual std::vector<NeutralCurveSamples> generator_curves_at(const std::vector<double>& z_m) const = 0;
+};
+
+}  // namespace sw

@@ -1,9 +1,10 @@
-// `strainwave sweep CASE.toml --set KEY=FROM:TO:N [...] [--shard K/N]`: the case over a grid of one or more keys.
-// Each point is a case file of its own (the base case with the keys set) under point_NNNN/, solved by `strainwave fem`
-// in a child process (points run in parallel, --jobs at a time), its result.json kept. A point whose result.json is
-// there for the same case text is finished and not rerun, so an interrupted sweep resumes; --shard K/N runs the points
-// i with i mod N = K − 1 only (a cluster's job array), and a call without --shard then runs what is left and merges
-// everything into sweep.csv and sweep.svg.
+// `strainwave sweep CASE.toml --set KEY=FROM:TO:N [...] [--shard K/N] [--contact]`: the case over a grid of one or
+// more keys. Each point is a case file of its own (the base case with the keys set) under point_NNNN/, solved by
+// `strainwave fem` in a child process (points run in parallel, --jobs at a time), its result.json kept; with --contact
+// by `strainwave contact` (which solves the FEM itself), its contact.json kept beside result.json. A point whose files
+// are there for the same case text is finished and not rerun, so an interrupted sweep resumes; --shard K/N runs the
+// points i with i mod N = K − 1 only (a cluster's job array), and a call without --shard then runs what is left and
+// merges everything into sweep.csv and sweep.svg.
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -14,7 +15,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
+#include <numbers>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -24,10 +28,12 @@
 #include "app/fem_job.hpp"
 #include "common/error.hpp"
 #include "common/progress.hpp"
+#include "common/svg_plot.hpp"
+#include "contact/loaded_contact.hpp"
 #include "io/atomic_file.hpp"
 #include "io/case.hpp"
+#include "io/contact_output.hpp"
 #include "io/fem_output.hpp"
-#include "common/svg_plot.hpp"
 
 extern char** environ;
 
@@ -106,11 +112,22 @@ std::string read_text(const fs::path& p) {
   return s.str();
 }
 
-/// A finished point: its result.json reads and was made from this case text.
-bool finished(const fs::path& dir, const std::string& case_text) {
-  if (read_text(dir / "case.toml") != case_text || !fs::exists(dir / "result.json")) return false;
+struct SweepOptions {
+  std::string case_path, out, shard, solver;
+  std::vector<std::string> sets;
+  int jobs = 0;
+  bool contact = false;  ///< each point runs `strainwave contact` (the FEM and the drive's loaded contact)
+};
+
+/// The command each point runs.
+std::string point_command(const SweepOptions& o) { return o.contact ? "contact" : "fem"; }
+
+/// A finished point: its result.json (and with --contact its contact.json) reads and was made from this case text.
+bool finished(const fs::path& dir, const std::string& case_text, const SweepOptions& o) {
+  if (read_text(dir / "case.toml") != case_text) return false;
   try {
     (void)read_fem_result(dir / "result.json");
+    if (o.contact) (void)read_contact_result(dir / "contact.json");
     return true;
   } catch (const InputError&) {
     return false;
@@ -130,18 +147,47 @@ std::string point_name(std::size_t i) {
   return b;
 }
 
-/// Runs `strainwave fem` on every point in `todo`, `jobs` at a time; returns the points that failed.
-std::vector<const Point*> run_points(const std::vector<const Point*>& todo, int jobs, const std::string& solver) {
+/// The point's log: what its child process printed (COMMAND.log in its folder).
+fs::path point_log(const Point& p, const SweepOptions& o) { return p.dir / (point_command(o) + ".log"); }
+
+/// This process's environment for the children, OPENBLAS_NUM_THREADS set to the cores shared out over `jobs`.
+std::vector<std::string> child_environment(int jobs) {
+  const int cores = std::max(1u, std::thread::hardware_concurrency());
+  const std::string threads = std::to_string(std::max(1, cores / std::max(1, jobs)));
+  std::vector<std::string> env;
+  for (char** e = environ; *e; ++e)
+    if (std::string(*e).rfind("OPENBLAS_NUM_THREADS=", 0) != 0) env.emplace_back(*e);
+  env.push_back("OPENBLAS_NUM_THREADS=" + threads);
+  return env;
+}
+
+/// Starts `strainwave fem` (with --contact `strainwave contact`) on the point in a child process writing its output
+/// to the point's log; returns its process id.
+pid_t start_point(const Point& p, const SweepOptions& o, const std::string& self, char* const* env) {
+  std::vector<std::string> args = {self, point_command(o), (p.dir / "case.toml").string(), "--out", p.dir.string(),
+                                   "--no-vtk", "--quiet"};
+  if (!o.solver.empty()) args.insert(args.end(), {"--solver", o.solver});
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  const std::string log = point_log(p, o).string();
+  posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&fa, 1, 2);
+  pid_t pid = 0;
+  const int rc = posix_spawn(&pid, self.c_str(), &fa, nullptr, argv.data(), env);
+  posix_spawn_file_actions_destroy(&fa);
+  if (rc != 0) throw std::runtime_error("cannot start " + self + " for " + p.dir.string());
+  return pid;
+}
+
+/// Runs every point in `todo`, `jobs` at a time; returns the points that failed.
+std::vector<const Point*> run_points(const std::vector<const Point*>& todo, int jobs, const SweepOptions& o) {
   std::vector<const Point*> failed;
   std::map<pid_t, const Point*> running;
   const std::string self = fs::read_symlink("/proc/self/exe").string();
-  // Threads per child: the cores shared out.
-  const int cores = std::max(1u, std::thread::hardware_concurrency());
-  const std::string threads = std::to_string(std::max(1, cores / std::max(1, jobs)));
-  std::vector<std::string> env_s;
-  for (char** e = environ; *e; ++e)
-    if (std::string(*e).rfind("OPENBLAS_NUM_THREADS=", 0) != 0) env_s.emplace_back(*e);
-  env_s.push_back("OPENBLAS_NUM_THREADS=" + threads);
+  std::vector<std::string> env_s = child_environment(jobs);
   std::vector<char*> env;
   for (auto& s : env_s) env.push_back(s.data());
   env.push_back(nullptr);
@@ -161,30 +207,65 @@ std::vector<const Point*> run_points(const std::vector<const Point*>& todo, int 
   while (next < todo.size() || !running.empty()) {
     while (next < todo.size() && static_cast<int>(running.size()) < jobs) {
       const Point* p = todo[next++];
-      std::vector<std::string> args = {self, "fem", (p->dir / "case.toml").string(), "--out", p->dir.string(),
-                                       "--no-vtk", "--quiet"};
-      if (!solver.empty()) args.insert(args.end(), {"--solver", solver});
-      std::vector<char*> argv;
-      for (auto& a : args) argv.push_back(a.data());
-      argv.push_back(nullptr);
-      posix_spawn_file_actions_t fa;
-      posix_spawn_file_actions_init(&fa);
-      const std::string log = (p->dir / "fem.log").string();
-      posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-      posix_spawn_file_actions_adddup2(&fa, 1, 2);
-      pid_t pid = 0;
-      const int rc = posix_spawn(&pid, self.c_str(), &fa, nullptr, argv.data(), env.data());
-      posix_spawn_file_actions_destroy(&fa);
-      if (rc != 0) throw std::runtime_error("cannot start " + self + " for " + p->dir.string());
-      running[pid] = p;
+      running[start_point(*p, o, self, env.data())] = p;
     }
     if (!running.empty()) wait_one();
   }
   return failed;
 }
 
+constexpr double kArcmin = 10800.0 / std::numbers::pi;
+
+/// A point's drive figures, from its contact.json (`strainwave contact`), in the file's units.
+struct DriveFigures {
+  double t1_Nm = 0, t2_Nm = 0;  ///< the three segments' breakpoints (contact.json `catalog`)
+  double twist_at_t1_arcmin = 0, twist_at_t2_arcmin = 0, twist_at_rated_arcmin = 0;
+  double k1_Nm_per_rad = 0, k2_Nm_per_rad = 0, k3_Nm_per_rad = 0;
+  double lost_motion_arcmin = 0, play_arcmin = 0;
+  double max_flank_force_at_rated_N = 0;  ///< the largest force on one flank at +rated torque
+  double split_body = 0, split_teeth = 0, split_generator = 0, split_circular_spline = 0;
+};
+
+/// The drive figures of a contact.json: the twist at T1 and T2 read on the middle line of its torque–twist loop, the
+/// rest as the file gives them. Throws InputError naming the file as its readers do.
+DriveFigures drive_figures(const fs::path& contact_json) {
+  const ContactResult r = read_contact_result(contact_json);
+  const TorqueTwist curve = read_contact_curve(contact_json).middle_line;
+  DriveFigures d;
+  d.t1_Nm = r.catalog.T1_Nm;
+  d.t2_Nm = r.catalog.T2_Nm;
+  d.twist_at_t1_arcmin = naming_file(contact_json.string(), [&] { return twist_at(curve, d.t1_Nm); }) * kArcmin;
+  d.twist_at_t2_arcmin = naming_file(contact_json.string(), [&] { return twist_at(curve, d.t2_Nm); }) * kArcmin;
+  d.twist_at_rated_arcmin = r.twist_at_rated_arcmin;
+  d.k1_Nm_per_rad = r.catalog.K1_Nm_per_rad;
+  d.k2_Nm_per_rad = r.catalog.K2_Nm_per_rad;
+  d.k3_Nm_per_rad = r.catalog.K3_Nm_per_rad;
+  d.lost_motion_arcmin = r.lost_motion_arcmin;
+  d.play_arcmin = r.play_arcmin;
+  for (const auto& f : r.flanks)
+    d.max_flank_force_at_rated_N = std::max(d.max_flank_force_at_rated_N, f.force_at_plus_rated_N);
+  d.split_body = r.compliance_split.body;
+  d.split_teeth = r.compliance_split.teeth;
+  d.split_generator = r.compliance_split.generator;
+  d.split_circular_spline = r.compliance_split.circular_spline;
+  return d;
+}
+
+/// What a point gave: the FEM's result.json, and with --contact the drive's figures.
+struct PointResult {
+  FemResult fem;
+  std::optional<DriveFigures> drive;
+};
+
 /// A figure of a point's result; NaN where the point has none (no generator).
-using ResultFigure = double (*)(const FemResult&);
+using PointFigure = std::function<double(const PointResult&)>;
+
+PointFigure of_fem(double (*figure)(const FemResult&)) {
+  return [figure](const PointResult& r) { return figure(r.fem); };
+}
+PointFigure of_drive(double DriveFigures::*figure) {
+  return [figure](const PointResult& r) { return r.drive ? (*r.drive).*figure : std::nan(""); };
+}
 
 double phi0(const FemResult& r) { return r.phi0_rad; }
 double compliance(const FemResult& r) { return r.compliance_rad_per_Nm; }
@@ -198,24 +279,48 @@ double total_time(const FemResult& r) { return r.timings_s.total; }
 
 struct Column {
   std::string name;
-  ResultFigure value;
-};
-const std::vector<Column> kColumns = {
-    {"phi0_rad", phi0},
-    {"compliance_rad_per_Nm", compliance},
-    {"max_hoop_stress_Pa", max_hoop_stress},
-    {"min_hoop_stress_Pa", min_hoop_stress},
-    {"generator_total_radial_force_N", generator_force},
-    {"generator_w0_mm", generator_w0},
-    {"total_s", total_time},
+  PointFigure value;
 };
 
+/// sweep.csv's figures: the FEM's, then with --contact the drive's (named as their keys in contact.json where the
+/// file has them).
+std::vector<Column> csv_columns(bool drive) {
+  std::vector<Column> c = {{"phi0_rad", of_fem(phi0)},
+                           {"compliance_rad_per_Nm", of_fem(compliance)},
+                           {"max_hoop_stress_Pa", of_fem(max_hoop_stress)},
+                           {"min_hoop_stress_Pa", of_fem(min_hoop_stress)},
+                           {"generator_total_radial_force_N", of_fem(generator_force)},
+                           {"generator_w0_mm", of_fem(generator_w0)},
+                           {"total_s", of_fem(total_time)}};
+  if (!drive) return c;
+  using D = DriveFigures;
+  for (const auto& [name, figure] : std::vector<std::pair<std::string, double D::*>>{
+           {"catalog.T1_Nm", &D::t1_Nm},
+           {"catalog.T2_Nm", &D::t2_Nm},
+           {"twist_at_T1_arcmin", &D::twist_at_t1_arcmin},
+           {"twist_at_T2_arcmin", &D::twist_at_t2_arcmin},
+           {"twist_at_rated_arcmin", &D::twist_at_rated_arcmin},
+           {"catalog.K1_Nm_per_rad", &D::k1_Nm_per_rad},
+           {"catalog.K2_Nm_per_rad", &D::k2_Nm_per_rad},
+           {"catalog.K3_Nm_per_rad", &D::k3_Nm_per_rad},
+           {"lost_motion_arcmin", &D::lost_motion_arcmin},
+           {"play_arcmin", &D::play_arcmin},
+           {"max_flank_force_at_rated_N", &D::max_flank_force_at_rated_N},
+           {"compliance_split.body", &D::split_body},
+           {"compliance_split.teeth", &D::split_teeth},
+           {"compliance_split.generator", &D::split_generator},
+           {"compliance_split.circular_spline", &D::split_circular_spline}})
+    c.push_back({name, of_drive(figure)});
+  return c;
+}
+
 std::string sweep_csv(const std::vector<SweepAxis>& axes, const std::vector<Point>& points,
-                      const std::vector<FemResult>& results) {
+                      const std::vector<PointResult>& results) {
+  const std::vector<Column> columns = csv_columns(results.front().drive.has_value());
   std::ostringstream s;
   s << "point";
   for (const auto& a : axes) s << "," << a.name();
-  for (const auto& c : kColumns) s << "," << c.name;
+  for (const auto& c : columns) s << "," << c.name;
   s << "\n";
   char buf[64];
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -224,7 +329,7 @@ std::string sweep_csv(const std::vector<SweepAxis>& axes, const std::vector<Poin
       std::snprintf(buf, sizeof buf, ",%.10g", v);
       s << buf;
     }
-    for (const auto& c : kColumns) {
+    for (const auto& c : columns) {
       std::snprintf(buf, sizeof buf, ",%.9e", c.value(results[i]));
       s << buf;
     }
@@ -233,19 +338,28 @@ std::string sweep_csv(const std::vector<SweepAxis>& axes, const std::vector<Poin
   return s.str();
 }
 
-/// Four panels (φ₀, C_τ, max hoop stress, generator force) against the first key; one line per combination of the
-/// other keys.
+struct Panel {
+  std::string title;
+  PointFigure value;
+  double scale;  ///< to the unit in the title
+};
+
+/// sweep.svg's panels: φ₀, C_τ, max hoop stress, generator force; with --contact the twist at rated torque and K3.
+std::vector<Panel> svg_panels(bool drive) {
+  std::vector<Panel> panels = {{"φ₀ (rad)", of_fem(phi0), 1.0},
+                               {"C_τ (rad/(N·m))", of_fem(compliance), 1.0},
+                               {"max hoop stress (MPa)", of_fem(max_hoop_stress), 1e-6},
+                               {"generator radial force (N)", of_fem(generator_force), 1.0}};
+  if (drive) {
+    panels.push_back({"twist at rated torque (arcmin)", of_drive(&DriveFigures::twist_at_rated_arcmin), 1.0});
+    panels.push_back({"K3 (N·m/rad)", of_drive(&DriveFigures::k3_Nm_per_rad), 1.0});
+  }
+  return panels;
+}
+
+/// The panels against the first key; one line per combination of the other keys.
 std::string sweep_svg(const std::vector<SweepAxis>& axes, const std::vector<Point>& points,
-                      const std::vector<FemResult>& results) {
-  struct Panel {
-    std::string title;
-    ResultFigure value;
-    double scale;  ///< to the unit in the title
-  };
-  const std::vector<Panel> panels = {{"φ₀ (rad)", phi0, 1.0},
-                                     {"C_τ (rad/(N·m))", compliance, 1.0},
-                                     {"max hoop stress (MPa)", max_hoop_stress, 1e-6},
-                                     {"generator radial force (N)", generator_force, 1.0}};
+                      const std::vector<PointResult>& results) {
   static const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e377c2"};
   const std::size_t per_line = axes[0].values.size(), lines = points.size() / per_line;
   Figure f;
@@ -253,7 +367,7 @@ std::string sweep_svg(const std::vector<SweepAxis>& axes, const std::vector<Poin
   for (std::size_t k = 1; k < axes.size(); ++k) head += (k == 1 ? " (lines: " : ", ") + axes[k].name();
   f.header = {head + (axes.size() > 1 ? ")" : "")};
   f.columns = 2;
-  for (const auto& panel : panels) {
+  for (const auto& panel : svg_panels(results.front().drive.has_value())) {
     LinePlot p;
     p.title = panel.title;
     p.x_label = axes[0].name();
@@ -295,9 +409,17 @@ std::pair<int, int> parse_shard(const std::string& shard) {
   return {shard_k, shard_n};
 }
 
-/// The grid's points, first key slowest; each point's case is validated before anything runs.
+/// Refuses, in one line naming the case, a case `strainwave contact` cannot take (no [gear], no generator, no toothed
+/// face, explicit teeth), as that command does before any work: it solves on TET10 whatever the case's solver.method.
+void check_contact_case(Case c) {
+  c.solver.method = SolverMethod::Tet10;
+  naming_file(c.path, [&] { check_contact_model(flexspline_model(c)); });
+}
+
+/// The grid's points, first key slowest; each point's case is validated before anything runs (with --contact also
+/// as `strainwave contact` takes it).
 std::vector<Point> grid_points(const toml::table& base, const std::vector<SweepAxis>& axes, const fs::path& dir,
-                               const std::string& case_path, const std::string& solver) {
+                               const SweepOptions& o) {
   std::vector<Point> points;
   std::size_t total = 1;
   for (const auto& a : axes) total *= a.values.size();
@@ -312,25 +434,27 @@ std::vector<Point> grid_points(const toml::table& base, const std::vector<SweepA
     }
     p.dir = dir / point_name(i);
     p.case_text = point_case_text(base, axes, p.values);
-    Case pc = parse_case(p.case_text, "--set (point " + std::to_string(i) + " of " + case_path + ")");
-    apply_solver_option(pc, solver);
+    Case pc = parse_case(p.case_text, "--set (point " + std::to_string(i) + " of " + o.case_path + ")");
+    apply_solver_option(pc, o.solver);
+    if (o.contact) check_contact_case(pc);
     points.push_back(std::move(p));
   }
   return points;
 }
 
-/// The points of this shard not finished before, each with its case.toml written and an old result.json removed.
+/// The points of this shard not finished before, each with its case.toml written and its old outputs removed.
 std::vector<const Point*> points_to_run(const std::vector<Point>& points, std::pair<int, int> shard,
-                                       std::size_t& skipped) {
+                                       const SweepOptions& o, std::size_t& skipped) {
   std::vector<const Point*> todo;
   for (const auto& p : points) {
     if (static_cast<int>(p.index % static_cast<std::size_t>(shard.second)) != shard.first - 1) continue;
-    if (finished(p.dir, p.case_text)) {
+    if (finished(p.dir, p.case_text, o)) {
       ++skipped;
       continue;
     }
     fs::create_directories(p.dir);
     fs::remove(p.dir / "result.json");
+    fs::remove(p.dir / "contact.json");
     write_file_atomic(p.dir / "case.toml", p.case_text);
     todo.push_back(&p);
   }
@@ -338,33 +462,38 @@ std::vector<const Point*> points_to_run(const std::vector<Point>& points, std::p
 }
 
 /// One line naming how many points failed and the last line of the first one's log.
-InputError failed_points(const std::vector<const Point*>& failed) {
-  std::string lines = read_text(failed.front()->dir / "fem.log");
+InputError failed_points(const std::vector<const Point*>& failed, const SweepOptions& o) {
+  std::string lines = read_text(point_log(*failed.front(), o));
   while (!lines.empty() && lines.back() == '\n') lines.pop_back();
   const auto last = lines.rfind('\n');
   return InputError("sweep: " + std::to_string(failed.size()) + " point(s) failed, e.g. " +
                     failed.front()->dir.string() + ": " + (last == std::string::npos ? lines : lines.substr(last + 1)));
 }
 
-/// Every point's result.json merged into sweep.csv and sweep.svg.
-void merge_points(const fs::path& dir, const std::vector<SweepAxis>& axes, const std::vector<Point>& points) {
-  std::vector<FemResult> results;
-  for (const auto& p : points) results.push_back(read_fem_result(p.dir / "result.json"));
-  OutputSet outputs(dir, {"sweep.csv", "sweep.svg"});  // each point's folder is a set of its own (`strainwave fem`)
+/// Every point's result.json (and contact.json) merged into sweep.csv and sweep.svg.
+void merge_points(const fs::path& dir, const std::vector<SweepAxis>& axes, const std::vector<Point>& points,
+                  const SweepOptions& o) {
+  std::vector<PointResult> results;
+  for (const auto& p : points) {
+    PointResult r{read_fem_result(p.dir / "result.json"), std::nullopt};
+    if (o.contact) r.drive = drive_figures(p.dir / "contact.json");
+    results.push_back(std::move(r));
+  }
+  // Each point's folder is a set of its own (`strainwave fem` or `contact`).
+  OutputSet outputs(dir, {"sweep.csv", "sweep.svg"});
   write_file_atomic(outputs.staging() / "sweep.csv", sweep_csv(axes, points, results));
   write_file_atomic(outputs.staging() / "sweep.svg", sweep_svg(axes, points, results));
   outputs.commit();
-  std::printf("  wrote %s (sweep.csv, sweep.svg, %zu points' result.json)\n", dir.string().c_str(), points.size());
+  std::printf("  wrote %s (sweep.csv, sweep.svg, %zu points' %s)\n", dir.string().c_str(), points.size(),
+              o.contact ? "result.json and contact.json" : "result.json");
 }
-
-struct SweepOptions {
-  std::string case_path, out, shard, solver;
-  std::vector<std::string> sets;
-  int jobs = 0;
-};
 
 void run_sweep(const SweepOptions& o) {
   Case base_case = load_case(o.case_path);  // the base case must be valid itself
+  if (o.contact && !o.solver.empty())
+    throw InputError("--solver " + o.solver + ": with --contact each point runs `strainwave contact`, which chooses "
+                     "its own solver; leave out --solver");
+  if (o.contact) check_contact_case(base_case);
   toml::table base;
   try {
     base = toml::parse(case_file_toml(o.case_path), o.case_path);
@@ -377,23 +506,23 @@ void run_sweep(const SweepOptions& o) {
   const int jobs = o.jobs > 0 ? o.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const fs::path dir = o.out.empty() ? fs::path(default_out_dir(base_case).string() + "_sweep") : fs::path(o.out);
 
-  const std::vector<Point> points = grid_points(base, axes, dir, o.case_path, o.solver);
+  const std::vector<Point> points = grid_points(base, axes, dir, o);
   fs::create_directories(dir);
   std::size_t skipped = 0;
-  const std::vector<const Point*> todo = points_to_run(points, shard, skipped);
+  const std::vector<const Point*> todo = points_to_run(points, shard, o, skipped);
   progress("sweep: " + std::to_string(points.size()) + " points, " + std::to_string(skipped) +
            " finished before, " + std::to_string(todo.size()) + " to run, " + std::to_string(jobs) + " at a time");
   const double t0 = elapsed_s();
-  const auto failed = run_points(todo, jobs, o.solver);
+  const auto failed = run_points(todo, jobs, o);
   const double wall = elapsed_s() - t0;
-  if (!failed.empty()) throw failed_points(failed);
+  if (!failed.empty()) throw failed_points(failed, o);
   std::printf("sweep %s: %zu points run in %.2f s (%zu finished before)\n", o.case_path.c_str(), todo.size(), wall,
               skipped);
   if (shard.second > 1) {
     std::printf("  shard %d/%d done; run again without --shard to merge into sweep.csv\n", shard.first, shard.second);
     return;
   }
-  merge_points(dir, axes, points);
+  merge_points(dir, axes, points, o);
 }
 
 }  // namespace
@@ -407,6 +536,10 @@ void add_sweep_command(CLI::App& app) {
   cmd->add_option("--jobs", o.jobs, "points at a time (default: the machine's cores)");
   cmd->add_option("--solver", o.solver, "tet10 | fourier (overrides [solver] method)")
       ->check(CLI::IsMember({"tet10", "fourier"}));
+  cmd->add_flag("--contact", o.contact,
+                "run `strainwave contact` on each point (the FEM and the drive's loaded contact; the case needs [gear] "
+                "and a generator): sweep.csv adds the twist at T1, T2 and rated torque, K1..K3, lost motion, play, "
+                "the largest flank force and the compliance split, sweep.svg the twist at rated torque and K3");
   cmd->add_option("--out", o.out, "output directory (default out/<case stem>_sweep/)");
   cmd->callback([] { run_sweep(o); });
 }

@@ -1,13 +1,20 @@
 // `strainwave sweep` through the CLI: a 3 × 3 sweep gives the numbers of the 9 single runs, an interrupted sweep
-// (shards, a lost point) resumes without rerunning finished points, bad --set / --shard give one line and exit 2.
+// (shards, a lost point) resumes without rerunning finished points, bad --set / --shard give one line and exit 2;
+// --contact gives each point's drive figures as its contact.json has them and resumes the same way.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <numbers>
 #include <sstream>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -110,6 +117,8 @@ TEST(Sweep, ResumesAndMergesShards) {
   fs::remove_all(d);
 }
 
+// Bad --set / --shard, a case `contact` cannot take under --contact (no [gear]) and --solver beside --contact: one line,
+// exit 2, before any point's folder is made.
 TEST(Sweep, BadInputIsOneLine) {
   const fs::path d = fresh_dir("bad");
   write(d / "base.toml", tube_case(1.0, 10.0));
@@ -119,13 +128,121 @@ TEST(Sweep, BadInputIsOneLine) {
         {" --set wall_thickness_mm=0.8:1.2:3", "expected TABLE.KEY=FROM:TO:N"},
         {" --set flexspline.wall_thicknes_mm=0.8:1.2:3", "wall_thicknes_mm"},
         {" --set flexspline.wall_thickness_mm=-1:1.2:3", "wall_thickness_mm"},
-        {" --set flexspline.wall_thickness_mm=0.8:1.2:3 --shard 3/2", "--shard 3/2"}}) {
+        {" --set flexspline.wall_thickness_mm=0.8:1.2:3 --shard 3/2", "--shard 3/2"},
+        {" --set flexspline.wall_thickness_mm=0.8:1.2:3 --contact", "base.toml: contact needs a [gear] table"},
+        {" --set flexspline.wall_thickness_mm=0.8:1.2:3 --contact --solver fourier",
+         "--solver fourier: with --contact"}}) {
     const CommandRun r = run_strainwave(base + args);
     EXPECT_EQ(r.exit_code, 2) << args << ": " << r.output;
     EXPECT_NE(r.output.find(expect), std::string::npos) << args << ": " << r.output;
     EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
-    EXPECT_FALSE(fs::exists(d / "s" / "sweep.csv"));
+    EXPECT_FALSE(fs::exists(d / "s"));  // refused before any point's folder
   }
+  fs::remove_all(d);
+}
+
+// The designed size-14 cup on a coarse mesh (element size d/20, one layer, no clamp-corner grading, as the robustness
+// runs of `contact`): about 10 s a point on one core.
+fs::path coarse_cup14(const fs::path& dir) {
+  const fs::path designed = dir / "designed.toml", base = dir / "base.toml";
+  const CommandRun d = run_strainwave("design --size 14 --out " + designed.string());
+  if (d.exit_code != 0) throw std::runtime_error("design --size 14: " + d.output);
+  write(base, read_text(designed) + "\n[mesh]\nsize_mm = 1.778\nwall_layers = 1\ncorner_levels = 0\n");
+  return base;
+}
+
+/// sweep.csv's rows as column name → value.
+std::vector<std::map<std::string, double>> csv_rows(const fs::path& csv) {
+  std::ifstream in(csv);
+  std::string line, cell;
+  std::getline(in, line);
+  std::vector<std::string> names;
+  for (std::stringstream h(line); std::getline(h, cell, ',');) names.push_back(cell);
+  std::vector<std::map<std::string, double>> rows;
+  while (std::getline(in, line)) {
+    std::map<std::string, double> row;
+    std::stringstream r(line);
+    for (const auto& n : names)
+      if (std::getline(r, cell, ',')) row[n] = std::stod(cell);
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+/// The twist (arcmin) at `torque_Nm` on contact.json's torque_twist, linear between the points around it.
+double twist_on_curve_arcmin(const nlohmann::json& torque_twist, double torque_Nm) {
+  for (std::size_t i = 1; i < torque_twist.size(); ++i) {
+    const double t0 = torque_twist[i - 1]["torque_Nm"], t1 = torque_twist[i]["torque_Nm"];
+    if (t0 <= torque_Nm && torque_Nm <= t1 && t0 < t1) {
+      const double p0 = torque_twist[i - 1]["twist_rad"], p1 = torque_twist[i]["twist_rad"];
+      return (p0 + (p1 - p0) * (torque_Nm - t0) / (t1 - t0)) * 10800 / std::numbers::pi;
+    }
+  }
+  throw std::runtime_error("torque " + std::to_string(torque_Nm) + " outside the curve");
+}
+
+// sweep.csv prints 10 significant digits: a figure read back from it equals the file's to 1e-9 of its size.
+constexpr double kCsvDigits = 1e-9;
+
+void expect_csv_equals(double csv, double file, const std::string& what) {
+  EXPECT_NEAR(csv, file, kCsvDigits * std::max(1e-300, std::abs(file))) << what;
+}
+
+// Two wall thicknesses of a coarse designed cup with --contact: every drive column of sweep.csv is the point's
+// contact.json figure (the twist at T1 and T2 read on its torque–twist curve at contact.json's catalog T1 and T2, the
+// largest flank force at +rated the headline's), the thicker wall twists less, the plot has the drive's panels; a
+// second call reruns nothing, and a point that lost its contact.json is the only one run again.
+TEST(Sweep, ContactOutputsPerPointAndResume) {
+  const fs::path d = fresh_dir("contact");
+  const std::string sweep = "sweep " + coarse_cup14(d).string() +
+                            " --contact --jobs 2 --set flexspline.wall_thickness_mm=0.30:0.40:2 --out " +
+                            (d / "s").string();
+  CommandRun r = run_strainwave(sweep);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("2 points run"), std::string::npos) << r.output;
+  const auto rows = csv_rows(d / "s" / "sweep.csv");
+  ASSERT_EQ(rows.size(), 2u);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const fs::path point = d / "s" / ("point_000" + std::to_string(i));
+    const auto k = read_json(point / "contact.json");
+    const auto& row = rows[i];
+    for (const char* key : {"T1_Nm", "T2_Nm", "K1_Nm_per_rad", "K2_Nm_per_rad", "K3_Nm_per_rad"}) {
+      ASSERT_TRUE(row.count(std::string("catalog.") + key)) << key;
+      expect_csv_equals(row.at(std::string("catalog.") + key), k["catalog"][key], key);
+    }
+    for (const char* key : {"twist_at_rated_arcmin", "lost_motion_arcmin", "play_arcmin"}) {
+      ASSERT_TRUE(row.count(key)) << key;
+      expect_csv_equals(row.at(key), k[key], key);
+    }
+    for (const char* part : {"body", "teeth", "generator", "circular_spline"}) {
+      ASSERT_TRUE(row.count(std::string("compliance_split.") + part)) << part;
+      expect_csv_equals(row.at(std::string("compliance_split.") + part), k["compliance_split"][part], part);
+    }
+    expect_csv_equals(row.at("twist_at_T1_arcmin"), twist_on_curve_arcmin(k["torque_twist"], k["catalog"]["T1_Nm"]),
+                      "twist at T1");
+    expect_csv_equals(row.at("twist_at_T2_arcmin"), twist_on_curve_arcmin(k["torque_twist"], k["catalog"]["T2_Nm"]),
+                      "twist at T2");
+    double largest = 0;
+    for (const auto& f : k["flanks"]) largest = std::max(largest, f["force_at_plus_rated_N"].get<double>());
+    expect_csv_equals(row.at("max_flank_force_at_rated_N"), largest, "largest flank force");
+    expect_csv_equals(row.at("max_flank_force_at_rated_N"), k["torque_twist"].back()["max_pair_force_N"],
+                      "largest flank force, the last step's");
+    expect_csv_equals(row.at("phi0_rad"), read_json(point / "result.json")["phi0_rad"], "phi0");
+  }
+  EXPECT_LT(rows[1].at("twist_at_rated_arcmin"), rows[0].at("twist_at_rated_arcmin"));
+  const std::string svg = read_text(d / "s" / "sweep.svg");
+  EXPECT_NE(svg.find("twist at rated torque (arcmin)"), std::string::npos);
+  EXPECT_NE(svg.find("K3 (N·m/rad)"), std::string::npos);
+
+  r = run_strainwave(sweep);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("0 points run"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("2 finished before"), std::string::npos) << r.output;
+  fs::remove(d / "s" / "point_0001" / "contact.json");
+  r = run_strainwave(sweep);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("1 points run"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(d / "s" / "point_0001" / "contact.json"));
   fs::remove_all(d);
 }
 

@@ -410,9 +410,8 @@ std::pair<int, int> parse_shard(const std::string& shard) {
 }
 
 /// Refuses, in one line naming the case, a case `strainwave contact` cannot take (no [gear], no generator, no toothed
-/// face, explicit teeth), as that command does before any work: it solves on TET10 whatever the case's solver.method.
-void check_contact_case(Case c) {
-  c.solver.method = SolverMethod::Tet10;
+/// face, explicit teeth), as that command does before any work.
+void check_contact_case(const Case& c) {
   naming_file(c.path, [&] { check_contact_model(flexspline_model(c)); });
 }
 
@@ -490,9 +489,6 @@ void merge_points(const fs::path& dir, const std::vector<SweepAxis>& axes, const
 
 void run_sweep(const SweepOptions& o) {
   Case base_case = load_case(o.case_path);  // the base case must be valid itself
-  if (o.contact && !o.solver.empty())
-    throw InputError("--solver " + o.solver + ": with --contact each point runs `strainwave contact`, which chooses "
-                     "its own solver; leave out --solver");
   if (o.contact) check_contact_case(base_case);
   toml::table base;
   try {

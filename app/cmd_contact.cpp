@@ -28,8 +28,17 @@ struct ContactFem {
   FemReadout readout;   ///< of `job`'s solution, or read back
 };
 
-/// The FEM of an earlier run of the same case (--fem): the model is meshed and factorised again (the influence
-/// coefficients need the factor, which no file carries) and must have as many equations as that run's; the
+/// The refusal of an earlier run's result.json made from another model than the case's.
+InputError model_mismatch(const Case& c, const std::filesystem::path& result_json, std::int64_t made_from,
+                          std::int64_t gives) {
+  return InputError(result_json.string() + ": made from a model of " + std::to_string(made_from) + " equations, " +
+                    c.path + " gives " + std::to_string(gives) +
+                    "; run `strainwave fem` on this case again or leave out --fem");
+}
+
+/// The FEM of an earlier run of the same case (--fem): the model is meshed and factorised again, or its harmonics
+/// solved again (the influence coefficients need the factor or the bands' responses, which no file carries), and must
+/// have as many equations as that run's; the
 /// generator-deformed neutral curve and C_τ are read back instead of solving the load cases again (no field: the
 /// face is taken at its centre).
 ContactFem fem_from_run(const Case& c, const std::filesystem::path& result_json, double max_memory_gb) {
@@ -51,6 +60,9 @@ ContactFem fem_from_run(const Case& c, const std::filesystem::path& result_json,
     const FlexsplineModel m = flexspline_model(c);
     auto harmonic = std::make_shared<FourierSolution>(
         analyse_flexspline_fourier(m, 0, contact_band_request(m, c.contact.face_slices)));
+    std::int64_t equations = 0;
+    for (const HarmonicStats& h : harmonic->harmonics) equations += h.equations;
+    if (equations != run.equations) throw model_mismatch(c, result_json, run.equations, equations);
     if (harmonic->stations) fem.readout.generator_obstacle_m = harmonic->figures.generator->obstacle_m;
     fem.job.harmonic = std::move(harmonic);
     return fem;
@@ -59,9 +71,7 @@ ContactFem fem_from_run(const Case& c, const std::filesystem::path& result_json,
   auto mesh = std::make_shared<const TetMesh>(mesh_for_case(c, max_memory_gb));
   auto system = std::make_shared<const FlexsplineSystem>(assemble_and_factorise(flexspline_model(c), *mesh));
   if (system->dofs.n_equations != run.equations)
-    throw InputError(result_json.string() + ": made from a model of " + std::to_string(run.equations) +
-                     " equations, " + c.path + " gives " + std::to_string(system->dofs.n_equations) +
-                     "; run `strainwave fem` on this case again or leave out --fem");
+    throw model_mismatch(c, result_json, run.equations, system->dofs.n_equations);
   if (cam_of(w)) fem.readout.generator_obstacle_m = generator_stations(flexspline_model(c), *mesh).obstacle_m;
   fem.job.mesh = mesh;
   fem.job.system = system;

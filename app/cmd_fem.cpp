@@ -49,7 +49,13 @@ TetMesh mesh_for_case(const Case& c, double max_memory_gb) {
 
 void apply_solver_option(Case& c, const std::string& solver, const std::string& backend) {
   if (!backend.empty()) c.solver.backend = backend == "petsc" ? SolverBackend::Petsc : SolverBackend::Cholmod;
-  if (!solver.empty()) c.solver.method = solver == "fourier" ? SolverMethod::Fourier : SolverMethod::Tet10;
+  if (!solver.empty()) {
+    c.solver.method = solver == "fourier" ? SolverMethod::Fourier : SolverMethod::Tet10;
+    c.derived_from.erase("solver.method");
+  } else if (backend == "petsc" && c.derived_from.count("solver.method")) {  // "auto": petsc solves the TET10 model
+    c.solver.method = SolverMethod::Tet10;
+    c.derived_from["solver.method"] = "\"auto\": the petsc backend solves the TET10 model";
+  }
   if (solver.empty() && backend.empty()) return;
   if (c.solver.method == SolverMethod::Fourier && c.flexspline.teeth == TeethModel::Explicit)
     throw InputError(c.path + ": --solver fourier needs a body of revolution; flexspline.teeth = \"explicit\" is not "

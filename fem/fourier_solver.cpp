@@ -1,6 +1,7 @@
 #include "fem/fourier_solver.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <map>
@@ -1307,6 +1308,34 @@ private:
 };
 
 }  // namespace
+
+namespace {
+
+constexpr int kBaseHarmonics = 64;
+
+/// The three needs of default_harmonics: the base, the stations', the teeth's.
+std::array<int, 3> harmonic_needs(const FlexsplineModel& c) {
+  std::array<int, 3> need{kBaseHarmonics, 0, 0};
+  if (c.wave_generator && c.flexspline.inner_radius_m > 0 && c.mesh.size_m > 0)
+    need[1] = 2 * static_cast<int>(std::lround(kPi / station_spacing(c)));
+  if (c.gear && c.gear->teeth_flexspline > 0 && c.flexspline.teeth != TeethModel::None)
+    need[2] = (c.gear->teeth_flexspline + 1) / 2;
+  return need;
+}
+
+}  // namespace
+
+int default_harmonics(const FlexsplineModel& c) {
+  const auto need = harmonic_needs(c);
+  return std::max({need[0], need[1], need[2]});
+}
+
+std::string default_harmonics_origin(const FlexsplineModel& c) {
+  const auto need = harmonic_needs(c);
+  return "the largest of " + std::to_string(need[0]) + " (the base), " + std::to_string(need[1]) +
+         " (two per generator station pair) and " + std::to_string(need[2]) +
+         " (z_f/2: the teeth's flank patterns in the loaded contact)";
+}
 
 Eigen::Matrix<double, 18, 18> harmonic_element_stiffness(const Eigen::Matrix<double, 6, 2>& X, const Material& m,
                                                          int n) {

@@ -22,6 +22,7 @@
 // n ≥ 2: a = b = c = 0.
 #include <limits>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -33,6 +34,14 @@
 #include "mesh/tet_mesh.hpp"
 
 namespace sw {
+
+/// The harmonics a case needs (the default of solver.harmonics): 64, or more where the generator's contact stations
+/// need them (a hat of half-width Δ has its spectrum's main lobe up to 2π/Δ: two harmonics per station pair) or the
+/// teeth's flank patterns do (hats one tooth pitch wide: the loaded contact's twist at rated torque settles at
+/// z_f/2, contact/README.md).
+int default_harmonics(const FlexsplineModel& c);
+/// Where default_harmonics' value comes from, in words (for the resolved case).
+std::string default_harmonics_origin(const FlexsplineModel& c);
 
 /// Stiffness of a 6-node triangle of the section for harmonic n (18 × 18, dofs node-major (a, b, c)), N/m.
 Eigen::Matrix<double, 18, 18> harmonic_element_stiffness(const Eigen::Matrix<double, 6, 2>& X, const Material& m,

@@ -20,6 +20,7 @@
 #include "common/overloaded.hpp"
 #include "design/catalog.hpp"
 #include "dynamics/model.hpp"
+#include "fem/fourier_solver.hpp"
 #include "generator/cam_profile.hpp"
 #include "gear/tooth_profile.hpp"
 #include "io/json_file.hpp"
@@ -398,13 +399,27 @@ MeshParams read_mesh(TableReader r, const FlexsplineParams& f) {
   return m;
 }
 
-SolverParams read_solver(TableReader r) {
+/// [solver]: method "auto" (the default) takes the harmonic solver for a body of revolution and TET10 for explicit
+/// teeth or the petsc backend; harmonics left out are the case's need (fem/fourier_solver.hpp default_harmonics). Both
+/// resolved against the model read so far, their origins recorded in `derived`.
+SolverParams read_solver(TableReader r, const FlexsplineModel& model, std::map<std::string, std::string>& derived) {
   SolverParams s;
-  s.method = r.choice("method", "tet10", {"tet10", "fourier"}) == "fourier" ? SolverMethod::Fourier : SolverMethod::Tet10;
-  s.harmonics = r.integer("harmonics", s.harmonics, 0);
-  if (s.harmonics > 4096) r.fail_value("harmonics", s.harmonics, "must be <= 4096");
+  const std::string method = r.choice("method", "auto", {"auto", "tet10", "fourier"});
   const bool petsc = r.choice("backend", "cholmod", {"cholmod", "petsc"}) == "petsc";
   s.backend = petsc ? SolverBackend::Petsc : SolverBackend::Cholmod;
+  const bool explicit_teeth = model.flexspline.teeth == TeethModel::Explicit;
+  if (method == "auto") {
+    s.method = explicit_teeth || petsc ? SolverMethod::Tet10 : SolverMethod::Fourier;
+    derived["solver.method"] = std::string("\"auto\": ") +
+                               (explicit_teeth ? "explicit teeth are no body of revolution"
+                                : petsc        ? "the petsc backend solves the TET10 model"
+                                               : "the flexspline is a body of revolution (teeth \"ring\" or \"none\")");
+  } else {
+    s.method = method == "fourier" ? SolverMethod::Fourier : SolverMethod::Tet10;
+  }
+  s.harmonics = r.integer("harmonics", default_harmonics(model), 0);
+  if (s.harmonics > 4096) r.fail_value("harmonics", s.harmonics, "must be <= 4096");
+  if (!r.given("harmonics")) derived["solver.harmonics"] = default_harmonics_origin(model);
   r.reject_unknown();
   return s;
 }
@@ -623,7 +638,8 @@ Case case_of(const toml::table& root, const std::string& path) {
     c.wave_generator = read_wave_generator(TableReader(*t, "wave_generator", path), c.flexspline.inner_radius_m);
   c.load = read_load(TableReader(table("load") ? *table("load") : kEmpty, "load", path));
   c.mesh = read_mesh(TableReader(table("mesh") ? *table("mesh") : kEmpty, "mesh", path), c.flexspline);
-  c.solver = read_solver(TableReader(table("solver") ? *table("solver") : kEmpty, "solver", path));
+  c.solver = read_solver(TableReader(table("solver") ? *table("solver") : kEmpty, "solver", path),
+                         flexspline_model(c), c.derived_from);
   if (auto t = table("catalog")) c.catalog_size = read_catalog(TableReader(*t, "catalog", path));
   if (!c.load.rated_torque_Nm && c.catalog_size && catalog_drive(*c.catalog_size)->has_rated_torque()) {
     c.load.rated_torque_Nm = catalog_drive(*c.catalog_size)->rated_torque_Nm;

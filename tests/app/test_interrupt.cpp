@@ -121,8 +121,9 @@ struct FemChild {
     sigaddset(&defaults, SIGTERM);
     posix_spawnattr_setsigdefault(&attributes, &defaults);
     posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGDEF);
-    std::vector<std::string> args = {strainwave_binary(), "fem", (work_root() / "tube.toml").string(), "--out",
-                                     (work_root() / "case").string()};
+    // On TET10: its phases (meshing, factorising, output) each take long enough to be interrupted in.
+    std::vector<std::string> args = {strainwave_binary(), "fem", (work_root() / "tube.toml").string(), "--solver",
+                                     "tet10", "--out", (work_root() / "case").string()};
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);

@@ -1,0 +1,131 @@
+// bench_contact_solvers: the loaded contact end to end on both models of the flexspline, side by side in one run.
+//   1. DGEMM rate of the loaded BLAS (the limit for the TET10 factor).
+//   2. `strainwave contact CASE --solver fourier` and `--solver tet10` for each case (default: the seed cup and
+//      cup_size17): wall clock of the whole command, and the answers beside each other (twist at T1, T2 and rated
+//      torque, K1..K3 at the same breakpoints, the largest flank force at rated and the flank forces' largest
+//      difference over it, the generator's station forces at rated).
+//   3. `strainwave run` on the seed cup (the harmonic path: fem, backlash, contact).
+//   4. A drive sweep (`sweep --contact`) of --sweep-points designs of cup_size17 (its rim thickness ±20 %).
+// Each command is a child process; wall clock, so say so when the machine was shared.
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "bench_util.hpp"
+#include "dgemm.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+constexpr double kArcmin = 10800.0 / 3.141592653589793;
+
+/// Runs `strainwave ARGS` quietly; its wall clock (s). Throws when it fails.
+double timed(const std::string& args) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::string cmd = std::string(SW_STRAINWAVE_BINARY) + " " + args + " --quiet > /dev/null 2>&1";
+  const int rc = std::system(cmd.c_str());
+  if (rc != 0) throw std::runtime_error("failed (" + std::to_string(WEXITSTATUS(rc)) + "): " + cmd);
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+nlohmann::json read_json(const fs::path& p) {
+  std::ifstream in(p);
+  return nlohmann::json::parse(in);
+}
+
+/// Twist (rad) of a contact.json curve at torque T (linear between its points).
+double twist_at(const nlohmann::json& k, double T) {
+  const auto& c = k["torque_twist"];
+  for (std::size_t i = 1; i < c.size(); ++i) {
+    const double t0 = c[i - 1]["torque_Nm"], t1 = c[i]["torque_Nm"];
+    if (T >= t0 && T <= t1 && t1 > t0)
+      return c[i - 1]["twist_rad"].get<double>() +
+             (T - t0) / (t1 - t0) * (c[i]["twist_rad"].get<double>() - c[i - 1]["twist_rad"].get<double>());
+  }
+  return NAN;
+}
+
+/// K1..K3 of a curve at breakpoints T1, T2 and rated torque TR (the catalog's three secant segments).
+std::array<double, 3> stiffness(const nlohmann::json& k, double T1, double T2, double TR) {
+  const double p1 = twist_at(k, T1), p2 = twist_at(k, T2), p3 = twist_at(k, TR);
+  return {T1 / p1, (T2 - T1) / (p2 - p1), (TR - T2) / (p3 - p2)};
+}
+
+/// The largest flank force at +rated, and the largest difference of the two runs' flank forces (same flanks by tooth,
+/// flank and slice) over it.
+std::pair<double, double> flank_forces(const nlohmann::json& a, const nlohmann::json& b) {
+  double largest = 0, diff = 0;
+  for (const auto& f : b["flanks"]) largest = std::max(largest, f["force_at_plus_rated_N"].get<double>());
+  for (const auto& f : a["flanks"])
+    for (const auto& g : b["flanks"])
+      if (f["tooth"] == g["tooth"] && f["flank"] == g["flank"] && f["slice"] == g["slice"])
+        diff = std::max(diff, std::abs(f["force_at_plus_rated_N"].get<double>() -
+                                       g["force_at_plus_rated_N"].get<double>()));
+  return {largest, diff};
+}
+
+void compare(const std::string& case_path, const fs::path& dir) {
+  const std::string stem = fs::path(case_path).stem().string();
+  const fs::path hf = dir / (stem + "_fourier"), ht = dir / (stem + "_tet10");
+  const double t_f = timed("contact " + case_path + " --solver fourier --no-vtk --out " + hf.string());
+  const double t_t = timed("contact " + case_path + " --solver tet10 --no-vtk --out " + ht.string());
+  const nlohmann::json f = read_json(hf / "contact.json"), t = read_json(ht / "contact.json");
+  const double T1 = t["catalog"]["T1_Nm"], T2 = t["catalog"]["T2_Nm"], TR = t["rated_torque_Nm"];
+  std::printf("%s: contact end to end fourier %.2f s, tet10 %.2f s (%.1fx)\n", case_path.c_str(), t_f, t_t, t_t / t_f);
+  std::printf("  %-28s %12s %12s %9s\n", "", "fourier", "tet10", "diff");
+  for (const auto& [name, T] : {std::pair<const char*, double>{"twist at T1 (arcmin)", T1}, {"twist at T2", T2},
+                                {"twist at rated", TR}}) {
+    const double a = twist_at(f, T) * kArcmin, b = twist_at(t, T) * kArcmin;
+    std::printf("  %-28s %12.4f %12.4f %+8.2f%%\n", name, a, b, 100 * (a / b - 1));
+  }
+  const auto kf = stiffness(f, T1, T2, TR), kt = stiffness(t, T1, T2, TR);
+  for (int i = 0; i < 3; ++i)
+    std::printf("  K%d at T1 %.3g, T2 %.3g (N·m/rad) %10.4g %12.4g %+8.2f%%\n", i + 1, T1, T2, kf[i], kt[i],
+                100 * (kf[i] / kt[i] - 1));
+  const auto [largest, diff] = flank_forces(f, t);
+  std::printf("  flank forces at rated: largest %.1f N, the runs' largest difference %.2f N (%.2f %% of it)\n", largest,
+              diff, 100 * diff / largest);
+  std::printf("  play %.4f vs %.4f arcmin, lost motion %.4f vs %.4f arcmin, split body %.3f vs %.3f\n",
+              f["play_arcmin"].get<double>(), t["play_arcmin"].get<double>(), f["lost_motion_arcmin"].get<double>(),
+              t["lost_motion_arcmin"].get<double>(), f["compliance_split"]["body"].get<double>(),
+              t["compliance_split"]["body"].get<double>());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"bench_contact_solvers: the loaded contact on the harmonic solver and on TET10, side by side"};
+  std::vector<std::string> cases = {"cases/seed_190_192.toml", "cases/cup_size17.toml"};
+  int sweep_points = 20;
+  app.add_option("cases", cases, "case files (TOML)");
+  app.add_option("--sweep-points", sweep_points, "designs in the drive sweep (0: none)");
+  CLI11_PARSE(app, argc, argv);
+  try {
+    std::printf("DGEMM (n = 2000): %.1f GF/s\n", sw::bench::dgemm_gflops(2000, 3));
+    sw::bench::TempDir dir("bench_contact_solvers_");
+    for (const std::string& c : cases) compare(c, dir.path());
+    std::printf("run cases/seed_190_192.toml (fourier: fem, backlash, contact): %.2f s\n",
+                timed("run cases/seed_190_192.toml --out " + (dir.path() / "run").string()));
+    if (sweep_points > 0) {
+      const std::string set = "flexspline.rim_thickness_mm=0.484:0.726:" + std::to_string(sweep_points);
+      std::printf("sweep --contact of %d designs (cup_size17, %s): %.1f s\n", sweep_points, set.c_str(),
+                  timed("sweep cases/cup_size17.toml --contact --set " + set + " --out " +
+                        (dir.path() / "sweep").string()));
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_contact_solvers: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,166 @@
+// The loaded contact on the harmonic solver against the same contact on TET10, on the shipped seed cup and the
+// designed size-17 cup at their default settings (the case's mesh; harmonics by default_harmonics): the drive's curve,
+// its three segments, the flank forces and the generator's zones; one circulant block against TET10 half solves; the
+// harmonic count the flank patterns need.
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <string>
+#include <tuple>
+
+#include <gtest/gtest.h>
+
+#include "app/contact_job.hpp"
+#include "contact/harmonic_body.hpp"
+#include "contact/loaded_contact.hpp"
+#include "contact/tet10_body.hpp"
+#include "fem/flexspline_analysis.hpp"
+#include "fem/fourier_solver.hpp"
+#include "fem/generator_contact.hpp"
+#include "io/case.hpp"
+#include "mesh/flexspline.hpp"
+
+namespace sw {
+namespace {
+
+constexpr double kArcmin = 10800.0 / M_PI;
+
+/// A case solved both ways, with the contact on each.
+struct BothWays {
+  Case c;
+  std::unique_ptr<TetMesh> mesh;
+  std::unique_ptr<FlexsplineSystem> system;
+  FlexsplineSolution tet10_fem;
+  std::unique_ptr<FourierSolution> fourier;
+  ContactAnalysis tet10, harmonic;
+};
+
+ContactOptions options_of(const Case& c) {
+  ContactOptions o;
+  o.rated_torque_Nm = c.load.rated_torque_Nm.value_or(c.load.torque_Nm);
+  o.series = app::series_parts(c);
+  return o;
+}
+
+const BothWays& both_ways(const std::string& path) {
+  static std::map<std::string, std::unique_ptr<BothWays>> solved;
+  auto& s = solved[path];
+  if (s) return *s;
+  s = std::make_unique<BothWays>();
+  s->c = load_case(path);
+  const FlexsplineModel m = flexspline_model(s->c);
+  const ContactOptions o = options_of(s->c);
+  s->mesh = std::make_unique<TetMesh>(mesh_flexspline(s->c.flexspline, s->c.gear, s->c.mesh));
+  s->system = std::make_unique<FlexsplineSystem>(assemble_and_factorise(m, *s->mesh));
+  s->tet10_fem = analyse_flexspline(m, *s->mesh, *s->system);
+  s->tet10 = analyse_contact(m, *s->mesh, *s->system, fem_readout(s->tet10_fem), o);
+  s->fourier = std::make_unique<FourierSolution>(analyse_flexspline_fourier(m, 0, contact_band_request(m, 1)));
+  s->harmonic = analyse_contact(m, HarmonicBody(m, *s->fourier), fem_readout(s->fourier->figures), o);
+  return *s;
+}
+
+/// The generator's zones at +rated: stations carrying force, joined over the circumference.
+std::vector<std::pair<double, double>> zones_at_rated(const ContactAnalysis& a, const std::vector<double>& angles,
+                                                      double spacing) {
+  StationForces f;
+  f.force_N = Eigen::Map<const Eigen::VectorXd>(a.steps.back().station_force_N.data(),
+                                                static_cast<Eigen::Index>(a.steps.back().station_force_N.size()));
+  f.gap_m = Eigen::VectorXd::Constant(f.force_N.size(), 1.0);
+  return contact_zones_deg(angles, touching(f, 0.0), spacing);
+}
+
+class BothSolvers : public ::testing::TestWithParam<const char*> {};
+
+// Twist at T1, T2 and rated torque within 1 %, K1..K3 at the same breakpoints within 2 %, the flank forces at rated
+// within 2 % of the largest, the same generator zones. Both at the case's own settings: the TET10 mesh is within
+// 0.5 % of the converged φ₀ (tests/app/test_cases.cpp), the harmonic count converged (below).
+TEST_P(BothSolvers, HarmonicContactMatchesTet10Contact) {
+  const BothWays& b = both_ways(GetParam());
+  const ContactAnalysis &t = b.tet10, &h = b.harmonic;
+  EXPECT_EQ(t.solver, "tet10");
+  EXPECT_EQ(h.solver, "fourier");
+  const double T1 = t.catalog.t1_Nm, T2 = t.catalog.t2_Nm, TR = t.rated_torque_Nm;
+  for (const double T : {T1, T2, TR}) {
+    const double rel = twist_at(h.curve, T) / twist_at(t.curve, T) - 1;
+    std::printf("%s: twist at %.3g N·m %.4f arcmin harmonic, %.4f tet10 (%+.2f %%)\n", GetParam(), T,
+                twist_at(h.curve, T) * kArcmin, twist_at(t.curve, T) * kArcmin, 100 * rel);
+    EXPECT_NEAR(rel, 0.0, 0.01) << "T = " << T;
+  }
+  const SegmentLaw kt = segment_law(t.curve, T1, T2, TR), kh = segment_law(h.curve, T1, T2, TR);
+  for (const auto& [name, a, c] : {std::tuple{"K1", kh.k1_Nm_per_rad, kt.k1_Nm_per_rad},
+                                   std::tuple{"K2", kh.k2_Nm_per_rad, kt.k2_Nm_per_rad},
+                                   std::tuple{"K3", kh.k3_Nm_per_rad, kt.k3_Nm_per_rad}}) {
+    std::printf("%s: %s %.5g harmonic, %.5g tet10 (%+.2f %%)\n", GetParam(), name, a, c, 100 * (a / c - 1));
+    EXPECT_NEAR(a / c, 1.0, 0.02) << name;
+  }
+  double largest = 0, diff = 0;
+  ASSERT_EQ(h.flanks.size(), t.flanks.size());
+  for (std::size_t i = 0; i < t.flanks.size(); ++i) {
+    ASSERT_EQ(h.flanks[i].tooth, t.flanks[i].tooth);
+    ASSERT_EQ(h.flanks[i].flank, t.flanks[i].flank);
+    largest = std::max(largest, t.steps.back().flank_force_N[i]);
+    diff = std::max(diff, std::abs(h.steps.back().flank_force_N[i] - t.steps.back().flank_force_N[i]));
+  }
+  std::printf("%s: flank forces at rated: largest %.1f N, largest difference %.2f N\n", GetParam(), largest, diff);
+  EXPECT_LT(diff, 0.02 * largest);
+  const auto& st = b.fourier->stations;
+  ASSERT_TRUE(st.has_value());
+  ASSERT_EQ(st->angle_rad.size(), b.tet10_fem.generator->station_angle_rad.size());
+  EXPECT_EQ(zones_at_rated(h, st->angle_rad, st->half_width_rad),
+            zones_at_rated(t, b.tet10_fem.generator->station_angle_rad, st->half_width_rad));
+  // The harmonic body's own checks: the quadrature of its hats against its closed-form moments, the balances.
+  EXPECT_LT(h.superposition_error_rel, 1e-8);
+  EXPECT_LT(h.torque_balance_error_rel, 1e-9);
+  EXPECT_NEAR(h.fem_reaction_torque_Nm / TR, 1.0, 1e-6);
+}
+
+INSTANTIATE_TEST_SUITE_P(Cases, BothSolvers,
+                         ::testing::Values("cases/seed_190_192.toml", "cases/cup_size17.toml"));
+
+/// A few of size 17's flank patterns (near the major axis, in the zone, at its edge).
+std::vector<FlankPattern> some_flanks(const ContactAnalysis& a) {
+  std::vector<FlankPattern> p;
+  for (std::size_t i = 0; i < a.flanks.size(); i += std::max<std::size_t>(1, a.flanks.size() / 6)) {
+    const FlankContact& f = a.flanks[i];
+    const Eigen::Vector2d dir(-std::sin(f.phi_rad), std::cos(f.phi_rad));  // tangential at the tooth
+    p.push_back({{f.phi_rad, f.phi_rad + M_PI}, dir, f.contact_radius_m});
+  }
+  return p;
+}
+
+// A circulant block (flank patterns among themselves) from the harmonics against the same block by TET10 half solves:
+// 1 % of its largest entry (the two models' discretisations of the rim under the teeth differ at that level).
+TEST(HarmonicContact, CirculantBlockMatchesTet10HalfSolves) {
+  const BothWays& b = both_ways("cases/cup_size17.toml");
+  const FlexsplineModel m = flexspline_model(b.c);
+  const std::vector<FlankPattern> p = some_flanks(b.tet10);
+  const Eigen::Index n = static_cast<Eigen::Index>(p.size());
+  const Eigen::MatrixXd At = Tet10Body(m, *b.mesh, *b.system, nullptr).influence(p, 1).A.topLeftCorner(n, n);
+  const Eigen::MatrixXd Ah = HarmonicBody(m, *b.fourier).influence(p, 1).A.topLeftCorner(n, n);
+  const double err = (Ah - At).cwiseAbs().maxCoeff() / At.cwiseAbs().maxCoeff();
+  std::printf("size 17: %lld flank patterns, block from harmonics vs TET10 half solves: %.2e of the largest entry\n",
+              static_cast<long long>(n), err);
+  EXPECT_LT(err, 0.01);
+}
+
+// The harmonic count the flank patterns need: doubling it from default_harmonics (z_f/2 = 100 on size 17) changes no
+// entry of the contact's influence matrix by more than 1e-3 of the largest (a hat one pitch wide has its spectrum's
+// main lobe up to z_f; the work-conjugate products fall as n⁻⁵ past z_f/(2π)).
+TEST(HarmonicContact, HalfTheToothCountOfHarmonicsIsEnough) {
+  const BothWays& b = both_ways("cases/cup_size17.toml");
+  FlexsplineModel m = flexspline_model(b.c);
+  const std::vector<FlankPattern> p = some_flanks(b.tet10);
+  const Eigen::MatrixXd A = HarmonicBody(m, *b.fourier).influence(p, 1).A;
+  m.solver.harmonics *= 2;
+  const FourierSolution twice = analyse_flexspline_fourier(m, 0, contact_band_request(m, 1));
+  const Eigen::MatrixXd A2 = HarmonicBody(m, twice).influence(p, 1).A;
+  ASSERT_EQ(A.rows(), A2.rows());
+  const double change = (A2 - A).cwiseAbs().maxCoeff() / A2.cwiseAbs().maxCoeff();
+  std::printf("size 17: harmonics %d -> %d change the influence matrix by %.2e of its largest entry\n",
+              b.fourier->harmonics_kept, m.solver.harmonics, change);
+  EXPECT_LT(change, 1e-3);
+}
+
+}  // namespace
+}  // namespace sw

@@ -510,12 +510,11 @@ std::vector<StepStudyLevel> loop_step_study(const LoadStep& step, const Friction
 }
 
 int converged_steps_per_quarter(const std::vector<StepStudyLevel>& study, double rel_tol) {
-  for (std::size_t k = 0; k + 1 < study.size(); ++k) {
-    const double coarse = study[k].loop.reading.hysteresis_loss_rad;
-    const double fine = study[k + 1].loop.reading.hysteresis_loss_rad;
-    if (std::abs(coarse - fine) <= rel_tol * std::abs(fine)) return study[k].steps_per_quarter;
-  }
-  return study.empty() ? 0 : study.back().steps_per_quarter;
+  if (study.empty()) return 0;
+  const double finest = study.back().loop.reading.hysteresis_loss_rad;
+  std::size_t k = study.size() - 1;
+  while (k > 0 && std::abs(study[k - 1].loop.reading.hysteresis_loss_rad - finest) <= rel_tol * std::abs(finest)) --k;
+  return study[k].steps_per_quarter;
 }
 
 }  // namespace sw

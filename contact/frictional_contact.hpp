@@ -134,8 +134,8 @@ struct StepStudyLevel {
 std::vector<StepStudyLevel> loop_step_study(const LoadStep& step, const FrictionalStep& start, double rated_torque_Nm,
                                             int first_steps, int levels, double rel_tol = 1e-6, int max_cycles = 10);
 
-/// The coarsest level whose hysteresis loss is within `rel_tol` of the next finer level's (relative to the finer's);
-/// the last level's step count when none is.
+/// The steps of the coarsest level from which every level's hysteresis loss is within `rel_tol` of the finest level's
+/// (relative to it; the loss need not converge monotonically: a contact closing inside a step moves it either way).
 int converged_steps_per_quarter(const std::vector<StepStudyLevel>& study, double rel_tol);
 
 }  // namespace sw

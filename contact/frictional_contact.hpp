@@ -73,7 +73,8 @@ FrictionalStep unloaded_state(const FrictionalContactProblem& p);
 /// Preconditions: the block compliance symmetric positive definite; `previous` of this problem (the same contacts).
 /// Throws InputError for μ_i < 0 (naming the contact and the value), when no contact can carry T (no normal arm of T's
 /// sign to close, as solve_contact), and when the fixed point does not converge (μ too large for a unique increment).
-FrictionalStep solve_frictional_step(const FrictionalContactProblem& p, double torque_Nm, const FrictionalStep& previous);
+FrictionalStep solve_frictional_step(const FrictionalContactProblem& p, double torque_Nm,
+                                     const FrictionalStep& previous);
 
 /// A load step: the state at output torque T from the previous state. solve_frictional_step on a problem, or a
 /// caller's own (one that also iterates a part of the problem per step, records what it needs).

@@ -110,9 +110,11 @@ LoadCycle last_load_cycle(const std::vector<double>& T) {
   for (std::size_t k = 0; k < c.bottom; ++k)
     if (T[k] >= T[c.top]) c.top = k;
   bool monotone = c.top < c.bottom && c.bottom < c.end;
-  for (std::size_t k = c.top; k < c.end; ++k) monotone = monotone && (k < c.bottom ? T[k + 1] <= T[k] : T[k + 1] >= T[k]);
+  for (std::size_t k = c.top; k < c.end; ++k)
+    monotone = monotone && (k < c.bottom ? T[k + 1] <= T[k] : T[k + 1] >= T[k]);
   if (!monotone)
-    throw std::invalid_argument("last_load_cycle: the path does not fall from its last top to its bottom and rise to its end");
+    throw std::invalid_argument(
+        "last_load_cycle: the path does not fall from its last top to its bottom and rise to its end");
   return c;
 }
 
@@ -129,7 +131,9 @@ TorqueLoop loop_branches(const std::vector<double>& T, const std::vector<double>
   return loop;
 }
 
-double loop_width_rad(const TorqueLoop& loop, double T) { return twist_at(loop.unloading, T) - twist_at(loop.loading, T); }
+double loop_width_rad(const TorqueLoop& loop, double T) {
+  return twist_at(loop.unloading, T) - twist_at(loop.loading, T);
+}
 
 double hysteresis_loss_rad(const TorqueLoop& loop) { return loop_width_rad(loop, 0.0); }
 

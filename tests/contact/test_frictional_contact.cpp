@@ -74,7 +74,8 @@ FrictionalContactProblem rim_problem(int teeth, double mu, double gap0 = 0.5e-6)
   const auto block = [&](const std::vector<Eigen::Vector2d>& da, const std::vector<Eigen::Vector2d>& db) {
     Eigen::MatrixXd C(n, n);
     for (int a = 0; a < n; ++a)
-      for (int b = 0; b < n; ++b) C(a, b) = c_rim * std::exp(-std::abs(theta[a] - theta[b]) / width_rad) * da[a].dot(db[b]);
+      for (int b = 0; b < n; ++b)
+        C(a, b) = c_rim * std::exp(-std::abs(theta[a] - theta[b]) / width_rad) * da[a].dot(db[b]);
     return C;
   };
   p.A = block(dn, dn) + c_n * Eigen::MatrixXd::Identity(n, n);
@@ -174,7 +175,8 @@ TEST(FrictionalContact, ToothPairMatchesHandSolution) {
   const double R = 0.03, alpha = 25 * M_PI / 180, mu = 0.15, T_R = 40;
   const double a = 6e-9, b = 1.5e-9, c = 8e-9, ln = R * std::cos(alpha), lt = -R * std::sin(alpha);
   const double gap[2] = {2e-6, 3e-6}, arm[2] = {ln, -ln};
-  const FrictionalContactProblem p = independent_contacts({{a, b, c, gap[0], arm[0], lt, mu}, {a, b, c, gap[1], arm[1], lt, mu}});
+  const FrictionalContactProblem p =
+      independent_contacts({{a, b, c, gap[0], arm[0], lt, mu}, {a, b, c, gap[1], arm[1], lt, mu}});
   const std::vector<double> T = cycle_torque_history(T_R, 3);
   const std::vector<FrictionalStep> h = solve_torque_history(p, T);
   double slip[2] = {0, 0};
@@ -408,7 +410,8 @@ TEST(FrictionalContact, StepStudyConverges) {
     EXPECT_EQ(study[k].steps_per_quarter, 5 << k);
     work_change.push_back(std::abs(study[k].loop.reading.friction_work_J - study[k - 1].loop.reading.friction_work_J));
   }
-  for (std::size_t k = 1; k < work_change.size(); ++k) EXPECT_LT(work_change[k], 0.75 * work_change[k - 1]) << "level " << k;
+  for (std::size_t k = 1; k < work_change.size(); ++k)
+    EXPECT_LT(work_change[k], 0.75 * work_change[k - 1]) << "level " << k;
   const double fine = study[4].loop.reading.hysteresis_loss_rad, coarser = study[3].loop.reading.hysteresis_loss_rad;
   EXPECT_NEAR(coarser / fine, 1.0, 1e-3);
   const int N = converged_steps_per_quarter(study, 1e-3);

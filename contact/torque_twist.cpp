@@ -101,6 +101,54 @@ double lost_motion_rad(const TorqueTwist& c, double T_R, double fraction) {
   return twist_at(c, fraction * T_R) - twist_at(c, -fraction * T_R);
 }
 
+LoadCycle last_load_cycle(const std::vector<double>& T) {
+  if (T.size() < 3) throw std::invalid_argument("last_load_cycle: a cycle needs 3 points or more");
+  LoadCycle c;
+  c.end = T.size() - 1;
+  for (std::size_t k = 0; k < T.size(); ++k)
+    if (T[k] <= T[c.bottom]) c.bottom = k;
+  for (std::size_t k = 0; k < c.bottom; ++k)
+    if (T[k] >= T[c.top]) c.top = k;
+  bool monotone = c.top < c.bottom && c.bottom < c.end;
+  for (std::size_t k = c.top; k < c.end; ++k)
+    monotone = monotone && (k < c.bottom ? T[k + 1] <= T[k] : T[k + 1] >= T[k]);
+  if (!monotone)
+    throw std::invalid_argument(
+        "last_load_cycle: the path does not fall from its last top to its bottom and rise to its end");
+  return c;
+}
+
+TorqueLoop loop_branches(const std::vector<double>& T, const std::vector<double>& psi, const LoadCycle& c,
+                         double zero_torque_Nm) {
+  assert(T.size() == psi.size() && c.end < T.size());
+  const auto add = [&](TorqueTwist& b, std::size_t k) {
+    b.torque_Nm.push_back(std::abs(T[k]) <= zero_torque_Nm ? 0.0 : T[k]);
+    b.twist_rad.push_back(psi[k]);
+  };
+  TorqueLoop loop;
+  for (std::size_t k = c.bottom + 1; k-- > c.top;) add(loop.unloading, k);
+  for (std::size_t k = c.bottom; k <= c.end; ++k) add(loop.loading, k);
+  return loop;
+}
+
+double loop_width_rad(const TorqueLoop& loop, double T) {
+  return twist_at(loop.unloading, T) - twist_at(loop.loading, T);
+}
+
+double hysteresis_loss_rad(const TorqueLoop& loop) { return loop_width_rad(loop, 0.0); }
+
+namespace {
+/// ∫T dψ along a branch in its order, trapezoids.
+double work_along(const TorqueTwist& b) {
+  double w = 0;
+  for (std::size_t k = 0; k + 1 < b.torque_Nm.size(); ++k)
+    w += 0.5 * (b.torque_Nm[k] + b.torque_Nm[k + 1]) * (b.twist_rad[k + 1] - b.twist_rad[k]);
+  return w;
+}
+}  // namespace
+
+double loop_area_J(const TorqueLoop& loop) { return work_along(loop.loading) - work_along(loop.unloading); }
+
 double SegmentLaw::twist_rad(double T) const {
   const double m = std::abs(T);
   const double a = std::min(m, t1_Nm), b = std::clamp(m - t1_Nm, 0.0, t2_Nm - t1_Nm), d = std::max(0.0, m - t2_Nm);

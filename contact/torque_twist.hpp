@@ -2,6 +2,7 @@
 // The torque–twist curve of a drive and its readings in the catalog's terms: three straight segments (K1 up to T1, K2
 // up to T2, K3 beyond), lost motion as catalogs measure it (twist between ±4 % of rated torque on the loop's middle
 // line, so it holds the elastic twist and any play), and the middle line of a loop measured both ways.
+#include <cstddef>
 #include <utility>
 #include <vector>
 
@@ -37,6 +38,37 @@ TorqueTwist middle_line(const TorqueTwist& loading, const TorqueTwist& unloading
 
 /// Twist between −fraction·T_R and +fraction·T_R (catalogs: 4 %), rad.
 double lost_motion_rad(const TorqueTwist& c, double rated_torque_Nm, double fraction = 0.04);
+
+/// A load cycle's two branches, each as a TorqueTwist (ascending torque): `unloading` traversed from the cycle's top
+/// down to its bottom, `loading` from the bottom back up. Without friction they coincide.
+struct TorqueLoop {
+  TorqueTwist loading, unloading;
+};
+
+/// Indices into a torque path (torques in the order applied) of its last full load cycle: the last top (the largest
+/// torque before the bottom) before the bottom (the path's last smallest torque), and the path's end.
+struct LoadCycle {
+  std::size_t top = 0, bottom = 0, end = 0;
+};
+/// Throws std::invalid_argument unless the path falls monotonically from that top to the bottom and rises from there
+/// to its end (2 points or more each way).
+LoadCycle last_load_cycle(const std::vector<double>& torque_Nm);
+
+/// The branches of `cycle` on the path (torque_Nm, twist_rad); torques within `zero_torque_Nm` of zero stand at T = 0
+/// (the limits at zero: a vertical step through a dead band, its limit from below first).
+TorqueLoop loop_branches(const std::vector<double>& torque_Nm, const std::vector<double>& twist_rad,
+                         const LoadCycle& cycle, double zero_torque_Nm);
+
+/// The loop's width in twist at a torque: unloading − loading (rad; at a vertical step each branch's middle, as
+/// twist_at). Throws InputError when a branch does not reach the torque.
+double loop_width_rad(const TorqueLoop& loop, double torque_Nm);
+
+/// The catalog's hysteresis loss: the loop's width at zero torque.
+double hysteresis_loss_rad(const TorqueLoop& loop);
+
+/// The loop's area ∮T dψ (J): ∫T dψ along the loading branch less along the unloading branch, trapezoids (exact on
+/// the branches' polylines). The energy a cycle dissipates: positive, 0 without friction.
+double loop_area_J(const TorqueLoop& loop);
 
 /// The catalog's three-segment law of a curve: K1 = T1/φ(T1), K2 = (T2 − T1)/(φ(T2) − φ(T1)),
 /// K3 = (T_R − T2)/(φ(T_R) − φ(T2)) on the odd part of the curve φ(T) = (twist(T) − twist(−T))/2 (secants).

@@ -26,13 +26,18 @@ constexpr double kArcmin = 10800.0 / std::numbers::pi;
 
 }  // namespace
 
-SeriesParts series_parts(const Case& c) {
+std::shared_future<TeethCompliance> teeth_in_background(const Case& c) {
+  const FlexsplineModel m = flexspline_model(c);
+  return std::async(std::launch::async, [m] { return tooth_pair_compliance_of(m); }).share();
+}
+
+SeriesParts series_parts(const Case& c, std::shared_future<TeethCompliance> teeth) {
   SeriesParts s;
   s.teeth_source = "rigid teeth";
   if (c.gear) {
     // The tooth pair's own compliance per unit face width over the rim's width, at the flank's contact radius (kept
     // on the active flank): contact/loaded_contact.hpp tooth_pair_compliance_of.
-    s.tooth_pair_m_per_N = tooth_pair_compliance_of(flexspline_model(c));
+    s.tooth_pair_m_per_N = teeth.valid() ? teeth.get() : tooth_pair_compliance_of(flexspline_model(c));
     s.teeth_source = "tooth pair compliance (flexspline tooth: explicit-tooth FEM less the ring model's share; circular "
                      "spline tooth: beam over the real outline and Sainsot foundation; Weber flattening; both teeth "
                      "loaded where they touch)";
@@ -198,10 +203,11 @@ std::unique_ptr<ContactBody> contact_body(const Case& c, const FemJobResult& fem
   return std::make_unique<Tet10Body>(flexspline_model(c), *fem.mesh, *fem.system, fem_u);
 }
 
-ContactAnalysis run_contact_job(const Case& c, const ContactBody& body, const FemReadout& fem, OutputSet& out) {
+ContactAnalysis run_contact_job(const Case& c, const ContactBody& body, const FemReadout& fem, OutputSet& out,
+                                std::shared_future<TeethCompliance> teeth) {
   ContactOptions o;
   o.rated_torque_Nm = c.load.rated_torque_Nm.value_or(c.load.torque_Nm);
-  o.series = series_parts(c);
+  o.series = series_parts(c, std::move(teeth));
   o.face_slices = c.contact.face_slices;
   const std::optional<CatalogLaw> reference = catalog_reference(c);
   if (reference) {

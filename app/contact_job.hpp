@@ -1,6 +1,8 @@
 #pragma once
 // The contact job shared by `strainwave contact` and `strainwave run`: the loaded tooth contact on the FEM's own
 // system, its outputs and summary.
+#include <functional>
+#include <future>
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,8 +16,15 @@ namespace sw::app {
 /// The files the contact job writes in its output folder: a command that runs it owns them (OutputSet).
 inline const std::vector<std::string> kContactJobFiles = {"contact.json", "torque_twist.csv", "contact.svg"};
 
-/// What acts in series with the flexspline body, from the case (tooth pairs, generator bearing, circular spline).
-SeriesParts series_parts(const Case& c);
+/// The tooth pair's compliance of a case (contact/loaded_contact.hpp tooth_pair_compliance_of: two explicit-tooth
+/// slabs, about as long as the harmonic pass), started in a thread of its own so that it runs beside the FEM; empty
+/// without a [gear].
+using TeethCompliance = std::function<double(double contact_radius_f_m, double contact_radius_c_m)>;
+std::shared_future<TeethCompliance> teeth_in_background(const Case& c);
+
+/// What acts in series with the flexspline body, from the case (tooth pairs, generator bearing, circular spline);
+/// the tooth pairs' from `teeth` when it is valid, else computed here.
+SeriesParts series_parts(const Case& c, std::shared_future<TeethCompliance> teeth = {});
 
 /// The flexspline body the fem job left for the loaded contact: the harmonic solution's (HarmonicBody) or the TET10
 /// mesh and factor's (Tet10Body, reading the generator's field from `fem_u` when not null). Every argument must
@@ -25,6 +34,7 @@ std::unique_ptr<ContactBody> contact_body(const Case& c, const FemJobResult& fem
 /// Runs the contact analysis on the flexspline body with what the FEM gave (`fem`: solved now or read back from an
 /// earlier run's result.json), writes contact.json, torque_twist.csv and contact.svg into the set `out` (owning
 /// kContactJobFiles), prints the summary.
-ContactAnalysis run_contact_job(const Case& c, const ContactBody& body, const FemReadout& fem, OutputSet& out);
+ContactAnalysis run_contact_job(const Case& c, const ContactBody& body, const FemReadout& fem, OutputSet& out,
+                                std::shared_future<TeethCompliance> teeth = {});
 
 }  // namespace sw::app

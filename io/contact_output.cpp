@@ -83,6 +83,7 @@ ContactResult contact_result(const ContactAnalysis& a, const Case& c, const std:
   r.compliance_split = {a.split.engagement, a.split.body, a.split.teeth, a.split.generator, a.split.circular_spline};
   r.zone_edges = zone_edge_figures(a);
   r.generator_support = a.generator_support;
+  r.solver.method = a.solver;
   r.half_turn_pairs = a.half_turn_pairs;
   r.flanks = flank_figures(a);
   r.timings_s = {a.setup_s, a.influence_s, a.contact_s, a.check_s};
@@ -162,6 +163,10 @@ static auto fields(std::type_identity<ContactResult::Timings>) {
                     field("check", &T::check)};
 }
 
+static auto fields(std::type_identity<ContactResult::Solver>) {
+  return std::tuple{field("method", &ContactResult::Solver::method)};
+}
+
 static auto fields(std::type_identity<ContactResult>) {
   using T = ContactResult;
   return std::tuple{field("rated_torque_Nm", &T::rated_torque_Nm),
@@ -177,6 +182,7 @@ static auto fields(std::type_identity<ContactResult>) {
                     field("compliance_split", &T::compliance_split), field("zone_edges", &T::zone_edges),
                     field("generator_support", &T::generator_support), field("half_turn_pairs", &T::half_turn_pairs),
                     field("flanks", &T::flanks), field("timings_s", &T::timings_s), field("unknowns", &T::unknowns),
+                    field("solver", &T::solver),
                     field("case_file", &T::case_path), flattened(&T::provenance)};
 }
 

@@ -68,6 +68,9 @@ struct ContactResult {
   struct Timings {
     double setup = 0, influence = 0, contact = 0, check = 0;
   };
+  struct Solver {
+    std::string method;  ///< the flexspline body's model: "tet10" | "fourier"
+  };
 
   std::string case_path;  ///< key "case_file": the case file the run read
   Provenance provenance;  ///< keys "case" (the resolved case) and "version"
@@ -86,6 +89,7 @@ struct ContactResult {
   std::vector<Flank> flanks;
   Timings timings_s;
   int unknowns = 0;
+  Solver solver;
 };
 
 /// The file's figures of a contact analysis of the case `c`. `reference`: the catalog's law of the case's size, if any.

@@ -23,7 +23,7 @@ double wrap_phi(double phi, int teeth_per_unknown) {
 }
 
 struct TableValue {
-  double q, dq_dphi, lambda, dlambda_dphi, compliance, dcompliance_dphi;
+  double q, dq_dphi, lambda, dlambda_dphi, compliance, dcompliance_dphi, sliding, tangent_arm;
 };
 
 /// Slope of a tabulated function at grid point j, monotone (Fritsch–Butland, as PCHIP): the harmonic mean of the two
@@ -79,36 +79,43 @@ bool lookup(const FlankTable& t, int side, double phi, TableValue& v) {
   const HermitePoint q = hermite(t.q_m[side], t.q_slope[side], j, a, t.step_rad);
   const HermitePoint lambda = hermite(t.lambda_m[side], t.lambda_slope[side], j, a, t.step_rad);
   const HermitePoint c = hermite(t.compliance_m_per_N[side], t.compliance_slope[side], j, a, t.step_rad);
-  v = {q.value, q.slope, lambda.value, lambda.slope, c.value, c.slope};
+  const HermitePoint s = hermite(t.sliding_m_per_rad[side], t.sliding_slope[side], j, a, t.step_rad);
+  const HermitePoint arm = hermite(t.tangent_arm_m[side], t.tangent_arm_slope[side], j, a, t.step_rad);
+  v = {q.value, q.slope, lambda.value, lambda.slope, c.value, c.slope, s.value, arm.value};
   return true;
 }
 
 }  // namespace
 
 FlankTable make_flank_table(double phi_start, double phi_end, double step, int teeth_per_unknown,
-                            const std::function<bool(double, int, double&, double&, double&, double&)>& flank,
+                            const std::function<bool(double, int, FlankSample&)>& flank,
                             const std::function<double(double, double)>& tooth_compliance) {
   FlankTable t;
   t.phi_start_rad = phi_start;
   t.step_rad = step;
   const int n = static_cast<int>(std::ceil((phi_end - phi_start) / step)) + 1;
-  for (int side = 0; side < 2; ++side) {
-    t.q_m[side].assign(n, kNaN);
-    t.lambda_m[side].assign(n, kNaN);
-    t.compliance_m_per_N[side].assign(n, kNaN);
-  }
+  for (int side = 0; side < 2; ++side)
+    for (auto* column : {&t.q_m[side], &t.lambda_m[side], &t.compliance_m_per_N[side], &t.sliding_m_per_rad[side],
+                         &t.tangent_arm_m[side]})
+      column->assign(n, kNaN);
+  const double per = teeth_per_unknown;
   for (int j = 0; j < n; ++j)
     for (int side = 0; side < 2; ++side) {
-      double q = 0, lever = 0, radius = 0, radius_c = 0;
-      if (!flank(phi_start + j * step, side, q, lever, radius, radius_c)) continue;
-      t.q_m[side][j] = teeth_per_unknown * q;
-      t.lambda_m[side][j] = teeth_per_unknown * lever;
-      t.compliance_m_per_N[side][j] = tooth_compliance ? teeth_per_unknown * tooth_compliance(radius, radius_c) : 0.0;
+      FlankSample f;
+      if (!flank(phi_start + j * step, side, f)) continue;
+      t.q_m[side][j] = per * f.q_m;
+      t.lambda_m[side][j] = per * f.lever_m;
+      t.compliance_m_per_N[side][j] =
+          tooth_compliance ? per * tooth_compliance(f.contact_radius_f_m, f.contact_radius_c_m) : 0.0;
+      t.sliding_m_per_rad[side][j] = per * f.sliding_m_per_rad;
+      t.tangent_arm_m[side][j] = per * f.tangent_arm_m;
     }
   for (int side = 0; side < 2; ++side) {
     t.q_slope[side] = node_slopes(t.q_m[side], step);
     t.lambda_slope[side] = node_slopes(t.lambda_m[side], step);
     t.compliance_slope[side] = node_slopes(t.compliance_m_per_N[side], step);
+    t.sliding_slope[side] = node_slopes(t.sliding_m_per_rad[side], step);
+    t.tangent_arm_slope[side] = node_slopes(t.tangent_arm_m[side], step);
   }
   return t;
 }
@@ -180,6 +187,8 @@ void set_flank_values(const std::vector<TableValue>& values, MeshInstant& out) {
   out.dlambda.resize(nf);
   out.compliance.resize(nf);
   out.dcompliance.resize(nf);
+  out.sliding.resize(nf);
+  out.tangent_arm.resize(nf);
   for (int i = 0; i < nf; ++i) {
     const TableValue& v = values[i];
     out.q[i] = v.q;
@@ -188,6 +197,8 @@ void set_flank_values(const std::vector<TableValue>& values, MeshInstant& out) {
     out.dlambda[i] = -v.dlambda_dphi;
     out.compliance[i] = v.compliance;
     out.dcompliance[i] = -v.dcompliance_dphi;
+    out.sliding[i] = v.sliding;
+    out.tangent_arm[i] = v.tangent_arm;
   }
 }
 

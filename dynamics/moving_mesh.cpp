@@ -69,8 +69,9 @@ HermitePoint hermite(const std::vector<double>& y, const std::vector<double>& dy
   return hermite_segment(y[j], dy[j] * h, y[j + 1], dy[j + 1] * h, a, h);
 }
 
-/// The table at φ; false where the flank cannot close on either grid angle.
-bool lookup(const FlankTable& t, int side, double phi, TableValue& v) {
+/// The table at φ, the sliding and the tangent arm only when asked for (0 otherwise); false where the flank cannot close
+/// on either grid angle.
+bool lookup(const FlankTable& t, int side, double phi, bool with_sliding, TableValue& v) {
   const double u = (phi - t.phi_start_rad) / t.step_rad;
   const int j = static_cast<int>(std::floor(u));
   if (j < 0 || j + 1 >= t.size()) return false;
@@ -79,9 +80,11 @@ bool lookup(const FlankTable& t, int side, double phi, TableValue& v) {
   const HermitePoint q = hermite(t.q_m[side], t.q_slope[side], j, a, t.step_rad);
   const HermitePoint lambda = hermite(t.lambda_m[side], t.lambda_slope[side], j, a, t.step_rad);
   const HermitePoint c = hermite(t.compliance_m_per_N[side], t.compliance_slope[side], j, a, t.step_rad);
-  const HermitePoint s = hermite(t.sliding_m_per_rad[side], t.sliding_slope[side], j, a, t.step_rad);
-  const HermitePoint arm = hermite(t.tangent_arm_m[side], t.tangent_arm_slope[side], j, a, t.step_rad);
-  v = {q.value, q.slope, lambda.value, lambda.slope, c.value, c.slope, s.value, arm.value};
+  v = {q.value, q.slope, lambda.value, lambda.slope, c.value, c.slope, 0.0, 0.0};
+  if (with_sliding) {
+    v.sliding = hermite(t.sliding_m_per_rad[side], t.sliding_slope[side], j, a, t.step_rad).value;
+    v.tangent_arm = hermite(t.tangent_arm_m[side], t.tangent_arm_slope[side], j, a, t.step_rad).value;
+  }
   return true;
 }
 
@@ -150,14 +153,14 @@ MeshPlace place_of(const MovingMesh& m, double sigma) {
 
 /// The flanks that can close at σ with their table values (tooth and side into `out`): both flanks of every tooth
 /// on a rigid rim; the phase's continuing flanks on a coupled rim, with their places among those in `kept`.
-std::vector<TableValue> flanks_at(const MovingMesh& m, double sigma, const MeshPlace& at, MeshInstant& out,
-                                  std::vector<int>& kept) {
+std::vector<TableValue> flanks_at(const MovingMesh& m, double sigma, const MeshPlace& at, bool with_sliding,
+                                  MeshInstant& out, std::vector<int>& kept) {
   out.tooth.clear();
   out.side.clear();
   std::vector<TableValue> values;
   auto add = [&](int tooth, int side, double phi) {
     TableValue v;
-    if (!lookup(m.table, side, wrap_phi(phi, m.teeth_per_unknown), v)) return false;
+    if (!lookup(m.table, side, wrap_phi(phi, m.teeth_per_unknown), with_sliding, v)) return false;
     out.tooth.push_back(tooth);
     out.side.push_back(side);
     values.push_back(v);
@@ -178,8 +181,9 @@ std::vector<TableValue> flanks_at(const MovingMesh& m, double sigma, const MeshP
   return values;
 }
 
-/// The flanks' gaps, arms and compliances with their σ-derivatives (φ = 2πk/z_f − σ).
-void set_flank_values(const std::vector<TableValue>& values, MeshInstant& out) {
+/// The flanks' gaps, arms and compliances with their σ-derivatives (φ = 2πk/z_f − σ), their sliding and tangent arms
+/// when asked for (else left empty).
+void set_flank_values(const std::vector<TableValue>& values, bool with_sliding, MeshInstant& out) {
   const int nf = static_cast<int>(values.size());
   out.q.resize(nf);
   out.dq.resize(nf);
@@ -187,8 +191,8 @@ void set_flank_values(const std::vector<TableValue>& values, MeshInstant& out) {
   out.dlambda.resize(nf);
   out.compliance.resize(nf);
   out.dcompliance.resize(nf);
-  out.sliding.resize(nf);
-  out.tangent_arm.resize(nf);
+  out.sliding.resize(with_sliding ? nf : 0);
+  out.tangent_arm.resize(with_sliding ? nf : 0);
   for (int i = 0; i < nf; ++i) {
     const TableValue& v = values[i];
     out.q[i] = v.q;
@@ -197,8 +201,10 @@ void set_flank_values(const std::vector<TableValue>& values, MeshInstant& out) {
     out.dlambda[i] = -v.dlambda_dphi;
     out.compliance[i] = v.compliance;
     out.dcompliance[i] = -v.dcompliance_dphi;
-    out.sliding[i] = v.sliding;
-    out.tangent_arm[i] = v.tangent_arm;
+  }
+  for (Eigen::Index i = 0; i < out.sliding.size(); ++i) {
+    out.sliding[i] = values[i].sliding;
+    out.tangent_arm[i] = values[i].tangent_arm;
   }
 }
 
@@ -234,10 +240,10 @@ void set_body(const MovingMesh& m, const MeshPlace& at, const std::vector<int>& 
 
 }  // namespace
 
-void mesh_instant(const MovingMesh& m, double sigma, MeshInstant& out) {
+void mesh_instant(const MovingMesh& m, double sigma, MeshInstant& out, bool with_sliding) {
   const MeshPlace at = place_of(m, sigma);
   std::vector<int> kept;  // coupled: the flanks' places among the phase's continuing flanks
-  set_flank_values(flanks_at(m, sigma, at, out, kept), out);
+  set_flank_values(flanks_at(m, sigma, at, with_sliding, out, kept), with_sliding, out);
   if (!m.coupled()) {
     out.cubic = nullptr;
     out.stations = 0;

@@ -86,7 +86,7 @@ struct MovingMesh {
 struct MeshInstant {
   std::vector<int> tooth, side;       ///< per flank: tooth index (mod key_period), side
   Eigen::VectorXd q, dq, lambda, dlambda, compliance, dcompliance;  ///< per flank; d/dσ
-  Eigen::VectorXd sliding, tangent_arm;  ///< per flank: s (m/rad) and t (m), × teeth per unknown
+  Eigen::VectorXd sliding, tangent_arm;  ///< per flank: s (m/rad) and t (m), × teeth per unknown (when asked for)
   /// Coupled: the body compliance A (flanks then stations) at σ is the phase's cubic in a = (σ − shift)/h over the
   /// rows/columns `rows` of it (empty: all), plus `series` on the flanks' diagonal (the tooth pairs, set by the
   /// caller). Its columns are formed on demand (column()): the contact problem needs only the loaded contacts'.
@@ -119,8 +119,9 @@ FlankTable make_flank_table(double phi_start_rad, double phi_end_rad, double ste
 /// q_correction and next (a coupled mesh).
 void prepare_intervals(MovingMesh& m);
 
-/// The problem at σ (rad). Fills `out` (reused between calls).
-void mesh_instant(const MovingMesh& m, double sigma_rad, MeshInstant& out);
+/// The problem at σ (rad), with the flanks' sliding and tangent arms when `with_sliding` (the flanks' friction; else
+/// they are left empty). Fills `out` (reused between calls).
+void mesh_instant(const MovingMesh& m, double sigma_rad, MeshInstant& out, bool with_sliding = false);
 
 /// Linear complementarity x ≥ 0, w = A·x + b ≥ 0, x·w = 0 for symmetric positive definite A: block principal pivoting
 /// (Júdice and Pires 1994) with Murty's single pivot as the safeguard, started from `active` (updated). Written here

@@ -238,7 +238,7 @@ private:
   /// torque of the teeth's travel (Q_w += M_σ, Q_f −= M_σ: U(e, σ) = −min_x ½xᵀAx + (q − λe)ᵀx depends on σ).
   void moving_forces(Snapshot& s, const MeshState& ms, double sigma, double sigma_rate, MeshLoad& load) const {
     const MovingMesh& mm = *m_.moving;
-    mesh_instant(mm, sigma, s.inst);
+    mesh_instant(mm, sigma, s.inst, friction_);
     const MeshInstant& in = s.inst;
     const int nf = in.flanks();
     const int nb = mm.coupled() ? static_cast<int>(mm.station_q.size()) : 0;

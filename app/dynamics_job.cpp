@@ -1,6 +1,7 @@
 #include "app/dynamics_job.hpp"
 
 #include <algorithm>
+#include <sstream>
 #include <vector>
 
 #include "app/contact_job.hpp"
@@ -84,6 +85,13 @@ std::shared_ptr<const MovingMesh> moving_mesh(const Case& c, const DynamicsParam
 DynamicsJobModel dynamics_model(const Case& c, DynamicsParams p, const DynamicsModelOptions& o, OutputSet& out) {
   const bool moving = p.pair_motion == PairMotion::Moving;
   if (moving) validate_moving(p, c.path);
+  if (!moving && c.contact.friction_coefficient > 0) {
+    std::ostringstream os;
+    os << c.path << ": contact.friction_coefficient = " << c.contact.friction_coefficient
+       << "; the flanks' friction acts on moving pairs only: set dynamics.pairs = \"moving\" (or --pairs moving), "
+          "or friction_coefficient = 0";
+    throw InputError(os.str());
+  }
   if (!o.fem_result.empty()) {
     p.flexspline_compliance_rad_per_Nm = read_fem_compliance(o.fem_result);
     progress("dynamics: flexspline rim and flange joined by 1/C_tau, C_tau = " +
@@ -98,6 +106,7 @@ DynamicsJobModel dynamics_model(const Case& c, DynamicsParams p, const DynamicsM
     r.model.pairs.clear();
     r.source = r.model.moving->source;
   }
+  r.model.friction_coefficient = c.contact.friction_coefficient;
   return r;
 }
 

@@ -138,6 +138,23 @@ void check_pair_forces(const DynamicsModel& m, const DynamicsSeries& s, Window w
   }
 }
 
+/// The window's mean powers from the energy terms at its ends, their balance and the efficiency.
+SteadyPower steady_power(const DynamicsSeries& s, Window w) {
+  const EnergyBalance& a = s.energy_to_sample[w.i0];
+  const EnergyBalance& b = s.energy_to_sample[w.i1];
+  const double span = s.time_s[w.i1] - s.time_s[w.i0];
+  SteadyPower p;
+  p.input_W = (b.input_J - a.input_J) / span;
+  p.output_W = (b.output_J - a.output_J) / span;
+  p.friction_W = (b.friction_J - a.friction_J) / span;
+  p.dissipated_W = (b.dissipated_J - a.dissipated_J) / span;
+  p.stored_W = ((b.kinetic_J + b.potential_J - b.parametric_J) - (a.kinetic_J + a.potential_J - a.parametric_J)) / span;
+  if (p.friction_W > 0.0) p.efficiency = p.output_W / (p.output_W + p.friction_W);
+  p.balance_error_rel = std::abs(p.input_W - (p.output_W + p.friction_W + p.dissipated_W + p.stored_W)) /
+                        std::max(std::abs(p.input_W), 1e-300);
+  return p;
+}
+
 /// The total force's mean and fluctuation over the window, and the spectra of the total force and of the
 /// transmission error with their lines and noise floors.
 void analyse_spectra(const DynamicsParams& p, const DynamicsSeries& s, Window w, DynamicsSummary& r) {
@@ -196,6 +213,7 @@ DynamicsSummary summarize(const DynamicsModel& m, const DynamicsSeries& s) {
   r.torque_balance_error_rel = std::abs(r.mesh_torque_Nm - r.theory.mesh_torque_Nm) /
                                std::max(std::abs(r.theory.mesh_torque_Nm), kTorqueFloor_Nm);
   r.energy_error_rel = s.energy.error_rel();
+  r.power = steady_power(s, w);
   analyse_spectra(m.params, s, w, r);
   r.generator_frequency_Hz = r.theory.mesh_frequency_Hz / m.teeth_flexspline;
   window_extremes(s, w, r);

@@ -35,6 +35,20 @@ struct SpectralLine {
   double amplitude_N = 0.0;
 };
 
+/// Mean powers over the steady window (W), from the integrated works at its ends. Balance:
+/// input = output + friction + dissipated + stored.
+struct SteadyPower {
+  double input_W = 0.0;        ///< the drive's
+  double output_W = 0.0;       ///< into the load and the drags
+  double friction_W = 0.0;     ///< the flanks' friction, Σ |F_t·v_slide|
+  double dissipated_W = 0.0;   ///< contact damping and torsion-spring damping
+  double stored_W = 0.0;       ///< rate of kinetic + potential energy, less the parametric power of k(t)
+  /// The mesh's efficiency under the flanks' friction: output / (output + friction); 1 without friction. The contact
+  /// damping's loss (dissipated_W) is the model's idealisation of the teeth's damping, reported beside it.
+  double efficiency = 1.0;
+  double balance_error_rel = 0.0;  ///< |input − (output + friction + dissipated + stored)| / |input|
+};
+
 struct DynamicsSummary {
   SteadyState theory;
   double window_start_s = 0.0;              ///< steady window [window_start_s, duration_s]: whole mesh periods
@@ -45,6 +59,7 @@ struct DynamicsSummary {
   double mesh_torque_Nm = 0.0;              ///< Σ mean F_i·arm_i
   double torque_balance_error_rel = 0.0;    ///< |Σ mean F_i·arm_i − M_theory| / max(|M_theory|, 1e-6 N·m)
   double energy_error_rel = 0.0;
+  SteadyPower power;
   double mean_total_force_N = 0.0;
   double force_fluctuation_N = 0.0;         ///< standard deviation of the total meshing force in the steady window
   Spectrum spectrum;                        ///< of the total meshing force in the steady window

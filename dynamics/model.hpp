@@ -76,6 +76,11 @@ struct DynamicsModel {
   std::vector<ToothPair> pairs;    ///< frozen pairs (pairs = "frozen")
   /// Moving pairs (pairs = "moving"): the teeth travel through the mesh; `pairs` is then not used.
   std::shared_ptr<const MovingMesh> moving;
+  /// Coulomb's μ on the moving pairs' flanks ([contact] friction_coefficient), in [0, 1]; 0: frictionless.
+  double friction_coefficient = 0.0;
+  /// The friction force μ·F·tanh(v/v_s) is smoothed over this sliding speed v_s (m/s), > 0: far below the flanks'
+  /// sliding, whose sign changes where a tooth turns back out of the circular spline's space (dynamics/README.md).
+  double friction_smoothing_m_per_s = 1.0e-3;
 };
 
 enum class BodyRole { Fixed, Driven, Free, MergedIntoFlange };

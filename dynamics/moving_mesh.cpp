@@ -23,7 +23,7 @@ double wrap_phi(double phi, int teeth_per_unknown) {
 }
 
 struct TableValue {
-  double q, dq_dphi, lambda, dlambda_dphi, compliance, dcompliance_dphi;
+  double q, dq_dphi, lambda, dlambda_dphi, compliance, dcompliance_dphi, sliding, tangent_arm;
 };
 
 /// Slope of a tabulated function at grid point j, monotone (Fritsch–Butland, as PCHIP): the harmonic mean of the two
@@ -69,8 +69,9 @@ HermitePoint hermite(const std::vector<double>& y, const std::vector<double>& dy
   return hermite_segment(y[j], dy[j] * h, y[j + 1], dy[j + 1] * h, a, h);
 }
 
-/// The table at φ; false where the flank cannot close on either grid angle.
-bool lookup(const FlankTable& t, int side, double phi, TableValue& v) {
+/// The table at φ, the sliding and the tangent arm only when asked for (0 otherwise); false where the flank cannot close
+/// on either grid angle.
+bool lookup(const FlankTable& t, int side, double phi, bool with_sliding, TableValue& v) {
   const double u = (phi - t.phi_start_rad) / t.step_rad;
   const int j = static_cast<int>(std::floor(u));
   if (j < 0 || j + 1 >= t.size()) return false;
@@ -79,36 +80,45 @@ bool lookup(const FlankTable& t, int side, double phi, TableValue& v) {
   const HermitePoint q = hermite(t.q_m[side], t.q_slope[side], j, a, t.step_rad);
   const HermitePoint lambda = hermite(t.lambda_m[side], t.lambda_slope[side], j, a, t.step_rad);
   const HermitePoint c = hermite(t.compliance_m_per_N[side], t.compliance_slope[side], j, a, t.step_rad);
-  v = {q.value, q.slope, lambda.value, lambda.slope, c.value, c.slope};
+  v = {q.value, q.slope, lambda.value, lambda.slope, c.value, c.slope, 0.0, 0.0};
+  if (with_sliding) {
+    v.sliding = hermite(t.sliding_m_per_rad[side], t.sliding_slope[side], j, a, t.step_rad).value;
+    v.tangent_arm = hermite(t.tangent_arm_m[side], t.tangent_arm_slope[side], j, a, t.step_rad).value;
+  }
   return true;
 }
 
 }  // namespace
 
 FlankTable make_flank_table(double phi_start, double phi_end, double step, int teeth_per_unknown,
-                            const std::function<bool(double, int, double&, double&, double&, double&)>& flank,
+                            const std::function<bool(double, int, FlankSample&)>& flank,
                             const std::function<double(double, double)>& tooth_compliance) {
   FlankTable t;
   t.phi_start_rad = phi_start;
   t.step_rad = step;
   const int n = static_cast<int>(std::ceil((phi_end - phi_start) / step)) + 1;
-  for (int side = 0; side < 2; ++side) {
-    t.q_m[side].assign(n, kNaN);
-    t.lambda_m[side].assign(n, kNaN);
-    t.compliance_m_per_N[side].assign(n, kNaN);
-  }
+  for (int side = 0; side < 2; ++side)
+    for (auto* column : {&t.q_m[side], &t.lambda_m[side], &t.compliance_m_per_N[side], &t.sliding_m_per_rad[side],
+                         &t.tangent_arm_m[side]})
+      column->assign(n, kNaN);
+  const double per = teeth_per_unknown;
   for (int j = 0; j < n; ++j)
     for (int side = 0; side < 2; ++side) {
-      double q = 0, lever = 0, radius = 0, radius_c = 0;
-      if (!flank(phi_start + j * step, side, q, lever, radius, radius_c)) continue;
-      t.q_m[side][j] = teeth_per_unknown * q;
-      t.lambda_m[side][j] = teeth_per_unknown * lever;
-      t.compliance_m_per_N[side][j] = tooth_compliance ? teeth_per_unknown * tooth_compliance(radius, radius_c) : 0.0;
+      FlankSample f;
+      if (!flank(phi_start + j * step, side, f)) continue;
+      t.q_m[side][j] = per * f.q_m;
+      t.lambda_m[side][j] = per * f.lever_m;
+      t.compliance_m_per_N[side][j] =
+          tooth_compliance ? per * tooth_compliance(f.contact_radius_f_m, f.contact_radius_c_m) : 0.0;
+      t.sliding_m_per_rad[side][j] = per * f.sliding_m_per_rad;
+      t.tangent_arm_m[side][j] = per * f.tangent_arm_m;
     }
   for (int side = 0; side < 2; ++side) {
     t.q_slope[side] = node_slopes(t.q_m[side], step);
     t.lambda_slope[side] = node_slopes(t.lambda_m[side], step);
     t.compliance_slope[side] = node_slopes(t.compliance_m_per_N[side], step);
+    t.sliding_slope[side] = node_slopes(t.sliding_m_per_rad[side], step);
+    t.tangent_arm_slope[side] = node_slopes(t.tangent_arm_m[side], step);
   }
   return t;
 }
@@ -143,14 +153,14 @@ MeshPlace place_of(const MovingMesh& m, double sigma) {
 
 /// The flanks that can close at σ with their table values (tooth and side into `out`): both flanks of every tooth
 /// on a rigid rim; the phase's continuing flanks on a coupled rim, with their places among those in `kept`.
-std::vector<TableValue> flanks_at(const MovingMesh& m, double sigma, const MeshPlace& at, MeshInstant& out,
-                                  std::vector<int>& kept) {
+std::vector<TableValue> flanks_at(const MovingMesh& m, double sigma, const MeshPlace& at, bool with_sliding,
+                                  MeshInstant& out, std::vector<int>& kept) {
   out.tooth.clear();
   out.side.clear();
   std::vector<TableValue> values;
   auto add = [&](int tooth, int side, double phi) {
     TableValue v;
-    if (!lookup(m.table, side, wrap_phi(phi, m.teeth_per_unknown), v)) return false;
+    if (!lookup(m.table, side, wrap_phi(phi, m.teeth_per_unknown), with_sliding, v)) return false;
     out.tooth.push_back(tooth);
     out.side.push_back(side);
     values.push_back(v);
@@ -171,8 +181,9 @@ std::vector<TableValue> flanks_at(const MovingMesh& m, double sigma, const MeshP
   return values;
 }
 
-/// The flanks' gaps, arms and compliances with their σ-derivatives (φ = 2πk/z_f − σ).
-void set_flank_values(const std::vector<TableValue>& values, MeshInstant& out) {
+/// The flanks' gaps, arms and compliances with their σ-derivatives (φ = 2πk/z_f − σ), their sliding and tangent arms
+/// when asked for (else left empty).
+void set_flank_values(const std::vector<TableValue>& values, bool with_sliding, MeshInstant& out) {
   const int nf = static_cast<int>(values.size());
   out.q.resize(nf);
   out.dq.resize(nf);
@@ -180,6 +191,8 @@ void set_flank_values(const std::vector<TableValue>& values, MeshInstant& out) {
   out.dlambda.resize(nf);
   out.compliance.resize(nf);
   out.dcompliance.resize(nf);
+  out.sliding.resize(with_sliding ? nf : 0);
+  out.tangent_arm.resize(with_sliding ? nf : 0);
   for (int i = 0; i < nf; ++i) {
     const TableValue& v = values[i];
     out.q[i] = v.q;
@@ -188,6 +201,10 @@ void set_flank_values(const std::vector<TableValue>& values, MeshInstant& out) {
     out.dlambda[i] = -v.dlambda_dphi;
     out.compliance[i] = v.compliance;
     out.dcompliance[i] = -v.dcompliance_dphi;
+  }
+  for (Eigen::Index i = 0; i < out.sliding.size(); ++i) {
+    out.sliding[i] = values[i].sliding;
+    out.tangent_arm[i] = values[i].tangent_arm;
   }
 }
 
@@ -223,10 +240,10 @@ void set_body(const MovingMesh& m, const MeshPlace& at, const std::vector<int>& 
 
 }  // namespace
 
-void mesh_instant(const MovingMesh& m, double sigma, MeshInstant& out) {
+void mesh_instant(const MovingMesh& m, double sigma, MeshInstant& out, bool with_sliding) {
   const MeshPlace at = place_of(m, sigma);
   std::vector<int> kept;  // coupled: the flanks' places among the phase's continuing flanks
-  set_flank_values(flanks_at(m, sigma, at, out, kept), out);
+  set_flank_values(flanks_at(m, sigma, at, with_sliding, out, kept), with_sliding, out);
   if (!m.coupled()) {
     out.cubic = nullptr;
     out.stations = 0;

@@ -7,7 +7,10 @@
 // Each flank unknown i (both teeth of a half-turn pair when z_f is even, as in contact/) has, as functions of σ:
 //   gap at zero mesh deflection q_i (m, × teeth per unknown), moment arm λ_i (m, × teeth per unknown): the flank's
 //   approach is λ_i·e − q_i for a mesh deflection e (contact/README.md's g = q − λψ + A·x with ψ = e);
-//   the tooth pair's own compliance c_i (m/N, × teeth per unknown) from gear/tooth_stiffness at the contact radius.
+//   the tooth pair's own compliance c_i (m/N, × teeth per unknown) from gear/tooth_stiffness at the contact radius;
+//   the flanks' sliding s_i (m/rad, × teeth per unknown): their relative velocity along the profile per unit σ̇ when the
+//   mesh follows the kinematics, and the arm t_i (m, × teeth per unknown) of that direction about the axis: a flank
+//   slides at (s_i·σ̇ + t_i·ė) per tooth (dynamics/README.md, "Friction").
 // These come from a table over φ (the backlash module's exact closing angle and lever arm of both flanks, on the
 // neutral curve the table was built on), sampled every pitch/(phases·table_per_phase) and interpolated by monotone
 // cubic Hermite segments (C¹: no kink at the grid points, which all teeth cross at once).
@@ -32,8 +35,20 @@ namespace sw {
 struct FlankTable {
   double phi_start_rad = 0, step_rad = 0;
   std::vector<double> q_m[2], lambda_m[2], compliance_m_per_N[2];  ///< [side: 0 ccw (λ > 0), 1 cw (λ < 0)][j]
+  std::vector<double> sliding_m_per_rad[2], tangent_arm_m[2];       ///< s and t (see above), [side][j]
   std::vector<double> q_slope[2], lambda_slope[2], compliance_slope[2];  ///< the interpolant's slopes at the grid
+  std::vector<double> sliding_slope[2], tangent_arm_slope[2];
   int size() const { return static_cast<int>(q_m[0].size()); }
+};
+
+/// One flank of one tooth at one material angle, as the kinematics sees it (one tooth, not × teeth per unknown).
+struct FlankSample {
+  double q_m = 0;                   ///< gap at zero mesh deflection
+  double lever_m = 0;               ///< signed moment arm of the flank normal
+  double contact_radius_f_m = 0;    ///< contact radius on the flexspline tooth (its compliance is taken there)
+  double contact_radius_c_m = 0;    ///< contact radius on the circular spline's tooth
+  double sliding_m_per_rad = 0;     ///< relative sliding along the profile per unit σ̇ (kinematic motion)
+  double tangent_arm_m = 0;         ///< moment arm about the axis of the profile's direction at the contact
 };
 
 /// The loaded-contact problem at one generator phase (flank unknowns, then stations).
@@ -71,6 +86,7 @@ struct MovingMesh {
 struct MeshInstant {
   std::vector<int> tooth, side;       ///< per flank: tooth index (mod key_period), side
   Eigen::VectorXd q, dq, lambda, dlambda, compliance, dcompliance;  ///< per flank; d/dσ
+  Eigen::VectorXd sliding, tangent_arm;  ///< per flank: s (m/rad) and t (m), × teeth per unknown (when asked for)
   /// Coupled: the body compliance A (flanks then stations) at σ is the phase's cubic in a = (σ − shift)/h over the
   /// rows/columns `rows` of it (empty: all), plus `series` on the flanks' diagonal (the tooth pairs, set by the
   /// caller). Its columns are formed on demand (column()): the contact problem needs only the loaded contacts'.
@@ -92,19 +108,20 @@ struct MeshInstant {
 /// over the loaded contacts only (x ≠ 0), without forming ∂A/∂σ.
 double body_travel_torque_Nm(const MeshInstant& in, const Eigen::VectorXd& x);
 
-/// Flank geometry over φ from gap/lever functions (kinematics) sampled on a grid of `step_rad` covering `phi_range`.
-/// `flank(phi, side, q, lambda, contact_radius_f, contact_radius_c)` returns false where the flank cannot close; the
-/// tooth pair's compliance is taken at the two contact radii.
+/// Flank geometry over φ from the kinematics' flanks sampled on a grid of `step_rad` from phi_start_rad to
+/// phi_end_rad. `flank(phi, side, sample)` returns false where the flank cannot close; the tooth pair's compliance is
+/// taken at the sample's two contact radii. Gaps, arms, compliances and sliding are scaled by teeth_per_unknown.
 FlankTable make_flank_table(double phi_start_rad, double phi_end_rad, double step_rad, int teeth_per_unknown,
-                            const std::function<bool(double, int, double&, double&, double&, double&)>& flank,
+                            const std::function<bool(double, int, FlankSample&)>& flank,
                             const std::function<double(double, double)>& tooth_compliance_m_per_N);
 
 /// Fills every phase's continuing flanks, A_cubic and the gap correction's slopes from the phases' A_body,
 /// q_correction and next (a coupled mesh).
 void prepare_intervals(MovingMesh& m);
 
-/// The problem at σ (rad). Fills `out` (reused between calls).
-void mesh_instant(const MovingMesh& m, double sigma_rad, MeshInstant& out);
+/// The problem at σ (rad), with the flanks' sliding and tangent arms when `with_sliding` (the flanks' friction; else
+/// they are left empty). Fills `out` (reused between calls).
+void mesh_instant(const MovingMesh& m, double sigma_rad, MeshInstant& out, bool with_sliding = false);
 
 /// Linear complementarity x ≥ 0, w = A·x + b ≥ 0, x·w = 0 for symmetric positive definite A: block principal pivoting
 /// (Júdice and Pires 1994) with Murty's single pivot as the safeguard, started from `active` (updated). Written here

@@ -8,6 +8,8 @@
 #include <string>
 #include <utility>
 
+#include <Eigen/Geometry>
+
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "contact/loaded_contact.hpp"
@@ -19,9 +21,9 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 
 /// The backlash module's view of one flank: gap |ℓ|·δ at zero deflection, signed lever ℓ, contact radius on the
-/// flexspline tooth and on the circular spline's; false where it cannot close. The selection is the loaded contact's
-/// (contact/loaded_contact.hpp candidate_flank): within two pitches of a zone's edge a free tooth takes part, with its
-/// exact closing turn as its gap like every other tooth.
+/// flexspline tooth and on the circular spline's, the flanks' sliding and the profile direction's arm; false where it
+/// cannot close. The selection is the loaded contact's (contact/loaded_contact.hpp candidate_flank): within two pitches
+/// of a zone's edge a free tooth takes part, with its exact closing turn as its gap like every other tooth.
 struct FlankGeometry {
   const BacklashModel& model;
   const NeutralCurve& curve;
@@ -29,7 +31,7 @@ struct FlankGeometry {
   double cached_phi = std::numeric_limits<double>::quiet_NaN();
   PairClearance pc;
   bool near_edge = false;
-  bool operator()(double phi, int side, double& q, double& lever, double& radius, double& radius_c) {
+  bool operator()(double phi, int side, FlankSample& sample) {
     if (phi != cached_phi) {
       pc = pair_clearance(model, phi, 0.0);
       cached_phi = phi;
@@ -39,10 +41,13 @@ struct FlankGeometry {
     }
     const std::optional<FlankContact> f = candidate_flank(model, curve, pc, phi, side == 0 ? Flank::Ccw : Flank::Cw, near_edge);
     if (!f) return false;
-    radius = f->contact_radius_m;
-    radius_c = f->contact_radius_c_m;
-    lever = f->lever_m;
-    q = std::abs(lever) * f->closing_angle_rad;
+    const FlankVelocity v = flank_velocity(model, side == 0 ? pc.ccw : pc.cw, phi);
+    sample.q_m = std::abs(f->lever_m) * f->closing_angle_rad;
+    sample.lever_m = f->lever_m;
+    sample.contact_radius_f_m = f->contact_radius_m;
+    sample.contact_radius_c_m = f->contact_radius_c_m;
+    sample.sliding_m_per_rad = v.sliding_m_per_rad;
+    sample.tangent_arm_m = v.tangent_arm_m;
     return true;
   }
 };
@@ -61,6 +66,25 @@ FlankTable table_on(const GearParams& g, const NeutralCurve& curve, const ToothC
 }
 
 }  // namespace
+
+FlankVelocity flank_velocity(const BacklashModel& model, const FlankClearance& fc, double phi) {
+  const ToothPlacement at = place_tooth(model.curve, phi, 0.0);
+  const Eigen::Vector2d local = Eigen::Rotation2Dd(-at.angle_rad) * (fc.point_f - at.offset_m);
+  const auto material_point = [&](double phi_rad) {
+    const ToothPlacement t = place_tooth(model.curve, phi_rad, 0.0);
+    return Eigen::Vector2d(Eigen::Rotation2Dd(t.angle_rad) * local + t.offset_m);
+  };
+  // Central difference in φ: its truncation (h²·p‴ ~ 1e-14 m/rad) and rounding (ε·|p|/h ~ 1e-11 m/rad) are far
+  // below the sliding's millimetres per radian.
+  constexpr double h = 1e-6;
+  const Eigen::Vector2d dp_dphi = (material_point(phi + h) - material_point(phi - h)) / (2 * h);
+  const double turn = static_cast<double>(model.gear.teeth_flexspline) / model.gear.teeth_circular;
+  const Eigen::Vector2d z_cross_pc(-fc.point_c.y(), fc.point_c.x());
+  const Eigen::Vector2d v = -dp_dphi + turn * z_cross_pc;
+  const Eigen::Vector2d& n = fc.normal;
+  const Eigen::Vector2d t(-n.y(), n.x());
+  return {n.dot(v), t.dot(v), n.dot(fc.point_f)};
+}
 
 double contact_wg_angle_rad(const GearParams& g, double sigma) {
   return sigma * g.teeth_flexspline / g.teeth_circular;

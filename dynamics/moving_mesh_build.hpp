@@ -8,6 +8,7 @@
 #include "dynamics/moving_mesh.hpp"
 #include "fem/flexspline_analysis.hpp"
 #include "fem/flexspline_system.hpp"
+#include "kinematics/backlash.hpp"
 #include "kinematics/neutral_curve.hpp"
 #include "mesh/tet_mesh.hpp"
 
@@ -28,6 +29,17 @@ MovingMesh rigid_rim_mesh(const GearParams& gear, const NeutralCurve& curve, con
 MovingMesh fem_coupled_mesh(const FlexsplineModel& model, const TetMesh& mesh, const FlexsplineSystem& system,
                             const FemReadout& fem, const ToothCompliance& teeth, double rated_torque_Nm,
                             int phases, int table_per_phase, double reach_factor = 12.0);
+
+/// The relative velocity at one flank's contact when the mesh follows the kinematics (zero mesh deflection): the
+/// flexspline's contact point (fc.point_f, carried by its tooth at material angle φ along the deformed neutral curve)
+/// against the circular spline's (fc.point_c, turning by z_f/z_c of φ's change in the generator's frame), per unit
+/// σ̇ = ω_w − ω_f (m/rad). Along the flank normal n (fc.normal) it is the clearance's rate d(clearance)/dφ; along the
+/// profile t = ẑ × n it is the flanks' sliding. tangent_arm_m = n·p_f is t's moment arm about the axis (m): a rigid
+/// turn of the flexspline rim by ė slides the flank by tangent_arm_m·ė.
+struct FlankVelocity {
+  double normal_m_per_rad = 0, sliding_m_per_rad = 0, tangent_arm_m = 0;
+};
+FlankVelocity flank_velocity(const BacklashModel& model, const FlankClearance& fc, double phi_rad);
 
 /// The generator angle `wg_angle_rad` of contact/ (against the fixed circular spline) for σ = θ_w − θ_f.
 double contact_wg_angle_rad(const GearParams& gear, double sigma_rad);

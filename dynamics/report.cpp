@@ -158,6 +158,7 @@ DynamicsResult dynamics_result(const DynamicsModel& m, const DynamicsSeries& s, 
   d.torque_balance_error_rel = r.torque_balance_error_rel;
   d.energy_error_rel = r.energy_error_rel;
   d.energy = s.energy;
+  d.steady_power = r.power;
   d.mesh_frequency_Hz = r.theory.mesh_frequency_Hz;
   d.generator_frequency_Hz = r.generator_frequency_Hz;
   d.mean_total_force_N = r.mean_total_force_N;

@@ -59,6 +59,9 @@ struct DynamicsResult {
   double mesh_torque_Nm = 0.0, mesh_torque_theory_Nm = 0.0, load_torque_Nm = 0.0;
   double torque_balance_error_rel = 0.0, energy_error_rel = 0.0;
   EnergyBalance energy;
+  /// The steady window's powers and efficiency (with energy.friction_J: absent in files written before the flanks had
+  /// friction).
+  std::optional<SteadyPower> steady_power;
   double mesh_frequency_Hz = 0.0, generator_frequency_Hz = 0.0;
   double mean_total_force_N = 0.0, force_fluctuation_N = 0.0;
   double spectrum_resolution_Hz = 0.0;

@@ -20,7 +20,7 @@
 namespace sw {
 namespace {
 
-constexpr int kQuadratures = 4;  // input, output, dissipated, parametric work
+constexpr int kWorkQuadratures = 4;  // input, output, dissipated, parametric work; then friction when there is friction
 constexpr double kSpeedScale_per_s = 1.0e5;  // absolute tolerance on speed deviations = atol_rad · this (contact modes)
 constexpr double kWorkTolerance_J = 1.0e-10;
 
@@ -52,7 +52,7 @@ struct Snapshot {
   double travel_torque = 0.0;  ///< M_σ: torque of the teeth's travel (moving pairs)
   double mesh_torque = 0.0, total_force = 0.0, drive_torque = 0.0, load_torque = 0.0, stiffness = 0.0;
   double kinetic = 0.0, potential = 0.0;
-  double p_in = 0.0, p_out = 0.0, p_diss = 0.0, p_param = 0.0;
+  double p_in = 0.0, p_out = 0.0, p_diss = 0.0, p_param = 0.0, p_friction = 0.0;
   std::array<double, kBodyCount> accel_dev{};  ///< v̇ of free bodies
   std::vector<double> pair_force;   ///< frozen: per pair; moving: per tooth (signed, ccw flank positive)
   double deflection = 0.0;          ///< mesh deflection e [rad]
@@ -61,6 +61,7 @@ struct Snapshot {
   // moving pairs: scratch reused between evaluations
   MeshInstant inst;
   Eigen::VectorXd b, x_el;
+  Eigen::VectorXd x_flank;           ///< per flank of inst: its normal force with the damping (N per tooth)
   std::vector<char> active;          ///< warm start, by (tooth, side) then station
   std::vector<char> local_active;
 };
@@ -81,9 +82,11 @@ struct MeshState {
 };
 
 /// What the contacts add up to at one instant: the flank torque M = Σ F_i·arm_i, the teeth's travel torque M_σ
-/// (moving pairs), the total force Σ|F_i|, the potential U, the dissipated power and the parametric power of k(t).
+/// (moving pairs), the total force Σ|F_i|, the potential U, the dissipated power and the parametric power of k(t);
+/// the flanks' friction (moving pairs): its generalized forces on σ and on e (N·m) and its power (W, ≥ 0).
 struct MeshLoad {
   double M = 0.0, M_sigma = 0.0, total = 0.0, U = 0.0, p_diss = 0.0, p_param = 0.0;
+  double friction_sigma = 0.0, friction_e = 0.0, p_friction = 0.0;
 };
 
 class Evaluator {
@@ -106,8 +109,11 @@ public:
     kinematic_residual_ = (ratio_[idx(fs_)] - ratio_[idx(BodyId::WaveGenerator)]) -
                           rho_ * (ratio_[idx(BodyId::CircularSpline)] - ratio_[idx(BodyId::WaveGenerator)]);
     mesh_phase_rate_ = m.teeth_flexspline * std::abs(ratio_[idx(fs_)] - ratio_[idx(BodyId::WaveGenerator)]);
+    friction_ = m.moving && m.friction_coefficient > 0.0;
   }
-  int size() const { return 2 * int(free_.size()) + kQuadratures; }
+  /// The work quadratures: input, output, dissipated, parametric, and the friction's when the flanks have friction.
+  int quadratures() const { return kWorkQuadratures + (friction_ ? 1 : 0); }
+  int size() const { return 2 * int(free_.size()) + quadratures(); }
   const std::vector<int>& free_bodies() const { return free_; }
   const SteadyState& steady() const { return ss_; }
   /// Kinematic reference angle of body b at t: R_b·Θ(t).
@@ -134,13 +140,15 @@ public:
     const std::array<double, kBodyCount> Q = internal_torques(dev, load);
     const std::array<double, kBodyCount> T = applied_torques(t, s);
     balance(d, Q, T, s);
-    s.mesh_torque = load.M + load.M_sigma;  // what the mesh takes off the flexspline (Q_f = −M − M_σ)
+    // what the mesh takes off the flexspline (Q_f = −M − M_σ − friction_σ + friction_e)
+    s.mesh_torque = load.M + load.M_sigma + (load.friction_sigma - load.friction_e);
     s.travel_torque = load.M_sigma;
     s.total_force = load.total;
     s.stiffness = ms.k;
     s.potential = load.U;
     s.p_diss = load.p_diss;
     s.p_param = load.p_param;
+    s.p_friction = load.p_friction;
   }
 
   void rhs(double t, const double* y, double* ydot, Snapshot& s) const {
@@ -154,6 +162,7 @@ public:
     ydot[q + 1] = s.p_out;
     ydot[q + 2] = s.p_diss;
     ydot[q + 3] = s.p_param;
+    if (friction_) ydot[q + 4] = s.p_friction;
   }
 
   Snapshot make_snapshot() const {
@@ -229,7 +238,7 @@ private:
   /// torque of the teeth's travel (Q_w += M_σ, Q_f −= M_σ: U(e, σ) = −min_x ½xᵀAx + (q − λe)ᵀx depends on σ).
   void moving_forces(Snapshot& s, const MeshState& ms, double sigma, double sigma_rate, MeshLoad& load) const {
     const MovingMesh& mm = *m_.moving;
-    mesh_instant(mm, sigma, s.inst);
+    mesh_instant(mm, sigma, s.inst, friction_);
     const MeshInstant& in = s.inst;
     const int nf = in.flanks();
     const int nb = mm.coupled() ? static_cast<int>(mm.station_q.size()) : 0;
@@ -247,6 +256,7 @@ private:
     if (!constant)
       for (int i = 0; i < nf; ++i) load.M_sigma += 0.5 * s.x_el[i] * s.x_el[i] * in.dcompliance[i];
     damped_flank_forces(s, ms, sigma_rate, load);
+    if (friction_) flank_friction(s, ms, sigma_rate, load);
   }
 
   /// Series compliance of flank unknown i (n teeth): n/k for the constant law, else the tooth pairs'.
@@ -304,6 +314,7 @@ private:
     const double m1 = p_.exponent_stiffness, k = ms.k;
     s.in_contact = 0.0;
     s.max_force = 0.0;
+    s.x_flank.setZero(in.flanks());
     for (int i = 0; i < in.flanks(); ++i) {
       if (!(s.x_el[i] > 0)) continue;
       const double g_sigma = in.dq[i] - in.dlambda[i] * ms.e;  // ∂(q − λe)/∂σ
@@ -319,6 +330,7 @@ private:
         x = std::max(0.0, x + fd);
       }
       load.p_diss += (x - s.x_el[i]) * rate;
+      s.x_flank[i] = x;
       load.M += in.lambda[i] * x;
       load.M_sigma += x * g_sigma;
       const double sgn = in.side[i] == 0 ? 1.0 : -1.0;
@@ -329,8 +341,25 @@ private:
     }
   }
 
-  /// Generalized torques of the mesh (virtual work of M and of M_σ, which depends on σ = θ_w − θ_f) and of the
-  /// compliant flexspline's torsion spring, whose damping and energy join the load's.
+  /// Coulomb friction on the loaded flanks, each tooth's F_t = −μ·x·tanh(v/v_s) along the profile against its
+  /// sliding v = (s·σ̇ + t·ė)/n (n teeth per unknown; s, t and the normal force x from the flank problem). Its virtual
+  /// power Σ n·F_t·v = Σ F_t·(s·σ̇ + t·ė) gives its generalized forces on σ (Σ F_t·s) and on e (Σ F_t·t); it dissipates
+  /// Σ n·|F_t·v|.
+  void flank_friction(const Snapshot& s, const MeshState& ms, double sigma_rate, MeshLoad& load) const {
+    const MeshInstant& in = s.inst;
+    const double n = m_.moving->teeth_per_unknown, mu = m_.friction_coefficient;
+    for (int i = 0; i < in.flanks(); ++i) {
+      if (!(s.x_flank[i] > 0)) continue;
+      const double v = (in.sliding[i] * sigma_rate + in.tangent_arm[i] * ms.e_rate) / n;
+      const double force = -mu * s.x_flank[i] * std::tanh(v / m_.friction_smoothing_m_per_s);
+      load.friction_sigma += force * in.sliding[i];
+      load.friction_e += force * in.tangent_arm[i];
+      load.p_friction -= n * force * v;
+    }
+  }
+
+  /// Generalized torques of the mesh (virtual work of M, of M_σ, which depends on σ = θ_w − θ_f, and of the flanks'
+  /// friction on σ and e) and of the compliant flexspline's torsion spring, whose damping and energy join the load's.
   std::array<double, kBodyCount> internal_torques(const Deviations& dev, MeshLoad& load) const {
     const int w = idx(BodyId::WaveGenerator), c = idx(BodyId::CircularSpline), f = idx(fs_);
     std::array<double, kBodyCount> Q{};
@@ -339,6 +368,11 @@ private:
     Q[w] += (1.0 - rho_) * load.M;
     Q[w] += load.M_sigma;
     Q[f] -= load.M_sigma;
+    if (friction_) {  // σ = θ_w − θ_f, e = (θ_f − θ_w) − ρ(θ_c − θ_w)
+      Q[w] += load.friction_sigma + (rho_ - 1.0) * load.friction_e;
+      Q[f] += load.friction_e - load.friction_sigma;
+      Q[c] -= rho_ * load.friction_e;
+    }
     if (compliant_) {
       const auto& x = dev.x;
       const auto& v = dev.v;
@@ -388,6 +422,7 @@ private:
   double drive_speed_ = 0.0, rho_ = 1.0, mesh_phase_rate_ = 0.0;
   double kinematic_residual_ = 0.0;  ///< de/dΘ of the reference motion: 0 up to rounding
   bool compliant_ = false;
+  bool friction_ = false;  ///< moving pairs with μ > 0
   BodyId fs_ = BodyId::FlexsplineFlange;
   std::vector<int> free_;
 };
@@ -438,7 +473,7 @@ public:
       av[2 * k] = p.absolute_tolerance_rad;
       av[2 * k + 1] = p.absolute_tolerance_rad * kSpeedScale_per_s;
     }
-    for (int q = 0; q < kQuadratures; ++q) av[2 * nfree + q] = kWorkTolerance_J;
+    for (int q = 0; q < ev.quadratures(); ++q) av[2 * nfree + q] = kWorkTolerance_J;
     mem_.reset(CVodeCreate(CV_BDF, raw_ctx));
     if (!mem_) throw InputError("dynamics: CVodeCreate failed");
     check(CVodeInit(mem_.get(), cvode_rhs, 0.0, y_.get()), "init");
@@ -522,8 +557,23 @@ std::vector<double> decimate(const std::vector<double>& x, const OutputGrid& g) 
   return y;
 }
 
+/// The energy terms from the start to one instant: the work quadratures of the state `quadratures` (input, output,
+/// dissipated, parametric, then friction when `with_friction`), the kinetic energy and the change of the potential
+/// since the start.
+EnergyBalance energy_at(const double* quadratures, bool with_friction, const Snapshot& now, double potential_at_start_J) {
+  EnergyBalance e;
+  e.input_J = quadratures[0];
+  e.output_J = quadratures[1];
+  e.dissipated_J = quadratures[2];
+  e.parametric_J = quadratures[3];
+  if (with_friction) e.friction_J = quadratures[4];
+  e.kinetic_J = now.kinetic;
+  e.potential_J = now.potential - potential_at_start_J;
+  return e;
+}
+
 /// What a run records at each fine step: the force-like signals in full (filtered at the end), the plain samples
-/// (angles, speeds, load, k(t), flanks in contact, largest force) at the output steps.
+/// (angles, speeds, load, k(t), flanks in contact, largest force, the energy terms) at the output steps.
 class Recorder {
 public:
   Recorder(const Evaluator& ev, const DynamicsModel& m, const OutputGrid& g)
@@ -533,10 +583,11 @@ public:
     series_.per_tooth = static_cast<bool>(m.moving);
   }
 
-  /// Evaluates the state y at fine step i, time t.
+  /// Evaluates the state y at fine step i, time t (the first call at step 0, the start).
   void record(long i, double t, const double* y) {
     Snapshot& s = snapshot_;
     ev_.evaluate(t, y, s);
+    if (i == 0) potential_at_start_J_ = s.potential;
     for (std::size_t k = 0; k < pair_.size(); ++k) pair_[k].push_back(s.pair_force[k]);
     torque_.push_back(s.mesh_torque);
     travel_.push_back(s.travel_torque);
@@ -555,10 +606,9 @@ public:
     out.stiffness_N_per_m.push_back(s.stiffness);
     out.flanks_in_contact.push_back(s.in_contact);
     out.max_pair_force_N.push_back(s.max_force);
+    out.energy_to_sample.push_back(energy_at(y + 2 * ev_.free_bodies().size(), ev_.quadratures() > kWorkQuadratures, s,
+                                             potential_at_start_J_));
   }
-
-  /// The last recorded instant.
-  const Snapshot& last() const { return snapshot_; }
 
   /// The series with the filtered signals decimated to the output steps.
   DynamicsSeries finish() && {
@@ -579,28 +629,16 @@ private:
   const OutputGrid& grid_;
   Snapshot snapshot_;
   int output_;  ///< the output body, whose transmission error is recorded
+  double potential_at_start_J_ = 0.0;
   DynamicsSeries series_;
   std::vector<std::vector<double>> pair_;
   std::vector<double> torque_, travel_, total_, drive_, deflection_, te_;
 };
 
-/// The energy terms at the end: the work quadratures (input, output, dissipated, parametric), the kinetic energy and
-/// the change of the potential since the start.
-EnergyBalance energy_at_end(const double* quadratures, const Snapshot& end, double potential_at_start_J) {
-  EnergyBalance e;
-  e.input_J = quadratures[0];
-  e.output_J = quadratures[1];
-  e.dissipated_J = quadratures[2];
-  e.parametric_J = quadratures[3];
-  e.kinetic_J = end.kinetic;
-  e.potential_J = end.potential - potential_at_start_J;
-  return e;
-}
-
 }  // namespace
 
 double EnergyBalance::error_rel() const {
-  const double lhs = input_J + parametric_J, rhs = output_J + dissipated_J + kinetic_J + potential_J;
+  const double lhs = input_J + parametric_J, rhs = output_J + dissipated_J + friction_J + kinetic_J + potential_J;
   return std::abs(lhs - rhs) / std::max(std::abs(input_J), 1e-300);
 }
 
@@ -611,17 +649,13 @@ DynamicsSeries simulate(const DynamicsModel& m) {
   const OutputGrid grid = output_grid(p);
   Recorder recorder(ev, m, grid);
   recorder.record(0, 0.0, cvode.state());
-  const double potential0 = recorder.last().potential;
-  EnergyBalance energy;
   for (long i = 1; i < grid.end; ++i) {
     const double tout = i == grid.last ? p.duration_s : i * grid.dt;
     cvode.advance_to(tout);
     recorder.record(i, tout, cvode.state());
-    if (i == grid.last)
-      energy = energy_at_end(cvode.state() + 2 * ev.free_bodies().size(), recorder.last(), potential0);
   }
   DynamicsSeries out = std::move(recorder).finish();
-  out.energy = energy;
+  out.energy = out.energy_to_sample.back();  // at duration_s
   out.stats = cvode.stats();
   return out;
 }

@@ -6,7 +6,8 @@
 // State: every free body's angle and speed as deviations from the kinematic reference motion θ_ref = R_b·Θ(t)
 // (R_b = steady speed ratio, Θ the driven body's prescribed angle). The mesh deflection, a few µrad against angles of
 // tens of rad, is then a difference of small numbers and the error control acts on it directly. Four quadratures
-// ride along (input work, output work, dissipation, parametric work of k(t)) for the energy balance.
+// ride along (input work, output work, dissipation, parametric work of k(t)) for the energy balance, and a fifth, the
+// flanks' friction work, when the model has friction (without it the integrated state is the frictionless one's).
 #include <array>
 #include <vector>
 
@@ -14,15 +15,17 @@
 
 namespace sw {
 
-/// Energy terms over the run [J]. Balance: input + parametric = output + dissipated + Δkinetic + Δpotential.
+/// Energy terms from the start of the run [J]. Balance:
+/// input + parametric = output + dissipated + friction + Δkinetic + Δpotential.
 struct EnergyBalance {
   double input_J = 0.0;        ///< work of the drive torque on the driven body
   double output_J = 0.0;       ///< work done by the bodies on the load and the drags
   double dissipated_J = 0.0;   ///< contact damping + torsion-spring damping
+  double friction_J = 0.0;     ///< the flanks' friction: ∫ Σ |F_t·v_slide| dt
   double parametric_J = 0.0;   ///< ∫ ∂U/∂t dt of the time-varying mesh stiffness (0 for constant k)
   double kinetic_J = 0.0;      ///< at the end (starts from rest)
   double potential_J = 0.0;    ///< contact + torsion spring, at the end minus at the start
-  double error_rel() const;    ///< |input + parametric − (output + dissipated + kinetic + potential)| / |input|
+  double error_rel() const;    ///< |input + parametric − (output + dissipated + friction + kinetic + potential)| / |input|
 };
 
 struct SolverStats {
@@ -42,7 +45,8 @@ struct DynamicsSeries {
   std::array<std::vector<double>, kBodyCount> angle_rad;   ///< per BodyId (rim = flange when rigid)
   std::array<std::vector<double>, kBodyCount> speed_rad_s;
   std::vector<std::vector<double>> pair_force_N;           ///< [pair][sample], signed (drive flank positive)
-  std::vector<double> mesh_torque_Nm;     ///< M = Σ F_i·arm_i (+ M_σ, moving pairs), the torque the mesh takes off the flexspline rim
+  /// M = Σ F_i·arm_i (+ M_σ and the flanks' friction, moving pairs), the torque the mesh takes off the flexspline rim
+  std::vector<double> mesh_torque_Nm;
   /// Moving pairs: M_σ = ∂U/∂(θ_w − θ_f) side of the mesh torque, the torque of the teeth's travel (in mesh_torque_Nm).
   std::vector<double> travel_torque_Nm;
   std::vector<double> total_force_N;      ///< Σ |F_i|, the total meshing force
@@ -56,12 +60,16 @@ struct DynamicsSeries {
   std::vector<double> max_pair_force_N;   ///< largest flank force
   /// Moving pairs: pair_force_N is per flexspline tooth ([tooth mod teeth per unknown][sample], ccw flank positive).
   bool per_tooth = false;
+  /// The energy terms from the start to each sample (plain samples of the integrated works): the difference of two
+  /// is the work over the time between them.
+  std::vector<EnergyBalance> energy_to_sample;
   EnergyBalance energy;
   SolverStats stats;
 };
 
-/// Integrates the model from rest over [0, duration_s]. Throws InputError when CVODE fails (message names the time
-/// and the CVODE flag, and suggests loosening relative_tolerance or checking the contact parameters).
+/// Integrates the model from rest over [0, duration_s]; the flanks' friction (friction_coefficient) acts on moving
+/// pairs. Throws InputError when CVODE fails (message names the time and the CVODE flag, and suggests loosening
+/// relative_tolerance or checking the contact parameters).
 DynamicsSeries simulate(const DynamicsModel& m);
 
 }  // namespace sw

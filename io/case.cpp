@@ -458,10 +458,12 @@ void check_circular_spline(const CircularSplineParams& c, const GearParams& gear
   validate_circular_spline(c, gear_radii(gear).root_c);
 }
 
-/// [contact] face_slices (its range: contact/contact_params.hpp, checked by parse_case with the key's line).
+/// [contact] face_slices and friction_coefficient (their ranges: contact/contact_params.hpp, checked by parse_case with
+/// the key's line).
 ContactParams read_contact(TableReader r) {
   ContactParams p;
   p.face_slices = r.integer("face_slices", p.face_slices, std::numeric_limits<int>::min());
+  p.friction_coefficient = r.number("friction_coefficient", p.friction_coefficient);
   r.reject_unknown();
   return p;
 }
@@ -953,7 +955,8 @@ Tables case_tables(const Case& c) {
   if (c.circular_spline)
     t["circular_spline"] = Tables::object({{"outer_radius_mm", file_value(c.circular_spline->outer_radius_m, kMm)},
                                            {"width_mm", file_value(c.circular_spline->width_m, kMm)}});
-  t["contact"] = Tables::object({{"face_slices", c.contact.face_slices}});
+  t["contact"] = Tables::object(
+      {{"face_slices", c.contact.face_slices}, {"friction_coefficient", c.contact.friction_coefficient}});
   t["mesh"] = mesh_table(c.mesh);
   t["solver"] = solver_table(c.solver);
   if (c.dynamics) t["dynamics"] = dynamics_table(*c.dynamics);

@@ -35,6 +35,11 @@ public:
   void optional(const std::string& pointer, const std::optional<V>& v) {
     if (v) (*this)(pointer, *v);
   }
+  /// A group of keys written by `fields` where there is a value, none where there is none (`marker`: its first key).
+  template <class S, class Fields>
+  void group(const std::string& /*marker*/, const std::optional<S>& v, Fields fields) {
+    if (v) fields(*this, *v);
+  }
   /// An array of objects, each written by `fields`.
   template <class S, class Fields>
   void array(const std::string& pointer, const std::vector<S>& items, Fields fields) {
@@ -80,6 +85,15 @@ public:
     if (!j_.contains(json::json_pointer(pointer))) return;
     V value{};
     (*this)(pointer, value);
+    v = value;
+  }
+  /// The group read by `fields` where its first key `marker` is, no value where it is not.
+  template <class S, class Fields>
+  void group(const std::string& marker, std::optional<S>& v, Fields fields) const {
+    v.reset();
+    if (!j_.contains(json::json_pointer(marker))) return;
+    S value{};
+    fields(*this, value);
     v = value;
   }
   template <class S, class Fields>
@@ -165,6 +179,21 @@ void check_fields(Io& io, R& r) {
   io("/energy_J/potential", r.energy.potential_J);
 }
 
+/// The steady window's powers, the efficiency and the run's friction work.
+template <class Io, class R>
+void power_fields(Io& io, R& r) {
+  io.group("/efficiency", r.steady_power, [&r](auto& sub, auto& p) {
+    sub("/efficiency", p.efficiency);
+    sub("/power_W/input", p.input_W);
+    sub("/power_W/output", p.output_W);
+    sub("/power_W/friction", p.friction_W);
+    sub("/power_W/dissipated", p.dissipated_W);
+    sub("/power_W/stored", p.stored_W);
+    sub("/power_balance_error_rel", p.balance_error_rel);
+    sub("/energy_J/friction", r.energy.friction_J);
+  });
+}
+
 /// The steady window: the total force, its spectrum and lines, the mesh's extremes.
 template <class Io, class R>
 void steady_window_fields(Io& io, R& r) {
@@ -231,6 +260,7 @@ void run_fields(Io& io, R& r) {
 template <class Io, class R>
 void result_fields(Io& io, R& r) {
   check_fields(io, r);
+  power_fields(io, r);
   steady_window_fields(io, r);
   run_fields(io, r);
 }

@@ -1,4 +1,5 @@
 // The dynamics cases run through the CLI (as a user runs them) and their headline numbers are checked in dynamics.json.
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -35,6 +36,9 @@ TEST(DynamicsCli, SmallGearCaseRunsAndMeetsItsTolerances) {
   EXPECT_LT(*j.max_pair_force_error_rel, kPairForceTolerance);
   EXPECT_LT(j.torque_balance_error_rel, kTorqueTolerance);
   EXPECT_LT(j.energy_error_rel, kEnergyTolerance);
+  ASSERT_TRUE(j.steady_power.has_value());
+  EXPECT_EQ(j.steady_power->efficiency, 1.0);  // no friction
+  EXPECT_LT(j.steady_power->balance_error_rel, kEnergyTolerance);
   EXPECT_NEAR(j.mesh_frequency_Hz, 28 * 1000.0 / 60.0, 1e-9);  // cs_fixed: z_c·n_w/60
   // Flexspline: −(z_c − z_f)/z_f · 1000 rpm.
   EXPECT_EQ(j.speeds[1].body, "flexspline");
@@ -54,6 +58,23 @@ TEST(DynamicsCli, BadCaseFailsWithOneLineAndWritesNothing) {
       run_strainwave("--quiet dynamics " + (dir / "nogear.toml").string() + " --out " + (dir / "out").string());
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.err.find("[gear]"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "out" / "dynamics.json"));
+  fs::remove_all(dir);
+}
+
+// The flanks' friction acts on the moving pairs: a case with friction and the pairs frozen is refused in one line
+// naming the key, its value and the fix.
+TEST(DynamicsCli, FrictionWithFrozenPairsFailsWithOneLine) {
+  const fs::path dir = fs::temp_directory_path() / "sw_test_dynamics_friction_frozen";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "friction.toml") << read_text("cases/mbd_26_28.toml") << "\n[contact]\nfriction_coefficient = 0.05\n";
+  const CommandRun r = run_strainwave("--quiet dynamics " + (dir / "friction.toml").string() + " --pairs frozen --out " +
+                                      (dir / "out").string());
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("friction.toml: contact.friction_coefficient = 0.05; the flanks' friction acts on moving pairs "
+                       "only"), std::string::npos) << r.output;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_FALSE(fs::exists(dir / "out" / "dynamics.json"));
   fs::remove_all(dir);
 }

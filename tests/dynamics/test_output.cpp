@@ -34,7 +34,8 @@ DynamicsResult every_field_set() {
   r.load_torque_Nm = 99.5;
   r.torque_balance_error_rel = 6.25e-4;
   r.energy_error_rel = 1.5e-6;
-  r.energy = {73.5, 68.25, 5.125, 0.75, 0.0625, 0.03125};
+  r.energy = {73.5, 68.25, 5.125, 1.25, 0.75, 0.0625, 0.03125};
+  r.steady_power = SteadyPower{962.75, 805.5, 92.5, 64.75, -0.0078125, 0.896875, 1.25e-8};
   r.mesh_frequency_Hz = 466.5;
   r.generator_frequency_Hz = 17.9375;
   r.mean_total_force_N = 7669.25;
@@ -87,6 +88,10 @@ TEST(DynamicsOutput, EveryFieldSurvivesWritingAndReadingBack) {
   EXPECT_EQ(back.parameters.exponent_indentation, 1.125);
   ASSERT_EQ(back.transmission_error_lines_in_orders.size(), 2u);
   EXPECT_EQ(back.transmission_error_lines_in_orders[1].generator_order, 78.04);
+  ASSERT_TRUE(back.steady_power.has_value());
+  EXPECT_EQ(back.steady_power->efficiency, 0.896875);
+  EXPECT_EQ(back.steady_power->friction_W, 92.5);
+  EXPECT_EQ(back.energy.friction_J, 1.25);
 }
 
 TEST(DynamicsOutput, MovingPairsHaveNoPairForceErrorKey) {
@@ -124,6 +129,7 @@ TEST(DynamicsOutput, FilesTheToolWroteReadAndWriteAgainToTheSameText) {
   EXPECT_TRUE(moving.pair_forces.empty());
   EXPECT_FALSE(moving.max_pair_force_error_rel.has_value());
   EXPECT_EQ(moving.solver.steps, 117938);
+  EXPECT_FALSE(moving.steady_power.has_value());  // written before the flanks had friction: no efficiency key
   const DynamicsResult frozen = read_dynamics_json("tests/dynamics/data/mbd_26_28_all_free_compliant_frozen.json");
   EXPECT_EQ(frozen.pairs, PairMotion::Frozen);
   EXPECT_EQ(frozen.configuration, DynamicsConfiguration::AllFree);

@@ -143,6 +143,21 @@ TEST(CaseFile, ContactFaceSlicesAreAnIntegerFromOneToEight) {
   EXPECT_NE(other.find("contact.slices"), std::string::npos) << other;
 }
 
+// Coulomb's μ on the flanks: 0 by default (frictionless), any value in [0, 1]; outside it one line naming the key's line.
+TEST(CaseFile, ContactFrictionCoefficientIsANumberFromZeroToOne) {
+  EXPECT_EQ(parse_case(kTube, "cases/x.toml").contact.friction_coefficient, 0.0);
+  EXPECT_EQ(parse_case(std::string(kTube) + "[contact]\nfriction_coefficient = 0.05\n", "cases/x.toml")
+                .contact.friction_coefficient, 0.05);
+  const std::string negative = error_of(std::string(kTube) + "[contact]\nfriction_coefficient = -0.1\n");
+  EXPECT_NE(negative.find("x.toml:8: contact.friction_coefficient = -0.1; must be in [0, 1]"), std::string::npos)
+      << negative;
+  EXPECT_EQ(negative.find('\n'), std::string::npos) << negative;
+  const std::string above = error_of(std::string(kTube) + "[contact]\nfriction_coefficient = 1.5\n");
+  EXPECT_NE(above.find("contact.friction_coefficient = 1.5; must be in [0, 1]"), std::string::npos) << above;
+  const std::string text = error_of(std::string(kTube) + "[contact]\nfriction_coefficient = \"low\"\n");
+  EXPECT_NE(text.find("contact.friction_coefficient"), std::string::npos) << text;
+}
+
 TEST(CaseFile, TeethNeedAGearTable) {
   std::string t = kTube;
   t.replace(t.find("\"none\""), 6, "\"ring\"\nrim_width_mm = 5\nrim_thickness_mm = 1.2");

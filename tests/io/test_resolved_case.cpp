@@ -155,6 +155,7 @@ outer_radius_mm = 28.5
 width_mm = 5.5
 [contact]
 face_slices = 3
+friction_coefficient = 0.05
 [mesh]
 size_mm = 0.9
 wall_layers = 1

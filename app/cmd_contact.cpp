@@ -43,6 +43,11 @@ InputError model_mismatch(const Case& c, const std::filesystem::path& result_jso
 /// face is taken at its centre).
 ContactFem fem_from_run(const Case& c, const std::filesystem::path& result_json, double max_memory_gb) {
   const FemRunForContact run = read_fem_run_for_contact(result_json);
+  const std::string method = c.solver.method == SolverMethod::Fourier ? "fourier" : "tet10";
+  if (run.method != method)
+    throw InputError(result_json.string() + ": solved with solver.method = \"" + run.method + "\", " + c.path +
+                     " takes \"" + method + "\"; run `strainwave fem` on this case again (or --solver " + run.method +
+                     ")");
   ContactFem fem;
   const WaveGeneratorParams& w = *c.wave_generator;
   const std::string model = model_name(w.model);

@@ -209,6 +209,7 @@ ContactAnalysis run_contact_job(const Case& c, const ContactBody& body, const Fe
   o.rated_torque_Nm = c.load.rated_torque_Nm.value_or(c.load.torque_Nm);
   o.series = series_parts(c, std::move(teeth));
   o.face_slices = c.contact.face_slices;
+  o.friction_coefficient = c.contact.friction_coefficient;
   const std::optional<CatalogLaw> reference = catalog_reference(c);
   if (reference) {
     o.catalog_t1_Nm = reference->t1_Nm;
@@ -223,6 +224,13 @@ ContactAnalysis run_contact_job(const Case& c, const ContactBody& body, const Fe
   print_contact_headline(c, a, o.series.teeth_source);
   if (reference) print_against_catalog(a, *reference);
   print_lost_motion_and_split(a);
+  if (a.friction)
+    std::printf("  friction on the flanks (mu = %g): hysteresis loss %.3f arcmin (the loop's branches apart at zero "
+                "torque), loop area %.4g J = friction work %.4g J per cycle; steady after %d cycles of %d steps a "
+                "quarter; lost motion and the three segments above read on the loop's middle line\n",
+                a.friction->friction_coefficient, a.friction->hysteresis_loss_rad * kArcmin,
+                a.friction->dissipated_energy_J, a.friction->friction_work_J, a.friction->cycles,
+                a.friction->steps_per_quarter);
   if (!a.edges.empty()) {
     print_zone_edges_hold(a);
     print_edge_teeth_share(c, a);

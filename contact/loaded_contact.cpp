@@ -15,6 +15,7 @@
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "contact/contact_problem.hpp"
+#include "contact/frictional_contact.hpp"
 #include "contact/tet10_body.hpp"
 #include "contact/tooth_fem.hpp"
 #include "fem/assembly.hpp"
@@ -28,6 +29,10 @@ namespace sw {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
+
+/// The normal forces of a solution of either kind.
+const Eigen::VectorXd& normal_forces(const ContactSolution& s) { return s.force_N; }
+const Eigen::VectorXd& normal_forces(const FrictionalStep& s) { return s.normal_force_N; }
 
 }  // namespace
 
@@ -99,6 +104,7 @@ public:
     set_up_problem();
     step_through_torques();
     if (twist_reaches_flanks_left_out()) return std::nullopt;
+    if (opt_.friction_coefficient > 0) run_friction_loop();
     describe_curve();
     split_compliance();
     measure_zone_edge_teeth();
@@ -137,7 +143,13 @@ private:
   void watch_zone_edges();
   void compute_influence();
   void set_up_problem();
-  ContactSolution solve_step(const ContactProblem& base, Eigen::Index n_fl, double T, const Eigen::VectorXd* warm);
+  /// A solve of the contact problem at one torque with the bearing's secants on its diagonal: frictionless
+  /// (solve_contact) or with friction along a history (solve_frictional_step from the history's last state); called
+  /// with the iterate before (null on the first).
+  template <class Problem, class Solution>
+  using InnerSolve = std::function<Solution(const Problem&, double T, const Solution* last)>;
+  template <class Problem, class Solution>
+  Solution solve_step(const Problem& base, Eigen::Index n_fl, double T, const InnerSolve<Problem, Solution>& inner);
   double approach(double p) const {
     return 2 * opt_.series.bearing_approach_m(std::max(p, 0.0) * ball_per_N_);
   }
@@ -145,13 +157,29 @@ private:
   double output_torque(const Eigen::VectorXd& moments, const ContactSolution& s) const {
     return moments.head(s.force_N.size()).dot(s.force_N) - rest_moment_Nm_;
   }
+  /// With friction the flanks' tangential forces carry their share too.
+  double output_torque(const Eigen::VectorXd& moments, const FrictionalStep& s) const {
+    return moments.head(s.normal_force_N.size()).dot(s.normal_force_N) + lambda_t_.dot(s.tangential_force_N) -
+           rest_moment_Nm_;
+  }
+  template <class Problem, class Solution>
+  std::pair<Solution, double> solve_torque(const Problem& base, Eigen::Index n_fl, const Eigen::VectorXd& moments,
+                                           double T, const InnerSolve<Problem, Solution>& inner);
   std::pair<ContactSolution, double> solve_torque(const ContactProblem& base, Eigen::Index n_fl,
-                                                  const Eigen::VectorXd& moments, double T, const Eigen::VectorXd* warm);
+                                                  const Eigen::VectorXd& moments, double T, const Eigen::VectorXd* warm) {
+    const InnerSolve<ContactProblem, ContactSolution> inner = [warm](const ContactProblem& p, double t,
+                                                                     const ContactSolution* last) {
+      return solve_contact(p, t, last ? &last->force_N : warm);
+    };
+    return solve_torque(base, n_fl, moments, T, inner);
+  }
   /// The output's twist: the contact problem's plus the circular spline's torsion.
   double twist_rad(const ContactSolution& s, double T) const {
     return s.twist_rad + opt_.series.circular_spline_rad_per_Nm * T;
   }
   void step_through_torques();
+  FrictionalContactProblem frictional_problem() const;
+  void run_friction_loop();
   TorqueStep torque_step(double T, const ContactSolution& s);
   void follow_edge_teeth(const ContactSolution& s);
   bool twist_reaches_flanks_left_out();
@@ -178,14 +206,16 @@ private:
   double first_closing_[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
   double reach_ = 0;
   // The patterns: flanks' columns and gaps, the edge teeth's radial observers.
-  std::vector<FlankPattern> patterns_, observers_;
+  std::vector<FlankPattern> patterns_, observers_, tangential_;  // tangential_: with friction
   std::vector<double> q_flank_;
   Eigen::Index nf_ = 0, nb_ = 0, no_ = 0;
   // Influence coefficients.
   bool unilateral_ = false;
   BodyInfluence influence_;
   Eigen::MatrixXd A_body_, R_edge_;
+  Eigen::MatrixXd A_tn_, A_tt_;  ///< with friction: the tangential patterns' rows against the body's, and their own
   Eigen::VectorXd lambda_;
+  Eigen::VectorXd lambda_t_;  ///< the tangential forces' levers (flanks; 0 at the stations), with friction
   // The contact problem, its generator state and the bearing's secants.
   ContactProblem P_;
   Eigen::VectorXd p0_;
@@ -198,6 +228,7 @@ private:
   int N_ = 1;
   double T_R_ = 0, rest_moment_Nm_ = 0;
   ContactSolution at_rated_;
+  TorqueTwist middle_line_;  ///< with friction: the loop's middle line, on which the catalog's figures are read
   double flanks_torque_at_rated_ = 0;
 };
 
@@ -298,6 +329,10 @@ void ContactAnalyser::add_flank(FlankContact f, const FlankClearance& fc, int k,
   if (out_.half_turn_pairs) stations.push_back(s + kPi);
   // One slice loads the whole face; more, each its own band of the rim.
   patterns_.push_back({stations, -fc.normal, fc.point_f.norm(), n_slices_ > 1 ? j : -1});
+  // With friction, the flank's tangential force: along the profile in the transverse plane (the normal turned by 90°).
+  if (opt_.friction_coefficient > 0)
+    tangential_.push_back({stations, Eigen::Vector2d(fc.normal.y(), -fc.normal.x()), fc.point_f.norm(),
+                           n_slices_ > 1 ? j : -1});
   q_flank_.push_back(n_teeth_ * std::abs(f.lever_m) * f.closing_angle_rad);
   out_.flanks.push_back(f);
 }
@@ -338,11 +373,23 @@ void ContactAnalyser::compute_influence() {
            " generator stations and " + std::to_string(no_) + " zone-edge observers");
   std::vector<FlankPattern> all = observers_;
   all.insert(all.end(), patterns_.begin(), patterns_.end());
+  all.insert(all.end(), tangential_.begin(), tangential_.end());
   influence_ = body_.influence(all, n_slices_);
-  A_body_ = influence_.A.bottomRightCorner(nf_ + nb_, nf_ + nb_);
-  R_edge_ = influence_.A.topRightCorner(no_, nf_ + nb_);  // radial motion at the edge teeth's tips
+  // Columns: observers, flanks, tangential patterns (with friction), stations.
+  const Eigen::Index nt = static_cast<Eigen::Index>(tangential_.size());
+  std::vector<Eigen::Index> body, obs, tan;
+  for (Eigen::Index i = 0; i < no_; ++i) obs.push_back(i);
+  for (Eigen::Index i = 0; i < nf_; ++i) body.push_back(no_ + i);
+  for (Eigen::Index i = 0; i < nt; ++i) tan.push_back(no_ + nf_ + i);
+  for (Eigen::Index i = 0; i < nb_; ++i) body.push_back(no_ + nf_ + nt + i);
+  A_body_ = influence_.A(body, body);
+  R_edge_ = influence_.A(obs, body);  // radial motion at the edge teeth's tips
+  A_tn_ = influence_.A(tan, body);
+  A_tt_ = influence_.A(tan, tan);
   out_.influence_s = clock_.lap();
-  lambda_ = influence_.lever.tail(nf_ + nb_);
+  lambda_ = influence_.lever(body);
+  lambda_t_ = Eigen::VectorXd::Zero(nf_ + nb_);
+  if (nt > 0) lambda_t_.head(nf_) = influence_.lever(tan);
 }
 
 /// The contact problem. Unilateral generator: flanks and stations together, the stations' gaps against the
@@ -404,15 +451,16 @@ double ContactAnalyser::secant(double x, double p, double p_ref) const {
 /// that carries almost nothing is where the law Q^(2/3) has no finite slope and the iteration crawls; past the
 /// iteration limit the best iterate stands when its residual is within 1e-2 of that approach (a twist below 0.01
 /// arcmin), with a line saying so; beyond that the stage stops and says where.
-ContactSolution ContactAnalyser::solve_step(const ContactProblem& base, Eigen::Index n_fl, double T,
-                                            const Eigen::VectorXd* warm) {
-  if (!bearing_) return solve_contact(base, T, warm);
+template <class Problem, class Solution>
+Solution ContactAnalyser::solve_step(const Problem& base, Eigen::Index n_fl, double T,
+                                     const InnerSolve<Problem, Solution>& inner) {
+  if (!bearing_) return inner(base, T, nullptr);
   constexpr int kIterations = 400;
   constexpr double kConverged = 1e-4, kAcceptable = 1e-2;  // of the largest preload's approach
-  ContactProblem Pb = base;
+  Problem Pb = base;
   const double p_ref = std::max(p0_.maxCoeff(), 1.0), approach_ref_m = approach(p_ref);
   for (Eigen::Index k = 0; k < nb_; ++k) bearing_c_[k] = secant(p0_[k], p0_[k], p_ref);  // the tangent at the preload
-  ContactSolution s, best;
+  Solution s, best;
   double best_residual = std::numeric_limits<double>::infinity();
   Eigen::Index worst_station = 0;
   double relax = 1.0, last = std::numeric_limits<double>::infinity();
@@ -421,12 +469,13 @@ ContactSolution ContactAnalyser::solve_step(const ContactProblem& base, Eigen::I
       Pb.A(n_fl + k, n_fl + k) = base.A(n_fl + k, n_fl + k) + bearing_c_[k];
       Pb.q[n_fl + k] = base.q[n_fl + k] - bearing_c_[k] * p0_[k];
     }
-    s = solve_contact(Pb, T, it == 0 ? warm : &s.force_N);
+    s = inner(Pb, T, it == 0 ? nullptr : &s);
+    const Eigen::VectorXd& force = normal_forces(s);
     double residual = 0;
     Eigen::Index worst = 0;
     Eigen::VectorXd c_new(nb_);
     for (Eigen::Index k = 0; k < nb_; ++k) {
-      const double x = s.force_N[n_fl + k];
+      const double x = force[n_fl + k];
       c_new[k] = secant(x, p0_[k], p_ref);
       const double r = std::abs(bearing_c_[k] * (x - p0_[k]) - (approach(x) - approach(p0_[k])));
       if (r > residual) residual = r, worst = k;
@@ -440,7 +489,7 @@ ContactSolution ContactAnalyser::solve_step(const ContactProblem& base, Eigen::I
   const std::string where = "at T = " + std::to_string(T) + " N·m the generator bearing's ball loads did not settle in " +
                             std::to_string(kIterations) + " relaxed secant iterations: the station at " +
                             std::to_string(body_.stations().angle_rad[worst_station] * 180 / kPi) + " deg (" +
-                            std::to_string(best.force_N[n_fl + worst_station]) + " N, at rest " +
+                            std::to_string(normal_forces(best)[n_fl + worst_station]) + " N, at rest " +
                             std::to_string(p0_[worst_station]) + " N) is off its Hertzian approach by " +
                             std::to_string(best_residual * 1e9) + " nm";
   if (best_residual > kAcceptable * approach_ref_m)
@@ -456,13 +505,19 @@ ContactSolution ContactAnalyser::solve_step(const ContactProblem& base, Eigen::I
 /// beyond its moment at rest: find the flanks' torque that gives T. The share is about 1/ratio of it, so T_out is
 /// nearly affine in T_flanks: secant steps. Returns the solution and the flanks' torque. `warm`: the forces of a nearby
 /// solution of the same problem (the previous torque step), where the active set starts.
-std::pair<ContactSolution, double> ContactAnalyser::solve_torque(const ContactProblem& base, Eigen::Index n_fl,
-                                                                 const Eigen::VectorXd& moments, double T,
-                                                                 const Eigen::VectorXd* warm) {
-  ContactSolution s;
+template <class Problem, class Solution>
+std::pair<Solution, double> ContactAnalyser::solve_torque(const Problem& base, Eigen::Index n_fl,
+                                                          const Eigen::VectorXd& moments, double T,
+                                                          const InnerSolve<Problem, Solution>& inner) {
+  Solution s;
+  bool warm = false;  // after the first: each inner solve starts from the last one's contact set
+  const InnerSolve<Problem, Solution> from_last = [&](const Problem& p, double t, const Solution* last) {
+    return inner(p, t, last ? last : (warm ? &s : nullptr));
+  };
   double T_flanks = T, prev_flanks = 0, prev_out = 0;
   for (int it = 0;; ++it) {
-    s = solve_step(base, n_fl, T_flanks, it == 0 ? warm : &s.force_N);
+    s = solve_step(base, n_fl, T_flanks, from_last);
+    warm = true;
     const double T_out = output_torque(moments, s);
     // Settled to 1e-13 of T, or to 1e-11 of the rated torque at the limits at zero, where the moments' round-off
     // is larger than 1e-13 of T.
@@ -516,6 +571,85 @@ void ContactAnalyser::step_through_torques() {
   out_.contact_s = clock_.lap();
 }
 
+/// The contact problem with the flanks' tangential forces: the tangential patterns' blocks (the band's stations
+/// condensed out as in the normal problem when the generator holds the band radially), the friction coefficient on
+/// the flanks; the generator's stations roll, frictionless. The tooth pairs' own compliance is on the normal diagonal
+/// only (the teeth are rigid along the profile: an idealisation).
+FrictionalContactProblem ContactAnalyser::frictional_problem() const {
+  FrictionalContactProblem F;
+  static_cast<ContactProblem&>(F) = P_;
+  const Eigen::Index n = P_.q.size();
+  F.A_tn = Eigen::MatrixXd::Zero(n, n);
+  F.A_tt = Eigen::MatrixXd::Zero(n, n);
+  if (unilateral_) {
+    F.A_tn.topRows(nf_) = A_tn_;
+    F.A_tt.topLeftCorner(nf_, nf_) = A_tt_;
+  } else {
+    const Eigen::MatrixXd A_ts = A_tn_.rightCols(nb_);
+    F.A_tn = A_tn_.leftCols(nf_) + A_ts * band_solve_;
+    F.A_tt = A_tt_ - A_ts * A_body_.bottomRightCorner(nb_, nb_).ldlt().solve(A_ts.transpose());
+  }
+  for (Eigen::Index k = nf_; k < n; ++k) F.A_tt(k, k) = A_tt_.diagonal().mean();  // keeps the block definite
+  F.lambda_t = lambda_t_.head(n);
+  F.friction_coefficient = Eigen::VectorXd::Zero(n);
+  F.friction_coefficient.head(nf_).setConstant(opt_.friction_coefficient);
+  return F;
+}
+
+/// The catalog's load cycle with friction, each step settled like the frictionless curve's (the bearing's secants,
+/// the flanks' share of the output torque), run until a cycle repeats the one before to 1e-4 of its largest twist
+/// (at most 4 cycles); the last cycle's loop and its readings.
+void ContactAnalyser::run_friction_loop() {
+  const FrictionalContactProblem F = frictional_problem();
+  const LoadStep step = [&](double T, const FrictionalStep& previous) {
+    const InnerSolve<FrictionalContactProblem, FrictionalStep> inner =
+        [&previous](const FrictionalContactProblem& p, double t, const FrictionalStep*) {
+          return solve_frictional_step(p, t, previous);
+        };
+    FrictionalStep s = solve_torque(F, nf_, lambda_, T, inner).first;
+    s.torque_Nm = T;  // the output's (the flanks carry T less the locked generator's share)
+    return s;
+  };
+  const SteadyLoop loop = run_steady_loop(step, unloaded_state(F), T_R_, N_, 1e-4, 4);
+  FrictionLoop f;
+  f.friction_coefficient = opt_.friction_coefficient;
+  f.steps_per_quarter = N_;
+  f.cycles = loop.cycles;
+  f.hysteresis_loss_rad = loop.reading.hysteresis_loss_rad;
+  f.dissipated_energy_J = loop.reading.dissipated_energy_J;
+  f.friction_work_J = loop.reading.friction_work_J;
+  std::vector<double> torques;
+  for (const FrictionalStep& s : loop.history) torques.push_back(s.torque_Nm);
+  const LoadCycle c = last_load_cycle(torques);
+  auto add = [&](std::size_t i, const char* branch) {
+    const FrictionalStep& s = loop.history[i];
+    TorqueStep t;
+    t.torque_Nm = std::abs(s.torque_Nm) < kZeroTorqueSnap * T_R_ ? 0.0 : s.torque_Nm;
+    t.twist_rad = s.twist_rad + opt_.series.circular_spline_rad_per_Nm * s.torque_Nm;
+    t.branch = branch;
+    t.flank_force_N.assign(s.normal_force_N.data(), s.normal_force_N.data() + nf_);
+    for (Eigen::Index k = 0; k < nf_; ++k)
+      if (s.normal_force_N[k] > 0) {
+        t.pairs_in_contact += static_cast<int>(n_teeth_);
+        t.max_pair_force_N = std::max(t.max_pair_force_N, s.normal_force_N[k]);
+      }
+    f.steps.push_back(t);
+  };
+  for (std::size_t i = c.bottom; i <= c.end; ++i) add(i, "loading");
+  for (std::size_t i = c.top; i <= c.bottom; ++i) add(i, "unloading");
+  TorqueTwist loading, unloading;
+  for (const TorqueStep& t : f.steps) {
+    TorqueTwist& b = t.branch == "loading" ? loading : unloading;
+    b.torque_Nm.push_back(t.torque_Nm);
+    b.twist_rad.push_back(t.twist_rad);
+  }
+  std::reverse(unloading.torque_Nm.begin(), unloading.torque_Nm.end());
+  std::reverse(unloading.twist_rad.begin(), unloading.twist_rad.end());
+  middle_line_ = middle_line(loading, unloading);
+  f.lost_motion_rad = lost_motion_rad(middle_line_, T_R_);
+  out_.friction = std::move(f);
+}
+
 TorqueStep ContactAnalyser::torque_step(double T, const ContactSolution& s) {
   TorqueStep st;
   st.torque_Nm = T;
@@ -560,10 +694,12 @@ bool ContactAnalyser::twist_reaches_flanks_left_out() {
 void ContactAnalyser::describe_curve() {
   for (const EdgeTooth& e : out_.edges) out_.zone_edges_hold = out_.zone_edges_hold && !e.slips && !e.enters;
   out_.play_rad = out_.curve.twist_rad[N_ + 1] - out_.curve.twist_rad[N_];
-  out_.lost_motion_rad = lost_motion_rad(out_.curve, T_R_);
+  // With friction the catalog's figures are read on the loop's middle line, as a catalog reads its recordings.
+  const TorqueTwist& line = out_.friction ? middle_line_ : out_.curve;
+  out_.lost_motion_rad = lost_motion_rad(line, T_R_);
   out_.catalog = opt_.catalog_t1_Nm > 0 && opt_.catalog_t2_Nm > opt_.catalog_t1_Nm && opt_.catalog_t2_Nm < T_R_
-                     ? segment_law(out_.curve, opt_.catalog_t1_Nm, opt_.catalog_t2_Nm, T_R_)
-                     : fitted_segment_law(out_.curve, T_R_);
+                     ? segment_law(line, opt_.catalog_t1_Nm, opt_.catalog_t2_Nm, T_R_)
+                     : fitted_segment_law(line, T_R_);
 }
 
 /// Split of the twist at rated torque: the tangent line there (active set fixed) by energy, the intercept is
@@ -630,8 +766,11 @@ void ContactAnalyser::check_independently() {
   Eigen::VectorXd x(nf_ + nb_);
   if (unilateral_) x = at_rated_.force_N;  // the whole loaded state, the generator's preload included
   else x << at_rated_.force_N, band_solve_ * at_rated_.force_N;
-  Eigen::VectorXd x_all = Eigen::VectorXd::Zero(no_ + nf_ + nb_);  // the observers carry no force
-  x_all.tail(nf_ + nb_) = x;
+  // The observers (and the tangential patterns: the frictionless state at rated) carry no force.
+  const Eigen::Index nt = static_cast<Eigen::Index>(tangential_.size());
+  Eigen::VectorXd x_all = Eigen::VectorXd::Zero(no_ + nf_ + nt + nb_);
+  x_all.segment(no_, nf_) = x.head(nf_);
+  x_all.tail(nb_) = x.tail(nb_);
   const BodyCheck check = influence_.check(x_all);
   out_.superposition_error_rel = check.superposition_error_rel;
   out_.fem_reaction_torque_Nm = check.clamp_reaction_torque_Nm;

@@ -73,6 +73,9 @@ struct ContactOptions {
   int face_slices = 1;
   /// Catalog breakpoints (T1, T2) to read K1..K3 at; 0: fitted to the curve.
   double catalog_t1_Nm = 0, catalog_t2_Nm = 0;
+  /// Coulomb's μ on the tooth flanks ([contact] friction_coefficient); > 0 adds the load cycle's loop
+  /// (ContactAnalysis::friction). The generator's stations roll: frictionless.
+  double friction_coefficient = 0;
 };
 
 /// One flank that can take part.
@@ -117,11 +120,24 @@ struct EdgeTooth {
 
 struct TorqueStep {
   double torque_Nm = 0, twist_rad = 0;
+  std::string branch;             ///< on a friction loop: "loading" | "unloading"; empty on the frictionless curve
   int pairs_in_contact = 0;       ///< tooth flanks carrying force (both partners of a half-turn pair counted)
   double max_pair_force_N = 0;
   double balance_error_rel = 0;   ///< |Σ moments − T| / |T|
   std::vector<double> flank_force_N;    ///< per FlankContact, at each of the pair's teeth
   std::vector<double> station_force_N;  ///< per generator station pair (unilateral generators)
+};
+
+/// The drive's loop under the catalog's load cycle with friction on the flanks: from rest to +rated, then +rated →
+/// −rated → +rated until a cycle repeats the one before (contact/frictional_contact.hpp run_steady_loop).
+struct FrictionLoop {
+  double friction_coefficient = 0;
+  int steps_per_quarter = 0, cycles = 0;
+  std::vector<TorqueStep> steps;   ///< the last cycle: the loading branch (−rated → +rated), then the unloading one
+  double hysteresis_loss_rad = 0;  ///< the branches' gap at zero torque
+  double dissipated_energy_J = 0;  ///< the loop's area ∮T dψ
+  double friction_work_J = 0;      ///< Σ |q|·|slip increment| over the cycle
+  double lost_motion_rad = 0;      ///< between ±4 % of rated on the loop's middle line
 };
 
 /// Fractions of the twist at rated torque (sum 1): the tangent line at rated torque split by energy, its intercept
@@ -177,6 +193,7 @@ struct ContactAnalysis {
   /// rounded tip would ride over: what of the curve rests on them.
   double edge_teeth_torque_share = 0;
   double twist_at_rated_without_edge_teeth_rad = 0;
+  std::optional<FrictionLoop> friction;  ///< with friction on the flanks
   /// The problem solved at every step: flanks (in the order of `flanks`), then the generator's stations when they are
   /// unilateral (their λ 0, their gap the FEM's obstacle); the tooth pairs' compliance on the diagonal, the bearing's
   /// secant not. For the multibody model, which moves the teeth through it.

@@ -1318,7 +1318,7 @@ std::array<int, 3> harmonic_needs(const FlexsplineModel& c) {
   std::array<int, 3> need{kBaseHarmonics, 0, 0};
   if (c.wave_generator && c.flexspline.inner_radius_m > 0 && c.mesh.size_m > 0)
     need[1] = 2 * static_cast<int>(std::lround(kPi / station_spacing(c)));
-  if (c.gear && c.gear->teeth_flexspline > 0 && c.flexspline.teeth != TeethModel::None)
+  if (c.gear && c.gear->teeth_flexspline > 0 && c.flexspline.rim_width_m > 0)  // a toothed face: the contact's
     need[2] = (c.gear->teeth_flexspline + 1) / 2;
   return need;
 }

@@ -68,7 +68,18 @@ ContactResult contact_result(const ContactAnalysis& a, const Case& c, const std:
   r.case_path = c.path;
   r.provenance = provenance_of(c);
   r.rated_torque_Nm = a.rated_torque_Nm;
-  for (const auto& s : a.steps) r.torque_twist.push_back({s.torque_Nm, s.twist_rad, s.pairs_in_contact, s.max_pair_force_N});
+  if (a.friction) {  // the loop's two branches, the loading one first
+    for (const auto& s : a.friction->steps)
+      r.torque_twist.push_back({s.torque_Nm, s.twist_rad, s.pairs_in_contact, s.max_pair_force_N, s.branch});
+    r.friction = ContactResult::Friction{a.friction->friction_coefficient, a.friction->steps_per_quarter,
+                                         a.friction->cycles};
+    r.hysteresis_loss_arcmin = a.friction->hysteresis_loss_rad * kArcmin;
+    r.dissipated_energy_J = a.friction->dissipated_energy_J;
+    r.friction_work_J = a.friction->friction_work_J;
+  } else {
+    for (const auto& s : a.steps)
+      r.torque_twist.push_back({s.torque_Nm, s.twist_rad, s.pairs_in_contact, s.max_pair_force_N, std::nullopt});
+  }
   r.catalog = catalog_figures(a.catalog);
   if (reference) r.catalog_reference = reference_figures(*reference, a.rated_torque_Nm);
   r.lost_motion_arcmin = a.lost_motion_rad * kArcmin;
@@ -96,7 +107,14 @@ ContactResult contact_result(const ContactAnalysis& a, const Case& c, const std:
 static auto fields(std::type_identity<ContactResult::Step>) {
   using T = ContactResult::Step;
   return std::tuple{field("torque_Nm", &T::torque_Nm), field("twist_rad", &T::twist_rad),
-                    field("pairs_in_contact", &T::pairs_in_contact), field("max_pair_force_N", &T::max_pair_force_N)};
+                    field("pairs_in_contact", &T::pairs_in_contact), field("max_pair_force_N", &T::max_pair_force_N),
+                    field("branch", &T::branch)};
+}
+
+static auto fields(std::type_identity<ContactResult::Friction>) {
+  using T = ContactResult::Friction;
+  return std::tuple{field("friction_coefficient", &T::friction_coefficient),
+                    field("steps_per_quarter", &T::steps_per_quarter), field("cycles", &T::cycles)};
 }
 
 static auto fields(std::type_identity<ContactResult::Catalog>) {
@@ -182,7 +200,9 @@ static auto fields(std::type_identity<ContactResult>) {
                     field("compliance_split", &T::compliance_split), field("zone_edges", &T::zone_edges),
                     field("generator_support", &T::generator_support), field("half_turn_pairs", &T::half_turn_pairs),
                     field("flanks", &T::flanks), field("timings_s", &T::timings_s), field("unknowns", &T::unknowns),
-                    field("solver", &T::solver),
+                    field("solver", &T::solver), field("friction", &T::friction),
+                    field("hysteresis_loss_arcmin", &T::hysteresis_loss_arcmin),
+                    field("dissipated_energy_J", &T::dissipated_energy_J), field("friction_work_J", &T::friction_work_J),
                     field("case_file", &T::case_path), flattened(&T::provenance)};
 }
 
@@ -279,10 +299,10 @@ std::string contact_svg(const ContactAnalysis& a, const std::optional<CatalogLaw
   tt.title = "torque–twist of the drive (generator locked, output turned against the circular spline)";
   tt.x_label = "torque (N·m)";
   tt.y_label = "twist (arcmin)";
-  PlotSeries curve{"computed", {}, {}, "#1f77b4"};
-  for (std::size_t i = 0; i < a.steps.size(); ++i) {
-    curve.x.push_back(a.steps[i].torque_Nm);
-    curve.y.push_back(a.steps[i].twist_rad * kArcmin);
+  PlotSeries curve{a.friction ? "computed loop (friction on the flanks)" : "computed", {}, {}, "#1f77b4"};
+  for (const TorqueStep& s : a.friction ? a.friction->steps : a.steps) {
+    curve.x.push_back(s.torque_Nm);
+    curve.y.push_back(s.twist_rad * kArcmin);
   }
   tt.series.push_back(curve);
   PlotSeries law{"three segments of the computed curve", {}, {}, "#2ca02c", true};

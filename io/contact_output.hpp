@@ -25,6 +25,12 @@ struct ContactResult {
     double torque_Nm = 0, twist_rad = 0;
     int pairs_in_contact = 0;
     double max_pair_force_N = 0;
+    std::optional<std::string> branch;  ///< with friction: "loading" | "unloading"
+  };
+  /// With friction on the flanks: the load cycle's loop (torque_twist holds its two branches).
+  struct Friction {
+    double friction_coefficient = 0;
+    int steps_per_quarter = 0, cycles = 0;
   };
   /// The three segments of the computed curve.
   struct Catalog {
@@ -90,6 +96,8 @@ struct ContactResult {
   Timings timings_s;
   int unknowns = 0;
   Solver solver;
+  std::optional<Friction> friction;
+  std::optional<double> hysteresis_loss_arcmin, dissipated_energy_J, friction_work_J;  ///< with friction
 };
 
 /// The file's figures of a contact analysis of the case `c`. `reference`: the catalog's law of the case's size, if any.

@@ -493,8 +493,8 @@ FemRunForContact read_fem_run_for_contact(const std::filesystem::path& path) {
   const JsonIn j = open_result_json(path);
   FemRunForContact r;
   r.compliance_rad_per_Nm = read_fem_compliance(path);
-  if (j["solver"]["method"].text() != "tet10")
-    j["solver"]["method"].fail("\"tet10\" (the tooth contact needs the result of a TET10 run)");
+  r.method = j["solver"]["method"].text();
+  if (r.method != "tet10" && r.method != "fourier") j["solver"]["method"].fail("\"tet10\" or \"fourier\"");
   r.equations = j["solver"]["equations"].integer();
   r.generator_model = j["generator"]["model"].text();
   r.neutral_curve = read_neutral_curve_csv(path.parent_path() / "neutral_curve.csv");

@@ -194,13 +194,14 @@ double read_fem_compliance(const std::filesystem::path& result_json);
 /// check it is the same model), C_τ, the generator model and the generator-deformed neutral curve (neutral_curve.csv
 /// beside result.json).
 struct FemRunForContact {
+  std::string method;  ///< solver.method: "tet10" | "fourier"
   std::int64_t equations = 0;
   double compliance_rad_per_Nm = 0;
   std::string generator_model;  ///< "cam", "rollers", "four_force", ...
   NeutralCurveSamples neutral_curve;
 };
 
-/// Reads them; InputError naming the file and key for anything missing (a fourier result has no TET10 equations).
+/// Reads them; InputError naming the file and key for anything missing.
 FemRunForContact read_fem_run_for_contact(const std::filesystem::path& result_json);
 
 /// neutral_curve.csv text: phi_rad,w_wg_m,v_wg_m,mu_wg_rad,w_comb_m,v_comb_m,mu_comb_rad (one row per degree).

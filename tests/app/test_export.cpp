@@ -41,7 +41,7 @@ TEST(ExportInp, CalculixSolvesTheDeckToOurPhi0) {
                                {{"size_mm = 1.5", "size_mm = 2.0"}, {"wall_layers = 2", "wall_layers = 1"},
                                 {"length_mm = 30.0", "length_mm = 10.0"}});
   const std::string bin = strainwave_binary();
-  const CommandRun fem = run_shell(bin + " --quiet fem " + (dir / "tube.toml").string() + " --no-vtk --export-inp " +
+  const CommandRun fem = run_shell(bin + " --quiet fem " + (dir / "tube.toml").string() + " --solver tet10 --no-vtk --export-inp " +
                                    (dir / "job.inp").string() + " --out " + (dir / "out").string());
   ASSERT_EQ(fem.exit_code, 0) << fem.output;
   ASSERT_TRUE(fs::exists(dir / "job.inp"));

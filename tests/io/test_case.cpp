@@ -80,7 +80,14 @@ TEST(CaseFile, SolverTable) {
   const Case c = parse_case(std::string(kTube) + "[solver]\nmethod = \"fourier\"\nharmonics = 32\n", "t.toml");
   EXPECT_EQ(c.solver.method, SolverMethod::Fourier);
   EXPECT_EQ(c.solver.harmonics, 32);
-  EXPECT_EQ(parse_case(kTube, "t.toml").solver.method, SolverMethod::Tet10);
+  // "auto", the default: the harmonic solver for a body of revolution, TET10 for explicit teeth or the petsc backend.
+  EXPECT_EQ(parse_case(kTube, "t.toml").solver.method, SolverMethod::Fourier);
+  EXPECT_EQ(parse_case(std::string(kTube) + "[solver]\nbackend = \"petsc\"\n", "t.toml").solver.method,
+            SolverMethod::Tet10);
+  EXPECT_EQ(parse_case(std::string(kTube) + "[solver]\nmethod = \"tet10\"\n", "t.toml").solver.method,
+            SolverMethod::Tet10);
+  EXPECT_EQ(parse_case(std::string(kTube) + "[solver]\nmethod = \"auto\"\n", "t.toml").solver.method,
+            SolverMethod::Fourier);
   EXPECT_NE(error_of(std::string(kTube) + "[solver]\nmethod = \"fft\"\n").find("solver.method = 'fft'; expected one of"),
             std::string::npos);
   EXPECT_NE(error_of(std::string(kTube) + "[solver]\nharmonics = -1\n").find("solver.harmonics = -1; must be >= 0"),
@@ -373,7 +380,10 @@ TEST(CaseFile, DerivedDefaultsOfATubeARingCupAndAnExplicitCup) {
   EXPECT_EQ(tube.flexspline.teeth, TeethModel::None);                                  // a tube's default teeth
   EXPECT_DOUBLE_EQ(tube.flexspline.rim_thickness_m, tube.flexspline.wall_thickness_m);  // no rim: the wall
   EXPECT_FALSE(tube.circular_spline.has_value());  // no toothed face to derive its width from; contact refuses it
-  EXPECT_TRUE(tube.derived_from.empty());
+  for (const auto& [key, from] : tube.derived_from)  // only the solver's own: "auto" and the harmonics
+    EXPECT_TRUE(key == "solver.method" || key == "solver.harmonics") << key << ": " << from;
+  EXPECT_EQ(tube.derived_from.at("solver.method"),
+            "\"auto\": the flexspline is a body of revolution (teeth \"ring\" or \"none\")");
   for (const char* teeth : {"ring", "explicit"}) {
     const Case cup = parse_case(std::string(kCup) + "teeth = \"" + teeth + "\"\n", "c.toml");
     ASSERT_TRUE(cup.circular_spline.has_value()) << teeth;
@@ -381,6 +391,8 @@ TEST(CaseFile, DerivedDefaultsOfATubeARingCupAndAnExplicitCup) {
     EXPECT_DOUBLE_EQ(cup.circular_spline->width_m, cup.flexspline.rim_width_m) << teeth;
     EXPECT_EQ(cup.derived_from.at("circular_spline.outer_radius_mm"), "0.7 x the pitch diameter z_c m (design rule)");
     EXPECT_EQ(cup.derived_from.at("circular_spline.width_mm"), "flexspline.rim_width_mm = 6 (the toothed face width)");
+    EXPECT_EQ(cup.solver.method, std::string(teeth) == "ring" ? SolverMethod::Fourier : SolverMethod::Tet10) << teeth;
+    EXPECT_EQ(cup.solver.harmonics, std::max(64, 190 / 2));  // z_f/2 beyond the base's 64 (and the stations')
   }
   // The given keys are not derived.
   const Case given = parse_case(std::string(kCup) + "[circular_spline]\nwidth_mm = 8\n", "c.toml");

@@ -17,7 +17,6 @@
 #include "contact/tet10_body.hpp"
 #include "fem/flexspline_analysis.hpp"
 #include "fem/fourier_solver.hpp"
-#include "fem/generator_contact.hpp"
 #include "io/case.hpp"
 #include "mesh/flexspline.hpp"
 
@@ -60,14 +59,21 @@ const BothWays& both_ways(const std::string& path) {
   return *s;
 }
 
-/// The generator's zones at +rated: stations carrying force, joined over the circumference.
-std::vector<std::pair<double, double>> zones_at_rated(const ContactAnalysis& a, const std::vector<double>& angles,
-                                                      double spacing) {
-  StationForces f;
-  f.force_N = Eigen::Map<const Eigen::VectorXd>(a.steps.back().station_force_N.data(),
-                                                static_cast<Eigen::Index>(a.steps.back().station_force_N.size()));
-  f.gap_m = Eigen::VectorXd::Constant(f.force_N.size(), 1.0);
-  return contact_zones_deg(angles, touching(f, 0.0), spacing);
+/// The generator's zone at +rated around the major axis's end at 0° (the other end is its half-turn image): the first
+/// and the last station carrying force, degrees in [−90°, 90°). Inside the zone, where the cam and the bore conform,
+/// which stations carry the small pressure is set by sub-micrometre differences of the two discretisations (TET10's
+/// zone is fragmented there), so the zones are compared by their extent.
+std::pair<double, double> zone_at_rated(const ContactAnalysis& a, const std::vector<double>& angles) {
+  const std::vector<double>& f = a.steps.back().station_force_N;
+  double lo = 90, hi = -90;
+  for (std::size_t j = 0; j < angles.size(); ++j) {
+    if (!(f[j] > 0)) continue;
+    double deg = angles[j] * 180 / M_PI;
+    if (deg >= 90) deg -= 180;
+    lo = std::min(lo, deg);
+    hi = std::max(hi, deg);
+  }
+  return {lo, hi};
 }
 
 class BothSolvers : public ::testing::TestWithParam<const char*> {};
@@ -107,8 +113,12 @@ TEST_P(BothSolvers, HarmonicContactMatchesTet10Contact) {
   const auto& st = b.fourier->stations;
   ASSERT_TRUE(st.has_value());
   ASSERT_EQ(st->angle_rad.size(), b.tet10_fem.generator->station_angle_rad.size());
-  EXPECT_EQ(zones_at_rated(h, st->angle_rad, st->half_width_rad),
-            zones_at_rated(t, b.tet10_fem.generator->station_angle_rad, st->half_width_rad));
+  const auto zh = zone_at_rated(h, st->angle_rad), zt = zone_at_rated(t, b.tet10_fem.generator->station_angle_rad);
+  const double station_deg = st->half_width_rad * 180 / M_PI;
+  std::printf("%s: generator zone at rated %.2f..%.2f deg harmonic, %.2f..%.2f tet10 (stations %.2f deg apart)\n",
+              GetParam(), zh.first, zh.second, zt.first, zt.second, station_deg);
+  EXPECT_LE(std::abs(zh.first - zt.first), station_deg + 1e-9);
+  EXPECT_LE(std::abs(zh.second - zt.second), station_deg + 1e-9);
   // The harmonic body's own checks: the quadrature of its hats against its closed-form moments, the balances.
   EXPECT_LT(h.superposition_error_rel, 1e-8);
   EXPECT_LT(h.torque_balance_error_rel, 1e-9);

@@ -1,0 +1,90 @@
+// The drive's loop with friction on the flanks, on the designed size-17 cup (harmonic solver): the loop's area is the
+// friction work, both grow with μ, and the middle line of a light friction is the frictionless curve.
+#include <cmath>
+#include <cstdio>
+
+#include <gtest/gtest.h>
+
+#include "app/contact_job.hpp"
+#include "contact/harmonic_body.hpp"
+#include "contact/loaded_contact.hpp"
+#include "fem/fourier_solver.hpp"
+#include "io/case.hpp"
+
+namespace sw {
+namespace {
+
+struct Solved {
+  Case c;
+  FourierSolution fourier;
+};
+
+/// The designed size-17 cup with its cam, or with the band held radially (the force idealisation).
+const Solved& size17(bool band_held) {
+  static const Solved* s[2] = {nullptr, nullptr};
+  if (!s[band_held]) {
+    auto* k = new Solved;
+    k->c = load_case("cases/cup_size17.toml");
+    if (band_held) k->c.wave_generator->model = FourForce{};
+    const FlexsplineModel m = flexspline_model(k->c);
+    k->fourier = analyse_flexspline_fourier(m, 0, contact_band_request(m, 1));
+    s[band_held] = k;
+  }
+  return *s[band_held];
+}
+
+ContactAnalysis loop_at(double mu, int steps, bool band_held = false) {
+  const Solved& s = size17(band_held);
+  const FlexsplineModel m = flexspline_model(s.c);
+  ContactOptions o;
+  o.rated_torque_Nm = *s.c.load.rated_torque_Nm;
+  o.series = app::series_parts(s.c);
+  o.steps = steps;
+  o.friction_coefficient = mu;
+  return analyse_contact(m, HarmonicBody(m, s.fourier), fem_readout(s.fourier.figures), o);
+}
+
+// The loop's area ∮T dψ is the friction work Σ|q||Δs| (the power balance of an elastic system with Coulomb friction):
+// 1 % at 40 steps a quarter, measured −0.15 / −0.05 / +0.07 % at μ = 0.02 / 0.05 / 0.1, with the band held radially.
+// With the cam the area is 1.7 % above the work at every μ and step count: the locked cam's share of the torque
+// (through its tilted normal) is counted in the output's torque while its stations' gaps do not see the output's turn
+// (contact/README.md), an idealisation that is not conservative. Both grow with μ.
+TEST(FrictionLoop, AreaIsTheFrictionWorkAndGrowsWithMu) {
+  for (const bool band_held : {true, false}) {
+    double last = 0;
+    for (const double mu : {0.02, 0.05, 0.1}) {
+      const ContactAnalysis a = loop_at(mu, 40, band_held);
+      ASSERT_TRUE(a.friction.has_value());
+      const FrictionLoop& f = *a.friction;
+      std::printf("size 17 (%s), mu %.2f: loop area %.4e J, friction work %.4e J (%+.2f %%), hysteresis loss %.4f "
+                  "arcmin, lost motion %.3f arcmin, %d cycles\n", band_held ? "band held" : "cam", mu,
+                  f.dissipated_energy_J, f.friction_work_J, 100 * (f.dissipated_energy_J / f.friction_work_J - 1),
+                  f.hysteresis_loss_rad * 10800 / M_PI, f.lost_motion_rad * 10800 / M_PI, f.cycles);
+      EXPECT_NEAR(f.dissipated_energy_J / f.friction_work_J, band_held ? 1.0 : 1.017, 0.01) << mu;
+      EXPECT_GT(f.friction_work_J, last) << mu;
+      last = f.friction_work_J;
+      // The branches: loading from −rated to +rated, then unloading back.
+      EXPECT_EQ(f.steps.front().branch, "loading");
+      EXPECT_EQ(f.steps.back().branch, "unloading");
+      EXPECT_NEAR(f.steps.front().torque_Nm, -a.rated_torque_Nm, 1e-9);
+      EXPECT_NEAR(f.steps.back().torque_Nm, -a.rated_torque_Nm, 1e-9);
+    }
+  }
+}
+
+// A light friction (μ = 0.02) leaves the loop near the frictionless curve: the loading branch at rated torque within
+// 1 % (measured −0.53 %: friction holds the flanks back on loading), the lost motion within 0.01 arcmin.
+TEST(FrictionLoop, LightFrictionsMiddleLineIsTheFrictionlessCurve) {
+  const ContactAnalysis none = loop_at(0.0, 20), light = loop_at(0.02, 20);
+  EXPECT_FALSE(none.friction.has_value());
+  ASSERT_TRUE(light.friction.has_value());
+  const double rated = none.curve.twist_rad.back();
+  double loading_at_rated = 0;
+  for (const TorqueStep& s : light.friction->steps)
+    if (s.branch == "loading" && std::abs(s.torque_Nm - light.rated_torque_Nm) < 1e-9) loading_at_rated = s.twist_rad;
+  EXPECT_NEAR(loading_at_rated / rated, 1.0, 0.01);
+  EXPECT_NEAR(light.lost_motion_rad * 10800 / M_PI, none.lost_motion_rad * 10800 / M_PI, 0.01);
+}
+
+}  // namespace
+}  // namespace sw

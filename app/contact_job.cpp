@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <string>
@@ -44,9 +45,15 @@ SeriesParts series_parts(const Case& c) {
     s.bearing_approach_m = [unit](double ball_load_N) { return unit * std::cbrt(ball_load_N * ball_load_N); };
     s.bearing_balls = b.balls;
   }
-  if (c.circular_spline && c.gear)
-    s.circular_spline_rad_per_Nm = circular_spline_compliance_rad_per_Nm(
-        *c.circular_spline, gear_radii(*c.gear).root_c, c.material.shear_modulus_Pa());
+  if (c.circular_spline && c.gear) {
+    // The ring is solved when the contact first asks (the multibody model reads the teeth only), once.
+    auto ring = std::make_shared<std::optional<CircularSplineRing>>();
+    s.circular_spline = [ring, cs = *c.circular_spline, g = *c.gear, m = c.material,
+                         slices = c.contact.face_slices](const std::vector<FlankPattern>& patterns) {
+      if (!*ring) ring->emplace(circular_spline_ring(cs, g, m, slices));
+      return circular_spline_block(**ring, patterns);
+    };
+  }
   return s;
 }
 

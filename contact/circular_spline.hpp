@@ -95,7 +95,7 @@ CircularSplineRing circular_spline_ring(const CircularSplineParams& c, const Gea
 struct CircularSplineBlock {
   /// flanks × flanks (m/N): the work-conjugate displacement of each pattern per unit force of each, symmetric
   Eigen::MatrixXd A;
-  /// N·m per N: the moment about the axis of each pattern's load on the ring (its share of the output torque)
+  /// N·m per N: the moment about the axis of each pattern's load on the ring (the torque it carries)
   Eigen::VectorXd moment_m;
   /// The torque the ring puts on its mounting under forces x (per pattern), from a direct solve of the ring: the
   /// mounting's reaction, K₀·u − F on the held nodes. Equals moment_mᵀx (the flanks' torque) to round-off. The ring

@@ -161,7 +161,7 @@ struct ContactAnalysis {
   double torque_balance_error_rel = 0;  ///< worst over the steps
   double fem_reaction_torque_Nm = 0;    ///< at +rated: the clamp's reaction to the contact forces in a direct FEM solve
   /// at +rated: the torque the circular spline's mounting carries in a direct solve of its ring under the flank forces
-  /// (the flanks' share of the output torque; 0 for a rigid circular spline)
+  /// (the flanks' torque: the output's less the locked generator's share; 0 for a rigid circular spline)
   double circular_spline_torque_Nm = 0;
   /// at +rated: the contacts' displacements from the influence coefficients against the direct FEM solve with the same
   /// nodal forces (largest difference over the largest displacement)

@@ -166,10 +166,11 @@ std::string design_case_toml(const CupDesign& c) {
     << "#   steps, balls at >= " << num(kBallPitchPerBall) << " D on the pitch circle, circular spline outer diameter "
     << num(kCircularSplineOuterDiameterPerPitchDiameter) << " x its pitch diameter.\n"
     << "# - circular spline mounting \"" << to_string(c.circular_spline.mounting)
-    << "\": bolted by one end face to the housing, as a catalog drive's is and as its stiffness is measured, held on\n"
-    << "#   the annulus " << num(kBoltCircleInnerFraction) << "-" << num(kBoltCircleOuterFraction)
-    << " of the way from its root circle to its outside (bolt circle and bolt heads, an estimate from the\n"
-    << "#   component sets' outline); \"outer\" (its outside held) is the stiffer idealisation.\n"
+    << "\": bolted by one end face to the housing, as a catalog drive's is and as its\n"
+    << "#   stiffness is measured, held on the annulus " << num(kBoltCircleInnerFraction) << "-"
+    << num(kBoltCircleOuterFraction) << " of the way from its root circle to its outside (bolt circle and\n"
+    << "#   bolt heads, an estimate from the component sets' outline); \"outer\" (its outside held) is the stiffer\n"
+    << "#   idealisation.\n"
     << "# - groove conformity 0.52 inner / 0.53 outer (Harris & Kotzalas, Rolling Bearing Analysis, ch. 2).\n"
     << "# - rated torque " << num(c.rated_torque_Nm) << " N m: " << c.rated_torque_from << ".\n"
     << "# Supports: the boss clamped; the cam pushes the bore over its band; the torque on the rim's engagement zones.\n"

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <string>
@@ -49,9 +50,15 @@ SeriesParts series_parts(const Case& c, std::shared_future<TeethCompliance> teet
     s.bearing_approach_m = [unit](double ball_load_N) { return unit * std::cbrt(ball_load_N * ball_load_N); };
     s.bearing_balls = b.balls;
   }
-  if (c.circular_spline && c.gear)
-    s.circular_spline_rad_per_Nm = circular_spline_compliance_rad_per_Nm(
-        *c.circular_spline, gear_radii(*c.gear).root_c, c.material.shear_modulus_Pa());
+  if (c.circular_spline && c.gear) {
+    // The ring is solved when the contact first asks (the multibody model reads the teeth only), once.
+    auto ring = std::make_shared<std::optional<CircularSplineRing>>();
+    s.circular_spline = [ring, cs = *c.circular_spline, g = *c.gear, m = c.material,
+                         slices = c.contact.face_slices](const std::vector<FlankPattern>& patterns) {
+      if (!*ring) ring->emplace(circular_spline_ring(cs, g, m, slices));
+      return circular_spline_block(**ring, patterns);
+    };
+  }
   return s;
 }
 
@@ -100,15 +107,17 @@ void print_against_catalog(const ContactAnalysis& a, const CatalogLaw& reference
 }
 
 /// Lost motion and play, and what the twist at rated torque is made of.
-void print_lost_motion_and_split(const ContactAnalysis& a) {
+void print_lost_motion_and_split(const Case& c, const ContactAnalysis& a) {
   std::printf("  lost motion (twist between ±4 %% of rated, middle line) %.3f arcmin; play (dead band at zero torque) "
               "%.3f arcmin\n", a.lost_motion_rad * kArcmin, a.play_rad * kArcmin);
   // The split reads the tangent at rated torque: its intercept is what the pairs' engagement adds (play taken up,
   // pairs closing one after another); it is negative when the curve softens toward rated torque (the tangent's slope
   // in twist per torque above the secant's), and then says so instead of naming a negative engagement.
+  const std::string mounting = c.circular_spline ? " (" + to_string(c.circular_spline->mounting) + ")" : "";
   std::printf("  twist at rated, along the tangent there: body %.1f %%, teeth %.1f %%, generator bearing %.1f %%, "
-              "circular spline %.1f %%; the tangent's intercept %.1f %% (%s)\n", 100 * a.split.body,
-              100 * a.split.teeth, 100 * a.split.generator, 100 * a.split.circular_spline, 100 * a.split.engagement,
+              "circular spline%s %.1f %%; the tangent's intercept %.1f %% (%s)\n", 100 * a.split.body,
+              100 * a.split.teeth, 100 * a.split.generator, mounting.c_str(), 100 * a.split.circular_spline,
+              100 * a.split.engagement,
               a.split.engagement >= 0 ? "engagement: play taken up and pairs closing one after another"
                                       : "below the origin: the curve softens toward rated torque");
 }
@@ -193,6 +202,9 @@ void print_overlap_and_balance(const ContactAnalysis& a) {
                 "backlash stage's geometry check gives the remedy)\n", a.overlap_at_rest_m * 1e6);
   std::printf("  torque balance: flank moments vs torque %.1e (relative, worst step); clamp reaction in a direct FEM "
               "solve %.6g N·m vs %.6g N·m\n", a.torque_balance_error_rel, a.fem_reaction_torque_Nm, a.rated_torque_Nm);
+  if (a.circular_spline_torque_Nm != 0)
+    std::printf("  the circular spline's mounting carries %.6g N·m in a direct solve of its ring: the flanks' torque, the "
+                "output's less the locked generator's share\n", a.circular_spline_torque_Nm);
 }
 
 }  // namespace
@@ -223,7 +235,7 @@ ContactAnalysis run_contact_job(const Case& c, const ContactBody& body, const Fe
   write_file_atomic(out.staging() / "contact.svg", contact_svg(a, reference));
   print_contact_headline(c, a, o.series.teeth_source);
   if (reference) print_against_catalog(a, *reference);
-  print_lost_motion_and_split(a);
+  print_lost_motion_and_split(c, a);
   if (a.friction)
     std::printf("  friction on the flanks (mu = %g): hysteresis loss %.3f arcmin (the loop's branches apart at zero "
                 "torque), loop area %.4g J = friction work %.4g J per cycle; steady after %d cycles of %d steps a "

@@ -173,10 +173,6 @@ private:
     };
     return solve_torque(base, n_fl, moments, T, inner);
   }
-  /// The output's twist: the contact problem's plus the circular spline's torsion.
-  double twist_rad(const ContactSolution& s, double T) const {
-    return s.twist_rad + opt_.series.circular_spline_rad_per_Nm * T;
-  }
   void step_through_torques();
   FrictionalContactProblem frictional_problem() const;
   void run_friction_loop();
@@ -207,6 +203,7 @@ private:
   double reach_ = 0;
   // The patterns: flanks' columns and gaps, the edge teeth's radial observers.
   std::vector<FlankPattern> patterns_, observers_, tangential_;  // tangential_: with friction
+  std::vector<FlankPattern> cs_patterns_;  // the flanks' forces on the circular spline
   std::vector<double> q_flank_;
   Eigen::Index nf_ = 0, nb_ = 0, no_ = 0;
   // Influence coefficients.
@@ -220,6 +217,7 @@ private:
   ContactProblem P_;
   Eigen::VectorXd p0_;
   Eigen::MatrixXd band_solve_, A_noseries_;
+  CircularSplineBlock cs_;
   bool bearing_ = false;
   double ball_per_N_ = 0;
   Eigen::VectorXd bearing_c_;
@@ -333,6 +331,11 @@ void ContactAnalyser::add_flank(FlankContact f, const FlankClearance& fc, int k,
   if (opt_.friction_coefficient > 0)
     tangential_.push_back({stations, Eigen::Vector2d(fc.normal.y(), -fc.normal.x()), fc.point_f.norm(),
                            n_slices_ > 1 ? j : -1});
+  // Its force on the circular spline: the opposite, at the contact point on the circular spline's tooth.
+  const double c = std::atan2(fc.point_c.y(), fc.point_c.x());
+  std::vector<double> on_cs{c};
+  if (out_.half_turn_pairs) on_cs.push_back(c + kPi);
+  cs_patterns_.push_back({on_cs, fc.normal, fc.point_c.norm(), n_slices_ > 1 ? j : -1});
   q_flank_.push_back(n_teeth_ * std::abs(f.lever_m) * f.closing_angle_rad);
   out_.flanks.push_back(f);
 }
@@ -421,6 +424,9 @@ void ContactAnalyser::set_up_problem() {
     out_.generator_support = "the band held radially at the stations (the paper's given-force idealisation)";
   }
   A_noseries_ = P_.A;
+  cs_.A = Eigen::MatrixXd::Zero(nf, nf);
+  if (opt_.series.circular_spline) cs_ = opt_.series.circular_spline(cs_patterns_);
+  P_.A.topLeftCorner(nf, nf) += cs_.A;
   for (Eigen::Index i = 0; i < nf; ++i) P_.A(i, i) += n_teeth_ * out_.flanks[i].compliance_m_per_N;
   out_.unknowns = static_cast<int>(P_.q.size());
   out_.problem = P_;
@@ -625,7 +631,7 @@ void ContactAnalyser::run_friction_loop() {
     const FrictionalStep& s = loop.history[i];
     TorqueStep t;
     t.torque_Nm = std::abs(s.torque_Nm) < kZeroTorqueSnap * T_R_ ? 0.0 : s.torque_Nm;
-    t.twist_rad = s.twist_rad + opt_.series.circular_spline_rad_per_Nm * s.torque_Nm;
+    t.twist_rad = s.twist_rad;
     t.branch = branch;
     t.flank_force_N.assign(s.normal_force_N.data(), s.normal_force_N.data() + nf_);
     for (Eigen::Index k = 0; k < nf_; ++k)
@@ -653,7 +659,7 @@ void ContactAnalyser::run_friction_loop() {
 TorqueStep ContactAnalyser::torque_step(double T, const ContactSolution& s) {
   TorqueStep st;
   st.torque_Nm = T;
-  st.twist_rad = twist_rad(s, T);
+  st.twist_rad = s.twist_rad;
   st.flank_force_N.assign(s.force_N.data(), s.force_N.data() + nf_);
   if (unilateral_) st.station_force_N.assign(s.force_N.data() + nf_, s.force_N.data() + nf_ + nb_);
   for (Eigen::Index i = 0; i < nf_; ++i)
@@ -709,15 +715,16 @@ void ContactAnalyser::split_compliance() {
   for (Eigen::Index i = 0; i < at_rated_.force_N.size(); ++i)
     if (at_rated_.force_N[i] > 0) S.push_back(i);
   const auto n = static_cast<Eigen::Index>(S.size());
-  Eigen::MatrixXd M(n, n), Mb(n, n);
+  Eigen::MatrixXd M(n, n), Mb(n, n), Mc = Eigen::MatrixXd::Zero(n, n);
   Eigen::VectorXd l(n), teeth(n), brg(n);
   for (Eigen::Index r = 0; r < n; ++r) {
     l[r] = P_.lambda[S[r]];
     teeth[r] = S[r] < nf_ ? n_teeth_ * out_.flanks[S[r]].compliance_m_per_N : 0.0;
     brg[r] = S[r] >= nf_ && bearing_ ? bearing_c_[S[r] - nf_] : 0.0;
     for (Eigen::Index q = 0; q < n; ++q) Mb(r, q) = A_noseries_(S[r], S[q]);
+    for (Eigen::Index q = 0; q < n && S[r] < nf_; ++q) Mc(r, q) = S[q] < nf_ ? cs_.A(S[r], S[q]) : 0.0;
   }
-  M = Mb;
+  M = Mb + Mc;
   M.diagonal() += teeth + brg;
   const Eigen::VectorXd Ml = M.ldlt().solve(l);
   const double C_t = 1.0 / l.dot(Ml);
@@ -727,7 +734,7 @@ void ContactAnalyser::split_compliance() {
   split.body = dz.dot(Mb * dz) * T_fl / total;
   split.teeth = dz.cwiseProduct(teeth).dot(dz) * T_fl / total;
   split.generator = dz.cwiseProduct(brg).dot(dz) * T_fl / total;
-  split.circular_spline = opt_.series.circular_spline_rad_per_Nm * T_R_ / total;
+  split.circular_spline = dz.dot(Mc * dz) * T_fl / total;
   split.engagement = 1.0 - split.body - split.teeth - split.generator - split.circular_spline;
 }
 
@@ -754,7 +761,7 @@ void ContactAnalyser::measure_zone_edge_teeth() {
   const Eigen::VectorXd moments = lambda_(keep);
   try {
     const ContactSolution s = solve_torque(Pe, kept_flanks, moments, T_R_, nullptr).first;
-    out_.twist_at_rated_without_edge_teeth_rad = twist_rad(s, T_R_);
+    out_.twist_at_rated_without_edge_teeth_rad = s.twist_rad;
   } catch (const InputError&) {
     out_.twist_at_rated_without_edge_teeth_rad = std::numeric_limits<double>::infinity();  // nothing else carries it
   }
@@ -774,6 +781,7 @@ void ContactAnalyser::check_independently() {
   const BodyCheck check = influence_.check(x_all);
   out_.superposition_error_rel = check.superposition_error_rel;
   out_.fem_reaction_torque_Nm = check.clamp_reaction_torque_Nm;
+  if (cs_.mounting_torque_Nm) out_.circular_spline_torque_Nm = cs_.mounting_torque_Nm(at_rated_.force_N.head(nf_));
 }
 
 }  // namespace

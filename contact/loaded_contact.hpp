@@ -13,8 +13,9 @@
 //    generator's stations as the FEM's generator contact (fem/generator_contact.hpp). Teeth and stations at θ and
 //    θ + π form one unknown (the half-turn symmetry of the generator and of an even tooth count), as in the FEM.
 //  - In series, on the diagonal: each tooth pair's own compliance (bending, foundation and flattening of both teeth;
-//    gear/tooth_stiffness.hpp) and the generator bearing's Hertzian balls (nonlinear, iterated on the secant); the
-//    circular spline's torsion adds T·C_cs to the twist.
+//    gear/tooth_stiffness.hpp) and the generator bearing's Hertzian balls (nonlinear, iterated on the secant).
+//  - Circular spline: an elastic ring held as it is mounted (contact/circular_spline.hpp); its displacement along each
+//    flank's normal adds to the flexspline's, a block of the flanks' compliance.
 //  - Generator: a cam or rollers in unilateral contact take part in the same contact problem (torque shifts their
 //    contact); the paper's given forces hold the band radially at the stations (eliminated, bilateral).
 //  - No friction: loading and unloading coincide; the loop's middle line is the curve itself.
@@ -27,6 +28,7 @@
 #include <Eigen/Core>
 
 #include "fem/flexspline_model.hpp"
+#include "contact/circular_spline.hpp"
 #include "contact/contact_body.hpp"
 #include "contact/contact_problem.hpp"
 #include "contact/tet10_body.hpp"
@@ -48,7 +50,9 @@ struct SeriesParts {
   /// Approach of the generator bearing's races (m) under one ball's load (N), and the number of balls.
   std::function<double(double ball_load_N)> bearing_approach_m;
   int bearing_balls = 0;
-  double circular_spline_rad_per_Nm = 0;  ///< torsion of the circular spline's body
+  /// The circular spline's block for the flanks' patterns on it (contact/circular_spline.hpp): added to the flanks'
+  /// compliance. Empty: a rigid circular spline.
+  std::function<CircularSplineBlock(const std::vector<FlankPattern>& patterns)> circular_spline;
 };
 
 /// The flexspline model's tooth pair compliance over the rim's face width (m/N) at the two contact radii: the flexspline's tooth
@@ -172,6 +176,9 @@ struct ContactAnalysis {
   ComplianceSplit split;
   double torque_balance_error_rel = 0;  ///< worst over the steps
   double fem_reaction_torque_Nm = 0;    ///< at +rated: the clamp's reaction to the contact forces in a direct FEM solve
+  /// at +rated: the torque the circular spline's mounting carries in a direct solve of its ring under the flank forces
+  /// (the flanks' torque: the output's less the locked generator's share; 0 for a rigid circular spline)
+  double circular_spline_torque_Nm = 0;
   /// at +rated: the contacts' displacements from the influence coefficients against the direct FEM solve with the same
   /// nodal forces (largest difference over the largest displacement)
   double superposition_error_rel = 0;

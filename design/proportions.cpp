@@ -165,6 +165,12 @@ std::string design_case_toml(const CupDesign& c) {
     << num(kBandPerFaceWidth) << " x face width under the rim, ball diameter " << num(kBallPerD) << " d in 1/64\"\n"
     << "#   steps, balls at >= " << num(kBallPitchPerBall) << " D on the pitch circle, circular spline outer diameter "
     << num(kCircularSplineOuterDiameterPerPitchDiameter) << " x its pitch diameter.\n"
+    << "# - circular spline mounting \"" << to_string(c.circular_spline.mounting)
+    << "\": bolted by one end face to the housing, as a catalog drive's is and as its\n"
+    << "#   stiffness is measured, held on the annulus " << num(kBoltCircleInnerFraction) << "-"
+    << num(kBoltCircleOuterFraction) << " of the way from its root circle to its outside (bolt circle and\n"
+    << "#   bolt heads, an estimate from the component sets' outline); \"outer\" (its outside held) is the stiffer\n"
+    << "#   idealisation.\n"
     << "# - groove conformity 0.52 inner / 0.53 outer (Harris & Kotzalas, Rolling Bearing Analysis, ch. 2).\n"
     << "# - rated torque " << num(c.rated_torque_Nm) << " N m: " << c.rated_torque_from << ".\n"
     << "# Supports: the boss clamped; the cam pushes the bore over its band; the torque on the rim's engagement zones.\n"
@@ -196,7 +202,9 @@ std::string design_case_toml(const CupDesign& c) {
     << ", outer_groove_conformity = " << num(b.outer_groove_conformity) << " }\n\n";
   s << "[load]\ntorque_Nm = " << num(c.rated_torque_Nm) << "\nrated_torque_Nm = " << num(c.rated_torque_Nm) << "\n\n";
   s << "[circular_spline]\nouter_radius_mm = " << mm(c.circular_spline.outer_radius_m)
-    << "\nwidth_mm = " << mm(c.circular_spline.width_m) << "\n";
+    << "\nwidth_mm = " << mm(c.circular_spline.width_m) << "\nmounting = \"" << to_string(c.circular_spline.mounting)
+    << "\"\nbolt_circle_inner_mm = " << mm(c.circular_spline.bolt_circle_inner_m)
+    << "\nbolt_circle_outer_mm = " << mm(c.circular_spline.bolt_circle_outer_m) << "\n";
   if (catalog_drive(c.size)) s << "\n[catalog]\nsize = " << c.size << "\n";
   return s.str();
 }

@@ -279,6 +279,19 @@ SectionMesh mesh_annulus_section(double r_inner_m, double r_outer_m, double leng
   return b.finish();
 }
 
+SectionMesh mesh_annulus_section(const std::vector<double>& r_m, const std::vector<double>& z_m) {
+  const auto unit = [](const std::vector<double>& x) {
+    std::vector<double> u;
+    for (const double v : x) u.push_back((v - x.front()) / (x.back() - x.front()));
+    return u;
+  };
+  SectionBuilder b;
+  b.add(graded_block(rectangle(r_m.front(), r_m.back(), z_m.front(), z_m.back(), 1, 1, 0,
+                               {kSurfaceClamped, kSurfaceOuter, kSurfaceOpenEnd, kSurfaceInner}),
+                     unit(r_m), unit(z_m)));
+  return b.finish();
+}
+
 SectionMesh mesh_flexspline_section(const FlexsplineParams& f, const std::optional<GearParams>& gear,
                                     const MeshParams& mesh, std::optional<std::pair<double, double>> band) {
   validate_flexspline(f, mesh);

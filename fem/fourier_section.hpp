@@ -44,6 +44,10 @@ SectionMesh mesh_flexspline_section(const FlexsplineParams& f, const std::option
 /// kSurfaceOpenEnd at z = length, kSurfaceInner, kSurfaceOuter; `layers` × `cells_along` cells.
 SectionMesh mesh_annulus_section(double r_inner_m, double r_outer_m, double length_m, int layers, int cells_along);
 
+/// The same with the caller's cell corners: r_m from the inner to the outer radius, z_m from 0 to the length (each
+/// increasing, at least two values; metres).
+SectionMesh mesh_annulus_section(const std::vector<double>& r_m, const std::vector<double>& z_m);
+
 /// Element and natural coordinates (ξ, η) of a point (r, z); element −1 when outside the section.
 std::pair<long, Eigen::Vector2d> locate_in_section(const SectionMesh& s, const Eigen::Vector2d& rz);
 

@@ -154,6 +154,16 @@ std::vector<const SectionEdge*> select_edges(const SectionMesh& s, int marker,
   return out;
 }
 
+/// The edges of a band: its marker's, with the midside node in z_lo_m..z_hi_m.
+std::vector<const SectionEdge*> band_edges(const SectionMesh& s, const SurfaceBand& b) {
+  return select_edges(s, b.marker, [&](const Eigen::Vector2d& x) { return x[1] >= b.z_lo_m && x[1] <= b.z_hi_m; });
+}
+
+/// A band's spatial vector S_i = ∫ N_i r ds over its edges.
+Eigen::VectorXd band_vector(const SectionMesh& s, const std::vector<const SectionEdge*>& edges) {
+  return edge_integral(s, edges, [](const Eigen::Vector2d&) { return Eigen::Vector3d(1, 0, 0); }).col(0);
+}
+
 /// Generalised nodal loads of harmonic n (n_nodes × 3 per family) of a sum of terms.
 void harmonic_loads(const std::vector<LoadTerm>& terms, int n, Eigen::MatrixXd& sym, Eigen::MatrixXd& anti) {
   for (const auto& t : terms) {
@@ -362,6 +372,28 @@ GlobalPolynomial assemble_polynomial(const SectionMesh& s, const std::vector<Ele
   g.v2 = assemble(s, d, [&](std::size_t e) -> const Mat18& { return poly[e].k2; }).value;
   g.dofs = std::move(d);
   return g;
+}
+
+/// The bands' unit loads E_r = (S, 0, 0) and E_θ = (0, S, 0) on the equations of a numbering: columns 2b, 2b + 1.
+Eigen::MatrixXd band_load_columns(const HarmonicDofs& d, const std::vector<BandResponse>& bands, Eigen::Index nodes) {
+  Eigen::MatrixXd B(d.n_eq, 2 * static_cast<Eigen::Index>(bands.size()));
+  for (std::size_t b = 0; b < bands.size(); ++b)
+    for (int k = 0; k < 2; ++k) {
+      Eigen::MatrixXd E = Eigen::MatrixXd::Zero(nodes, 3);
+      E.col(k) = bands[b].S;
+      B.col(2 * static_cast<Eigen::Index>(b) + k) = to_equations(d, E);
+    }
+  return B;
+}
+
+/// Harmonic n's responses of the bands: their columns of the solution X, from column `first`.
+void store_band_responses(std::vector<BandResponse>& bands, int n, const HarmonicDofs& d, const Eigen::MatrixXd& X,
+                          Eigen::Index first) {
+  const Eigen::MatrixXd zero = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(d.eq.size() / 3), 3);
+  for (std::size_t b = 0; b < bands.size(); ++b) {
+    bands[b].Ur[n] = to_nodes(d, X.col(first + 2 * static_cast<Eigen::Index>(b)), zero);
+    bands[b].Ut[n] = to_nodes(d, X.col(first + 2 * static_cast<Eigen::Index>(b) + 1), zero);
+  }
 }
 
 /// Where a quantity is read: section nodes with weights (a node, or the six of a located point).
@@ -712,14 +744,12 @@ private:
   /// The requested bands' spatial vectors S_i = ∫ N_i r ds (InputError for a band no edge lies in).
   void set_band_loads() {
     for (const SurfaceBand& b : request_.bands) {
-      const auto edges = select_edges(sec_, b.marker, [&](const Eigen::Vector2d& x) {
-        return x[1] >= b.z_lo_m && x[1] <= b.z_hi_m;
-      });
+      const auto edges = band_edges(sec_, b);
       if (edges.empty())
         throw InputError("no edge of the flexspline's section lies in the band z = " + std::to_string(b.z_lo_m * 1e3) +
                          " .. " + std::to_string(b.z_hi_m * 1e3) + " mm of its surface; refine [mesh] size_mm");
       BandResponse r;
-      r.S = edge_integral(sec_, edges, [](const Eigen::Vector2d&) { return Eigen::Vector3d(1, 0, 0); }).col(0);
+      r.S = band_vector(sec_, edges);
       r.Ur.assign(N_ + 1, {});
       r.Ut.assign(N_ + 1, {});
       out_.bands.push_back(std::move(r));
@@ -873,24 +903,13 @@ private:
       B.col(5) = to_equations(d, stations_->unit(1));
     }
     if (turn) B.col(6) = to_equations(d, turn_load_anti0_);
-    for (Eigen::Index b = 0; b < bands; ++b) {
-      Eigen::MatrixXd E = zeros();
-      E.col(0) = out_.bands[static_cast<std::size_t>(b)].S;
-      B.col(cols + 2 * b) = to_equations(d, E);
-      E.col(1) = E.col(0);
-      E.col(0).setZero();
-      B.col(cols + 2 * b + 1) = to_equations(d, E);
-    }
+    B.rightCols(2 * bands) = band_load_columns(d, out_.bands, static_cast<Eigen::Index>(nn_));
     const Eigen::MatrixXd X = factor.solve(B);
     const Eigen::MatrixXd zero = zeros();
     Eigen::MatrixXd* targets[7] = {&torque_.sym[n], &torque_.anti[n], &force_gen_.sym[n], &force_gen_.anti[n],
                                    &Ur_[n],         &Ut_[n],          &turn_anti0_};
     for (int col = 0; col < cols; ++col) *targets[col] = to_nodes(d, X.col(col), zero);
-    for (Eigen::Index b = 0; b < bands; ++b) {
-      BandResponse& r = out_.bands[static_cast<std::size_t>(b)];
-      r.Ur[n] = to_nodes(d, X.col(cols + 2 * b), zero);
-      r.Ut[n] = to_nodes(d, X.col(cols + 2 * b + 1), zero);
-    }
+    store_band_responses(out_.bands, n, d, X, cols);
   }
 
   /// Internal forces K·u of harmonic n (0 or 1) of one family's amplitudes.
@@ -1353,6 +1372,33 @@ Eigen::MatrixXd solve_harmonic(const SectionMesh& s, const Material& m, int n, c
   const HarmonicDofs d = number_dofs(s.n_nodes(), n, fixed, axis_nodes(s));
   const CholmodFactor factor(assemble_polynomial(s, element_polynomials(s, m), d).at(n), d.node_of_eq);
   return to_nodes(d, factor.solve(to_equations(d, F)), Eigen::MatrixXd::Zero(F.rows(), 3));
+}
+
+std::vector<BandResponse> band_responses(const SectionMesh& s, const Material& m, const std::vector<bool>& fixed,
+                                         const std::vector<SurfaceBand>& bands, int N, bool odd_harmonics) {
+  std::vector<BandResponse> out;
+  for (const SurfaceBand& b : bands) {
+    const auto edges = band_edges(s, b);
+    if (edges.empty())
+      throw InputError("no boundary edge of the band's surface lies in z = " + std::to_string(b.z_lo_m * 1e3) +
+                       " .. " + std::to_string(b.z_hi_m * 1e3) + " mm of the section");
+    out.push_back({band_vector(s, edges), std::vector<Eigen::MatrixXd>(N + 1), std::vector<Eigen::MatrixXd>(N + 1)});
+  }
+  const std::vector<ElementPolynomial> poly = element_polynomials(s, m);
+  const std::vector<bool> axis = axis_nodes(s);
+  std::array<std::optional<GlobalPolynomial>, 3> numbering;  // n = 0, n = 1, n ≥ 2 (the axis conditions)
+  std::array<std::unique_ptr<CholmodFactor>, 3> factors;      // one analysis each, refactorised per harmonic
+  for (int n = 0; n <= N; ++n) {
+    if (n % 2 != 0 && !odd_harmonics) continue;
+    const int k = std::min(n, 2);
+    if (!numbering[k]) numbering[k] = assemble_polynomial(s, poly, number_dofs(s.n_nodes(), n, fixed, axis));
+    const HarmonicDofs& d = numbering[k]->dofs;
+    const SymmetricCsc K = numbering[k]->at(n);
+    if (factors[k]) factors[k]->refactorise(K);
+    else factors[k] = std::make_unique<CholmodFactor>(K, d.node_of_eq);
+    store_band_responses(out, n, d, factors[k]->solve(band_load_columns(d, out, s.nodes.rows())), 0);
+  }
+  return out;
 }
 
 Eigen::MatrixXd section_traction_load(const SectionMesh& s, int marker, const Eigen::Vector3d& traction) {

@@ -155,6 +155,15 @@ struct BandResponse {
   std::vector<Eigen::MatrixXd> Ur, Ut;
 };
 
+/// The responses of `bands` on a section with supports of the caller's (a body other than the case's flexspline: the
+/// circular spline, contact/circular_spline.hpp): per band its S and, for harmonics 0..N (the even ones only unless
+/// `odd_harmonics`; the others left empty), K_n⁻¹E_r and K_n⁻¹E_θ with the dofs where `fixed` (size 3·n_nodes) is
+/// true held at 0, and the axis conditions. One analysis per numbering (n = 0, 1, ≥ 2), refactorised per harmonic.
+/// Throws InputError for a band no boundary edge lies in, and CholmodFactor's error when the supports leave a
+/// rigid-body mode free.
+std::vector<BandResponse> band_responses(const SectionMesh& s, const Material& m, const std::vector<bool>& fixed,
+                                         const std::vector<SurfaceBand>& bands, int N, bool odd_harmonics);
+
 /// What a later stage asks of the harmonic pass besides the FEM's figures: the responses of its bands, and every
 /// harmonic (the odd ones too) when its loads are not symmetric under a half turn.
 struct BandRequest {

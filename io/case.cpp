@@ -12,6 +12,7 @@
 #include <numbers>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include <nlohmann/json.hpp>
 #include <toml++/toml.h>
@@ -443,6 +444,23 @@ CircularSplineParams read_circular_spline(TableReader r, const GearParams& gear,
   CircularSplineParams c;
   c.outer_radius_m = r.number("outer_radius_mm", rule.outer_radius_m / kMm) * kMm;
   c.width_m = r.number("width_mm", rule.width_m / kMm) * kMm;
+  const bool outer = r.choice("mounting", to_string(rule.mounting), {"outer", "bolted_face"}) == "outer";
+  c.mounting = outer ? CircularSplineMounting::Outer : CircularSplineMounting::BoltedFace;
+  const double root = gear_radii(gear).root_c;
+  const auto [inner, outer_bolt] = default_bolt_circles_m(root, c.outer_radius_m);
+  for (const auto& [key, fraction, fallback, to] :
+       {std::tuple{"bolt_circle_inner_mm", kBoltCircleInnerFraction, inner, &c.bolt_circle_inner_m},
+        std::tuple{"bolt_circle_outer_mm", kBoltCircleOuterFraction, outer_bolt, &c.bolt_circle_outer_m}}) {
+    if (outer && r.given(key))
+      r.fail_value(key, r.number(key, 0.0), "applies to mounting = \"bolted_face\" only (mounting = \"outer\" holds "
+                                            "the outside cylinder); remove it or set mounting = \"bolted_face\"");
+    if (outer) continue;
+    *to = r.number(key, fallback / kMm) * kMm;
+    if (!r.given(key))
+      derived[std::string("circular_spline.") + key] =
+          format_number(fraction) + " of the way from the circular spline's root circle (r = " +
+          format_number(root / kMm) + " mm) to its outer radius (design rule: the bolt heads' footprint)";
+  }
   r.reject_unknown();
   if (!r.given("outer_radius_mm"))
     derived["circular_spline.outer_radius_mm"] =
@@ -943,6 +961,18 @@ Tables dynamics_table(const DynamicsParams& d) {
        {"absolute_tolerance_rad", d.absolute_tolerance_rad}});
 }
 
+/// [circular_spline]: the bolt circles only for a ring bolted by its face.
+Tables circular_spline_table(const CircularSplineParams& c) {
+  Tables t = Tables::object({{"outer_radius_mm", file_value(c.outer_radius_m, kMm)},
+                             {"width_mm", file_value(c.width_m, kMm)},
+                             {"mounting", to_string(c.mounting)}});
+  if (c.mounting == CircularSplineMounting::BoltedFace) {
+    t["bolt_circle_inner_mm"] = file_value(c.bolt_circle_inner_m, kMm);
+    t["bolt_circle_outer_mm"] = file_value(c.bolt_circle_outer_m, kMm);
+  }
+  return t;
+}
+
 /// Every table of the case in the order of a case file, optional tables when the case has them.
 Tables case_tables(const Case& c) {
   Tables t = Tables::object();
@@ -952,9 +982,7 @@ Tables case_tables(const Case& c) {
   if (c.wave_generator) t["wave_generator"] = wave_generator_table(*c.wave_generator);
   t["load"] = load_table(c.load);
   if (c.catalog_size) t["catalog"] = Tables::object({{"size", *c.catalog_size}});
-  if (c.circular_spline)
-    t["circular_spline"] = Tables::object({{"outer_radius_mm", file_value(c.circular_spline->outer_radius_m, kMm)},
-                                           {"width_mm", file_value(c.circular_spline->width_m, kMm)}});
+  if (c.circular_spline) t["circular_spline"] = circular_spline_table(*c.circular_spline);
   t["contact"] = Tables::object(
       {{"face_slices", c.contact.face_slices}, {"friction_coefficient", c.contact.friction_coefficient}});
   t["mesh"] = mesh_table(c.mesh);

@@ -153,6 +153,8 @@ size = 17
 [circular_spline]
 outer_radius_mm = 28.5
 width_mm = 5.5
+bolt_circle_inner_mm = 21.5
+bolt_circle_outer_mm = 25
 [contact]
 face_slices = 3
 friction_coefficient = 0.05

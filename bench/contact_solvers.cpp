@@ -5,7 +5,8 @@
 //      torque, K1..K3 at the same breakpoints, the largest flank force at rated and the flank forces' largest
 //      difference over it, the generator's station forces at rated).
 //   3. `strainwave run` on the seed cup (the harmonic path: fem, backlash, contact).
-//   4. A drive sweep (`sweep --contact`) of --sweep-points designs of cup_size17 (its rim thickness ±20 %).
+//   4. The frictional loop's cost on cup_size17 (μ = 0.05, 0.1) against the frictionless curve's.
+//   5. A drive sweep (`sweep --contact`) of --sweep-points designs of cup_size17 (its rim thickness ±20 %).
 // Each command is a child process; wall clock, so say so when the machine was shared.
 #include <sys/wait.h>
 
@@ -102,6 +103,30 @@ void compare(const std::string& case_path, const fs::path& dir) {
               t["compliance_split"]["body"].get<double>());
 }
 
+/// The frictional loop's cost against the frictionless curve's (the contact stage's own time, timings_s.contact) on
+/// a case, at μ = 0.05 and 0.1, with the loop's figures.
+void friction_cost(const std::string& case_path, const fs::path& dir) {
+  std::ifstream in(case_path);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  double t0 = 0;
+  for (const double mu : {0.0, 0.05, 0.1}) {
+    const fs::path c = dir / ("mu_" + std::to_string(mu) + ".toml"), out = dir / ("mu_" + std::to_string(mu));
+    std::ofstream(c) << text << "\n[contact]\nfriction_coefficient = " << mu << "\n";
+    timed("contact " + c.string() + " --no-vtk --out " + out.string());
+    const nlohmann::json k = read_json(out / "contact.json");
+    const double t = k["timings_s"]["contact"];
+    if (mu == 0) t0 = t;
+    std::printf("%s, mu %.2f: contact stage %.3f s (%.1fx the frictionless curve's)", case_path.c_str(), mu, t, t / t0);
+    if (k.contains("friction_work_J"))
+      std::printf("; loop of %d cycles x %d steps a quarter, hysteresis loss %.4f arcmin, area %.4e J, friction work "
+                  "%.4e J, lost motion %.3f arcmin", k["friction"]["cycles"].get<int>(),
+                  k["friction"]["steps_per_quarter"].get<int>(), k["hysteresis_loss_arcmin"].get<double>(),
+                  k["dissipated_energy_J"].get<double>(), k["friction_work_J"].get<double>(),
+                  k["lost_motion_arcmin"].get<double>());
+    std::printf("\n");
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -115,6 +140,7 @@ int main(int argc, char** argv) {
     std::printf("DGEMM (n = 2000): %.1f GF/s\n", sw::bench::dgemm_gflops(2000, 3));
     sw::bench::TempDir dir("bench_contact_solvers_");
     for (const std::string& c : cases) compare(c, dir.path());
+    friction_cost("cases/cup_size17.toml", dir.path());
     std::printf("run cases/seed_190_192.toml (fourier: fem, backlash, contact): %.2f s\n",
                 timed("run cases/seed_190_192.toml --out " + (dir.path() / "run").string()));
     if (sweep_points > 0) {

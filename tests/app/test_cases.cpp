@@ -239,8 +239,12 @@ TEST(Design, WritesTheShippedCaseAndRefusesBadSizesWithOneLine) {
 // stiffer than the catalog; the soft start (K1) holds the play of 1.17 arcmin the profile shifts leave. (The teeth's
 // foot moment on the rim, once missing from the flank patterns, added 2.4 % at T1 and 0.5 % at rated torque.) The
 // pins moved by +0.3 to +1.4 % when the cups' mesh became the derived one with the corner grading (the body softer by
-// the 2 % of φ₀ the uniform d/54 mesh had missed): size 14 1.117, 2.172, 2.858, 0.396, 3.291 to the values below,
-// size 17 1.157, 2.131, 4.372, 0.421, 4.832, size 20 1.203, 2.551, 4.469, 0.422, 4.932.
+// the 2 % of φ₀ the uniform d/54 mesh had missed): size 14 1.117, 2.172, 2.858, 0.396, 3.291,
+// size 17 1.157, 2.131, 4.372, 0.421, 4.832, size 20 1.203, 2.551, 4.469, 0.422, 4.932. They moved again (+0.3 to +1.6 %,
+// the edge teeth's share −1.1 points) when the contact went to the harmonic solver by default (within 0.2 % of TET10)
+// and the circular spline became an elastic ring bolted on its face (1.7 % of the twist at rated, where the torsion
+// spring was 0.3 %): size 14 1.123, 2.196, 2.892, 0.398, 3.327, size 17 1.163, 2.155, 4.429, 0.421, 4.889, size 20
+// 1.210, 2.580, 4.529, 0.422, 4.992 to the values below.
 struct SizeFigures {
   int size;
   double rated_Nm, twist_t1_arcmin, twist_t2_arcmin, twist_rated_arcmin;
@@ -308,9 +312,9 @@ TEST_P(DesignedSize, IsTheSize17CupScaledAndItsTwistIsPinned) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Cases, DesignedSize,
-                         ::testing::Values(SizeFigures{14, 10, 1.123, 2.196, 2.892, 0.398, 3.327},
-                                           SizeFigures{17, 31, 1.163, 2.155, 4.429, 0.421, 4.889},
-                                           SizeFigures{20, 52, 1.210, 2.580, 4.529, 0.422, 4.992}),
+                         ::testing::Values(SizeFigures{14, 10, 1.126, 2.218, 2.929, 0.384, 3.351},
+                                           SizeFigures{17, 31, 1.166, 2.176, 4.489, 0.410, 4.942},
+                                           SizeFigures{20, 52, 1.214, 2.610, 4.591, 0.411, 5.046}),
                          [](const ::testing::TestParamInfo<SizeFigures>& i) { return "size" + std::to_string(i.param.size); });
 
 // The size-17 cup with its generator pushed 14 % beyond w0, coarse mesh: under torque generator stations lift off and
@@ -471,7 +475,7 @@ TEST(CliErrors, ACaseThatWouldNeverFitIsRefusedInSecondsWithTheEstimate) {
   { std::ofstream(dir / "huge.toml") << text; }
   const auto start = std::chrono::steady_clock::now();
   const fs::path out = dir / "out";
-  const CommandRun r = run_strainwave("fem --quiet " + (dir / "huge.toml").string() + " --out " + out.string());
+  const CommandRun r = run_strainwave("fem --quiet --solver tet10 " + (dir / "huge.toml").string() + " --out " + out.string());
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_NE(r.exit_code, 0);
   EXPECT_LT(seconds, 10.0);

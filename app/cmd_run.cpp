@@ -97,13 +97,14 @@ void add_run_command(CLI::App& app) {
     outputs.own(kBacklashJobFiles);  // also when this case has no backlash or contact stage: none stays from before
     outputs.own(kContactJobFiles);
     const bool contact_stage = !contact_model_gap(flexspline_model(c));
-    // On the harmonic path the tooth pairs' slabs run beside the FEM's small factors, BLAS on one thread each.
+    // On the harmonic path the tooth pairs' slabs and the circular spline's ring run beside the FEM's small factors,
+    // BLAS on one thread each.
     const bool beside = contact_stage && c.solver.method == SolverMethod::Fourier;
     std::optional<SingleThreadedBlas> one_thread;
     if (beside) one_thread.emplace();
-    const auto teeth = beside ? teeth_in_background(c) : std::shared_future<TeethCompliance>{};
+    const auto series = beside ? series_in_background(c) : std::shared_future<SeriesParts>{};
     const FemJobResult fem = run_fem_job(c, outputs, fem_options);
-    if (beside) teeth.wait();
+    if (beside) series.wait();
     one_thread.reset();
     std::optional<BacklashReport> backlash;
     if (c.gear && c.wave_generator && c.wave_generator->radial_deformation_m) {
@@ -117,7 +118,7 @@ void add_run_command(CLI::App& app) {
     std::optional<ContactAnalysis> contact;
     if (contact_stage) {
       const FemReadout readout = fem_readout(fem.solution);
-      contact = run_contact_job(c, *contact_body(c, fem, readout.generator_u), readout, outputs, teeth);
+      contact = run_contact_job(c, *contact_body(c, fem, readout.generator_u), readout, outputs, series);
     }
     write_file_atomic(outputs.staging() / "report.html", run_report_html(report_inputs(c, outputs)));
     outputs.commit();

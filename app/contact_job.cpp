@@ -27,18 +27,21 @@ constexpr double kArcmin = 10800.0 / std::numbers::pi;
 
 }  // namespace
 
-std::shared_future<TeethCompliance> teeth_in_background(const Case& c) {
-  const FlexsplineModel m = flexspline_model(c);
-  return std::async(std::launch::async, [m] { return tooth_pair_compliance_of(m); }).share();
+std::shared_future<SeriesParts> series_in_background(const Case& c) {
+  return std::async(std::launch::async, [c] {
+           SeriesParts s = series_parts(c);
+           if (s.circular_spline) s.circular_spline({});  // solves the ring now (no pattern: an empty block)
+           return s;
+         }).share();
 }
 
-SeriesParts series_parts(const Case& c, std::shared_future<TeethCompliance> teeth) {
+SeriesParts series_parts(const Case& c) {
   SeriesParts s;
   s.teeth_source = "rigid teeth";
   if (c.gear) {
     // The tooth pair's own compliance per unit face width over the rim's width, at the flank's contact radius (kept
     // on the active flank): contact/loaded_contact.hpp tooth_pair_compliance_of.
-    s.tooth_pair_m_per_N = teeth.valid() ? teeth.get() : tooth_pair_compliance_of(flexspline_model(c));
+    s.tooth_pair_m_per_N = tooth_pair_compliance_of(flexspline_model(c));
     s.teeth_source = "tooth pair compliance (flexspline tooth: explicit-tooth FEM less the ring model's share; circular "
                      "spline tooth: beam over the real outline and Sainsot foundation; Weber flattening; both teeth "
                      "loaded where they touch)";
@@ -216,10 +219,10 @@ std::unique_ptr<ContactBody> contact_body(const Case& c, const FemJobResult& fem
 }
 
 ContactAnalysis run_contact_job(const Case& c, const ContactBody& body, const FemReadout& fem, OutputSet& out,
-                                std::shared_future<TeethCompliance> teeth) {
+                                std::shared_future<SeriesParts> series) {
   ContactOptions o;
   o.rated_torque_Nm = c.load.rated_torque_Nm.value_or(c.load.torque_Nm);
-  o.series = series_parts(c, std::move(teeth));
+  o.series = series.valid() ? series.get() : series_parts(c);
   o.face_slices = c.contact.face_slices;
   o.friction_coefficient = c.contact.friction_coefficient;
   const std::optional<CatalogLaw> reference = catalog_reference(c);

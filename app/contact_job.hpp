@@ -16,15 +16,13 @@ namespace sw::app {
 /// The files the contact job writes in its output folder: a command that runs it owns them (OutputSet).
 inline const std::vector<std::string> kContactJobFiles = {"contact.json", "torque_twist.csv", "contact.svg"};
 
-/// The tooth pair's compliance of a case (contact/loaded_contact.hpp tooth_pair_compliance_of: two explicit-tooth
-/// slabs, about as long as the harmonic pass), started in a thread of its own so that it runs beside the FEM; empty
-/// without a [gear].
-using TeethCompliance = std::function<double(double contact_radius_f_m, double contact_radius_c_m)>;
-std::shared_future<TeethCompliance> teeth_in_background(const Case& c);
+/// What acts in series with the flexspline body, from the case (tooth pairs, generator bearing, circular spline; the
+/// ring solved when the contact first asks for its block).
+SeriesParts series_parts(const Case& c);
 
-/// What acts in series with the flexspline body, from the case (tooth pairs, generator bearing, circular spline);
-/// the tooth pairs' from `teeth` when it is valid, else computed here.
-SeriesParts series_parts(const Case& c, std::shared_future<TeethCompliance> teeth = {});
+/// The same started in a thread of its own, the circular spline's ring solved there too, so that the tooth pairs'
+/// slabs and the ring (about as long as the harmonic pass together) run beside the FEM.
+std::shared_future<SeriesParts> series_in_background(const Case& c);
 
 /// The flexspline body the fem job left for the loaded contact: the harmonic solution's (HarmonicBody) or the TET10
 /// mesh and factor's (Tet10Body, reading the generator's field from `fem_u` when not null). Every argument must
@@ -35,6 +33,6 @@ std::unique_ptr<ContactBody> contact_body(const Case& c, const FemJobResult& fem
 /// earlier run's result.json), writes contact.json, torque_twist.csv and contact.svg into the set `out` (owning
 /// kContactJobFiles), prints the summary.
 ContactAnalysis run_contact_job(const Case& c, const ContactBody& body, const FemReadout& fem, OutputSet& out,
-                                std::shared_future<TeethCompliance> teeth = {});
+                                std::shared_future<SeriesParts> series = {});
 
 }  // namespace sw::app

@@ -219,6 +219,7 @@ private:
   Eigen::MatrixXd band_solve_, A_noseries_;
   CircularSplineBlock cs_;
   bool bearing_ = false;
+  bool secants_from_last_step_ = false;  ///< the friction loop starts each step's secants from the last step's
   double ball_per_N_ = 0;
   Eigen::VectorXd bearing_c_;
   // The torque steps.
@@ -465,7 +466,9 @@ Solution ContactAnalyser::solve_step(const Problem& base, Eigen::Index n_fl, dou
   constexpr double kConverged = 1e-4, kAcceptable = 1e-2;  // of the largest preload's approach
   Problem Pb = base;
   const double p_ref = std::max(p0_.maxCoeff(), 1.0), approach_ref_m = approach(p_ref);
-  for (Eigen::Index k = 0; k < nb_; ++k) bearing_c_[k] = secant(p0_[k], p0_[k], p_ref);  // the tangent at the preload
+  // The tangent at the preload; along the friction loop the last step's secants (its steps are small).
+  if (!secants_from_last_step_)
+    for (Eigen::Index k = 0; k < nb_; ++k) bearing_c_[k] = secant(p0_[k], p0_[k], p_ref);
   Solution s, best;
   double best_residual = std::numeric_limits<double>::infinity();
   Eigen::Index worst_station = 0;
@@ -616,7 +619,11 @@ void ContactAnalyser::run_friction_loop() {
     s.torque_Nm = T;  // the output's (the flanks carry T less the locked generator's share)
     return s;
   };
+  const Eigen::VectorXd at_rated = bearing_c_;  // the frictionless curve's at +rated, which the split reads
+  secants_from_last_step_ = true;
   const SteadyLoop loop = run_steady_loop(step, unloaded_state(F), T_R_, N_, 1e-4, 4);
+  secants_from_last_step_ = false;
+  bearing_c_ = at_rated;
   FrictionLoop f;
   f.friction_coefficient = opt_.friction_coefficient;
   f.steps_per_quarter = N_;

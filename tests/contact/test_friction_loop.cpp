@@ -45,8 +45,8 @@ ContactAnalysis loop_at(double mu, int steps, bool band_held = false) {
 }
 
 // The loop's area ∮T dψ is the friction work Σ|q||Δs| (the power balance of an elastic system with Coulomb friction):
-// 1 % at 40 steps a quarter, measured −0.15 / −0.05 / +0.07 % at μ = 0.02 / 0.05 / 0.1, with the band held radially.
-// With the cam the area is 1.7 % above the work at every μ and step count: the locked cam's share of the torque
+// 1 % at 40 steps a quarter, measured −0.14 / +0.03 / +0.13 % at μ = 0.02 / 0.05 / 0.1, with the band held radially.
+// With the cam the area is 1.6–1.7 % above the work at every μ and step count: the locked cam's share of the torque
 // (through its tilted normal) is counted in the output's torque while its stations' gaps do not see the output's turn
 // (contact/README.md), an idealisation that is not conservative. Both grow with μ.
 TEST(FrictionLoop, AreaIsTheFrictionWorkAndGrowsWithMu) {

@@ -97,15 +97,8 @@ void add_run_command(CLI::App& app) {
     outputs.own(kBacklashJobFiles);  // also when this case has no backlash or contact stage: none stays from before
     outputs.own(kContactJobFiles);
     const bool contact_stage = !contact_model_gap(flexspline_model(c));
-    // On the harmonic path the tooth pairs' slabs and the circular spline's ring run beside the FEM's small factors,
-    // BLAS on one thread each.
-    const bool beside = contact_stage && c.solver.method == SolverMethod::Fourier;
-    std::optional<SingleThreadedBlas> one_thread;
-    if (beside) one_thread.emplace();
-    const auto series = beside ? series_in_background(c) : std::shared_future<SeriesParts>{};
-    const FemJobResult fem = run_fem_job(c, outputs, fem_options);
-    if (beside) series.wait();
-    one_thread.reset();
+    const auto [fem, series] =
+        fem_with_series_beside(c, contact_stage, [&] { return run_fem_job(c, outputs, fem_options); });
     std::optional<BacklashReport> backlash;
     if (c.gear && c.wave_generator && c.wave_generator->radial_deformation_m) {
       BacklashJobOptions options;

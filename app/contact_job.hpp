@@ -4,11 +4,14 @@
 #include <functional>
 #include <future>
 #include <memory>
+#include <optional>
+#include <utility>
 #include <string>
 #include <vector>
 
 #include "app/fem_job.hpp"
 #include "contact/loaded_contact.hpp"
+#include "fem/cholmod_factor.hpp"
 #include "io/atomic_file.hpp"
 
 namespace sw::app {
@@ -23,6 +26,20 @@ SeriesParts series_parts(const Case& c);
 /// The same started in a thread of its own, the circular spline's ring solved there too, so that the tooth pairs'
 /// slabs and the ring (about as long as the harmonic pass together) run beside the FEM.
 std::shared_future<SeriesParts> series_in_background(const Case& c);
+
+/// Runs the FEM job `fem()` and, on the harmonic path when the contact follows, the series parts beside it
+/// (series_in_background; BLAS on one thread while both run, on its own again after). Returns the job's result and the
+/// series parts (an empty future on TET10, whose factor wants every core: the contact job then builds them itself).
+template <class FemJob>
+auto fem_with_series_beside(const Case& c, bool contact_follows, FemJob&& fem) {
+  const bool beside = contact_follows && c.solver.method == SolverMethod::Fourier;
+  std::optional<SingleThreadedBlas> one_thread;
+  if (beside) one_thread.emplace();
+  const auto series = beside ? series_in_background(c) : std::shared_future<SeriesParts>{};
+  auto result = fem();
+  if (beside) series.wait();
+  return std::pair{std::move(result), series};
+}
 
 /// The flexspline body the fem job left for the loaded contact: the harmonic solution's (HarmonicBody) or the TET10
 /// mesh and factor's (Tet10Body, reading the generator's field from `fem_u` when not null). Every argument must

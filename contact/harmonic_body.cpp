@@ -48,23 +48,13 @@ BandSeries band_series(const HarmonicField& u, const Eigen::VectorXd& S, int k) 
   return b;
 }
 
-/// ∫ f(θ)·g(θ) dθ over [lo, hi] for a linear g (g(lo) = g_lo, g(hi) = g_hi) by Gauss–Legendre on pieces short enough
-/// for the series' highest harmonic (N·piece ≤ 0.5): smooth on each piece, exact to round-off.
+/// ∫ f(θ)·g(θ) dθ over [lo, hi] for a linear g (g(lo) = g_lo, g(hi) = g_hi), to round-off for a series up to N
+/// (fem/fourier_solver.hpp series_quadrature).
 template <class F>
 double integrate_linear(const F& f, double lo, double hi, double g_lo, double g_hi, int N) {
-  static const double gx[8] = {-0.9602898564975363, -0.7966664774136267, -0.5255324099163290, -0.1834346424956498,
-                               0.1834346424956498,  0.5255324099163290,  0.7966664774136267,  0.9602898564975363};
-  static const double gw[8] = {0.1012285362903763, 0.2223810344533745, 0.3137066458778873, 0.3626837833783620,
-                               0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
-  const int pieces = static_cast<int>(std::ceil(N * (hi - lo) / 0.5)) + 1;
   double sum = 0;
-  for (int q = 0; q < pieces; ++q) {
-    const double a = lo + (hi - lo) * q / pieces, b = lo + (hi - lo) * (q + 1) / pieces;
-    for (int g = 0; g < 8; ++g) {
-      const double t = 0.5 * (a + b) + 0.5 * (b - a) * gx[g];
-      sum += 0.5 * (b - a) * gw[g] * f(t) * (g_lo + (g_hi - g_lo) * (t - lo) / (hi - lo));
-    }
-  }
+  for (const auto& [t, w] : series_quadrature(lo, hi, N))
+    sum += w * f(t) * (g_lo + (g_hi - g_lo) * (t - lo) / (hi - lo));
   return sum;
 }
 

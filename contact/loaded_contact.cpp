@@ -219,7 +219,6 @@ private:
   Eigen::MatrixXd band_solve_, A_noseries_;
   CircularSplineBlock cs_;
   bool bearing_ = false;
-  bool secants_from_last_step_ = false;  ///< the friction loop starts each step's secants from the last step's
   double ball_per_N_ = 0;
   Eigen::VectorXd bearing_c_;
   // The torque steps.
@@ -466,9 +465,7 @@ Solution ContactAnalyser::solve_step(const Problem& base, Eigen::Index n_fl, dou
   constexpr double kConverged = 1e-4, kAcceptable = 1e-2;  // of the largest preload's approach
   Problem Pb = base;
   const double p_ref = std::max(p0_.maxCoeff(), 1.0), approach_ref_m = approach(p_ref);
-  // The tangent at the preload; along the friction loop the last step's secants (its steps are small).
-  if (!secants_from_last_step_)
-    for (Eigen::Index k = 0; k < nb_; ++k) bearing_c_[k] = secant(p0_[k], p0_[k], p_ref);
+  for (Eigen::Index k = 0; k < nb_; ++k) bearing_c_[k] = secant(p0_[k], p0_[k], p_ref);  // the tangent at the preload
   Solution s, best;
   double best_residual = std::numeric_limits<double>::infinity();
   Eigen::Index worst_station = 0;
@@ -620,9 +617,7 @@ void ContactAnalyser::run_friction_loop() {
     return s;
   };
   const Eigen::VectorXd at_rated = bearing_c_;  // the frictionless curve's at +rated, which the split reads
-  secants_from_last_step_ = true;
   const SteadyLoop loop = run_steady_loop(step, unloaded_state(F), T_R_, N_, 1e-4, 4);
-  secants_from_last_step_ = false;
   bearing_c_ = at_rated;
   FrictionLoop f;
   f.friction_coefficient = opt_.friction_coefficient;
@@ -631,6 +626,8 @@ void ContactAnalyser::run_friction_loop() {
   f.hysteresis_loss_rad = loop.reading.hysteresis_loss_rad;
   f.dissipated_energy_J = loop.reading.dissipated_energy_J;
   f.friction_work_J = loop.reading.friction_work_J;
+  f.lost_motion_rad = loop.reading.lost_motion_rad;
+  middle_line_ = middle_line(loop.reading.loop.loading, loop.reading.loop.unloading);
   std::vector<double> torques;
   for (const FrictionalStep& s : loop.history) torques.push_back(s.torque_Nm);
   const LoadCycle c = last_load_cycle(torques);
@@ -650,16 +647,6 @@ void ContactAnalyser::run_friction_loop() {
   };
   for (std::size_t i = c.bottom; i <= c.end; ++i) add(i, "loading");
   for (std::size_t i = c.top; i <= c.bottom; ++i) add(i, "unloading");
-  TorqueTwist loading, unloading;
-  for (const TorqueStep& t : f.steps) {
-    TorqueTwist& b = t.branch == "loading" ? loading : unloading;
-    b.torque_Nm.push_back(t.torque_Nm);
-    b.twist_rad.push_back(t.twist_rad);
-  }
-  std::reverse(unloading.torque_Nm.begin(), unloading.torque_Nm.end());
-  std::reverse(unloading.twist_rad.begin(), unloading.twist_rad.end());
-  middle_line_ = middle_line(loading, unloading);
-  f.lost_motion_rad = lost_motion_rad(middle_line_, T_R_);
   out_.friction = std::move(f);
 }
 

@@ -202,31 +202,22 @@ HarmonicStations harmonic_stations(const FlexsplineModel& c, const Eigen::Vector
   h.obstacle_m = layout.obstacle_m;
   h.phi_sym.assign(N + 1, Eigen::MatrixXd::Zero(m, 2));
   h.phi_anti.assign(N + 1, Eigen::MatrixXd::Zero(m, 2));
-  // θ moments by Gauss–Legendre (8 points) on pieces of the hat's two linear flanks short enough that N·piece ≤ 0.5:
-  // the integrands are smooth on each piece, the result exact to round-off.
-  static const double gx[8] = {-0.9602898564975363, -0.7966664774136267, -0.5255324099163290, -0.1834346424956498,
-                               0.1834346424956498,  0.5255324099163290,  0.7966664774136267,  0.9602898564975363};
-  static const double gw[8] = {0.1012285362903763, 0.2223810344533745, 0.3137066458778873, 0.3626837833783620,
-                               0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
-  const int pieces = static_cast<int>(std::ceil(N * spacing / 0.5)) + 1;
+  // θ moments by quadrature of the hat's two linear flanks (series_quadrature: exact to round-off).
+  const std::vector<std::pair<double, double>> flank = series_quadrature(0.0, spacing, N);  // distance from the centre
   const double area = spacing * S.sum();  // ∫ hat dA: ∫ hat dθ = Δ, ∫ r ds = Σ S_i
   for (Eigen::Index j = 0; j < m; ++j)
     for (const double centre : {h.angle_rad[j], h.angle_rad[j] + kPi})
       for (int side : {-1, 1})
-        for (int q = 0; q < pieces; ++q) {
-          const double a = static_cast<double>(q) / pieces, b = static_cast<double>(q + 1) / pieces;
-          for (int g = 0; g < 8; ++g) {
-            const double x = 0.5 * (a + b) + 0.5 * (b - a) * gx[g];  // distance from the centre ÷ Δ
-            const double t = centre + side * x * spacing;
-            const double weight = 0.5 * (b - a) * spacing * gw[g] * (1 - x) / area;
-            const double k = tilt(t), nr = 1 / std::sqrt(1 + k * k), nt = -k * nr;
-            for (int n = 0; n <= N; ++n) {
-              const double cn = std::cos(n * t), sn = std::sin(n * t);
-              h.phi_sym[n](j, 0) += weight * nr * cn;
-              h.phi_sym[n](j, 1) += weight * nt * sn;
-              h.phi_anti[n](j, 0) += weight * nr * sn;
-              h.phi_anti[n](j, 1) -= weight * nt * cn;
-            }
+        for (const auto& [d, w] : flank) {
+          const double t = centre + side * d;
+          const double weight = w * (1 - d / spacing) / area;
+          const double k = tilt(t), nr = 1 / std::sqrt(1 + k * k), nt = -k * nr;
+          for (int n = 0; n <= N; ++n) {
+            const double cn = std::cos(n * t), sn = std::sin(n * t);
+            h.phi_sym[n](j, 0) += weight * nr * cn;
+            h.phi_sym[n](j, 1) += weight * nt * sn;
+            h.phi_anti[n](j, 0) += weight * nr * sn;
+            h.phi_anti[n](j, 1) -= weight * nt * cn;
           }
         }
   return h;
@@ -1327,6 +1318,21 @@ private:
 };
 
 }  // namespace
+
+std::vector<std::pair<double, double>> series_quadrature(double lo, double hi, int N) {
+  static const double gx[8] = {-0.9602898564975363, -0.7966664774136267, -0.5255324099163290, -0.1834346424956498,
+                               0.1834346424956498,  0.5255324099163290,  0.7966664774136267,  0.9602898564975363};
+  static const double gw[8] = {0.1012285362903763, 0.2223810344533745, 0.3137066458778873, 0.3626837833783620,
+                               0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
+  const int pieces = static_cast<int>(std::ceil(N * (hi - lo) / 0.5)) + 1;
+  std::vector<std::pair<double, double>> points;
+  points.reserve(8 * static_cast<std::size_t>(pieces));
+  for (int q = 0; q < pieces; ++q) {
+    const double a = lo + (hi - lo) * q / pieces, b = lo + (hi - lo) * (q + 1) / pieces;
+    for (int g = 0; g < 8; ++g) points.emplace_back(0.5 * (a + b) + 0.5 * (b - a) * gx[g], 0.5 * (b - a) * gw[g]);
+  }
+  return points;
+}
 
 namespace {
 

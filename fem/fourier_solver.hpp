@@ -23,6 +23,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -42,6 +43,10 @@ namespace sw {
 int default_harmonics(const FlexsplineModel& c);
 /// Where default_harmonics' value comes from, in words (for the resolved case).
 std::string default_harmonics_origin(const FlexsplineModel& c);
+
+/// Gauss–Legendre points (8 a piece) on [lo, hi] in pieces short enough for a series up to harmonic N (N·piece ≤
+/// 0.5): a smooth function on each piece times a linear one (a hat's flank) integrates to round-off. (θ, weight).
+std::vector<std::pair<double, double>> series_quadrature(double lo, double hi, int N);
 
 /// Stiffness of a 6-node triangle of the section for harmonic n (18 × 18, dofs node-major (a, b, c)), N/m.
 Eigen::Matrix<double, 18, 18> harmonic_element_stiffness(const Eigen::Matrix<double, 6, 2>& X, const Material& m,

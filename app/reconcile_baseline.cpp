@@ -51,8 +51,35 @@ double end_slope(const TorqueTwist& c, bool top) {
   return (c.twist_rad[a + 1] - c.twist_rad[a]) / (t[a + 1] - t[a]);
 }
 
-/// The torsion baseline from the contact stage's torque-twist curve: its loop's middle line, checked to cover the
-/// recording's torque range.
+/// A recording cycled to the loop's own +-rated torque (each end within kCurveEndTolerance of it) is held against the
+/// loop's branches, loading while its torque rises and unloading while it falls; any other history against the middle
+/// line (the branches of a frictional loop hold for its own cycle only), said in the notes.
+void hold_against_loop(const TorqueLoop& loop, double rated_Nm, const std::vector<double>* torque,
+                       reconcile::TorsionPrediction& p, std::vector<std::string>& notes) {
+  const double loss = hysteresis_loss_rad(loop);
+  const std::string what = "the curve is a loop (friction in the teeth; hysteresis loss " +
+                           num(loss * 10800 / M_PI) + " arcmin at +-" + num(rated_Nm) + " N*m)";
+  const double tol = kCurveEndTolerance * rated_Nm;
+  auto cycled_to_rated = [&] {
+    if (!torque || torque->empty()) return false;
+    const auto [tmin, tmax] = std::minmax_element(torque->begin(), torque->end());
+    return std::abs(*tmax - rated_Nm) <= tol && std::abs(*tmin + rated_Nm) <= tol;
+  };
+  if (!cycled_to_rated()) {
+    notes.push_back(what + "; the recording is not cycled to +-" + num(rated_Nm) +
+                    " N*m, so it is held against the loop's middle line");
+    return;
+  }
+  p.branch_twist_rad = [loop, tol](double T, double direction) {
+    return twist_at(direction > 0 ? loop.loading : loop.unloading, T, tol);
+  };
+  p.loop_loss_rad = loss;
+  notes.push_back(what + "; the recording is held against its loading branch while the torque rises and its "
+                  "unloading branch while it falls");
+}
+
+/// The torsion baseline from the contact stage's torque-twist curve: its loop's middle line (or its branches, see
+/// hold_against_loop), checked to cover the recording's torque range.
 void contact_baseline(const BaselineSources& src, reconcile::Baseline& b, std::vector<std::string>& notes) {
   reconcile::TorsionPrediction p;
   const ContactCurve contact = read_contact_curve(src.contact_result);
@@ -86,6 +113,7 @@ void contact_baseline(const BaselineSources& src, reconcile::Baseline& b, std::v
   notes.push_back("torsion baseline: the drive's torque-twist curve of " + src.contact_result + " (middle line, " +
                   std::to_string(curve.torque_Nm.size()) + " points over [" + num(lo) + ", " + num(hi) +
                   "] N*m; end slope " + num(p.compliance_rad_per_Nm) + " rad/(N*m))");
+  if (contact.loop) hold_against_loop(*contact.loop, contact.rated_torque_Nm, torque, p, notes);
   b.prediction = p;
 }
 

@@ -279,6 +279,7 @@ ContactCurve read_contact_curve(const std::filesystem::path& path) {
     throw InputError(file + ": torque_twist: torque_Nm = " + num(load.torque_Nm.front()) + " at every point; expected "
                      "a curve from -rated to +rated torque");
   c.middle_line = middle_line(load, unload);
+  if (spans_torque(unload)) c.loop = TorqueLoop{load, unload};
   return c;
 }
 

@@ -114,6 +114,7 @@ ContactResult read_contact_result(const std::filesystem::path& contact_json);
 /// loop, the rated torque and the breakpoints of `catalog`.
 struct ContactCurve {
   TorqueTwist middle_line;
+  std::optional<TorqueLoop> loop;  ///< the two branches, when the unloading branch spans a torque range (friction)
   double rated_torque_Nm = 0.0;
   double catalog_t1_Nm = 0.0, catalog_t2_Nm = 0.0;  ///< `catalog.T1_Nm`, `catalog.T2_Nm` when given, else 0
 };
@@ -121,7 +122,7 @@ struct ContactCurve {
 /// Reads `torque_twist` (a list of {torque_Nm, twist_rad, ...}), `rated_torque_Nm` and, when present, the breakpoints
 /// of `catalog` of a contact.json, and nothing else (a file holding only them serves too). The list is the loading
 /// branch (torque rising) followed, optionally, by the unloading branch (torque falling back); the result is their
-/// middle line (contact/torque_twist.hpp middle_line). Throws InputError, one line naming the file, the key and the
+/// middle line (contact/torque_twist.hpp middle_line) and, with both, the loop. Throws InputError, one line naming the file, the key and the
 /// value: file missing or not JSON, key missing or not a number, rated torque <= 0, torque that falls on the loading
 /// branch or rises on the unloading branch, fewer than two points.
 ContactCurve read_contact_curve(const std::filesystem::path& contact_json);

@@ -225,6 +225,35 @@ EffectSpec hysteresis_variant(int elements) {
   return s;
 }
 
+/// Intervals of the gap profile's hats over [0, A]: fine enough to follow a loop whose width peaks between zero and
+/// the amplitude (the preloaded size-17 drive's peaks near A/2), few enough that a gap saturating at once (one Dahl
+/// element) keeps the cheaper law by BIC.
+constexpr int kGapProfileIntervals = 8;
+
+/// Friction whose branch gap changes along the torque, not as a transition after each reversal: the gap at every
+/// eighth of the amplitude, linear between (gap_profile_columns). Its loss is read where the data are, at zero torque.
+EffectSpec hysteresis_profile_variant() {
+  EffectSpec s;
+  s.name = "hysteresis";
+  s.order = 3;
+  s.label = s.name + " (branch gap varying with torque)";
+  s.exclusive_variants = true;
+  s.n_linear = kGapProfileIntervals;
+  s.physics = "friction in the tooth contacts, the loop's width changing with the torque as flanks close, open, stick "
+              "and slip: the loading branch lies below the unloading branch";
+  s.bounds = no_bounds;
+  s.columns = [](const Experiment& e, const Vec&) { return gap_profile_columns(torsion(e), kGapProfileIntervals); };
+  s.headline = [](const Experiment&, const FitResult& f, int t) {
+    const Vec& b = f.terms[t].beta;
+    return NamedValues{{"loss_rad", b[0]}, {"loss_arcmin", b[0] * kArcminPerRad},
+                       {"widest_gap_arcmin", b.maxCoeff() * kArcminPerRad}};
+  };
+  s.catalog = [](const Experiment&, const FitResult& f, int i, CatalogReading& r) {
+    r.figures.hysteresis_loss_arcmin += f.terms[i].beta[0] * kArcminPerRad;  // the middle line is unchanged
+  };
+  return s;
+}
+
 SynthShape hysteresis_shape(const SynthEffect& fx, const Experiment& e) {
   const TorsionExperiment& t = torsion(e);
   const double th = synth_param(fx, "transition_Nm", 0.05 * t.torque_amplitude_Nm);
@@ -257,7 +286,8 @@ Effect hysteresis_effect() {
                           ":loss_rad (1e-4),transition_Nm (0.05 A),n (2): Bouc-Wen friction, the branch" + kHelpMore +
                               "gap grows with amplitude (other structure; named hysteresis in the truth)",
                           true, ColumnLaw(bouc_wen_shape)};
-  return {"hysteresis", Kind::Torsion, {hysteresis_variant(1), hysteresis_variant(2)}, {law, bouc_wen}};
+  return {"hysteresis", Kind::Torsion, {hysteresis_variant(1), hysteresis_variant(2), hysteresis_profile_variant()},
+          {law, bouc_wen}};
 }
 
 Effect lost_motion_effect() {

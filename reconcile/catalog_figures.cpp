@@ -55,6 +55,7 @@ std::optional<CatalogFigures> catalog_figures(const Experiment& e, const FitResu
   const double c_series = added_series_compliance(f);
   const double c_last = t->model.compliance_rad_per_Nm + c_series;
   c.k1 = c.k2 = c.k3 = 1.0 / c_last;
+  c.hysteresis_loss_arcmin = t->model.loop_loss_rad * kArcminPerRad;  // a loop baseline's own; effects add to it
   // The middle line of the loop after cycling to +-R: everything but the branch-dependent part of hysteresis. A
   // curve baseline (the contact stage's) is its own middle line.
   r.middle_twist_rad = [c_last](double T) { return c_last * T; };

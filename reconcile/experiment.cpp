@@ -248,18 +248,19 @@ Experiment experiment_of(const Recording& rec, const Baseline& base, const Torsi
   t.model = p;
   t.torque_Nm = to_vec(*rec.column("torque_Nm"));
   e.measured = to_vec(*rec.column("twist_rad"));
-  if (p.twist_rad) {
-    e.baseline.resize(e.n);
-    for (int i = 0; i < e.n; ++i) e.baseline[i] = p.twist_rad(t.torque_Nm[i]);
-  } else {
-    e.baseline = p.compliance_rad_per_Nm * t.torque_Nm;
-  }
-  e.response_name = "twist_rad";
-  e.response_unit = "rad";
   const double range = t.torque_Nm.maxCoeff() - t.torque_Nm.minCoeff();
   if (!(range > 0.0)) throw InputError(rec.path + ": torque_Nm is constant; a torsion test must vary the torque");
   add_drive_metadata(t, rec);
   add_branches(t, range);
+  e.baseline.resize(e.n);
+  for (int i = 0; i < e.n; ++i) {
+    const double T = t.torque_Nm[i];
+    e.baseline[i] = p.branch_twist_rad ? p.branch_twist_rad(T, t.direction[i])
+                    : p.twist_rad      ? p.twist_rad(T)
+                                       : p.compliance_rad_per_Nm * T;
+  }
+  e.response_name = "twist_rad";
+  e.response_unit = "rad";
   e.data = std::move(t);
   return e;
 }

@@ -47,6 +47,11 @@ struct TorsionPrediction {
   /// With `twist_rad`: the curve's catalog breakpoints T1 < T2 (N*m; 0: none), where the catalog figures read K1, K2,
   /// K3 as segment secants when no stiffness effect replaces them.
   double curve_t1_Nm = 0.0, curve_t2_Nm = 0.0;
+  /// A loop (the contact curve with friction in the teeth, cycled to +-loop_amplitude_Nm): the twist (rad) on its
+  /// loading branch (direction > 0) or its unloading branch (direction < 0) at a torque; `twist_rad` is then the
+  /// loop's middle line. Empty: one line, the same both ways.
+  std::function<double(double torque_Nm, double direction)> branch_twist_rad;
+  double loop_loss_rad = 0.0;        ///< the loop's branch gap at zero torque (its hysteresis loss)
 };
 
 /// The transmission baseline: the ideal ratio of the drive's teeth (DriveGear).

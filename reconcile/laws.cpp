@@ -43,6 +43,19 @@ Eigen::VectorXd hysteresis_column(const TorsionExperiment& t, double transition_
   return c;
 }
 
+Eigen::MatrixXd gap_profile_columns(const TorsionExperiment& t, int intervals) {
+  const int n = static_cast<int>(t.torque_Nm.size());
+  Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n, intervals);
+  for (int i = 0; i < n; ++i) {
+    const double x = std::min(1.0, std::abs(t.torque_Nm[i]) / t.torque_amplitude_Nm) * intervals;
+    const int k = std::min(static_cast<int>(x), intervals - 1);
+    const double f = x - k;  // between knot k (weight 1 - f) and knot k + 1 (weight f; the last knot's gap is 0)
+    m(i, k) = -0.5 * t.direction[i] * (1.0 - f);
+    if (k + 1 < intervals) m(i, k + 1) = -0.5 * t.direction[i] * f;
+  }
+  return m;
+}
+
 double hysteresis_loss_rad(double h_rad, double transition_Nm, double amplitude_Nm) {
   return h_rad * (1.0 - 2.0 * std::exp(-amplitude_Nm / transition_Nm));
 }

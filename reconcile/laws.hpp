@@ -36,6 +36,12 @@ double hysteresis_loss_rad(double h_rad, double transition_Nm, double amplitude_
 /// cycling to +-A, rad.
 double hysteresis_middle_twist(double h_rad, double transition_Nm, double amplitude_Nm, double torque_Nm);
 
+/// Branch gap as a function of torque (a loop whose width changes along the torque, e.g. flanks that close and open
+/// under friction): columns -dir * hat_k(|T| / A) / 2, k = 0 .. intervals - 1, piecewise-linear hats on `intervals`
+/// equal intervals of [0, A] (A the torque amplitude), the gap 0 at +-A where the branches meet; unitless (times the
+/// gap at knot k in rad, so the gap at zero torque is the first coefficient). Loading branch below.
+Eigen::MatrixXd gap_profile_columns(const TorsionExperiment& t, int intervals);
+
 /// Bouc-Wen friction driven by the torque, per unit branch gap at zero torque: dz = dT (1 - (sgn(dT z) + 1) |z|^n / 2)
 /// / T_h, the column -z / 2 divided by the gap (loading branch below). Run over the signal twice (the first pass sets
 /// the history); the gap is read at the zero crossings after the first quarter. Throws InputError when the torque

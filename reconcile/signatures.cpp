@@ -72,7 +72,7 @@ std::vector<SignatureSpec> torsion_signatures() {
       signature("torque_shape", "torque", "residual bends with torque beyond a straight line (soft start or play)",
                 shape, linear, {"stiffness_nonlinearity#1", "stiffness_nonlinearity#2", "lost_motion"}, torque, "N*m"),
       signature("loading_unloading", "torque branch", "loading and unloading branches apart at equal torque",
-                branches, linear, {"hysteresis#1", "hysteresis#2"}, torque, "N*m"),
+                branches, linear, {"hysteresis#1", "hysteresis#2", "hysteresis#3"}, torque, "N*m"),
       signature("zero_crossing", "torque zero crossing", "twist jumps while the torque crosses zero", zero_crossing,
                 linear, {"lost_motion", "stiffness_nonlinearity#1", "stiffness_nonlinearity#2"}, torque, "N*m"),
       signature("time_drift", "time",

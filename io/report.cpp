@@ -230,9 +230,17 @@ std::string contact_section(const fs::path& dir) {
   std::ostringstream s;
   s << "<h2>Whole drive under load (tooth contact)</h2>\n<p>Generator locked, the output turned against the circular "
        "spline; "
-    << html_escape(a.generator_support) << ". No friction: loading and unloading coincide.</p>\n";
+    << html_escape(a.generator_support) << ". "
+    << (a.friction ? fmt("Friction on the flanks (μ = %.3g): the load cycle 0 → +rated → −rated → +rated run to a "
+                         "steady loop, its loading and unloading branches drawn.", a.friction->friction_coefficient)
+                   : std::string("No friction: loading and unloading coincide."))
+    << "</p>\n";
   Table t;
   add_twist_rows(t, a);
+  if (a.friction)
+    t.row("hysteresis loss", fmt("%.3f arcmin", a.hysteresis_loss_arcmin.value_or(0)),
+          fmt("the branches' gap at zero torque; the loop dissipates %.3g J a cycle", a.dissipated_energy_J.value_or(0)) +
+              fmt(" (friction work %.3g J)", a.friction_work_J.value_or(0)));
   add_split_and_check_rows(t, a);
   s << t.html();
   if (fs::exists(dir / "contact.svg")) s << "<div class='fig'>" << slurp(dir / "contact.svg") << "</div>\n";
@@ -258,10 +266,11 @@ std::string run_report_html(const RunReportInputs& in) {
   s << contact_section(in.out_dir);
   s << "<h2>Not computed</h2>\n<ul>";
   if (!fs::exists(in.out_dir / "contact.json"))
-    s << "<li>the whole drive's twist (the tooth contact needs [gear], [wave_generator], teeth = \"ring\" and the tet10 "
-         "solver)</li>";
-  s << "<li>friction in the tooth contacts (hysteresis)</li><li>ratcheting torque</li><li>wave-generator bearing "
-       "life</li></ul>\n";
+    s << "<li>the whole drive's twist (the tooth contact needs [gear], [wave_generator] and teeth = \"ring\" or "
+         "\"none\")</li>";
+  if (!fs::exists(in.out_dir / "contact.json") || !read_contact_result(in.out_dir / "contact.json").friction)
+    s << "<li>friction in the tooth contacts (the loop: [contact] friction_coefficient)</li>";
+  s << "<li>ratcheting torque</li><li>wave-generator bearing life</li></ul>\n";
   s << "<h2>3-D results</h2>\n<p><a href='flexspline.pvd'>flexspline.pvd</a> (one .vtu per load case):";
   for (const auto& lc : r.load_cases) {
     const std::string f = "flexspline_" + lc.name + ".vtu";

@@ -33,7 +33,7 @@ void add_fem_job_options(CLI::App* cmd, FemJobOptions& o) {
       "--export-inp", [&o](const std::string& f) { o.export_inp = f; },
       "also write the mesh, clamp and torque loads as a CalculiX/Abaqus deck (C3D10); the generator's contact is not "
       "in the deck");
-  cmd->add_option("--max-memory", o.max_memory_gb, "refuse a TET10 model whose estimated peak exceeds this (GB; "
+  cmd->add_option("--max-memory", o.max_memory_gb, "refuse a model whose estimated peak exceeds this (GB; "
                                                    "default: the machine's available memory)")
       ->check(CLI::PositiveNumber);
 }
@@ -188,7 +188,7 @@ FemJobResult run_fem_job(const Case& c, OutputSet& out, const FemJobOptions& opt
   if (c.solver.method == SolverMethod::Fourier) {
     if (options.export_inp)
       throw InputError("--export-inp writes a TET10 deck; it needs [solver] method = \"tet10\" (or --solver tet10)");
-    return run_fourier_fem_job(c, out, options.write_vtk);
+    return run_fourier_fem_job(c, out, options.write_vtk, options.max_memory_gb);
   }
   const double t_start = elapsed_s();
   RunInfo run;

@@ -52,8 +52,9 @@ TetMesh mesh_for_case(const Case& c, double max_memory_gb = 0);
 /// case's solver.method).
 FemJobResult run_fem_job(const Case& c, OutputSet& out, const FemJobOptions& options = {});
 
-/// The same on the harmonic solver (solver.method = "fourier"; app/fem_fourier_job.cpp); VTU output optional.
-FemJobResult run_fourier_fem_job(const Case& c, OutputSet& out, bool write_vtk = true);
+/// The same on the harmonic solver (solver.method = "fourier"; app/fem_fourier_job.cpp); VTU output optional. A model
+/// whose estimate exceeds max_memory_gb (0: the machine's available memory) is refused before it is assembled.
+FemJobResult run_fourier_fem_job(const Case& c, OutputSet& out, bool write_vtk = true, double max_memory_gb = 0);
 
 /// Applies the `--solver` ("tet10" | "fourier") and `--backend` ("cholmod" | "petsc") command-line choices (empty:
 /// the case's) to the case.

@@ -1444,12 +1444,28 @@ HarmonicField HarmonicField::operator*(double k) const {
   return f;
 }
 
-FourierSolution analyse_flexspline_fourier(const FlexsplineModel& c, int grid_sectors, const BandRequest& request) {
-  Stopwatch clock;
+SectionMesh case_section(const FlexsplineModel& c) {
   std::optional<std::pair<double, double>> band;
   if (c.wave_generator)
     band = std::pair{c.flexspline.length_m - c.wave_generator->axial_position_m, c.wave_generator->band_width_m};
-  SectionMesh section = mesh_flexspline_section(c.flexspline, c.gear, c.mesh, band);
+  return mesh_flexspline_section(c.flexspline, c.gear, c.mesh, band);
+}
+
+ModelSizeEstimate fourier_model_size(const FlexsplineModel& c, const SectionMesh& section) {
+  constexpr double kBaseBytes = 150e6, kBytesPerEquation = 150;
+  ModelSizeEstimate e;
+  e.model = "harmonic model (section nodes, harmonics 0.." + std::to_string(c.solver.harmonics) + ")";
+  e.nodes = static_cast<double>(section.n_nodes());
+  e.equations = 3.0 * e.nodes * (c.solver.harmonics + 1);
+  e.peak_bytes = kBaseBytes + kBytesPerEquation * e.equations;
+  e.mesh_text = mesh_size_text(c.mesh);
+  e.remedy = "coarsen mesh.size_mm or mesh.wall_layers, lower solver.harmonics, or raise --max-memory";
+  return e;
+}
+
+FourierSolution analyse_flexspline_fourier(const FlexsplineModel& c, int grid_sectors, const BandRequest& request) {
+  Stopwatch clock;
+  SectionMesh section = case_section(c);
   const double section_s = clock.lap();
   FourierSolution s = analyse_section_fourier(c, std::move(section), grid_sectors, request);
   s.section_s = section_s;

@@ -132,19 +132,25 @@ double available_memory_bytes() {
   return 0.0;
 }
 
+namespace {
+std::string fmt_g(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.3g", v);
+  return b;
+}
+}  // namespace
+
 void refuse_if_too_large(const ModelSizeEstimate& e, double limit_bytes, const std::string& file) {
   const bool machine = limit_bytes <= 0;
   const double limit = machine ? available_memory_bytes() : limit_bytes;
   if (limit <= 0 || e.peak_bytes <= limit) return;
   char buf[512];
   std::snprintf(buf, sizeof buf,
-                "%s: the TET10 model would have about %.3g nodes and %.3g equations and need about %.3g GB (factor "
-                "%.3g nonzeros); %s %.3g GB. ",
-                file.c_str(), e.nodes, e.equations, e.peak_bytes / 1e9, e.factor_nnz,
+                "%s: the %s would have about %.3g nodes and %.3g equations and need about %.3g GB%s; %s %.3g GB. ",
+                file.c_str(), e.model.c_str(), e.nodes, e.equations, e.peak_bytes / 1e9,
+                e.factor_nnz > 0 ? (" (factor " + fmt_g(e.factor_nnz) + " nonzeros)").c_str() : "",
                 machine ? "this machine has" : "--max-memory allows", limit / 1e9);
-  throw InputError(buf + std::string("At ") + e.mesh_text +
-                   ": coarsen mesh.size_mm or mesh.wall_layers, use [solver] method = \"fourier\" for a body of "
-                   "revolution, or raise --max-memory");
+  throw InputError(buf + std::string("At ") + e.mesh_text + ": " + e.remedy);
 }
 
 }  // namespace sw

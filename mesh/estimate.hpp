@@ -16,6 +16,10 @@ struct ModelSizeEstimate {
   double factor_nnz = 0;    ///< nonzeros of the Cholesky factor L
   double peak_bytes = 0;    ///< mesh + matrix + factor + solves, as measured on the benches
   std::string mesh_text;    ///< the mesh sizes it was made for (mesh_size_text), for the refusal's message
+  std::string model = "TET10 model";  ///< what is estimated, for the refusal's message
+  /// What the user can change, for the refusal's message.
+  std::string remedy = "coarsen mesh.size_mm or mesh.wall_layers, use [solver] method = \"fourier\" for a body of "
+                       "revolution, or raise --max-memory";
 };
 
 /// The estimate for the case's flexspline (tube or cup, ring/none/explicit teeth) and mesh parameters.

@@ -23,12 +23,13 @@ using reconcile::ReportLocation;
 // ---- writing ------------------------------------------------------------------------------------------------------
 
 json effect_json(const ReportEffect& e) {
-  json params = json::object(), ci = json::object();
+  json params = json::object(), ci = json::object(), fixed = json::object();
   if (e.order) params["order"] = *e.order;
   for (const auto& [name, v] : e.params) params[name] = v;
   for (const auto& [name, range] : e.ci95) ci[name] = {range.first, range.second};
-  return {{"name", e.name}, {"physics", e.physics}, {"params", params}, {"ci95", ci}, {"delta_bic", e.delta_bic},
-          {"p_value", e.p_value}};
+  for (const auto& [name, from] : e.fixed) fixed[name] = {{"from", from}};
+  return {{"name", e.name}, {"physics", e.physics}, {"params", params}, {"ci95", ci}, {"fixed", fixed},
+          {"delta_bic", e.delta_bic}, {"p_value", e.p_value}};
 }
 
 json reference_json(const ReportCatalogReference& r) {
@@ -75,6 +76,8 @@ ReportEffect effect_from(const json& j) {
     else e.params[name] = number(v);
   }
   for (const auto& [name, v] : j.at("ci95").items()) e.ci95[name] = {number(v.at(0)), number(v.at(1))};
+  if (j.contains("fixed"))
+    for (const auto& [name, v] : j.at("fixed").items()) e.fixed[name] = v.at("from").get<std::string>();
   e.delta_bic = number(j.at("delta_bic"));
   e.p_value = number(j.at("p_value"));
   return e;

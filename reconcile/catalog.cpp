@@ -102,6 +102,13 @@ EffectSpec stiffness_variant(int breakpoints) {
     return NamedValues{{"K1_Nm_per_rad", 1.0 / (c2 + b[lo])}, {"T1_Nm", th[lo]}, {"K2_Nm_per_rad", 1.0 / c2},
                        {"T2_Nm", th[hi]}, {"K3_Nm_per_rad", 1.0 / c_last}};
   };
+  // The last slope is the baseline's own unless series compliance is in the model: read, not fitted.
+  s.held = [breakpoints](const Experiment& e, const FitResult& f, int, const std::string& parameter) {
+    const std::string last = breakpoints == 1 ? "K2_Nm_per_rad" : "K3_Nm_per_rad";
+    if (parameter != last || f.find("series_compliance") >= 0) return std::string();
+    return std::string(torsion(e).model.twist_rad ? "the torque-twist curve's slope at its ends"
+                                                  : "1/C_tau, the baseline's compliance");
+  };
   s.catalog = [](const Experiment& e, const FitResult& f, int i, CatalogReading& r) {
     const Term& t = f.terms[i];
     const NamedValues h = t.spec->headline(e, f, i);
@@ -430,7 +437,10 @@ Effect mesh_stiffness_effect() {
                                {"frequency_Hz", d.model.mesh_frequency_Hz},
                                {"line_amplitude_N", std::hypot(line[0], line[1])},
                                {"phase_rad", std::atan2(b[1], b[0])}};
-          }};
+          },
+      .held = [](const Experiment&, const FitResult&, int, const std::string& parameter) {
+        return std::string(parameter == "frequency_Hz" ? "the model's mesh frequency" : "");
+      }};
   SynthGenerator g{s.name, {"amplitude_ratio", "phase_rad"}, ":amplitude_ratio (0.05),phase_rad (0.3)   [frequency_Hz = f_m]",
                    false, VariationLaw([](const SynthEffect& fx, const DynamicsPrediction& p) {
                      const double r = synth_param(fx, "amplitude_ratio", 0.05), ph = synth_param(fx, "phase_rad", 0.3);

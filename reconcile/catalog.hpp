@@ -44,6 +44,10 @@ struct EffectSpec {
   std::function<Eigen::MatrixXd(const Experiment&, const Eigen::VectorXd& theta)> columns;
   /// The headline parameters (SPEC units) of term `term` of a fitted model.
   std::function<NamedValues(const Experiment&, const FitResult&, int term)> headline;
+  /// Where headline parameter `parameter` of term `term` is held from when the fit does not move it (a segment
+  /// slope read on the baseline, the model's mesh frequency): a phrase for the report; "" for a fitted parameter,
+  /// which gets a 95 % interval. Empty function: every parameter is fitted.
+  std::function<std::string(const Experiment&, const FitResult&, int term, const std::string& parameter)> held;
   /// Torsion: adds term `term` of a fitted model to the catalog figures and the loop's middle line (empty: the
   /// effect is not read in catalog terms).
   std::function<void(const Experiment&, const FitResult&, int term, CatalogReading&)> catalog;

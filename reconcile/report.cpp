@@ -90,15 +90,24 @@ ReportCatalog catalog_of(const CatalogFigures& c, double final_rms) {
   return k;
 }
 
+/// A headline's 95 % interval as the report prints it: "[lo, hi]", "exact" for a harmonic's order, or where a held
+/// parameter is read.
+std::string interval(const Headline& h) {
+  if (h.name == "order") return "exact";
+  if (h.fixed()) return "fixed (from " + h.fixed_from + ")";
+  return "[" + num(h.lo) + ", " + num(h.hi) + "]";
+}
+
 ReportEffect effect_of(const AcceptedEffect& e) {
-  ReportEffect x{e.name, e.physics, std::nullopt, {}, {}, e.delta_bic, e.p_value};
+  ReportEffect x{e.name, e.physics, std::nullopt, {}, {}, {}, e.delta_bic, e.p_value};
   for (const auto& h : e.params) {
     if (h.name == "order") {
       x.order = static_cast<int>(h.value);
       continue;
     }
     x.params[h.name] = h.value;
-    x.ci95[h.name] = {h.lo, h.hi};
+    if (h.fixed()) x.fixed[h.name] = h.fixed_from;
+    else x.ci95[h.name] = {h.lo, h.hi};
   }
   return x;
 }
@@ -281,8 +290,8 @@ std::string effects_html(const Result& r) {
   for (const auto& f : r.effects) {
     h += "<h3>" + html_escape(f.name) + "</h3><p>" + html_escape(f.physics) + "</p><table><tr><th>parameter</th><th>value</th><th>95 % interval</th></tr>";
     for (const auto& p : f.params)
-      h += "<tr><td>" + html_escape(p.name) + "</td><td>" + num(p.value) + "</td><td>" +
-           (p.name == "order" ? std::string("exact") : "[" + num(p.lo) + ", " + num(p.hi) + "]") + "</td></tr>";
+      h += "<tr><td>" + html_escape(p.name) + "</td><td>" + num(p.value) + "</td><td>" + html_escape(interval(p)) +
+           "</td></tr>";
     h += "</table><p>BIC change " + num(f.delta_bic, "%.1f") + ", p = " + num(f.p_value, "%.3g") + " (" + html_escape(f.test) + ")</p>";
   }
   if (!r.unexplained.empty()) {
@@ -371,8 +380,7 @@ std::string report_summary(const Result& r) {
   for (const auto& e : r.effects) {
     s += "  missing physics: " + e.name + " (dBIC " + num(e.delta_bic, "%.1f") + ", p " + num(e.p_value, "%.2g") + ")\n   ";
     for (const auto& h : e.params)
-      s += h.name == "order" ? " order " + num(h.value, "%.0f")
-                             : " " + h.name + " = " + num(h.value) + " [" + num(h.lo) + ", " + num(h.hi) + "]";
+      s += h.name == "order" ? " order " + num(h.value, "%.0f") : " " + h.name + " = " + num(h.value) + " " + interval(h);
     s += "\n";
   }
   for (const auto& u : r.unexplained) s += "  still unexplained: " + u.description + "\n";

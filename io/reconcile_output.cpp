@@ -28,8 +28,11 @@ json effect_json(const ReportEffect& e) {
   for (const auto& [name, v] : e.params) params[name] = v;
   for (const auto& [name, range] : e.ci95) ci[name] = {range.first, range.second};
   for (const auto& [name, from] : e.fixed) fixed[name] = {{"from", from}};
-  return {{"name", e.name}, {"physics", e.physics}, {"params", params}, {"ci95", ci}, {"fixed", fixed},
-          {"delta_bic", e.delta_bic}, {"p_value", e.p_value}};
+  json j = {{"name", e.name}, {"physics", e.physics}, {"params", params}, {"ci95", ci}, {"fixed", fixed},
+            {"delta_bic", e.delta_bic}, {"p_value", e.p_value}};
+  if (!e.meaning.empty()) j["meaning"] = e.meaning;
+  if (e.model_discrepancy > 0.0) j["model_discrepancy"] = e.model_discrepancy;
+  return j;
 }
 
 json reference_json(const ReportCatalogReference& r) {
@@ -78,6 +81,8 @@ ReportEffect effect_from(const json& j) {
   for (const auto& [name, v] : j.at("ci95").items()) e.ci95[name] = {number(v.at(0)), number(v.at(1))};
   if (j.contains("fixed"))
     for (const auto& [name, v] : j.at("fixed").items()) e.fixed[name] = v.at("from").get<std::string>();
+  if (j.contains("meaning")) e.meaning = j.at("meaning").get<std::string>();
+  if (j.contains("model_discrepancy")) e.model_discrepancy = number(j.at("model_discrepancy"));
   e.delta_bic = number(j.at("delta_bic"));
   e.p_value = number(j.at("p_value"));
   return e;

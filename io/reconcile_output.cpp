@@ -23,12 +23,16 @@ using reconcile::ReportLocation;
 // ---- writing ------------------------------------------------------------------------------------------------------
 
 json effect_json(const ReportEffect& e) {
-  json params = json::object(), ci = json::object();
+  json params = json::object(), ci = json::object(), fixed = json::object();
   if (e.order) params["order"] = *e.order;
   for (const auto& [name, v] : e.params) params[name] = v;
   for (const auto& [name, range] : e.ci95) ci[name] = {range.first, range.second};
-  return {{"name", e.name}, {"physics", e.physics}, {"params", params}, {"ci95", ci}, {"delta_bic", e.delta_bic},
-          {"p_value", e.p_value}};
+  for (const auto& [name, from] : e.fixed) fixed[name] = {{"from", from}};
+  json j = {{"name", e.name}, {"physics", e.physics}, {"params", params}, {"ci95", ci}, {"fixed", fixed},
+            {"delta_bic", e.delta_bic}, {"p_value", e.p_value}};
+  if (!e.meaning.empty()) j["meaning"] = e.meaning;
+  if (e.model_discrepancy > 0.0) j["model_discrepancy"] = e.model_discrepancy;
+  return j;
 }
 
 json reference_json(const ReportCatalogReference& r) {
@@ -75,6 +79,10 @@ ReportEffect effect_from(const json& j) {
     else e.params[name] = number(v);
   }
   for (const auto& [name, v] : j.at("ci95").items()) e.ci95[name] = {number(v.at(0)), number(v.at(1))};
+  if (j.contains("fixed"))
+    for (const auto& [name, v] : j.at("fixed").items()) e.fixed[name] = v.at("from").get<std::string>();
+  if (j.contains("meaning")) e.meaning = j.at("meaning").get<std::string>();
+  if (j.contains("model_discrepancy")) e.model_discrepancy = number(j.at("model_discrepancy"));
   e.delta_bic = number(j.at("delta_bic"));
   e.p_value = number(j.at("p_value"));
   return e;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "common/error.hpp"
@@ -62,6 +63,22 @@ Effect series_compliance_effect() {
                             [](const Experiment& e) { return 0.25 * torsion(e).model.compliance_rad_per_Nm; })}};
 }
 
+/// Against a curve (the model's whole drive) a segment law's K's replace the curve's, and its last slope carries the
+/// series compliance the model lacks (reconcile reports the two as this one law): what that means, or "".
+std::string law_meaning(const Experiment& e, const FitResult& f, int breakpoints) {
+  const TorsionExperiment& x = torsion(e);
+  const double added = added_series_compliance(f), c_end = x.model.compliance_rad_per_Nm;
+  if (!x.model.twist_rad || added == 0.0) return "";
+  char buf[320];
+  std::snprintf(buf, sizeof buf,
+                "the drive's own law replaces the model's torque-twist curve: its last slope K%d %.4g N*m/rad is "
+                "%.0f %% of the model's %.4g N*m/rad at the curve's ends (a series compliance of %.3g rad/(N*m) "
+                "beside the model's, held in K%d, not a second effect)",
+                breakpoints + 1, 1.0 / (c_end + added), 100.0 * c_end / (c_end + added), 1.0 / c_end, added,
+                breakpoints + 1);
+  return buf;
+}
+
 /// The catalog's segment law with one breakpoint (K1 up to T1, then K2) or two (K1, K2, K3). K of the last segment is
 /// 1 / (C_tau + the series compliance effect): the law is of the whole drive, the catalog's form.
 EffectSpec stiffness_variant(int breakpoints) {
@@ -101,6 +118,14 @@ EffectSpec stiffness_variant(int breakpoints) {
     const double c2 = c_last + b[hi];
     return NamedValues{{"K1_Nm_per_rad", 1.0 / (c2 + b[lo])}, {"T1_Nm", th[lo]}, {"K2_Nm_per_rad", 1.0 / c2},
                        {"T2_Nm", th[hi]}, {"K3_Nm_per_rad", 1.0 / c_last}};
+  };
+  s.meaning = [breakpoints](const Experiment& e, const FitResult& f, int) { return law_meaning(e, f, breakpoints); };
+  // The last slope is the baseline's own unless series compliance is in the model: read, not fitted.
+  s.held = [breakpoints](const Experiment& e, const FitResult& f, int, const std::string& parameter) {
+    const std::string last = breakpoints == 1 ? "K2_Nm_per_rad" : "K3_Nm_per_rad";
+    if (parameter != last || f.find("series_compliance") >= 0) return std::string();
+    return std::string(torsion(e).model.twist_rad ? "the torque-twist curve's slope at its ends"
+                                                  : "1/C_tau, the baseline's compliance");
   };
   s.catalog = [](const Experiment& e, const FitResult& f, int i, CatalogReading& r) {
     const Term& t = f.terms[i];
@@ -290,6 +315,28 @@ Effect hysteresis_effect() {
           {law, bouc_wen}};
 }
 
+std::string arcmin(double rad) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g arcmin", rad * kArcminPerRad);
+  return buf;
+}
+
+/// A fitted play against the baseline's own: more play in the drive than in the model, or less (a negative width
+/// against a curve whose teeth leave a dead band), with the case key that sets the model's.
+std::string play_meaning(const Experiment& e, const FitResult& f, int term) {
+  const double w = f.terms[term].beta[0], model = baseline_play_rad(torsion(e));
+  const std::string key = "the model's play is set by the tooth thickness: gear.profile_shift_circular against "
+                          "gear.profile_shift_flexspline";
+  if (model > 0.0 && w < 0.0)
+    return "the model has " + arcmin(-w) + " more play than the drive (the model " + arcmin(model) +
+           ", the drive about " + arcmin(std::max(model + w, 0.0)) + "); " + key;
+  if (model > 0.0) return "the drive has " + arcmin(w) + " more play than the model (" + arcmin(model) + "); " + key;
+  if (w < 0.0)
+    return "a dead band of negative width (" + arcmin(w) + ") against a baseline without play is not play: the "
+           "twist near zero torque bends the other way (another effect's shape there)";
+  return "the drive has " + arcmin(w) + " of play the baseline does not hold";
+}
+
 Effect lost_motion_effect() {
   const EffectSpec s{
       .name = "lost_motion",
@@ -307,6 +354,7 @@ Effect lost_motion_effect() {
                                {"width_arcmin", f.terms[t].beta[0] * kArcminPerRad},
                                {"transition_Nm", f.terms[t].theta[0]}};
           },
+      .meaning = play_meaning,
       .catalog =
           [](const Experiment&, const FitResult& f, int i, CatalogReading& r) {
             const double w = f.terms[i].beta[0], ts = f.terms[i].theta[0];
@@ -460,7 +508,15 @@ Effect mesh_stiffness_effect() {
                                {"frequency_Hz", d.model.mesh_frequency_Hz},
                                {"line_amplitude_N", std::hypot(line[0], line[1])},
                                {"phase_rad", std::atan2(b[1], b[0])}};
-          }};
+          },
+      .held = [](const Experiment&, const FitResult&, int, const std::string& parameter) {
+        return std::string(parameter == "frequency_Hz" ? "the model's mesh frequency" : "");
+      },
+      .variation = [](const Experiment& e, const FitResult& f, int t, DynamicsVariation& v) {
+        const NamedValues h = f.terms[t].spec->headline(e, f, t);
+        v.stiffness_ratio = h[0].second;
+        v.stiffness_phase_rad = h[3].second;
+      }};
   SynthGenerator g{s.name, {"amplitude_ratio", "phase_rad"}, ":amplitude_ratio (0.05),phase_rad (0.3)   [frequency_Hz = f_m]",
                    false, VariationLaw([](const SynthEffect& fx, const DynamicsPrediction& p) {
                      const double r = synth_param(fx, "amplitude_ratio", 0.05), ph = synth_param(fx, "phase_rad", 0.3);
@@ -500,7 +556,10 @@ Effect damping_effect() {
           [](const Experiment& e, const FitResult& f, int t) {
             const double c0 = dynamics(e).model.damping_Ns_per_m, added = f.terms[t].beta[0];
             return NamedValues{{"coefficient_Ns_per_m", c0 + added}, {"added_Ns_per_m", added}};
-          }};
+          },
+      .variation = [](const Experiment& e, const FitResult& f, int t, DynamicsVariation& v) {
+        v.damping_Ns_per_m = std::max(0.0, dynamics(e).model.damping_Ns_per_m + f.terms[t].beta[0]);
+      }};
   SynthGenerator g{s.name, {"coefficient_Ns_per_m"}, ":coefficient_Ns_per_m (2 c0)", false,
                    VariationLaw([](const SynthEffect& fx, const DynamicsPrediction& p) {
                      const double c0 = p.damping_Ns_per_m;
@@ -529,7 +588,11 @@ Effect drag_torque_effect() {
             return NamedValues{{"coulomb_Nm", b[0]},
                                {"viscous_Nms_per_rad", b[1]},
                                {"torque_at_speed_Nm", b[0] + b[1] * dynamics(e).model.output_speed_rad_s}};
-          }};
+          },
+      .variation = [](const Experiment&, const FitResult& f, int t, DynamicsVariation& v) {
+        v.drag_coulomb_Nm = f.terms[t].beta[0];
+        v.drag_viscous_Nms_per_rad = f.terms[t].beta[1];
+      }};
   SynthGenerator g{s.name, {"coulomb_Nm", "viscous_Nms_per_rad"},
                    ":coulomb_Nm (0.02 load),viscous_Nms_per_rad (same torque at speed)", false,
                    VariationLaw([](const SynthEffect& fx, const DynamicsPrediction& p) {
@@ -616,6 +679,13 @@ SynthLaw synth_law(Kind kind, const SynthEffect& fx) {
     }
   throw InputError("synth effect = '" + fx.name + "'; not an effect of kind " + kind_name(kind) +
                    " (see strainwave synth --help)");
+}
+
+double baseline_play_rad(const TorsionExperiment& t) {
+  if (!t.model.twist_rad) return 0.0;
+  // Either side of zero torque by a hair of the amplitude: the curve's dead band is its jump there.
+  const double eps = 1e-9 * t.torque_amplitude_Nm;
+  return std::max(0.0, t.model.twist_rad(eps) - t.model.twist_rad(-eps));
 }
 
 double added_series_compliance(const FitResult& f) {

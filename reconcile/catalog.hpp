@@ -44,6 +44,16 @@ struct EffectSpec {
   std::function<Eigen::MatrixXd(const Experiment&, const Eigen::VectorXd& theta)> columns;
   /// The headline parameters (SPEC units) of term `term` of a fitted model.
   std::function<NamedValues(const Experiment&, const FitResult&, int term)> headline;
+  /// Where headline parameter `parameter` of term `term` is held from when the fit does not move it (a segment
+  /// slope read on the baseline, the model's mesh frequency): a phrase for the report; "" for a fitted parameter,
+  /// which gets a 95 % interval. Empty function: every parameter is fitted.
+  std::function<std::string(const Experiment&, const FitResult&, int term, const std::string& parameter)> held;
+  /// Dynamics: sets the model's variation that term `term` of a fitted model stands for (its fields of v), so that the
+  /// model can be re-run at the fitted values; empty function: the effect's contribution is not a model run.
+  std::function<void(const Experiment&, const FitResult&, int term, DynamicsVariation& v)> variation;
+  /// What term `term` of a fitted model means for the drive, in a sentence (a play the model has more of than the
+  /// drive, and the case key that sets it); empty function or "": nothing beyond the physics text.
+  std::function<std::string(const Experiment&, const FitResult&, int term)> meaning;
   /// Torsion: adds term `term` of a fitted model to the catalog figures and the loop's middle line (empty: the
   /// effect is not read in catalog terms).
   std::function<void(const Experiment&, const FitResult&, int term, CatalogReading&)> catalog;
@@ -183,5 +193,8 @@ std::optional<CatalogFigures> catalog_figures(const Experiment& e, const FitResu
 
 /// The series compliance a fitted model adds to the baseline (its series_compliance term; 0 without one), rad/(N*m).
 double added_series_compliance(const FitResult& model);
+
+/// The play of a torsion baseline (the jump of its curve across zero torque; 0 for C_tau T), rad.
+double baseline_play_rad(const TorsionExperiment& t);
 
 }  // namespace sw::reconcile

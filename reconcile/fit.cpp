@@ -279,7 +279,8 @@ FitResult fit_model(const Experiment& e, const Vec& y, std::vector<Term> terms, 
 std::vector<Headline> headline_with_ci(const Experiment& e, const FitResult& model, int term) {
   const NamedValues base = model.terms[term].spec->headline(e, model, term);
   std::vector<Headline> out;
-  for (const auto& [name, v] : base) out.push_back({name, v, v, v});
+  const EffectSpec& spec = *model.terms[term].spec;
+  for (const auto& [name, v] : base) out.push_back({name, v, v, v, spec.held ? spec.held(e, model, term, name) : ""});
   if (model.cov.size() == 0) return out;
   const Vec p0 = model.params();
   Mat G(base.size(), p0.size());
@@ -296,7 +297,7 @@ std::vector<Headline> headline_with_ci(const Experiment& e, const FitResult& mod
     for (std::size_t i = 0; i < base.size(); ++i) G(i, j) = (va[i].second - vb[i].second) / (2.0 * h);
   }
   for (std::size_t i = 0; i < base.size(); ++i) {
-    if (base[i].first == "order") continue;
+    if (base[i].first == "order" || out[i].fixed()) continue;
     const double var = G.row(i) * model.cov * G.row(i).transpose();
     const double half = 1.959964 * std::sqrt(std::max(var, 0.0));
     out[i].lo = base[i].second - half;

@@ -52,10 +52,13 @@ struct FitOptions {
 FitResult fit_model(const Experiment& e, const Eigen::VectorXd& y, std::vector<Term> terms, const ArModel& ar,
                     const FitOptions& options = {});
 
-/// Headline parameters of term `term` with 95 % Wald intervals by the delta method (value, lo, hi).
+/// Headline parameters of term `term` with 95 % Wald intervals by the delta method (value, lo, hi). A parameter the
+/// effect holds (EffectSpec::held) has no interval: lo = hi = value and `fixed_from` says where it is read.
 struct Headline {
   std::string name;
   double value = 0.0, lo = 0.0, hi = 0.0;
+  std::string fixed_from;  ///< "" for a fitted parameter
+  bool fixed() const { return !fixed_from.empty(); }
 };
 std::vector<Headline> headline_with_ci(const Experiment& e, const FitResult& model, int term);
 

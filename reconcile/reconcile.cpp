@@ -581,17 +581,134 @@ bool prefer_simpler(Analysis& a) {
   return false;
 }
 
+/// The model with term `i` moved last (the term a test or a bootstrap searches).
+FitResult with_last(FitResult f, std::size_t i) {
+  std::vector<Term> order = without(f.terms, i);
+  order.push_back(f.terms[i]);
+  f.terms = order;
+  return f;
+}
+
+/// A law left with structure tries its richer variant before the analysis gives up: when a located signature that
+/// points to a richer variant of a law in the model is still significant (a three-segment curve fitted with two
+/// slopes leaves it bending, and the two-slope breakpoint sits between the true ones), the richer variant replaces
+/// the poorer one if it leaves none of those signatures significant, does not worsen the held-out RMS and is
+/// significant against the noise (its extra breakpoints tested as in selection). BIC is not held to min_delta_bic
+/// here: the signature test has already found the structure the poorer law leaves. Returns whether the model changed.
+bool retry_richer_law(Analysis& a) {
+  for (std::size_t i = 0; i < a.cur.terms.size(); ++i) {
+    const EffectSpec& poor = *a.cur.terms[i].spec;
+    for (const auto& rich : effect_catalog(a.e.kind())) {
+      if (!rich.conflicts(poor) || complexity(rich) <= complexity(poor)) continue;
+      std::vector<int> open;
+      for (int k = 0; k < a.m; ++k)
+        if (a.located[k] && triggers(a.sigs[k], rich.id()) && a.significant(k, a.cur.terms)) open.push_back(k);
+      if (open.empty()) continue;
+      const std::vector<Term> tried = with(a.cur.terms, &rich);
+      const FitResult alt = a.refine(a.fit(tried));
+      std::string left;
+      for (int k : open)
+        if (a.significant(k, alt.terms)) left += (left.empty() ? "" : ", ") + a.sigs[k].name;
+      const double h_cur = a.heldout(a.cur.terms), h_alt = a.heldout(alt.terms);
+      std::string why;
+      if (!left.empty()) why = "it leaves " + left;
+      else if (!(h_alt <= h_cur)) why = "held-out RMS " + fmt("%.4g", h_cur) + " -> " + fmt("%.4g", h_alt);
+      else if (const auto [p, test] = a.effect_test(a.cur, with_last(alt, alt.find(rich.name)),
+                                                    rich.n_nonlinear() - poor.n_nonlinear());
+               !(p <= a.opt.alpha_effect))
+        why = "not significant against the estimated noise (" + test + " p = " + fmt("%.3g", p) + ")";
+      else a.accept(rich, alt.bic() - a.cur.bic(), p, test);
+      if (!why.empty()) {
+        a.rejected[rich.id()] = rich.label + ": tried where " + poor.label + " leaves structure; " + why;
+        continue;
+      }
+      a.rejected[poor.id()] = poor.label + ": leaves structure its richer variant " + rich.label + " explains";
+      a.accepted.erase(poor.id());
+      progress("reconcile: " + poor.id() + " leaves structure; replaced by " + rich.id());
+      a.cur = alt;
+      return true;
+    }
+  }
+  return false;
+}
+
+/// Against a curve baseline (the model's whole drive: body, teeth, bearing, circular spline) series compliance and a
+/// stiffness law answer one mismatch, the slope at high torque: the law's K's are of the whole drive, so its last
+/// slope holds the series term. The data have decided which stays in prune(): the law only where falling back to
+/// series compliance alone (the model's curve, uniformly softer) costs significantly, series compliance only where
+/// removing it from the law (K3 the curve's end slope) does. When both stayed, the law is the one effect reported
+/// and series compliance is listed as held in its last slope, not as a second effect (the stiffness counted once).
+/// Against C_tau T (the flexspline body alone) series compliance is the rest of the drive and stays an effect.
+void fold_series_into_law(const Analysis& a, Result& r) {
+  const auto* t = std::get_if<TorsionExperiment>(&a.e.data);
+  if (!t || !t->model.twist_rad || a.cur.find("stiffness_nonlinearity") < 0) return;
+  const auto series = std::find_if(r.effects.begin(), r.effects.end(),
+                                   [](const AcceptedEffect& x) { return x.name == "series_compliance"; });
+  if (series == r.effects.end()) return;
+  r.rejected.push_back({"series_compliance", "series_compliance: held in the last slope of stiffness_nonlinearity "
+                                             "(the law replaces the model's torque-twist curve; compliance " +
+                                                 fmt("%.4g", added_series_compliance(a.cur)) + " rad/(N*m))"});
+  r.effects.erase(series);
+}
+
+/// Where the columns cannot carry an effect (the model answers its parameters far from linearly), the fit is exact
+/// only for the columns' prediction. A term whose contribution is a model run is checked against the model re-run at
+/// its fitted values, alone: rho = |run - columns' prediction| / |run|, the share by which the columns miss the model
+/// there. Returns rho per term (0 where the term is not a model run).
+std::vector<double> model_discrepancy(const Analysis& a) {
+  std::vector<double> rho(a.cur.terms.size(), 0.0);
+  const auto* d = std::get_if<DynamicsExperiment>(&a.e.data);
+  if (!d) return rho;
+  for (std::size_t i = 0; i < a.cur.terms.size(); ++i) {
+    const Term& t = a.cur.terms[i];
+    if (!t.spec->variation) continue;
+    DynamicsVariation v;
+    t.spec->variation(a.e, a.cur, static_cast<int>(i), v);
+    const DynamicsRun run = d->model.dynamics_run(v);
+    const Vec response = resample(run.time_s, run.mesh_force_N, a.e.time) - a.e.baseline;
+    const Vec columns = t.spec->columns(a.e, t.theta) * t.beta;
+    if (response.norm() > 0.0) rho[i] = (response - columns).norm() / response.norm();
+  }
+  return rho;
+}
+
+/// The headlines of term `term` with their intervals widened by a model discrepancy rho: the effect's size is
+/// uncertain by that share besides the noise, so each fitted headline moves by half the change between the term's
+/// coefficients scaled by 1 - rho and 1 + rho (a headline of the size scales, a phase does not), added in quadrature
+/// to the noise's half-width. Held parameters and a harmonic's order stay as they are.
+std::vector<Headline> widened(const Experiment& e, const FitResult& f, int term, double rho, std::vector<Headline> h) {
+  if (!(rho > 0.0)) return h;
+  FitResult up = f, down = f;
+  up.terms[term].beta *= 1.0 + rho;
+  down.terms[term].beta *= 1.0 - rho;
+  const NamedValues hu = f.terms[term].spec->headline(e, up, term), hd = f.terms[term].spec->headline(e, down, term);
+  for (std::size_t k = 0; k < h.size(); ++k) {
+    if (h[k].fixed() || h[k].name == "order") continue;
+    const double extra = 0.5 * std::abs(hu[k].second - hd[k].second), half = 0.5 * (h[k].hi - h[k].lo);
+    const double wide = std::hypot(half, extra), mid = 0.5 * (h[k].hi + h[k].lo);
+    h[k].lo = mid - wide;
+    h[k].hi = mid + wide;
+  }
+  return h;
+}
+
 /// Final fit with covariance, headlines with intervals, the signatures still left, the verdict.
 void finalise(Analysis& a, Result& r) {
   FitOptions o;
   o.multistart_last = false;
   o.covariance = true;
   a.cur = fit_model(a.e, a.y, a.cur.terms, a.ar, o);
+  const std::vector<double> discrepancy = model_discrepancy(a);
   for (std::size_t i = 0; i < a.cur.terms.size(); ++i) {
-    AcceptedEffect x = a.accepted[a.cur.terms[i].spec->id()];
-    x.params = headline_with_ci(a.e, a.cur, static_cast<int>(i));
+    const EffectSpec& spec = *a.cur.terms[i].spec;
+    const int term = static_cast<int>(i);
+    AcceptedEffect x = a.accepted[spec.id()];
+    x.params = widened(a.e, a.cur, term, discrepancy[i], headline_with_ci(a.e, a.cur, term));
+    x.model_discrepancy = discrepancy[i];
+    if (spec.meaning) x.meaning = spec.meaning(a.e, a.cur, term);
     r.effects.push_back(x);
   }
+  fold_series_into_law(a, r);
   for (const auto& [id, reason] : a.rejected)
     if (!has(a.cur.terms, id)) r.rejected.push_back({id.substr(0, id.find('#')), reason});
   r.final_model = a.cur;
@@ -643,6 +760,7 @@ Result reconcile(const Experiment& e, const Options& opt) {
   admit_jointly(a);
   prune(a);
   for (int round = 0; round < 3 && prefer_simpler(a); ++round) prune(a);
+  retry_richer_law(a);
   finalise(a, r);
   r.seconds = clock.lap();
   return r;

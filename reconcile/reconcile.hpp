@@ -47,6 +47,10 @@ struct AcceptedEffect {
   double delta_bic = 0.0;        ///< BIC(model with it) - BIC(model without it), at acceptance
   double p_value = 1.0;          ///< F-test (times multiplicity) or parametric bootstrap
   std::string test;              ///< "F" or "bootstrap"
+  std::string meaning;           ///< what it means for the drive (EffectSpec::meaning), "" when nothing beyond physics
+  /// Effects whose contribution is a model run (dynamics): |model re-run at the fitted values - the columns'
+  /// prediction| / |model re-run|, the relative misfit its 95 % intervals were widened by; 0: not measured.
+  double model_discrepancy = 0.0;
 };
 
 struct Rejected {

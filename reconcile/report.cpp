@@ -90,17 +90,38 @@ ReportCatalog catalog_of(const CatalogFigures& c, double final_rms) {
   return k;
 }
 
+/// A headline's 95 % interval as the report prints it: "[lo, hi]", "exact" for a harmonic's order, or where a held
+/// parameter is read.
+std::string interval(const Headline& h) {
+  if (h.name == "order") return "exact";
+  if (h.fixed()) return "fixed (from " + h.fixed_from + ")";
+  return "[" + num(h.lo) + ", " + num(h.hi) + "]";
+}
+
 ReportEffect effect_of(const AcceptedEffect& e) {
-  ReportEffect x{e.name, e.physics, std::nullopt, {}, {}, e.delta_bic, e.p_value};
+  ReportEffect x{e.name, e.physics, std::nullopt, {}, {}, {}, e.delta_bic, e.p_value, e.meaning, e.model_discrepancy};
   for (const auto& h : e.params) {
     if (h.name == "order") {
       x.order = static_cast<int>(h.value);
       continue;
     }
     x.params[h.name] = h.value;
-    x.ci95[h.name] = {h.lo, h.hi};
+    if (h.fixed()) x.fixed[h.name] = h.fixed_from;
+    else x.ci95[h.name] = {h.lo, h.hi};
   }
   return x;
+}
+
+/// The widening of an effect's intervals by the model discrepancy, in words.
+std::string discrepancy_words(double rho) {
+  return "intervals widened by the model discrepancy: the model re-run at the fitted values differs from the "
+         "columns' prediction by " + num(100.0 * rho, "%.3g") + " % of its response";
+}
+
+/// The play effect's width in words: a negative width is play the model has and the drive lacks.
+std::string play_words(double play_arcmin) {
+  if (play_arcmin < 0.0) return "play: the model has " + num(-play_arcmin) + " arcmin more play than the drive";
+  return "play " + num(play_arcmin) + " arcmin";
 }
 
 std::string catalog_html(const CatalogFigures& c) {
@@ -119,7 +140,8 @@ std::string catalog_html(const CatalogFigures& c) {
            ref ? "< 1" : "");
   h += row("lost motion, catalog: twist between +-4 % rated on the middle line, elastic twist included (arcmin)",
            c.catalog_lost_motion_arcmin, ref ? "< 1" : "");
-  h += row("play: dead band of the effect lost_motion (arcmin)", c.play_arcmin, "");
+  h += "<tr><td>play: dead band of the effect lost_motion</td><td colspan='2'>" + html_escape(play_words(c.play_arcmin)) +
+       "</td></tr>";
   h += "</table><p>Rated torque from " + html_escape(c.rated_from) + ".</p>";
   return h;
 }
@@ -279,10 +301,13 @@ std::string effects_html(const Result& r) {
   std::string h = "<h2>Missing physics</h2>";
   if (r.effects.empty()) h += "<p>No catalog effect passed every test.</p>";
   for (const auto& f : r.effects) {
-    h += "<h3>" + html_escape(f.name) + "</h3><p>" + html_escape(f.physics) + "</p><table><tr><th>parameter</th><th>value</th><th>95 % interval</th></tr>";
+    h += "<h3>" + html_escape(f.name) + "</h3><p>" + html_escape(f.physics) + "</p>";
+    if (!f.meaning.empty()) h += "<p><b>For the drive:</b> " + html_escape(f.meaning) + "</p>";
+    if (f.model_discrepancy > 0.0) h += "<p>" + html_escape(discrepancy_words(f.model_discrepancy)) + "</p>";
+    h += "<table><tr><th>parameter</th><th>value</th><th>95 % interval</th></tr>";
     for (const auto& p : f.params)
-      h += "<tr><td>" + html_escape(p.name) + "</td><td>" + num(p.value) + "</td><td>" +
-           (p.name == "order" ? std::string("exact") : "[" + num(p.lo) + ", " + num(p.hi) + "]") + "</td></tr>";
+      h += "<tr><td>" + html_escape(p.name) + "</td><td>" + num(p.value) + "</td><td>" + html_escape(interval(p)) +
+           "</td></tr>";
     h += "</table><p>BIC change " + num(f.delta_bic, "%.1f") + ", p = " + num(f.p_value, "%.3g") + " (" + html_escape(f.test) + ")</p>";
   }
   if (!r.unexplained.empty()) {
@@ -371,9 +396,10 @@ std::string report_summary(const Result& r) {
   for (const auto& e : r.effects) {
     s += "  missing physics: " + e.name + " (dBIC " + num(e.delta_bic, "%.1f") + ", p " + num(e.p_value, "%.2g") + ")\n   ";
     for (const auto& h : e.params)
-      s += h.name == "order" ? " order " + num(h.value, "%.0f")
-                             : " " + h.name + " = " + num(h.value) + " [" + num(h.lo) + ", " + num(h.hi) + "]";
+      s += h.name == "order" ? " order " + num(h.value, "%.0f") : " " + h.name + " = " + num(h.value) + " " + interval(h);
     s += "\n";
+    if (!e.meaning.empty()) s += "    for the drive: " + e.meaning + "\n";
+    if (e.model_discrepancy > 0.0) s += "    " + discrepancy_words(e.model_discrepancy) + "\n";
   }
   for (const auto& u : r.unexplained) s += "  still unexplained: " + u.description + "\n";
   if (r.catalog && !r.effects.empty()) {
@@ -383,7 +409,7 @@ std::string report_summary(const Result& r) {
     if (c.segments >= 2) s += ", T1 " + num(c.t1) + (c.segments == 3 ? ", T2 " + num(c.t2) : std::string()) + " N*m";
     s += "; hysteresis loss " + num(c.hysteresis_loss_arcmin) + " arcmin, catalog lost motion (+-4 % of " +
          num(c.rated_torque_Nm) + " N*m, elastic twist included) " + num(c.catalog_lost_motion_arcmin) +
-         " arcmin, play " + num(c.play_arcmin) + " arcmin\n";
+         " arcmin, " + play_words(c.play_arcmin) + "\n";
   }
   s += "  residual RMS " + num(r.baseline_rms) + " -> " + num(r.final_rms) + "; held-out (last " +
        std::to_string(r.heldout_rows) + " rows) " + num(r.baseline_heldout_rms) + " -> " + num(r.final_heldout_rms) + "\n";

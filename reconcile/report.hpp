@@ -26,8 +26,11 @@ struct ReportEffect {
   std::string name, physics;
   std::optional<int> order;                                 ///< a harmonic's order (params.order, exact)
   std::map<std::string, double> params;                     ///< every other headline parameter
-  std::map<std::string, std::pair<double, double>> ci95;    ///< per parameter of `params`
+  std::map<std::string, std::pair<double, double>> ci95;    ///< per fitted parameter of `params`
+  std::map<std::string, std::string> fixed;                 ///< per held parameter of `params`: where it is read
   double delta_bic = 0.0, p_value = 1.0;
+  std::string meaning;                                      ///< what it means for the drive ("": key absent)
+  double model_discrepancy = 0.0;                           ///< the intervals' widening (0: key absent)
   bool operator==(const ReportEffect&) const = default;
 };
 

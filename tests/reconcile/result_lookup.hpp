@@ -28,6 +28,16 @@ inline double param(const AcceptedEffect& e, const std::string& name) {
   return NAN;
 }
 
+/// The effects named, the verdict, what is left and why others were rejected, for a test's trace.
+inline std::string trace_of(const Result& r) {
+  std::string s;
+  for (const auto& e : r.effects) s += e.name + " ";
+  s += "| verdict " + r.verdict;
+  for (const auto& u : r.unexplained) s += " | left: " + u.description;
+  for (const auto& x : r.rejected) s += " | rejected " + x.reason;
+  return s;
+}
+
 inline double rel_err(double got, double want) { return std::abs(got - want) / std::abs(want); }
 
 }  // namespace sw::reconcile::testing

@@ -217,6 +217,41 @@ TEST(ReconcileContactBaseline, NamesOnlyTheFrictionTheCurveLacksWhileCTauTNamesT
   EXPECT_NEAR(f["catalog"]["K3_Nm_per_rad"].get<double>(), kK3, 0.15 * kK3);
 }
 
+TEST(ReconcileContactBaseline, TheShippedSize17LoopAgainstTheModelsCurveSaysWhatItMeansForTheDrive) {
+  // The catalog loop of size 17 against the curve `strainwave contact cases/cup_size17.toml` computes (harmonic
+  // solver, a few seconds): the model is stiffer and has more play (its profile shifts leave about 1.2 arcmin, the
+  // drive 0.12). The drive's law is one effect, not stacked on series compliance; the play is said as the model's
+  // excess with the key that sets it; the law's last slope, which holds the series compliance, has an interval.
+  const fs::path d = scratch("size17_contact");
+  ASSERT_NO_FATAL_FAILURE(expect_success("--quiet contact cases/cup_size17.toml --out " + (d / "model").string()));
+  const CommandRun r = run_strainwave("reconcile cases/cup_size17.toml cases/recordings/size17_torsion.csv --baseline "
+                                      "contact --contact " + (d / "model" / "contact.json").string() + " --out " +
+                                      (d / "out").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json j = read_json(d / "out" / "reconcile.json");
+  EXPECT_EQ(effect_names(j), (std::set<std::string>{"stiffness_nonlinearity", "hysteresis", "lost_motion"}))
+      << j["effects"].dump(1);
+  for (const auto& e : j["effects"]) {
+    if (e["name"] == "lost_motion") {
+      EXPECT_LT(e["params"]["width_arcmin"].get<double>(), 0.0);
+      const std::string meaning = e.value("meaning", "");
+      EXPECT_EQ(meaning.rfind("the model has ", 0), 0u) << meaning;
+      EXPECT_NE(meaning.find("gear.profile_shift_circular"), std::string::npos) << meaning;
+    }
+    if (e["name"] == "stiffness_nonlinearity") {
+      EXPECT_TRUE(e["ci95"].contains("K3_Nm_per_rad")) << e.dump(1);
+      EXPECT_TRUE(e["fixed"].empty()) << e.dump(1);
+    }
+  }
+  bool held = false;
+  for (const auto& x : j["rejected"])
+    held = held || (x["name"] == "series_compliance" &&
+                    x["reason"].get<std::string>().find("held in the last slope") != std::string::npos);
+  EXPECT_TRUE(held) << j["rejected"].dump(1);
+  EXPECT_NE(r.output.find("play: the model has "), std::string::npos) << r.output;
+  EXPECT_NE(read_text(d / "out" / "reconcile.html").find("For the drive:"), std::string::npos);
+}
+
 TEST(ReconcileContactBaseline, MissingCurveOrTorqueBeyondItIsOneLineAndWritesNothing) {
   const fs::path d = contact_fixture("contact_errors");
   ASSERT_NO_FATAL_FAILURE(synth_law_with_friction(d, 40.0));

@@ -31,14 +31,6 @@ constexpr double kLossTol = 0.20;
 /// Held-out RMS at the noise level within 20 %.
 constexpr double kNoiseTol = 0.20;
 
-std::string names(const Result& r) {
-  std::string s;
-  for (const auto& e : r.effects) s += e.name + " ";
-  s += "| verdict " + r.verdict;
-  for (const auto& u : r.unexplained) s += " | left: " + u.description;
-  for (const auto& x : r.rejected) s += " | rejected " + x.reason;
-  return s;
-}
 
 
 nlohmann::json read_json(const std::string& path) {
@@ -100,7 +92,7 @@ TEST_P(ShippedRecording, IsExplainedByEveryEffectItHoldsWithTheCatalogFiguresRec
   base.prediction = TorsionPrediction{.compliance_rad_per_Nm = rec.meta_number("baseline_compliance_rad_per_Nm").value()};
   const Experiment e = make_experiment(rec, base);
   const Result r = reconcile(e);
-  SCOPED_TRACE(names(r));
+  SCOPED_TRACE(trace_of(r));
   EXPECT_EQ(r.verdict, "explained");
   EXPECT_EQ(found_names(r), truth_names(truth));
   EXPECT_FALSE(time_flagged(r));
@@ -148,9 +140,9 @@ TEST(OtherStructures, RoundedStiffnessCornersStillGiveTheCatalogSlopes) {
   const Result r = reconcile(make_experiment(s.recording, o.baseline));
   ASSERT_TRUE(r.catalog.has_value());
   const CatalogFigures& c = *r.catalog;
-  std::printf("[smooth] %s; K1 %.4g K2 %.4g K3 %.4g, loss %.3f arcmin, play %.3f arcmin\n", names(r).c_str(),
+  std::printf("[smooth] %s; K1 %.4g K2 %.4g K3 %.4g, loss %.3f arcmin, play %.3f arcmin\n", trace_of(r).c_str(),
               c.k1, c.k2, c.k3, c.hysteresis_loss_arcmin, c.play_arcmin);
-  SCOPED_TRACE(names(r));
+  SCOPED_TRACE(trace_of(r));
   ASSERT_EQ(c.segments, 3);
   EXPECT_LT(rel_err(c.k1, 1e4), kStiffnessTol);
   EXPECT_LT(rel_err(c.k2, 1.4e4), kStiffnessTol);
@@ -191,7 +183,7 @@ TEST(MultiEffect, FourTransmissionHarmonicsAtHighSnrAreAllFoundAndNothingElse) {
                                   "amplitude_rad=3e-5,phase_rad=-0.7");
   const SynthResult s = synthesize(o);
   const Result r = reconcile(make_experiment(s.recording, o.baseline));
-  SCOPED_TRACE(names(r));
+  SCOPED_TRACE(trace_of(r));
   EXPECT_EQ(r.verdict, "explained");
   EXPECT_EQ(r.effects.size(), 4u);
   const std::pair<const char*, int> want[] = {{"wg_harmonic", 1}, {"wg_harmonic", 2}, {"output_harmonic", 1},
@@ -218,7 +210,7 @@ TEST(MultiEffect, BacklashOffsetTorsionAndTwoHarmonicsAtHighSnrAreAllFound) {
                                   "wg_harmonic:order=1,amplitude_um=2,wg_harmonic:order=2,amplitude_um=1.5,phase_rad=1");
   const SynthResult s = synthesize(o);
   const Result r = reconcile(make_experiment(s.recording, o.baseline));
-  SCOPED_TRACE(names(r));
+  SCOPED_TRACE(trace_of(r));
   EXPECT_EQ(r.verdict, "explained");
   EXPECT_EQ(r.effects.size(), 4u);
   ASSERT_NE(find(r, "uniform_clearance"), nullptr);
@@ -239,7 +231,7 @@ TEST(MultiEffect, OverlappingTorsionEffectsAreAdmittedTogetherAndNoDriftIsInvent
                                   "T1_Nm=3.9,T2_Nm=12,hysteresis:loss_rad=1.745e-4,transition_Nm=1.5");
   const SynthResult s = synthesize(o);
   const Result r = reconcile(make_experiment(s.recording, o.baseline));
-  SCOPED_TRACE(names(r));
+  SCOPED_TRACE(trace_of(r));
   EXPECT_EQ(r.verdict, "explained");
   EXPECT_EQ(found_names(r), (std::set<std::string>{"series_compliance", "stiffness_nonlinearity", "hysteresis"}));
   EXPECT_FALSE(time_flagged(r));

@@ -34,6 +34,10 @@ Result full_result() {
   r.effects.push_back({"wg_harmonic", "a line", {{"order", 2, 2, 2}, {"amplitude_rad", 3e-5, 2.9e-5, 3.1e-5}},
                        -120.5, 1e-9, "F"});
   r.effects.push_back({"hysteresis", "friction", {{"loss_rad", 1.75e-4, 1.7e-4, 1.8e-4}}, -3104.3, 3.6e-84, "F"});
+  r.effects.push_back({"stiffness_nonlinearity", "soft start",
+                       {{"K1_Nm_per_rad", 1.0e4, 0.9e4, 1.1e4}, {"T1_Nm", 3.9, 3.5, 4.3},
+                        {"K2_Nm_per_rad", 2.0e4, 2.0e4, 2.0e4, "1/C_tau, the baseline's compliance"}},
+                       -500.0, 1e-20, "F"});
   r.rejected.push_back({"lost_motion", "lost_motion: BIC changes by 2.0"});
   r.catalog = CatalogFigures{.segments = 3, .k1 = 1.0e4, .k2 = 1.4e4, .k3 = 1.6e4, .t1 = 3.9, .t2 = 12.0,
                              .rated_torque_Nm = 31.0, .rated_from = "metadata rated_torque_Nm",
@@ -64,7 +68,7 @@ TEST(Report, JsonHasExactlyTheSpecKeys) {
   EXPECT_TRUE(j["baseline"].contains("heldout_rms"));
   EXPECT_FALSE(j["baseline"].contains("source"));
   EXPECT_TRUE(j["mismatch"]["locations"][0].contains("p_value"));
-  for (const char* k : {"name", "physics", "params", "ci95", "delta_bic", "p_value"})
+  for (const char* k : {"name", "physics", "params", "ci95", "fixed", "delta_bic", "p_value"})
     EXPECT_TRUE(j["effects"][0].contains(k)) << k;
   EXPECT_EQ(j["effects"][0]["ci95"]["loss_rad"].size(), 2u);
 }
@@ -79,6 +83,22 @@ TEST(Report, WritesTheOrderAsAnIntegerWithoutAnIntervalAndTheUnexplainedAsLocati
   EXPECT_EQ(j["catalog"]["reference"]["size"], 17);
   // T1 / K1 over the final RMS: 3.9e-4 rad over 5.1e-6 rad.
   EXPECT_DOUBLE_EQ(j["catalog"]["K1_segment_twist_over_noise"].get<double>(), 3.9 / 1.0e4 / 5.1e-6);
+}
+
+TEST(Report, AHeldParameterIsWrittenAsFixedWithWhereItIsReadNotAsAZeroWidthInterval) {
+  const Result r = full_result();
+  const auto j = nlohmann::json::parse(sw::reconcile_json(report_of(r)));
+  const auto& law = j["effects"][2];
+  ASSERT_EQ(law["name"], "stiffness_nonlinearity");
+  EXPECT_FALSE(law["ci95"].contains("K2_Nm_per_rad"));
+  EXPECT_EQ(law["fixed"]["K2_Nm_per_rad"]["from"], "1/C_tau, the baseline's compliance");
+  EXPECT_EQ(law["params"]["K2_Nm_per_rad"], 2.0e4);
+  EXPECT_EQ(law["ci95"]["K1_Nm_per_rad"].size(), 2u);
+  EXPECT_FALSE(law["fixed"].contains("K1_Nm_per_rad"));
+  const std::string summary = report_summary(r);
+  EXPECT_NE(summary.find("K2_Nm_per_rad = 2e+04 fixed (from 1/C_tau, the baseline's compliance)"), std::string::npos)
+      << summary;
+  EXPECT_EQ(summary.find("[2e+04, 2e+04]"), std::string::npos) << summary;
 }
 
 TEST(ReconcileJson, ReadsBackEveryFieldItWrote) {

@@ -1,0 +1,120 @@
+// bench_reconcile_coverage — does each 95 % interval hold the truth in 95 % of recordings? For every single-effect
+// proof of tests/reconcile/test_identify.cpp (torsion, transmission and backlash, the same noise and concealment) and
+// --seeds noise seeds: how often the effect is named, and per headline parameter the truth has, how often the named
+// effect's interval holds it. Parameters the effect holds (reported as fixed) and a harmonic's order are not
+// intervals and are left out. Printed figures only.
+//
+//   build/bench/bench_reconcile_coverage                       # 20 seeds, concealment 0.5
+//   build/bench/bench_reconcile_coverage --concealment 2 --kind torsion
+#include <chrono>
+#include <cstdio>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "common/progress.hpp"
+#include "reconcile/reconcile.hpp"
+#include "reconcile/synth.hpp"
+
+namespace {
+
+using namespace sw::reconcile;
+
+struct Proof {
+  Kind kind;
+  std::string effect;  ///< synth spec
+};
+
+const std::vector<Proof> kProofs = {
+    {Kind::Torsion, "series_compliance"},       {Kind::Torsion, "stiffness_nonlinearity"},
+    {Kind::Torsion, "hysteresis"},              {Kind::Torsion, "lost_motion"},
+    {Kind::Transmission, "wg_harmonic:order=2"}, {Kind::Transmission, "output_harmonic:order=1"},
+    {Kind::Backlash, "load_torsion"},           {Kind::Backlash, "wg_harmonic:order=1"},
+    {Kind::Backlash, "uniform_clearance"}};
+
+double basic_backlash_um(double wg_rad) { return 20.0 + 15.0 * std::cos(2.0 * wg_rad); }
+
+/// The recording options of test_identify.cpp for a kind.
+SynthOptions proof_options(Kind kind, std::uint64_t seed, double concealment) {
+  SynthOptions o;
+  o.seed = seed;
+  o.ar1_phi = 0.8;
+  o.concealment = concealment;
+  if (kind == Kind::Torsion) {
+    o.baseline.prediction = TorsionPrediction{.compliance_rad_per_Nm = 5e-5};
+    o.white_sd = 1e-6; o.ar1_sd = 1e-6; o.quantum = 5e-7;
+  } else if (kind == Kind::Transmission) {
+    o.baseline.gear = {.teeth_flexspline = 190, .teeth_circular = 192};
+    o.baseline.prediction = TransmissionPrediction{};
+    o.rows = TransmissionRows{.output_revolutions = 2.0};
+    o.white_sd = 2e-6; o.ar1_sd = 2e-6; o.quantum = 1e-6;
+  } else {
+    o.baseline.gear.pitch_radius_m = 0.019;
+    o.baseline.prediction = BacklashPrediction{.backlash_um = basic_backlash_um};
+    o.rows = BacklashRows{};
+    o.white_sd = 0.2; o.ar1_sd = 0.2; o.quantum = 0.1;
+  }
+  return o;
+}
+
+struct Tally {
+  int named = 0, extra = 0;
+  std::map<std::string, int> covered, counted;  ///< per headline parameter
+  double seconds = 0.0;
+};
+
+/// Scores one analysis: the effect named, other names, and each fitted headline's interval against the truth.
+void score(const Result& r, const std::string& name, const nlohmann::json& truth, Tally& t) {
+  bool found = false;
+  for (const auto& e : r.effects) {
+    if (e.name != name || found) {
+      ++t.extra;
+      continue;
+    }
+    found = true;
+    for (const auto& h : e.params) {
+      if (h.fixed() || h.name == "order" || !truth.contains(h.name)) continue;
+      const double want = truth[h.name].get<double>();
+      ++t.counted[h.name];
+      t.covered[h.name] += (h.lo <= want && want <= h.hi);
+    }
+  }
+  t.named += found;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"reconcile: coverage of the 95 % intervals over noise seeds, single-effect proofs"};
+  int seeds = 20;
+  double concealment = 0.5;
+  std::string kinds = "torsion,transmission,backlash";
+  app.add_option("--seeds", seeds, "noise seeds per effect")->capture_default_str();
+  app.add_option("--concealment", concealment, "effect RMS / noise RMS")->capture_default_str();
+  app.add_option("--kind", kinds, "comma-separated kinds")->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+  sw::quiet_progress() = true;
+  std::printf("concealment %g, %d seeds per effect (noise of tests/reconcile/test_identify.cpp)\n", concealment, seeds);
+  for (const Proof& p : kProofs) {
+    if (kinds.find(kind_name(p.kind)) == std::string::npos) continue;
+    Tally t;
+    const SynthEffect fx = parse_synth_effect(p.effect);
+    for (int s = 0; s < seeds; ++s) {
+      SynthOptions o = proof_options(p.kind, 1000 + s, concealment);
+      o.effects = {fx};
+      const SynthResult syn = synthesize(o);
+      const auto start = std::chrono::steady_clock::now();
+      const Result r = reconcile(make_experiment(syn.recording, o.baseline));
+      t.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      score(r, fx.name, nlohmann::json::parse(syn.truth_json)["effects"][0]["params"], t);
+    }
+    std::printf("%-13s %-26s named %2d/%d, extra names %d, %.2f s/recording\n", kind_name(p.kind).c_str(),
+                p.effect.c_str(), t.named, seeds, t.extra, t.seconds / seeds);
+    for (const auto& [name, n] : t.counted)
+      std::printf("    %-24s coverage of the 95 %% interval %2d/%d\n", name.c_str(), t.covered[name], n);
+  }
+  return 0;
+}

@@ -8,6 +8,7 @@
 
 #include "common/progress.hpp"
 #include "reconcile/catalog.hpp"
+#include "reconcile/model_update.hpp"
 
 namespace sw::reconcile {
 
@@ -87,11 +88,22 @@ struct Analysis {
   std::map<std::string, AcceptedEffect> accepted;     // id -> test record
   std::map<std::string, std::pair<double, std::string>> test_cache;  // "id|base ids" -> (p, test)
   std::uint64_t salt = 0;
+  const std::vector<EffectSpec>* physical = nullptr;  // model:KEY candidates (model_update.hpp), or none
 
-  Analysis(const Experiment& ex, const Options& o)
-      : e(ex), opt(o), y(ex.residual()), sigs(signature_catalog(ex.kind())), m(static_cast<int>(sigs.size())) {
+  Analysis(const Experiment& ex, const Options& o, const std::vector<EffectSpec>* model_effects)
+      : e(ex), opt(o), y(ex.residual()), sigs(signature_catalog(ex.kind())), m(static_cast<int>(sigs.size())),
+        physical(model_effects) {
     const int hold = std::max(1, static_cast<int>(std::lround(e.n * opt.heldout_fraction)));
     train = e.n - hold;
+  }
+
+  /// The catalog effect or physical candidate of an id; nullptr when neither has it.
+  const EffectSpec* spec_of(const std::string& id) const {
+    if (const EffectSpec* s = effect_by_id(e.kind(), id)) return s;
+    if (physical)
+      for (const auto& s : *physical)
+        if (s.id() == id) return &s;
+    return nullptr;
   }
 
   FitResult fit(const std::vector<Term>& terms, bool multistart = true, int starts = FitOptions{}.starts) const {
@@ -279,6 +291,8 @@ void locate(Analysis& a, Result& r) {
     }
   }
   r.significant = !r.locations.empty();
+  if (r.significant && a.physical)
+    for (const auto& s : *a.physical) a.candidates.insert(s.id());
   progress("reconcile: located " + std::to_string(r.locations.size()) + " significant signatures, " +
            std::to_string(a.candidates.size()) + " candidate effects");
 }
@@ -303,6 +317,17 @@ std::string simpler_rival(Analysis& a, const EffectSpec& spec, const FitResult& 
   return "";
 }
 
+/// Physical candidates (case keys) whose BIC lies within `bar` of the best candidate's move ahead of the
+/// phenomenological ones, in their BIC order: when both explain the mismatch as well, the model's own parameter is
+/// the explanation (it says what differs in the part).
+void prefer_physical(std::vector<std::pair<const EffectSpec*, FitResult>>& evals, double bar) {
+  if (evals.empty()) return;
+  const double best = evals.front().second.bic();
+  std::stable_partition(evals.begin(), evals.end(), [&](const auto& ev) {
+    return is_model_effect(*ev.first) && ev.second.bic() <= best + bar;
+  });
+}
+
 /// Forward selection: one effect at a time, the best by BIC that passes every test (BIC, simpler rivals, held-out,
 /// removes a signature that points to it, significant against the noise).
 void admit_one_at_a_time(Analysis& a) {
@@ -310,7 +335,7 @@ void admit_one_at_a_time(Analysis& a) {
   while (static_cast<int>(a.cur.terms.size()) < a.opt.max_effects) {
     std::vector<std::pair<const EffectSpec*, FitResult>> evals;
     for (const auto& id : a.candidates) {
-      const EffectSpec* spec = effect_by_id(a.e.kind(), id);
+      const EffectSpec* spec = a.spec_of(id);
       if (!spec || has(a.cur.terms, id)) continue;
       bool richer_present = false;
       for (const auto& t : a.cur.terms)
@@ -319,6 +344,7 @@ void admit_one_at_a_time(Analysis& a) {
       evals.emplace_back(spec, a.fit(with(a.cur.terms, spec)));
     }
     std::sort(evals.begin(), evals.end(), [](const auto& x, const auto& z) { return x.second.bic() < z.second.bic(); });
+    prefer_physical(evals, bar);
     std::vector<std::pair<const EffectSpec*, FitResult>> passing;
     for (const auto& ev : evals)
       if (ev.second.bic() - a.cur.bic() < -bar) passing.push_back(ev);
@@ -342,7 +368,9 @@ void admit_one_at_a_time(Analysis& a) {
       bool removes = false;
       std::string left;
       for (int i = 0; i < a.m; ++i) {
-        if (!a.located[i] || !triggers(a.sigs[i], id) || !a.significant(i, a.cur.terms)) continue;
+        // A physical candidate answers to every located signature with an effect (its column is the model's own).
+        const bool points = triggers(a.sigs[i], id) || (is_model_effect(*spec) && !a.sigs[i].triggers.empty());
+        if (!a.located[i] || !points || !a.significant(i, a.cur.terms)) continue;
         const double after = a.signature(i, alt.terms).p_adj;
         if (after >= a.opt.alpha_family) removes = true;
         else left = a.sigs[i].name + " (p " + fmt("%.2g", after) + ")";
@@ -626,14 +654,14 @@ void finalise(Analysis& a, Result& r) {
 
 int signature_count(Kind kind) { return static_cast<int>(signature_catalog(kind).size()); }
 
-Result reconcile(const Experiment& e, const Options& opt) {
+Result reconcile(const Experiment& e, const Options& opt, const std::vector<EffectSpec>* physical) {
   Stopwatch clock;
   Result r;
   r.kind = e.kind();
   r.samples = e.n;
   r.baseline_model = e.baseline_model;
   r.baseline_source = e.baseline_source;
-  Analysis a(e, opt);
+  Analysis a(e, opt, physical);
   r.heldout_rows = e.n - a.train;
   fit_noise(a, r);
   fit_baseline(a, r);

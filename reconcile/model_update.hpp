@@ -49,11 +49,12 @@ struct ModelEffects {
   std::vector<Rejected> rejected;
 };
 
-/// Runs the model at each candidate's value +- its step (one-sided where the range ends at the case value) and builds
-/// the columns. `base.model_run` must be set; its runs should be remembered (with_remembered_model_runs): selection,
+/// Runs the model at each candidate's value at `at` (the case's for a key it does not set) +- its step (one-sided
+/// where the range ends there) and builds the columns; beta is the change from that value. `base.model_run` must be set; its runs should be remembered (with_remembered_model_runs): selection,
 /// refit and every recording of one torque history share them.
 std::shared_ptr<const ModelEffects> model_effects(const Experiment& e, const Baseline& base,
-                                                  const std::vector<ModelCandidate>& candidates);
+                                                  const std::vector<ModelCandidate>& candidates,
+                                                  const ModelKeyValues& at = {});
 
 /// The same baseline with its model runs remembered by key values (a run is a deterministic function of them).
 /// Copies share the store; not thread-safe.
@@ -94,7 +95,10 @@ struct ModelUpdate {
   std::optional<Refit> refit;
 };
 
-/// The whole model update of an experiment against its re-runnable baseline.
+/// The whole model update of an experiment against its re-runnable baseline: selection with the columns at the case
+/// values and the refit; when physical keys were refitted, selection and refit again with the baseline and the
+/// columns at the refitted values (the response bends over the change, and a linear column would leave that bend to
+/// the phenomenological effects). The baseline's figures and the located mismatch are the case model's.
 ModelUpdate update_model(const Experiment& e, const Baseline& base, const std::vector<ModelCandidate>& candidates,
                          const Options& options = {});
 

@@ -357,32 +357,30 @@ void add_refit(const Experiment& e, const Baseline& base, const Options& options
   u.result.refit_prediction = u.refit->prediction;
 }
 
-/// Selection over the physical candidates (columns at `at`) and the catalog.
+/// Selection over the physical candidates (columns at `at`) and the catalog, the physical effects of `first` (a
+/// first pass) held in.
 ModelUpdate selected(const Experiment& e, const Baseline& base, const std::vector<ModelCandidate>& candidates,
-                     const ModelKeyValues& at, const Options& options) {
+                     const ModelKeyValues& at, const Options& options, const Result* first = nullptr) {
   ModelUpdate u;
   u.effects = model_effects(e, base, candidates, at);
-  u.result = reconcile(e, options, &u.effects->specs);
+  std::vector<const EffectSpec*> held;
+  for (const AcceptedEffect& a : first ? first->effects : std::vector<AcceptedEffect>{})
+    for (const EffectSpec& spec : u.effects->specs)
+      if (spec.name == a.name) held.push_back(&spec);
+  u.result = reconcile(e, options, &u.effects->specs, held);
   for (const Rejected& x : u.effects->rejected) u.result.rejected.push_back(x);
   return u;
 }
 
-/// The physical effects the first pass accepted, held in the second pass's model (at beta 0: its baseline already
-/// holds them) so that the refit fits them again beside whatever the second pass added.
-void hold_physical(const Result& first, const ModelEffects& fx, Result& r) {
-  for (const AcceptedEffect& a : first.effects) {
-    if (a.name.rfind(kPrefix, 0) != 0) continue;
-    if (std::any_of(r.effects.begin(), r.effects.end(), [&](const AcceptedEffect& x) { return x.name == a.name; }))
-      continue;
-    for (const EffectSpec& spec : fx.specs)
-      if (spec.name == a.name) {
-        r.final_model.terms.push_back(Term{&spec, Vec(0), Vec::Zero(1)});
-        r.effects.push_back(a);
+/// The first pass's record (its test against the case's model) of each physical effect the second pass held in.
+void keep_first_records(const Result& first, Result& r) {
+  for (AcceptedEffect& a : r.effects)
+    for (const AcceptedEffect& f : first.effects)
+      if (a.name == f.name && a.name.rfind(kPrefix, 0) == 0) {
+        a.delta_bic = f.delta_bic;
+        a.p_value = f.p_value;
+        a.test = f.test;
       }
-    std::erase_if(r.rejected, [&](const Rejected& x) { return x.name == a.name; });
-  }
-  r.significant = true;
-  if (r.unexplained.empty()) r.verdict = "explained";
 }
 
 }  // namespace
@@ -401,8 +399,8 @@ ModelUpdate update_model(const Experiment& e, const Baseline& base, const std::v
   // baseline's figures stay those of the case's model.
   const ModelKeyValues at = first.refit->key_values;
   const Experiment moved = experiment_at(e, base, at);
-  ModelUpdate u = selected(moved, base, candidates, at, options);
-  hold_physical(first.result, *u.effects, u.result);
+  ModelUpdate u = selected(moved, base, candidates, at, options, &first.result);
+  keep_first_records(first.result, u.result);
   add_refit(moved, base, options, u);
   keep_baseline_figures(first.result, u.result);
   add_indistinguishable(moved, *u.effects, u.result);

@@ -89,10 +89,12 @@ struct Analysis {
   std::map<std::string, std::pair<double, std::string>> test_cache;  // "id|base ids" -> (p, test)
   std::uint64_t salt = 0;
   const std::vector<EffectSpec>* physical = nullptr;  // model:KEY candidates (model_update.hpp), or none
+  std::vector<const EffectSpec*> held;                // in the model from the start, never pruned
 
-  Analysis(const Experiment& ex, const Options& o, const std::vector<EffectSpec>* model_effects)
+  Analysis(const Experiment& ex, const Options& o, const std::vector<EffectSpec>* model_effects,
+           std::vector<const EffectSpec*> held_in)
       : e(ex), opt(o), y(ex.residual()), sigs(signature_catalog(ex.kind())), m(static_cast<int>(sigs.size())),
-        physical(model_effects) {
+        physical(model_effects), held(std::move(held_in)) {
     const int hold = std::max(1, static_cast<int>(std::lround(e.n * opt.heldout_fraction)));
     train = e.n - hold;
   }
@@ -272,7 +274,12 @@ void fit_noise(Analysis& a, Result& r) {
 
 /// The baseline with its nuisance columns only (offsets, scale): the starting model.
 void fit_baseline(Analysis& a, Result& r) {
-  a.cur = a.fit({});
+  std::vector<Term> held;  // physical effects a model update holds in from the start
+  for (const EffectSpec* h : a.held) {
+    held.push_back(Term{h, Vec(0), Vec(0)});
+    a.accept(*h, 0.0, 1.0, "held");
+  }
+  a.cur = a.fit(held);
   r.residual_before = a.y - a.cur.contribution;
   r.baseline_prediction = a.e.baseline + a.cur.contribution;
   r.baseline_rms = rms(r.residual_before);
@@ -490,6 +497,7 @@ void prune(Analysis& a) {
     const double h_cur = a.heldout(a.cur.terms);
     for (std::size_t i = 0; i < a.cur.terms.size(); ++i) {
       const EffectSpec& spec = *a.cur.terms[i].spec;
+      if (std::find(a.held.begin(), a.held.end(), &spec) != a.held.end()) continue;  // held in: not weighed
       // Reductions: drop it; or replace it by a poorer exclusive variant.
       std::vector<std::pair<FitResult, int>> reductions{{a.fit(without(a.cur.terms, i), false), spec.n_nonlinear()}};
       for (const auto& v : effect_catalog(a.e.kind()))
@@ -654,14 +662,15 @@ void finalise(Analysis& a, Result& r) {
 
 int signature_count(Kind kind) { return static_cast<int>(signature_catalog(kind).size()); }
 
-Result reconcile(const Experiment& e, const Options& opt, const std::vector<EffectSpec>* physical) {
+Result reconcile(const Experiment& e, const Options& opt, const std::vector<EffectSpec>* physical,
+                 const std::vector<const EffectSpec*>& held) {
   Stopwatch clock;
   Result r;
   r.kind = e.kind();
   r.samples = e.n;
   r.baseline_model = e.baseline_model;
   r.baseline_source = e.baseline_source;
-  Analysis a(e, opt, physical);
+  Analysis a(e, opt, physical, held);
   r.heldout_rows = e.n - a.train;
   fit_noise(a, r);
   fit_baseline(a, r);

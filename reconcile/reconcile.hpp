@@ -88,8 +88,10 @@ struct Result {
 /// Runs the whole analysis. Deterministic for a given options.seed. `physical`: physical candidates ("model:KEY"
 /// effects, model_update.hpp) weighed beside the kind's catalog whenever a mismatch is located; when one explains the
 /// mismatch as well as the best phenomenological effect (BIC within min_delta_bic), it is tried first. The result's
-/// terms point into `physical`: it must outlive the result.
-Result reconcile(const Experiment& e, const Options& options = {}, const std::vector<EffectSpec>* physical = nullptr);
+/// terms point into `physical`: it must outlive the result. `held`: effects of `physical` in the model from the start
+/// (the baseline's figures include them) and never pruned, as a model update's second pass holds the keys it fitted.
+Result reconcile(const Experiment& e, const Options& options = {}, const std::vector<EffectSpec>* physical = nullptr,
+                 const std::vector<const EffectSpec*>& held = {});
 
 /// Number of locations/unexplained signatures tested for a kind (the Bonferroni factor).
 int signature_count(Kind kind);

@@ -22,8 +22,6 @@
 #include <sstream>
 #include <thread>
 
-#include <toml++/toml.h>
-
 #include "app/commands.hpp"
 #include "app/fem_job.hpp"
 #include "common/error.hpp"
@@ -32,6 +30,7 @@
 #include "contact/loaded_contact.hpp"
 #include "io/atomic_file.hpp"
 #include "io/case.hpp"
+#include "io/case_edit.hpp"
 #include "io/contact_output.hpp"
 #include "io/fem_output.hpp"
 
@@ -80,28 +79,13 @@ SweepAxis parse_set(const std::string& spec) {
   return a;
 }
 
-/// The base case's TOML with the point's values set; whole values stay integers where the base had an integer.
-std::string point_case_text(const toml::table& base, const std::vector<SweepAxis>& axes, const std::vector<double>& v) {
-  toml::table t = base;
-  for (std::size_t k = 0; k < axes.size(); ++k) {
-    toml::node* table = t.get(axes[k].table);
-    if (!table) {
-      t.insert(axes[k].table, toml::table{});
-      table = t.get(axes[k].table);
-    }
-    if (!table->is_table())
-      throw InputError("--set " + axes[k].name() + ": " + axes[k].table + " is not a table of the case");
-    auto& tt = *table->as_table();
-    const toml::node* old = tt.get(axes[k].key);
-    if (old && old->is_integer() && v[k] == std::round(v[k])) {
-      tt.insert_or_assign(axes[k].key, static_cast<int64_t>(std::llround(v[k])));
-    } else {  // a key that takes integers only rejects a fraction with the case parser's message
-      tt.insert_or_assign(axes[k].key, v[k]);
-    }
-  }
-  std::ostringstream s;
-  s << "# a point of a strainwave sweep (written by `strainwave sweep`)\n" << t << "\n";
-  return s.str();
+/// The base case's TOML (`base` of the file `path`) with the point's values set (io/case_edit.hpp case_text_with).
+std::string point_case_text(const std::string& base, const std::string& path, const std::vector<SweepAxis>& axes,
+                            const std::vector<double>& v) {
+  CaseKeyValues values;
+  for (std::size_t k = 0; k < axes.size(); ++k) values.emplace_back(axes[k].name(), v[k]);
+  return "# a point of a strainwave sweep (written by `strainwave sweep`)\n" +
+         case_text_with(base, path, values, "--set");
 }
 
 std::string read_text(const fs::path& p) {
@@ -417,7 +401,7 @@ void check_contact_case(const Case& c) {
 
 /// The grid's points, first key slowest; each point's case is validated before anything runs (with --contact also
 /// as `strainwave contact` takes it).
-std::vector<Point> grid_points(const toml::table& base, const std::vector<SweepAxis>& axes, const fs::path& dir,
+std::vector<Point> grid_points(const std::string& base, const std::vector<SweepAxis>& axes, const fs::path& dir,
                                const SweepOptions& o) {
   std::vector<Point> points;
   std::size_t total = 1;
@@ -432,7 +416,7 @@ std::vector<Point> grid_points(const toml::table& base, const std::vector<SweepA
       rest /= axes[k].values.size();
     }
     p.dir = dir / point_name(i);
-    p.case_text = point_case_text(base, axes, p.values);
+    p.case_text = point_case_text(base, o.case_path, axes, p.values);
     Case pc = parse_case(p.case_text, "--set (point " + std::to_string(i) + " of " + o.case_path + ")");
     apply_solver_option(pc, o.solver);
     if (o.contact) check_contact_case(pc);
@@ -490,12 +474,7 @@ void merge_points(const fs::path& dir, const std::vector<SweepAxis>& axes, const
 void run_sweep(const SweepOptions& o) {
   Case base_case = load_case(o.case_path);  // the base case must be valid itself
   if (o.contact) check_contact_case(base_case);
-  toml::table base;
-  try {
-    base = toml::parse(case_file_toml(o.case_path), o.case_path);
-  } catch (const toml::parse_error& e) {
-    throw InputError(o.case_path + ": malformed TOML: " + std::string(e.description()));
-  }
+  const std::string base = case_file_toml(o.case_path);
   std::vector<SweepAxis> axes;
   for (const auto& s : o.sets) axes.push_back(parse_set(s));
   const std::pair<int, int> shard = parse_shard(o.shard);

@@ -65,15 +65,27 @@ SeriesParts series_parts(const Case& c) {
   return s;
 }
 
-namespace {
-
-/// The catalog's law of the case's catalog size, when the catalog gives its stiffness.
 std::optional<CatalogLaw> catalog_reference(const Case& c) {
   if (!c.catalog_size) return std::nullopt;
   const CatalogDrive* d = catalog_drive(*c.catalog_size);
   if (!d || !d->has_stiffness()) return std::nullopt;
   return CatalogLaw{d->size, d->t1_Nm, d->t2_Nm, d->k1_Nm_per_rad, d->k2_Nm_per_rad, d->k3_Nm_per_rad};
 }
+
+ContactOptions contact_options(const Case& c, SeriesParts series) {
+  ContactOptions o;
+  o.rated_torque_Nm = c.load.rated_torque_Nm.value_or(c.load.torque_Nm);
+  o.series = std::move(series);
+  o.face_slices = c.contact.face_slices;
+  o.friction_coefficient = c.contact.friction_coefficient;
+  if (const std::optional<CatalogLaw> reference = catalog_reference(c)) {
+    o.catalog_t1_Nm = reference->t1_Nm;
+    o.catalog_t2_Nm = reference->t2_Nm;
+  }
+  return o;
+}
+
+namespace {
 
 /// The problem's size, the twist at rated torque and the flank carrying the most there, the three segments.
 void print_contact_headline(const Case& c, const ContactAnalysis& a, const std::string& teeth_source) {
@@ -220,16 +232,8 @@ std::unique_ptr<ContactBody> contact_body(const Case& c, const FemJobResult& fem
 
 ContactAnalysis run_contact_job(const Case& c, const ContactBody& body, const FemReadout& fem, OutputSet& out,
                                 std::shared_future<SeriesParts> series) {
-  ContactOptions o;
-  o.rated_torque_Nm = c.load.rated_torque_Nm.value_or(c.load.torque_Nm);
-  o.series = series.valid() ? series.get() : series_parts(c);
-  o.face_slices = c.contact.face_slices;
-  o.friction_coefficient = c.contact.friction_coefficient;
+  const ContactOptions o = contact_options(c, series.valid() ? series.get() : series_parts(c));
   const std::optional<CatalogLaw> reference = catalog_reference(c);
-  if (reference) {
-    o.catalog_t1_Nm = reference->t1_Nm;
-    o.catalog_t2_Nm = reference->t2_Nm;
-  }
   const ContactAnalysis a =
       naming_file(c.path, [&] { return analyse_contact(flexspline_model(c), body, fem, o); });
   out.own(kContactJobFiles);

@@ -13,6 +13,7 @@
 #include "contact/loaded_contact.hpp"
 #include "fem/cholmod_factor.hpp"
 #include "io/atomic_file.hpp"
+#include "io/contact_output.hpp"
 
 namespace sw::app {
 
@@ -45,6 +46,13 @@ auto fem_with_series_beside(const Case& c, bool contact_follows, FemJob&& fem) {
 /// mesh and factor's (Tet10Body, reading the generator's field from `fem_u` when not null). Every argument must
 /// outlive it.
 std::unique_ptr<ContactBody> contact_body(const Case& c, const FemJobResult& fem, const Eigen::VectorXd* fem_u);
+
+/// The contact's options from the case: rated torque, the series parts given (`series`), face slices, flank friction
+/// and the catalog size's breakpoints (the torque steps at their default).
+ContactOptions contact_options(const Case& c, SeriesParts series);
+
+/// The catalog's law of the case's catalog size, when the catalog gives its stiffness.
+std::optional<CatalogLaw> catalog_reference(const Case& c);
 
 /// Runs the contact analysis on the flexspline body with what the FEM gave (`fem`: solved now or read back from an
 /// earlier run's result.json), writes contact.json, torque_twist.csv and contact.svg into the set `out` (owning

@@ -82,7 +82,7 @@ void hold_against_loop(const TorqueLoop& loop, double rated_Nm, const std::vecto
 /// hold_against_loop), checked to cover the recording's torque range.
 void contact_baseline(const BaselineSources& src, reconcile::Baseline& b, std::vector<std::string>& notes) {
   reconcile::TorsionPrediction p;
-  const ContactCurve contact = read_contact_curve(src.contact_result);
+  const ContactCurve contact = src.contact_curve ? *src.contact_curve : read_contact_curve(src.contact_result);
   const TorqueTwist& curve = contact.middle_line;
   const double lo = curve.torque_Nm.front(), hi = curve.torque_Nm.back();
   const double tol = kCurveEndTolerance * contact.rated_torque_Nm;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "dynamics/model.hpp"
+#include "io/contact_output.hpp"
 #include "io/case.hpp"
 #include "reconcile/experiment.hpp"
 #include "reconcile/recording.hpp"
@@ -25,6 +26,9 @@ struct BaselineSources {
   std::string fem_result;                  ///< path of result.json ("" if none)
   std::optional<double> compliance;        ///< --compliance overrides the FEM result
   std::string contact_result;              ///< path of contact.json (torsion, TorsionBaseline::Contact)
+  /// The torque-twist curve already in memory (a re-run of the model): read instead of contact_result, which then
+  /// only names it.
+  std::optional<ContactCurve> contact_curve;
   const reconcile::Recording* recording = nullptr;  ///< metadata used where the case is silent
 };
 

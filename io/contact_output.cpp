@@ -263,8 +263,9 @@ std::pair<TorqueTwist, TorqueTwist> branches(const TorqueTwist& loop, const std:
 
 }  // namespace
 
-ContactCurve read_contact_curve(const std::filesystem::path& path) {
-  const JsonIn j = JsonIn::open(path, kCannotOpen, kExpected);
+namespace {
+
+ContactCurve contact_curve(const JsonIn& j) {
   const std::string& file = j.file();
   ContactCurve c;
   const JsonIn rated = j["rated_torque_Nm"];
@@ -281,6 +282,16 @@ ContactCurve read_contact_curve(const std::filesystem::path& path) {
   c.middle_line = middle_line(load, unload);
   if (spans_torque(unload)) c.loop = TorqueLoop{load, unload};
   return c;
+}
+
+}  // namespace
+
+ContactCurve read_contact_curve(const std::filesystem::path& path) {
+  return contact_curve(JsonIn::open(path, kCannotOpen, kExpected));
+}
+
+ContactCurve parse_contact_curve(const std::string& contact_json_text, const std::string& name) {
+  return contact_curve(JsonIn::parse(contact_json_text, name, kExpected));
 }
 
 std::string torque_twist_csv(const ContactAnalysis& a) {

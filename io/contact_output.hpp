@@ -127,6 +127,10 @@ struct ContactCurve {
 /// branch or rises on the unloading branch, fewer than two points.
 ContactCurve read_contact_curve(const std::filesystem::path& contact_json);
 
+/// The same from a contact.json's text (`name` names it in messages): the curve of a contact analysis held in memory
+/// reads exactly as its file would.
+ContactCurve parse_contact_curve(const std::string& contact_json_text, const std::string& name);
+
 /// torque_twist.csv text: torque_Nm,twist_rad,twist_arcmin,pairs_in_contact,max_pair_force_N.
 std::string torque_twist_csv(const ContactAnalysis& a);
 

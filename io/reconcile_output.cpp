@@ -137,6 +137,8 @@ Report report_from(const json& j, const std::string& where) {
     r.rejected.push_back({x.at("name").get<std::string>(), x.at("reason").get<std::string>()});
   r.final_rms = number(j.at("final").at("rms"));
   r.final_heldout_rms = number(j.at("final").at("heldout_rms"));
+  if (j.contains("refit"))
+    r.refit = reconcile::ReportRefit{number(j.at("refit").at("rms")), number(j.at("refit").at("heldout_rms"))};
   if (j.contains("catalog")) r.catalog = catalog_from(j.at("catalog"));
   r.verdict = j.at("verdict").get<std::string>();
   return r;
@@ -162,6 +164,7 @@ std::string reconcile_json(const Report& r, const std::optional<Provenance>& pro
   for (const auto& x : r.rejected) rejected.push_back({{"name", x.name}, {"reason", x.reason}});
   j["rejected"] = rejected;
   j["final"] = {{"rms", r.final_rms}, {"heldout_rms", r.final_heldout_rms}};
+  if (r.refit) j["refit"] = {{"rms", r.refit->rms}, {"heldout_rms", r.refit->heldout_rms}};
   if (r.catalog) j["catalog"] = catalog_json(*r.catalog);
   j["verdict"] = r.verdict;
   return j.dump(2) + "\n";

@@ -194,6 +194,22 @@ Recording rows_from(const Recording& rec, double from_s) {
 
 namespace {
 
+/// The twist (rad) a torsion prediction gives at each row: its loop's branch the torque is on, its curve, or C_tau T.
+Eigen::VectorXd torsion_response(const TorsionPrediction& p, const TorsionExperiment& t) {
+  if (!p.twist_rad && !p.branch_twist_rad) return p.compliance_rad_per_Nm * t.torque_Nm;
+  Eigen::VectorXd twist(t.torque_Nm.size());
+  for (int i = 0; i < t.torque_Nm.size(); ++i)
+    twist[i] = p.branch_twist_rad ? p.branch_twist_rad(t.torque_Nm[i], t.direction[i]) : p.twist_rad(t.torque_Nm[i]);
+  return twist;
+}
+
+/// The backlash (um) a backlash prediction gives at each wave-generator angle.
+Eigen::VectorXd backlash_response(const BacklashPrediction& p, const Eigen::VectorXd& wg_angle_rad) {
+  Eigen::VectorXd backlash(wg_angle_rad.size());
+  for (int i = 0; i < wg_angle_rad.size(); ++i) backlash[i] = p.backlash_um(wg_angle_rad[i]);
+  return backlash;
+}
+
 /// What every kind shares: the rows (at least kMinSamples), their time, the baseline's name and source.
 Experiment experiment_frame(const Recording& rec, const Baseline& base) {
   Experiment e;
@@ -252,13 +268,7 @@ Experiment experiment_of(const Recording& rec, const Baseline& base, const Torsi
   if (!(range > 0.0)) throw InputError(rec.path + ": torque_Nm is constant; a torsion test must vary the torque");
   add_drive_metadata(t, rec);
   add_branches(t, range);
-  e.baseline.resize(e.n);
-  for (int i = 0; i < e.n; ++i) {
-    const double T = t.torque_Nm[i];
-    e.baseline[i] = p.branch_twist_rad ? p.branch_twist_rad(T, t.direction[i])
-                    : p.twist_rad      ? p.twist_rad(T)
-                                       : p.compliance_rad_per_Nm * T;
-  }
+  e.baseline = torsion_response(p, t);
   e.response_name = "twist_rad";
   e.response_unit = "rad";
   e.data = std::move(t);
@@ -294,8 +304,7 @@ Experiment experiment_of(const Recording& rec, const Baseline& base, const Backl
   b.wg_angle_rad = to_vec(*rec.column("wg_angle_deg")) * (M_PI / 180.0);
   b.torque_Nm = to_vec(*rec.column("torque_Nm"));
   e.measured = to_vec(*rec.column("backlash_um"));
-  e.baseline.resize(e.n);
-  for (int i = 0; i < e.n; ++i) e.baseline[i] = p.backlash_um(b.wg_angle_rad[i]);
+  e.baseline = backlash_response(p, b.wg_angle_rad);
   e.response_name = "backlash_um";
   e.response_unit = "um";
   e.data = std::move(b);
@@ -431,6 +440,15 @@ Experiment experiment_of(const Recording& recording, const Baseline& base, const
 }
 
 }  // namespace
+
+Eigen::VectorXd predicted_response(const Experiment& e, const Prediction& prediction) {
+  if (const auto* p = std::get_if<TorsionPrediction>(&prediction); p && e.kind() == Kind::Torsion)
+    return torsion_response(*p, as<TorsionExperiment>(e));
+  if (const auto* p = std::get_if<BacklashPrediction>(&prediction); p && p->backlash_um && e.kind() == Kind::Backlash)
+    return backlash_response(*p, as<BacklashExperiment>(e).wg_angle_rad);
+  throw InputError("a re-run of the model gives a " + default_model_name(prediction) + " prediction; a " +
+                   kind_name(e.kind()) + " experiment reads only a torsion or backlash response of its own kind");
+}
 
 Experiment make_experiment(const Recording& recording, const Baseline& base) {
   if (recording.kind != base.kind())

@@ -4,6 +4,7 @@
 // angles). Everything is SI except backlash responses, which stay in micrometres as recorded.
 #include <functional>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -85,6 +86,9 @@ struct DynamicsPrediction {
 /// What the current simulation predicts for a recording: one model per kind.
 using Prediction = std::variant<TorsionPrediction, TransmissionPrediction, BacklashPrediction, DynamicsPrediction>;
 
+/// Case keys "table.key" and the values a model re-run sets them to (the case file's units).
+using ModelKeyValues = std::vector<std::pair<std::string, double>>;
+
 struct Baseline {
   /// What the baseline is ("fem": C_tau T of the flexspline body; "contact": the drive's torque-twist curve; other
   /// kinds: "ideal_ratio", "kinematic", "dynamics_model"; empty: the kind's default, see default_model_name()) and
@@ -92,6 +96,10 @@ struct Baseline {
   std::string model, source;
   DriveGear gear;
   Prediction prediction;
+  /// Re-runs the model the prediction came from with some case keys changed and returns its prediction, of the same
+  /// kind (empty: the baseline cannot be re-run). Supplied by the app (reconcile does not link the stages); may throw
+  /// InputError for values the case refuses.
+  std::function<Prediction(const ModelKeyValues& key_values)> model_run;
   Kind kind() const;
 };
 
@@ -175,6 +183,11 @@ template <class K>
 const K& as(const Experiment& e) {
   return std::get<K>(e.data);
 }
+
+/// The response a prediction gives on the experiment's rows (n), as make_experiment reads the baseline's: torsion the
+/// twist at each row's torque, backlash the backlash at each row's wave-generator angle. Throws InputError when the
+/// prediction is of another kind than the experiment or the kind has no row-wise response (transmission, dynamics).
+Eigen::VectorXd predicted_response(const Experiment& e, const Prediction& prediction);
 
 /// Builds the experiment from a recording and the baseline of its kind. Throws InputError when the kinds differ, the
 /// baseline lacks what the kind needs (e.g. C_tau <= 0 for torsion) or the recording is too short (< kMinSamples

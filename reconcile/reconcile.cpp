@@ -8,6 +8,7 @@
 
 #include "common/progress.hpp"
 #include "reconcile/catalog.hpp"
+#include "reconcile/model_update.hpp"
 
 namespace sw::reconcile {
 
@@ -87,11 +88,24 @@ struct Analysis {
   std::map<std::string, AcceptedEffect> accepted;     // id -> test record
   std::map<std::string, std::pair<double, std::string>> test_cache;  // "id|base ids" -> (p, test)
   std::uint64_t salt = 0;
+  const std::vector<EffectSpec>* physical = nullptr;  // model:KEY candidates (model_update.hpp), or none
+  std::vector<const EffectSpec*> held;                // in the model from the start, never pruned
 
-  Analysis(const Experiment& ex, const Options& o)
-      : e(ex), opt(o), y(ex.residual()), sigs(signature_catalog(ex.kind())), m(static_cast<int>(sigs.size())) {
+  Analysis(const Experiment& ex, const Options& o, const std::vector<EffectSpec>* model_effects,
+           std::vector<const EffectSpec*> held_in)
+      : e(ex), opt(o), y(ex.residual()), sigs(signature_catalog(ex.kind())), m(static_cast<int>(sigs.size())),
+        physical(model_effects), held(std::move(held_in)) {
     const int hold = std::max(1, static_cast<int>(std::lround(e.n * opt.heldout_fraction)));
     train = e.n - hold;
+  }
+
+  /// The catalog effect or physical candidate of an id; nullptr when neither has it.
+  const EffectSpec* spec_of(const std::string& id) const {
+    if (const EffectSpec* s = effect_by_id(e.kind(), id)) return s;
+    if (physical)
+      for (const auto& s : *physical)
+        if (s.id() == id) return &s;
+    return nullptr;
   }
 
   FitResult fit(const std::vector<Term>& terms, bool multistart = true, int starts = FitOptions{}.starts) const {
@@ -260,7 +274,12 @@ void fit_noise(Analysis& a, Result& r) {
 
 /// The baseline with its nuisance columns only (offsets, scale): the starting model.
 void fit_baseline(Analysis& a, Result& r) {
-  a.cur = a.fit({});
+  std::vector<Term> held;  // physical effects a model update holds in from the start
+  for (const EffectSpec* h : a.held) {
+    held.push_back(Term{h, Vec(0), Vec(0)});
+    a.accept(*h, 0.0, 1.0, "held");
+  }
+  a.cur = a.fit(held);
   r.residual_before = a.y - a.cur.contribution;
   r.baseline_prediction = a.e.baseline + a.cur.contribution;
   r.baseline_rms = rms(r.residual_before);
@@ -279,6 +298,8 @@ void locate(Analysis& a, Result& r) {
     }
   }
   r.significant = !r.locations.empty();
+  if (r.significant && a.physical)
+    for (const auto& s : *a.physical) a.candidates.insert(s.id());
   progress("reconcile: located " + std::to_string(r.locations.size()) + " significant signatures, " +
            std::to_string(a.candidates.size()) + " candidate effects");
 }
@@ -303,6 +324,17 @@ std::string simpler_rival(Analysis& a, const EffectSpec& spec, const FitResult& 
   return "";
 }
 
+/// Physical candidates (case keys) whose BIC lies within `bar` of the best candidate's move ahead of the
+/// phenomenological ones, in their BIC order: when both explain the mismatch as well, the model's own parameter is
+/// the explanation (it says what differs in the part).
+void prefer_physical(std::vector<std::pair<const EffectSpec*, FitResult>>& evals, double bar) {
+  if (evals.empty()) return;
+  const double best = evals.front().second.bic();
+  std::stable_partition(evals.begin(), evals.end(), [&](const auto& ev) {
+    return is_model_effect(*ev.first) && ev.second.bic() <= best + bar;
+  });
+}
+
 /// Forward selection: one effect at a time, the best by BIC that passes every test (BIC, simpler rivals, held-out,
 /// removes a signature that points to it, significant against the noise).
 void admit_one_at_a_time(Analysis& a) {
@@ -310,7 +342,7 @@ void admit_one_at_a_time(Analysis& a) {
   while (static_cast<int>(a.cur.terms.size()) < a.opt.max_effects) {
     std::vector<std::pair<const EffectSpec*, FitResult>> evals;
     for (const auto& id : a.candidates) {
-      const EffectSpec* spec = effect_by_id(a.e.kind(), id);
+      const EffectSpec* spec = a.spec_of(id);
       if (!spec || has(a.cur.terms, id)) continue;
       bool richer_present = false;
       for (const auto& t : a.cur.terms)
@@ -319,6 +351,7 @@ void admit_one_at_a_time(Analysis& a) {
       evals.emplace_back(spec, a.fit(with(a.cur.terms, spec)));
     }
     std::sort(evals.begin(), evals.end(), [](const auto& x, const auto& z) { return x.second.bic() < z.second.bic(); });
+    prefer_physical(evals, bar);
     std::vector<std::pair<const EffectSpec*, FitResult>> passing;
     for (const auto& ev : evals)
       if (ev.second.bic() - a.cur.bic() < -bar) passing.push_back(ev);
@@ -342,7 +375,9 @@ void admit_one_at_a_time(Analysis& a) {
       bool removes = false;
       std::string left;
       for (int i = 0; i < a.m; ++i) {
-        if (!a.located[i] || !triggers(a.sigs[i], id) || !a.significant(i, a.cur.terms)) continue;
+        // A physical candidate answers to every located signature with an effect (its column is the model's own).
+        const bool points = triggers(a.sigs[i], id) || (is_model_effect(*spec) && !a.sigs[i].triggers.empty());
+        if (!a.located[i] || !points || !a.significant(i, a.cur.terms)) continue;
         const double after = a.signature(i, alt.terms).p_adj;
         if (after >= a.opt.alpha_family) removes = true;
         else left = a.sigs[i].name + " (p " + fmt("%.2g", after) + ")";
@@ -462,6 +497,7 @@ void prune(Analysis& a) {
     const double h_cur = a.heldout(a.cur.terms);
     for (std::size_t i = 0; i < a.cur.terms.size(); ++i) {
       const EffectSpec& spec = *a.cur.terms[i].spec;
+      if (std::find(a.held.begin(), a.held.end(), &spec) != a.held.end()) continue;  // held in: not weighed
       // Reductions: drop it; or replace it by a poorer exclusive variant.
       std::vector<std::pair<FitResult, int>> reductions{{a.fit(without(a.cur.terms, i), false), spec.n_nonlinear()}};
       for (const auto& v : effect_catalog(a.e.kind()))
@@ -743,14 +779,15 @@ void finalise(Analysis& a, Result& r) {
 
 int signature_count(Kind kind) { return static_cast<int>(signature_catalog(kind).size()); }
 
-Result reconcile(const Experiment& e, const Options& opt) {
+Result reconcile(const Experiment& e, const Options& opt, const std::vector<EffectSpec>* physical,
+                 const std::vector<const EffectSpec*>& held) {
   Stopwatch clock;
   Result r;
   r.kind = e.kind();
   r.samples = e.n;
   r.baseline_model = e.baseline_model;
   r.baseline_source = e.baseline_source;
-  Analysis a(e, opt);
+  Analysis a(e, opt, physical, held);
   r.heldout_rows = e.n - a.train;
   fit_noise(a, r);
   fit_baseline(a, r);

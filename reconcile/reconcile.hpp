@@ -81,11 +81,21 @@ struct Result {
   Eigen::VectorXd baseline_prediction;   ///< baseline + nuisance fit (n)
   FitResult final_model;
   std::optional<CatalogFigures> catalog;  ///< torsion: the final model in the catalog's terms
+  /// The model re-run with the fitted physical values (model_update.hpp; absent without an accepted physical effect):
+  /// recording - refit_prediction over all rows and over the held-out rows, and the prediction itself (n).
+  bool refitted = false;
+  double refit_rms = 0.0, refit_heldout_rms = 0.0;
+  Eigen::VectorXd refit_prediction;
   double seconds = 0.0;
 };
 
-/// Runs the whole analysis. Deterministic for a given options.seed.
-Result reconcile(const Experiment& e, const Options& options = {});
+/// Runs the whole analysis. Deterministic for a given options.seed. `physical`: physical candidates ("model:KEY"
+/// effects, model_update.hpp) weighed beside the kind's catalog whenever a mismatch is located; when one explains the
+/// mismatch as well as the best phenomenological effect (BIC within min_delta_bic), it is tried first. The result's
+/// terms point into `physical`: it must outlive the result. `held`: effects of `physical` in the model from the start
+/// (the baseline's figures include them) and never pruned, as a model update's second pass holds the keys it fitted.
+Result reconcile(const Experiment& e, const Options& options = {}, const std::vector<EffectSpec>* physical = nullptr,
+                 const std::vector<const EffectSpec*>& held = {});
 
 /// Number of locations/unexplained signatures tested for a kind (the Bonferroni factor).
 int signature_count(Kind kind);

@@ -203,13 +203,13 @@ void set_abscissa(Page& p, const DynamicsExperiment&) {
   p.x_label = "time (s)";
 }
 
-/// Recording, baseline and reconciled model against the abscissa.
+/// Recording, baseline and reconciled model against the abscissa (and the model re-run with the fitted case keys).
 std::string response_plot(const Page& p, const std::string& title) {
-  return plot(title, p.x_label, p.d.label,
-              {series("recording", "#888", p.x, p.e.measured, p.d.scale, true),
-               series("baseline", "#36c", p.x, p.r.baseline_prediction, p.d.scale),
-               series("reconciled", "#c33", p.x, p.r.final_prediction, p.d.scale)},
-              p.shade);
+  std::vector<PlotSeries> lines{series("recording", "#888", p.x, p.e.measured, p.d.scale, true),
+                                series("baseline", "#36c", p.x, p.r.baseline_prediction, p.d.scale),
+                                series("reconciled", "#c33", p.x, p.r.final_prediction, p.d.scale)};
+  if (p.r.refitted) lines.push_back(series("model refitted (re-run)", "#2a2", p.x, p.r.refit_prediction, p.d.scale));
+  return plot(title, p.x_label, p.d.label, lines, p.shade);
 }
 
 std::string main_plot(const Page& p, const TorsionExperiment& t) {
@@ -327,7 +327,11 @@ std::string heldout_html(const Result& r) {
   return "<h2>Fit on held-out data</h2><p>The last " + std::to_string(r.heldout_rows) +
          " rows were never used to fit the model that is scored on them.</p><table><tr><th></th><th>RMS (all)</th><th>RMS (held out)</th></tr>"
          "<tr><td>baseline</td><td>" + num(r.baseline_rms) + "</td><td>" + num(r.baseline_heldout_rms) + "</td></tr>"
-         "<tr><td>reconciled</td><td>" + num(r.final_rms) + "</td><td>" + num(r.final_heldout_rms) + "</td></tr></table>";
+         "<tr><td>reconciled</td><td>" + num(r.final_rms) + "</td><td>" + num(r.final_heldout_rms) + "</td></tr>" +
+         (r.refitted ? "<tr><td>model re-run with the fitted case keys</td><td>" + num(r.refit_rms) + "</td><td>" +
+                           num(r.refit_heldout_rms) + "</td></tr>"
+                     : std::string()) +
+         "</table>";
 }
 
 }  // namespace
@@ -386,6 +390,7 @@ Report report_of(const Result& r) {
     rep.locations.push_back({l.domain, "unexplained after the final model: " + l.description, l.p_value});
   for (const auto& e : r.effects) rep.effects.push_back(effect_of(e));
   if (r.catalog) rep.catalog = catalog_of(*r.catalog, r.final_rms);
+  if (r.refitted) rep.refit = ReportRefit{r.refit_rms, r.refit_heldout_rms};
   return rep;
 }
 
@@ -413,6 +418,9 @@ std::string report_summary(const Result& r) {
   }
   s += "  residual RMS " + num(r.baseline_rms) + " -> " + num(r.final_rms) + "; held-out (last " +
        std::to_string(r.heldout_rows) + " rows) " + num(r.baseline_heldout_rms) + " -> " + num(r.final_heldout_rms) + "\n";
+  if (r.refitted)
+    s += "  the model re-run with the fitted case keys: RMS " + num(r.refit_rms) + ", held-out " +
+         num(r.refit_heldout_rms) + " (noise sd " + num(r.noise.process_sd) + ")\n";
   return s;
 }
 

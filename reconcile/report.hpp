@@ -57,6 +57,12 @@ struct ReportCatalog {
   bool operator==(const ReportCatalog&) const = default;
 };
 
+/// The model re-run with the fitted physical values (the "refit" block): its RMS over all rows and the held-out rows.
+struct ReportRefit {
+  double rms = 0, heldout_rms = 0;
+  bool operator==(const ReportRefit&) const = default;
+};
+
 /// reconcile.json as values.
 struct Report {
   Kind kind = Kind::Torsion;
@@ -70,6 +76,7 @@ struct Report {
   std::vector<ReportEffect> effects;
   std::vector<Rejected> rejected;
   double final_rms = 0, final_heldout_rms = 0;
+  std::optional<ReportRefit> refit;                          ///< with physical effects refitted on model re-runs
   std::optional<ReportCatalog> catalog;                      ///< torsion
   std::string verdict;
   bool operator==(const Report&) const = default;

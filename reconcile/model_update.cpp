@@ -1,0 +1,410 @@
+#include "reconcile/model_update.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include "common/error.hpp"
+#include "common/progress.hpp"
+#include "reconcile/fit.hpp"
+#include "reconcile/stats.hpp"
+
+namespace sw::reconcile {
+
+using Vec = Eigen::VectorXd;
+using Mat = Eigen::MatrixXd;
+
+namespace {
+
+constexpr const char* kPrefix = "model:";
+
+/// Below this fraction of the baseline's size, the change a candidate makes over its whole plausible range is taken
+/// as no response (the model does not read the key for this recording).
+constexpr double kNoResponse = 1e-6;
+
+/// Levenberg-Marquardt: the most iterations, and the step (in units of each key's sensitivity step) below which the
+/// values have converged: 1e-3 of a step moves the prediction by ~1e-3 of the column's effect over a step, far below
+/// any interval.
+constexpr int kMaxIterations = 12;
+constexpr double kConvergedStep = 1e-3;
+
+std::string fmt(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+double rms(const Vec& v) { return v.size() ? std::sqrt(v.squaredNorm() / v.size()) : 0.0; }
+
+/// The response of a re-run with `values` set.
+Vec response_at(const Experiment& e, const Baseline& base, const ModelKeyValues& values) {
+  return predicted_response(e, base.model_run(values));
+}
+
+/// d response / d key at `value` (per unit of the key): central differences of +-step, one-sided (forward from the
+/// value) where value - step falls below the candidate's range (a friction coefficient or a tip rounding of 0).
+Vec sensitivity_at(const Experiment& e, const Baseline& base, const ModelCandidate& c, const ModelKeyValues& at,
+                   double value) {
+  const double h = sensitivity_step(c);
+  auto with = [&](double v) {
+    ModelKeyValues kv = at;
+    auto it = std::find_if(kv.begin(), kv.end(), [&](const auto& p) { return p.first == c.key; });
+    if (it == kv.end()) kv.emplace_back(c.key, v);
+    else it->second = v;
+    return kv;
+  };
+  if (value - h < c.lo) return (response_at(e, base, with(value + h)) - response_at(e, base, with(value))) / h;
+  return (response_at(e, base, with(value + h)) - response_at(e, base, with(value - h))) / (2.0 * h);
+}
+
+/// The value of a candidate's key at a point of linearisation: the point's, else the case's.
+double value_at(const ModelCandidate& c, const ModelKeyValues& at) {
+  for (const auto& [key, v] : at)
+    if (key == c.key) return v;
+  return c.case_value;
+}
+
+/// The physical effect of a candidate: its column (per unit change of the key) and its headline, the value it
+/// implies and the case's.
+EffectSpec model_spec(const Experiment& e, const ModelCandidate& c, double at, const Vec& column) {
+  EffectSpec s;
+  s.name = model_effect_name(c.key);
+  s.kind = e.kind();
+  s.label = s.name;
+  s.physics = c.physics;
+  s.n_linear = 1;
+  s.bounds = [](const Experiment&) { return std::make_pair(Vec(0), Vec(0)); };
+  s.columns = [column](const Experiment&, const Vec&) { return Mat(column); };
+  s.headline = [at, cv = c.case_value](const Experiment&, const FitResult& f, int t) {
+    return NamedValues{{"value", at + f.terms[t].beta[0]}, {"case_value", cv}};
+  };
+  return s;
+}
+
+/// Whitened columns with the nuisance columns projected out (what the data can tell apart).
+Vec projected(const Experiment& e, const ArModel& ar, const Vec& column) {
+  const Mat N = whiten(ar, nuisance_columns(e));
+  const Vec c = whiten(ar, column);
+  return N.cols() ? least_squares(N, c).residual : c;
+}
+
+/// Adds to each accepted physical effect the candidates the recording cannot tell from it (|r| above
+/// kIndistinguishableCorrelation): the equivalent change of that key, "or:KEY", with its interval scaled alike.
+void add_indistinguishable(const Experiment& e, const ModelEffects& fx, Result& r) {
+  for (AcceptedEffect& a : r.effects)
+    for (std::size_t i = 0; i < fx.specs.size(); ++i) {
+      if (a.name != fx.specs[i].name) continue;
+      const Vec own = projected(e, r.noise, fx.specs[i].columns(e, Vec(0)).col(0));
+      const Headline v = a.params.front();  // "value"
+      const double cv = fx.candidates[i].case_value;
+      for (std::size_t j = 0; j < fx.specs.size(); ++j) {
+        if (j == i) continue;
+        const Vec other = projected(e, r.noise, fx.specs[j].columns(e, Vec(0)).col(0));
+        const double corr = own.dot(other) / std::max(own.norm() * other.norm(), 1e-300);
+        if (!(std::abs(corr) > kIndistinguishableCorrelation)) continue;
+        const double scale = own.dot(other) / other.squaredNorm();  // change of key j per unit change of key i
+        const double cj = fx.candidates[j].case_value;
+        const double lo = cj + scale * (v.lo - cv), hi = cj + scale * (v.hi - cv);
+        a.params.push_back({"or:" + fx.candidates[j].key, cj + scale * (v.value - cv), std::min(lo, hi),
+                            std::max(lo, hi)});
+        a.physics += "; the recording cannot tell it from " + fx.specs[j].name + " (columns correlate at " +
+                     fmt("%.3f", corr) + "): " + fx.candidates[j].physics;
+      }
+    }
+}
+
+// ---- the refit ----------------------------------------------------------------------------------------------------
+
+/// One iterate of the refit: the keys' values, the model's response there, the linear part's coefficients and the
+/// whitened residual sum of squares over the fitted rows.
+struct Iterate {
+  Vec values;
+  Vec response;
+  Vec linear_beta;
+  double rss = INFINITY;
+};
+
+/// The refit's problem: the physical keys, the fixed columns of everything else (nuisance, phenomenological terms
+/// at their theta), the noise model and the rows fitted.
+struct RefitProblem {
+  const Experiment& e;
+  const Baseline& base;
+  std::vector<ModelCandidate> keys;
+  Mat linear;  // n x m
+  const ArModel& ar;
+  int rows = 0;
+
+  ModelKeyValues key_values(const Vec& v) const {
+    ModelKeyValues kv;
+    for (std::size_t i = 0; i < keys.size(); ++i) kv.emplace_back(keys[i].key, v[i]);
+    return kv;
+  }
+  /// The model at v with the linear part fitted by GLS over the rows.
+  Iterate at(const Vec& v) const {
+    Iterate it;
+    it.values = v;
+    it.response = response_at(e, base, key_values(v));
+    const Vec z = whiten(ar, Vec((e.measured - it.response).head(rows)));
+    if (linear.cols() == 0) {
+      it.linear_beta = Vec(0);
+      it.rss = z.squaredNorm();
+      return it;
+    }
+    const LsResult ls = least_squares(whiten(ar, Mat(linear.topRows(rows))), z);
+    it.linear_beta = ls.beta;
+    it.rss = ls.rss;
+    return it;
+  }
+  /// d response / d value of each key at the iterate (n x k).
+  Mat jacobian(const Iterate& it) const {
+    Mat J(e.n, keys.size());
+    const ModelKeyValues kv = key_values(it.values);
+    for (std::size_t i = 0; i < keys.size(); ++i) J.col(i) = sensitivity_at(e, base, keys[i], kv, it.values[i]);
+    return J;
+  }
+};
+
+/// The whitened Jacobian with the linear part projected out, and the residual likewise: the variable projection.
+std::pair<Mat, Vec> projected_system(const RefitProblem& p, const Iterate& it, const Mat& J) {
+  const Mat Jw = whiten(p.ar, Mat(J.topRows(p.rows)));
+  const Vec zw = whiten(p.ar, Vec((p.e.measured - it.response).head(p.rows)));
+  if (p.linear.cols() == 0) return {Jw, zw};
+  const Mat Lw = whiten(p.ar, Mat(p.linear.topRows(p.rows)));
+  const auto qr = Lw.colPivHouseholderQr();
+  const Mat Jp = Jw - Lw * qr.solve(Jw);
+  const Vec zp = zw - Lw * qr.solve(zw);
+  return {Jp, zp};
+}
+
+/// Levenberg-Marquardt from `start` on re-runs of the model; returns the last iterate and the Jacobian there.
+std::pair<Iterate, Mat> levenberg_marquardt(const RefitProblem& p, const Vec& start, int& iterations) {
+  Iterate cur = p.at(start);
+  Mat J = p.jacobian(cur);
+  double lambda = 1e-3;
+  for (iterations = 0; iterations < kMaxIterations; ++iterations) {
+    const auto [Jp, zp] = projected_system(p, cur, J);
+    const Mat JtJ = Jp.transpose() * Jp;
+    const Vec g = Jp.transpose() * zp;
+    bool improved = false;
+    Vec step;
+    for (int tries = 0; tries < 6 && !improved; ++tries, lambda *= 10.0) {
+      Mat A = JtJ;
+      A.diagonal() += lambda * JtJ.diagonal().cwiseMax(1e-300);
+      step = A.ldlt().solve(g);
+      const Iterate trial = p.at(cur.values + step);
+      if (trial.rss < cur.rss) {
+        cur = trial;
+        improved = true;
+      }
+    }
+    if (!improved) break;
+    lambda = std::max(lambda / 100.0, 1e-6);
+    bool converged = true;
+    for (std::size_t i = 0; i < p.keys.size(); ++i)
+      converged = converged && std::abs(step[i]) < kConvergedStep * sensitivity_step(p.keys[i]);
+    J = p.jacobian(cur);
+    if (converged) break;
+  }
+  return {cur, J};
+}
+
+/// 95 % intervals of the values from the final Jacobian: s^2 (Jp^T Jp)^-1, s^2 the whitened residual variance.
+std::vector<RefitValue> refit_values(const RefitProblem& p, const Iterate& it, const Mat& J) {
+  const auto [Jp, zp] = projected_system(p, it, J);
+  const int dof = std::max(1, static_cast<int>(zp.size()) - static_cast<int>(p.linear.cols() + p.keys.size()));
+  const double s2 = it.rss / dof;
+  const Eigen::CompleteOrthogonalDecomposition<Mat> cod(Jp.transpose() * Jp);
+  const Mat cov = s2 * Mat(cod.pseudoInverse());
+  std::vector<RefitValue> out;
+  for (std::size_t i = 0; i < p.keys.size(); ++i) {
+    const double half = 1.959964 * std::sqrt(std::max(cov(i, i), 0.0));
+    out.push_back({p.keys[i].key, it.values[i], it.values[i] - half, it.values[i] + half, p.keys[i].case_value});
+  }
+  return out;
+}
+
+/// The refit's problem for the accepted terms of a result: the physical keys with their starts (case value + the
+/// selection's linear estimate) and the other terms' columns at their theta.
+RefitProblem refit_problem(const Experiment& e, const Baseline& base, const ModelEffects& fx, const Result& r,
+                           Vec& start) {
+  RefitProblem p{e, base, {}, nuisance_columns(e), r.noise, e.n};
+  std::vector<double> v;
+  for (const Term& t : r.final_model.terms) {
+    if (!is_model_effect(*t.spec)) {
+      p.linear = hcat(p.linear, t.spec->columns(e, t.theta));
+      continue;
+    }
+    for (std::size_t j = 0; j < fx.specs.size(); ++j)
+      if (&fx.specs[j] == t.spec) {
+        p.keys.push_back(fx.candidates[j]);
+        v.push_back(t.spec->headline(e, r.final_model, static_cast<int>(&t - r.final_model.terms.data()))[0].second);
+      }
+  }
+  start = Eigen::Map<Vec>(v.data(), v.size());
+  return p;
+}
+
+/// Replaces the selection's linear estimate of each refitted physical effect by the refit's value and interval.
+void set_refitted_values(const Refit& refit, Result& r) {
+  for (AcceptedEffect& a : r.effects)
+    for (const RefitValue& v : refit.values)
+      if (a.name == model_effect_name(v.key))
+        for (Headline& h : a.params)
+          if (h.name == "value") h = {"value", v.value, v.lo, v.hi};
+}
+
+/// The experiment with its baseline replaced by the model re-run at `at` (the prediction and the response).
+Experiment experiment_at(const Experiment& e, const Baseline& base, const ModelKeyValues& at) {
+  Experiment out = e;
+  const Prediction p = base.model_run(at);
+  out.baseline = predicted_response(e, p);
+  if (auto* t = std::get_if<TorsionExperiment>(&out.data)) t->model = std::get<TorsionPrediction>(p);
+  if (auto* b = std::get_if<BacklashExperiment>(&out.data)) b->model = std::get<BacklashPrediction>(p);
+  return out;
+}
+
+/// The figures of the case's own model (before any change) kept from the first pass.
+void keep_baseline_figures(const Result& first, Result& r) {
+  r.baseline_rms = first.baseline_rms;
+  r.baseline_heldout_rms = first.baseline_heldout_rms;
+  r.residual_before = first.residual_before;
+  r.baseline_prediction = first.baseline_prediction;
+  r.locations = first.locations;
+}
+
+}  // namespace
+
+std::string model_effect_name(const std::string& key) { return kPrefix + key; }
+
+bool is_model_effect(const EffectSpec& spec) { return spec.name.rfind(kPrefix, 0) == 0; }
+
+double sensitivity_step(const ModelCandidate& c) { return kSensitivityStepFraction * (c.hi - c.lo); }
+
+std::shared_ptr<const ModelEffects> model_effects(const Experiment& e, const Baseline& base,
+                                                  const std::vector<ModelCandidate>& candidates,
+                                                  const ModelKeyValues& at) {
+  if (!base.model_run) throw InputError("physical candidates need a baseline the model can re-run");
+  auto fx = std::make_shared<ModelEffects>();
+  const double scale = std::max(e.baseline.norm(), 1e-300);
+  std::vector<Vec> columns;
+  for (const ModelCandidate& c : candidates) {
+    const Vec column = sensitivity_at(e, base, c, at, value_at(c, at));
+    const double change = column.norm() * (c.hi - c.lo);
+    if (!(change > kNoResponse * scale)) {
+      fx->rejected.push_back({model_effect_name(c.key), model_effect_name(c.key) + ": over [" + fmt("%g", c.lo) +
+                                                            ", " + fmt("%g", c.hi) + "] the model's response changes by " +
+                                                            fmt("%.3g", change / scale) + " of the baseline's: not read"});
+      continue;
+    }
+    fx->candidates.push_back(c);
+    columns.push_back(column);
+  }
+  fx->specs.reserve(fx->candidates.size());  // terms point into specs: no reallocation after this
+  for (std::size_t i = 0; i < columns.size(); ++i)
+    fx->specs.push_back(model_spec(e, fx->candidates[i], value_at(fx->candidates[i], at), columns[i]));
+  return fx;
+}
+
+Baseline with_remembered_model_runs(Baseline base) {
+  if (!base.model_run) return base;
+  auto store = std::make_shared<std::map<ModelKeyValues, Prediction>>();
+  base.model_run = [run = base.model_run, store](const ModelKeyValues& kv) {
+    ModelKeyValues key = kv;
+    std::sort(key.begin(), key.end());
+    auto it = store->find(key);
+    if (it == store->end()) it = store->emplace(key, run(kv)).first;
+    return it->second;
+  };
+  return base;
+}
+
+std::optional<Refit> refit_model(const Experiment& e, const Baseline& base, const ModelEffects& fx, const Result& r,
+                                 const Options& o) {
+  Vec start;
+  RefitProblem p = refit_problem(e, base, fx, r, start);
+  if (p.keys.empty()) return std::nullopt;
+  Refit out;
+  // Held out: the same fit on the training rows, scored on the rows it never saw.
+  const int hold = std::max(1, static_cast<int>(std::lround(e.n * o.heldout_fraction)));
+  p.rows = e.n - hold;
+  int iterations = 0;
+  const Iterate train = levenberg_marquardt(p, start, iterations).first;
+  const Vec train_prediction = train.response + p.linear * train.linear_beta;
+  out.heldout_rms = rms(Vec((e.measured - train_prediction).tail(hold)));
+  p.rows = e.n;
+  const auto [it, J] = levenberg_marquardt(p, train.values, out.iterations);
+  out.values = refit_values(p, it, J);
+  out.key_values = p.key_values(it.values);
+  out.model_response = it.response;
+  out.prediction = it.response + p.linear * it.linear_beta;
+  out.rms = rms(Vec(e.measured - out.prediction));
+  progress("reconcile: refit of " + std::to_string(p.keys.size()) + " case keys on re-runs of the model: " +
+           std::to_string(out.iterations) + " iterations, RMS " + fmt("%.4g", out.rms));
+  return out;
+}
+
+namespace {
+
+/// The refit of an update's accepted physical effects, its values written into the effects.
+void add_refit(const Experiment& e, const Baseline& base, const Options& options, ModelUpdate& u) {
+  u.refit = refit_model(e, base, *u.effects, u.result, options);
+  if (!u.refit) return;
+  set_refitted_values(*u.refit, u.result);
+  u.result.refitted = true;
+  u.result.refit_rms = u.refit->rms;
+  u.result.refit_heldout_rms = u.refit->heldout_rms;
+  u.result.refit_prediction = u.refit->prediction;
+}
+
+/// Selection over the physical candidates (columns at `at`) and the catalog, the physical effects of `first` (a
+/// first pass) held in.
+ModelUpdate selected(const Experiment& e, const Baseline& base, const std::vector<ModelCandidate>& candidates,
+                     const ModelKeyValues& at, const Options& options, const Result* first = nullptr) {
+  ModelUpdate u;
+  u.effects = model_effects(e, base, candidates, at);
+  std::vector<const EffectSpec*> held;
+  for (const AcceptedEffect& a : first ? first->effects : std::vector<AcceptedEffect>{})
+    for (const EffectSpec& spec : u.effects->specs)
+      if (spec.name == a.name) held.push_back(&spec);
+  u.result = reconcile(e, options, &u.effects->specs, held);
+  for (const Rejected& x : u.effects->rejected) u.result.rejected.push_back(x);
+  return u;
+}
+
+/// The first pass's record (its test against the case's model) of each physical effect the second pass held in.
+void keep_first_records(const Result& first, Result& r) {
+  for (AcceptedEffect& a : r.effects)
+    for (const AcceptedEffect& f : first.effects)
+      if (a.name == f.name && a.name.rfind(kPrefix, 0) == 0) {
+        a.delta_bic = f.delta_bic;
+        a.p_value = f.p_value;
+        a.test = f.test;
+      }
+}
+
+}  // namespace
+
+ModelUpdate update_model(const Experiment& e, const Baseline& base, const std::vector<ModelCandidate>& candidates,
+                         const Options& options) {
+  ModelUpdate first = selected(e, base, candidates, {}, options);
+  add_refit(e, base, options, first);
+  if (!first.refit) {
+    add_indistinguishable(e, *first.effects, first.result);
+    return first;
+  }
+  // Selection read the physical keys through their columns at the case values: the response bends over a change of
+  // a few per cent, and that bend would pass for phenomenological effects. Select again against the model re-run at
+  // the refitted values (the physical effects held in), then refit everything together; the mismatch located and the
+  // baseline's figures stay those of the case's model.
+  const ModelKeyValues at = first.refit->key_values;
+  const Experiment moved = experiment_at(e, base, at);
+  ModelUpdate u = selected(moved, base, candidates, at, options, &first.result);
+  keep_first_records(first.result, u.result);
+  add_refit(moved, base, options, u);
+  keep_baseline_figures(first.result, u.result);
+  add_indistinguishable(moved, *u.effects, u.result);
+  return u;
+}
+
+}  // namespace sw::reconcile

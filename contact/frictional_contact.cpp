@@ -24,6 +24,15 @@ std::string num(double v) {
 
 // ---- The bounded problem: min ½xᵀHx + cᵀx subject to aᵀx = t, lo ≤ x ≤ hi ------------------------------------
 
+/// H·x for an x with few nonzeros (the closed contacts' forces, the bounds held away from zero): the columns of the
+/// nonzeros only, so that a step reads the part of H its contacts touch rather than all of it.
+Eigen::VectorXd times_sparse(const Eigen::MatrixXd& H, const Eigen::VectorXd& x) {
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(H.rows());
+  for (Eigen::Index j = 0; j < x.size(); ++j)
+    if (x[j] != 0) y += x[j] * H.col(j);
+  return y;
+}
+
 /// Where a variable stands: free, or held at its lower or upper bound (lo = hi: fixed, held at its lower).
 enum class Bound : signed char { Free, Lower, Upper };
 
@@ -60,7 +69,7 @@ struct FreeOptimum {
 FreeOptimum optimum_on(const BoundedQp& qp, const std::vector<Eigen::Index>& F, const Eigen::VectorXd& x) {
   Eigen::VectorXd held = x;
   for (Eigen::Index j : F) held[j] = 0;
-  const Eigen::VectorXd pull = qp.H * held;
+  const Eigen::VectorXd pull = times_sparse(qp.H, held);
   const auto n = static_cast<Eigen::Index>(F.size());
   Eigen::MatrixXd M(n, n);
   Eigen::VectorXd r(n), l(n);
@@ -132,7 +141,7 @@ QpIterate solve_bounded_qp(const BoundedQp& qp, QpIterate s) {
   Bound left = Bound::Lower;
   for (Eigen::Index outer = 0; outer < 6 * qp.c.size() + 20; ++outer) {
     const bool stalled = !settle_free_set(qp, s, freed, left);
-    const Eigen::VectorXd g = qp.H * s.x + qp.c - s.psi * qp.a;
+    const Eigen::VectorXd g = times_sparse(qp.H, s.x) + qp.c - s.psi * qp.a;
     freed = stalled ? -1 : most_violating(qp, s.where, g);
     if (freed < 0) return s;
     left = s.where[freed];
@@ -262,7 +271,7 @@ struct ContactSets {
 /// against its slip increment, or sticks where that is zero.
 ContactSets sets_of(const FrictionalContactProblem& p, const BoundedQp& qp, const QpIterate& it) {
   const Eigen::Index n = p.q.size();
-  const Eigen::VectorXd slip_increment = (qp.H * it.x + qp.c - it.psi * qp.a).tail(n);
+  const Eigen::VectorXd slip_increment = (times_sparse(qp.H, it.x) + qp.c - it.psi * qp.a).tail(n);
   ContactSets sets{std::vector<ContactState>(n, ContactState::Open), Eigen::VectorXd::Zero(n)};
   for (Eigen::Index i = 0; i < n; ++i) {
     if (it.where[i] != Bound::Free) continue;
@@ -303,13 +312,13 @@ Candidate coulomb_on_sets(const FrictionalContactProblem& p, const BoundedQp& qp
     }
   const auto m = static_cast<Eigen::Index>(var.size());
   // Row `row` of H·x per unit of unknown k.
-  const auto per_unit = [&](const Eigen::VectorXd& row, Eigen::Index k) {
+  const auto per_unit = [&](const auto& row, Eigen::Index k) {
     return row[var[k]] + (rider[k] != 0 ? rider[k] * row[n + var[k]] : 0.0);
   };
   Eigen::MatrixXd M(m + 1, m + 1);
   Eigen::VectorXd rhs(m + 1);
   for (Eigen::Index r = 0; r < m; ++r) {
-    const Eigen::VectorXd row = qp.H.col(var[r]);  // H symmetric: its row
+    const auto row = qp.H.col(var[r]);  // H symmetric: its row
     for (Eigen::Index k = 0; k < m; ++k) M(r, k) = per_unit(row, k);
     M(r, m) = -qp.a[var[r]];
     rhs[r] = -qp.c[var[r]];
@@ -330,7 +339,7 @@ bool satisfies_coulomb(const FrictionalContactProblem& p, const BoundedQp& qp, c
                        const Candidate& c) {
   if (!(c.x.allFinite() && std::isfinite(c.psi))) return false;
   const Eigen::Index n = p.q.size();
-  const Eigen::VectorXd g = qp.H * c.x + qp.c - c.psi * qp.a;  // [gap; slip increment]
+  const Eigen::VectorXd g = times_sparse(qp.H, c.x) + qp.c - c.psi * qp.a;  // [gap; slip increment]
   const double force_tol =
       kRoundOff * std::max(c.x.cwiseAbs().maxCoeff(), std::abs(qp.t) / qp.a.cwiseAbs().maxCoeff());
   for (Eigen::Index i = 0; i < n; ++i) {
@@ -348,7 +357,7 @@ bool satisfies_coulomb(const FrictionalContactProblem& p, const BoundedQp& qp, c
 FrictionalStep step_state(const FrictionalContactProblem& p, const BoundedQp& qp, const FrictionalStep& prev,
                           const Candidate& c, const ContactSets& sets) {
   const Eigen::Index n = p.q.size();
-  const Eigen::VectorXd g = qp.H * c.x + qp.c - c.psi * qp.a;
+  const Eigen::VectorXd g = times_sparse(qp.H, c.x) + qp.c - c.psi * qp.a;
   FrictionalStep s;
   s.torque_Nm = qp.t;
   s.twist_rad = c.psi;
@@ -363,6 +372,14 @@ FrictionalStep step_state(const FrictionalContactProblem& p, const BoundedQp& qp
     s.friction_work_J += std::abs(s.tangential_force_N[i]) * std::abs(s.slip_m[i] - prev.slip_m[i]);
   }
   return s;
+}
+
+/// How far the state at a cycle's top moved from the one before's: the slips (what a step starts from: its solution
+/// depends on the previous state's slips and the torque alone) over the largest, and the twist.
+double top_state_change(const FrictionalStep& before, const FrictionalStep& after) {
+  const double slips = (after.slip_m - before.slip_m).cwiseAbs().maxCoeff() /
+                       std::max(after.slip_m.cwiseAbs().maxCoeff(), std::numeric_limits<double>::min());
+  return std::max(slips, std::abs(after.twist_rad - before.twist_rad) / std::abs(after.twist_rad));
 }
 
 }  // namespace
@@ -476,24 +493,17 @@ LoopReading read_loop(const std::vector<FrictionalStep>& history, double T_R) {
 
 SteadyLoop run_steady_loop(const LoadStep& step, const FrictionalStep& start, double T_R, int N, double rel_tol,
                            int max_cycles) {
-  const std::vector<double> first = cycle_torque_history(T_R, N, 1);
-  const std::vector<double> cycle(first.begin() + N + 1, first.end());  // +T_R → −T_R → +T_R, without the top
+  const std::vector<double> once = cycle_torque_history(T_R, N, 1);
+  const auto top = once.begin() + N + 1;
+  const std::vector<double> loading(once.begin(), top), cycle(top, once.end());  // cycle: +T_R → −T_R → +T_R
   SteadyLoop loop;
-  loop.history = run_torque_history(step, start, first);
-  for (loop.cycles = 1; loop.cycles < max_cycles; ++loop.cycles) {
-    const std::vector<FrictionalStep> next = run_torque_history(step, loop.history.back(), cycle);
-    const auto last = loop.history.end() - static_cast<std::ptrdiff_t>(cycle.size());
-    double change = 0, largest = 0;
-    for (std::size_t k = 0; k < cycle.size(); ++k) {
-      change = std::max(change, std::abs(next[k].twist_rad - last[k].twist_rad));
-      largest = std::max(largest, std::abs(next[k].twist_rad));
-    }
+  loop.history = run_torque_history(step, start, loading);
+  for (loop.cycles = 1;; ++loop.cycles) {
+    const FrictionalStep at_top = loop.history.back();
+    const std::vector<FrictionalStep> next = run_torque_history(step, at_top, cycle);
     loop.history.insert(loop.history.end(), next.begin(), next.end());
-    loop.cycle_change_rel = change / largest;
-    if (*loop.cycle_change_rel <= rel_tol) {
-      ++loop.cycles;
-      break;
-    }
+    loop.top_change_rel = top_state_change(at_top, loop.history.back());
+    if (loop.top_change_rel <= rel_tol || loop.cycles == max_cycles) break;
   }
   loop.reading = read_loop(loop.history, T_R);
   return loop;

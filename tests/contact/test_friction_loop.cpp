@@ -33,13 +33,13 @@ const Solved& size17(bool band_held) {
   return *s[band_held];
 }
 
-ContactAnalysis loop_at(double mu, int steps, bool band_held = false) {
+ContactAnalysis loop_at(double mu, int loop_steps, bool band_held = false) {
   const Solved& s = size17(band_held);
   const FlexsplineModel m = flexspline_model(s.c);
   ContactOptions o;
   o.rated_torque_Nm = *s.c.load.rated_torque_Nm;
   o.series = app::series_parts(s.c);
-  o.steps = steps;
+  o.loop_steps_per_quarter = loop_steps;
   o.friction_coefficient = mu;
   return analyse_contact(m, HarmonicBody(m, s.fourier), fem_readout(s.fourier.figures), o);
 }

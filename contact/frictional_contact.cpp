@@ -24,21 +24,36 @@ std::string num(double v) {
 
 // ---- The bounded problem: min ½xᵀHx + cᵀx subject to aᵀx = t, lo ≤ x ≤ hi ------------------------------------
 
-/// H·x for an x with few nonzeros (the closed contacts' forces, the bounds held away from zero): the columns of the
-/// nonzeros only, so that a step reads the part of H its contacts touch rather than all of it.
-Eigen::VectorXd times_sparse(const Eigen::MatrixXd& H, const Eigen::VectorXd& x) {
-  Eigen::VectorXd y = Eigen::VectorXd::Zero(H.rows());
-  for (Eigen::Index j = 0; j < x.size(); ++j)
-    if (x[j] != 0) y += x[j] * H.col(j);
-  return y;
-}
+/// The symmetric matrix H = [[A, Bᵀ], [B, D]] (n × n blocks) read in place: the blocks stay the caller's, a step
+/// touches the entries of its contacts only.
+struct BlockMatrix {
+  const Eigen::MatrixXd *A, *B, *D;
+  Eigen::Index size() const { return 2 * A->rows(); }
+  double operator()(Eigen::Index i, Eigen::Index j) const {
+    const Eigen::Index n = A->rows();
+    if (i < n) return j < n ? (*A)(i, j) : (*B)(j - n, i);
+    return j < n ? (*B)(i - n, j) : (*D)(i - n, j - n);
+  }
+  double max_diagonal() const { return std::max(A->diagonal().maxCoeff(), D->diagonal().maxCoeff()); }
+  /// H·x for an x with few nonzeros (the closed contacts' forces, the bounds held away from zero): the columns of the
+  /// nonzeros only.
+  Eigen::VectorXd times(const Eigen::VectorXd& x) const {
+    const Eigen::Index n = A->rows();
+    Eigen::VectorXd y = Eigen::VectorXd::Zero(2 * n);
+    for (Eigen::Index j = 0; j < n; ++j)
+      if (x[j] != 0) y.head(n) += x[j] * A->col(j), y.tail(n) += x[j] * B->col(j);
+    for (Eigen::Index j = 0; j < n; ++j)
+      if (x[n + j] != 0) y.head(n) += x[n + j] * B->row(j).transpose(), y.tail(n) += x[n + j] * D->col(j);
+    return y;
+  }
+};
 
 /// Where a variable stands: free, or held at its lower or upper bound (lo = hi: fixed, held at its lower).
 enum class Bound : signed char { Free, Lower, Upper };
 
 /// H symmetric positive definite; lo_j ≤ hi_j (±∞ allowed).
 struct BoundedQp {
-  Eigen::MatrixXd H;
+  BlockMatrix H;
   Eigen::VectorXd c, a, lo, hi;
   double t = 0;
   double gradient_tol = 0;  ///< a held variable whose gradient points into the box by more than this is freed
@@ -69,7 +84,7 @@ struct FreeOptimum {
 FreeOptimum optimum_on(const BoundedQp& qp, const std::vector<Eigen::Index>& F, const Eigen::VectorXd& x) {
   Eigen::VectorXd held = x;
   for (Eigen::Index j : F) held[j] = 0;
-  const Eigen::VectorXd pull = times_sparse(qp.H, held);
+  const Eigen::VectorXd pull = qp.H.times(held);
   const auto n = static_cast<Eigen::Index>(F.size());
   Eigen::MatrixXd M(n, n);
   Eigen::VectorXd r(n), l(n);
@@ -141,7 +156,7 @@ QpIterate solve_bounded_qp(const BoundedQp& qp, QpIterate s) {
   Bound left = Bound::Lower;
   for (Eigen::Index outer = 0; outer < 6 * qp.c.size() + 20; ++outer) {
     const bool stalled = !settle_free_set(qp, s, freed, left);
-    const Eigen::VectorXd g = times_sparse(qp.H, s.x) + qp.c - s.psi * qp.a;
+    const Eigen::VectorXd g = qp.H.times(s.x) + qp.c - s.psi * qp.a;
     freed = stalled ? -1 : most_violating(qp, s.where, g);
     if (freed < 0) return s;
     left = s.where[freed];
@@ -205,8 +220,7 @@ void check_problem(const FrictionalContactProblem& p) {
 BoundedQp step_problem(const FrictionalContactProblem& p, double T, const Eigen::VectorXd& slip_prev) {
   const Eigen::Index n = p.q.size();
   BoundedQp qp;
-  qp.H.resize(2 * n, 2 * n);
-  qp.H << p.A, p.A_tn.transpose(), p.A_tn, p.A_tt;
+  qp.H = {&p.A, &p.A_tn, &p.A_tt};
   qp.c.resize(2 * n);
   qp.c << p.q, -slip_prev;
   qp.a.resize(2 * n);
@@ -215,7 +229,7 @@ BoundedQp step_problem(const FrictionalContactProblem& p, double T, const Eigen:
   qp.lo = Eigen::VectorXd::Zero(2 * n);
   qp.hi = Eigen::VectorXd::Constant(2 * n, std::numeric_limits<double>::infinity());
   const double displacement = std::max(qp.c.cwiseAbs().maxCoeff(),
-                                       std::abs(T) * qp.H.diagonal().maxCoeff() / qp.a.cwiseAbs().maxCoeff());
+                                       std::abs(T) * qp.H.max_diagonal() / qp.a.cwiseAbs().maxCoeff());
   qp.gradient_tol = kRoundOff * std::max(displacement, 1e-300);
   return qp;
 }
@@ -271,7 +285,7 @@ struct ContactSets {
 /// against its slip increment, or sticks where that is zero.
 ContactSets sets_of(const FrictionalContactProblem& p, const BoundedQp& qp, const QpIterate& it) {
   const Eigen::Index n = p.q.size();
-  const Eigen::VectorXd slip_increment = (times_sparse(qp.H, it.x) + qp.c - it.psi * qp.a).tail(n);
+  const Eigen::VectorXd slip_increment = (qp.H.times(it.x) + qp.c - it.psi * qp.a).tail(n);
   ContactSets sets{std::vector<ContactState>(n, ContactState::Open), Eigen::VectorXd::Zero(n)};
   for (Eigen::Index i = 0; i < n; ++i) {
     if (it.where[i] != Bound::Free) continue;
@@ -311,19 +325,20 @@ Candidate coulomb_on_sets(const FrictionalContactProblem& p, const BoundedQp& qp
       rider.push_back(0.0);
     }
   const auto m = static_cast<Eigen::Index>(var.size());
-  // Row `row` of H·x per unit of unknown k.
-  const auto per_unit = [&](const auto& row, Eigen::Index k) {
-    return row[var[k]] + (rider[k] != 0 ? rider[k] * row[n + var[k]] : 0.0);
+  // A row's entries (at(j): its j-th) per unit of unknown k.
+  const auto per_unit = [&](const auto& at, Eigen::Index k) {
+    return at(var[k]) + (rider[k] != 0 ? rider[k] * at(n + var[k]) : 0.0);
   };
   Eigen::MatrixXd M(m + 1, m + 1);
   Eigen::VectorXd rhs(m + 1);
   for (Eigen::Index r = 0; r < m; ++r) {
-    const auto row = qp.H.col(var[r]);  // H symmetric: its row
+    const auto row = [&](Eigen::Index j) { return qp.H(var[r], j); };
     for (Eigen::Index k = 0; k < m; ++k) M(r, k) = per_unit(row, k);
     M(r, m) = -qp.a[var[r]];
     rhs[r] = -qp.c[var[r]];
   }
-  for (Eigen::Index k = 0; k < m; ++k) M(m, k) = per_unit(qp.a, k);
+  const auto arm = [&](Eigen::Index j) { return qp.a[j]; };
+  for (Eigen::Index k = 0; k < m; ++k) M(m, k) = per_unit(arm, k);
   M(m, m) = 0;
   rhs[m] = qp.t;
   const Eigen::VectorXd y = M.partialPivLu().solve(rhs);
@@ -339,7 +354,7 @@ bool satisfies_coulomb(const FrictionalContactProblem& p, const BoundedQp& qp, c
                        const Candidate& c) {
   if (!(c.x.allFinite() && std::isfinite(c.psi))) return false;
   const Eigen::Index n = p.q.size();
-  const Eigen::VectorXd g = times_sparse(qp.H, c.x) + qp.c - c.psi * qp.a;  // [gap; slip increment]
+  const Eigen::VectorXd g = qp.H.times(c.x) + qp.c - c.psi * qp.a;  // [gap; slip increment]
   const double force_tol =
       kRoundOff * std::max(c.x.cwiseAbs().maxCoeff(), std::abs(qp.t) / qp.a.cwiseAbs().maxCoeff());
   for (Eigen::Index i = 0; i < n; ++i) {
@@ -357,7 +372,7 @@ bool satisfies_coulomb(const FrictionalContactProblem& p, const BoundedQp& qp, c
 FrictionalStep step_state(const FrictionalContactProblem& p, const BoundedQp& qp, const FrictionalStep& prev,
                           const Candidate& c, const ContactSets& sets) {
   const Eigen::Index n = p.q.size();
-  const Eigen::VectorXd g = times_sparse(qp.H, c.x) + qp.c - c.psi * qp.a;
+  const Eigen::VectorXd g = qp.H.times(c.x) + qp.c - c.psi * qp.a;
   FrictionalStep s;
   s.torque_Nm = qp.t;
   s.twist_rad = c.psi;
@@ -395,15 +410,17 @@ FrictionalStep unloaded_state(const FrictionalContactProblem& p) {
   return s;
 }
 
-FrictionalStep solve_frictional_step(const FrictionalContactProblem& p, double T, const FrictionalStep& previous) {
+FrictionalStep solve_frictional_step(const FrictionalContactProblem& p, double T, const FrictionalStep& previous,
+                                     const FrictionalStep* near) {
   check_problem(p);
   const Eigen::Index n = p.q.size();
   if (previous.normal_force_N.size() != n || previous.tangential_force_N.size() != n || previous.slip_m.size() != n ||
       static_cast<Eigen::Index>(previous.state.size()) != n)
     throw std::invalid_argument("solve_frictional_step: the previous state has other contacts");
   BoundedQp qp = step_problem(p, T, previous.slip_m);
-  Eigen::VectorXd bound = p.friction_coefficient.cwiseProduct(previous.normal_force_N);
-  std::vector<Bound> warm = bounds_of(previous);
+  const FrictionalStep& from = near ? *near : previous;
+  Eigen::VectorXd bound = p.friction_coefficient.cwiseProduct(from.normal_force_N);
+  std::vector<Bound> warm = bounds_of(from);
   for (int pass = 1; pass <= kMaxPasses; ++pass) {
     set_slip_bound(qp, bound);
     const std::optional<QpIterate> start = start_from(qp, warm);

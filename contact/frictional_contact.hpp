@@ -70,10 +70,13 @@ FrictionalStep unloaded_state(const FrictionalContactProblem& p);
 /// One load step from `previous` to output torque T (N·m): Coulomb's law on the increment. T = 0 is carried only by a
 /// state that holds it (preload, friction locking); a history stands for T = 0 by its limits ±kZeroTorqueLimit·T_R.
 /// Preconditions: the block compliance symmetric positive definite; `previous` of this problem (the same contacts).
-/// Throws InputError for μ_i < 0 (naming the contact and the value), when no contact can carry T (no normal arm of T's
-/// sign to close, as solve_contact), and when the fixed point does not converge (μ too large for a unique increment).
+/// `near`: where the fixed point and the active sets start (a solution of a nearby problem from the same `previous`,
+/// e.g. the last iterate of a caller's loop around the step; default `previous`): the solution is the same, its path
+/// shorter. Throws InputError for μ_i < 0 (naming the contact and the value), when no contact can carry T (no normal
+/// arm of T's sign to close, as solve_contact), and when the fixed point does not converge (μ too large for a unique
+/// increment).
 FrictionalStep solve_frictional_step(const FrictionalContactProblem& p, double torque_Nm,
-                                     const FrictionalStep& previous);
+                                     const FrictionalStep& previous, const FrictionalStep* near = nullptr);
 
 /// A load step: the state at output torque T from the previous state. solve_frictional_step on a problem, or a
 /// caller's own (one that also iterates a part of the problem per step, records what it needs).

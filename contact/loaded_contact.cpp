@@ -610,8 +610,8 @@ void ContactAnalyser::run_friction_loop() {
   const FrictionalContactProblem F = frictional_problem();
   const LoadStep step = [&](double T, const FrictionalStep& previous) {
     const InnerSolve<FrictionalContactProblem, FrictionalStep> inner =
-        [&previous](const FrictionalContactProblem& p, double t, const FrictionalStep*) {
-          return solve_frictional_step(p, t, previous);
+        [&previous](const FrictionalContactProblem& p, double t, const FrictionalStep* last) {
+          return solve_frictional_step(p, t, previous, last);
         };
     FrictionalStep s = solve_torque(F, nf_, lambda_, T, inner).first;
     s.torque_Nm = T;  // the output's (the flanks carry T less the locked generator's share)

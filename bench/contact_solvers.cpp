@@ -5,9 +5,12 @@
 //      torque, K1..K3 at the same breakpoints, the largest flank force at rated and the flank forces' largest
 //      difference over it, the generator's station forces at rated).
 //   3. `strainwave run` on the seed cup (the harmonic path: fem, backlash, contact).
-//   4. The frictional loop's cost on cup_size17 (μ = 0.05, 0.1) against the frictionless curve's.
+//   4. The frictional loop's cost on cup_size17, with play and preloaded (three face slices), at μ = 0.05 and 0.1:
+//      the loop's own wall clock at the default steps a quarter beside the frictionless curve's contact stage, in one
+//      process on one harmonic pass (target: within 5×).
 //   5. A drive sweep (`sweep --contact`) of --sweep-points designs of cup_size17 (its rim thickness ±20 %).
-// Each command is a child process; wall clock, so say so when the machine was shared.
+// `--friction` runs only 4. and the loop's step study on cup_size17 (both variants, μ = 0.05 and 0.1, 5 to 80 steps a
+// quarter). Each command is a child process; wall clock, so say so when the machine was shared.
 #include <sys/wait.h>
 
 #include <algorithm>
@@ -23,8 +26,14 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "app/contact_job.hpp"
 #include "bench_util.hpp"
+#include "common/progress.hpp"
+#include "contact/harmonic_body.hpp"
+#include "contact/loaded_contact.hpp"
 #include "dgemm.hpp"
+#include "fem/fourier_solver.hpp"
+#include "io/case.hpp"
 
 namespace {
 
@@ -103,27 +112,90 @@ void compare(const std::string& case_path, const fs::path& dir) {
               t["compliance_split"]["body"].get<double>());
 }
 
-/// The frictional loop's cost against the frictionless curve's (the contact stage's own time, timings_s.contact) on
-/// a case, at μ = 0.05 and 0.1, with the loop's figures.
-void friction_cost(const std::string& case_path, const fs::path& dir) {
-  std::ifstream in(case_path);
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  double t0 = 0;
-  for (const double mu : {0.0, 0.05, 0.1}) {
-    const fs::path c = dir / ("mu_" + std::to_string(mu) + ".toml"), out = dir / ("mu_" + std::to_string(mu));
-    std::ofstream(c) << text << "\n[contact]\nfriction_coefficient = " << mu << "\n";
-    timed("contact " + c.string() + " --no-vtk --out " + out.string());
-    const nlohmann::json k = read_json(out / "contact.json");
-    const double t = k["timings_s"]["contact"];
-    if (mu == 0) t0 = t;
-    std::printf("%s, mu %.2f: contact stage %.3f s (%.1fx the frictionless curve's)", case_path.c_str(), mu, t, t / t0);
-    if (k.contains("friction_work_J"))
-      std::printf("; loop of %d cycles x %d steps a quarter, hysteresis loss %.4f arcmin, area %.4e J, friction work "
-                  "%.4e J, lost motion %.3f arcmin", k["friction"]["cycles"].get<int>(),
-                  k["friction"]["steps_per_quarter"].get<int>(), k["hysteresis_loss_arcmin"].get<double>(),
-                  k["dissipated_energy_J"].get<double>(), k["friction_work_J"].get<double>(),
-                  k["lost_motion_arcmin"].get<double>());
-    std::printf("\n");
+/// A case solved once on the harmonic path, with its series parts, for loaded contacts of any friction and loop steps.
+struct SolvedCase {
+  sw::Case c;
+  sw::FlexsplineModel m;
+  sw::FourierSolution fourier;
+  sw::SeriesParts series;
+};
+
+SolvedCase solve_case(const std::string& path, int face_slices) {
+  SolvedCase s;
+  s.c = sw::load_case(path);
+  s.c.contact.face_slices = face_slices;
+  s.m = sw::flexspline_model(s.c);
+  s.fourier = sw::analyse_flexspline_fourier(s.m, 0, sw::contact_band_request(s.m, face_slices));
+  s.series = sw::app::series_parts(s.c);
+  return s;
+}
+
+sw::ContactAnalysis contact_of(const SolvedCase& s, double mu, int loop_steps) {
+  sw::ContactOptions o;
+  o.rated_torque_Nm = s.c.load.rated_torque_Nm.value_or(s.c.load.torque_Nm);
+  o.series = s.series;
+  o.face_slices = s.c.contact.face_slices;
+  o.friction_coefficient = mu;
+  o.loop_steps_per_quarter = loop_steps;
+  return sw::analyse_contact(s.m, sw::HarmonicBody(s.m, s.fourier), sw::fem_readout(s.fourier.figures), o);
+}
+
+/// The loop's twist at +rated torque (its top).
+double twist_at_rated(const sw::FrictionLoop& f) {
+  double psi = NAN;
+  for (const sw::TorqueStep& s : f.steps)
+    if (s.branch == "loading") psi = s.twist_rad;  // the loading branch ends at +rated
+  return psi;
+}
+
+/// The frictional loop's cost against the frictionless curve's, in one process on one harmonic pass: the contact
+/// stage at μ = 0 (the curve, its readings and checks), and at μ = 0.05 and 0.1 the loop's own wall clock at the
+/// default steps a quarter, with its figures; each time the best of three runs. The target: the loop within 5× the
+/// frictionless curve's stage.
+void friction_cost(const SolvedCase& s, const std::string& label) {
+  constexpr int kRuns = 3;
+  double t0 = INFINITY;
+  for (int r = 0; r < kRuns; ++r) t0 = std::min(t0, contact_of(s, 0.0, 1).contact_s);
+  const int N = sw::ContactOptions{}.loop_steps_per_quarter;
+  for (const double mu : {0.05, 0.1}) {
+    sw::FrictionLoop f = *contact_of(s, mu, N).friction;
+    for (int r = 1; r < kRuns; ++r) f.seconds = std::min(f.seconds, contact_of(s, mu, N).friction->seconds);
+    std::printf("%s, mu %.2f: frictionless curve's stage %.3f s, the loop %.3f s (%.1fx; target 5x): %d cycles x %d "
+                "steps a quarter, hysteresis loss %.4f arcmin, area %.4e J, friction work %.4e J, lost motion %.3f "
+                "arcmin\n", label.c_str(), mu, t0, f.seconds, f.seconds / t0, f.cycles, f.steps_per_quarter,
+                f.hysteresis_loss_rad * kArcmin, f.dissipated_energy_J, f.friction_work_J, f.lost_motion_rad * kArcmin);
+  }
+}
+
+/// The loop's step study on a case: at μ = 0.05 and 0.1 the steady loop at 5, 10, 20, 40 and 80 steps a quarter, its
+/// figures and their differences from the finest level's, and the loop's wall clock.
+void loop_step_study(const SolvedCase& s, const std::string& label) {
+  for (const double mu : {0.05, 0.1}) {
+    std::vector<sw::FrictionLoop> levels;
+    for (const int N : {5, 10, 20, 40, 80}) levels.push_back(*contact_of(s, mu, N).friction);
+    const sw::FrictionLoop& fine = levels.back();
+    std::printf("%s, mu %.2f: steps, cycles, loss (arcmin), area (J), friction work (J), area/work - 1, lost motion "
+                "(arcmin), twist at rated (arcmin); in () the change from %d steps; the loop's time\n", label.c_str(),
+                mu, fine.steps_per_quarter);
+    const auto rel = [](double a, double b) { return b != 0 ? 100 * (a / b - 1) : 0.0; };
+    for (const sw::FrictionLoop& f : levels)
+      std::printf("  %3d %d  %.5f (%+.2f %%)  %.5e (%+.2f %%)  %.5e (%+.2f %%)  %+.2f %%  %.4f (%+.2f %%)  "
+                  "%.4f (%+.3f %%)  %.3f s\n", f.steps_per_quarter, f.cycles, f.hysteresis_loss_rad * kArcmin,
+                  rel(f.hysteresis_loss_rad, fine.hysteresis_loss_rad), f.dissipated_energy_J,
+                  rel(f.dissipated_energy_J, fine.dissipated_energy_J), f.friction_work_J,
+                  rel(f.friction_work_J, fine.friction_work_J), rel(f.dissipated_energy_J, f.friction_work_J),
+                  f.lost_motion_rad * kArcmin, rel(f.lost_motion_rad, fine.lost_motion_rad),
+                  twist_at_rated(f) * kArcmin, rel(twist_at_rated(f), twist_at_rated(fine)), f.seconds);
+  }
+}
+
+/// The friction loop's cost (and its step study) on cup_size17 with play and preloaded by three face slices.
+void friction_loops(bool step_study) {
+  for (const int slices : {1, 3}) {
+    const SolvedCase s = solve_case("cases/cup_size17.toml", slices);
+    const std::string label = "cases/cup_size17.toml (face_slices " + std::to_string(slices) + ")";
+    friction_cost(s, label);
+    if (step_study) loop_step_study(s, label);
   }
 }
 
@@ -133,14 +205,22 @@ int main(int argc, char** argv) {
   CLI::App app{"bench_contact_solvers: the loaded contact on the harmonic solver and on TET10, side by side"};
   std::vector<std::string> cases = {"cases/seed_190_192.toml", "cases/cup_size17.toml"};
   int sweep_points = 20;
+  bool friction_only = false;
   app.add_option("cases", cases, "case files (TOML)");
   app.add_option("--sweep-points", sweep_points, "designs in the drive sweep (0: none)");
+  app.add_flag("--friction", friction_only, "only the friction loop on cup_size17 (with play, and preloaded by three "
+               "face slices): its cost beside the frictionless curve's, then its step study");
   CLI11_PARSE(app, argc, argv);
   try {
+    sw::quiet_progress() = true;
+    if (friction_only) {
+      friction_loops(true);
+      return 0;
+    }
     std::printf("DGEMM (n = 2000): %.1f GF/s\n", sw::bench::dgemm_gflops(2000, 3));
     sw::bench::TempDir dir("bench_contact_solvers_");
     for (const std::string& c : cases) compare(c, dir.path());
-    friction_cost("cases/cup_size17.toml", dir.path());
+    friction_loops(false);
     std::printf("run cases/seed_190_192.toml (fourier: fem, backlash, contact): %.2f s\n",
                 timed("run cases/seed_190_192.toml --out " + (dir.path() / "run").string()));
     if (sweep_points > 0) {

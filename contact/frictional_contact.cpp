@@ -24,12 +24,36 @@ std::string num(double v) {
 
 // ---- The bounded problem: min ½xᵀHx + cᵀx subject to aᵀx = t, lo ≤ x ≤ hi ------------------------------------
 
+/// The symmetric matrix H = [[A, Bᵀ], [B, D]] (n × n blocks) read in place: the blocks stay the caller's, a step
+/// touches the entries of its contacts only.
+struct BlockMatrix {
+  const Eigen::MatrixXd *A, *B, *D;
+  Eigen::Index size() const { return 2 * A->rows(); }
+  double operator()(Eigen::Index i, Eigen::Index j) const {
+    const Eigen::Index n = A->rows();
+    if (i < n) return j < n ? (*A)(i, j) : (*B)(j - n, i);
+    return j < n ? (*B)(i - n, j) : (*D)(i - n, j - n);
+  }
+  double max_diagonal() const { return std::max(A->diagonal().maxCoeff(), D->diagonal().maxCoeff()); }
+  /// H·x for an x with few nonzeros (the closed contacts' forces, the bounds held away from zero): the columns of the
+  /// nonzeros only.
+  Eigen::VectorXd times(const Eigen::VectorXd& x) const {
+    const Eigen::Index n = A->rows();
+    Eigen::VectorXd y = Eigen::VectorXd::Zero(2 * n);
+    for (Eigen::Index j = 0; j < n; ++j)
+      if (x[j] != 0) y.head(n) += x[j] * A->col(j), y.tail(n) += x[j] * B->col(j);
+    for (Eigen::Index j = 0; j < n; ++j)
+      if (x[n + j] != 0) y.head(n) += x[n + j] * B->row(j).transpose(), y.tail(n) += x[n + j] * D->col(j);
+    return y;
+  }
+};
+
 /// Where a variable stands: free, or held at its lower or upper bound (lo = hi: fixed, held at its lower).
 enum class Bound : signed char { Free, Lower, Upper };
 
 /// H symmetric positive definite; lo_j ≤ hi_j (±∞ allowed).
 struct BoundedQp {
-  Eigen::MatrixXd H;
+  BlockMatrix H;
   Eigen::VectorXd c, a, lo, hi;
   double t = 0;
   double gradient_tol = 0;  ///< a held variable whose gradient points into the box by more than this is freed
@@ -60,7 +84,7 @@ struct FreeOptimum {
 FreeOptimum optimum_on(const BoundedQp& qp, const std::vector<Eigen::Index>& F, const Eigen::VectorXd& x) {
   Eigen::VectorXd held = x;
   for (Eigen::Index j : F) held[j] = 0;
-  const Eigen::VectorXd pull = qp.H * held;
+  const Eigen::VectorXd pull = qp.H.times(held);
   const auto n = static_cast<Eigen::Index>(F.size());
   Eigen::MatrixXd M(n, n);
   Eigen::VectorXd r(n), l(n);
@@ -132,7 +156,7 @@ QpIterate solve_bounded_qp(const BoundedQp& qp, QpIterate s) {
   Bound left = Bound::Lower;
   for (Eigen::Index outer = 0; outer < 6 * qp.c.size() + 20; ++outer) {
     const bool stalled = !settle_free_set(qp, s, freed, left);
-    const Eigen::VectorXd g = qp.H * s.x + qp.c - s.psi * qp.a;
+    const Eigen::VectorXd g = qp.H.times(s.x) + qp.c - s.psi * qp.a;
     freed = stalled ? -1 : most_violating(qp, s.where, g);
     if (freed < 0) return s;
     left = s.where[freed];
@@ -196,8 +220,7 @@ void check_problem(const FrictionalContactProblem& p) {
 BoundedQp step_problem(const FrictionalContactProblem& p, double T, const Eigen::VectorXd& slip_prev) {
   const Eigen::Index n = p.q.size();
   BoundedQp qp;
-  qp.H.resize(2 * n, 2 * n);
-  qp.H << p.A, p.A_tn.transpose(), p.A_tn, p.A_tt;
+  qp.H = {&p.A, &p.A_tn, &p.A_tt};
   qp.c.resize(2 * n);
   qp.c << p.q, -slip_prev;
   qp.a.resize(2 * n);
@@ -206,7 +229,7 @@ BoundedQp step_problem(const FrictionalContactProblem& p, double T, const Eigen:
   qp.lo = Eigen::VectorXd::Zero(2 * n);
   qp.hi = Eigen::VectorXd::Constant(2 * n, std::numeric_limits<double>::infinity());
   const double displacement = std::max(qp.c.cwiseAbs().maxCoeff(),
-                                       std::abs(T) * qp.H.diagonal().maxCoeff() / qp.a.cwiseAbs().maxCoeff());
+                                       std::abs(T) * qp.H.max_diagonal() / qp.a.cwiseAbs().maxCoeff());
   qp.gradient_tol = kRoundOff * std::max(displacement, 1e-300);
   return qp;
 }
@@ -262,7 +285,7 @@ struct ContactSets {
 /// against its slip increment, or sticks where that is zero.
 ContactSets sets_of(const FrictionalContactProblem& p, const BoundedQp& qp, const QpIterate& it) {
   const Eigen::Index n = p.q.size();
-  const Eigen::VectorXd slip_increment = (qp.H * it.x + qp.c - it.psi * qp.a).tail(n);
+  const Eigen::VectorXd slip_increment = (qp.H.times(it.x) + qp.c - it.psi * qp.a).tail(n);
   ContactSets sets{std::vector<ContactState>(n, ContactState::Open), Eigen::VectorXd::Zero(n)};
   for (Eigen::Index i = 0; i < n; ++i) {
     if (it.where[i] != Bound::Free) continue;
@@ -302,19 +325,20 @@ Candidate coulomb_on_sets(const FrictionalContactProblem& p, const BoundedQp& qp
       rider.push_back(0.0);
     }
   const auto m = static_cast<Eigen::Index>(var.size());
-  // Row `row` of H·x per unit of unknown k.
-  const auto per_unit = [&](const Eigen::VectorXd& row, Eigen::Index k) {
-    return row[var[k]] + (rider[k] != 0 ? rider[k] * row[n + var[k]] : 0.0);
+  // A row's entries (at(j): its j-th) per unit of unknown k.
+  const auto per_unit = [&](const auto& at, Eigen::Index k) {
+    return at(var[k]) + (rider[k] != 0 ? rider[k] * at(n + var[k]) : 0.0);
   };
   Eigen::MatrixXd M(m + 1, m + 1);
   Eigen::VectorXd rhs(m + 1);
   for (Eigen::Index r = 0; r < m; ++r) {
-    const Eigen::VectorXd row = qp.H.col(var[r]);  // H symmetric: its row
+    const auto row = [&](Eigen::Index j) { return qp.H(var[r], j); };
     for (Eigen::Index k = 0; k < m; ++k) M(r, k) = per_unit(row, k);
     M(r, m) = -qp.a[var[r]];
     rhs[r] = -qp.c[var[r]];
   }
-  for (Eigen::Index k = 0; k < m; ++k) M(m, k) = per_unit(qp.a, k);
+  const auto arm = [&](Eigen::Index j) { return qp.a[j]; };
+  for (Eigen::Index k = 0; k < m; ++k) M(m, k) = per_unit(arm, k);
   M(m, m) = 0;
   rhs[m] = qp.t;
   const Eigen::VectorXd y = M.partialPivLu().solve(rhs);
@@ -330,7 +354,7 @@ bool satisfies_coulomb(const FrictionalContactProblem& p, const BoundedQp& qp, c
                        const Candidate& c) {
   if (!(c.x.allFinite() && std::isfinite(c.psi))) return false;
   const Eigen::Index n = p.q.size();
-  const Eigen::VectorXd g = qp.H * c.x + qp.c - c.psi * qp.a;  // [gap; slip increment]
+  const Eigen::VectorXd g = qp.H.times(c.x) + qp.c - c.psi * qp.a;  // [gap; slip increment]
   const double force_tol =
       kRoundOff * std::max(c.x.cwiseAbs().maxCoeff(), std::abs(qp.t) / qp.a.cwiseAbs().maxCoeff());
   for (Eigen::Index i = 0; i < n; ++i) {
@@ -348,7 +372,7 @@ bool satisfies_coulomb(const FrictionalContactProblem& p, const BoundedQp& qp, c
 FrictionalStep step_state(const FrictionalContactProblem& p, const BoundedQp& qp, const FrictionalStep& prev,
                           const Candidate& c, const ContactSets& sets) {
   const Eigen::Index n = p.q.size();
-  const Eigen::VectorXd g = qp.H * c.x + qp.c - c.psi * qp.a;
+  const Eigen::VectorXd g = qp.H.times(c.x) + qp.c - c.psi * qp.a;
   FrictionalStep s;
   s.torque_Nm = qp.t;
   s.twist_rad = c.psi;
@@ -365,6 +389,14 @@ FrictionalStep step_state(const FrictionalContactProblem& p, const BoundedQp& qp
   return s;
 }
 
+/// How far the state at a cycle's top moved from the one before's: the slips (what a step starts from: its solution
+/// depends on the previous state's slips and the torque alone) over the largest, and the twist.
+double top_state_change(const FrictionalStep& before, const FrictionalStep& after) {
+  const double slips = (after.slip_m - before.slip_m).cwiseAbs().maxCoeff() /
+                       std::max(after.slip_m.cwiseAbs().maxCoeff(), std::numeric_limits<double>::min());
+  return std::max(slips, std::abs(after.twist_rad - before.twist_rad) / std::abs(after.twist_rad));
+}
+
 }  // namespace
 
 int FrictionalStep::count(ContactState s) const { return static_cast<int>(std::count(state.begin(), state.end(), s)); }
@@ -378,15 +410,17 @@ FrictionalStep unloaded_state(const FrictionalContactProblem& p) {
   return s;
 }
 
-FrictionalStep solve_frictional_step(const FrictionalContactProblem& p, double T, const FrictionalStep& previous) {
+FrictionalStep solve_frictional_step(const FrictionalContactProblem& p, double T, const FrictionalStep& previous,
+                                     const FrictionalStep* near) {
   check_problem(p);
   const Eigen::Index n = p.q.size();
   if (previous.normal_force_N.size() != n || previous.tangential_force_N.size() != n || previous.slip_m.size() != n ||
       static_cast<Eigen::Index>(previous.state.size()) != n)
     throw std::invalid_argument("solve_frictional_step: the previous state has other contacts");
   BoundedQp qp = step_problem(p, T, previous.slip_m);
-  Eigen::VectorXd bound = p.friction_coefficient.cwiseProduct(previous.normal_force_N);
-  std::vector<Bound> warm = bounds_of(previous);
+  const FrictionalStep& from = near ? *near : previous;
+  Eigen::VectorXd bound = p.friction_coefficient.cwiseProduct(from.normal_force_N);
+  std::vector<Bound> warm = bounds_of(from);
   for (int pass = 1; pass <= kMaxPasses; ++pass) {
     set_slip_bound(qp, bound);
     const std::optional<QpIterate> start = start_from(qp, warm);
@@ -476,24 +510,17 @@ LoopReading read_loop(const std::vector<FrictionalStep>& history, double T_R) {
 
 SteadyLoop run_steady_loop(const LoadStep& step, const FrictionalStep& start, double T_R, int N, double rel_tol,
                            int max_cycles) {
-  const std::vector<double> first = cycle_torque_history(T_R, N, 1);
-  const std::vector<double> cycle(first.begin() + N + 1, first.end());  // +T_R → −T_R → +T_R, without the top
+  const std::vector<double> once = cycle_torque_history(T_R, N, 1);
+  const auto top = once.begin() + N + 1;
+  const std::vector<double> loading(once.begin(), top), cycle(top, once.end());  // cycle: +T_R → −T_R → +T_R
   SteadyLoop loop;
-  loop.history = run_torque_history(step, start, first);
-  for (loop.cycles = 1; loop.cycles < max_cycles; ++loop.cycles) {
-    const std::vector<FrictionalStep> next = run_torque_history(step, loop.history.back(), cycle);
-    const auto last = loop.history.end() - static_cast<std::ptrdiff_t>(cycle.size());
-    double change = 0, largest = 0;
-    for (std::size_t k = 0; k < cycle.size(); ++k) {
-      change = std::max(change, std::abs(next[k].twist_rad - last[k].twist_rad));
-      largest = std::max(largest, std::abs(next[k].twist_rad));
-    }
+  loop.history = run_torque_history(step, start, loading);
+  for (loop.cycles = 1;; ++loop.cycles) {
+    const FrictionalStep at_top = loop.history.back();
+    const std::vector<FrictionalStep> next = run_torque_history(step, at_top, cycle);
     loop.history.insert(loop.history.end(), next.begin(), next.end());
-    loop.cycle_change_rel = change / largest;
-    if (*loop.cycle_change_rel <= rel_tol) {
-      ++loop.cycles;
-      break;
-    }
+    loop.top_change_rel = top_state_change(at_top, loop.history.back());
+    if (loop.top_change_rel <= rel_tol || loop.cycles == max_cycles) break;
   }
   loop.reading = read_loop(loop.history, T_R);
   return loop;

@@ -32,7 +32,6 @@
 // sticking ones (a Newton step on the fixed point, exact once the sets are right), accepted when every condition
 // holds. Warm starts: each step's first pass starts from the previous step's sets and normal forces.
 #include <functional>
-#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -71,10 +70,13 @@ FrictionalStep unloaded_state(const FrictionalContactProblem& p);
 /// One load step from `previous` to output torque T (N·m): Coulomb's law on the increment. T = 0 is carried only by a
 /// state that holds it (preload, friction locking); a history stands for T = 0 by its limits ±kZeroTorqueLimit·T_R.
 /// Preconditions: the block compliance symmetric positive definite; `previous` of this problem (the same contacts).
-/// Throws InputError for μ_i < 0 (naming the contact and the value), when no contact can carry T (no normal arm of T's
-/// sign to close, as solve_contact), and when the fixed point does not converge (μ too large for a unique increment).
+/// `near`: where the fixed point and the active sets start (a solution of a nearby problem from the same `previous`,
+/// e.g. the last iterate of a caller's loop around the step; default `previous`): the solution is the same, its path
+/// shorter. Throws InputError for μ_i < 0 (naming the contact and the value), when no contact can carry T (no normal
+/// arm of T's sign to close, as solve_contact), and when the fixed point does not converge (μ too large for a unique
+/// increment).
 FrictionalStep solve_frictional_step(const FrictionalContactProblem& p, double torque_Nm,
-                                     const FrictionalStep& previous);
+                                     const FrictionalStep& previous, const FrictionalStep* near = nullptr);
 
 /// A load step: the state at output torque T from the previous state. solve_frictional_step on a problem, or a
 /// caller's own (one that also iterates a part of the problem per step, records what it needs).
@@ -115,13 +117,15 @@ LoopReading read_loop(const std::vector<FrictionalStep>& history, double rated_t
 /// The catalog's history run until its loop is steady. A frictional system under a load cycle need not repeat its
 /// first cycle: where normal and tangential forces are coupled (through A_tn, or through the output's equilibrium) it
 /// can shake down to a steady cycle over several, the changes shrinking geometrically (Klarbring, Ciavarella & Barber,
-/// "Shakedown in elastic contact problems with Coulomb friction", Int. J. Solids Struct. 44, 2007). Cycles are added
-/// until the last one's twists differ from the one before's by at most `rel_tol` of its largest twist, or `max_cycles`
-/// are run. Preconditions as cycle_torque_history's.
+/// "Shakedown in elastic contact problems with Coulomb friction", Int. J. Solids Struct. 44, 2007). A step's solution
+/// depends on the previous state's slips and the torque alone, so a cycle that ends (at +T_R) in the state it started
+/// from is repeated by every later one: cycles are added until the state at the last one's top differs from the one
+/// before's by at most `rel_tol` (the slips over the largest slip, the twist over the twist), or `max_cycles` are run.
+/// With play that is the first cycle. Preconditions as cycle_torque_history's.
 struct SteadyLoop {
   std::vector<FrictionalStep> history;     ///< the first loading and every cycle
   int cycles = 0;
-  std::optional<double> cycle_change_rel;  ///< the last cycle's largest change from the one before (none: one cycle)
+  double top_change_rel = 0;               ///< the state's change at the top over the last cycle
   LoopReading reading;                     ///< of the last cycle
 };
 SteadyLoop run_steady_loop(const LoadStep& step, const FrictionalStep& start, double rated_torque_Nm,

@@ -603,25 +603,27 @@ FrictionalContactProblem ContactAnalyser::frictional_problem() const {
 }
 
 /// The catalog's load cycle with friction, each step settled like the frictionless curve's (the bearing's secants,
-/// the flanks' share of the output torque), run until a cycle repeats the one before to 1e-4 of its largest twist
-/// (at most 4 cycles); the last cycle's loop and its readings.
+/// the flanks' share of the output torque), run until a cycle ends in the state it started from to 1e-4 (at most 4
+/// cycles); the last cycle's loop and its readings.
 void ContactAnalyser::run_friction_loop() {
+  Stopwatch loop_clock;
   const FrictionalContactProblem F = frictional_problem();
   const LoadStep step = [&](double T, const FrictionalStep& previous) {
     const InnerSolve<FrictionalContactProblem, FrictionalStep> inner =
-        [&previous](const FrictionalContactProblem& p, double t, const FrictionalStep*) {
-          return solve_frictional_step(p, t, previous);
+        [&previous](const FrictionalContactProblem& p, double t, const FrictionalStep* last) {
+          return solve_frictional_step(p, t, previous, last);
         };
     FrictionalStep s = solve_torque(F, nf_, lambda_, T, inner).first;
     s.torque_Nm = T;  // the output's (the flanks carry T less the locked generator's share)
     return s;
   };
   const Eigen::VectorXd at_rated = bearing_c_;  // the frictionless curve's at +rated, which the split reads
-  const SteadyLoop loop = run_steady_loop(step, unloaded_state(F), T_R_, N_, 1e-4, 4);
+  const int N = std::max(1, opt_.loop_steps_per_quarter);
+  const SteadyLoop loop = run_steady_loop(step, unloaded_state(F), T_R_, N, 1e-4, 4);
   bearing_c_ = at_rated;
   FrictionLoop f;
   f.friction_coefficient = opt_.friction_coefficient;
-  f.steps_per_quarter = N_;
+  f.steps_per_quarter = N;
   f.cycles = loop.cycles;
   f.hysteresis_loss_rad = loop.reading.hysteresis_loss_rad;
   f.dissipated_energy_J = loop.reading.dissipated_energy_J;
@@ -647,6 +649,7 @@ void ContactAnalyser::run_friction_loop() {
   };
   for (std::size_t i = c.bottom; i <= c.end; ++i) add(i, "loading");
   for (std::size_t i = c.top; i <= c.bottom; ++i) add(i, "unloading");
+  f.seconds = loop_clock.lap();
   out_.friction = std::move(f);
 }
 

@@ -80,6 +80,8 @@ struct ContactOptions {
   /// Coulomb's μ on the tooth flanks ([contact] friction_coefficient); > 0 adds the load cycle's loop
   /// (ContactAnalysis::friction). The generator's stations roll: frictionless.
   double friction_coefficient = 0;
+  /// The loop's torque steps a quarter cycle (T_R/n each; contact/README.md's step study on the size-17 cup).
+  int loop_steps_per_quarter = 20;
 };
 
 /// One flank that can take part.
@@ -142,6 +144,7 @@ struct FrictionLoop {
   double dissipated_energy_J = 0;  ///< the loop's area ∮T dψ
   double friction_work_J = 0;      ///< Σ |q|·|slip increment| over the cycle
   double lost_motion_rad = 0;      ///< between ±4 % of rated on the loop's middle line
+  double seconds = 0;              ///< wall clock of the loop (its steps and readings)
 };
 
 /// Fractions of the twist at rated torque (sum 1): the tangent line at rated torque split by energy, its intercept

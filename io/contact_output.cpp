@@ -1,10 +1,13 @@
 #include "io/contact_output.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <map>
 #include <numbers>
 #include <sstream>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -306,6 +309,48 @@ std::string torque_twist_csv(const ContactAnalysis& a) {
   return s.str();
 }
 
+namespace {
+
+/// The steps whose flank forces the panel draws at −rated and +rated: the curve's ends, or with friction the loop's
+/// bottom (reached on unloading) and its top (the loading branch's end).
+std::pair<const TorqueStep*, const TorqueStep*> steps_at_rated(const ContactAnalysis& a) {
+  if (!a.friction) return {&a.steps.front(), &a.steps.back()};
+  const std::vector<TorqueStep>& loop = a.friction->steps;
+  const auto top = std::find_if(loop.begin(), loop.end(), [](const TorqueStep& s) { return s.branch == "unloading"; });
+  return {&loop.front(), &*std::prev(top)};
+}
+
+/// The normal force on each flank at ±rated torque, summed over the face's slices (one slice: the flank's own).
+LinePlot flank_force_panel(const ContactAnalysis& a) {
+  LinePlot pf;
+  pf.title = std::string(a.friction ? "normal force on each flank at ± rated torque on the loop"
+                                     : "force on each flank at ± rated torque") +
+             " (both teeth of a half-turn pair alike)";
+  pf.x_label = "tooth angle from the major axis (deg)";
+  pf.y_label = "flank force (N)";
+  PlotSeries plus{a.friction ? "+rated (the loop's top), ccw flanks" : "+rated, ccw flanks", {}, {}, "#1f77b4", false,
+                  true};
+  PlotSeries minus{a.friction ? "−rated (the loop's bottom), cw flanks" : "−rated, cw flanks", {}, {}, "#ff7f0e", false,
+                   true};
+  const auto [at_minus, at_plus] = steps_at_rated(a);
+  std::map<std::pair<int, bool>, std::pair<double, double>> per_flank;  // (tooth, ccw) → (angle in deg, force)
+  for (std::size_t i = 0; i < a.flanks.size(); ++i) {
+    const bool ccw = a.flanks[i].flank == Flank::Ccw;
+    auto& [deg, force] = per_flank[{a.flanks[i].tooth, ccw}];
+    deg = a.flanks[i].phi_rad * 180 / std::numbers::pi;
+    force += ccw ? at_plus->flank_force_N[i] : at_minus->flank_force_N[i];
+  }
+  for (const auto& [key, at] : per_flank) {
+    PlotSeries& s = key.second ? plus : minus;
+    s.x.push_back(at.first);
+    s.y.push_back(at.second);
+  }
+  pf.series = {plus, minus};
+  return pf;
+}
+
+}  // namespace
+
 std::string contact_svg(const ContactAnalysis& a, const std::optional<CatalogLaw>& reference) {
   LinePlot tt;
   tt.title = "torque–twist of the drive (generator locked, output turned against the circular spline)";
@@ -333,26 +378,7 @@ std::string contact_svg(const ContactAnalysis& a, const std::optional<CatalogLaw
     cat.label = "catalog size " + std::to_string(reference->size);
     tt.series.push_back(cat);
   }
-  LinePlot pf;
-  pf.title = "force on each flank at ± rated torque (both teeth of a half-turn pair alike)";
-  pf.x_label = "tooth angle from the major axis (deg)";
-  pf.y_label = "flank force (N)";
-  PlotSeries plus{"+rated, ccw flanks", {}, {}, "#1f77b4", false, true};
-  PlotSeries minus{"−rated, cw flanks", {}, {}, "#ff7f0e", false, true};
-  // A flank's force summed over the face's slices (one slice: the flank's own).
-  std::map<std::pair<int, bool>, std::pair<double, double>> per_flank;  // (tooth, ccw) → (angle in deg, force)
-  for (std::size_t i = 0; i < a.flanks.size(); ++i) {
-    const bool ccw = a.flanks[i].flank == Flank::Ccw;
-    auto& [deg, force] = per_flank[{a.flanks[i].tooth, ccw}];
-    deg = a.flanks[i].phi_rad * 180 / std::numbers::pi;
-    force += ccw ? a.steps.back().flank_force_N[i] : a.steps.front().flank_force_N[i];
-  }
-  for (const auto& [key, at] : per_flank) {
-    PlotSeries& s = key.second ? plus : minus;
-    s.x.push_back(at.first);
-    s.y.push_back(at.second);
-  }
-  pf.series = {plus, minus};
+  const LinePlot pf = flank_force_panel(a);
   const std::string top = svg_line_plot(tt), bottom = svg_line_plot(pf);
   std::ostringstream s;
   s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << tt.width << "\" height=\"" << tt.height + pf.height

@@ -10,6 +10,7 @@
 #include "contact/loaded_contact.hpp"
 #include "fem/fourier_solver.hpp"
 #include "io/case.hpp"
+#include "io/contact_output.hpp"
 
 namespace sw {
 namespace {
@@ -33,13 +34,13 @@ const Solved& size17(bool band_held) {
   return *s[band_held];
 }
 
-ContactAnalysis loop_at(double mu, int steps, bool band_held = false) {
+ContactAnalysis loop_at(double mu, int loop_steps, bool band_held = false) {
   const Solved& s = size17(band_held);
   const FlexsplineModel m = flexspline_model(s.c);
   ContactOptions o;
   o.rated_torque_Nm = *s.c.load.rated_torque_Nm;
   o.series = app::series_parts(s.c);
-  o.steps = steps;
+  o.loop_steps_per_quarter = loop_steps;
   o.friction_coefficient = mu;
   return analyse_contact(m, HarmonicBody(m, s.fourier), fem_readout(s.fourier.figures), o);
 }
@@ -84,6 +85,27 @@ TEST(FrictionLoop, LightFrictionsMiddleLineIsTheFrictionlessCurve) {
     if (s.branch == "loading" && std::abs(s.torque_Nm - light.rated_torque_Nm) < 1e-9) loading_at_rated = s.twist_rad;
   EXPECT_NEAR(loading_at_rated / rated, 1.0, 0.01);
   EXPECT_NEAR(light.lost_motion_rad * 10800 / M_PI, none.lost_motion_rad * 10800 / M_PI, 0.01);
+}
+
+// With friction contact.svg's flank-force panel draws the loop's normal forces at its top (+rated, the loading branch's
+// end) and bottom (−rated), not the frictionless curve's: a change of the loop's forces there moves the drawing, one of
+// the curve's ends does not.
+TEST(FrictionLoop, FlankForcePanelDrawsTheLoopsForces) {
+  ContactAnalysis a = loop_at(0.1, 20);
+  ASSERT_TRUE(a.friction.has_value());
+  const std::string drawn = contact_svg(a, std::nullopt);
+  EXPECT_NE(drawn.find("top), ccw flanks"), std::string::npos);  // the legend's "+rated (the loop's top)"
+  ContactAnalysis curve_moved = a;
+  for (TorqueStep* s : {&curve_moved.steps.front(), &curve_moved.steps.back()})
+    for (double& f : s->flank_force_N) f *= 2;
+  EXPECT_EQ(contact_svg(curve_moved, std::nullopt), drawn);
+  std::size_t top = 0;
+  while (a.friction->steps[top + 1].branch == "loading") ++top;
+  for (const std::size_t k : {std::size_t{0}, top}) {
+    ContactAnalysis loop_moved = a;
+    for (double& f : loop_moved.friction->steps[k].flank_force_N) f *= 2;
+    EXPECT_NE(contact_svg(loop_moved, std::nullopt), drawn) << "step " << k;
+  }
 }
 
 }  // namespace

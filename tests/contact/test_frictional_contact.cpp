@@ -356,8 +356,7 @@ TEST(FrictionalContact, SecondCycleEqualsTheFirst) {
 TEST(FrictionalContact, CoupledLoopShakesDownToASteadyCycle) {
   const FrictionalContactProblem p = rim_problem(7, 0.1, kPreloadGap);
   const SteadyLoop loop = steady_loop(p, 10);
-  ASSERT_TRUE(loop.cycle_change_rel.has_value());
-  EXPECT_LE(*loop.cycle_change_rel, 1e-6);
+  EXPECT_LE(loop.top_change_rel, 1e-6);
   EXPECT_GT(loop.cycles, 2);  // the premise: this problem does shake down
   EXPECT_LT(loop.cycles, 10);
   const std::size_t first = 11, cycle = 42;

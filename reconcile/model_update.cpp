@@ -79,6 +79,9 @@ EffectSpec model_spec(const Experiment& e, const ModelCandidate& c, double at, c
   s.headline = [at, cv = c.case_value](const Experiment&, const FitResult& f, int t) {
     return NamedValues{{"value", at + f.terms[t].beta[0]}, {"case_value", cv}};
   };
+  s.held = [](const Experiment&, const FitResult&, int, const std::string& parameter) {
+    return parameter == "case_value" ? std::string("the case") : std::string();
+  };
   return s;
 }
 

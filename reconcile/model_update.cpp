@@ -55,6 +55,7 @@ Vec sensitivity_at(const Experiment& e, const Baseline& base, const ModelCandida
     return kv;
   };
   if (value - h < c.lo) return (response_at(e, base, with(value + h)) - response_at(e, base, with(value))) / h;
+  if (value + h > c.hi) return (response_at(e, base, with(value)) - response_at(e, base, with(value - h))) / h;
   return (response_at(e, base, with(value + h)) - response_at(e, base, with(value - h))) / (2.0 * h);
 }
 
@@ -180,9 +181,16 @@ std::pair<Mat, Vec> projected_system(const RefitProblem& p, const Iterate& it, c
   return {Jp, zp};
 }
 
-/// Levenberg-Marquardt from `start` on re-runs of the model; returns the last iterate and the Jacobian there.
+/// The values moved into the keys' plausible ranges: the model is never run outside them (a key may not even be
+/// valid there: a negative tip rounding), so the refit is a bounded one (projected steps).
+Vec within_ranges(const RefitProblem& p, Vec v) {
+  for (std::size_t i = 0; i < p.keys.size(); ++i) v[i] = std::clamp(v[i], p.keys[i].lo, p.keys[i].hi);
+  return v;
+}
+
+/// Levenberg-Marquardt from `start` (within the ranges) on re-runs of the model; returns the last iterate and the Jacobian there.
 std::pair<Iterate, Mat> levenberg_marquardt(const RefitProblem& p, const Vec& start, int& iterations) {
-  Iterate cur = p.at(start);
+  Iterate cur = p.at(within_ranges(p, start));
   Mat J = p.jacobian(cur);
   double lambda = 1e-3;
   for (iterations = 0; iterations < kMaxIterations; ++iterations) {
@@ -195,7 +203,7 @@ std::pair<Iterate, Mat> levenberg_marquardt(const RefitProblem& p, const Vec& st
       Mat A = JtJ;
       A.diagonal() += lambda * JtJ.diagonal().cwiseMax(1e-300);
       step = A.ldlt().solve(g);
-      const Iterate trial = p.at(cur.values + step);
+      const Iterate trial = p.at(within_ranges(p, cur.values + step));
       if (trial.rss < cur.rss) {
         cur = trial;
         improved = true;
@@ -222,7 +230,9 @@ std::vector<RefitValue> refit_values(const RefitProblem& p, const Iterate& it, c
   std::vector<RefitValue> out;
   for (std::size_t i = 0; i < p.keys.size(); ++i) {
     const double half = 1.959964 * std::sqrt(std::max(cov(i, i), 0.0));
-    out.push_back({p.keys[i].key, it.values[i], it.values[i] - half, it.values[i] + half, p.keys[i].case_value});
+    const ModelCandidate& k = p.keys[i];
+    const bool edge = it.values[i] <= k.lo + 1e-9 * (k.hi - k.lo) || it.values[i] >= k.hi - 1e-9 * (k.hi - k.lo);
+    out.push_back({k.key, it.values[i], it.values[i] - half, it.values[i] + half, k.case_value, edge, k.lo, k.hi});
   }
   return out;
 }
@@ -254,7 +264,13 @@ void set_refitted_values(const Refit& refit, Result& r) {
     for (const RefitValue& v : refit.values)
       if (a.name == model_effect_name(v.key))
         for (Headline& h : a.params)
-          if (h.name == "value") h = {"value", v.value, v.lo, v.hi};
+          if (h.name == "value") {
+            h = {"value", v.value, v.lo, v.hi};
+            if (v.at_range_edge)
+              a.meaning = "the refit stops at the edge of the key's plausible range (" + fmt("%g", v.range_lo) +
+                          " to " + fmt("%g", v.range_hi) + "): the recording asks for more than this part can "
+                          "plausibly give, so read it as a direction, not a value";
+          }
 }
 
 /// The experiment with its baseline replaced by the model re-run at `at` (the prediction and the response).

@@ -68,6 +68,8 @@ inline constexpr double kIndistinguishableCorrelation = 0.95;
 struct RefitValue {
   std::string key;
   double value = 0.0, lo = 0.0, hi = 0.0, case_value = 0.0;
+  bool at_range_edge = false;          ///< the bounded refit stopped on an end of the key's plausible range
+  double range_lo = 0.0, range_hi = 0.0;  ///< that range (ModelCandidate::lo, hi)
 };
 
 /// The model re-run at the refitted values.

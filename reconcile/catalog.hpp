@@ -57,6 +57,9 @@ struct EffectSpec {
   /// Torsion: adds term `term` of a fitted model to the catalog figures and the loop's middle line (empty: the
   /// effect is not read in catalog terms).
   std::function<void(const Experiment&, const FitResult&, int term, CatalogReading&)> catalog;
+  /// Why a fitted term cannot stand although it fits (a physical key asked for beyond its plausible range); "" or
+  /// empty: it can.
+  std::function<std::string(const Experiment&, const FitResult&, int term)> implausible;
   /// Number of sibling hypotheses this one was chosen among (harmonic orders): its p-value is multiplied by it.
   int multiplicity = 1;
   /// Variants of one law (stiffness with one or two breakpoints) exclude each other in a model; harmonic orders

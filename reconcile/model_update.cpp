@@ -80,6 +80,13 @@ EffectSpec model_spec(const Experiment& e, const ModelCandidate& c, double at, c
   s.headline = [at, cv = c.case_value](const Experiment&, const FitResult& f, int t) {
     return NamedValues{{"value", at + f.terms[t].beta[0]}, {"case_value", cv}};
   };
+  s.implausible = [at, c](const Experiment&, const FitResult& f, int t) {
+    const double v = at + f.terms[t].beta[0];
+    if (v >= c.lo && v <= c.hi) return std::string();
+    return "the recording asks for " + c.key + " = " + fmt("%.4g", v) + ", outside its plausible range [" +
+           fmt("%g", c.lo) + ", " + fmt("%g", c.hi) + "] (case " + fmt("%g", c.case_value) +
+           "): this part alone does not explain it";
+  };
   s.held = [](const Experiment&, const FitResult&, int, const std::string& parameter) {
     return parameter == "case_value" ? std::string("the case") : std::string();
   };

@@ -337,6 +337,13 @@ void prefer_physical(std::vector<std::pair<const EffectSpec*, FitResult>>& evals
 
 /// Forward selection: one effect at a time, the best by BIC that passes every test (BIC, simpler rivals, held-out,
 /// removes a signature that points to it, significant against the noise).
+/// EffectSpec::implausible of the spec's term in a fitted model ("" when it has none).
+std::string implausible(const Analysis& a, const EffectSpec& spec, const FitResult& f) {
+  for (std::size_t k = 0; k < f.terms.size(); ++k)
+    if (f.terms[k].spec == &spec && spec.implausible) return spec.implausible(a.e, f, static_cast<int>(k));
+  return "";
+}
+
 void admit_one_at_a_time(Analysis& a) {
   const double bar = a.opt.min_delta_bic;
   while (static_cast<int>(a.cur.terms.size()) < a.opt.max_effects) {
@@ -361,6 +368,10 @@ void admit_one_at_a_time(Analysis& a) {
       const double dbic = alt.bic() - a.cur.bic();
       if (!(dbic < -bar)) {
         a.rejected[id] = label + ": BIC changes by " + fmt("%.1f", dbic) + " (needs < -" + fmt("%.0f", bar) + ")";
+        continue;
+      }
+      if (const std::string why = implausible(a, *spec, alt); !why.empty()) {
+        a.rejected[id] = label + ": " + why;
         continue;
       }
       const double h_cur = a.heldout(a.cur.terms), h_alt = a.heldout(alt.terms);

@@ -146,6 +146,14 @@ TEST(ModelUpdate, NamesTwoKeysChangedAtOnce) {
   expect_updated(closed_form_update(truth, 12), truth);
 }
 
+// A rim far thinner than its plausible range (0.25 mm against [0.35, 0.65]) is not named as a rim at a value the part
+// cannot have (the selection rejects the value it would need); the softer drive is named as series compliance.
+TEST(ModelUpdate, AKeyAskedForBeyondItsPlausibleRangeIsNotNamed) {
+  const ModelUpdate u = closed_form_update({{"flexspline.rim_thickness_mm", 0.25}}, 13);
+  EXPECT_EQ(physical_effects(u.result), 0);
+  EXPECT_NE(effect_named(u.result, "series_compliance"), nullptr);
+}
+
 // At most one false physical effect in 20 recordings of the case's own model (the selection's level per effect is
 // alpha_effect = 0.01 after the BIC bar, so the expected count is well below one).
 TEST(ModelUpdate, NamesNoPhysicalEffectInNullRecordings) {

@@ -27,14 +27,6 @@ constexpr double kArcmin = 10800.0 / std::numbers::pi;
 
 }  // namespace
 
-std::shared_future<SeriesParts> series_in_background(const Case& c) {
-  return std::async(std::launch::async, [c] {
-           SeriesParts s = series_parts(c);
-           if (s.circular_spline) s.circular_spline({});  // solves the ring now (no pattern: an empty block)
-           return s;
-         }).share();
-}
-
 SeriesParts series_parts(const Case& c) {
   SeriesParts s;
   s.teeth_source = "rigid teeth";
@@ -230,9 +222,8 @@ std::unique_ptr<ContactBody> contact_body(const Case& c, const FemJobResult& fem
   return std::make_unique<Tet10Body>(flexspline_model(c), *fem.mesh, *fem.system, fem_u);
 }
 
-ContactAnalysis run_contact_job(const Case& c, const ContactBody& body, const FemReadout& fem, OutputSet& out,
-                                std::shared_future<SeriesParts> series) {
-  const ContactOptions o = contact_options(c, series.valid() ? series.get() : series_parts(c));
+ContactAnalysis run_contact_job(const Case& c, const ContactBody& body, const FemReadout& fem, OutputSet& out) {
+  const ContactOptions o = contact_options(c, series_parts(c));
   const std::optional<CatalogLaw> reference = catalog_reference(c);
   const ContactAnalysis a =
       naming_file(c.path, [&] { return analyse_contact(flexspline_model(c), body, fem, o); });

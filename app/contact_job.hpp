@@ -2,7 +2,6 @@
 // The contact job shared by `strainwave contact` and `strainwave run`: the loaded tooth contact on the FEM's own
 // system, its outputs and summary.
 #include <functional>
-#include <future>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -24,24 +23,6 @@ inline const std::vector<std::string> kContactJobFiles = {"contact.json", "torqu
 /// ring solved when the contact first asks for its block).
 SeriesParts series_parts(const Case& c);
 
-/// The same started in a thread of its own, the circular spline's ring solved there too, so that the tooth pairs'
-/// slabs and the ring (about as long as the harmonic pass together) run beside the FEM.
-std::shared_future<SeriesParts> series_in_background(const Case& c);
-
-/// Runs the FEM job `fem()` and, on the harmonic path when the contact follows, the series parts beside it
-/// (series_in_background; BLAS on one thread while both run, on its own again after). Returns the job's result and the
-/// series parts (an empty future on TET10, whose factor wants every core: the contact job then builds them itself).
-template <class FemJob>
-auto fem_with_series_beside(const Case& c, bool contact_follows, FemJob&& fem) {
-  const bool beside = contact_follows && c.solver.method == SolverMethod::Fourier;
-  std::optional<SingleThreadedBlas> one_thread;
-  if (beside) one_thread.emplace();
-  const auto series = beside ? series_in_background(c) : std::shared_future<SeriesParts>{};
-  auto result = fem();
-  if (beside) series.wait();
-  return std::pair{std::move(result), series};
-}
-
 /// The flexspline body the fem job left for the loaded contact: the harmonic solution's (HarmonicBody) or the TET10
 /// mesh and factor's (Tet10Body, reading the generator's field from `fem_u` when not null). Every argument must
 /// outlive it.
@@ -57,7 +38,6 @@ std::optional<CatalogLaw> catalog_reference(const Case& c);
 /// Runs the contact analysis on the flexspline body with what the FEM gave (`fem`: solved now or read back from an
 /// earlier run's result.json), writes contact.json, torque_twist.csv and contact.svg into the set `out` (owning
 /// kContactJobFiles), prints the summary.
-ContactAnalysis run_contact_job(const Case& c, const ContactBody& body, const FemReadout& fem, OutputSet& out,
-                                std::shared_future<SeriesParts> series = {});
+ContactAnalysis run_contact_job(const Case& c, const ContactBody& body, const FemReadout& fem, OutputSet& out);
 
 }  // namespace sw::app

@@ -42,23 +42,6 @@ BlasInfo detect_blas() {
   return info;
 }
 
-namespace {
-using SetThreadsFn = void (*)(int);
-using GetThreadsFn = int (*)();
-}  // namespace
-
-SingleThreadedBlas::SingleThreadedBlas() {
-  auto get = reinterpret_cast<GetThreadsFn>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
-  auto set = reinterpret_cast<SetThreadsFn>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
-  if (!get || !set) return;
-  previous_ = get();
-  set(1);
-}
-
-SingleThreadedBlas::~SingleThreadedBlas() {
-  if (previous_ > 0) reinterpret_cast<SetThreadsFn>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))(previous_);
-}
-
 struct CholmodFactor::Impl {
   cholmod_common common{};
   cholmod_factor* factor = nullptr;

@@ -22,19 +22,6 @@ struct BlasInfo {
 /// Inspects the loaded BLAS (OpenBLAS is recognised by its openblas_get_config symbol).
 BlasInfo detect_blas();
 
-/// While alive, OpenBLAS runs on one thread (restored after): for stages that run side by side in threads of their
-/// own on small factors, where OpenBLAS's own threads would contend for the same cores. No effect on another BLAS.
-class SingleThreadedBlas {
-public:
-  SingleThreadedBlas();
-  ~SingleThreadedBlas();
-  SingleThreadedBlas(const SingleThreadedBlas&) = delete;
-  SingleThreadedBlas& operator=(const SingleThreadedBlas&) = delete;
-
-private:
-  int previous_ = 0;
-};
-
 class CholmodFactor final : public LinearSolver {
 public:
   /// Analyses and factorises K (upper triangle). Throws InputError with a sentence for CHOLMOD's failures; a matrix

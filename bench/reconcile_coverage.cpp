@@ -2,7 +2,9 @@
 // proof of tests/reconcile/test_identify.cpp (torsion, transmission and backlash, the same noise and concealment) and
 // --seeds noise seeds: how often the effect is named, and per headline parameter the truth has, how often the named
 // effect's interval holds it. Parameters the effect holds (reported as fixed) and a harmonic's order are not
-// intervals and are left out. Printed figures only.
+// intervals and are left out. Kind `model`: the model-updating proofs of tests/reconcile/test_model_update.cpp on the
+// closed-form drive (each physical key changed alone, its noise), the refitted value's interval against the true value.
+// Printed figures only.
 //
 //   build/bench/bench_reconcile_coverage                       # 20 seeds, concealment 0.5
 //   build/bench/bench_reconcile_coverage --concealment 2 --kind torsion
@@ -17,7 +19,9 @@
 
 #include "common/progress.hpp"
 #include "reconcile/reconcile.hpp"
+#include "reconcile/model_update.hpp"
 #include "reconcile/synth.hpp"
+#include "tests/reconcile/closed_form_drive.hpp"
 
 namespace {
 
@@ -85,13 +89,46 @@ void score(const Result& r, const std::string& name, const nlohmann::json& truth
   t.named += found;
 }
 
+/// The model-updating proofs: the closed-form drive with one key at `value`, 2000 samples of a +-9.5 N*m torsion loop
+/// with white noise 2e-6 rad (test_model_update.cpp), updated over the four candidates; the named key's refitted
+/// value against `value`.
+void model_coverage(int seeds) {
+  const Baseline base = closed_form::baseline();
+  const std::vector<std::pair<std::string, double>> truths = {{"flexspline.rim_thickness_mm", 0.45},
+                                                              {"flexspline.wall_thickness_mm", 0.30},
+                                                              {"wave_generator.radial_deformation_mm", 0.20},
+                                                              {"gear.tip_rounding_flexspline_mm", 0.02}};
+  for (const auto& [key, value] : truths) {
+    Tally t;
+    for (int s = 0; s < seeds; ++s) {
+      SynthOptions o;
+      o.baseline.prediction = closed_form::drive({{key, value}});
+      TorsionRows rows;
+      rows.torque_amplitude_Nm = 9.5;
+      o.rows = rows;
+      o.samples = 2000;
+      o.white_sd = 2e-6;
+      o.seed = 1000 + s;
+      const Recording rec = parse_recording(format_recording(synthesize(o).recording), "model.csv");
+      const auto start = std::chrono::steady_clock::now();
+      const ModelUpdate u = update_model(make_experiment(rec, base), base, closed_form::candidates());
+      t.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      score(u.result, model_effect_name(key), nlohmann::json{{"value", value}}, t);
+    }
+    std::printf("%-13s %-38s named %2d/%d, extra names %d, %.2f s/recording\n", "model",
+                (key + "=" + std::to_string(value).substr(0, 4)).c_str(), t.named, seeds, t.extra, t.seconds / seeds);
+    for (const auto& [name, n] : t.counted)
+      std::printf("    %-24s coverage of the 95 %% interval %2d/%d\n", name.c_str(), t.covered[name], n);
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"reconcile: coverage of the 95 % intervals over noise seeds, single-effect proofs"};
   int seeds = 20;
   double concealment = 0.5;
-  std::string kinds = "torsion,transmission,backlash";
+  std::string kinds = "torsion,transmission,backlash,model";
   app.add_option("--seeds", seeds, "noise seeds per effect")->capture_default_str();
   app.add_option("--concealment", concealment, "effect RMS / noise RMS")->capture_default_str();
   app.add_option("--kind", kinds, "comma-separated kinds")->capture_default_str();
@@ -116,5 +153,6 @@ int main(int argc, char** argv) {
     for (const auto& [name, n] : t.counted)
       std::printf("    %-24s coverage of the 95 %% interval %2d/%d\n", name.c_str(), t.covered[name], n);
   }
+  if (kinds.find("model") != std::string::npos) model_coverage(seeds);
   return 0;
 }

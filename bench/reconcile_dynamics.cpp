@@ -61,6 +61,7 @@ sw::Case bench_case(const BenchOptions& o) {
   p.pair_motion = o.pairs == "frozen" ? sw::PairMotion::Frozen : sw::PairMotion::Moving;
   p.pair_stiffness = o.stiffness == "constant" ? sw::PairStiffness::Constant : sw::PairStiffness::Teeth;
   p.rim = o.rim == "fem" ? sw::RimCoupling::Fem : sw::RimCoupling::Rigid;
+  if (p.rim == sw::RimCoupling::Fem) c.solver.method = sw::SolverMethod::Tet10;  // the coupling reads TET10's body
   p.duration_s = 0.04;
   p.output_step_s = 1.0e-5;
   p.load_ramp_start_s = 0.012;

@@ -236,6 +236,16 @@ EffectSpec hysteresis_variant(int elements) {
     }
     return v;
   };
+  // A friction element dissipates: two elements fitted with losses of opposite sign are a difference of two nearly
+  // equal columns (a derivative), not friction.
+  s.implausible = [](const Experiment& e, const FitResult& f, int t) {
+    const Term& term = f.terms[t];
+    for (int j = 0; j < term.theta.size(); ++j)
+      if (hysteresis_loss_rad(term.beta[j], term.theta[j], torsion(e).torque_amplitude_Nm) < 0.0)
+        return std::string("a friction element would return energy (a negative loss): the two elements cancel "
+                           "rather than describe friction");
+    return std::string();
+  };
   s.catalog = [](const Experiment&, const FitResult& f, int i, CatalogReading& r) {
     const Term& t = f.terms[i];
     const double R = r.figures.rated_torque_Nm;

@@ -238,7 +238,7 @@ double covariance_step(const Experiment& e, const FitResult& f, const Vec& p0, i
 
 /// Covariance of params() (whitened Gauss-Newton, s^2 (J^T J)^+) from the Jacobian of the whitened prediction of the
 /// first `rows` rows (central differences).
-Mat parameter_covariance(const Experiment& e, const FitResult& out, const ArModel& ar, int rows) {
+Mat parameter_covariance(const Experiment& e, FitResult& out, const ArModel& ar, int rows) {
   const Vec p0 = out.params();
   Mat J(out.n_w, p0.size());
   for (int j = 0; j < p0.size(); ++j) {
@@ -251,6 +251,7 @@ Mat parameter_covariance(const Experiment& e, const FitResult& out, const ArMode
     b.set_params(pb);
     J.col(j) = whiten(ar, Vec((model_contribution(e, a) - model_contribution(e, b)).head(rows))) / (2.0 * h);
   }
+  out.jac_w = J;
   const double s2 = out.rss_w / std::max(1, out.n_w - out.k);
   const Mat JtJ = J.transpose() * J;
   // Scale for conditioning, then pseudo-inverse.
@@ -276,12 +277,72 @@ FitResult fit_model(const Experiment& e, const Vec& y, std::vector<Term> terms, 
   return out;
 }
 
-std::vector<Headline> headline_with_ci(const Experiment& e, const FitResult& model, int term) {
+namespace {
+
+/// Whitened RSS of the model with term `term`'s nonlinear parameter q fixed at `value` and every other free nonlinear
+/// parameter re-fitted from its fitted value (the profile), over all rows.
+double profile_rss(const Experiment& e, const IntervalNoise& noise, const FitResult& model, int term, int q,
+                   double value) {
+  std::vector<Term> terms = model.terms;
+  terms[term].theta[q] = value;
+  Problem prob = make_problem(e, *noise.y, terms, *noise.ar, e.n);
+  Vec start(static_cast<int>(prob.slot.size()) - 1), lo(start.size()), hi(start.size());
+  std::vector<std::pair<int, int>> slots;
+  for (std::size_t k = 0; k < prob.slot.size(); ++k) {
+    if (prob.slot[k] == std::pair{term, q}) continue;
+    lo[slots.size()] = prob.lo[k];
+    hi[slots.size()] = prob.hi[k];
+    start[slots.size()] = terms[prob.slot[k].first].theta[prob.slot[k].second];
+    slots.push_back(prob.slot[k]);
+  }
+  prob.slot = slots;
+  prob.lo = lo;
+  prob.hi = hi;
+  const Vec best = start.size() > 0 ? polish(prob, {start}, start) : start;
+  return prob.solve(best).rss;
+}
+
+/// The profile interval of nonlinear parameter q of term `term`: the values whose profile RSS exceeds the fitted one
+/// by at most `delta_rss` (stepping out from the fit, then bisecting), within the parameter's bounds.
+std::pair<double, double> profile_interval(const Experiment& e, const IntervalNoise& noise, const FitResult& model,
+                                           int term, int q, double delta_rss, double first_step) {
+  const double at = model.terms[term].theta[q];
+  const auto [lo, hi] = model.terms[term].spec->bounds(e);
+  const double bound[2] = {lo[q], hi[q]};
+  double ends[2];
+  for (int side = 0; side < 2; ++side) {
+    const double dir = side == 0 ? -1.0 : 1.0;
+    double inside = at, step = std::max(first_step, 1e-6 * (hi[q] - lo[q])), outside = NAN;
+    while (std::isnan(outside)) {
+      const double v = dir < 0 ? std::max(bound[0], inside - step) : std::min(bound[1], inside + step);
+      if (profile_rss(e, noise, model, term, q, v) - model.rss_w > delta_rss) outside = v;
+      else if (v == bound[side]) break;
+      else inside = v, step *= 2.0;
+    }
+    if (std::isnan(outside)) {
+      ends[side] = bound[side];
+      continue;
+    }
+    for (int it = 0; it < 30; ++it) {
+      const double mid = 0.5 * (inside + outside);
+      (profile_rss(e, noise, model, term, q, mid) - model.rss_w > delta_rss ? outside : inside) = mid;
+    }
+    ends[side] = 0.5 * (inside + outside);
+  }
+  return {ends[0], ends[1]};
+}
+
+}  // namespace
+
+std::vector<Headline> headline_with_ci(const Experiment& e, const FitResult& model, int term,
+                                       const IntervalNoise& noise) {
+  const SpectralCalibration cal = noise.cal ? *noise.cal : SpectralCalibration{};
   const NamedValues base = model.terms[term].spec->headline(e, model, term);
   std::vector<Headline> out;
   const EffectSpec& spec = *model.terms[term].spec;
   for (const auto& [name, v] : base) out.push_back({name, v, v, v, spec.held ? spec.held(e, model, term, name) : ""});
   if (model.cov.size() == 0) return out;
+  const double s2 = model.rss_w / std::max(1, model.n_w - model.k);
   const Vec p0 = model.params();
   Mat G(base.size(), p0.size());
   for (int j = 0; j < p0.size(); ++j) {
@@ -298,10 +359,38 @@ std::vector<Headline> headline_with_ci(const Experiment& e, const FitResult& mod
   }
   for (std::size_t i = 0; i < base.size(); ++i) {
     if (base[i].first == "order" || out[i].fixed()) continue;
-    const double var = G.row(i) * model.cov * G.row(i).transpose();
-    const double half = 1.959964 * std::sqrt(std::max(var, 0.0));
+    double var = G.row(i) * model.cov * G.row(i).transpose(), quantile = 1.959964;
+    // The headline is g^T p = v^T r_w + const with v = J (J^T J)^+ g (the fit's influence on it): its variance at the
+    // noise level the calibration measured where v's energy lies, with Student's t at that level's degrees of freedom.
+    // A slow headline (an offset, a level per torque) is where the AR model's level is low and the Wald interval
+    // (s^2 g^T (J^T J)^+ g) too narrow.
+    if (cal.valid() && model.jac_w.rows() == cal.n && s2 > 0.0) {
+      double dof = 0.0;
+      const Vec v = model.jac_w * (model.cov * G.row(i).transpose() / s2);
+      var = calibrated_variance(cal, v, &dof);
+      quantile = t_quantile(0.975, std::max(dof, 1.0));
+    }
+    const double half = quantile * std::sqrt(std::max(var, 0.0));
     out[i].lo = base[i].second - half;
     out[i].hi = base[i].second + half;
+    // A headline that is a nonlinear parameter itself (a breakpoint, a transition torque) is where the linearisation
+    // is poorest (a breakpoint the data barely locate): its interval is also the profile's, at the RSS rise that
+    // gives the half-width above for a quadratic profile, s^2 half^2 / (g^T cov g), and the wider of the two stands.
+    // Where the linearisation gives no width (a parameter on its bound, two elements that coincide) the profile
+    // alone stands, at Wald's RSS rise s^2 1.96^2.
+    const double wald = G.row(i) * model.cov * G.row(i).transpose();
+    if (!noise.y || !noise.ar) continue;
+    const bool linearised = wald > 0.0 && half > 0.0;
+    const double delta_rss = linearised ? s2 * half * half / wald : s2 * 1.959964 * 1.959964;
+    for (int q = 0; q < spec.n_nonlinear(); ++q) {
+      if (model.terms[term].theta[q] != base[i].second) continue;
+      const auto [lo, hi] = spec.bounds(e);
+      const double first_step = linearised ? 0.5 * half : 1e-3 * (hi[q] - lo[q]);
+      const auto [plo, phi] = profile_interval(e, noise, model, term, q, delta_rss, first_step);
+      out[i].lo = std::min(out[i].lo, plo);
+      out[i].hi = std::max(out[i].hi, phi);
+      break;
+    }
   }
   return out;
 }

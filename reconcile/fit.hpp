@@ -25,6 +25,7 @@ struct FitResult {
   int n_w = 0;                   ///< whitened rows
   int k = 0;                     ///< free parameters (rank of the linear part + nonlinear parameters)
   Eigen::MatrixXd cov;           ///< covariance of params() (whitened Gauss-Newton, s^2 (J^T J)^+)
+  Eigen::MatrixXd jac_w;         ///< the whitened Jacobian J of params() behind cov (n_w rows)
   double bic() const;
   /// All parameters stacked: nuisance beta, then per term beta then theta.
   Eigen::VectorXd params() const;
@@ -52,15 +53,28 @@ struct FitOptions {
 FitResult fit_model(const Experiment& e, const Eigen::VectorXd& y, std::vector<Term> terms, const ArModel& ar,
                     const FitOptions& options = {});
 
-/// Headline parameters of term `term` with 95 % Wald intervals by the delta method (value, lo, hi). A parameter the
-/// effect holds (EffectSpec::held) has no interval: lo = hi = value and `fixed_from` says where it is read.
+/// The noise behind a fit's intervals: its calibration (`cal`, built on the same whitened rows as the fit), and the
+/// data the fit was made to with its AR model (`y`, `ar`: the profile of a nonlinear parameter refits them). Any may
+/// be null: Wald's intervals then.
+struct IntervalNoise {
+  const SpectralCalibration* cal = nullptr;
+  const Eigen::VectorXd* y = nullptr;
+  const ArModel* ar = nullptr;
+};
+
+/// Headline parameters of term `term` (a fit to all rows) with 95 % intervals (value, lo, hi) by the delta method:
+/// Wald's, or, with a valid calibration, the headline's variance at the level the calibration measured where its
+/// influence lies, with Student's t at that level's degrees of freedom. A headline that is one of the term's nonlinear
+/// parameters gets, with `y` and `ar`, the hull of that interval and its profile interval. A parameter the effect holds
+/// (EffectSpec::held) has no interval: lo = hi = value and `fixed_from` says where it is read.
 struct Headline {
   std::string name;
   double value = 0.0, lo = 0.0, hi = 0.0;
   std::string fixed_from;  ///< "" for a fitted parameter
   bool fixed() const { return !fixed_from.empty(); }
 };
-std::vector<Headline> headline_with_ci(const Experiment& e, const FitResult& model, int term);
+std::vector<Headline> headline_with_ci(const Experiment& e, const FitResult& model, int term,
+                                       const IntervalNoise& noise = {});
 
 /// Evenly spaced start grid between lo and hi; log-spaced when lo > 0 and hi / lo > 20.
 std::vector<double> start_grid(double lo, double hi, int count);

@@ -227,16 +227,26 @@ std::pair<Iterate, Mat> levenberg_marquardt(const RefitProblem& p, const Vec& st
   return {cur, J};
 }
 
-/// 95 % intervals of the values from the final Jacobian: s^2 (Jp^T Jp)^-1, s^2 the whitened residual variance.
-std::vector<RefitValue> refit_values(const RefitProblem& p, const Iterate& it, const Mat& J) {
+/// 95 % intervals of the values from the final Jacobian: s^2 (Jp^T Jp)^-1, s^2 the whitened residual variance, or,
+/// with the selection's calibration of the noise on the same rows, each value's variance at the level measured where
+/// its influence v = Jp (Jp^T Jp)^+ e_i lies, with Student's t at that level's degrees of freedom (headline_with_ci).
+std::vector<RefitValue> refit_values(const RefitProblem& p, const Iterate& it, const Mat& J,
+                                     const SpectralCalibration& cal) {
   const auto [Jp, zp] = projected_system(p, it, J);
   const int dof = std::max(1, static_cast<int>(zp.size()) - static_cast<int>(p.linear.cols() + p.keys.size()));
   const double s2 = it.rss / dof;
   const Eigen::CompleteOrthogonalDecomposition<Mat> cod(Jp.transpose() * Jp);
-  const Mat cov = s2 * Mat(cod.pseudoInverse());
+  const Mat inverse = cod.pseudoInverse();
+  const bool calibrated = cal.valid() && cal.n == Jp.rows();
   std::vector<RefitValue> out;
   for (std::size_t i = 0; i < p.keys.size(); ++i) {
-    const double half = 1.959964 * std::sqrt(std::max(cov(i, i), 0.0));
+    double var = s2 * inverse(i, i), quantile = 1.959964;
+    if (calibrated) {
+      double level_dof = 0.0;
+      var = calibrated_variance(cal, Vec(Jp * inverse.col(i)), &level_dof);
+      quantile = t_quantile(0.975, std::max(level_dof, 1.0));
+    }
+    const double half = quantile * std::sqrt(std::max(var, 0.0));
     const ModelCandidate& k = p.keys[i];
     const bool edge = it.values[i] <= k.lo + 1e-9 * (k.hi - k.lo) || it.values[i] >= k.hi - 1e-9 * (k.hi - k.lo);
     out.push_back({k.key, it.values[i], it.values[i] - half, it.values[i] + half, k.case_value, edge, k.lo, k.hi});
@@ -360,7 +370,7 @@ std::optional<Refit> refit_model(const Experiment& e, const Baseline& base, cons
   out.heldout_rms = rms(Vec((e.measured - train_prediction).tail(hold)));
   p.rows = e.n;
   const auto [it, J] = levenberg_marquardt(p, train.values, out.iterations);
-  out.values = refit_values(p, it, J);
+  out.values = refit_values(p, it, J, r.calibration);
   out.key_values = p.key_values(it.values);
   out.model_response = it.response;
   out.prediction = it.response + p.linear * it.linear_beta;

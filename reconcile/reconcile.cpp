@@ -346,6 +346,14 @@ std::string implausible(const Analysis& a, const EffectSpec& spec, const FitResu
 
 void admit_one_at_a_time(Analysis& a) {
   const double bar = a.opt.min_delta_bic;
+  // A physical key's first "the recording asks for KEY = v" stands: the value it would need with the fewest other
+  // effects in the model (alone against the model, in the first round), which later rounds would replace by its
+  // answer to what those effects left.
+  const auto reject = [&a](const EffectSpec& spec, const std::string& reason) {
+    std::string& old = a.rejected[spec.id()];
+    if (is_model_effect(spec) && old.find(" asks for ") != std::string::npos) return;
+    old = reason;
+  };
   while (static_cast<int>(a.cur.terms.size()) < a.opt.max_effects) {
     std::vector<std::pair<const EffectSpec*, FitResult>> evals;
     for (const auto& id : a.candidates) {
@@ -367,20 +375,22 @@ void admit_one_at_a_time(Analysis& a) {
       const std::string id = spec->id(), label = spec->label;
       const double dbic = alt.bic() - a.cur.bic();
       if (!(dbic < -bar)) {
-        a.rejected[id] = label + ": BIC changes by " + fmt("%.1f", dbic) + " (needs < -" + fmt("%.0f", bar) + ")";
+        reject(*spec, label + ": BIC changes by " + fmt("%.1f", dbic) + " (needs < -" + fmt("%.0f", bar) + ")");
         continue;
       }
       if (const std::string why = implausible(a, *spec, alt); !why.empty()) {
-        a.rejected[id] = label + ": " + why;
+        std::string beside;
+        for (const auto& t : a.cur.terms) beside += (beside.empty() ? " (beside " : ", ") + t.spec->label;
+        reject(*spec, label + ": " + why + (beside.empty() ? "" : beside + " in the model)"));
         continue;
       }
       const double h_cur = a.heldout(a.cur.terms), h_alt = a.heldout(alt.terms);
       if (const std::string rival = simpler_rival(a, *spec, alt, h_alt, passing); !rival.empty()) {
-        a.rejected[id] = label + ": the simpler rival " + rival;
+        reject(*spec, label + ": the simpler rival " + rival);
         continue;
       }
       if (!(h_alt < h_cur)) {
-        a.rejected[id] = label + ": held-out RMS not improved (" + fmt("%.4g", h_cur) + " -> " + fmt("%.4g", h_alt) + ")";
+        reject(*spec, label + ": held-out RMS not improved (" + fmt("%.4g", h_cur) + " -> " + fmt("%.4g", h_alt) + ")");
         continue;
       }
       bool removes = false;
@@ -394,8 +404,8 @@ void admit_one_at_a_time(Analysis& a) {
         else left = a.sigs[i].name + " (p " + fmt("%.2g", after) + ")";
       }
       if (!removes) {
-        a.rejected[id] = label + ": " + (left.empty() ? "its signatures are already explained by other effects"
-                                                      : "alone it leaves its signature " + left);
+        reject(*spec, label + ": " + (left.empty() ? "its signatures are already explained by other effects"
+                                                   : "alone it leaves its signature " + left));
         continue;
       }
       // Against the current model (for a richer variant of a law: against the poorer one it replaces).
@@ -404,7 +414,7 @@ void admit_one_at_a_time(Analysis& a) {
         if (spec->conflicts(*t.spec)) nl_extra -= t.spec->n_nonlinear();
       const auto [p, test] = a.effect_test(a.cur, alt, nl_extra);
       if (!(p <= a.opt.alpha_effect)) {
-        a.rejected[id] = label + ": not significant against the estimated noise (" + test + " p = " + fmt("%.3g", p) + ")";
+        reject(*spec, label + ": not significant against the estimated noise (" + test + " p = " + fmt("%.3g", p) + ")");
         continue;
       }
       a.accept(*spec, dbic, p, test);
@@ -514,6 +524,14 @@ void prune(Analysis& a) {
       for (const auto& v : effect_catalog(a.e.kind()))
         if (spec.conflicts(v) && complexity(v) < complexity(spec))
           reductions.emplace_back(a.fit(with(without(a.cur.terms, i), &v)), spec.n_nonlinear() - v.n_nonlinear());
+      // A term whose fit cannot stand (friction elements that cancel) goes first, to its best reduction.
+      if (const std::string bad = implausible(a, spec, a.cur); !bad.empty()) {
+        const auto best = std::min_element(reductions.begin(), reductions.end(), [](const auto& x, const auto& z) {
+          return x.first.bic() < z.first.bic();
+        });
+        removable.push_back({i, best->first, -INFINITY, bad});
+        continue;
+      }
       for (auto& [red, nl_extra] : reductions) {
         const double cost = red.bic() - a.cur.bic();
         std::string why;
@@ -548,9 +566,10 @@ void prune(Analysis& a) {
     const EffectSpec* variant = nullptr;  // the poorer variant that replaces it, if any
     for (const auto& t : best->reduced.terms)
       if (gone.conflicts(*t.spec)) variant = t.spec;
-    a.rejected[gone.id()] = gone.label + ": pruned, " +
+    a.rejected[gone.id()] = gone.label + ": " +
+                            (std::isinf(best->cost) ? "as fitted " + best->why + "; " : std::string("pruned, ")) +
                             (variant ? "replacing it by " + variant->label : std::string("removing it")) +
-                            " costs nothing significant (" + best->why + ")";
+                            (std::isinf(best->cost) ? "" : " costs nothing significant (" + best->why + ")");
     a.accepted.erase(gone.id());
     if (variant) a.accept(*variant, 0.0, 1.0, "pruned to");
     progress("reconcile: pruned " + gone.id() + " (" + best->why + ")");
@@ -750,7 +769,7 @@ void finalise(Analysis& a, Result& r) {
     const EffectSpec& spec = *a.cur.terms[i].spec;
     const int term = static_cast<int>(i);
     AcceptedEffect x = a.accepted[spec.id()];
-    x.params = widened(a.e, a.cur, term, discrepancy[i], headline_with_ci(a.e, a.cur, term));
+    x.params = widened(a.e, a.cur, term, discrepancy[i], headline_with_ci(a.e, a.cur, term, {&a.cal, &a.y, &a.ar}));
     x.model_discrepancy = discrepancy[i];
     if (spec.meaning) x.meaning = spec.meaning(a.e, a.cur, term);
     r.effects.push_back(x);

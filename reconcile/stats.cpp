@@ -248,29 +248,16 @@ SpectralCalibration spectral_calibration(const Eigen::MatrixXd& rich_w, const Ei
   return cal;
 }
 
-FTest calibrated_f_test(const SpectralCalibration& cal, const Eigen::MatrixXd& base, const Eigen::MatrixXd& extra,
-                        const Eigen::VectorXd& y) {
-  if (!cal.valid() || cal.n != y.size()) return f_test(base, extra, y);
-  int rank_full = 0;
-  FTest t = nested_fits(base, extra, y, rank_full);
-  if (t.df_extra <= 0) return t;
-  // Orthonormal basis of the extra columns with base projected out: where the tested pattern's energy lies.
-  const Eigen::MatrixXd qb = orthonormal_basis(base);
-  Eigen::MatrixXd ex = extra;
-  if (qb.cols() > 0) ex -= qb * (qb.transpose() * extra);
-  const Eigen::MatrixXd qe = orthonormal_basis(ex);
-  if (qe.cols() == 0) return t;
+CalibratedLevel calibrated_level(const SpectralCalibration& cal, const Eigen::VectorXd& w) {
   const int n = cal.n;
-  Eigen::VectorXd w = Eigen::VectorXd::Zero(n);
-  for (int c = 0; c < qe.cols(); ++c) w += power_spectrum(qe.col(c));
-  w /= w.sum();
   // Smoothed level s_j = sum_band I / sum_band (1 - h); estimate sum_j w_j s_j = sum_i c_i I_i.
   const Eigen::VectorXd free_dims = (1.0 - cal.leverage.array()).max(0.0).matrix();
   const Eigen::VectorXd denom = circular_moving_sum(free_dims, cal.half_width);
   Eigen::VectorXd wd(n);
   for (int j = 0; j < n; ++j) wd[j] = denom[j] > 1e-9 ? w[j] / denom[j] : 0.0;
   const Eigen::VectorXd c = circular_moving_sum(wd, cal.half_width);
-  const double level = c.dot(cal.periodogram);
+  CalibratedLevel out;
+  out.value = c.dot(cal.periodogram);
   // Satterthwaite: I_i (i and n - i are the same ordinate) ~ m_i chi2_2 / 2, m_i = s_i (1 - h_i); m_i from the data.
   const Eigen::VectorXd s_hat = circular_moving_sum(cal.periodogram, cal.half_width).cwiseQuotient(
       denom.cwiseMax(1e-9));
@@ -283,7 +270,44 @@ FTest calibrated_f_test(const SpectralCalibration& cal, const Eigen::MatrixXd& b
     mean += ci * mi;
     var += (single ? 2.0 : 1.0) * ci * ci * mi * mi;
   }
-  const double nu = var > 0.0 ? 2.0 * mean * mean / var : 1e9;
+  out.dof = var > 0.0 ? 2.0 * mean * mean / var : 1e9;
+  return out;
+}
+
+double calibrated_variance(const SpectralCalibration& cal, const Eigen::VectorXd& v, double* dof) {
+  const CalibratedLevel l = calibrated_level(cal, power_spectrum(v));
+  if (dof) *dof = l.dof;
+  return l.value;
+}
+
+double t_quantile(double p, double dof) {
+  // P(|t| > q) = P(F(1, dof) > q^2) = 2 (1 - p): bisection on the tail, which falls monotonically in q.
+  const double tail = 2.0 * (1.0 - p);
+  double lo = 0.0, hi = 1.0;
+  while (f_upper_tail(hi * hi, 1.0, dof) > tail && hi < 1e6) hi *= 2.0;
+  for (int it = 0; it < 100; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (f_upper_tail(mid * mid, 1.0, dof) > tail ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+FTest calibrated_f_test(const SpectralCalibration& cal, const Eigen::MatrixXd& base, const Eigen::MatrixXd& extra,
+                        const Eigen::VectorXd& y) {
+  if (!cal.valid() || cal.n != y.size()) return f_test(base, extra, y);
+  int rank_full = 0;
+  FTest t = nested_fits(base, extra, y, rank_full);
+  if (t.df_extra <= 0) return t;
+  // Orthonormal basis of the extra columns with base projected out: where the tested pattern's energy lies.
+  const Eigen::MatrixXd qb = orthonormal_basis(base);
+  Eigen::MatrixXd ex = extra;
+  if (qb.cols() > 0) ex -= qb * (qb.transpose() * extra);
+  const Eigen::MatrixXd qe = orthonormal_basis(ex);
+  if (qe.cols() == 0) return t;
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(cal.n);
+  for (int c = 0; c < qe.cols(); ++c) w += power_spectrum(qe.col(c));
+  const CalibratedLevel l = calibrated_level(cal, w / w.sum());
+  const double level = l.value, nu = l.dof;
   t.df_resid = static_cast<int>(std::max(1.0, std::floor(nu)));
   if (!(level > 0.0)) return t;
   t.f = std::max(0.0, (t.rss_base - t.rss_full) / t.df_extra) / level;

@@ -78,6 +78,22 @@ struct SpectralCalibration {
 SpectralCalibration spectral_calibration(const Eigen::MatrixXd& rich_w, const Eigen::VectorXd& resid_w,
                                          int half_width = 20);
 
+/// The calibrated level sum_j w_j s_j of the whitened noise under spectral weights w (full circle), with the
+/// Satterthwaite degrees of freedom of that estimate.
+struct CalibratedLevel {
+  double value = 0.0;
+  double dof = 0.0;
+};
+CalibratedLevel calibrated_level(const SpectralCalibration& cal, const Eigen::VectorXd& w);
+
+/// Variance of v^T r for r the whitened noise (n = cal.n rows) at the calibrated level of each frequency: s^2 ||v||^2
+/// where the AR model is right, more where the noise has more power than it says (a slow v: a mean offset, a torque
+/// level). `dof` (optional): the Satterthwaite degrees of freedom of that variance.
+double calibrated_variance(const SpectralCalibration& cal, const Eigen::VectorXd& v, double* dof = nullptr);
+
+/// The p-quantile of Student's t with `dof` degrees of freedom (dof > 0).
+double t_quantile(double p, double dof);
+
 /// Nested test like f_test, but with the noise level in the denominator taken from the calibration at the
 /// frequencies where the extra columns (orthogonalised against base) carry their energy: F(df_extra, nu) with nu the
 /// Satterthwaite degrees of freedom of that level. Inputs whitened with the AR model the calibration was built with.

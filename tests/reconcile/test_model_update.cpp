@@ -18,6 +18,7 @@
 #include "io/case.hpp"
 #include "reconcile/model_update.hpp"
 #include "reconcile/synth.hpp"
+#include "tests/reconcile/closed_form_drive.hpp"
 
 namespace sw::reconcile {
 namespace {
@@ -31,48 +32,14 @@ constexpr double kRefitOverNoise = 1.2;
 constexpr double kNoise_rad = 2e-6;
 constexpr double kAmplitude_Nm = 9.5;
 
-// ---- the closed-form model -----------------------------------------------------------------------------------------
+// ---- the closed-form model (tests/reconcile/closed_form_drive.hpp) ------------------------------------------------
 
-constexpr double kRim = 0.5, kWall = 0.35, kDeformation = 0.18, kTip = 0.0;
+using closed_form::key_of;
+using closed_form::kRim;
 
-double key_of(const ModelKeyValues& kv, const std::string& key, double fallback) {
-  for (const auto& [k, v] : kv)
-    if (k == key) return v;
-  return fallback;
-}
-
-/// twist(T) of the closed-form drive: rim and wall compliances in series (the rim's bending goes as 1/t^3, the
-/// wall's shear as 1/t), a stiffening tooth term, a soft start whose breakpoint moves with the generator's
-/// deformation, and a zero-crossing step that grows with tip rounding.
-Prediction closed_form(const ModelKeyValues& kv) {
-  const double rim = key_of(kv, "flexspline.rim_thickness_mm", kRim);
-  const double wall = key_of(kv, "flexspline.wall_thickness_mm", kWall);
-  const double w0 = key_of(kv, "wave_generator.radial_deformation_mm", kDeformation);
-  const double tip = key_of(kv, "gear.tip_rounding_flexspline_mm", kTip);
-  TorsionPrediction p;
-  p.compliance_rad_per_Nm = 1e-4;
-  p.twist_rad = [=](double T) {
-    const double body = 4e-5 * std::pow(kRim / rim, 3) * T + 4e-5 * (kWall / wall) * T * std::abs(T) / 10.0;
-    const double soft = 2e-4 * (kDeformation / w0) * std::tanh(T / (2.0 * w0 / kDeformation));
-    return body + soft + 1e-2 * tip * std::tanh(T / 0.3) + 3e-5 * T;
-  };
-  return p;
-}
-
-Baseline closed_form_baseline() {
-  Baseline b;
-  b.model = "contact";
-  b.prediction = closed_form({});
-  b.model_run = closed_form;
-  return with_remembered_model_runs(b);
-}
-
-std::vector<ModelCandidate> closed_form_candidates() {
-  return {{"flexspline.rim_thickness_mm", "the rim is thinner or thicker than drawn", 0.35, 0.65, kRim},
-          {"flexspline.wall_thickness_mm", "the wall is thinner or thicker than drawn", 0.245, 0.455, kWall},
-          {"wave_generator.radial_deformation_mm", "the generator deflects more or less", 0.144, 0.216, kDeformation},
-          {"gear.tip_rounding_flexspline_mm", "the tips are rounded", 0.0, 0.05, kTip}};
-}
+Prediction closed_form(const ModelKeyValues& kv) { return closed_form::drive(kv); }
+Baseline closed_form_baseline() { return closed_form::baseline(); }
+std::vector<ModelCandidate> closed_form_candidates() { return closed_form::candidates(); }
 
 /// A recording of the drive `truth` (key values) with white noise.
 Recording recording_of(const Baseline& truth, std::uint64_t seed) {

@@ -25,6 +25,7 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,7 @@ struct BenchOptions {
   std::string case_path = SW_SOURCE_DIR "/cases/mbd_26_28.toml";
   std::string pairs = "moving", stiffness = "teeth", rim = "rigid";
   int seeds = 20;
+  std::string only;  ///< one effect's name (mesh_stiffness_variation, damping, drag_torque, null); empty: all
   double concealment = 1.0, noise_N = 5.0, damping_Ns_per_m = 2000.0;
   bool diagnose = false;
 };
@@ -89,7 +91,7 @@ std::vector<std::string> headlines(const std::string& name) {
 }
 
 struct Tally {
-  int recordings = 0, named = 0, extra = 0, significant = 0;
+  int recordings = 0, named = 0, extra = 0, significant = 0, failed = 0;  ///< failed: synth or reconcile threw
   double seconds = 0;        ///< per recording after the first (the model's runs remembered)
   double first_seconds = 0;  ///< the first recording, with the runs it needs that earlier effects did not
   std::map<std::string, std::vector<double>> rel_error;  ///< per headline: (fitted - truth) / truth of named seeds
@@ -125,9 +127,9 @@ void print_tally(const std::string& name, const Tally& t) {
                 t.significant, 100.0 * t.significant / std::max(1, t.recordings), t.extra, t.seconds);
     return;
   }
-  std::printf("%-26s %3d seeds: named %d (%.0f %%), extra names %d; first recording %.2f s, then %.3f s/recording\n",
-              name.c_str(), t.recordings, t.named, 100.0 * t.named / std::max(1, t.recordings), t.extra,
-              t.first_seconds, t.seconds);
+  std::printf("%-26s %3d seeds: named %d (%.0f %%), extra names %d, failed %d; first recording %.2f s, then %.3f "
+              "s/recording\n", name.c_str(), t.recordings, t.named, 100.0 * t.named / std::max(1, t.recordings),
+              t.extra, t.failed, t.first_seconds, t.seconds);
   for (const auto& [extra, count] : t.extra_names) std::printf("    also named: %s in %d\n", extra.c_str(), count);
   for (const auto& k : headlines(name)) {
     const auto it = t.rel_error.find(k);
@@ -149,12 +151,24 @@ Tally run_effect(const Baseline& b, const BenchOptions& o, const std::string& ef
   const std::string name = effect.substr(0, effect.find(':'));
   for (int i = 0; i < o.seeds; ++i) {
     const auto start = std::chrono::steady_clock::now();
-    const SynthOptions s = synth_options(b, o, effect, first_seed + i);
-    const SynthResult syn = synthesize(s);
-    const nlohmann::json truth = nlohmann::json::parse(syn.truth_json);
-    Options opt;
-    opt.seed = first_seed + i;
-    const Result r = reconcile(make_experiment(syn.recording, b), opt);
+    // A seed whose recording or analysis fails (a model run the integrator cannot carry) counts as a recording not
+    // named, and the bench goes on: a failure is a finding, not the end of the table.
+    std::optional<SynthResult> syn;
+    std::optional<Result> analysed;
+    try {
+      syn = synthesize(synth_options(b, o, effect, first_seed + i));
+      Options opt;
+      opt.seed = first_seed + i;
+      analysed = reconcile(make_experiment(syn->recording, b), opt);
+    } catch (const std::exception& ex) {
+      ++t.recordings;
+      ++t.failed;
+      std::printf("    seed %llu failed (%s): %s\n", (unsigned long long)(first_seed + i),
+                  syn ? "reconcile" : "synth", ex.what());
+      continue;
+    }
+    const Result& r = *analysed;
+    const nlohmann::json truth = nlohmann::json::parse(syn->truth_json);
     const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     (i == 0 ? t.first_seconds : t.seconds) += sec;
     record(t, name, effect.empty() ? nlohmann::json::object() : truth["effects"][0]["params"], r);
@@ -265,6 +279,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"teeth", "constant"}))->capture_default_str();
   app.add_option("--rim", o.rim, "moving pairs: rigid | fem (coupled through the flexspline body)")
       ->check(CLI::IsMember({"rigid", "fem"}))->capture_default_str();
+  app.add_option("--only", o.only, "one effect: mesh_stiffness_variation, damping, drag_torque or null");
   app.add_option("--seeds", o.seeds, "noise seeds per effect")->check(CLI::NonNegativeNumber)->capture_default_str();
   app.add_option("--concealment", o.concealment, "effect RMS / noise RMS (0: the effects at their stated values)")
       ->check(CLI::NonNegativeNumber)->capture_default_str();
@@ -289,6 +304,8 @@ int main(int argc, char** argv) {
     if (o.diagnose)
       for (std::size_t i = 0; i + 1 < effects.size(); ++i) diagnose(b, o, effects[i]);
     for (std::size_t i = 0; i < effects.size() && o.seeds > 0; ++i) {
+      const std::string name = effects[i].empty() ? "null" : effects[i].substr(0, effects[i].find(':'));
+      if (!o.only.empty() && o.only != name) continue;
       print_tally(effects[i].substr(0, effects[i].find(':')), run_effect(b, o, effects[i], 1000 * (i + 1)));
       std::fflush(stdout);
     }

@@ -18,8 +18,8 @@
 #include <nlohmann/json.hpp>
 
 #include "common/progress.hpp"
-#include "reconcile/reconcile.hpp"
 #include "reconcile/model_update.hpp"
+#include "reconcile/reconcile.hpp"
 #include "reconcile/synth.hpp"
 #include "tests/reconcile/closed_form_drive.hpp"
 
@@ -89,9 +89,8 @@ void score(const Result& r, const std::string& name, const nlohmann::json& truth
   t.named += found;
 }
 
-/// The model-updating proofs: the closed-form drive with one key at `value`, 2000 samples of a +-9.5 N*m torsion loop
-/// with white noise 2e-6 rad (test_model_update.cpp), updated over the four candidates; the named key's refitted
-/// value against `value`.
+/// The model-updating proofs: a recording of the closed-form drive with one key at `value` (closed_form::recording, as
+/// test_model_update.cpp makes them), updated over the four candidates; the named key's refitted value against `value`.
 void model_coverage(int seeds) {
   const Baseline base = closed_form::baseline();
   const std::vector<std::pair<std::string, double>> truths = {{"flexspline.rim_thickness_mm", 0.45},
@@ -101,15 +100,7 @@ void model_coverage(int seeds) {
   for (const auto& [key, value] : truths) {
     Tally t;
     for (int s = 0; s < seeds; ++s) {
-      SynthOptions o;
-      o.baseline.prediction = closed_form::drive({{key, value}});
-      TorsionRows rows;
-      rows.torque_amplitude_Nm = 9.5;
-      o.rows = rows;
-      o.samples = 2000;
-      o.white_sd = 2e-6;
-      o.seed = 1000 + s;
-      const Recording rec = parse_recording(format_recording(synthesize(o).recording), "model.csv");
+      const Recording rec = closed_form::recording({{key, value}}, 1000 + s);
       const auto start = std::chrono::steady_clock::now();
       const ModelUpdate u = update_model(make_experiment(rec, base), base, closed_form::candidates());
       t.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

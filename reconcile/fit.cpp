@@ -311,10 +311,9 @@ std::pair<double, double> profile_interval(const Experiment& e, const IntervalNo
   const double bound[2] = {lo[q], hi[q]};
   double ends[2];
   for (int side = 0; side < 2; ++side) {
-    const double dir = side == 0 ? -1.0 : 1.0;
     double inside = at, step = std::max(first_step, 1e-6 * (hi[q] - lo[q])), outside = NAN;
     while (std::isnan(outside)) {
-      const double v = dir < 0 ? std::max(bound[0], inside - step) : std::min(bound[1], inside + step);
+      const double v = side == 0 ? std::max(bound[0], inside - step) : std::min(bound[1], inside + step);
       if (profile_rss(e, noise, model, term, q, v) - model.rss_w > delta_rss) outside = v;
       else if (v == bound[side]) break;
       else inside = v, step *= 2.0;
@@ -336,7 +335,6 @@ std::pair<double, double> profile_interval(const Experiment& e, const IntervalNo
 
 std::vector<Headline> headline_with_ci(const Experiment& e, const FitResult& model, int term,
                                        const IntervalNoise& noise) {
-  const SpectralCalibration cal = noise.cal ? *noise.cal : SpectralCalibration{};
   const NamedValues base = model.terms[term].spec->headline(e, model, term);
   std::vector<Headline> out;
   const EffectSpec& spec = *model.terms[term].spec;
@@ -359,18 +357,15 @@ std::vector<Headline> headline_with_ci(const Experiment& e, const FitResult& mod
   }
   for (std::size_t i = 0; i < base.size(); ++i) {
     if (base[i].first == "order" || out[i].fixed()) continue;
-    double var = G.row(i) * model.cov * G.row(i).transpose(), quantile = 1.959964;
+    const double wald = G.row(i) * model.cov * G.row(i).transpose();
     // The headline is g^T p = v^T r_w + const with v = J (J^T J)^+ g (the fit's influence on it): its variance at the
     // noise level the calibration measured where v's energy lies, with Student's t at that level's degrees of freedom.
     // A slow headline (an offset, a level per torque) is where the AR model's level is low and the Wald interval
     // (s^2 g^T (J^T J)^+ g) too narrow.
-    if (cal.valid() && model.jac_w.rows() == cal.n && s2 > 0.0) {
-      double dof = 0.0;
-      const Vec v = model.jac_w * (model.cov * G.row(i).transpose() / s2);
-      var = calibrated_variance(cal, v, &dof);
-      quantile = t_quantile(0.975, std::max(dof, 1.0));
-    }
-    const double half = quantile * std::sqrt(std::max(var, 0.0));
+    const bool calibrated = noise.cal && noise.cal->valid() && model.jac_w.rows() == noise.cal->n && s2 > 0.0;
+    const double half =
+        calibrated ? calibrated_half_width_95(*noise.cal, model.jac_w * (model.cov * G.row(i).transpose() / s2))
+                   : 1.959964 * std::sqrt(std::max(wald, 0.0));
     out[i].lo = base[i].second - half;
     out[i].hi = base[i].second + half;
     // A headline that is a nonlinear parameter itself (a breakpoint, a transition torque) is where the linearisation
@@ -378,7 +373,6 @@ std::vector<Headline> headline_with_ci(const Experiment& e, const FitResult& mod
     // gives the half-width above for a quadratic profile, s^2 half^2 / (g^T cov g), and the wider of the two stands.
     // Where the linearisation gives no width (a parameter on its bound, two elements that coincide) the profile
     // alone stands, at Wald's RSS rise s^2 1.96^2.
-    const double wald = G.row(i) * model.cov * G.row(i).transpose();
     if (!noise.y || !noise.ar) continue;
     const bool linearised = wald > 0.0 && half > 0.0;
     const double delta_rss = linearised ? s2 * half * half / wald : s2 * 1.959964 * 1.959964;

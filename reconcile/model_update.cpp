@@ -240,13 +240,8 @@ std::vector<RefitValue> refit_values(const RefitProblem& p, const Iterate& it, c
   const bool calibrated = cal.valid() && cal.n == Jp.rows();
   std::vector<RefitValue> out;
   for (std::size_t i = 0; i < p.keys.size(); ++i) {
-    double var = s2 * inverse(i, i), quantile = 1.959964;
-    if (calibrated) {
-      double level_dof = 0.0;
-      var = calibrated_variance(cal, Vec(Jp * inverse.col(i)), &level_dof);
-      quantile = t_quantile(0.975, std::max(level_dof, 1.0));
-    }
-    const double half = quantile * std::sqrt(std::max(var, 0.0));
+    const double half = calibrated ? calibrated_half_width_95(cal, Jp * inverse.col(i))
+                                   : 1.959964 * std::sqrt(std::max(s2 * inverse(i, i), 0.0));
     const ModelCandidate& k = p.keys[i];
     const bool edge = it.values[i] <= k.lo + 1e-9 * (k.hi - k.lo) || it.values[i] >= k.hi - 1e-9 * (k.hi - k.lo);
     out.push_back({k.key, it.values[i], it.values[i] - half, it.values[i] + half, k.case_value, edge, k.lo, k.hi});

@@ -274,10 +274,9 @@ CalibratedLevel calibrated_level(const SpectralCalibration& cal, const Eigen::Ve
   return out;
 }
 
-double calibrated_variance(const SpectralCalibration& cal, const Eigen::VectorXd& v, double* dof) {
+double calibrated_half_width_95(const SpectralCalibration& cal, const Eigen::VectorXd& v) {
   const CalibratedLevel l = calibrated_level(cal, power_spectrum(v));
-  if (dof) *dof = l.dof;
-  return l.value;
+  return t_quantile(0.975, std::max(l.dof, 1.0)) * std::sqrt(std::max(l.value, 0.0));
 }
 
 double t_quantile(double p, double dof) {

@@ -86,10 +86,10 @@ struct CalibratedLevel {
 };
 CalibratedLevel calibrated_level(const SpectralCalibration& cal, const Eigen::VectorXd& w);
 
-/// Variance of v^T r for r the whitened noise (n = cal.n rows) at the calibrated level of each frequency: s^2 ||v||^2
-/// where the AR model is right, more where the noise has more power than it says (a slow v: a mean offset, a torque
-/// level). `dof` (optional): the Satterthwaite degrees of freedom of that variance.
-double calibrated_variance(const SpectralCalibration& cal, const Eigen::VectorXd& v, double* dof = nullptr);
+/// The 95 % half-width of v^T r for r the whitened noise (n = cal.n rows): its variance at the calibrated level of each
+/// frequency (s^2 ||v||^2 where the AR model is right, more where the noise has more power than it says: a slow v, a
+/// mean offset, a torque level), times Student's t at that level's Satterthwaite degrees of freedom.
+double calibrated_half_width_95(const SpectralCalibration& cal, const Eigen::VectorXd& v);
 
 /// The p-quantile of Student's t with `dof` degrees of freedom (dof > 0).
 double t_quantile(double p, double dof);

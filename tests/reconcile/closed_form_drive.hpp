@@ -4,14 +4,19 @@
 // the cheap stand-in for the drive's model in the model-updating proofs (tests/reconcile/test_model_update.cpp) and
 // their coverage over noise seeds (bench_reconcile_coverage --kind model).
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
 #include "reconcile/model_update.hpp"
+#include "reconcile/synth.hpp"
 
 namespace sw::reconcile::closed_form {
 
 constexpr double kRim = 0.5, kWall = 0.35, kDeformation = 0.18, kTip = 0.0;
+/// White noise of the proofs' recordings (rad): the twist at 10 N*m is ~1e-3 rad, so an SNR of a few hundred.
+constexpr double kNoise_rad = 2e-6;
+constexpr double kAmplitude_Nm = 9.5;
 
 inline double key_of(const ModelKeyValues& kv, const std::string& key, double fallback) {
   for (const auto& [k, v] : kv)
@@ -50,6 +55,26 @@ inline std::vector<ModelCandidate> candidates() {
           {"flexspline.wall_thickness_mm", "the wall is thinner or thicker than drawn", 0.245, 0.455, kWall},
           {"wave_generator.radial_deformation_mm", "the generator deflects more or less", 0.144, 0.216, kDeformation},
           {"gear.tip_rounding_flexspline_mm", "the tips are rounded", 0.0, 0.05, kTip}};
+}
+
+/// A recording of the drive `truth` (a +-kAmplitude_Nm torsion loop, 2000 samples) with white noise kNoise_rad.
+inline Recording recording_of(const Baseline& truth, std::uint64_t seed) {
+  SynthOptions o;
+  o.baseline = truth;
+  TorsionRows rows;
+  rows.torque_amplitude_Nm = kAmplitude_Nm;
+  o.rows = rows;
+  o.samples = 2000;
+  o.white_sd = kNoise_rad;
+  o.seed = seed;
+  return parse_recording(format_recording(synthesize(o).recording), "model.csv");
+}
+
+/// A recording of the closed-form drive with the key values `truth`.
+inline Recording recording(const ModelKeyValues& truth, std::uint64_t seed) {
+  Baseline b;
+  b.prediction = drive(truth);
+  return recording_of(b, seed);
 }
 
 }  // namespace sw::reconcile::closed_form

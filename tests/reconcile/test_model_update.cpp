@@ -28,37 +28,10 @@ constexpr double kValueTolerance = 0.25;
 /// The refit's residual RMS over the noise's: a model that explains everything leaves the noise (RMS ~ 1 sd); 1.2
 /// leaves room for the noise estimate and the few fitted parameters, and fails for a residual structure of 0.66 sd.
 constexpr double kRefitOverNoise = 1.2;
-/// White noise of the closed-form proofs (rad): the twist at 10 N*m is ~1e-3 rad, so an SNR of a few hundred.
-constexpr double kNoise_rad = 2e-6;
-constexpr double kAmplitude_Nm = 9.5;
-
-// ---- the closed-form model (tests/reconcile/closed_form_drive.hpp) ------------------------------------------------
-
 using closed_form::key_of;
+using closed_form::kNoise_rad;
 using closed_form::kRim;
-
-Prediction closed_form(const ModelKeyValues& kv) { return closed_form::drive(kv); }
-Baseline closed_form_baseline() { return closed_form::baseline(); }
-std::vector<ModelCandidate> closed_form_candidates() { return closed_form::candidates(); }
-
-/// A recording of the drive `truth` (key values) with white noise.
-Recording recording_of(const Baseline& truth, std::uint64_t seed) {
-  SynthOptions o;
-  o.baseline = truth;
-  TorsionRows rows;
-  rows.torque_amplitude_Nm = kAmplitude_Nm;
-  o.rows = rows;
-  o.samples = 2000;
-  o.white_sd = kNoise_rad;
-  o.seed = seed;
-  return parse_recording(format_recording(synthesize(o).recording), "model.csv");
-}
-
-Recording closed_form_recording(const ModelKeyValues& truth, std::uint64_t seed) {
-  Baseline b;
-  b.prediction = closed_form(truth);
-  return recording_of(b, seed);
-}
+using closed_form::recording_of;
 
 const AcceptedEffect* effect_named(const Result& r, const std::string& name) {
   for (const auto& e : r.effects)
@@ -90,9 +63,9 @@ void expect_updated(const ModelUpdate& u, const ModelKeyValues& truth) {
 }
 
 ModelUpdate closed_form_update(const ModelKeyValues& truth, std::uint64_t seed) {
-  static const Baseline base = closed_form_baseline();
-  const Experiment e = make_experiment(closed_form_recording(truth, seed), base);
-  return update_model(e, base, closed_form_candidates());
+  static const Baseline base = closed_form::baseline();
+  const Experiment e = make_experiment(closed_form::recording(truth, seed), base);
+  return update_model(e, base, closed_form::candidates());
 }
 
 class OneKeyChanged : public ::testing::TestWithParam<std::pair<std::string, double>> {};
@@ -134,8 +107,8 @@ TEST(ModelUpdate, NamesNoPhysicalEffectInNullRecordings) {
 // Two keys whose columns the recording cannot tell apart (both only scale the twist): the one named carries the
 // other's equivalent value as "or:KEY" with its interval, and its physics says so.
 TEST(ModelUpdate, ReportsIndistinguishableKeysTogether) {
-  static const Baseline base = closed_form_baseline();
-  std::vector<ModelCandidate> candidates = closed_form_candidates();
+  static const Baseline base = closed_form::baseline();
+  std::vector<ModelCandidate> candidates = closed_form::candidates();
   // A second key acting as the rim does: the cup's length enters as the rim's thickness / cbrt(length / 20).
   Baseline twin = base;
   twin.model_run = [](const ModelKeyValues& kv) {
@@ -144,11 +117,11 @@ TEST(ModelUpdate, ReportsIndistinguishableKeysTogether) {
                           key_of(kv, "flexspline.rim_thickness_mm", kRim) * std::cbrt(20.0 / length)}};
     for (const auto& p : kv)
       if (p.first != "flexspline.length_mm" && p.first != "flexspline.rim_thickness_mm") moved.push_back(p);
-    return closed_form(moved);
+    return closed_form::drive(moved);
   };
   twin = with_remembered_model_runs(twin);
   candidates.push_back({"flexspline.length_mm", "the cup is longer or shorter than drawn", 16.0, 24.0, 20.0});
-  const Experiment e = make_experiment(closed_form_recording({{"flexspline.rim_thickness_mm", 0.46}}, 13), twin);
+  const Experiment e = make_experiment(closed_form::recording({{"flexspline.rim_thickness_mm", 0.46}}, 13), twin);
   const ModelUpdate u = update_model(e, twin, candidates);
   int together = 0;
   for (const auto& a : u.result.effects)

@@ -31,7 +31,10 @@ json effect_json(const ReportEffect& e) {
   json j = {{"name", e.name}, {"physics", e.physics}, {"params", params}, {"ci95", ci}, {"fixed", fixed},
             {"delta_bic", e.delta_bic}, {"p_value", e.p_value}};
   if (!e.meaning.empty()) j["meaning"] = e.meaning;
-  if (e.model_discrepancy > 0.0) j["model_discrepancy"] = e.model_discrepancy;
+  if (e.model_runs > 0) {
+    j["model_discrepancy"] = e.model_discrepancy;
+    j["model_runs"] = e.model_runs;
+  }
   return j;
 }
 
@@ -82,7 +85,10 @@ ReportEffect effect_from(const json& j) {
   if (j.contains("fixed"))
     for (const auto& [name, v] : j.at("fixed").items()) e.fixed[name] = v.at("from").get<std::string>();
   if (j.contains("meaning")) e.meaning = j.at("meaning").get<std::string>();
-  if (j.contains("model_discrepancy")) e.model_discrepancy = number(j.at("model_discrepancy"));
+  if (j.contains("model_runs")) {
+    e.model_discrepancy = number(j.at("model_discrepancy"));
+    e.model_runs = static_cast<int>(number(j.at("model_runs")));
+  }
   e.delta_bic = number(j.at("delta_bic"));
   e.p_value = number(j.at("p_value"));
   return e;

@@ -28,6 +28,22 @@ struct CatalogReading;  // below
 
 using NamedValues = std::vector<std::pair<std::string, double>>;
 
+/// A dynamics effect as a change of the model: its columns are the model's response linearised at the baseline, from
+/// a few runs; the refit (rerun.hpp) runs the model at its parameters instead. The parameters, their bounds, their
+/// difference steps, how they set the model's variation, and the headlines they give.
+struct RunLaw {
+  Eigen::VectorXd lo, hi;  ///< bounds of the parameters (the model is never run outside them)
+  /// The parameters term `term` of a fitted model stands for (the refit's start).
+  std::function<Eigen::VectorXd(const Experiment&, const FitResult&, int term)> start;
+  /// The difference step of parameter i at p.
+  std::function<double(const Experiment&, const Eigen::VectorXd& p, int i)> step;
+  /// Sets the effect's fields of the model's variation at p.
+  std::function<void(const Experiment&, const Eigen::VectorXd& p, DynamicsVariation& v)> vary;
+  /// The headlines at p (the names and order of EffectSpec::headline), given the change of the response that the
+  /// model run at p makes (n: the run minus the baseline).
+  std::function<NamedValues(const Experiment&, const Eigen::VectorXd& p, const Eigen::VectorXd& change)> headline;
+};
+
 /// One variant of an effect's law as the fit sees it: a harmonic order, or a number of breakpoints or friction
 /// elements of one law.
 struct EffectSpec {
@@ -48,9 +64,9 @@ struct EffectSpec {
   /// slope read on the baseline, the model's mesh frequency): a phrase for the report; "" for a fitted parameter,
   /// which gets a 95 % interval. Empty function: every parameter is fitted.
   std::function<std::string(const Experiment&, const FitResult&, int term, const std::string& parameter)> held;
-  /// Dynamics: sets the model's variation that term `term` of a fitted model stands for (its fields of v), so that the
-  /// model can be re-run at the fitted values; empty function: the effect's contribution is not a model run.
-  std::function<void(const Experiment&, const FitResult&, int term, DynamicsVariation& v)> variation;
+  /// Dynamics: the effect as a change of the model itself (RunLaw), refitted on re-runs of the model; absent: the
+  /// effect's contribution is its columns alone.
+  std::optional<RunLaw> run_law;
   /// What term `term` of a fitted model means for the drive, in a sentence (a play the model has more of than the
   /// drive, and the case key that sets it); empty function or "": nothing beyond the physics text.
   std::function<std::string(const Experiment&, const FitResult&, int term)> meaning;

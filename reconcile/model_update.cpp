@@ -8,6 +8,7 @@
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "reconcile/fit.hpp"
+#include "reconcile/rerun.hpp"
 #include "reconcile/stats.hpp"
 
 namespace sw::reconcile {
@@ -127,147 +128,68 @@ void add_indistinguishable(const Experiment& e, const ModelEffects& fx, Result& 
 
 // ---- the refit ----------------------------------------------------------------------------------------------------
 
-/// One iterate of the refit: the keys' values, the model's response there, the linear part's coefficients and the
-/// whitened residual sum of squares over the fitted rows.
-struct Iterate {
-  Vec values;
-  Vec response;
-  Vec linear_beta;
-  double rss = INFINITY;
-};
-
-/// The refit's problem: the physical keys, the fixed columns of everything else (nuisance, phenomenological terms
-/// at their theta), the noise model and the rows fitted.
-struct RefitProblem {
-  const Experiment& e;
-  const Baseline& base;
+/// The refit's problem for the accepted terms of a result: the physical keys with their starts (case value + the
+/// selection's linear estimate) and the other terms' columns at their theta.
+struct KeyRefit {
   std::vector<ModelCandidate> keys;
-  Mat linear;  // n x m
-  const ArModel& ar;
-  int rows = 0;
+  Mat linear;
+  Vec start;
 
   ModelKeyValues key_values(const Vec& v) const {
     ModelKeyValues kv;
     for (std::size_t i = 0; i < keys.size(); ++i) kv.emplace_back(keys[i].key, v[i]);
     return kv;
   }
-  /// The model at v with the linear part fitted by GLS over the rows.
-  Iterate at(const Vec& v) const {
-    Iterate it;
-    it.values = v;
-    it.response = response_at(e, base, key_values(v));
-    const Vec z = whiten(ar, Vec((e.measured - it.response).head(rows)));
-    if (linear.cols() == 0) {
-      it.linear_beta = Vec(0);
-      it.rss = z.squaredNorm();
-      return it;
+  /// The problem on re-runs of the model (rows: the fitted ones).
+  RerunProblem problem(const Experiment& e, const Baseline& base, const ArModel& ar, int rows) const {
+    RerunProblem p{e, ar};
+    p.response = [this, &e, &base](const Vec& v) { return response_at(e, base, key_values(v)); };
+    p.lo.resize(keys.size());
+    p.hi.resize(keys.size());
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      p.lo[i] = keys[i].lo;
+      p.hi[i] = keys[i].hi;
     }
-    const LsResult ls = least_squares(whiten(ar, Mat(linear.topRows(rows))), z);
-    it.linear_beta = ls.beta;
-    it.rss = ls.rss;
-    return it;
-  }
-  /// d response / d value of each key at the iterate (n x k).
-  Mat jacobian(const Iterate& it) const {
-    Mat J(e.n, keys.size());
-    const ModelKeyValues kv = key_values(it.values);
-    for (std::size_t i = 0; i < keys.size(); ++i) J.col(i) = sensitivity_at(e, base, keys[i], kv, it.values[i]);
-    return J;
+    p.step = [this](const Vec&, int i) { return sensitivity_step(keys[i]); };
+    p.linear = linear;
+    p.rows = rows;
+    p.converged = kConvergedStep;
+    p.max_iterations = kMaxIterations;
+    return p;
   }
 };
 
-/// The whitened Jacobian with the linear part projected out, and the residual likewise: the variable projection.
-std::pair<Mat, Vec> projected_system(const RefitProblem& p, const Iterate& it, const Mat& J) {
-  const Mat Jw = whiten(p.ar, Mat(J.topRows(p.rows)));
-  const Vec zw = whiten(p.ar, Vec((p.e.measured - it.response).head(p.rows)));
-  if (p.linear.cols() == 0) return {Jw, zw};
-  const Mat Lw = whiten(p.ar, Mat(p.linear.topRows(p.rows)));
-  const auto qr = Lw.colPivHouseholderQr();
-  const Mat Jp = Jw - Lw * qr.solve(Jw);
-  const Vec zp = zw - Lw * qr.solve(zw);
-  return {Jp, zp};
-}
-
-/// The values moved into the keys' plausible ranges: the model is never run outside them (a key may not even be
-/// valid there: a negative tip rounding), so the refit is a bounded one (projected steps).
-Vec within_ranges(const RefitProblem& p, Vec v) {
-  for (std::size_t i = 0; i < p.keys.size(); ++i) v[i] = std::clamp(v[i], p.keys[i].lo, p.keys[i].hi);
-  return v;
-}
-
-/// Levenberg-Marquardt from `start` (within the ranges) on re-runs of the model; returns the last iterate and the Jacobian there.
-std::pair<Iterate, Mat> levenberg_marquardt(const RefitProblem& p, const Vec& start, int& iterations) {
-  Iterate cur = p.at(within_ranges(p, start));
-  Mat J = p.jacobian(cur);
-  double lambda = 1e-3;
-  for (iterations = 0; iterations < kMaxIterations; ++iterations) {
-    const auto [Jp, zp] = projected_system(p, cur, J);
-    const Mat JtJ = Jp.transpose() * Jp;
-    const Vec g = Jp.transpose() * zp;
-    bool improved = false;
-    Vec step;
-    for (int tries = 0; tries < 6 && !improved; ++tries, lambda *= 10.0) {
-      Mat A = JtJ;
-      A.diagonal() += lambda * JtJ.diagonal().cwiseMax(1e-300);
-      step = A.ldlt().solve(g);
-      const Iterate trial = p.at(within_ranges(p, cur.values + step));
-      if (trial.rss < cur.rss) {
-        cur = trial;
-        improved = true;
-      }
-    }
-    if (!improved) break;
-    lambda = std::max(lambda / 100.0, 1e-6);
-    bool converged = true;
-    for (std::size_t i = 0; i < p.keys.size(); ++i)
-      converged = converged && std::abs(step[i]) < kConvergedStep * sensitivity_step(p.keys[i]);
-    J = p.jacobian(cur);
-    if (converged) break;
-  }
-  return {cur, J};
-}
-
-/// 95 % intervals of the values from the final Jacobian: s^2 (Jp^T Jp)^-1, s^2 the whitened residual variance, or,
-/// with the selection's calibration of the noise on the same rows, each value's variance at the level measured where
-/// its influence v = Jp (Jp^T Jp)^+ e_i lies, with Student's t at that level's degrees of freedom (headline_with_ci).
-std::vector<RefitValue> refit_values(const RefitProblem& p, const Iterate& it, const Mat& J,
-                                     const SpectralCalibration& cal) {
-  const auto [Jp, zp] = projected_system(p, it, J);
-  const int dof = std::max(1, static_cast<int>(zp.size()) - static_cast<int>(p.linear.cols() + p.keys.size()));
-  const double s2 = it.rss / dof;
-  const Eigen::CompleteOrthogonalDecomposition<Mat> cod(Jp.transpose() * Jp);
-  const Mat inverse = cod.pseudoInverse();
-  const bool calibrated = cal.valid() && cal.n == Jp.rows();
-  std::vector<RefitValue> out;
-  for (std::size_t i = 0; i < p.keys.size(); ++i) {
-    const double half = calibrated ? calibrated_half_width_95(cal, Jp * inverse.col(i))
-                                   : 1.959964 * std::sqrt(std::max(s2 * inverse(i, i), 0.0));
-    const ModelCandidate& k = p.keys[i];
-    const bool edge = it.values[i] <= k.lo + 1e-9 * (k.hi - k.lo) || it.values[i] >= k.hi - 1e-9 * (k.hi - k.lo);
-    out.push_back({k.key, it.values[i], it.values[i] - half, it.values[i] + half, k.case_value, edge, k.lo, k.hi});
-  }
-  return out;
-}
-
-/// The refit's problem for the accepted terms of a result: the physical keys with their starts (case value + the
-/// selection's linear estimate) and the other terms' columns at their theta.
-RefitProblem refit_problem(const Experiment& e, const Baseline& base, const ModelEffects& fx, const Result& r,
-                           Vec& start) {
-  RefitProblem p{e, base, {}, nuisance_columns(e), r.noise, e.n};
+KeyRefit key_refit(const Experiment& e, const ModelEffects& fx, const Result& r) {
+  KeyRefit k{{}, nuisance_columns(e), Vec(0)};
   std::vector<double> v;
   for (const Term& t : r.final_model.terms) {
     if (!is_model_effect(*t.spec)) {
-      p.linear = hcat(p.linear, t.spec->columns(e, t.theta));
+      k.linear = hcat(k.linear, t.spec->columns(e, t.theta));
       continue;
     }
     for (std::size_t j = 0; j < fx.specs.size(); ++j)
       if (&fx.specs[j] == t.spec) {
-        p.keys.push_back(fx.candidates[j]);
+        k.keys.push_back(fx.candidates[j]);
         v.push_back(t.spec->headline(e, r.final_model, static_cast<int>(&t - r.final_model.terms.data()))[0].second);
       }
   }
-  start = Eigen::Map<Vec>(v.data(), v.size());
-  return p;
+  k.start = Eigen::Map<Vec>(v.data(), v.size());
+  return k;
+}
+
+/// 95 % intervals of the values from the final Jacobian (rerun_half_width: calibrated where the selection's
+/// calibration of the noise is on the same rows).
+std::vector<RefitValue> refit_values(const KeyRefit& k, const RerunProblem& p, const RerunFit& f,
+                                     const SpectralCalibration& cal) {
+  std::vector<RefitValue> out;
+  for (std::size_t i = 0; i < k.keys.size(); ++i) {
+    const double half = rerun_half_width(p, f, Vec::Unit(k.keys.size(), i), cal);
+    const ModelCandidate& c = k.keys[i];
+    const double v = f.values[i];
+    const bool edge = v <= c.lo + 1e-9 * (c.hi - c.lo) || v >= c.hi - 1e-9 * (c.hi - c.lo);
+    out.push_back({c.key, v, v - half, v + half, c.case_value, edge, c.lo, c.hi});
+  }
+  return out;
 }
 
 /// Replaces the selection's linear estimate of each refitted physical effect by the refit's value and interval.
@@ -352,25 +274,23 @@ Baseline with_remembered_model_runs(Baseline base) {
 
 std::optional<Refit> refit_model(const Experiment& e, const Baseline& base, const ModelEffects& fx, const Result& r,
                                  const Options& o) {
-  Vec start;
-  RefitProblem p = refit_problem(e, base, fx, r, start);
-  if (p.keys.empty()) return std::nullopt;
+  const KeyRefit k = key_refit(e, fx, r);
+  if (k.keys.empty()) return std::nullopt;
   Refit out;
   // Held out: the same fit on the training rows, scored on the rows it never saw.
   const int hold = std::max(1, static_cast<int>(std::lround(e.n * o.heldout_fraction)));
-  p.rows = e.n - hold;
-  int iterations = 0;
-  const Iterate train = levenberg_marquardt(p, start, iterations).first;
-  const Vec train_prediction = train.response + p.linear * train.linear_beta;
+  const RerunFit train = refit_on_reruns(k.problem(e, base, r.noise, e.n - hold), k.start);
+  const Vec train_prediction = train.response + k.linear * train.linear_beta;
   out.heldout_rms = rms(Vec((e.measured - train_prediction).tail(hold)));
-  p.rows = e.n;
-  const auto [it, J] = levenberg_marquardt(p, train.values, out.iterations);
-  out.values = refit_values(p, it, J, r.calibration);
-  out.key_values = p.key_values(it.values);
-  out.model_response = it.response;
-  out.prediction = it.response + p.linear * it.linear_beta;
+  const RerunProblem all = k.problem(e, base, r.noise, e.n);
+  const RerunFit f = refit_on_reruns(all, train.values);
+  out.iterations = f.iterations;
+  out.values = refit_values(k, all, f, r.calibration);
+  out.key_values = k.key_values(f.values);
+  out.model_response = f.response;
+  out.prediction = f.response + k.linear * f.linear_beta;
   out.rms = rms(Vec(e.measured - out.prediction));
-  progress("reconcile: refit of " + std::to_string(p.keys.size()) + " case keys on re-runs of the model: " +
+  progress("reconcile: refit of " + std::to_string(k.keys.size()) + " case keys on re-runs of the model: " +
            std::to_string(out.iterations) + " iterations, RMS " + fmt("%.4g", out.rms));
   return out;
 }

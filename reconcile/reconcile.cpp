@@ -6,9 +6,11 @@
 #include <map>
 #include <set>
 
+#include "common/error.hpp"
 #include "common/progress.hpp"
 #include "reconcile/catalog.hpp"
 #include "reconcile/model_update.hpp"
+#include "reconcile/rerun.hpp"
 
 namespace sw::reconcile {
 
@@ -717,45 +719,139 @@ void fold_series_into_law(const Analysis& a, Result& r) {
   r.effects.erase(series);
 }
 
-/// Where the columns cannot carry an effect (the model answers its parameters far from linearly), the fit is exact
-/// only for the columns' prediction. A term whose contribution is a model run is checked against the model re-run at
-/// its fitted values, alone: rho = |run - columns' prediction| / |run|, the share by which the columns miss the model
-/// there. Returns rho per term (0 where the term is not a model run).
-std::vector<double> model_discrepancy(const Analysis& a) {
-  std::vector<double> rho(a.cur.terms.size(), 0.0);
-  const auto* d = std::get_if<DynamicsExperiment>(&a.e.data);
-  if (!d) return rho;
-  for (std::size_t i = 0; i < a.cur.terms.size(); ++i) {
-    const Term& t = a.cur.terms[i];
-    if (!t.spec->variation) continue;
-    DynamicsVariation v;
-    t.spec->variation(a.e, a.cur, static_cast<int>(i), v);
-    const DynamicsRun run = d->model.dynamics_run(v);
-    const Vec response = resample(run.time_s, run.mesh_force_N, a.e.time) - a.e.baseline;
-    const Vec columns = t.spec->columns(a.e, t.theta) * t.beta;
-    if (response.norm() > 0.0) rho[i] = (response - columns).norm() / response.norm();
-  }
-  return rho;
-}
+/// The dynamics effects refitted on re-runs of the model: per term its headlines with intervals (empty for a term that
+/// is not a model run), what the refit took, and the model re-run at the values with the other terms refitted.
+struct RunRefit {
+  std::vector<std::vector<Headline>> params;
+  double discrepancy = 0.0;  // |run at the columns' estimate - the columns' prediction| / |run - baseline|
+  int runs = 0;
+  Vec prediction;            // the re-run + the linear part (n)
+  double rms = 0.0, heldout_rms = 0.0;
+  std::string failed;        // why the model could not be run at the columns' estimate ("" when it could)
+};
 
-/// The headlines of term `term` with their intervals widened by a model discrepancy rho: the effect's size is
-/// uncertain by that share besides the noise, so each fitted headline moves by half the change between the term's
-/// coefficients scaled by 1 - rho and 1 + rho (a headline of the size scales, a phase does not), added in quadrature
-/// to the noise's half-width. Held parameters and a harmonic's order stay as they are.
-std::vector<Headline> widened(const Experiment& e, const FitResult& f, int term, double rho, std::vector<Headline> h) {
-  if (!(rho > 0.0)) return h;
-  FitResult up = f, down = f;
-  up.terms[term].beta *= 1.0 + rho;
-  down.terms[term].beta *= 1.0 - rho;
-  const NamedValues hu = f.terms[term].spec->headline(e, up, term), hd = f.terms[term].spec->headline(e, down, term);
-  for (std::size_t k = 0; k < h.size(); ++k) {
-    if (h[k].fixed() || h[k].name == "order") continue;
-    const double extra = 0.5 * std::abs(hu[k].second - hd[k].second), half = 0.5 * (h[k].hi - h[k].lo);
-    const double wide = std::hypot(half, extra), mid = 0.5 * (h[k].hi + h[k].lo);
-    h[k].lo = mid - wide;
-    h[k].hi = mid + wide;
+/// Dynamics effects are changes of the model read through columns from runs at the baseline (small steps, a table);
+/// where the model answers them far from linearly (flanks that lose and regain contact, the rim coupled through the
+/// FEM body) the columns' estimate is biased by the curvature, and no interval around it holds the truth. The terms
+/// with a RunLaw are refitted together on re-runs of the model (rerun.hpp: Levenberg-Marquardt with forward
+/// differences at each iterate, each step checked by a run), the nuisance and the other terms' columns fitted beside
+/// them; their headlines are the refit's values and their intervals the delta method on its final Jacobian under the
+/// calibrated noise. The held-out RMS: the same linearisation fitted on the training rows. nullopt: no such term.
+std::optional<RunRefit> refit_runs(const Analysis& a) {
+  const auto* d = std::get_if<DynamicsExperiment>(&a.e.data);
+  if (!d) return std::nullopt;
+  const FitResult& f = a.cur;
+  std::vector<int> offset(f.terms.size(), -1);
+  std::vector<double> lo, hi, start;
+  Mat linear = nuisance_columns(a.e);
+  Vec columns_prediction = Vec::Zero(a.e.n);  // the run terms' columns times their coefficients
+  for (std::size_t i = 0; i < f.terms.size(); ++i) {
+    const Term& t = f.terms[i];
+    const Mat cols = t.spec->columns(a.e, t.theta);
+    if (!t.spec->run_law) {
+      linear = hcat(linear, cols);
+      continue;
+    }
+    const RunLaw& law = *t.spec->run_law;
+    offset[i] = static_cast<int>(start.size());
+    const Vec p0 = law.start(a.e, f, static_cast<int>(i));
+    for (int k = 0; k < p0.size(); ++k) {
+      lo.push_back(law.lo[k]);
+      hi.push_back(law.hi[k]);
+      start.push_back(p0[k]);
+    }
+    columns_prediction += cols * t.beta;
   }
-  return h;
+  if (start.empty()) return std::nullopt;
+  const auto segment = [&](const Vec& p, std::size_t i) {
+    return Vec(p.segment(offset[i], f.terms[i].spec->run_law->lo.size()));
+  };
+  const auto term_of = [&](int k) {
+    std::size_t i = 0;
+    while (!(offset[i] >= 0 && k >= offset[i] && k < offset[i] + f.terms[i].spec->run_law->lo.size())) ++i;
+    return i;
+  };
+  RerunProblem p{a.e, a.ar};
+  p.lo = Eigen::Map<Vec>(lo.data(), lo.size());
+  p.hi = Eigen::Map<Vec>(hi.data(), hi.size());
+  p.response = [&](const Vec& values) {
+    DynamicsVariation v;
+    for (std::size_t i = 0; i < f.terms.size(); ++i)
+      if (offset[i] >= 0) f.terms[i].spec->run_law->vary(a.e, segment(values, i), v);
+    const DynamicsRun run = d->model.dynamics_run(v);
+    return resample(run.time_s, run.mesh_force_N, a.e.time);
+  };
+  p.step = [&](const Vec& values, int k) {
+    const std::size_t i = term_of(k);
+    return f.terms[i].spec->run_law->step(a.e, segment(values, i), k - offset[i]);
+  };
+  p.linear = linear;
+  // Forward differences: a run of the coupled model takes seconds. Converged at 5 % of a difference step (a few
+  // tenths of a per cent of the value, a fraction of any interval's half-width).
+  p.forward = true;
+  p.converged = 0.05;
+  p.max_iterations = 6;
+  p.max_step_in_steps = 10.0;
+  RunRefit out;
+  out.params.resize(f.terms.size());
+  {
+    std::string from;
+    for (double v : start) from += (from.empty() ? "" : ", ") + fmt("%.4g", v);
+    progress("reconcile: refitting the dynamics effects on re-runs of the model from (" + from + ")");
+  }
+  RerunFit fit;
+  try {
+    fit = refit_on_reruns(p, Eigen::Map<Vec>(start.data(), start.size()));
+  } catch (const InputError& err) {
+    out.failed = err.what();
+    return out;
+  }
+  const Vec start_change = fit.start_response - a.e.baseline;
+  out.discrepancy = start_change.norm() > 0.0 ? (start_change - columns_prediction).norm() / start_change.norm() : 0.0;
+  out.runs = fit.runs;
+  out.prediction = fit.response + linear * fit.linear_beta;
+  out.rms = rms(Vec(a.e.measured - out.prediction));
+  {  // held out: the refit's linearisation at the values, fitted on the training rows
+    const Mat X = hcat(fit.jacobian, linear);
+    const LsResult ls = least_squares(whiten(a.ar, Mat(X.topRows(a.train))),
+                                      whiten(a.ar, Vec((a.e.measured - fit.response).head(a.train))));
+    out.heldout_rms = rms(Vec((a.e.measured - fit.response - X * ls.beta).tail(a.e.n - a.train)));
+  }
+  // Headlines and their gradients in the values (the change of the response linearised at the values).
+  const Vec change = fit.response - a.e.baseline;
+  for (std::size_t i = 0; i < f.terms.size(); ++i) {
+    if (offset[i] < 0) continue;
+    const EffectSpec& spec = *f.terms[i].spec;
+    const RunLaw& law = *spec.run_law;
+    auto headline_at = [&](const Vec& values) {
+      return law.headline(a.e, segment(values, i), Vec(change + fit.jacobian * (values - fit.values)));
+    };
+    const NamedValues base = headline_at(fit.values);
+    std::vector<Headline>& h = out.params[i];
+    for (const auto& [name, v] : base)
+      h.push_back({name, v, v, v, spec.held ? spec.held(a.e, f, static_cast<int>(i), name) : ""});
+    Mat G(base.size(), fit.values.size());
+    G.setZero();
+    for (int k = offset[i]; k < offset[i] + law.lo.size(); ++k) {
+      const double dk = 1e-4 * p.step(fit.values, k);
+      Vec up = fit.values, down = fit.values;
+      up[k] += dk;
+      down[k] -= dk;
+      const NamedValues hu = headline_at(up), hd = headline_at(down);
+      for (std::size_t q = 0; q < base.size(); ++q) G(q, k) = (hu[q].second - hd[q].second) / (2.0 * dk);
+    }
+    for (std::size_t q = 0; q < base.size(); ++q) {
+      if (h[q].fixed()) continue;
+      const double half = rerun_half_width(p, fit, Vec(G.row(q).transpose()), a.cal);
+      h[q].lo = h[q].value - half;
+      h[q].hi = h[q].value + half;
+    }
+  }
+  std::string to;
+  for (int k = 0; k < fit.values.size(); ++k) to += (to.empty() ? "" : ", ") + fmt("%.4g", fit.values[k]);
+  progress("reconcile: dynamics effects refitted on " + std::to_string(fit.runs) + " re-runs of the model (" +
+           std::to_string(fit.iterations) + " iterations) to (" + to + "), RMS " + fmt("%.4g", out.rms));
+  return out;
 }
 
 /// Final fit with covariance, headlines with intervals, the signatures still left, the verdict.
@@ -764,15 +860,30 @@ void finalise(Analysis& a, Result& r) {
   o.multistart_last = false;
   o.covariance = true;
   a.cur = fit_model(a.e, a.y, a.cur.terms, a.ar, o);
-  const std::vector<double> discrepancy = model_discrepancy(a);
+  const std::optional<RunRefit> rerun = refit_runs(a);
   for (std::size_t i = 0; i < a.cur.terms.size(); ++i) {
     const EffectSpec& spec = *a.cur.terms[i].spec;
     const int term = static_cast<int>(i);
     AcceptedEffect x = a.accepted[spec.id()];
-    x.params = widened(a.e, a.cur, term, discrepancy[i], headline_with_ci(a.e, a.cur, term, {&a.cal, &a.y, &a.ar}));
-    x.model_discrepancy = discrepancy[i];
+    if (rerun && !rerun->params[i].empty()) {
+      x.params = rerun->params[i];
+      x.model_discrepancy = rerun->discrepancy;
+      x.model_runs = rerun->runs;
+    } else {
+      x.params = headline_with_ci(a.e, a.cur, term, {&a.cal, &a.y, &a.ar});
+    }
     if (spec.meaning) x.meaning = spec.meaning(a.e, a.cur, term);
+    if (rerun && !rerun->failed.empty() && spec.run_law)
+      x.meaning = "the model could not be re-run at the fitted values (" + rerun->failed +
+                  "): the values are read from the columns of the baseline's runs, whose linearisation they may "
+                  "outgrow";
     r.effects.push_back(x);
+  }
+  if (rerun && rerun->failed.empty()) {
+    r.refitted = true;
+    r.refit_rms = rerun->rms;
+    r.refit_heldout_rms = rerun->heldout_rms;
+    r.refit_prediction = rerun->prediction;
   }
   fold_series_into_law(a, r);
   for (const auto& [id, reason] : a.rejected)

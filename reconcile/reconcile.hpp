@@ -48,9 +48,11 @@ struct AcceptedEffect {
   double p_value = 1.0;          ///< F-test (times multiplicity) or parametric bootstrap
   std::string test;              ///< "F" or "bootstrap"
   std::string meaning;           ///< what it means for the drive (EffectSpec::meaning), "" when nothing beyond physics
-  /// Effects whose contribution is a model run (dynamics): |model re-run at the fitted values - the columns'
-  /// prediction| / |model re-run|, the relative misfit its 95 % intervals were widened by; 0: not measured.
+  /// Effects that are changes of the model (dynamics), refitted on re-runs of it: how far the columns from the
+  /// baseline's runs missed the model at their own estimate (|run there - the columns' prediction| / |run - baseline|,
+  /// of all such effects together) and the runs the refit took; 0: read from the columns.
   double model_discrepancy = 0.0;
+  int model_runs = 0;
 };
 
 struct Rejected {
@@ -81,7 +83,8 @@ struct Result {
   Eigen::VectorXd baseline_prediction;   ///< baseline + nuisance fit (n)
   FitResult final_model;
   std::optional<CatalogFigures> catalog;  ///< torsion: the final model in the catalog's terms
-  /// The model re-run with the fitted physical values (model_update.hpp; absent without an accepted physical effect):
+  /// The model re-run with the fitted physical values (model_update.hpp) or dynamics effects (their RunLaw; absent
+  /// without either):
   /// recording - refit_prediction over all rows and over the held-out rows, and the prediction itself (n).
   bool refitted = false;
   double refit_rms = 0.0, refit_heldout_rms = 0.0;

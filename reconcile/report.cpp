@@ -99,7 +99,8 @@ std::string interval(const Headline& h) {
 }
 
 ReportEffect effect_of(const AcceptedEffect& e) {
-  ReportEffect x{e.name, e.physics, std::nullopt, {}, {}, {}, e.delta_bic, e.p_value, e.meaning, e.model_discrepancy};
+  ReportEffect x{e.name, e.physics, std::nullopt, {}, {}, {}, e.delta_bic, e.p_value, e.meaning, e.model_discrepancy,
+                 e.model_runs};
   for (const auto& h : e.params) {
     if (h.name == "order") {
       x.order = static_cast<int>(h.value);
@@ -112,10 +113,11 @@ ReportEffect effect_of(const AcceptedEffect& e) {
   return x;
 }
 
-/// The widening of an effect's intervals by the model discrepancy, in words.
-std::string discrepancy_words(double rho) {
-  return "intervals widened by the model discrepancy: the model re-run at the fitted values differs from the "
-         "columns' prediction by " + num(100.0 * rho, "%.3g") + " % of its response";
+/// The refit of a dynamics effect on re-runs of the model, in words.
+std::string rerun_words(double discrepancy, int runs) {
+  return "refitted on " + std::to_string(runs) + " re-runs of the model: at their own estimate the columns "
+         "from the baseline's runs missed the model by " + num(100.0 * discrepancy, "%.3g") +
+         " % of its response; the values and intervals are the re-runs'";
 }
 
 /// The play effect's width in words: a negative width is play the model has and the drive lacks.
@@ -303,7 +305,7 @@ std::string effects_html(const Result& r) {
   for (const auto& f : r.effects) {
     h += "<h3>" + html_escape(f.name) + "</h3><p>" + html_escape(f.physics) + "</p>";
     if (!f.meaning.empty()) h += "<p><b>For the drive:</b> " + html_escape(f.meaning) + "</p>";
-    if (f.model_discrepancy > 0.0) h += "<p>" + html_escape(discrepancy_words(f.model_discrepancy)) + "</p>";
+    if (f.model_runs > 0) h += "<p>" + html_escape(rerun_words(f.model_discrepancy, f.model_runs)) + "</p>";
     h += "<table><tr><th>parameter</th><th>value</th><th>95 % interval</th></tr>";
     for (const auto& p : f.params)
       h += "<tr><td>" + html_escape(p.name) + "</td><td>" + num(p.value) + "</td><td>" + html_escape(interval(p)) +
@@ -328,7 +330,7 @@ std::string heldout_html(const Result& r) {
          " rows were never used to fit the model that is scored on them.</p><table><tr><th></th><th>RMS (all)</th><th>RMS (held out)</th></tr>"
          "<tr><td>baseline</td><td>" + num(r.baseline_rms) + "</td><td>" + num(r.baseline_heldout_rms) + "</td></tr>"
          "<tr><td>reconciled</td><td>" + num(r.final_rms) + "</td><td>" + num(r.final_heldout_rms) + "</td></tr>" +
-         (r.refitted ? "<tr><td>model re-run with the fitted case keys</td><td>" + num(r.refit_rms) + "</td><td>" +
+         (r.refitted ? "<tr><td>model re-run with the fitted values</td><td>" + num(r.refit_rms) + "</td><td>" +
                            num(r.refit_heldout_rms) + "</td></tr>"
                      : std::string()) +
          "</table>";
@@ -404,7 +406,7 @@ std::string report_summary(const Result& r) {
       s += h.name == "order" ? " order " + num(h.value, "%.0f") : " " + h.name + " = " + num(h.value) + " " + interval(h);
     s += "\n";
     if (!e.meaning.empty()) s += "    for the drive: " + e.meaning + "\n";
-    if (e.model_discrepancy > 0.0) s += "    " + discrepancy_words(e.model_discrepancy) + "\n";
+    if (e.model_runs > 0) s += "    " + rerun_words(e.model_discrepancy, e.model_runs) + "\n";
   }
   for (const auto& u : r.unexplained) s += "  still unexplained: " + u.description + "\n";
   if (r.catalog && !r.effects.empty()) {
@@ -419,7 +421,7 @@ std::string report_summary(const Result& r) {
   s += "  residual RMS " + num(r.baseline_rms) + " -> " + num(r.final_rms) + "; held-out (last " +
        std::to_string(r.heldout_rows) + " rows) " + num(r.baseline_heldout_rms) + " -> " + num(r.final_heldout_rms) + "\n";
   if (r.refitted)
-    s += "  the model re-run with the fitted case keys: RMS " + num(r.refit_rms) + ", held-out " +
+    s += "  the model re-run with the fitted values: RMS " + num(r.refit_rms) + ", held-out " +
          num(r.refit_heldout_rms) + " (noise sd " + num(r.noise.process_sd) + ")\n";
   return s;
 }

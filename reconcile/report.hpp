@@ -30,7 +30,9 @@ struct ReportEffect {
   std::map<std::string, std::string> fixed;                 ///< per held parameter of `params`: where it is read
   double delta_bic = 0.0, p_value = 1.0;
   std::string meaning;                                      ///< what it means for the drive ("": key absent)
-  double model_discrepancy = 0.0;                           ///< the intervals' widening (0: key absent)
+  /// Refitted on re-runs of the model: how far the columns missed it at their estimate, and the runs (0: key absent).
+  double model_discrepancy = 0.0;
+  int model_runs = 0;
   bool operator==(const ReportEffect&) const = default;
 };
 

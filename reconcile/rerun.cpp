@@ -1,0 +1,142 @@
+#include "reconcile/rerun.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/error.hpp"
+
+namespace sw::reconcile {
+
+using Vec = Eigen::VectorXd;
+using Mat = Eigen::MatrixXd;
+
+namespace {
+
+/// One iterate: the values, the model's response there, the linear part's coefficients and the whitened residual sum
+/// of squares over the fitted rows.
+struct Iterate {
+  Vec values, response, linear_beta;
+  double rss = INFINITY;
+};
+
+int fitted_rows(const RerunProblem& p) { return p.rows > 0 ? p.rows : p.e.n; }
+
+/// The model at v with the linear part fitted by GLS over the rows.
+Iterate at(const RerunProblem& p, const Vec& v, int& runs) {
+  Iterate it;
+  it.values = v;
+  ++runs;
+  it.response = p.response(v);
+  const int rows = fitted_rows(p);
+  const Vec z = whiten(p.ar, Vec((p.e.measured - it.response).head(rows)));
+  if (p.linear.cols() == 0) {
+    it.linear_beta = Vec(0);
+    it.rss = z.squaredNorm();
+    return it;
+  }
+  const LsResult ls = least_squares(whiten(p.ar, Mat(p.linear.topRows(rows))), z);
+  it.linear_beta = ls.beta;
+  it.rss = ls.rss;
+  return it;
+}
+
+/// The values moved into the bounds: the model is never run outside them (a key may not even be valid there: a
+/// negative tip rounding or damping).
+Vec within_bounds(const RerunProblem& p, Vec v) { return v.cwiseMax(p.lo).cwiseMin(p.hi); }
+
+/// d response / d value of each parameter at the iterate (n x k): central differences of +-step, one-sided (from the
+/// iterate's own run) where a bound cuts one side off, or forward ones throughout when the problem asks.
+Mat jacobian(const RerunProblem& p, const Iterate& it, int& runs) {
+  Mat J(p.e.n, it.values.size());
+  for (int i = 0; i < it.values.size(); ++i) {
+    const double h = p.step(it.values, i), v = it.values[i];
+    auto run = [&](double x) {
+      Vec w = it.values;
+      w[i] = x;
+      ++runs;
+      return Vec(p.response(w));
+    };
+    if (p.forward || v - h < p.lo[i]) J.col(i) = (run(v + h) - it.response) / h;
+    else if (v + h > p.hi[i]) J.col(i) = (it.response - run(v - h)) / h;
+    else J.col(i) = (run(v + h) - run(v - h)) / (2.0 * h);
+  }
+  return J;
+}
+
+/// A trial iterate; one where the model cannot be run is no improvement.
+Iterate trial_at(const RerunProblem& p, const Vec& v, int& runs) {
+  try {
+    return at(p, v, runs);
+  } catch (const InputError&) {
+    Iterate failed;
+    failed.values = v;
+    return failed;
+  }
+}
+
+}  // namespace
+
+std::pair<Mat, Vec> projected_system(const RerunProblem& p, const Vec& response, const Mat& J) {
+  const int rows = fitted_rows(p);
+  const Mat Jw = whiten(p.ar, Mat(J.topRows(rows)));
+  const Vec zw = whiten(p.ar, Vec((p.e.measured - response).head(rows)));
+  if (p.linear.cols() == 0) return {Jw, zw};
+  const Mat Lw = whiten(p.ar, Mat(p.linear.topRows(rows)));
+  const auto qr = Lw.colPivHouseholderQr();
+  const Mat Jp = Jw - Lw * qr.solve(Jw);
+  const Vec zp = zw - Lw * qr.solve(zw);
+  return {Jp, zp};
+}
+
+RerunFit refit_on_reruns(const RerunProblem& p, const Vec& start) {
+  RerunFit out;
+  Iterate cur = at(p, within_bounds(p, start), out.runs);
+  out.start_response = cur.response;
+  Mat J = jacobian(p, cur, out.runs);
+  double lambda = 1e-3;
+  for (out.iterations = 0; out.iterations < p.max_iterations; ++out.iterations) {
+    const auto [Jp, zp] = projected_system(p, cur.response, J);
+    const Mat JtJ = Jp.transpose() * Jp;
+    const Vec g = Jp.transpose() * zp;
+    bool improved = false;
+    Vec step;
+    for (int tries = 0; tries < 6 && !improved; ++tries, lambda *= 10.0) {
+      Mat A = JtJ;
+      A.diagonal() += lambda * JtJ.diagonal().cwiseMax(1e-300);
+      step = A.ldlt().solve(g);
+      double scale = 1.0;
+      for (int i = 0; i < step.size(); ++i)
+        scale = std::min(scale, p.max_step_in_steps * p.step(cur.values, i) / std::max(std::abs(step[i]), 1e-300));
+      step *= scale;
+      const Iterate trial = trial_at(p, within_bounds(p, cur.values + step), out.runs);
+      if (trial.rss < cur.rss) {
+        cur = trial;
+        improved = true;
+      }
+    }
+    if (!improved) break;
+    lambda = std::max(lambda / 100.0, 1e-6);
+    bool converged = true;
+    for (int i = 0; i < cur.values.size(); ++i)
+      converged = converged && std::abs(step[i]) < p.converged * p.step(cur.values, i);
+    J = jacobian(p, cur, out.runs);
+    if (converged) break;
+  }
+  out.values = cur.values;
+  out.response = cur.response;
+  out.linear_beta = cur.linear_beta;
+  out.rss = cur.rss;
+  out.jacobian = J;
+  return out;
+}
+
+double rerun_half_width(const RerunProblem& p, const RerunFit& f, const Vec& g, const SpectralCalibration& cal) {
+  const auto [Jp, zp] = projected_system(p, f.response, f.jacobian);
+  const Eigen::CompleteOrthogonalDecomposition<Mat> cod(Jp.transpose() * Jp);
+  const Vec influence = Jp * (cod.pseudoInverse() * g);
+  if (cal.valid() && cal.n == Jp.rows()) return calibrated_half_width_95(cal, influence);
+  const int dof = std::max(1, static_cast<int>(zp.size() - p.linear.cols() - f.values.size()));
+  return 1.959964 * std::sqrt(std::max(f.rss / dof * influence.squaredNorm(), 0.0));
+}
+
+}  // namespace sw::reconcile

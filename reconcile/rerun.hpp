@@ -1,0 +1,64 @@
+#pragma once
+// Least squares on re-runs of the model: parameters whose effect is the model itself run at other values (a case key,
+// a change of the dynamics model) are fitted by bounded Levenberg-Marquardt on fresh runs, re-linearised by finite
+// differences at each iterate, with the columns of everything else fitted linearly beside them (variable projection)
+// under the AR noise model. Selection reads such parameters through columns from runs at one point; a large or
+// nonlinear effect outgrows them, and the estimate is biased by the curvature. The refit's estimate is the model's own.
+#include <functional>
+
+#include <Eigen/Dense>
+
+#include "reconcile/experiment.hpp"
+#include "reconcile/stats.hpp"
+
+namespace sw::reconcile {
+
+/// What the refit fits: the model's response on the experiment's rows at given values (n, the recording's units; may
+/// throw InputError when the model cannot be run there), the bounds it may be run within, each parameter's
+/// difference step at given values, and the fixed columns fitted linearly at every iterate.
+struct RerunProblem {
+  const Experiment& e;
+  const ArModel& ar;
+  std::function<Eigen::VectorXd(const Eigen::VectorXd& values)> response;
+  Eigen::VectorXd lo, hi;
+  std::function<double(const Eigen::VectorXd& values, int parameter)> step;
+  Eigen::MatrixXd linear;  ///< n x m (m may be 0)
+  int rows = 0;            ///< the first rows are fitted; 0: all
+  /// Forward differences (the iterate's own run reused: one run per parameter) instead of central ones (two), for a
+  /// model whose runs are dear (the dynamics model coupled through the FEM body).
+  bool forward = false;
+  /// The values have converged when every step is below this fraction of the parameter's difference step.
+  double converged = 1e-3;
+  int max_iterations = 12;
+  /// No step moves a parameter by more than this many of its difference steps (a trust region: nearly collinear
+  /// parameters, a drag's Coulomb and viscous parts at one speed, would otherwise take a long step along the direction
+  /// the data do not see, where the model is dear or cannot be run at all).
+  double max_step_in_steps = INFINITY;
+};
+
+/// The refit: the values, the model's response there, the linear part's coefficients, the whitened residual sum of
+/// squares over the fitted rows, the Jacobian d response / d values at the values (n x k) and what it took.
+struct RerunFit {
+  Eigen::VectorXd values, response, linear_beta;
+  double rss = INFINITY;
+  Eigen::MatrixXd jacobian;
+  Eigen::VectorXd start_response;  ///< the model's response at the start
+  int iterations = 0, runs = 0;
+};
+
+/// Bounded Levenberg-Marquardt (projected steps: the model is never run outside the bounds) from `start`. A trial
+/// point where the model cannot be run (InputError) rejects that step like a worse one; a start where it cannot be
+/// run throws that error.
+RerunFit refit_on_reruns(const RerunProblem& p, const Eigen::VectorXd& start);
+
+/// The whitened Jacobian with the linear part projected out, and the whitened residual likewise, over the fitted rows.
+std::pair<Eigen::MatrixXd, Eigen::VectorXd> projected_system(const RerunProblem& p, const Eigen::VectorXd& response,
+                                                             const Eigen::MatrixXd& jacobian);
+
+/// The 95 % half-width of g^T values at the fit, from its Jacobian under the noise model: with the calibration of the
+/// noise on the same whitened rows (stats.hpp), the variance at the level measured where the influence
+/// v = Jp (Jp^T Jp)^+ g lies with Student's t (as headline_with_ci); otherwise Wald's, s^2 g^T (Jp^T Jp)^+ g.
+double rerun_half_width(const RerunProblem& p, const RerunFit& f, const Eigen::VectorXd& g,
+                        const SpectralCalibration& cal);
+
+}  // namespace sw::reconcile

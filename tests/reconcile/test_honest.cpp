@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/error.hpp"
 #include "common/progress.hpp"
 #include "reconcile/laws.hpp"
 #include "reconcile/reconcile.hpp"
@@ -270,6 +271,32 @@ TEST(DynamicsRefit, ReRunsTheModelWhereTheColumnsMissItAndReadsTheTruth) {
   EXPECT_NEAR(rerun_rms, r.refit_rms, 0.02 * r.refit_rms);
   EXPECT_LT(r.refit_rms, 1.2 * r.noise.process_sd);
   EXPECT_NE(report_summary(r).find("re-runs of the model"), std::string::npos);
+}
+
+TEST(DynamicsRefit, AModelThatCannotBeRunAtTheEstimateKeepsTheColumnsValuesAndSaysWhy) {
+  // The same model, which cannot be run at any drag but the truth's and the columns' steps (as CVODE gives up on a
+  // run): the analysis still ends, with the columns' values and the reason, and no re-run fit.
+  sw::quiet_progress() = true;
+  Baseline b;
+  DynamicsPrediction model = nonlinear_drag_model();
+  model.dynamics_run = [run = model.dynamics_run](const DynamicsVariation& v) {
+    const double tau = v.drag_coulomb_Nm + v.drag_viscous_Nms_per_rad * kSpeed_rad_s;
+    if (tau != 0.0 && std::abs(tau - 2.5) > 1e-12 && std::abs(tau - 2.0) > 1e-12)
+      throw sw::InputError("dynamics: CVODE failed at t = 1.4 ms (step 4e-11 s)");
+    return run(v);
+  };
+  b.prediction = model;
+  SynthOptions o = dynamics_proof_options(b, 0.5, 7);
+  o.effects = {parse_synth_effect("drag_torque:coulomb_Nm=1,viscous_Nms_per_rad=0.1")};
+  const Result r = reconcile(make_experiment(synthesize(o).recording, b));
+  SCOPED_TRACE(trace_of(r));
+  const AcceptedEffect* drag = find(r, "drag_torque");
+  ASSERT_NE(drag, nullptr);
+  EXPECT_NEAR(headline(*drag, "torque_at_speed_Nm").value, 2.5 * drag_response(2.0) / drag_response(2.5), 0.01);
+  EXPECT_EQ(drag->model_runs, 0);
+  EXPECT_FALSE(r.refitted);
+  EXPECT_NE(drag->meaning.find("could not be re-run at the fitted values (dynamics: CVODE failed"), std::string::npos)
+      << drag->meaning;
 }
 
 // A friction element dissipates: a two-element fit whose elements carry losses of opposite sign (two nearly equal

@@ -17,7 +17,7 @@ using namespace sw::reconcile;
 namespace {
 
 /// A result with every part of the report filled: a located and an unexplained signature, a harmonic (its order) and
-/// an effect with intervals, a rejected effect, a baseline source and the catalog block with the catalog's row.
+/// an effect with intervals, one refitted on re-runs of the model, a rejected effect, a baseline source and the catalog block with the catalog's row.
 Result full_result() {
   Result r;
   r.kind = Kind::Torsion;
@@ -38,6 +38,10 @@ Result full_result() {
                        {{"K1_Nm_per_rad", 1.0e4, 0.9e4, 1.1e4}, {"T1_Nm", 3.9, 3.5, 4.3},
                         {"K2_Nm_per_rad", 2.0e4, 2.0e4, 2.0e4, "1/C_tau, the baseline's compliance"}},
                        -500.0, 1e-20, "F"});
+  AcceptedEffect drag{"drag_torque", "drag", {{"torque_at_speed_Nm", 2.0, 1.9, 2.1}}, -80.0, 1e-12, "F"};
+  drag.model_discrepancy = 0.19;  // refitted on re-runs of the model
+  drag.model_runs = 9;
+  r.effects.push_back(drag);
   r.rejected.push_back({"lost_motion", "lost_motion: BIC changes by 2.0"});
   r.catalog = CatalogFigures{.segments = 3, .k1 = 1.0e4, .k2 = 1.4e4, .k3 = 1.6e4, .t1 = 3.9, .t2 = 12.0,
                              .rated_torque_Nm = 31.0, .rated_from = "metadata rated_torque_Nm",

@@ -51,6 +51,7 @@ struct BenchOptions {
   std::string case_path = SW_SOURCE_DIR "/cases/mbd_26_28.toml";
   std::string pairs = "moving", stiffness = "teeth", rim = "rigid";
   int seeds = 20;
+  int seed_offset = 0;  ///< the seeds start this far into each effect's sequence (split one row over processes)
   std::string only;  ///< one effect's name (mesh_stiffness_variation, damping, drag_torque, null); empty: all
   double concealment = 1.0, noise_N = 5.0, damping_Ns_per_m = 2000.0;
   bool diagnose = false;
@@ -117,6 +118,8 @@ void record(Tally& t, const std::string& name, const nlohmann::json& truth, cons
       if (!wanted || want == 0.0) continue;
       t.rel_error[h.name].push_back((h.value - want) / want);
       t.covered[h.name] += (h.lo <= want && want <= h.hi);
+      std::printf("    %s %.6g [%.6g, %.6g], truth %.6g\n", h.name.c_str(), h.value, h.lo, h.hi, want);
+      std::fflush(stdout);
     }
   }
 }
@@ -281,6 +284,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"rigid", "fem"}))->capture_default_str();
   app.add_option("--only", o.only, "one effect: mesh_stiffness_variation, damping, drag_torque or null");
   app.add_option("--seeds", o.seeds, "noise seeds per effect")->check(CLI::NonNegativeNumber)->capture_default_str();
+  app.add_option("--seed-offset", o.seed_offset, "start this far into each effect's seeds (one row over processes)")
+      ->check(CLI::NonNegativeNumber)->capture_default_str();
   app.add_option("--concealment", o.concealment, "effect RMS / noise RMS (0: the effects at their stated values)")
       ->check(CLI::NonNegativeNumber)->capture_default_str();
   app.add_option("--noise", o.noise_N, "white and AR(1) sd of the meshing force, N (quantum: a fifth)")
@@ -306,7 +311,7 @@ int main(int argc, char** argv) {
     for (std::size_t i = 0; i < effects.size() && o.seeds > 0; ++i) {
       const std::string name = effects[i].empty() ? "null" : effects[i].substr(0, effects[i].find(':'));
       if (!o.only.empty() && o.only != name) continue;
-      print_tally(effects[i].substr(0, effects[i].find(':')), run_effect(b, o, effects[i], 1000 * (i + 1)));
+      print_tally(effects[i].substr(0, effects[i].find(':')), run_effect(b, o, effects[i], 1000 * (i + 1) + o.seed_offset));
       std::fflush(stdout);
     }
   } catch (const std::exception& ex) {

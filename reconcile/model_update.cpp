@@ -177,13 +177,14 @@ KeyRefit key_refit(const Experiment& e, const ModelEffects& fx, const Result& r)
   return k;
 }
 
-/// 95 % intervals of the values from the final Jacobian (rerun_half_width: calibrated where the selection's
+/// 95 % intervals of the values from the final Jacobian (rerun_half_widths: calibrated where the selection's
 /// calibration of the noise is on the same rows).
 std::vector<RefitValue> refit_values(const KeyRefit& k, const RerunProblem& p, const RerunFit& f,
                                      const SpectralCalibration& cal) {
   std::vector<RefitValue> out;
+  const Vec halves = rerun_half_widths(p, f, Eigen::MatrixXd::Identity(k.keys.size(), k.keys.size()), cal);
   for (std::size_t i = 0; i < k.keys.size(); ++i) {
-    const double half = rerun_half_width(p, f, Vec::Unit(k.keys.size(), i), cal);
+    const double half = halves[i];
     const ModelCandidate& c = k.keys[i];
     const double v = f.values[i];
     const bool edge = v <= c.lo + 1e-9 * (c.hi - c.lo) || v >= c.hi - 1e-9 * (c.hi - c.lo);

@@ -742,6 +742,7 @@ std::optional<RunRefit> refit_runs(const Analysis& a) {
   if (!d) return std::nullopt;
   const FitResult& f = a.cur;
   std::vector<int> offset(f.terms.size(), -1);
+  std::vector<std::size_t> owner;  // the term each stacked parameter belongs to
   std::vector<double> lo, hi, start;
   Mat linear = nuisance_columns(a.e);
   Vec columns_prediction = Vec::Zero(a.e.n);  // the run terms' columns times their coefficients
@@ -759,17 +760,13 @@ std::optional<RunRefit> refit_runs(const Analysis& a) {
       lo.push_back(law.lo[k]);
       hi.push_back(law.hi[k]);
       start.push_back(p0[k]);
+      owner.push_back(i);
     }
     columns_prediction += cols * t.beta;
   }
   if (start.empty()) return std::nullopt;
   const auto segment = [&](const Vec& p, std::size_t i) {
     return Vec(p.segment(offset[i], f.terms[i].spec->run_law->lo.size()));
-  };
-  const auto term_of = [&](int k) {
-    std::size_t i = 0;
-    while (!(offset[i] >= 0 && k >= offset[i] && k < offset[i] + f.terms[i].spec->run_law->lo.size())) ++i;
-    return i;
   };
   RerunProblem p{a.e, a.ar};
   p.lo = Eigen::Map<Vec>(lo.data(), lo.size());
@@ -782,23 +779,25 @@ std::optional<RunRefit> refit_runs(const Analysis& a) {
     return resample(run.time_s, run.mesh_force_N, a.e.time);
   };
   p.step = [&](const Vec& values, int k) {
-    const std::size_t i = term_of(k);
+    const std::size_t i = owner[k];
     return f.terms[i].spec->run_law->step(a.e, segment(values, i), k - offset[i]);
   };
   p.linear = linear;
   // Forward differences: a run of the coupled model takes seconds. Converged at 5 % of a difference step (a few
-  // tenths of a per cent of the value, a fraction of any interval's half-width).
+  // tenths of a per cent of the value) or a tenth of the value's standard error, whichever is smaller.
   p.forward = true;
   p.converged = 0.05;
   p.max_iterations = 6;
   p.max_step_in_steps = 10.0;
   RunRefit out;
   out.params.resize(f.terms.size());
-  {
-    std::string from;
-    for (double v : start) from += (from.empty() ? "" : ", ") + fmt("%.4g", v);
-    progress("reconcile: refitting the dynamics effects on re-runs of the model from (" + from + ")");
-  }
+  const auto listed = [](const Vec& values) {
+    std::string s;
+    for (double v : values) s += (s.empty() ? "" : ", ") + fmt("%.4g", v);
+    return "(" + s + ")";
+  };
+  progress("reconcile: refitting the dynamics effects on re-runs of the model from " +
+           listed(Eigen::Map<Vec>(start.data(), start.size())));
   RerunFit fit;
   try {
     fit = refit_on_reruns(p, Eigen::Map<Vec>(start.data(), start.size()));
@@ -817,8 +816,11 @@ std::optional<RunRefit> refit_runs(const Analysis& a) {
                                       whiten(a.ar, Vec((a.e.measured - fit.response).head(a.train))));
     out.heldout_rms = rms(Vec((a.e.measured - fit.response - X * ls.beta).tail(a.e.n - a.train)));
   }
-  // Headlines and their gradients in the values (the change of the response linearised at the values).
+  // Headlines and their gradients in the values (the change of the response linearised at the values); the
+  // half-widths of all of them from one projection of the Jacobian.
   const Vec change = fit.response - a.e.baseline;
+  std::vector<Headline*> spread;  // the headlines that get an interval, in the order of the gradients' columns
+  Mat G(fit.values.size(), 0);
   for (std::size_t i = 0; i < f.terms.size(); ++i) {
     if (offset[i] < 0) continue;
     const EffectSpec& spec = *f.terms[i].spec;
@@ -830,27 +832,28 @@ std::optional<RunRefit> refit_runs(const Analysis& a) {
     std::vector<Headline>& h = out.params[i];
     for (const auto& [name, v] : base)
       h.push_back({name, v, v, v, spec.held ? spec.held(a.e, f, static_cast<int>(i), name) : ""});
-    Mat G(base.size(), fit.values.size());
-    G.setZero();
+    Mat g = Mat::Zero(fit.values.size(), static_cast<Eigen::Index>(base.size()));
     for (int k = offset[i]; k < offset[i] + law.lo.size(); ++k) {
       const double dk = 1e-4 * p.step(fit.values, k);
       Vec up = fit.values, down = fit.values;
       up[k] += dk;
       down[k] -= dk;
       const NamedValues hu = headline_at(up), hd = headline_at(down);
-      for (std::size_t q = 0; q < base.size(); ++q) G(q, k) = (hu[q].second - hd[q].second) / (2.0 * dk);
+      for (std::size_t q = 0; q < base.size(); ++q) g(k, q) = (hu[q].second - hd[q].second) / (2.0 * dk);
     }
     for (std::size_t q = 0; q < base.size(); ++q) {
       if (h[q].fixed()) continue;
-      const double half = rerun_half_width(p, fit, Vec(G.row(q).transpose()), a.cal);
-      h[q].lo = h[q].value - half;
-      h[q].hi = h[q].value + half;
+      spread.push_back(&h[q]);
+      G = hcat(G, Mat(g.col(q)));
     }
   }
-  std::string to;
-  for (int k = 0; k < fit.values.size(); ++k) to += (to.empty() ? "" : ", ") + fmt("%.4g", fit.values[k]);
+  const Vec halves = rerun_half_widths(p, fit, G, a.cal);
+  for (std::size_t q = 0; q < spread.size(); ++q) {
+    spread[q]->lo = spread[q]->value - halves[q];
+    spread[q]->hi = spread[q]->value + halves[q];
+  }
   progress("reconcile: dynamics effects refitted on " + std::to_string(fit.runs) + " re-runs of the model (" +
-           std::to_string(fit.iterations) + " iterations) to (" + to + "), RMS " + fmt("%.4g", out.rms));
+           std::to_string(fit.iterations) + " iterations) to " + listed(fit.values) + ", RMS " + fmt("%.4g", out.rms));
   return out;
 }
 

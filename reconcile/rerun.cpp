@@ -93,32 +93,44 @@ RerunFit refit_on_reruns(const RerunProblem& p, const Vec& start) {
   Iterate cur = at(p, within_bounds(p, start), out.runs);
   out.start_response = cur.response;
   Mat J = jacobian(p, cur, out.runs);
+  const int dof = std::max(1, static_cast<int>(fitted_rows(p) - p.linear.cols() - start.size()));
   double lambda = 1e-3;
   for (out.iterations = 0; out.iterations < p.max_iterations; ++out.iterations) {
     const auto [Jp, zp] = projected_system(p, cur.response, J);
     const Mat JtJ = Jp.transpose() * Jp;
     const Vec g = Jp.transpose() * zp;
-    bool improved = false;
-    Vec step;
+    // A move is no move where it is below the stated fraction of every difference step and below a tenth of every
+    // value's standard error (Wald's, at this iterate): the values have converged to well inside their intervals.
+    const Vec sigma = (cur.rss / dof * Eigen::CompleteOrthogonalDecomposition<Mat>(JtJ).pseudoInverse().diagonal())
+                          .cwiseMax(0.0)
+                          .cwiseSqrt();
+    const auto negligible = [&](const Vec& from, const Vec& to) {
+      for (int i = 0; i < from.size(); ++i)
+        if (std::abs(to[i] - from[i]) >= std::min(p.converged * p.step(from, i), 0.1 * sigma[i])) return false;
+      return true;
+    };
+    bool improved = false, converged = false;
     for (int tries = 0; tries < 6 && !improved; ++tries, lambda *= 10.0) {
       Mat A = JtJ;
       A.diagonal() += lambda * JtJ.diagonal().cwiseMax(1e-300);
-      step = A.ldlt().solve(g);
+      Vec step = A.ldlt().solve(g);
       double scale = 1.0;
       for (int i = 0; i < step.size(); ++i)
         scale = std::min(scale, p.max_step_in_steps * p.step(cur.values, i) / std::max(std::abs(step[i]), 1e-300));
       step *= scale;
-      const Iterate trial = trial_at(p, within_bounds(p, cur.values + step), out.runs);
+      // The move as run: projected into the bounds (a drag's part held at zero by its bound moves nowhere).
+      const Vec to = within_bounds(p, cur.values + step);
+      // Converged where the least-damped move is already negligible: no run is spent to confirm it.
+      if (tries == 0 && negligible(cur.values, to)) break;
+      const Iterate trial = trial_at(p, to, out.runs);
       if (trial.rss < cur.rss) {
+        converged = negligible(cur.values, to);
         cur = trial;
         improved = true;
       }
     }
     if (!improved) break;
     lambda = std::max(lambda / 100.0, 1e-6);
-    bool converged = true;
-    for (int i = 0; i < cur.values.size(); ++i)
-      converged = converged && std::abs(step[i]) < p.converged * p.step(cur.values, i);
     J = jacobian(p, cur, out.runs);
     if (converged) break;
   }
@@ -130,13 +142,16 @@ RerunFit refit_on_reruns(const RerunProblem& p, const Vec& start) {
   return out;
 }
 
-double rerun_half_width(const RerunProblem& p, const RerunFit& f, const Vec& g, const SpectralCalibration& cal) {
+Vec rerun_half_widths(const RerunProblem& p, const RerunFit& f, const Mat& G, const SpectralCalibration& cal) {
   const auto [Jp, zp] = projected_system(p, f.response, f.jacobian);
-  const Eigen::CompleteOrthogonalDecomposition<Mat> cod(Jp.transpose() * Jp);
-  const Vec influence = Jp * (cod.pseudoInverse() * g);
-  if (cal.valid() && cal.n == Jp.rows()) return calibrated_half_width_95(cal, influence);
+  const Mat influence = Jp * (Eigen::CompleteOrthogonalDecomposition<Mat>(Jp.transpose() * Jp).pseudoInverse() * G);
   const int dof = std::max(1, static_cast<int>(zp.size() - p.linear.cols() - f.values.size()));
-  return 1.959964 * std::sqrt(std::max(f.rss / dof * influence.squaredNorm(), 0.0));
+  Vec half(G.cols());
+  for (int q = 0; q < G.cols(); ++q)
+    half[q] = cal.valid() && cal.n == Jp.rows()
+                  ? calibrated_half_width_95(cal, Vec(influence.col(q)))
+                  : 1.959964 * std::sqrt(std::max(f.rss / dof * influence.col(q).squaredNorm(), 0.0));
+  return half;
 }
 
 }  // namespace sw::reconcile

@@ -27,7 +27,9 @@ struct RerunProblem {
   /// Forward differences (the iterate's own run reused: one run per parameter) instead of central ones (two), for a
   /// model whose runs are dear (the dynamics model coupled through the FEM body).
   bool forward = false;
-  /// The values have converged when every step is below this fraction of the parameter's difference step.
+  /// The values have converged when every move (as run, inside the bounds) is below this fraction of the parameter's
+  /// difference step and below a tenth of its standard error; a least-damped proposal that small ends the fit without
+  /// a run to confirm it.
   double converged = 1e-3;
   int max_iterations = 12;
   /// No step moves a parameter by more than this many of its difference steps (a trust region: nearly collinear
@@ -55,10 +57,11 @@ RerunFit refit_on_reruns(const RerunProblem& p, const Eigen::VectorXd& start);
 std::pair<Eigen::MatrixXd, Eigen::VectorXd> projected_system(const RerunProblem& p, const Eigen::VectorXd& response,
                                                              const Eigen::MatrixXd& jacobian);
 
-/// The 95 % half-width of g^T values at the fit, from its Jacobian under the noise model: with the calibration of the
-/// noise on the same whitened rows (stats.hpp), the variance at the level measured where the influence
-/// v = Jp (Jp^T Jp)^+ g lies with Student's t (as headline_with_ci); otherwise Wald's, s^2 g^T (Jp^T Jp)^+ g.
-double rerun_half_width(const RerunProblem& p, const RerunFit& f, const Eigen::VectorXd& g,
-                        const SpectralCalibration& cal);
+/// The 95 % half-widths of g_q^T values at the fit, one for each column g_q of G (k x q), from its Jacobian under the
+/// noise model, all from one projection: with the calibration of the noise on the same whitened rows (stats.hpp), the
+/// variance at the level measured where the influence v = Jp (Jp^T Jp)^+ g lies with Student's t (as
+/// headline_with_ci); otherwise Wald's, s^2 g^T (Jp^T Jp)^+ g.
+Eigen::VectorXd rerun_half_widths(const RerunProblem& p, const RerunFit& f, const Eigen::MatrixXd& G,
+                                  const SpectralCalibration& cal);
 
 }  // namespace sw::reconcile

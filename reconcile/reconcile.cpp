@@ -847,10 +847,13 @@ std::optional<RunRefit> refit_runs(const Analysis& a) {
       G = hcat(G, Mat(g.col(q)));
     }
   }
+  // Each interval within what its headline can be over the parameters' bounds (a drag's parts are not negative).
   const Vec halves = rerun_half_widths(p, fit, G, a.cal);
   for (std::size_t q = 0; q < spread.size(); ++q) {
-    spread[q]->lo = spread[q]->value - halves[q];
-    spread[q]->hi = spread[q]->value + halves[q];
+    Headline& h = *spread[q];
+    const auto [can_lo, can_hi] = range_within_bounds(p.lo, p.hi, fit.values, h.value, Vec(G.col(q)));
+    h.lo = std::max(h.value - halves[q], can_lo);
+    h.hi = std::min(h.value + halves[q], can_hi);
   }
   progress("reconcile: dynamics effects refitted on " + std::to_string(fit.runs) + " re-runs of the model (" +
            std::to_string(fit.iterations) + " iterations) to " + listed(fit.values) + ", RMS " + fmt("%.4g", out.rms));

@@ -154,4 +154,16 @@ Vec rerun_half_widths(const RerunProblem& p, const RerunFit& f, const Mat& G, co
   return half;
 }
 
+std::pair<double, double> range_within_bounds(const Vec& lo, const Vec& hi, const Vec& values, double value,
+                                              const Vec& g) {
+  double down = value, up = value;
+  for (int k = 0; k < g.size(); ++k) {
+    if (g[k] == 0.0) continue;  // (an infinite side times a zero gradient is no change, not NaN)
+    const double to_lo = g[k] * (lo[k] - values[k]), to_hi = g[k] * (hi[k] - values[k]);
+    down += std::min(to_lo, to_hi);
+    up += std::max(to_lo, to_hi);
+  }
+  return {down, up};
+}
+
 }  // namespace sw::reconcile

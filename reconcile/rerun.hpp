@@ -64,4 +64,12 @@ std::pair<Eigen::MatrixXd, Eigen::VectorXd> projected_system(const RerunProblem&
 Eigen::VectorXd rerun_half_widths(const RerunProblem& p, const RerunFit& f, const Eigen::MatrixXd& G,
                                   const SpectralCalibration& cal);
 
+/// The range of a headline linear in the values, value + g^T (x - values), over the box lo <= x <= hi: what the
+/// headline can be at all (a drag's part or its sum at speed is not negative). A 95 % interval intersected with it
+/// keeps its coverage, since the truth lies inside it. Exact for a headline linear in the values (a part, a sum at
+/// speed, a change of a coefficient); the linearisation otherwise, as the delta method's interval itself is. An end is
+/// infinite where g has a part along an unbounded side.
+std::pair<double, double> range_within_bounds(const Eigen::VectorXd& lo, const Eigen::VectorXd& hi,
+                                              const Eigen::VectorXd& values, double value, const Eigen::VectorXd& g);
+
 }  // namespace sw::reconcile

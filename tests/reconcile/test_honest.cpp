@@ -15,6 +15,7 @@
 #include "reconcile/laws.hpp"
 #include "reconcile/reconcile.hpp"
 #include "reconcile/report.hpp"
+#include "reconcile/rerun.hpp"
 #include "reconcile/synth.hpp"
 #include "tests/reconcile/result_lookup.hpp"
 
@@ -297,6 +298,32 @@ TEST(DynamicsRefit, AModelThatCannotBeRunAtTheEstimateKeepsTheColumnsValuesAndSa
   EXPECT_FALSE(r.refitted);
   EXPECT_NE(drag->meaning.find("could not be re-run at the fitted values (dynamics: CVODE failed"), std::string::npos)
       << drag->meaning;
+}
+
+// A drag dissipates: its parts are bounded at zero, and so is any headline they make. A 95 % interval intersected with
+// what its headline can be over the bounds keeps its coverage (the truth is inside): the delta method near a bound
+// (the coupled seed gear's viscous part read 0.042 [-0.0054, 0.089]) reaches values no drive can have.
+TEST(DynamicsRefit, AnIntervalIsKeptWithinWhatItsHeadlineCanBeOverTheBounds) {
+  const Eigen::Vector2d lo(0.0, 0.0), hi(INFINITY, INFINITY), values(0.07, 0.004);
+  const double w = 10.0;  // the output speed, rad/s: the sum at speed is coulomb + w viscous
+  // A part: [0, inf), not NaN where the gradient's other part is zero along an infinite side.
+  auto [v_lo, v_hi] = range_within_bounds(lo, hi, values, values[1], Eigen::Vector2d(0.0, 1.0));
+  EXPECT_DOUBLE_EQ(v_lo, 0.0);
+  EXPECT_EQ(v_hi, INFINITY);
+  // The sum at speed: [0, inf) (to rounding).
+  auto [s_lo, s_hi] = range_within_bounds(lo, hi, values, values[0] + w * values[1], Eigen::Vector2d(1.0, w));
+  EXPECT_NEAR(s_lo, 0.0, 1e-15);
+  EXPECT_EQ(s_hi, INFINITY);
+  // A change against the model (added damping c - c0, c >= 0, c0 = 1000): no less than -c0.
+  auto [c_lo, c_hi] = range_within_bounds(Eigen::VectorXd::Zero(1), Eigen::VectorXd::Constant(1, INFINITY),
+                                          Eigen::VectorXd::Constant(1, 1300.0), 300.0, Eigen::VectorXd::Ones(1));
+  EXPECT_DOUBLE_EQ(c_lo, -1000.0);
+  EXPECT_EQ(c_hi, INFINITY);
+  // A headline that falls with a bounded value: both ends finite (x in [0, 2], h = 5 - 2 x at x = 1).
+  auto [d_lo, d_hi] = range_within_bounds(Eigen::VectorXd::Zero(1), Eigen::VectorXd::Constant(1, 2.0),
+                                          Eigen::VectorXd::Ones(1), 3.0, Eigen::VectorXd::Constant(1, -2.0));
+  EXPECT_DOUBLE_EQ(d_lo, 1.0);
+  EXPECT_DOUBLE_EQ(d_hi, 5.0);
 }
 
 // A friction element dissipates: a two-element fit whose elements carry losses of opposite sign (two nearly equal

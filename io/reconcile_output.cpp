@@ -81,7 +81,8 @@ ReportEffect effect_from(const json& j) {
     if (name == "order") e.order = v.get<int>();
     else e.params[name] = number(v);
   }
-  for (const auto& [name, v] : j.at("ci95").items()) e.ci95[name] = {number(v.at(0)), number(v.at(1))};
+  for (const auto& [name, v] : j.at("ci95").items())  // an end the data do not bound is written null (JSON has no inf)
+    e.ci95[name] = {v.at(0).is_null() ? -INFINITY : number(v.at(0)), v.at(1).is_null() ? INFINITY : number(v.at(1))};
   if (j.contains("fixed"))
     for (const auto& [name, v] : j.at("fixed").items()) e.fixed[name] = v.at("from").get<std::string>();
   if (j.contains("meaning")) e.meaning = j.at("meaning").get<std::string>();

@@ -728,6 +728,7 @@ struct RunRefit {
   Vec prediction;            // the re-run + the linear part (n)
   double rms = 0.0, heldout_rms = 0.0;
   std::string failed;        // why the model could not be run at the columns' estimate ("" when it could)
+  std::vector<std::string> unbounded;  // per term: its headlines the data do not bound ("a, b"; "" for none)
 };
 
 /// Dynamics effects are changes of the model read through columns from runs at the baseline (small steps, a table);
@@ -791,6 +792,7 @@ std::optional<RunRefit> refit_runs(const Analysis& a) {
   p.max_step_in_steps = 10.0;
   RunRefit out;
   out.params.resize(f.terms.size());
+  out.unbounded.resize(f.terms.size());
   const auto listed = [](const Vec& values) {
     std::string s;
     for (double v : values) s += (s.empty() ? "" : ", ") + fmt("%.4g", v);
@@ -820,6 +822,7 @@ std::optional<RunRefit> refit_runs(const Analysis& a) {
   // half-widths of all of them from one projection of the Jacobian.
   const Vec change = fit.response - a.e.baseline;
   std::vector<Headline*> spread;  // the headlines that get an interval, in the order of the gradients' columns
+  std::vector<std::size_t> spread_term;
   Mat G(fit.values.size(), 0);
   for (std::size_t i = 0; i < f.terms.size(); ++i) {
     if (offset[i] < 0) continue;
@@ -844,16 +847,20 @@ std::optional<RunRefit> refit_runs(const Analysis& a) {
     for (std::size_t q = 0; q < base.size(); ++q) {
       if (h[q].fixed()) continue;
       spread.push_back(&h[q]);
+      spread_term.push_back(i);
       G = hcat(G, Mat(g.col(q)));
     }
   }
-  // Each interval within what its headline can be over the parameters' bounds (a drag's parts are not negative).
+  // Each interval within what its headline can be over the parameters' bounds (a drag's parts are not negative); a
+  // headline along a direction the data do not see is bounded by them alone, and the effect says so.
   const Vec halves = rerun_half_widths(p, fit, G, a.cal);
   for (std::size_t q = 0; q < spread.size(); ++q) {
     Headline& h = *spread[q];
     const auto [can_lo, can_hi] = range_within_bounds(p.lo, p.hi, fit.values, h.value, Vec(G.col(q)));
     h.lo = std::max(h.value - halves[q], can_lo);
     h.hi = std::min(h.value + halves[q], can_hi);
+    std::string& unbounded = out.unbounded[spread_term[q]];
+    if (std::isinf(halves[q])) unbounded += (unbounded.empty() ? "" : ", ") + h.name;
   }
   progress("reconcile: dynamics effects refitted on " + std::to_string(fit.runs) + " re-runs of the model (" +
            std::to_string(fit.iterations) + " iterations) to " + listed(fit.values) + ", RMS " + fmt("%.4g", out.rms));
@@ -883,6 +890,11 @@ void finalise(Analysis& a, Result& r) {
       x.meaning = "the model could not be re-run at the fitted values (" + rerun->failed +
                   "): the values are read from the columns of the baseline's runs, whose linearisation they may "
                   "outgrow";
+    const std::string unbounded = rerun ? rerun->unbounded[i] : "";
+    if (!unbounded.empty())
+      x.meaning += std::string(x.meaning.empty() ? "" : "; ") + "the recording does not tell " + unbounded +
+                   " apart from the other values (the model answers only a combination of them): the interval is "
+                   "what the value can be at all";
     r.effects.push_back(x);
   }
   if (rerun && rerun->failed.empty()) {

@@ -95,7 +95,7 @@ ReportCatalog catalog_of(const CatalogFigures& c, double final_rms) {
 std::string interval(const Headline& h) {
   if (h.name == "order") return "exact";
   if (h.fixed()) return "fixed (from " + h.fixed_from + ")";
-  return "[" + num(h.lo) + ", " + num(h.hi) + "]";
+  return (std::isinf(h.lo) ? "(-inf" : "[" + num(h.lo)) + ", " + (std::isinf(h.hi) ? "inf)" : num(h.hi) + "]");
 }
 
 ReportEffect effect_of(const AcceptedEffect& e) {

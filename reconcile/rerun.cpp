@@ -144,11 +144,25 @@ RerunFit refit_on_reruns(const RerunProblem& p, const Vec& start) {
 
 Vec rerun_half_widths(const RerunProblem& p, const RerunFit& f, const Mat& G, const SpectralCalibration& cal) {
   const auto [Jp, zp] = projected_system(p, f.response, f.jacobian);
-  const Mat influence = Jp * (Eigen::CompleteOrthogonalDecomposition<Mat>(Jp.transpose() * Jp).pseudoInverse() * G);
+  // In the values scaled to unit columns (x_s = D x, Jp x = (Jp D^-1) x_s, g^T x = (D^-1 g)^T x_s), so that a
+  // direction counts as unseen by its share of the data's response, not by its units.
+  const Vec norms = Jp.colwise().norm().transpose();
+  const Vec inverse = norms.unaryExpr([](double n) { return n > 0.0 ? 1.0 / n : 1.0; });
+  const Mat Js = Jp * inverse.asDiagonal();
+  const Mat Gs = inverse.asDiagonal() * G;
+  const Mat JtJ = Js.transpose() * Js;
+  Eigen::CompleteOrthogonalDecomposition<Mat> cod(JtJ.rows(), JtJ.cols());
+  cod.setThreshold(kUnseenDirection);  // before compute(): the decomposition's rank is fixed there
+  cod.compute(JtJ);
+  const Mat pinv = cod.pseudoInverse();
+  const Mat influence = Js * (pinv * Gs);
+  const Mat unseen = Gs - JtJ * (pinv * Gs);  // each g's part along directions the data do not see
   const int dof = std::max(1, static_cast<int>(zp.size() - p.linear.cols() - f.values.size()));
   Vec half(G.cols());
   for (int q = 0; q < G.cols(); ++q)
-    half[q] = cal.valid() && cal.n == Jp.rows()
+    half[q] = unseen.col(q).norm() > kUnseenShare * Gs.col(q).norm()
+                  ? INFINITY
+                  : cal.valid() && cal.n == Jp.rows()
                   ? calibrated_half_width_95(cal, Vec(influence.col(q)))
                   : 1.959964 * std::sqrt(std::max(f.rss / dof * influence.col(q).squaredNorm(), 0.0));
   return half;

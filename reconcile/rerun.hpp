@@ -57,10 +57,22 @@ RerunFit refit_on_reruns(const RerunProblem& p, const Eigen::VectorXd& start);
 std::pair<Eigen::MatrixXd, Eigen::VectorXd> projected_system(const RerunProblem& p, const Eigen::VectorXd& response,
                                                              const Eigen::MatrixXd& jacobian);
 
+/// A direction of the values is unseen by the data where the Gram matrix of the Jacobian's unit columns has an
+/// eigenvalue below this (the response along it below 3e-7 of a column's): columns that are the same to rounding, a
+/// drag's Coulomb and viscous parts in a model that answers only their sum at speed.
+constexpr double kUnseenDirection = 1e-13;
+/// A headline the data do not read: its gradient's part along the unseen directions above this share of it (in the
+/// unit columns' values). Not zero: the columns are forward differences over their own steps, so a headline the data
+/// do read (a drag's sum at speed, whose parts the model answers only together) has a part there of the order of the
+/// model's curvature over a step, a few per cent; a part alone has most of its gradient there.
+constexpr double kUnseenShare = 0.1;
+
 /// The 95 % half-widths of g_q^T values at the fit, one for each column g_q of G (k x q), from its Jacobian under the
 /// noise model, all from one projection: with the calibration of the noise on the same whitened rows (stats.hpp), the
 /// variance at the level measured where the influence v = Jp (Jp^T Jp)^+ g lies with Student's t (as
-/// headline_with_ci); otherwise Wald's, s^2 g^T (Jp^T Jp)^+ g.
+/// headline_with_ci); otherwise Wald's, s^2 g^T (Jp^T Jp)^+ g. Infinite where g has a part along a direction the data
+/// do not see (kUnseenDirection, kUnseenShare): the pseudo-inverse would drop that part and give a headline the data cannot read
+/// an interval of zero width.
 Eigen::VectorXd rerun_half_widths(const RerunProblem& p, const RerunFit& f, const Eigen::MatrixXd& G,
                                   const SpectralCalibration& cal);
 

@@ -261,6 +261,17 @@ TEST(DynamicsRefit, ReRunsTheModelWhereTheColumnsMissItAndReadsTheTruth) {
   EXPECT_NEAR(at_speed.value, truth, 2e-3);
   EXPECT_TRUE(covers(at_speed, truth));
   EXPECT_LT(at_speed.hi - at_speed.lo, 0.01);
+  // Its parts: the model answers only their sum at speed, so the data bound neither. Each interval is what the part
+  // can be at all, [0, inf), and the effect says so; the pseudo-inverse alone gave each an interval of width zero at
+  // the split the fit happened to stop at.
+  for (const char* part : {"coulomb_Nm", "viscous_Nms_per_rad"}) {
+    const Headline& h = headline(*drag, part);
+    EXPECT_NEAR(h.lo, 0.0, 1e-9) << part;  // (the headline's gradient is a difference: 1 to rounding)
+    EXPECT_EQ(h.hi, INFINITY) << part;
+  }
+  EXPECT_NE(drag->meaning.find("does not tell coulomb_Nm, viscous_Nms_per_rad apart"), std::string::npos)
+      << drag->meaning;
+  EXPECT_NE(report_summary(r).find(", inf)"), std::string::npos);
   // The fit reported is a real run of the model at the values: its residual is the refit's, and the noise's.
   ASSERT_TRUE(r.refitted);
   DynamicsVariation v;

@@ -2,6 +2,7 @@
 // report (every field, the optional ones present and absent).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -38,7 +39,9 @@ Result full_result() {
                        {{"K1_Nm_per_rad", 1.0e4, 0.9e4, 1.1e4}, {"T1_Nm", 3.9, 3.5, 4.3},
                         {"K2_Nm_per_rad", 2.0e4, 2.0e4, 2.0e4, "1/C_tau, the baseline's compliance"}},
                        -500.0, 1e-20, "F"});
-  AcceptedEffect drag{"drag_torque", "drag", {{"torque_at_speed_Nm", 2.0, 1.9, 2.1}}, -80.0, 1e-12, "F"};
+  // A part the data do not bound: its interval is what it can be at all, [0, inf) (the end written null).
+  AcceptedEffect drag{"drag_torque", "drag", {{"torque_at_speed_Nm", 2.0, 1.9, 2.1}, {"coulomb_Nm", 1.0, 0.0, INFINITY}},
+                      -80.0, 1e-12, "F"};
   drag.model_discrepancy = 0.19;  // refitted on re-runs of the model
   drag.model_runs = 9;
   r.effects.push_back(drag);
@@ -112,6 +115,8 @@ TEST(ReconcileJson, ReadsBackEveryFieldItWrote) {
   const Report read = sw::parse_reconcile_json(text, "reconcile.json");
   EXPECT_EQ(read, written);
   EXPECT_EQ(sw::reconcile_json(read), text);
+  EXPECT_EQ(read.effects[3].ci95.at("coulomb_Nm").second, INFINITY);
+  EXPECT_NE(text.find("null"), std::string::npos);  // JSON has no inf
 }
 
 TEST(ReconcileJson, ReadsBackAReportWithoutTheOptionalParts) {

@@ -379,10 +379,21 @@ std::vector<Headline> headline_with_ci(const Experiment& e, const FitResult& mod
     for (int q = 0; q < spec.n_nonlinear(); ++q) {
       if (model.terms[term].theta[q] != base[i].second) continue;
       const auto [lo, hi] = spec.bounds(e);
-      const double first_step = linearised ? 0.5 * half : 1e-3 * (hi[q] - lo[q]);
+      // On an end of its search range (a dead band sharper than the smallest transition searched) the parameter's
+      // linearisation is no interval, whatever width it gives: the profile alone stands (at the RSS rise the
+      // calibrated level gives).
+      const double at = model.terms[term].theta[q], tol = 1e-9 * (hi[q] - lo[q]);
+      const bool at_bound = at <= lo[q] + tol || at >= hi[q] - tol;
+      const double first_step = linearised && !at_bound ? 0.5 * half : 1e-3 * (hi[q] - lo[q]);
       const auto [plo, phi] = profile_interval(e, noise, model, term, q, delta_rss, first_step);
-      out[i].lo = std::min(out[i].lo, plo);
-      out[i].hi = std::max(out[i].hi, phi);
+      out[i].lo = at_bound ? plo : std::min(out[i].lo, plo);
+      out[i].hi = at_bound ? phi : std::max(out[i].hi, phi);
+      // A parameter searched over non-negative values is a scale that cannot be negative (a breakpoint, a transition
+      // torque): its interval stops at zero, as the re-run refit's stop at what a headline can be (rerun.hpp); on the
+      // lower end of its search, nothing in the data bounds it from below, and its interval reaches zero; on the
+      // upper end, nothing bounds it from above.
+      if (lo[q] >= 0.0) out[i].lo = at <= lo[q] + tol ? 0.0 : std::max(out[i].lo, 0.0);
+      if (at >= hi[q] - tol) out[i].hi = INFINITY;
       break;
     }
   }

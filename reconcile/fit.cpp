@@ -382,8 +382,8 @@ std::vector<Headline> headline_with_ci(const Experiment& e, const FitResult& mod
       // On an end of its search range (a dead band sharper than the smallest transition searched) the parameter's
       // linearisation is no interval, whatever width it gives: the profile alone stands (at the RSS rise the
       // calibrated level gives).
-      const double at = model.terms[term].theta[q], tol = 1e-9 * (hi[q] - lo[q]);
-      const bool at_bound = at <= lo[q] + tol || at >= hi[q] - tol;
+      const double at = base[i].second, tol = 1e-9 * (hi[q] - lo[q]);
+      const bool at_lo = at <= lo[q] + tol, at_hi = at >= hi[q] - tol, at_bound = at_lo || at_hi;
       const double first_step = linearised && !at_bound ? 0.5 * half : 1e-3 * (hi[q] - lo[q]);
       const auto [plo, phi] = profile_interval(e, noise, model, term, q, delta_rss, first_step);
       out[i].lo = at_bound ? plo : std::min(out[i].lo, plo);
@@ -392,8 +392,8 @@ std::vector<Headline> headline_with_ci(const Experiment& e, const FitResult& mod
       // torque): its interval stops at zero, as the re-run refit's stop at what a headline can be (rerun.hpp); on the
       // lower end of its search, nothing in the data bounds it from below, and its interval reaches zero; on the
       // upper end, nothing bounds it from above.
-      if (lo[q] >= 0.0) out[i].lo = at <= lo[q] + tol ? 0.0 : std::max(out[i].lo, 0.0);
-      if (at >= hi[q] - tol) out[i].hi = INFINITY;
+      if (lo[q] >= 0.0) out[i].lo = at_lo ? 0.0 : std::max(out[i].lo, 0.0);
+      if (at_hi) out[i].hi = INFINITY;
       break;
     }
   }

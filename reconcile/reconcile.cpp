@@ -821,8 +821,8 @@ std::optional<RunRefit> refit_runs(const Analysis& a) {
   // Headlines and their gradients in the values (the change of the response linearised at the values); the
   // half-widths of all of them from one projection of the Jacobian.
   const Vec change = fit.response - a.e.baseline;
-  std::vector<Headline*> spread;  // the headlines that get an interval, in the order of the gradients' columns
-  std::vector<std::size_t> spread_term;
+  // The headlines that get an interval with their terms, in the order of the gradients' columns.
+  std::vector<std::pair<std::size_t, Headline*>> spread;
   Mat G(fit.values.size(), 0);
   for (std::size_t i = 0; i < f.terms.size(); ++i) {
     if (offset[i] < 0) continue;
@@ -846,8 +846,7 @@ std::optional<RunRefit> refit_runs(const Analysis& a) {
     }
     for (std::size_t q = 0; q < base.size(); ++q) {
       if (h[q].fixed()) continue;
-      spread.push_back(&h[q]);
-      spread_term.push_back(i);
+      spread.emplace_back(i, &h[q]);
       G = hcat(G, Mat(g.col(q)));
     }
   }
@@ -855,11 +854,11 @@ std::optional<RunRefit> refit_runs(const Analysis& a) {
   // headline along a direction the data do not see is bounded by them alone, and the effect says so.
   const Vec halves = rerun_half_widths(p, fit, G, a.cal);
   for (std::size_t q = 0; q < spread.size(); ++q) {
-    Headline& h = *spread[q];
+    Headline& h = *spread[q].second;
     const auto [can_lo, can_hi] = range_within_bounds(p.lo, p.hi, fit.values, h.value, Vec(G.col(q)));
     h.lo = std::max(h.value - halves[q], can_lo);
     h.hi = std::min(h.value + halves[q], can_hi);
-    std::string& unbounded = out.unbounded[spread_term[q]];
+    std::string& unbounded = out.unbounded[spread[q].first];
     if (std::isinf(halves[q])) unbounded += (unbounded.empty() ? "" : ", ") + h.name;
   }
   progress("reconcile: dynamics effects refitted on " + std::to_string(fit.runs) + " re-runs of the model (" +

@@ -71,8 +71,8 @@ constexpr double kUnseenShare = 0.1;
 /// noise model, all from one projection: with the calibration of the noise on the same whitened rows (stats.hpp), the
 /// variance at the level measured where the influence v = Jp (Jp^T Jp)^+ g lies with Student's t (as
 /// headline_with_ci); otherwise Wald's, s^2 g^T (Jp^T Jp)^+ g. Infinite where g has a part along a direction the data
-/// do not see (kUnseenDirection, kUnseenShare): the pseudo-inverse would drop that part and give a headline the data cannot read
-/// an interval of zero width.
+/// do not see (kUnseenDirection, kUnseenShare): the pseudo-inverse would drop that part and give a headline the data
+/// cannot read an interval of zero width.
 Eigen::VectorXd rerun_half_widths(const RerunProblem& p, const RerunFit& f, const Eigen::MatrixXd& G,
                                   const SpectralCalibration& cal);
 

@@ -113,7 +113,7 @@ TEST(AgainstTheModelsCurve, ANegativePlayIsTheModelsExtraPlayWithTheKeyThatSetsI
   EXPECT_NE(play->meaning.find("more play than the drive"), std::string::npos) << play->meaning;
   EXPECT_NE(play->meaning.find("gear.profile_shift_circular"), std::string::npos) << play->meaning;
   // Its transition is a torque scale: the model's step against the drive's tanh puts it on the low end of its search
-  // (0.031 N*m), where the delta method gave [-12.4, 12.4] N*m; the profile gives [0, 0.073]: a step at zero torque.
+  // (0.031 N*m), where the delta method gave [-12.4, 12.4] N*m; the profile gives [0, 0.077]: a step at zero torque.
   const Headline& transition = headline(*play, "transition_Nm");
   std::printf("  transition %.4g [%.4g, %.4g] N*m\n", transition.value, transition.lo, transition.hi);
   EXPECT_GE(transition.lo, 0.0);

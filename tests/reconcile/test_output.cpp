@@ -40,8 +40,8 @@ Result full_result() {
                         {"K2_Nm_per_rad", 2.0e4, 2.0e4, 2.0e4, "1/C_tau, the baseline's compliance"}},
                        -500.0, 1e-20, "F"});
   // A part the data do not bound: its interval is what it can be at all, [0, inf) (the end written null).
-  AcceptedEffect drag{"drag_torque", "drag", {{"torque_at_speed_Nm", 2.0, 1.9, 2.1}, {"coulomb_Nm", 1.0, 0.0, INFINITY}},
-                      -80.0, 1e-12, "F"};
+  AcceptedEffect drag{"drag_torque", "drag",
+                      {{"torque_at_speed_Nm", 2.0, 1.9, 2.1}, {"coulomb_Nm", 1.0, 0.0, INFINITY}}, -80.0, 1e-12, "F"};
   drag.model_discrepancy = 0.19;  // refitted on re-runs of the model
   drag.model_runs = 9;
   r.effects.push_back(drag);

@@ -181,6 +181,9 @@ void print_hoop_profile_and_fatigue(const FlexsplineSolution& s) {
   }
 }
 
+/// Whether the case file leaves solver.method to "auto" (the reader records the choice it derived).
+bool auto_solver(const std::string& case_path) { return load_case(case_path).derived_from.count("solver.method") > 0; }
+
 }  // namespace
 
 FemJobResult run_fem_job(const Case& c, OutputSet& out, const FemJobOptions& options) {
@@ -228,7 +231,9 @@ void add_fem_command(CLI::App& app) {
   cmd->add_option("--out", out, "output directory (default out/<case stem>/)");
   add_solver_options(cmd, solver, backend);
   cmd->callback([] {
-    const Case c = load_case_with_solver(case_path, solver, backend);
+    // A deck is TET10: --export-inp on a case that leaves the solver to "auto" meshes in TET10 for it.
+    const Case c = load_case_with_solver(case_path, solver.empty() && options.export_inp && auto_solver(case_path)
+                                                        ? "tet10" : solver, backend);
     OutputSet outputs(out.empty() ? default_out_dir(c) : fs::path(out));
     run_fem_job(c, outputs, options);
     outputs.commit();

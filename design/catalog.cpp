@@ -21,6 +21,21 @@ const CatalogDrive* catalog_drive(int size) {
   return nullptr;
 }
 
+const CatalogLimits* catalog_limits(int size) {
+  // shared/reference/catalog_strength_life_losses.md, as read. Ratcheting: (ratio, CSF, CSG).
+  static const std::vector<CatalogLimits> table = {
+      {14, {{30, 59, 0}, {50, 88, 110}, {80, 110, 140}, {100, 84, 100}}, 190, 260, 10, 36, 14, 58, 7000, 10000,
+       0.67, 35e-3, 21e-3, 2.21},
+      {17, {{30, 100, 0}, {50, 150, 190}, {80, 200, 260}, {100, 160, 200}, {120, 120, 150}}, 330, 500, 31, 70, 51,
+       109, 7000, 10000, 0.77, 51e-3, 29e-3, 3.06},
+      {20, {{30, 170, 0}, {50, 220, 280}, {80, 350, 450}, {100, 260, 330}, {120, 240, 310}, {160, 220, 280}}, 560,
+       800, 52, 107, 64, 191, 7000, 10000, 0.77, 105e-3, 37e-3, 3.89},
+  };
+  for (const auto& d : table)
+    if (d.size == size) return &d;
+  return nullptr;
+}
+
 std::string catalog_sizes_text() {
   std::string s;
   for (const auto& d : catalog_drives()) s += (s.empty() ? "" : ", ") + std::to_string(d.size);

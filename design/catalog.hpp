@@ -20,6 +20,36 @@ struct CatalogDrive {
   bool has_rated_torque() const { return rated_torque_Nm > 0; }
 };
 
+/// Published strength, life and loss figures of one catalog size (shared/reference/catalog_strength_life_losses.md:
+/// the CSF/CSG component sets; the losses from another maker's ratio-100 cup sets at 20 °C with grease). N·m unless
+/// named otherwise; 0 where the reference lists none.
+struct CatalogLimits {
+  int size = 0;
+  /// Ratcheting torque with the wave generator fixed, at the ratios listed (ratio, CSF, CSG; 0: not offered).
+  struct Ratcheting {
+    int ratio = 0;
+    double csf_Nm = 0, csg_Nm = 0;
+  };
+  std::vector<Ratcheting> ratcheting;
+  double buckling_csf_Nm = 0, buckling_csg_Nm = 0;  ///< the flexspline, every ratio
+  /// CSG at ratio 100: rated, limit for repeated peak, limit for average, limit for momentary peak.
+  double rated_csg_Nm = 0, repeated_peak_csg_Nm = 0, average_csg_Nm = 0, momentary_csg_Nm = 0;
+  /// L10 of the wave generator's bearing at rated torque and 2,000 rpm input (hours).
+  double bearing_l10_csf_h = 7000, bearing_l10_csg_h = 10000;
+  /// Ratio 100, 20 °C, grease: efficiency at rated torque and 2,000 rpm; no-load running torque (input, 2,000 rpm);
+  /// starting torque (input); backdriving torque (output).
+  double efficiency = 0, no_load_running_torque_Nm = 0, starting_torque_Nm = 0, backdriving_torque_Nm = 0;
+  /// The published ratcheting torque at `ratio` (CSF when `csg` is false); 0 when the ratio is not listed.
+  double ratcheting_Nm(int ratio, bool csg) const {
+    for (const Ratcheting& r : ratcheting)
+      if (r.ratio == ratio) return csg ? r.csg_Nm : r.csf_Nm;
+    return 0;
+  }
+};
+
+/// The published limits of a size (14, 17, 20); nullptr when the reference does not list them.
+const CatalogLimits* catalog_limits(int size);
+
 /// Every listed size, in increasing size: 14, 17, 20 (with stiffness), 25 and 32 (without).
 const std::vector<CatalogDrive>& catalog_drives();
 

@@ -31,6 +31,7 @@
 #include "fem/flexspline_model.hpp"
 #include "fem/cholmod_factor.hpp"
 #include "fem/flexspline_analysis.hpp"
+#include "fem/fourier_element.hpp"
 #include "fem/fourier_section.hpp"
 #include "mesh/estimate.hpp"
 #include "mesh/tet_mesh.hpp"
@@ -62,15 +63,6 @@ Eigen::MatrixXd solve_harmonic(const SectionMesh& s, const Material& m, int n, c
 /// them: times the θ integral of the load's angular shape it is the generalised load of a harmonic.
 Eigen::MatrixXd section_traction_load(const SectionMesh& s, int marker, const Eigen::Vector3d& traction);
 
-/// Amplitudes of one load case over the section: per harmonic 0..N, n_nodes × 3 (a, b, c) of each family.
-struct HarmonicField {
-  std::vector<Eigen::MatrixXd> sym, anti;
-  int harmonics() const { return static_cast<int>(sym.size()) - 1; }
-  /// Cylindrical displacement (u_r, u_θ, u_z) at the point of element e with natural coordinates q, angle θ.
-  Eigen::Vector3d displacement(const SectionMesh& s, long e, const Eigen::Vector2d& q, double theta) const;
-  HarmonicField& operator+=(const HarmonicField& o);
-  HarmonicField operator*(double k) const;
-};
 
 /// The wave generator's contact stations (fem/flexspline_system.hpp's generator_stations) in the harmonic basis.
 /// Station pair j's unit load, 1 N of normal force spread by the hat at θ_j and at θ_j + π, uniform across the band,
@@ -189,6 +181,9 @@ struct FourierSolution {
   SectionMesh section;
   FlexsplineSolution figures;  ///< φ₀, C_τ, neutral curve, hoop stress, reactions (cases[].u empty unless a grid)
   HarmonicField torque_unit;   ///< T = 1 N·m, without the generator's support
+  /// What 1 N·m adds with the generator in place (its stations' forces solved again under the torque: linear about
+  /// the case's torque for a cam or rollers); the torque alone when there is no generator.
+  HarmonicField torque_with_generator;
   HarmonicField generator;     ///< scaled to the case (w0 or force)
   std::vector<HarmonicStats> harmonics;  ///< the harmonics solved (those with a load)
   int harmonics_kept = 0;      ///< N

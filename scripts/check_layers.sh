@@ -14,7 +14,7 @@ floors=(
   "kinematics fem"
   "contact"
   "design dynamics"
-  "reconcile"
+  "reconcile datasheet"
   "io"
   "app"
 )

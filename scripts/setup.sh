@@ -13,7 +13,7 @@ start=$SECONDS
 
 packages=(g++ cmake make pkg-config
   libeigen3-dev libsuitesparse-dev libopenblas-dev libopenblas0-pthread libtet1.5-dev libvtk9-dev
-  libtomlplusplus-dev nlohmann-json3-dev libcli11-dev libfftw3-dev libsundials-dev)
+  libtomlplusplus-dev nlohmann-json3-dev libcli11-dev libfftw3-dev libsundials-dev libspectra-dev)
 if [[ $mode == all ]]; then
   packages+=(libgtest-dev libpetsc-real-dev openmpi-bin paraview xvfb xauth chromium calculix-ccx)
 fi

@@ -1,0 +1,151 @@
+// `strainwave datasheet CASE.toml`: the designed drive's catalog sheet from its geometry. The flexspline on the harmonic
+// solver, the loaded contact on it, then each limit from the stage that owns it; the published figures beside where
+// the case names a catalog size.
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <filesystem>
+#include <limits>
+#include <string>
+
+#include "app/commands.hpp"
+#include "app/contact_job.hpp"
+#include "app/fem_job.hpp"
+#include "common/error.hpp"
+#include "common/progress.hpp"
+#include "contact/harmonic_body.hpp"
+#include "datasheet/datasheet.hpp"
+#include "datasheet/limits.hpp"
+#include "fem/fourier_buckling.hpp"
+#include "fem/infinite_life.hpp"
+#include "io/atomic_file.hpp"
+#include "io/datasheet_output.hpp"
+#include "io/vtu.hpp"
+
+namespace sw::app {
+namespace {
+
+// The catalog's rating speed of the generator bearing's life: 2,000 rpm input (shared/reference).
+constexpr double kInputSpeed_rpm = 2000;
+
+inline const std::vector<std::string> kDatasheetFiles = {"datasheet.json", "datasheet.html", "buckling.vtu"};
+
+/// The harmonic solution of the case with the bands the loaded contact reads.
+FemJobResult solve_flexspline(const Case& c, double max_memory_gb) {
+  const FlexsplineModel model = flexspline_model(c);
+  SectionMesh section = case_section(model);
+  refuse_if_too_large(fourier_model_size(model, section), max_memory_gb * 1e9, c.path);
+  progress("datasheet: the flexspline on harmonics 0.." + std::to_string(model.solver.harmonics));
+  FourierSolution fourier =
+      analyse_section_fourier(model, std::move(section), 0, contact_band_request(model, c.contact.face_slices));
+  FemJobResult job;
+  job.solution = std::move(fourier.figures);
+  job.harmonic = std::make_shared<const FourierSolution>(std::move(fourier));
+  return job;
+}
+
+/// Where the rated torque comes from, in words.
+std::string rated_torque_origin(const Case& c) {
+  if (c.load.rated_torque_Nm) return "[load] rated_torque_Nm";
+  return "[load] torque_Nm (the case gives no rated_torque_Nm)";
+}
+
+/// The torque for infinite life, searched up to 20 × rated (beyond it the sheet says so).
+std::optional<InfiniteLife> infinite_life(const Case& c, const FourierSolution& s, double rated_Nm, std::string& why) {
+  if (!c.material.fatigue_limit_Pa) {
+    why = "not computed: the case gives no [material] fatigue_limit_MPa and ultimate_strength_MPa";
+    return std::nullopt;
+  }
+  progress("datasheet: the flexspline's fatigue over a generator revolution");
+  return infinite_life_torque(s, flexspline_model(c), 20 * rated_Nm);
+}
+
+/// Sectors of the buckling mode's VTU grid (as the fem job's harmonic grid: the series exact at its nodes).
+constexpr int kModeGridSectors = 32;
+
+/// The flexspline's linear buckling under the torque's prestress, harmonic by harmonic; its mode as buckling.vtu.
+BucklingFigure buckling(const Case& c, const FourierSolution& s, const std::filesystem::path& staging) {
+  progress("datasheet: the flexspline's buckling under the torque, harmonic by harmonic");
+  const BucklingResult b = torsion_buckling_fourier(flexspline_model(c), s);
+  const TetMesh grid = fourier::revolve_section(s.section, kModeGridSectors);
+  const Eigen::VectorXd u = fourier::revolved_displacement(s.section, b.mode, kModeGridSectors);
+  write_vtu(staging / "buckling.vtu", grid,
+            {{"mode", Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(u.data(), u.size() / 3, 3)}});
+  BucklingFigure f;
+  f.torque_Nm = b.load_factor;  // the prestress is the torque case's at T = 1 N·m
+  f.harmonic = b.n;
+  char buf[512];
+  std::snprintf(buf, sizeof buf,
+                "linear buckling of the flexspline under the torque's prestress (the shear of the torque case's "
+                "harmonic 0), harmonics 1..%d scanned on the harmonic solver (Spectra on each harmonic's factor), boss "
+                "clamped, rim free: the generator is neither prestress nor support; mode with %d waves around "
+                "(buckling.vtu), eigenpair residual %.1e",
+                b.per_harmonic.empty() ? 0 : b.per_harmonic.back().n, b.n, b.mode_residual);
+  f.method = buf;
+  // The body wall's shear at that torque, T/(2π r² t) at its mid-surface: an elastic bifurcation far beyond the
+  // material's shear strength (von Mises: S_u/√3) is not reached; the figure is then an upper bound.
+  const FlexsplineParams& fp = c.flexspline;
+  const double r = fp.inner_radius_m + fp.wall_thickness_m / 2;
+  const double tau = f.torque_Nm / (2 * std::numbers::pi * r * r * fp.wall_thickness_m);
+  std::snprintf(buf, sizeof buf, "; the body wall's shear there %.0f MPa", tau / 1e6);
+  f.method += buf;
+  if (c.material.ultimate_strength_Pa && tau > *c.material.ultimate_strength_Pa / std::sqrt(3.0))
+    f.method += ", beyond the material's shear strength S_u/√3: the elastic figure is an upper bound (the wall yields "
+                "first)";
+  return f;
+}
+
+}  // namespace
+
+void add_datasheet_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("datasheet", "the drive's catalog sheet from its geometry: limits, stiffness, lost "
+                                              "motion, life; the published figures beside for a catalog size");
+  static std::string case_path, out;
+  static double max_memory_gb = 0;
+  cmd->add_option("case", case_path, "case file (TOML)")->required();
+  cmd->add_option("--out", out, "output directory (default out/<case stem>/)");
+  cmd->add_option("--max-memory", max_memory_gb, "refuse a model whose estimated peak memory exceeds this (GB)");
+  cmd->callback([] {
+    // The sheet reads the flexspline on harmonics (its buckling is solved harmonic by harmonic): refused up front for
+    // a case that is not a body of revolution, like every case the loaded contact cannot take.
+    const Case c = load_case_with_solver(case_path, "fourier", "");
+    const FlexsplineModel model = flexspline_model(c);
+    naming_file(c.path, [&] { check_contact_model(model); });
+    OutputSet outputs(out.empty() ? default_out_dir(c) : std::filesystem::path(out), kDatasheetFiles);
+
+    const FemJobResult fem = solve_flexspline(c, max_memory_gb);
+    const FemReadout readout = fem_readout(fem.solution);
+    const std::unique_ptr<ContactBody> body = contact_body(c, fem, readout.generator_u);
+    const ContactOptions options = contact_options(c, series_parts(c));
+    progress("datasheet: the loaded contact from -rated to +rated torque");
+    const ContactAnalysis contact = naming_file(c.path, [&] { return analyse_contact(model, *body, readout, options); });
+
+    DatasheetInputs in;
+    in.rated_torque_Nm = options.rated_torque_Nm;
+    in.rated_torque_origin = rated_torque_origin(c);
+    in.ratio = c.gear->teeth_flexspline / (c.gear->teeth_circular - c.gear->teeth_flexspline);
+    in.catalog_size = c.catalog_size;
+    in.contact = &contact;
+    in.infinite_life = infinite_life(c, *fem.harmonic, in.rated_torque_Nm, in.why_no_infinite_life);
+    in.buckling = naming_file(c.path, [&] { return buckling(c, *fem.harmonic, outputs.staging()); });
+    if (c.wave_generator->bearing)
+      in.bearing = naming_file(c.path, [&] {
+        return generator_bearing_life(*c.wave_generator->bearing, body->stations(), contact, in.ratio, kInputSpeed_rpm);
+      });
+    else
+      in.why_no_bearing = "not computed: the case gives no [wave_generator] bearing (balls, ball_diameter_mm)";
+    if (c.material.fatigue_limit_Pa) in.tooth_root = tooth_root_limit(*c.gear, c.flexspline, c.material, contact);
+    else in.why_no_tooth_root = "not computed: the case gives no [material] fatigue_limit_MPa and ultimate_strength_MPa";
+    const Datasheet sheet = make_datasheet(in);
+
+    write_file_atomic(outputs.staging() / "datasheet.json", datasheet_json(sheet, c));
+    write_file_atomic(outputs.staging() / "datasheet.html", datasheet_html(sheet, c));
+    outputs.commit();
+    std::printf("datasheet %s (ratio %d%s):\n%s", c.path.c_str(), in.ratio,
+                c.catalog_size ? (", catalog size " + std::to_string(*c.catalog_size)).c_str() : "",
+                datasheet_table(sheet).c_str());
+    std::printf("  wrote %s\n", outputs.dir().string().c_str());
+  });
+}
+
+}  // namespace sw::app

@@ -1,0 +1,186 @@
+#include "datasheet/datasheet.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numbers>
+
+#include "design/catalog.hpp"
+
+namespace sw {
+namespace {
+
+constexpr double kArcmin = 10800.0 / std::numbers::pi;
+
+std::string fmt(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+DatasheetFigure computed(std::string name, std::string label, std::string unit, double value, std::string method) {
+  return {std::move(name), std::move(label), std::move(unit), value, std::move(method), std::nullopt, ""};
+}
+DatasheetFigure not_computed(std::string name, std::string label, std::string unit, std::string why) {
+  return {std::move(name), std::move(label), std::move(unit), std::nullopt, std::move(why), std::nullopt, ""};
+}
+
+void publish(DatasheetFigure& f, double value, std::string source) {
+  if (value <= 0) return;  // the reference lists none
+  f.published = value;
+  f.published_source = std::move(source);
+}
+
+/// The stiffness, twist and loss figures of the loaded contact.
+void add_contact_figures(Datasheet& d, const DatasheetInputs& in) {
+  const ContactAnalysis& a = *in.contact;
+  const std::string law = a.catalog.breakpoints_fitted ? "breakpoints fitted to the curve"
+                                                       : "at the catalog's breakpoints T1, T2";
+  const std::string curve = "the loaded contact's torque-twist curve, wave generator locked, 0 to rated torque (" +
+                            a.solver + " flexspline body, tooth pairs, generator bearing and circular spline in series)";
+  d.figures.push_back(computed("T1_Nm", "T1", "N·m", a.catalog.t1_Nm, "breakpoint of the three-segment law, " + law));
+  d.figures.push_back(computed("T2_Nm", "T2", "N·m", a.catalog.t2_Nm, "breakpoint of the three-segment law, " + law));
+  d.figures.push_back(computed("K1_Nm_per_rad", "K1", "N·m/rad", a.catalog.k1_Nm_per_rad, "secant 0..T1 of " + curve));
+  d.figures.push_back(computed("K2_Nm_per_rad", "K2", "N·m/rad", a.catalog.k2_Nm_per_rad, "secant T1..T2 of the same"));
+  d.figures.push_back(computed("K3_Nm_per_rad", "K3", "N·m/rad", a.catalog.k3_Nm_per_rad, "secant T2..rated of the same"));
+  const double lost = a.friction ? a.friction->lost_motion_rad : a.lost_motion_rad;
+  d.figures.push_back(computed("lost_motion_arcmin", "lost motion", "arcmin", lost * kArcmin,
+                               "twist between ±4 % of rated torque on the loop's middle line (play and elastic twist)"));
+  d.figures.push_back(computed("play_arcmin", "play (dead band)", "arcmin", a.play_rad * kArcmin,
+                               "the curve's jump at zero torque: the teeth's clearance at the locked generator"));
+  if (a.friction)
+    d.figures.push_back(computed("hysteresis_loss_arcmin", "hysteresis loss", "arcmin",
+                                 a.friction->hysteresis_loss_rad * kArcmin,
+                                 "branches' gap at zero torque of the steady loop ±rated, Coulomb μ = " +
+                                     fmt("%.3g", a.friction->friction_coefficient) + " on the flanks"));
+  else
+    d.figures.push_back(not_computed("hysteresis_loss_arcmin", "hysteresis loss", "arcmin",
+                                     "not computed: the case gives no flank friction ([contact] friction_coefficient)"));
+}
+
+void add_limit_figures(Datasheet& d, const DatasheetInputs& in) {
+  if (in.buckling)
+    d.figures.push_back(computed("buckling_torque_Nm", "buckling torque", "N·m", in.buckling->torque_Nm,
+                                 in.buckling->method));
+  else
+    d.figures.push_back(not_computed("buckling_torque_Nm", "buckling torque", "N·m", in.why_no_buckling));
+  d.figures.push_back(not_computed("ratcheting_torque_Nm", "ratcheting torque", "N·m",
+                                   "not computed: the teeth riding over needs the contact followed up the flank to the "
+                                   "tips with the rim's radial give (not in this version)"));
+  if (in.infinite_life) {
+    const InfiniteLife& l = *in.infinite_life;
+    const FatigueState& w = l.at_limit;
+    std::string method = "flexspline body: Sines' criterion with Goodman's line over one generator revolution (harmonic "
+                         "solution, the generator's bending plus the torque's stresses), worst point " + w.place +
+                         " at r = " + fmt("%.2f", w.r_m * 1e3) + " mm, z = " + fmt("%.2f", w.z_m * 1e3) +
+                         " mm; safety factor with the generator alone " + fmt("%.2f", l.at_zero.safety_factor);
+    if (l.torque_Nm == 0) method = "0: the generator's bending alone exceeds the fatigue limit (" + method + ")";
+    d.figures.push_back(computed("infinite_life_torque_Nm", "torque for infinite life (flexspline)", "N·m",
+                                 l.torque_Nm, method));
+  } else {
+    d.figures.push_back(
+        not_computed("infinite_life_torque_Nm", "torque for infinite life (flexspline)", "N·m", in.why_no_infinite_life));
+  }
+  if (in.tooth_root)
+    d.figures.push_back(computed("tooth_root_limit_Nm", "torque at the teeth's root limit", "N·m",
+                                 in.tooth_root->torque_Nm, in.tooth_root->method));
+  else
+    d.figures.push_back(
+        not_computed("tooth_root_limit_Nm", "torque at the teeth's root limit", "N·m", in.why_no_tooth_root));
+  // The momentary limit: the first of yield, ratcheting and buckling. Yield is not computed (no yield strength in the
+  // case) and neither is ratcheting, so the sheet does not name one: buckling alone would be far above it.
+  std::string why = "not computed: the first of yield, ratcheting and buckling, and yield and ratcheting are not "
+                    "computed";
+  if (in.buckling) why += " (the elastic buckling torque alone is " + fmt("%.0f", in.buckling->torque_Nm) + " N·m)";
+  d.figures.push_back(not_computed("momentary_limit_Nm", "momentary limit", "N·m", why));
+}
+
+void add_life_figures(Datasheet& d, const DatasheetInputs& in) {
+  if (in.bearing) {
+    d.figures.push_back(computed("bearing_life_L10_h", "generator bearing L10", "h", in.bearing->l10_h,
+                                 in.bearing->method));
+    d.figures.push_back(computed("bearing_life_exponent", "life exponent against torque", "", in.bearing->life_exponent,
+                                 "−d ln L10 / d ln T between half and full rated torque (the catalog's scaling takes 3)"));
+  } else {
+    d.figures.push_back(not_computed("bearing_life_L10_h", "generator bearing L10", "h", in.why_no_bearing));
+  }
+}
+
+/// The losses' figures: not computed in this version (the generator bearing's friction moment and the flanks'
+/// friction coefficient exist as parts, generator/bearing_friction.hpp and gear/mesh_friction.hpp; the lubricant, the
+/// running mesh's sliding and the drag are not yet put together), listed so the published figures stand beside.
+void add_loss_figures(Datasheet& d) {
+  const std::string why = "not computed: the drive's losses (generator bearing, flanks' sliding, lubricant drag) are not "
+                          "yet assembled into a running model";
+  d.figures.push_back(not_computed("efficiency", "efficiency (rated torque, 2,000 rpm, 20 °C)", "", why));
+  d.figures.push_back(not_computed("no_load_running_torque_Nm", "no-load running torque (input, 2,000 rpm)", "N·m", why));
+  d.figures.push_back(not_computed("starting_torque_Nm", "starting torque (input)", "N·m", why));
+  d.figures.push_back(not_computed("backdriving_torque_Nm", "backdriving torque (output)", "N·m", why));
+}
+
+/// The catalog's figures beside the computed ones, for the size and ratio the case names.
+void add_published(Datasheet& d, const DatasheetInputs& in) {
+  if (!in.catalog_size) return;
+  const int size = *in.catalog_size;
+  const std::string ratio_text = "ratio " + std::to_string(in.ratio);
+  auto set = [&](const std::string& name, double value, const std::string& source) {
+    for (DatasheetFigure& f : d.figures)
+      if (f.name == name) publish(f, value, source);
+  };
+  if (const CatalogDrive* row = catalog_drive(size); row && in.ratio >= 80) {  // the stiffness rows are for ratio ≥ 80
+    set("T1_Nm", row->t1_Nm, "CSF/CSG, ratio ≥ 80");
+    set("T2_Nm", row->t2_Nm, "CSF/CSG, ratio ≥ 80");
+    set("K1_Nm_per_rad", row->k1_Nm_per_rad, "CSF/CSG, ratio ≥ 80");
+    set("K2_Nm_per_rad", row->k2_Nm_per_rad, "CSF/CSG, ratio ≥ 80");
+    set("K3_Nm_per_rad", row->k3_Nm_per_rad, "CSF/CSG, ratio ≥ 80");
+    if (in.ratio == 100) set("rated_torque_Nm", row->rated_torque_Nm, "CSG, ratio 100");
+  }
+  if (const CatalogLimits* lim = catalog_limits(size)) {
+    set("buckling_torque_Nm", lim->buckling_csf_Nm, "CSF (CSG " + fmt("%.0f", lim->buckling_csg_Nm) + ")");
+    const double csf = lim->ratcheting_Nm(in.ratio, false), csg = lim->ratcheting_Nm(in.ratio, true);
+    set("ratcheting_torque_Nm", csf, "CSF, " + ratio_text + (csg > 0 ? " (CSG " + fmt("%.0f", csg) + ")" : ""));
+    if (in.ratio == 100) set("momentary_limit_Nm", lim->momentary_csg_Nm, "CSG, ratio 100");
+    set("bearing_life_L10_h", lim->bearing_l10_csf_h,
+        "CSF at rated torque, 2,000 rpm (CSG " + fmt("%.0f", lim->bearing_l10_csg_h) + ")");
+    set("bearing_life_exponent", 3, "the catalog's scaling L ∝ (T_r/T)³");
+    if (in.ratio == 100) {
+      const std::string losses = "another maker's ratio-100 cup set, 20 °C, grease";
+      set("efficiency", lim->efficiency, losses);
+      set("no_load_running_torque_Nm", lim->no_load_running_torque_Nm, losses);
+      set("starting_torque_Nm", lim->starting_torque_Nm, losses);
+      set("backdriving_torque_Nm", lim->backdriving_torque_Nm, losses);
+    }
+  }
+}
+
+}  // namespace
+
+const DatasheetFigure* Datasheet::find(const std::string& name) const {
+  for (const DatasheetFigure& f : figures)
+    if (f.name == name) return &f;
+  return nullptr;
+}
+
+Datasheet make_datasheet(const DatasheetInputs& in) {
+  Datasheet d;
+  d.catalog_size = in.catalog_size;
+  d.ratio = in.ratio;
+  d.figures.push_back(computed("rated_torque_Nm", "rated torque", "N·m", in.rated_torque_Nm,
+                               "given: " + in.rated_torque_origin + " (the tool does not rate a drive)"));
+  if (in.contact) add_contact_figures(d, in);
+  add_limit_figures(d, in);
+  add_life_figures(d, in);
+  add_loss_figures(d);
+  add_published(d, in);
+  d.idealisations = {
+      "the flexspline is linear elastic (small displacements) about the generator-deformed state; stresses superpose",
+      "fatigue: a polished part at the material's fatigue limit (no surface, size or reliability factors); the teeth are "
+      "the root check's, the clamp's singular corner is left out",
+      "the loaded contact: Coulomb friction on the flanks only where the case gives μ; the teeth are ideal involutes "
+      "(no pitch or profile deviations)",
+  };
+  return d;
+}
+
+}  // namespace sw

@@ -1,0 +1,128 @@
+#include "datasheet/limits.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <cstdio>
+#include <numbers>
+
+#include "common/error.hpp"
+#include "gear/tooth_root.hpp"
+#include "generator/bearing_life.hpp"
+
+namespace sw {
+
+double pulsating_allowable_stress_Pa(double fatigue_limit_Pa, double ultimate_strength_Pa) {
+  return 2 / (1 / fatigue_limit_Pa + 1 / ultimate_strength_Pa);
+}
+
+ToothRootFigure tooth_root_limit(const GearParams& gear, const FlexsplineParams& flexspline, const Material& material,
+                                 const ContactAnalysis& contact) {
+  if (!material.fatigue_limit_Pa || !material.ultimate_strength_Pa)
+    throw InputError("the teeth's root limit needs material.fatigue_limit_MPa and material.ultimate_strength_MPa");
+  const TorqueStep& rated = contact.steps.back();
+  std::size_t top = 0;
+  for (std::size_t i = 0; i < contact.flanks.size(); ++i)
+    if (rated.flank_force_N[i] > rated.flank_force_N[top]) top = i;
+  const FlankContact& f = contact.flanks[top];
+  // A face cut in slices has one contact per slice: the flank's force over the face is their sum.
+  double face_force_N = 0;
+  for (std::size_t i = 0; i < contact.flanks.size(); ++i)
+    if (contact.flanks[i].tooth == contact.flanks[top].tooth && contact.flanks[i].flank == contact.flanks[top].flank)
+      face_force_N += rated.flank_force_N[i];
+  const SpurTeeth teeth = flexspline_teeth(gear);
+  const ToothRootForm form = external_root_form(teeth, f.contact_radius_m);
+  RootStressFactors factors;
+  const double depth_m = (gear.addendum_coefficient_flexspline + gear.dedendum_coefficient_flexspline) * gear.module_m;
+  factors.rim_thickness = rim_thickness_factor(flexspline.rim_thickness_m, depth_m);
+  const double Ft = face_force_N * std::cos(gear.pressure_angle_rad);
+  const double sigma = nominal_root_stress_Pa(form, gear.module_m, Ft, flexspline.rim_width_m, factors);
+  const double allowable = pulsating_allowable_stress_Pa(*material.fatigue_limit_Pa, *material.ultimate_strength_Pa);
+  ToothRootFigure out;
+  out.root_stress_at_rated_Pa = sigma;
+  out.torque_Nm = sigma > 0 ? contact.rated_torque_Nm * allowable / sigma : std::numeric_limits<double>::infinity();
+  char buf[512];
+  std::snprintf(buf, sizeof buf,
+                "ISO 6336-3 method B on the flexspline's most loaded flank at rated torque (%.1f N, contact radius "
+                "%.3f mm): Y_F %.3f, Y_S %.3f, Y_B %.3f, root stress %.0f MPa against the pulsating allowable %.0f MPa "
+                "(Goodman, the material's S_e and S_u); the flank force taken proportional to torque beyond rated",
+                face_force_N, f.contact_radius_m * 1e3, form.form_factor, form.stress_correction, factors.rim_thickness,
+                sigma / 1e6, allowable / 1e6);
+  out.method = buf;
+  return out;
+}
+
+std::vector<double> ball_loads_N(const BodyStations& stations, const std::vector<double>& station_force_N, int balls) {
+  constexpr double kTwoPi = 2 * std::numbers::pi;
+  // The line load over the whole circle: each pair's first station and its partner half a turn on, by angle, each
+  // with its force over the stations' spacing; linear in between (the hats sum to one), periodic.
+  std::vector<std::pair<double, double>> at;  // (angle in [0, 2π), force per unit angle)
+  for (std::size_t j = 0; j < stations.angle_rad.size(); ++j)
+    for (const double turn : {0.0, std::numbers::pi})
+      at.emplace_back(std::fmod(std::fmod(stations.angle_rad[j] + turn, kTwoPi) + kTwoPi, kTwoPi),
+                      station_force_N[j] / stations.half_width_rad);
+  std::sort(at.begin(), at.end());
+  at.emplace_back(at.front().first + kTwoPi, at.front().second);  // close the period
+  at.insert(at.begin(), {at[at.size() - 2].first - kTwoPi, at[at.size() - 2].second});
+  // ∫ q over [a, b] (a ≤ b, within one period of the list's range), exactly: trapezoids of the linear pieces.
+  const auto q_at = [&](double t) {
+    const auto hi = std::upper_bound(at.begin(), at.end(), std::make_pair(t, std::numeric_limits<double>::infinity()));
+    const auto lo = hi - 1;
+    return lo->second + (hi->second - lo->second) * (t - lo->first) / (hi->first - lo->first);
+  };
+  const auto integral = [&](double a, double b) {
+    double sum = 0, t = a, qt = q_at(a);
+    for (const auto& [angle, q] : at) {
+      if (angle <= a) continue;
+      if (angle >= b) break;
+      sum += 0.5 * (qt + q) * (angle - t);
+      t = angle;
+      qt = q;
+    }
+    return sum + 0.5 * (qt + q_at(b)) * (b - t);
+  };
+  // Each ball carries the line load of its own arc, ±π/Z about it: the ring between the balls is not rigid, and what
+  // presses on it goes to the nearest ball (the balls together carry exactly the stations' force).
+  std::vector<double> Q(static_cast<std::size_t>(balls));
+  for (int b = 0; b < balls; ++b) {
+    const double psi = kTwoPi * b / balls, half = kTwoPi / balls / 2;
+    const double lo = psi - half, hi = psi + half;
+    const double load = lo < 0 ? integral(lo + kTwoPi, kTwoPi) + integral(0, hi) : integral(lo, hi);
+    Q[static_cast<std::size_t>(b)] = std::max(0.0, load);
+  }
+  return Q;
+}
+
+BearingLifeFigure generator_bearing_life(const GeneratorBearing& bearing, const BodyStations& stations,
+                                         const ContactAnalysis& contact, double ratio, double input_speed_rpm) {
+  if (!stations.unilateral || stations.angle_rad.empty() || contact.steps.back().station_force_N.empty())
+    throw InputError("the generator bearing's life needs its ball loads: a cam or rollers in contact with the bore "
+                     "(wave_generator.model = \"cam\" or \"rollers\")");
+  const double signed_ratio = -ratio;  // circular spline fixed: the flexspline turns against the input
+  const auto hours = [&](const TorqueStep& s) {
+    return generator_bearing_l10_hours(bearing, ball_loads_N(stations, s.station_force_N, bearing.balls),
+                                       input_speed_rpm, signed_ratio);
+  };
+  const TorqueStep& rated = contact.steps.back();
+  const TorqueStep* half = &rated;
+  for (const TorqueStep& s : contact.steps)
+    if (std::abs(s.torque_Nm - rated.torque_Nm / 2) < std::abs(half->torque_Nm - rated.torque_Nm / 2)) half = &s;
+  BearingLifeFigure out;
+  out.input_speed_rpm = input_speed_rpm;
+  out.l10_h = hours(rated);
+  out.life_exponent = std::log(hours(*half) / out.l10_h) / std::log(rated.torque_Nm / half->torque_Nm);
+  const std::vector<double> Q = ball_loads_N(stations, rated.station_force_N, bearing.balls);
+  const double total = std::accumulate(Q.begin(), Q.end(), 0.0);
+  char buf[512];
+  std::snprintf(buf, sizeof buf,
+                "ISO 281 / Lundberg–Palmgren raceway ratings (C_r %.0f N) with the ball loads of the loaded contact at "
+                "rated torque (the generator's preload and the mesh forces: largest %.0f N, sum %.0f N over %d balls), "
+                "the load zone turning with the cam; at %.0f rpm input, no life modification factor (a_ISO = 1)",
+                basic_dynamic_load_rating_N(bearing), *std::max_element(Q.begin(), Q.end()), total, bearing.balls,
+                input_speed_rpm);
+  out.method = buf;
+  return out;
+}
+
+}  // namespace sw

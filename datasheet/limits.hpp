@@ -1,0 +1,39 @@
+#pragma once
+// The limits of the datasheet that stand on the loaded contact: the teeth's root strength (ISO 6336-3 on the contact's
+// largest flank force). Each returns the figure with the one line that says how it was computed.
+#include "contact/loaded_contact.hpp"
+#include "datasheet/datasheet.hpp"
+#include "gear/gear.hpp"
+#include "generator/generator_bearing.hpp"
+
+namespace sw {
+
+/// The allowable root stress of teeth loaded once per mesh entry, always the same way (a pulsating cycle 0..σ):
+/// Goodman's line with σ_a = σ_m = σ/2, σ = 2/(1/S_e + 1/S_u) (the material's fatigue limit and ultimate strength;
+/// a polished specimen's, no notch or size factor beyond ISO 6336-3's Y_S).
+double pulsating_allowable_stress_Pa(double fatigue_limit_Pa, double ultimate_strength_Pa);
+
+/// The flexspline teeth's root limit: at +rated torque, the flank carrying the largest force in the loaded contact,
+/// its tangential part F_t = F_n·cos α at its contact radius, the root stress by ISO 6336-3 method B
+/// (gear/tooth_root.hpp: Y_F, Y_S at that load radius, Y_B of the rim under the teeth) over the face width; the torque
+/// at which it reaches the pulsating allowable, the flank force taken proportional to the torque beyond rated.
+/// Throws InputError without the material's fatigue data.
+ToothRootFigure tooth_root_limit(const GearParams& gear, const FlexsplineParams& flexspline, const Material& material,
+                                 const ContactAnalysis& contact);
+
+/// The ball loads (N, one per ball at angles 2πb/Z from the major axis) of the generator's stations' forces at one
+/// torque step: each station pair's force (at each of its two stations) spread by its hat, so the load per unit angle
+/// is the stations' force over their spacing, linear between stations (the hats sum to one); each ball carries the
+/// load of its own arc ±π/Z (the flexible outer ring passes what presses on it to the nearest ball; its bending between
+/// balls is left out). Their sum is the stations' (both halves) exactly.
+std::vector<double> ball_loads_N(const BodyStations& stations, const std::vector<double>& station_force_N, int balls);
+
+/// L10 of the generator bearing (generator/bearing_life.hpp: Lundberg–Palmgren raceway ratings, the load zone turning
+/// with the cam) from the ball loads of the loaded contact at +rated torque, in hours at `input_speed_rpm` for a cup
+/// drive with the circular spline fixed (the output turns against the input); the life exponent against torque from
+/// the step nearest half rated. Throws InputError when the generator's stations are not in the contact (the force
+/// idealisation holds the band instead) or the contact has no station forces.
+BearingLifeFigure generator_bearing_life(const GeneratorBearing& bearing, const BodyStations& stations,
+                                         const ContactAnalysis& contact, double ratio, double input_speed_rpm);
+
+}  // namespace sw

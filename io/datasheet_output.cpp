@@ -1,0 +1,133 @@
+#include "io/datasheet_output.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include <nlohmann/json.hpp>
+
+#include "io/json_file.hpp"
+#include "io/provenance.hpp"
+
+namespace sw {
+namespace {
+
+constexpr const char* kCannotOpen = "cannot be read; give the datasheet.json written by `strainwave datasheet CASE.toml`";
+constexpr const char* kExpected = "the datasheet.json of `strainwave datasheet`";
+
+nlohmann::json number_or_null(const std::optional<double>& v) {
+  return v && std::isfinite(*v) ? nlohmann::json(*v) : nlohmann::json(nullptr);
+}
+
+std::string html_escape(const std::string& s) {
+  std::string out;
+  for (const char ch : s) {
+    switch (ch) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += ch;
+    }
+  }
+  return out;
+}
+
+std::string value_text(const std::optional<double>& v) {
+  if (!v) return "not computed";
+  if (std::isinf(*v)) return "beyond the search";
+  char buf[32];
+  const double a = std::abs(*v);
+  std::snprintf(buf, sizeof buf, a != 0 && (a >= 1e5 || a < 1e-2) ? "%.3g" : "%.4g", *v);
+  return buf;
+}
+
+}  // namespace
+
+std::string datasheet_json(const Datasheet& d, const Case& c) {
+  nlohmann::json j = nlohmann::json::object();
+  j["case_file"] = c.path;
+  const Provenance p = provenance_of(c);
+  j["case"] = nlohmann::json::parse(p.resolved_case);
+  j["version"] = p.version;
+  j["catalog_size"] = d.catalog_size ? nlohmann::json(*d.catalog_size) : nlohmann::json(nullptr);
+  j["ratio"] = d.ratio;
+  nlohmann::json figures = nlohmann::json::object();
+  nlohmann::json order = nlohmann::json::array();
+  for (const DatasheetFigure& f : d.figures) {
+    figures[f.name] = {{"label", f.label},
+                       {"value", number_or_null(f.value)},
+                       {"computed", f.value.has_value()},
+                       {"unit", f.unit},
+                       {"method", f.method},
+                       {"published", number_or_null(f.published)},
+                       {"published_source", f.published_source}};
+    order.push_back(f.name);
+  }
+  j["figures"] = figures;
+  j["order"] = order;
+  j["idealisations"] = d.idealisations;
+  return j.dump(2) + "\n";
+}
+
+Datasheet read_datasheet(const std::filesystem::path& path) {
+  const JsonIn j = JsonIn::open(path, kCannotOpen, kExpected);
+  Datasheet d;
+  if (!j["catalog_size"].is_null()) d.catalog_size = static_cast<int>(j["catalog_size"].integer());
+  d.ratio = static_cast<int>(j["ratio"].integer());
+  const JsonIn figures = j["figures"];
+  for (const JsonIn& name : j["order"].elements()) {
+    const JsonIn f = figures[name.text()];
+    DatasheetFigure out;
+    out.name = name.text();
+    out.label = f["label"].text();
+    out.unit = f["unit"].text();
+    out.method = f["method"].text();
+    out.published_source = f["published_source"].text();
+    const bool computed = f["computed"].flag();
+    if (computed) out.value = f["value"].is_null() ? std::numeric_limits<double>::infinity() : f["value"].number();  // null: beyond the search
+    if (!f["published"].is_null()) out.published = f["published"].number();
+    d.figures.push_back(std::move(out));
+  }
+  for (const JsonIn& s : j["idealisations"].elements()) d.idealisations.push_back(s.text());
+  return d;
+}
+
+std::string datasheet_table(const Datasheet& d) {
+  std::string out;
+  char buf[512];
+  for (const DatasheetFigure& f : d.figures) {
+    std::string published = f.published ? value_text(f.published) + " (" + f.published_source + ")" : "";
+    std::snprintf(buf, sizeof buf, "  %-40s %14s %-8s %s\n", f.label.c_str(), value_text(f.value).c_str(),
+                  f.unit.c_str(), published.empty() ? "" : ("published " + published).c_str());
+    out += buf;
+  }
+  return out;
+}
+
+std::string datasheet_html(const Datasheet& d, const Case& c) {
+  std::string h =
+      "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>strainwave datasheet: " + html_escape(c.path) +
+      "</title>\n<style>body{font-family:sans-serif;margin:2em;max-width:75em}table{border-collapse:collapse}"
+      "td,th{border:1px solid #bbb;padding:.3em .6em;vertical-align:top}th{background:#eee}td.n{text-align:right;"
+      "white-space:nowrap}td.m{font-size:90%;color:#333}</style></head><body>\n";
+  h += "<h1>Datasheet of " + html_escape(c.path) + "</h1>\n<p>Ratio " + std::to_string(d.ratio);
+  if (d.catalog_size) h += "; the case stands for catalog size " + std::to_string(*d.catalog_size) +
+                           " (published figures beside, compared and never fitted)";
+  h += ".</p>\n<table><tr><th>figure</th><th>computed</th><th>unit</th><th>published</th><th>how it was computed"
+       "</th></tr>\n";
+  for (const DatasheetFigure& f : d.figures) {
+    h += "<tr><td>" + html_escape(f.label) + "</td><td class=\"n\">" + html_escape(value_text(f.value)) +
+         "</td><td>" + html_escape(f.unit) + "</td><td class=\"n\">" +
+         (f.published ? html_escape(value_text(f.published)) + "<br><small>" + html_escape(f.published_source) +
+                            "</small>"
+                      : "") +
+         "</td><td class=\"m\">" + html_escape(f.method) + "</td></tr>\n";
+  }
+  h += "</table>\n<h2>What the figures take as given</h2>\n<ul>\n";
+  for (const std::string& s : d.idealisations) h += "<li>" + html_escape(s) + "</li>\n";
+  h += "</ul>\n</body></html>\n";
+  return h;
+}
+
+}  // namespace sw

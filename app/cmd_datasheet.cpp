@@ -76,8 +76,9 @@ BucklingFigure buckling(const Case& c, const FourierSolution& s, const std::file
   f.harmonic = b.n;
   char buf[512];
   std::snprintf(buf, sizeof buf,
-                "linear buckling of the flexspline under the torque's prestress (the shear of the torque case's "
-                "harmonic 0), harmonics 1..%d scanned on the harmonic solver (Spectra on each harmonic's factor), boss "
+                "elastic linear buckling of the flexspline under the torque's shear taken uniform round the body (the "
+                "torque case's harmonic 0: the shear the torque concentrates at the engagement zones is left out, and "
+                "a rim loaded there buckles lower), harmonics 0..%d scanned (Spectra on each harmonic's factor), boss "
                 "clamped, rim free: the generator is neither prestress nor support; mode with %d waves around "
                 "(buckling.vtu), eigenpair residual %.1e",
                 b.per_harmonic.empty() ? 0 : b.per_harmonic.back().n, b.n, b.mode_residual);

@@ -21,64 +21,50 @@ fs::path scratch(const std::string& name) {
   return d;
 }
 
-class Size17Sheet : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    dir_ = new fs::path(scratch("17"));
-    const auto run = run_strainwave("datasheet cases/cup_size17.toml --quiet --out " + dir_->string());
-    ASSERT_EQ(run.exit_code, 0) << run.output;
-    printed_ = new std::string(run.out);
-    const auto contact = run_strainwave("contact cases/cup_size17.toml --quiet --no-vtk --out " + dir_->string() + "_c");
-    ASSERT_EQ(contact.exit_code, 0) << contact.output;
-  }
-  static void TearDownTestSuite() {
-    fs::remove_all(*dir_);
-    fs::remove_all(dir_->string() + "_c");
-    delete dir_;
-    delete printed_;
-  }
-  static inline fs::path* dir_ = nullptr;
-  static inline std::string* printed_ = nullptr;
-};
+fs::path sheet_dir() { return scratch("17"); }
 
-TEST_F(Size17Sheet, WritesItsFilesAndPrintsTheTable) {
-  for (const char* f : {"datasheet.json", "datasheet.html"}) EXPECT_TRUE(fs::exists(*dir_ / f)) << f;
+// One run of each command serves every check below (ctest runs each test in a process of its own: one datasheet and
+// one contact run, not one per check).
+TEST(Size17Sheet, CarriesTheContactsFiguresThePublishedRowsAndSaysHowEachWasComputed) {
+  const fs::path dir = sheet_dir(), contact_dir = dir.string() + "_c";
+  const auto run = run_strainwave("datasheet cases/cup_size17.toml --quiet --out " + dir.string());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const auto contact_run = run_strainwave("contact cases/cup_size17.toml --quiet --no-vtk --out " + contact_dir.string());
+  ASSERT_EQ(contact_run.exit_code, 0) << contact_run.output;
+
+  // Its files and the printed table.
+  for (const char* f : {"datasheet.json", "datasheet.html", "buckling.vtu"}) EXPECT_TRUE(fs::exists(dir / f)) << f;
   for (const char* label : {"rated torque", "K3", "buckling torque", "torque for infinite life", "generator bearing L10"})
-    EXPECT_NE(printed_->find(label), std::string::npos) << label << " in\n" << *printed_;
-}
+    EXPECT_NE(run.out.find(label), std::string::npos) << label << " in\n" << run.out;
 
-// The sheet's stiffness and lost motion are the loaded contact's, read from the same analysis: equal to contact.json's
-// to the JSON's precision (a contract between the two commands, not a verification of the figures, which
-// test_loaded_contact and test_torque_twist hold against closed forms).
-TEST_F(Size17Sheet, StiffnessIsTheLoadedContactsOwn) {
-  const auto sheet = read_json(*dir_ / "datasheet.json");
-  const auto contact = read_json(fs::path(dir_->string() + "_c") / "contact.json");
+  // The sheet's stiffness and lost motion are the loaded contact's, read from the same analysis: equal to
+  // contact.json's to the JSON's precision (a contract between the two commands, not a verification of the figures,
+  // which test_loaded_contact and test_torque_twist hold against closed forms).
+  const auto sheet = read_json(dir / "datasheet.json");
+  const auto contact = read_json(contact_dir / "contact.json");
+  const auto& f = sheet["figures"];
   for (const char* k : {"K1_Nm_per_rad", "K2_Nm_per_rad", "K3_Nm_per_rad"})
-    EXPECT_NEAR(sheet["figures"][k]["value"].get<double>(), contact["catalog"][k].get<double>(),
+    EXPECT_NEAR(f[k]["value"].get<double>(), contact["catalog"][k].get<double>(),
                 1e-9 * contact["catalog"][k].get<double>())
         << k;
-  EXPECT_NEAR(sheet["figures"]["lost_motion_arcmin"]["value"].get<double>(),
-              contact["lost_motion_arcmin"].get<double>(), 1e-9);
-}
+  EXPECT_NEAR(f["lost_motion_arcmin"]["value"].get<double>(), contact["lost_motion_arcmin"].get<double>(), 1e-9);
 
-// The published figures are the reference's rows for size 17 at ratio 100 (shared/reference), beside the computed.
-TEST_F(Size17Sheet, PublishedFiguresAreTheCatalogsRows) {
-  const auto f = read_json(*dir_ / "datasheet.json")["figures"];
+  // The published figures are the reference's rows for size 17 at ratio 100 (shared/reference), beside the computed.
   EXPECT_EQ(f["K3_Nm_per_rad"]["published"].get<double>(), 1.6e4);
   EXPECT_EQ(f["buckling_torque_Nm"]["published"].get<double>(), 330);
   EXPECT_EQ(f["ratcheting_torque_Nm"]["published"].get<double>(), 160);
   EXPECT_EQ(f["bearing_life_L10_h"]["published"].get<double>(), 7000);
   EXPECT_EQ(f["rated_torque_Nm"]["value"].get<double>(), 31);
-  EXPECT_FALSE(f["K3_Nm_per_rad"]["value"].get<double>() == 1.6e4);  // computed, not copied
-}
+  EXPECT_NE(f["K3_Nm_per_rad"]["value"].get<double>(), 1.6e4);  // computed, not copied
 
-TEST_F(Size17Sheet, EveryFigureSaysHowItWasComputedOrWhyNot) {
-  const auto j = read_json(*dir_ / "datasheet.json");
-  EXPECT_TRUE(j.contains("case") && j.contains("version"));
-  for (const auto& [name, f] : j["figures"].items()) {
-    EXPECT_FALSE(f["method"].get<std::string>().empty()) << name;
-    if (!f["computed"].get<bool>()) EXPECT_TRUE(f["value"].is_null()) << name;
+  // Every figure says how it was computed or why not; a figure not computed has no value.
+  EXPECT_TRUE(sheet.contains("case") && sheet.contains("version"));
+  for (const auto& [name, x] : f.items()) {
+    EXPECT_FALSE(x["method"].get<std::string>().empty()) << name;
+    if (!x["computed"].get<bool>()) EXPECT_TRUE(x["value"].is_null()) << name;
   }
+  fs::remove_all(dir);
+  fs::remove_all(contact_dir);
 }
 
 TEST(DatasheetErrors, ACaseWithoutTeethIsRefusedInOneLineBeforeAnyWork) {

@@ -12,34 +12,15 @@
 #include "common/lubricant.hpp"
 #include "generator/bearing_friction.hpp"
 #include "generator/bearing_life.hpp"
+#include "tests/generator/bearings.hpp"
 
 namespace sw {
 namespace {
 
+using testing::bearing_6205;
+using testing::stribeck_loads;
+
 constexpr double kPi = std::numbers::pi;
-
-/// The CWRU SKF 6205 (see test_bearing_life.cpp): 9 balls of 0.3126 in on a 1.537 in pitch circle.
-GeneratorBearing bearing_6205() {
-  GeneratorBearing b;
-  b.balls = 9;
-  b.ball_diameter_m = 0.3126 * 25.4e-3;
-  b.pitch_radius_m = 0.5 * 1.537 * 25.4e-3;
-  b.inner_groove_conformity = b.outer_groove_conformity = 0.52;
-  return b;
-}
-
-/// Stribeck's zero-clearance distribution (Q ∝ cos^1.5 ψ over |ψ| < 90°) balancing F_r exactly.
-std::vector<double> stribeck_loads(int Z, double Fr, double phase) {
-  std::vector<double> Q(Z);
-  double sum = 0;
-  for (int j = 0; j < Z; ++j) {
-    const double c = std::cos(phase + 2 * kPi * j / Z);
-    Q[j] = c > 0 ? std::pow(c, 1.5) : 0.0;
-    sum += Q[j] * c;
-  }
-  for (double& q : Q) q *= Fr / sum;
-  return Q;
-}
 
 TEST(BearingFriction, Bearing6205UnderRadialLoadMatchesPalmgrenWorkedByHand) {
   // 6205 (d_m = 39.0398 mm, C_0r = 7886.0 N by ISO 76, test_bearing_life.cpp), F_r = 2000 N, n = 3000 rpm,

@@ -1,0 +1,88 @@
+// bench_datasheet: the designed drives' catalog sheets beside the published figures, and what each sheet costs.
+//   1. DGEMM rate of the loaded BLAS (the limit of the harmonic factorisations).
+//   2. For each size and ratio: `strainwave design`, then `strainwave datasheet` on it (wall clock of the whole
+//      command), and one row of the sheet's figures with the catalog's beside (published in brackets).
+// Run by hand: build/bench/bench_datasheet [--sizes 14,17,20] [--ratios 50,80,100]. Wall clock; on a shared machine say
+// so with the figures.
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "dgemm.hpp"
+#include "tests/cli.hpp"
+
+namespace {
+
+std::vector<int> integers(const std::string& text) {
+  std::vector<int> out;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) out.push_back(std::stoi(item));
+  return out;
+}
+
+std::string figure(const nlohmann::json& f, const char* name, const char* format, double scale = 1) {
+  const auto& x = f[name];
+  char buf[64], pub[48] = "";
+  if (x["value"].is_null()) std::snprintf(buf, sizeof buf, "%s", x["computed"].get<bool>() ? "inf" : "-");
+  else std::snprintf(buf, sizeof buf, format, x["value"].get<double>() * scale);
+  if (!x["published"].is_null()) {
+    std::snprintf(pub, sizeof pub, " (");
+    std::snprintf(pub + 2, sizeof pub - 2, format, x["published"].get<double>() * scale);
+    std::strcat(pub, ")");
+  }
+  return std::string(buf) + pub;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"bench_datasheet: the designed drives' sheets beside the catalog, and their cost"};
+  std::string sizes = "14,17,20", ratios = "50,80,100";
+  app.add_option("--sizes", sizes, "catalog sizes, comma-separated");
+  app.add_option("--ratios", ratios, "ratios, comma-separated");
+  CLI11_PARSE(app, argc, argv);
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("sw_bench_datasheet_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::printf("DGEMM (n = 2000): %.1f GF/s\n", sw::bench::dgemm_gflops(2000, 3));
+  std::printf("size ratio | K1 K2 K3 (1e4 N·m/rad) | lost motion, play (arcmin) | buckling | infinite life | tooth root | "
+              "L10 (h) | exponent | seconds\n");
+  for (const int size : integers(sizes))
+    for (const int ratio : integers(ratios)) {
+      const std::string tag = std::to_string(size) + "_" + std::to_string(ratio);
+      const fs::path case_file = dir / (tag + ".toml"), out = dir / tag;
+      const auto design = sw::testing::run_strainwave("design --size " + std::to_string(size) + " --ratio " +
+                                                      std::to_string(ratio) + " --out " + case_file.string());
+      if (design.exit_code != 0) {
+        std::printf("%d %d | design failed: %s", size, ratio, design.output.c_str());
+        continue;
+      }
+      const auto start = std::chrono::steady_clock::now();
+      const auto run = sw::testing::run_strainwave("datasheet --quiet " + case_file.string() + " --out " + out.string());
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      if (run.exit_code != 0) {
+        std::printf("%d %d | datasheet failed: %s", size, ratio, run.output.c_str());
+        continue;
+      }
+      const nlohmann::json f = sw::testing::read_json(out / "datasheet.json")["figures"];
+      std::printf("%d %d | %s %s %s | %s, %s | %s | %s | %s | %s | %s | %.1f\n", size, ratio,
+                  figure(f, "K1_Nm_per_rad", "%.2f", 1e-4).c_str(), figure(f, "K2_Nm_per_rad", "%.2f", 1e-4).c_str(),
+                  figure(f, "K3_Nm_per_rad", "%.2f", 1e-4).c_str(), figure(f, "lost_motion_arcmin", "%.2f").c_str(),
+                  figure(f, "play_arcmin", "%.2f").c_str(), figure(f, "buckling_torque_Nm", "%.0f").c_str(),
+                  figure(f, "infinite_life_torque_Nm", "%.0f").c_str(), figure(f, "tooth_root_limit_Nm", "%.0f").c_str(),
+                  figure(f, "bearing_life_L10_h", "%.0f").c_str(), figure(f, "bearing_life_exponent", "%.2f").c_str(),
+                  seconds);
+      std::fflush(stdout);
+    }
+  fs::remove_all(dir);
+  return 0;
+}

@@ -122,7 +122,6 @@ double rollers_setout(const WaveGeneratorParams& w, double w_unit_m) {
   return *w.radial_deformation_m / w_unit_m;
 }
 
-double cam_standoff(const WaveGeneratorParams& w, double r, double t) { return CamSurface(w, r).standoff_m(t); }
 
 GeneratorStations generator_stations(const FlexsplineModel& c, const TetMesh& mesh) {
   const auto& w = *c.wave_generator;

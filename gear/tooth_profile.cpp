@@ -125,12 +125,6 @@ double flexspline_tooth_thickness(const GearParams& g, double radius_m) {
   return 2.0 * radius_m * (half_thickness_at_reference_f(g) + involute_function(g.pressure_angle_rad) - involute_function(aR));
 }
 
-double circular_space_width(const GearParams& g, double radius_m) {
-  const double rb = g.module_m * g.teeth_circular / 2.0 * std::cos(g.pressure_angle_rad);
-  const double aR = std::acos(std::min(1.0, rb / radius_m));
-  return 2.0 * radius_m * (half_space_at_reference_c(g) + involute_function(g.pressure_angle_rad) - involute_function(aR));
-}
-
 Involute flexspline_flank(const GearParams& g) {
   const GearRadii r = gear_radii(g);
   Involute f;

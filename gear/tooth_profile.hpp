@@ -74,9 +74,6 @@ GearRadii gear_radii(const GearParams& g);
 /// Circular tooth thickness (flexspline) at radius R ≥ r_bf, metres of arc at R.
 double flexspline_tooth_thickness(const GearParams& g, double radius_m);
 
-/// Circular space width (circular spline) at radius R ≥ r_bc, metres of arc at R.
-double circular_space_width(const GearParams& g, double radius_m);
-
 /// The ccw flank of flexspline tooth 0 (u from the form radius to the tip radius).
 Involute flexspline_flank(const GearParams& g);
 

@@ -935,7 +935,6 @@ void finalise(Analysis& a, Result& r) {
 
 }  // namespace
 
-int signature_count(Kind kind) { return static_cast<int>(signature_catalog(kind).size()); }
 
 Result reconcile(const Experiment& e, const Options& opt, const std::vector<EffectSpec>* physical,
                  const std::vector<const EffectSpec*>& held) {

@@ -100,7 +100,5 @@ struct Result {
 Result reconcile(const Experiment& e, const Options& options = {}, const std::vector<EffectSpec>* physical = nullptr,
                  const std::vector<const EffectSpec*>& held = {});
 
-/// Number of locations/unexplained signatures tested for a kind (the Bonferroni factor).
-int signature_count(Kind kind);
 
 }  // namespace sw::reconcile

@@ -45,13 +45,12 @@ struct GradientPoint {
 constexpr bool kSineRow[9] = {false, true, false, true, false, true, false, true, false};
 
 GradientPoint gradient_matrix(const Mat6x2& X, double xi, double eta, int n) {
-  const auto N = t6_shape(xi, eta);
-  const auto dN = t6_shape_derivatives(xi, eta);
-  const Eigen::Matrix2d J = dN * X;
+  const ShapePoint sp = shape_point(X, xi, eta);
+  const auto& N = sp.N;
+  const auto& D = sp.dN;  // rows d/dr, d/dz
   GradientPoint p;
-  p.det = J.determinant();
-  const Eigen::Matrix<double, 2, 6> D = J.inverse() * dN;  // rows d/dr, d/dz
-  p.r = N.dot(X.col(0));
+  p.det = sp.det;
+  p.r = sp.r;
   const double ir = 1.0 / p.r;
   p.G.setZero();
   for (int j = 0; j < 6; ++j) {

@@ -31,14 +31,24 @@ Eigen::Matrix<double, 6, 6> elasticity(const Material& m) {
   return D;
 }
 
-StrainPoint strain_matrix(const Mat6x2& X, double xi, double eta, int n) {
-  const auto N = t6_shape(xi, eta);
-  const auto dN = t6_shape_derivatives(xi, eta);
+ShapePoint shape_point(const Mat6x2& X, double xi, double eta) {
+  ShapePoint p;
+  p.N = t6_shape(xi, eta);
+  const Eigen::Matrix<double, 2, 6> dN = t6_shape_derivatives(xi, eta);
   const Eigen::Matrix2d J = dN * X;  // rows d/dξ, d/dη; columns r, z
-  StrainPoint p;
   p.det = J.determinant();
-  const Eigen::Matrix<double, 2, 6> G = J.inverse() * dN;  // rows d/dr, d/dz
-  p.r = N.dot(X.col(0));
+  p.dN = J.inverse() * dN;
+  p.r = p.N.dot(X.col(0));
+  return p;
+}
+
+StrainPoint strain_matrix(const Mat6x2& X, double xi, double eta, int n) {
+  const ShapePoint sp = shape_point(X, xi, eta);
+  const auto& N = sp.N;
+  const auto& G = sp.dN;
+  StrainPoint p;
+  p.det = sp.det;
+  p.r = sp.r;
   const double ir = 1.0 / p.r;
   p.B.setZero();
   for (int i = 0; i < 6; ++i) {

@@ -63,6 +63,15 @@ Eigen::Matrix<double, 6, 6> elasticity(const Material& m);
 /// Strain amplitudes of harmonic n at a point: rows (ε_r, ε_z, ε_θ, γ_rz | γ_rθ, γ_θz), the first four multiplying
 /// cos nθ (sin nθ in the antisymmetric family), the last two sin nθ (−cos nθ); columns node-major (a, b, c).
 /// Also the point's radius and the Jacobian determinant.
+/// The 6-node triangle at a point: shape functions, their derivatives along r and z, the radius and the Jacobian's
+/// determinant (of the map from natural coordinates).
+struct ShapePoint {
+  Eigen::Matrix<double, 6, 1> N;
+  Eigen::Matrix<double, 2, 6> dN;  ///< rows d/dr, d/dz
+  double r = 0, det = 0;
+};
+ShapePoint shape_point(const Mat6x2& X, double xi, double eta);
+
 struct StrainPoint {
   Mat6x18 B;
   double r = 0, det = 0;

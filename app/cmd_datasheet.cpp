@@ -32,12 +32,9 @@ inline const std::vector<std::string> kDatasheetFiles = {"datasheet.json", "data
 
 /// The harmonic solution of the case with the bands the loaded contact reads.
 FemJobResult solve_flexspline(const Case& c, double max_memory_gb) {
-  const FlexsplineModel model = flexspline_model(c);
-  SectionMesh section = case_section(model);
-  refuse_if_too_large(fourier_model_size(model, section), max_memory_gb * 1e9, c.path);
-  progress("datasheet: the flexspline on harmonics 0.." + std::to_string(model.solver.harmonics));
-  FourierSolution fourier =
-      analyse_section_fourier(model, std::move(section), 0, contact_band_request(model, c.contact.face_slices));
+  progress("datasheet: the flexspline on harmonics 0.." + std::to_string(c.solver.harmonics));
+  double section_s = 0;
+  FourierSolution fourier = solve_fourier_model(c, 0, max_memory_gb, section_s);
   FemJobResult job;
   job.solution = std::move(fourier.figures);
   job.harmonic = std::make_shared<const FourierSolution>(std::move(fourier));

@@ -14,6 +14,7 @@
 
 #include "app/commands.hpp"
 #include "app/dynamics_job.hpp"
+#include "app/fem_job.hpp"
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "dynamics/analysis.hpp"
@@ -95,12 +96,11 @@ void run_dynamics(const std::string& case_path, const std::string& out_dir, cons
   const DynamicsParams p = resolved_params(c, pairs_option, rim_option);
   // The rim coupled through the FEM reads the TET10 model: "auto" takes it, an explicit "fourier" is refused before
   // any work.
-  if (p.rim == RimCoupling::Fem && c.solver.method == SolverMethod::Fourier) {
-    if (!c.derived_from.count("solver.method"))
+  if (p.rim == RimCoupling::Fem) {
+    take_tet10_under_auto(c, "the dynamics' rim = \"fem\" couples the TET10 model");
+    if (c.solver.method == SolverMethod::Fourier)
       throw InputError(case_path + ": solver.method = \"fourier\"; the dynamics' rim = \"fem\" couples the TET10 "
                                    "model (set method = \"tet10\" or \"auto\", or --rim rigid)");
-    c.solver.method = SolverMethod::Tet10;
-    c.derived_from["solver.method"] = "\"auto\": the dynamics' rim = \"fem\" couples the TET10 model";
   }
   OutputSet outputs(out_dir.empty() ? default_out_dir(c) : std::filesystem::path(out_dir),
                     {"dynamics.csv", "dynamics.json", "dynamics.svg"});

@@ -47,14 +47,19 @@ TetMesh mesh_for_case(const Case& c, double max_memory_gb) {
   return mesh_flexspline(c.flexspline, c.gear, c.mesh);
 }
 
+void take_tet10_under_auto(Case& c, const std::string& why) {
+  if (!c.derived_from.count("solver.method")) return;
+  c.solver.method = SolverMethod::Tet10;
+  c.derived_from["solver.method"] = "\"auto\": " + why;
+}
+
 void apply_solver_option(Case& c, const std::string& solver, const std::string& backend) {
   if (!backend.empty()) c.solver.backend = backend == "petsc" ? SolverBackend::Petsc : SolverBackend::Cholmod;
   if (!solver.empty()) {
     c.solver.method = solver == "fourier" ? SolverMethod::Fourier : SolverMethod::Tet10;
     c.derived_from.erase("solver.method");
-  } else if (backend == "petsc" && c.derived_from.count("solver.method")) {  // "auto": petsc solves the TET10 model
-    c.solver.method = SolverMethod::Tet10;
-    c.derived_from["solver.method"] = "\"auto\": the petsc backend solves the TET10 model";
+  } else if (backend == "petsc") {
+    take_tet10_under_auto(c, "the petsc backend solves the TET10 model");
   }
   if (solver.empty() && backend.empty()) return;
   if (c.solver.method == SolverMethod::Fourier && c.flexspline.teeth == TeethModel::Explicit)
@@ -71,9 +76,11 @@ void add_solver_options(CLI::App* cmd, std::string& solver, std::string& backend
   add_backend_option(cmd, backend);
 }
 
-Case load_case_with_solver(const std::string& path, const std::string& solver, const std::string& backend) {
+Case load_case_with_solver(const std::string& path, const std::string& solver, const std::string& backend,
+                           const std::string& tet10_needed_for) {
   Case c = load_case(path);
   apply_solver_option(c, solver, backend);
+  if (solver.empty() && !tet10_needed_for.empty()) take_tet10_under_auto(c, tet10_needed_for);
   progress("case:\n" + describe_case(c));
   return c;
 }
@@ -181,9 +188,6 @@ void print_hoop_profile_and_fatigue(const FlexsplineSolution& s) {
   }
 }
 
-/// Whether the case file leaves solver.method to "auto" (the reader records the choice it derived).
-bool auto_solver(const std::string& case_path) { return load_case(case_path).derived_from.count("solver.method") > 0; }
-
 }  // namespace
 
 FemJobResult run_fem_job(const Case& c, OutputSet& out, const FemJobOptions& options) {
@@ -231,9 +235,8 @@ void add_fem_command(CLI::App& app) {
   cmd->add_option("--out", out, "output directory (default out/<case stem>/)");
   add_solver_options(cmd, solver, backend);
   cmd->callback([] {
-    // A deck is TET10: --export-inp on a case that leaves the solver to "auto" meshes in TET10 for it.
-    const Case c = load_case_with_solver(case_path, solver.empty() && options.export_inp && auto_solver(case_path)
-                                                        ? "tet10" : solver, backend);
+    const Case c =
+        load_case_with_solver(case_path, solver, backend, options.export_inp ? "--export-inp writes a TET10 deck" : "");
     OutputSet outputs(out.empty() ? default_out_dir(c) : fs::path(out));
     run_fem_job(c, outputs, options);
     outputs.commit();

@@ -24,20 +24,24 @@ namespace {
 constexpr int kGridSectors = 32;
 }  // namespace
 
-FemJobResult run_fourier_fem_job(const Case& c, OutputSet& out, bool write_vtk, double max_memory_gb) {
-  const double t_start = elapsed_s();
-  RunInfo run;
-  run.blas = detect_blas();
+FourierSolution solve_fourier_model(const Case& c, int grid_sectors, double max_memory_gb, double& section_s) {
   Stopwatch clock;
   // A case the loaded contact can take has its bands solved in the same pass (a few more columns per harmonic).
   const FlexsplineModel model = flexspline_model(c);
   const BandRequest bands = contact_model_gap(model) ? BandRequest{} : contact_band_request(model, c.contact.face_slices);
   SectionMesh section = case_section(model);
-  run.mesh_s = clock.lap();
+  section_s = clock.lap();
   // Seconds, not minutes: refused from the section before anything is assembled.
   refuse_if_too_large(fourier_model_size(model, section), max_memory_gb * 1e9, c.path);
-  FourierSolution fourier = analyse_section_fourier(model, std::move(section), write_vtk ? kGridSectors : 0, bands);
-  clock.lap();
+  return analyse_section_fourier(model, std::move(section), grid_sectors, bands);
+}
+
+FemJobResult run_fourier_fem_job(const Case& c, OutputSet& out, bool write_vtk, double max_memory_gb) {
+  const double t_start = elapsed_s();
+  RunInfo run;
+  run.blas = detect_blas();
+  FourierSolution fourier = solve_fourier_model(c, write_vtk ? kGridSectors : 0, max_memory_gb, run.mesh_s);
+  Stopwatch clock;
   const FlexsplineSolution& s = fourier.figures;
   progress("output: " + out.dir().string());
   if (write_vtk) write_fem_vtk(out.staging(), c, fourier.grid, s);

@@ -52,6 +52,11 @@ TetMesh mesh_for_case(const Case& c, double max_memory_gb = 0);
 /// case's solver.method).
 FemJobResult run_fem_job(const Case& c, OutputSet& out, const FemJobOptions& options = {});
 
+/// The case's harmonic solution (with the bands the loaded contact reads, when it can take the case; the section
+/// revolved into `grid_sectors` sectors for VTU when > 0), refused from its section before assembly when its estimate
+/// exceeds max_memory_gb (0: the machine's available memory). `section_s`: the section's meshing time.
+FourierSolution solve_fourier_model(const Case& c, int grid_sectors, double max_memory_gb, double& section_s);
+
 /// The same on the harmonic solver (solver.method = "fourier"; app/fem_fourier_job.cpp); VTU output optional. A model
 /// whose estimate exceeds max_memory_gb (0: the machine's available memory) is refused before it is assembled.
 FemJobResult run_fourier_fem_job(const Case& c, OutputSet& out, bool write_vtk = true, double max_memory_gb = 0);
@@ -66,7 +71,15 @@ void add_backend_option(CLI::App* cmd, std::string& backend);
 /// --solver tet10 | fourier and --backend, overriding the case's [solver] keys.
 void add_solver_options(CLI::App* cmd, std::string& solver, std::string& backend);
 
+/// "auto" takes the TET10 model where a command needs it: a case that leaves solver.method to "auto" gets "tet10", with
+/// `why` as the method's origin; a case that names a method keeps it (the caller refuses a fourier one where it cannot
+/// serve, before any work).
+void take_tet10_under_auto(Case& c, const std::string& why);
+
 /// The case at `path` with the command line's solver and backend applied, its resolved keys shown as progress.
-Case load_case_with_solver(const std::string& path, const std::string& solver, const std::string& backend);
+/// `tet10_needed_for`: what of the command needs the TET10 model, if anything (take_tet10_under_auto, unless --solver
+/// is given).
+Case load_case_with_solver(const std::string& path, const std::string& solver, const std::string& backend,
+                           const std::string& tet10_needed_for = "");
 
 }  // namespace sw::app

@@ -7,7 +7,6 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <sstream>
 #include <string>
@@ -29,17 +28,19 @@ std::vector<int> integers(const std::string& text) {
   return out;
 }
 
+std::string number(const char* format, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
+
+/// A figure of the sheet as "value (published)": "-" when not computed, "inf" when beyond the search.
 std::string figure(const nlohmann::json& f, const char* name, const char* format, double scale = 1) {
   const auto& x = f[name];
-  char buf[64], pub[48] = "";
-  if (x["value"].is_null()) std::snprintf(buf, sizeof buf, "%s", x["computed"].get<bool>() ? "inf" : "-");
-  else std::snprintf(buf, sizeof buf, format, x["value"].get<double>() * scale);
-  if (!x["published"].is_null()) {
-    std::snprintf(pub, sizeof pub, " (");
-    std::snprintf(pub + 2, sizeof pub - 2, format, x["published"].get<double>() * scale);
-    std::strcat(pub, ")");
-  }
-  return std::string(buf) + pub;
+  std::string out = x["value"].is_null() ? (x["computed"].get<bool>() ? "inf" : "-")
+                                         : number(format, x["value"].get<double>() * scale);
+  if (!x["published"].is_null()) out += " (" + number(format, x["published"].get<double>() * scale) + ")";
+  return out;
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/svg_plot.hpp"
 #include "io/json_file.hpp"
 #include "io/provenance.hpp"
 
@@ -17,20 +18,6 @@ constexpr const char* kExpected = "the datasheet.json of `strainwave datasheet`"
 
 nlohmann::json number_or_null(const std::optional<double>& v) {
   return v && std::isfinite(*v) ? nlohmann::json(*v) : nlohmann::json(nullptr);
-}
-
-std::string html_escape(const std::string& s) {
-  std::string out;
-  for (const char ch : s) {
-    switch (ch) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += ch;
-    }
-  }
-  return out;
 }
 
 std::string value_text(const std::optional<double>& v) {

@@ -12,6 +12,7 @@
 #include "common/error.hpp"
 #include "contact/frictional_contact.hpp"
 #include "contact/torque_twist.hpp"
+#include "tests/input_error.hpp"
 
 namespace sw {
 namespace {
@@ -420,14 +421,7 @@ TEST(FrictionalContact, StepStudyConverges) {
 
 // ---- Bad input ------------------------------------------------------------------------------------------------
 
-std::string message_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using sw::testing::message_of;
 
 TEST(FrictionalContact, NegativeFrictionCoefficientIsRefused) {
   FrictionalContactProblem p = rim_problem(2, 0.1);

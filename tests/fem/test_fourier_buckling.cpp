@@ -14,6 +14,7 @@
 #include "fem/fourier_buckling.hpp"
 #include "fem/fourier_section.hpp"
 #include "fem/fourier_solver.hpp"
+#include "tests/input_error.hpp"
 
 namespace sw {
 namespace {
@@ -340,14 +341,7 @@ TEST(TorsionBuckling, CupWithItsBossOnTheAxisBucklesInAConvergedMode) {
   EXPECT_DOUBLE_EQ(low.per_harmonic[1].load_factor, r.per_harmonic[1].load_factor);
 }
 
-std::string message_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no InputError)";
-}
+using sw::testing::message_of;
 
 TEST(TorsionBuckling, RejectsBadInputWithAMessage) {
   const Tube tube = solve_tube(50e-3, 0.5e-3, 20e-3, 2, 8);

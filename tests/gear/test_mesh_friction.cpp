@@ -9,6 +9,7 @@
 
 #include "common/error.hpp"
 #include "gear/mesh_friction.hpp"
+#include "tests/input_error.hpp"
 
 namespace {
 
@@ -121,14 +122,7 @@ TEST(BenedictKelleyFriction, FallsWithSpeedAndViscosityRisesWithRoughnessAndLoad
   EXPECT_EQ(benedict_kelley_friction(c).coefficient, kBoundaryFriction);
 }
 
-std::string message_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using sw::testing::message_of;
 
 TEST(MeshFriction, RefusesNonPhysicalInputNamingTheField) {
   FlankConditions c = industrial();

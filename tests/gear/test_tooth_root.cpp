@@ -13,6 +13,7 @@
 #include "common/error.hpp"
 #include "gear/gear.hpp"
 #include "gear/tooth_root.hpp"
+#include "tests/input_error.hpp"
 
 namespace {
 
@@ -129,14 +130,7 @@ TEST(ToothRoot, SeedFlexsplineTeethGiveBoundedFactors) {
   EXPECT_LT(c.form_factor, 2.053);  // shorter than the full-depth internal tooth of the table
 }
 
-std::string message_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using sw::testing::message_of;
 
 TEST(ToothRoot, RefusesToolsAndShiftsOutsideTheConstruction) {
   // A tool tip radius that does not fit on the tool's tip (E < 0).

@@ -18,7 +18,9 @@
 #include "datasheet/limits.hpp"
 #include "fem/fourier_buckling.hpp"
 #include "fem/infinite_life.hpp"
+#include "gear/mesh_friction.hpp"
 #include "io/atomic_file.hpp"
+#include "kinematics/neutral_curve.hpp"
 #include "io/datasheet_output.hpp"
 #include "io/vtu.hpp"
 
@@ -93,6 +95,65 @@ BucklingFigure buckling(const Case& c, const FourierSolution& s, const std::file
   return f;
 }
 
+/// The step of the contact's curve nearest `torque_Nm` (on the positive side at zero: the curve's upper limit there).
+std::size_t step_near(const ContactAnalysis& a, double torque_Nm) {
+  std::size_t best = 0;
+  for (std::size_t i = 0; i < a.steps.size(); ++i)
+    if (std::abs(a.steps[i].torque_Nm - torque_Nm) <= std::abs(a.steps[best].torque_Nm - torque_Nm)) best = i;
+  return best;
+}
+
+/// The losses at the catalog's conditions (datasheet/losses.hpp), or why not.
+std::optional<LossFigures> losses(const Case& c, const ContactAnalysis& contact, const ContactBody& body,
+                                  const FemReadout& readout, int ratio, std::string& why_not) {
+  if (!c.lubricant) {
+    why_not = "not computed: the case gives no [lubricant] (kind, viscosity_40C_mm2_s, viscosity_100C_mm2_s, "
+              "temperature_C)";
+    return std::nullopt;
+  }
+  if (!c.wave_generator->bearing || !body.stations().unilateral || contact.steps.back().station_force_N.empty()) {
+    why_not = "not computed: the generator bearing's friction needs its balls (a [wave_generator] bearing) loaded by "
+              "a cam or rollers in the contact";
+    return std::nullopt;
+  }
+  const GeneratorBearing& bearing = *c.wave_generator->bearing;
+  const NeutralCurveSamples& nc = readout.neutral_curve;
+  const BacklashModel model = make_backlash_model(
+      *c.gear, fit_neutral_curve(nc.radius_m, nc.phi_rad, nc.w_wg_m, nc.v_wg_m, nc.mu_wg_rad, "FEM"));
+  const std::vector<double> sliding = flank_sliding_m_per_rad(model, contact);
+  LossFigures l;
+  LossConditions at;
+  at.lubricant = *c.lubricant;
+  if (c.contact.friction_coefficient > 0) {
+    at.flank_friction = c.contact.friction_coefficient;
+    l.flank_friction_from = "[contact] friction_coefficient";
+  } else {
+    at.flank_friction = kBoundaryFriction;
+    l.flank_friction_from = "the case fixes none: boundary friction of steel flanks, ISO/TS 6336-20's value where the "
+                            "rolling speed vanishes (the teeth slide radially in and out of the spaces)";
+  }
+  l.flank_friction = at.flank_friction;
+  const auto at_step = [&](std::size_t i, double rpm) {
+    at.input_speed_rpm = rpm;
+    return drive_losses(contact, i, sliding, bearing,
+                        ball_loads_N(body.stations(), contact.steps[i].station_force_N, bearing.balls), ratio, at);
+  };
+  const double rated = contact.steps.back().torque_Nm;
+  l.rated_2000 = at_step(contact.steps.size() - 1, kInputSpeed_rpm);
+  l.rated_1000 = at_step(contact.steps.size() - 1, 0.5 * kInputSpeed_rpm);
+  l.half_rated_2000 = at_step(step_near(contact, 0.5 * rated), kInputSpeed_rpm);
+  const std::size_t rest = step_near(contact, 0.0);
+  l.no_load_2000 = at_step(rest, kInputSpeed_rpm);
+  l.starting_torque_Nm = starting_torque_Nm(
+      bearing, ball_loads_N(body.stations(), contact.steps[rest].station_force_N, bearing.balls), ratio);
+  char text[200];
+  std::snprintf(text, sizeof text, "%s, base oil %.4g/%.4g mm²/s at 40/100 °C, at %.4g °C: %.4g mm²/s (ASTM D341)",
+                c.lubricant->kind.c_str(), c.lubricant->viscosity_40C_mm2_s, c.lubricant->viscosity_100C_mm2_s,
+                c.lubricant->temperature_C, l.rated_2000.viscosity_mm2_s);
+  l.lubricant = text;
+  return l;
+}
+
 }  // namespace
 
 void add_datasheet_command(CLI::App& app) {
@@ -132,6 +193,7 @@ void add_datasheet_command(CLI::App& app) {
       });
     else
       in.why_no_bearing = "not computed: the case gives no [wave_generator] bearing (balls, ball_diameter_mm)";
+    in.losses = naming_file(c.path, [&] { return losses(c, contact, *body, readout, in.ratio, in.why_no_losses); });
     if (c.material.fatigue_limit_Pa) in.tooth_root = tooth_root_limit(*c.gear, c.flexspline, c.material, contact);
     else in.why_no_tooth_root = "not computed: the case gives no [material] fatigue_limit_MPa and ultimate_strength_MPa";
     const Datasheet sheet = make_datasheet(in);

@@ -75,9 +75,11 @@ void print_summary(const DynamicsModel& m, const DynamicsSummary& r, const Dynam
     std::printf("  ");
   std::printf("torque balance %.2e; energy balance %.2e\n", r.torque_balance_error_rel, r.energy_error_rel);
   const SteadyPower& w = r.power;
-  std::printf("  efficiency %.4f (friction mu = %g): %.4g W in, %.4g W out, %.4g W friction, %.4g W damping; "
-              "power balance %.2e\n", w.efficiency, m.friction_coefficient, w.input_W, w.output_W, w.friction_W,
-              w.dissipated_W, w.balance_error_rel);
+  std::printf("  efficiency of the mesh %.4f (the flanks' friction, mu = %g, and the model's damping; the generator "
+              "bearing and the lubricant are not in this model: `strainwave datasheet` with a [lubricant] counts the "
+              "bearing): %.4g W in, %.4g W out, %.4g W friction, %.4g W damping; power balance %.2e\n",
+              w.efficiency, m.friction_coefficient, w.input_W, w.output_W, w.friction_W, w.dissipated_W,
+              w.balance_error_rel);
   std::printf("  mesh frequency %.2f Hz; strongest line %s\n", r.theory.mesh_frequency_Hz,
               r.lines.empty() ? "none" : (std::to_string(r.lines[0].frequency_Hz) + " Hz").c_str());
   std::printf("  steady window: mesh deflection %.4g to %.4g mrad, largest flank force %.4g N, %g to %g flanks in "

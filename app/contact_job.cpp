@@ -58,10 +58,13 @@ SeriesParts series_parts(const Case& c) {
 }
 
 std::optional<CatalogLaw> catalog_reference(const Case& c) {
-  if (!c.catalog_size) return std::nullopt;
-  const CatalogDrive* d = catalog_drive(*c.catalog_size);
-  if (!d || !d->has_stiffness()) return std::nullopt;
-  return CatalogLaw{d->size, d->t1_Nm, d->t2_Nm, d->k1_Nm_per_rad, d->k2_Nm_per_rad, d->k3_Nm_per_rad};
+  if (!c.catalog_size || !c.gear || c.gear->teeth_circular <= c.gear->teeth_flexspline) return std::nullopt;
+  const int difference = c.gear->teeth_circular - c.gear->teeth_flexspline;
+  if (c.gear->teeth_flexspline % difference != 0) return std::nullopt;  // no catalog ratio
+  const int ratio = c.gear->teeth_flexspline / difference;
+  const std::optional<CatalogDrive> d = catalog_stiffness(*c.catalog_size, ratio);
+  if (!d) return std::nullopt;
+  return CatalogLaw{d->size, ratio, d->t1_Nm, d->t2_Nm, d->k1_Nm_per_rad, d->k2_Nm_per_rad, d->k3_Nm_per_rad};
 }
 
 ContactOptions contact_options(const Case& c, SeriesParts series) {
@@ -103,14 +106,22 @@ void print_contact_headline(const Case& c, const ContactAnalysis& a, const std::
 void print_against_catalog(const ContactAnalysis& a, const CatalogLaw& reference) {
   const SegmentLaw catalog = reference.law();
   const auto law = [&](double T) { return catalog.twist_rad(T); };
-  std::printf("  against catalog size %d: twist at T1 %.3g N·m %.3f vs %.3f arcmin, at T2 %.3g N·m %.3f vs %.3f "
-              "arcmin, at rated %.4g N·m %.3f vs %.3f arcmin (computed vs catalog); K1/K2/K3 %.3g/%.3g/%.3g vs "
-              "%.3g/%.3g/%.3g N·m/rad\n",
-              reference.size, reference.t1_Nm, twist_at(a.curve, reference.t1_Nm) * kArcmin,
+  // A catalog row without K3 (ratio 50) gives no twist beyond T2: "not listed".
+  const auto listed = [](double v, const char* format) {
+    char b[32];
+    if (!(std::isfinite(v) && v > 0)) return std::string("not listed");
+    std::snprintf(b, sizeof b, format, v);
+    return std::string(b);
+  };
+  std::printf("  against catalog size %d at ratio %d: twist at T1 %.3g N·m %.3f vs %.3f arcmin, at T2 %.3g N·m %.3f "
+              "vs %.3f arcmin, at rated %.4g N·m %.3f vs %s arcmin (computed vs catalog); K1/K2/K3 %.3g/%.3g/%.3g "
+              "vs %.3g/%.3g/%s N·m/rad\n",
+              reference.size, reference.ratio, reference.t1_Nm, twist_at(a.curve, reference.t1_Nm) * kArcmin,
               law(reference.t1_Nm) * kArcmin, reference.t2_Nm, twist_at(a.curve, reference.t2_Nm) * kArcmin,
               law(reference.t2_Nm) * kArcmin, a.rated_torque_Nm, a.curve.twist_rad.back() * kArcmin,
-              law(a.rated_torque_Nm) * kArcmin, a.catalog.k1_Nm_per_rad, a.catalog.k2_Nm_per_rad,
-              a.catalog.k3_Nm_per_rad, reference.k1_Nm_per_rad, reference.k2_Nm_per_rad, reference.k3_Nm_per_rad);
+              listed(law(a.rated_torque_Nm) * kArcmin, "%.3f").c_str(), a.catalog.k1_Nm_per_rad,
+              a.catalog.k2_Nm_per_rad, a.catalog.k3_Nm_per_rad, reference.k1_Nm_per_rad, reference.k2_Nm_per_rad,
+              listed(reference.k3_Nm_per_rad, "%.3g").c_str());
 }
 
 /// Lost motion and play, and what the twist at rated torque is made of.

@@ -2,10 +2,13 @@
 //   1. DGEMM rate of the loaded BLAS (the limit of the harmonic factorisations).
 //   2. For each size and ratio: `strainwave design`, then `strainwave datasheet` on it (wall clock of the whole
 //      command), and one row of the sheet's figures with the catalog's beside (published in brackets).
-// Run by hand: build/bench/bench_datasheet [--sizes 14,17,20] [--ratios 50,80,100]. Wall clock; on a shared machine say
-// so with the figures.
+// Run by hand: build/bench/bench_datasheet [--sizes 14,17,20] [--ratios 50,80,100] [--friction MU]
+// [--lubricant NU40,NU100,TEMP_C]. --friction sets [contact] friction_coefficient (the loop's hysteresis) and
+// --lubricant adds a [lubricant] table (the losses' rows); without them those rows are "-". Wall clock; on a shared
+// machine say so with the figures.
 #include <chrono>
 #include <cstdio>
+#include <fstream>
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
@@ -50,13 +53,18 @@ int main(int argc, char** argv) {
   std::string sizes = "14,17,20", ratios = "50,80,100";
   app.add_option("--sizes", sizes, "catalog sizes, comma-separated");
   app.add_option("--ratios", ratios, "ratios, comma-separated");
+  double friction = 0;
+  std::string lubricant;
+  app.add_option("--friction", friction, "the flanks' friction coefficient written into each designed case");
+  app.add_option("--lubricant", lubricant, "NU40,NU100,TEMP_C: an oil written into each designed case");
   CLI11_PARSE(app, argc, argv);
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / ("sw_bench_datasheet_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   std::printf("DGEMM (n = 2000): %.1f GF/s\n", sw::bench::dgemm_gflops(2000, 3));
-  std::printf("size ratio | K1 K2 K3 (1e4 N·m/rad) | lost motion, play (arcmin) | buckling | infinite life | tooth root | "
-              "L10 (h) | exponent | seconds\n");
+  std::printf("size ratio | K1 K2 K3 (1e4 N·m/rad) | lost motion, play, hysteresis (arcmin) | buckling | infinite life | "
+              "tooth root | L10 (h) | exponent | efficiency 2000/1000 rpm, half load | no-load, starting (mN·m) | "
+              "seconds\n");
   for (const int size : integers(sizes))
     for (const int ratio : integers(ratios)) {
       const std::string tag = std::to_string(size) + "_" + std::to_string(ratio);
@@ -67,6 +75,19 @@ int main(int argc, char** argv) {
         std::printf("%d %d | design failed: %s", size, ratio, design.output.c_str());
         continue;
       }
+      {
+        std::ofstream add(case_file, std::ios::app);
+        if (friction > 0) add << "\n[contact]\nfriction_coefficient = " << friction << "\n";
+        if (!lubricant.empty()) {
+          std::stringstream ss(lubricant);
+          std::string nu40, nu100, temperature;
+          std::getline(ss, nu40, ',');
+          std::getline(ss, nu100, ',');
+          std::getline(ss, temperature, ',');
+          add << "\n[lubricant]\nkind = \"oil\"\nviscosity_40C_mm2_s = " << nu40 << "\nviscosity_100C_mm2_s = " << nu100
+              << "\ntemperature_C = " << temperature << "\n";
+        }
+      }
       const auto start = std::chrono::steady_clock::now();
       const auto run = sw::testing::run_strainwave("datasheet --quiet " + case_file.string() + " --out " + out.string());
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -75,13 +96,16 @@ int main(int argc, char** argv) {
         continue;
       }
       const nlohmann::json f = sw::testing::read_json(out / "datasheet.json")["figures"];
-      std::printf("%d %d | %s %s %s | %s, %s | %s | %s | %s | %s | %s | %.1f\n", size, ratio,
+      std::printf("%d %d | %s %s %s | %s, %s, %s | %s | %s | %s | %s | %s | %s / %s, %s | %s, %s | %.1f\n", size, ratio,
                   figure(f, "K1_Nm_per_rad", "%.2f", 1e-4).c_str(), figure(f, "K2_Nm_per_rad", "%.2f", 1e-4).c_str(),
                   figure(f, "K3_Nm_per_rad", "%.2f", 1e-4).c_str(), figure(f, "lost_motion_arcmin", "%.2f").c_str(),
-                  figure(f, "play_arcmin", "%.2f").c_str(), figure(f, "buckling_torque_Nm", "%.0f").c_str(),
-                  figure(f, "infinite_life_torque_Nm", "%.0f").c_str(), figure(f, "tooth_root_limit_Nm", "%.0f").c_str(),
-                  figure(f, "bearing_life_L10_h", "%.0f").c_str(), figure(f, "bearing_life_exponent", "%.2f").c_str(),
-                  seconds);
+                  figure(f, "play_arcmin", "%.2f").c_str(), figure(f, "hysteresis_loss_arcmin", "%.3f").c_str(),
+                  figure(f, "buckling_torque_Nm", "%.0f").c_str(), figure(f, "infinite_life_torque_Nm", "%.0f").c_str(),
+                  figure(f, "tooth_root_limit_Nm", "%.0f").c_str(), figure(f, "bearing_life_L10_h", "%.0f").c_str(),
+                  figure(f, "bearing_life_exponent", "%.2f").c_str(), figure(f, "efficiency", "%.2f").c_str(),
+                  figure(f, "efficiency_1000rpm", "%.2f").c_str(), figure(f, "efficiency_half_rated", "%.2f").c_str(),
+                  figure(f, "no_load_running_torque_Nm", "%.0f", 1e3).c_str(),
+                  figure(f, "starting_torque_Nm", "%.0f", 1e3).c_str(), seconds);
       std::fflush(stdout);
     }
   fs::remove_all(dir);

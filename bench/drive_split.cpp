@@ -55,7 +55,7 @@ void one_case(const std::string& path) {
                 100 * a.split.engagement, a.lost_motion_rad * kArcmin, a.play_rad * kArcmin, t);
   }
   if (catalog && catalog->has_stiffness()) {
-    const CatalogLaw law{catalog->size, catalog->t1_Nm, catalog->t2_Nm, catalog->k1_Nm_per_rad, catalog->k2_Nm_per_rad,
+    const CatalogLaw law{catalog->size, 100, catalog->t1_Nm, catalog->t2_Nm, catalog->k1_Nm_per_rad, catalog->k2_Nm_per_rad,
                          catalog->k3_Nm_per_rad};
     const SegmentLaw s = law.law();
     std::printf("  %-11s twist at T1 / T2 / rated: %.3f / %.3f / %.3f arcmin\n", "catalog",

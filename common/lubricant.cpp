@@ -39,6 +39,8 @@ void validate_lubricant(const Lubricant& l, const std::string& where) {
   if (!(l.viscosity_40C_mm2_s <= kWaltherMaxViscosity_mm2_s))
     throw InputError(at + "viscosity_40C_mm2_s = " + num(l.viscosity_40C_mm2_s) +
                      "; must be <= 2e7 (the top of ASTM D341's charts)");
+  if (!(l.temperature_C > -kZeroCelsius_K))
+    throw InputError(at + "temperature_C = " + num(l.temperature_C) + "; must be above absolute zero (-273.15)");
 }
 
 double walther_kinematic_viscosity_mm2_s(double T1_C, double nu1, double T2_C, double nu2, double T_C) {

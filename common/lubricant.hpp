@@ -20,13 +20,14 @@ struct Lubricant {
   std::string kind = "grease";        ///< "grease" or "oil"
   double viscosity_40C_mm2_s = 0;     ///< kinematic viscosity at 40 °C
   double viscosity_100C_mm2_s = 0;    ///< kinematic viscosity at 100 °C
+  double temperature_C = 20;          ///< where it works: the temperature its viscosity is taken at (the case's)
 };
 
 /// Lowest kinematic viscosity for which D341's Z = ν + 0.7 holds (ASTM D341-20 §5.1: 2.0 mm²/s).
 inline constexpr double kWaltherMinViscosity_mm2_s = 2.0;
 
 /// Checks the lubricant: kind "grease" or "oil"; ν100 ≥ 2.0 mm²/s (D341's range, see above); ν40 > ν100 (an oil thins
-/// as it warms); ν40 ≤ 2e7 mm²/s (the top of D341's charts). Throws InputError "<where>.<key> = value; expectation",
+/// as it warms); ν40 ≤ 2e7 mm²/s (the top of D341's charts); the temperature above absolute zero. Throws InputError "<where>.<key> = value; expectation",
 /// `where` being the key path of the lubricant (e.g. "wave_generator.lubricant"; "lubricant" when empty).
 void validate_lubricant(const Lubricant& lubricant, const std::string& where);
 

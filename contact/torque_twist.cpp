@@ -152,7 +152,8 @@ double loop_area_J(const TorqueLoop& loop) { return work_along(loop.loading) - w
 double SegmentLaw::twist_rad(double T) const {
   const double m = std::abs(T);
   const double a = std::min(m, t1_Nm), b = std::clamp(m - t1_Nm, 0.0, t2_Nm - t1_Nm), d = std::max(0.0, m - t2_Nm);
-  return std::copysign(a / k1_Nm_per_rad + b / k2_Nm_per_rad + d / k3_Nm_per_rad, T);
+  const double beyond_t2 = d == 0 ? 0.0 : k3_Nm_per_rad > 0 ? d / k3_Nm_per_rad : std::numeric_limits<double>::quiet_NaN();
+  return std::copysign(a / k1_Nm_per_rad + b / k2_Nm_per_rad + beyond_t2, T);
 }
 
 namespace {

@@ -75,7 +75,8 @@ double loop_area_J(const TorqueLoop& loop);
 struct SegmentLaw {
   double t1_Nm = 0, t2_Nm = 0, k1_Nm_per_rad = 0, k2_Nm_per_rad = 0, k3_Nm_per_rad = 0;
   bool breakpoints_fitted = false;  ///< T1, T2 chosen to fit the curve (no catalog size named)
-  /// φ of the law at T, odd in T (the mirror image for negative torque, as catalogs draw it).
+  /// φ of the law at T, odd in T (the mirror image for negative torque, as catalogs draw it); NaN beyond T2 when K3 is
+  /// 0 (a catalog row that lists none).
   double twist_rad(double torque_Nm) const;
 };
 /// The law's secants at T1, T2 and T_R (±T_R: the curve's ends, read with their rounding, kEndRounding).

@@ -106,16 +106,42 @@ void add_life_figures(Datasheet& d, const DatasheetInputs& in) {
   }
 }
 
-/// The losses' figures: not computed in this version (the generator bearing's friction moment and the flanks'
-/// friction coefficient exist as parts, generator/bearing_friction.hpp and gear/mesh_friction.hpp; the lubricant, the
-/// running mesh's sliding and the drag are not yet put together), listed so the published figures stand beside.
-void add_loss_figures(Datasheet& d) {
-  const std::string why = "not computed: the drive's losses (generator bearing, flanks' sliding, lubricant drag) are not "
-                          "yet assembled into a running model";
-  d.figures.push_back(not_computed("efficiency", "efficiency (rated torque, 2,000 rpm, 20 °C)", "", why));
-  d.figures.push_back(not_computed("no_load_running_torque_Nm", "no-load running torque (input, 2,000 rpm)", "N·m", why));
-  d.figures.push_back(not_computed("starting_torque_Nm", "starting torque (input)", "N·m", why));
-  d.figures.push_back(not_computed("backdriving_torque_Nm", "backdriving torque (output)", "N·m", why));
+/// Where the power goes: the efficiency and the input's torques from the generator bearing's friction and the flanks'
+/// sliding (datasheet/losses.hpp), each figure saying what it counts and what it leaves out.
+void add_loss_figures(Datasheet& d, const DatasheetInputs& in) {
+  if (!in.losses) {
+    d.figures.push_back(not_computed("efficiency", "efficiency (rated torque, 2,000 rpm)", "", in.why_no_losses));
+    d.figures.push_back(not_computed("no_load_running_torque_Nm", "no-load running torque (input, 2,000 rpm)", "N·m",
+                                     in.why_no_losses));
+    d.figures.push_back(not_computed("starting_torque_Nm", "starting torque (input)", "N·m", in.why_no_losses));
+  } else {
+    const LossFigures& l = *in.losses;
+    const std::string counts = "counts the generator bearing (Palmgren M0 + M1, balls loaded as the contact loads "
+                               "them) and the flanks' sliding (μ = " + fmt("%.3g", l.flank_friction) + ", " +
+                               l.flank_friction_from + "); leaves out churning, seals and the flexspline's damping, "
+                               "so it is an upper bound; " + l.lubricant;
+    const auto split = [](const LossSplit& s) {
+      return " (losses: bearing viscous " + fmt("%.3g", s.bearing_viscous_W) + " W, bearing load " +
+             fmt("%.3g", s.bearing_load_W) + " W, flanks " + fmt("%.3g", s.flank_sliding_W) + " W, of " +
+             fmt("%.3g", s.input_power_W()) + " W in)";
+    };
+    d.figures.push_back(computed("efficiency", "efficiency (rated torque, 2,000 rpm)", "", l.rated_2000.efficiency(),
+                                 "P_out/P_in; " + counts + split(l.rated_2000)));
+    d.figures.push_back(computed("efficiency_1000rpm", "efficiency (rated torque, 1,000 rpm)", "",
+                                 l.rated_1000.efficiency(), "as at 2,000 rpm" + split(l.rated_1000)));
+    d.figures.push_back(computed("efficiency_half_rated", "efficiency (half rated torque, 2,000 rpm)", "",
+                                 l.half_rated_2000.efficiency(), "as at rated torque" + split(l.half_rated_2000)));
+    d.figures.push_back(computed("no_load_running_torque_Nm", "no-load running torque (input, 2,000 rpm)", "N·m",
+                                 l.no_load_2000.input_torque_Nm(),
+                                 "the generator bearing's friction under its own preload (the flanks carry no force "
+                                 "at zero torque); churning and seals left out" + split(l.no_load_2000)));
+    d.figures.push_back(computed("starting_torque_Nm", "starting torque (input)", "N·m", l.starting_torque_Nm,
+                                 "Palmgren's breakaway moment M1 of the generator bearing under its preload: a lower "
+                                 "bound (the grease's yield stress, seals and stiction left out)"));
+  }
+  d.figures.push_back(not_computed("backdriving_torque_Nm", "backdriving torque (output)", "N·m",
+                                   "not computed: driving the input from the output needs the flanks' and the "
+                                   "bearing's friction at breakaway in reverse, which the model does not follow"));
 }
 
 /// The catalog's figures beside the computed ones, for the size and ratio the case names.
@@ -127,12 +153,13 @@ void add_published(Datasheet& d, const DatasheetInputs& in) {
     for (DatasheetFigure& f : d.figures)
       if (f.name == name) publish(f, value, source);
   };
-  if (const CatalogDrive* row = catalog_drive(size); row && in.ratio >= 80) {  // the stiffness rows are for ratio ≥ 80
-    set("T1_Nm", row->t1_Nm, "CSF/CSG, ratio ≥ 80");
-    set("T2_Nm", row->t2_Nm, "CSF/CSG, ratio ≥ 80");
-    set("K1_Nm_per_rad", row->k1_Nm_per_rad, "CSF/CSG, ratio ≥ 80");
-    set("K2_Nm_per_rad", row->k2_Nm_per_rad, "CSF/CSG, ratio ≥ 80");
-    set("K3_Nm_per_rad", row->k3_Nm_per_rad, "CSF/CSG, ratio ≥ 80");
+  if (const std::optional<CatalogDrive> row = catalog_stiffness(size, in.ratio)) {  // ratios 30, 50 and ≥ 80
+    const std::string source = in.ratio >= 80 ? "CSF/CSG, ratio ≥ 80" : "CSF/CSG, " + ratio_text;
+    set("T1_Nm", row->t1_Nm, source);
+    set("T2_Nm", row->t2_Nm, source);
+    set("K1_Nm_per_rad", row->k1_Nm_per_rad, source);
+    set("K2_Nm_per_rad", row->k2_Nm_per_rad, source);
+    set("K3_Nm_per_rad", row->k3_Nm_per_rad, source);  // not listed at ratio 50 (0: left empty)
     if (in.ratio == 100) set("rated_torque_Nm", row->rated_torque_Nm, "CSG, ratio 100");
   }
   if (const CatalogLimits* lim = catalog_limits(size)) {
@@ -145,7 +172,7 @@ void add_published(Datasheet& d, const DatasheetInputs& in) {
     set("bearing_life_exponent", 3, "the catalog's scaling L ∝ (T_r/T)³");
     if (in.ratio == 100) {
       const std::string losses = "another maker's ratio-100 cup set, 20 °C, grease";
-      set("efficiency", lim->efficiency, losses);
+      set("efficiency", lim->efficiency, losses + " (rated torque, 2,000 rpm)");
       set("no_load_running_torque_Nm", lim->no_load_running_torque_Nm, losses);
       set("starting_torque_Nm", lim->starting_torque_Nm, losses);
       set("backdriving_torque_Nm", lim->backdriving_torque_Nm, losses);
@@ -170,7 +197,7 @@ Datasheet make_datasheet(const DatasheetInputs& in) {
   if (in.contact) add_contact_figures(d, in);
   add_limit_figures(d, in);
   add_life_figures(d, in);
-  add_loss_figures(d);
+  add_loss_figures(d, in);
   add_published(d, in);
   d.idealisations = {
       "the flexspline is linear elastic (small displacements) about the generator-deformed state; stresses superpose",

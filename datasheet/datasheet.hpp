@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "contact/loaded_contact.hpp"
+#include "datasheet/losses.hpp"
 #include "fem/infinite_life.hpp"
 
 namespace sw {
@@ -45,6 +46,17 @@ struct ToothRootFigure {
   std::string method;
 };
 
+/// Where the power goes (datasheet/losses.hpp) at the catalog's conditions: rated torque at 2,000 and 1,000 rpm, half
+/// rated at 2,000 rpm, and no load at 2,000 rpm (the no-load running torque); the starting torque Palmgren's
+/// breakaway moment of the generator bearing under the generator's own ball loads.
+struct LossFigures {
+  LossSplit rated_2000, rated_1000, half_rated_2000, no_load_2000;
+  double starting_torque_Nm = 0;
+  double flank_friction = 0;
+  std::string flank_friction_from;  ///< "[contact] friction_coefficient" or why the boundary value is taken
+  std::string lubricant;            ///< "grease, base oil 68/8.6 mm²/s at 40/100 °C, 20 °C: 220 mm²/s"
+};
+
 /// Everything the sheet is made from; an empty optional is a figure not computed, with `why_not` naming the reason.
 struct DatasheetInputs {
   double rated_torque_Nm = 0;
@@ -56,7 +68,8 @@ struct DatasheetInputs {
   std::optional<BucklingFigure> buckling;
   std::optional<BearingLifeFigure> bearing;
   std::optional<ToothRootFigure> tooth_root;
-  std::string why_no_infinite_life, why_no_buckling, why_no_bearing, why_no_tooth_root;
+  std::optional<LossFigures> losses;
+  std::string why_no_infinite_life, why_no_buckling, why_no_bearing, why_no_tooth_root, why_no_losses;
 };
 
 struct Datasheet {

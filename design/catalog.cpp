@@ -21,6 +21,29 @@ const CatalogDrive* catalog_drive(int size) {
   return nullptr;
 }
 
+std::optional<CatalogDrive> catalog_stiffness(int size, int ratio) {
+  const CatalogDrive* d = catalog_drive(size);
+  if (!d || !d->has_stiffness()) return std::nullopt;
+  if (ratio >= 80) return *d;
+  // shared/reference/catalog_torsional_stiffness.md, "Other ratios": (size, ratio, K1, K2, K3; 0 not listed).
+  struct Row {
+    int size, ratio;
+    double k1, k2, k3;
+  };
+  static const Row rows[] = {{14, 30, 0.19e4, 0.24e4, 0.34e4}, {17, 30, 0.34e4, 0.44e4, 0.67e4},
+                             {20, 30, 0.57e4, 0.71e4, 1.1e4},  {14, 50, 0.34e4, 0.47e4, 0},
+                             {17, 50, 0.81e4, 1.1e4, 0},       {20, 50, 1.3e4, 1.8e4, 0}};
+  for (const Row& r : rows)
+    if (r.size == size && r.ratio == ratio) {
+      CatalogDrive row = *d;
+      row.k1_Nm_per_rad = r.k1;
+      row.k2_Nm_per_rad = r.k2;
+      row.k3_Nm_per_rad = r.k3;
+      return row;
+    }
+  return std::nullopt;
+}
+
 const CatalogLimits* catalog_limits(int size) {
   // shared/reference/catalog_strength_life_losses.md, as read. Ratcheting: (ratio, CSF, CSG).
   static const std::vector<CatalogLimits> table = {

@@ -2,6 +2,7 @@
 // Published data of cup-type harmonic drives by catalog size (shared/reference/catalog_torsional_stiffness.md: the
 // CSF/CSG component sets, ratio >= 80): pitch diameter, the three-segment torsional stiffness and the rated torque.
 // One table for every stage that names a catalog size (design, the case's [catalog] key, contact, reconcile).
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,11 @@ const std::vector<CatalogDrive>& catalog_drives();
 
 /// The row of a size; nullptr when the reference does not list it.
 const CatalogDrive* catalog_drive(int size);
+
+/// The published stiffness of a size at a reduction ratio: the size's row at ratio >= 80, the catalog's own rows at
+/// ratios 30 and 50 (K1, K2, K3 at 30; K1, K2 at 50, where k3_Nm_per_rad is 0: not listed); T1 and T2 the size's at
+/// every ratio. nullopt for a size without stiffness or a ratio the catalog does not list (31-49, 51-79).
+std::optional<CatalogDrive> catalog_stiffness(int size, int ratio);
 
 /// "14, 17, 20, 25, 32": the listed sizes, for messages.
 std::string catalog_sizes_text();

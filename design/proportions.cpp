@@ -9,6 +9,7 @@
 #include "common/error.hpp"
 #include "design/catalog.hpp"
 #include "gear/tooth_profile.hpp"
+#include "kinematics/backlash.hpp"
 
 namespace sw {
 namespace {
@@ -23,7 +24,11 @@ namespace {
 //  [ISO 53]   the basic rack: h_a* = 1, h_f* = 1.25 (c* = 0.25), α = 20°.
 //  [Seed]     the backlash paper's gear set (shared/seeds/backlash_fem_paper.txt): z = 190/192, m = 0.2 mm,
 //             x_f = 1.52, x_c = 1.57 (x_c − x_f = 0.05), shaper cutter z_0 = 80; this tool's seed case shortens its
-//             teeth to h_a* = 0.7 after the geometry check (cases/seed_190_192.toml).
+//             teeth to h_a* = 0.7 after the geometry check (cases/seed_190_192.toml). Its x_c − x_f = 0.05 leaves
+//             1.2 arcmin of play at ratio 100; the design sets x_c for zero backlash instead ([Zero]).
+//  [Zero]     harmonic drive component sets are sold as zero-backlash gearing (the maker's CSF/CSG catalog: lost
+//             motion below 1 arcmin with the elastic twist included, ../shared/reference/catalog_torsional_stiffness.md):
+//             the teeth are cut so that the tightest pair touches at rest (set_zero_backlash).
 //  [Harris]   T. A. Harris, M. N. Kotzalas, Rolling Bearing Analysis, 5th ed., ch. 2: deep-groove groove conformity
 //             0.515–0.53 (inner race closer than outer).
 //  [ISO 6336] ISO 6336-3 tooth-root stress σ_F ∝ F_t/(b·m) = 2T/(d·b·m): with b, m ∝ d the torque capacity of
@@ -32,7 +37,6 @@ namespace {
 constexpr double kMmPerSize = 2.54;              // the size number is the pitch diameter in tenths of an inch
 constexpr double kPressureAngleDeg = 20.0;       // [ISO 53]
 constexpr double kShiftFlexspline = 1.52;        // [Seed] x_f
-constexpr double kShiftDifference = 0.05;        // [Seed] x_c − x_f: the clearance the two spaces leave
 constexpr int kCutterTeeth = 80;                 // [Seed] z_0 of the shaper cutter
 constexpr double kAddendum = 0.7;                // short teeth on both gears: working depth 1.4·m < 2·w0 = 2·m, the
                                                  // tips pass at the minor axis ([Seed] case; the geometry check)
@@ -53,6 +57,12 @@ constexpr double kBallPerD = 0.09;               // [Estimate] ball diameter ≈
                                                  // grade balls in inch sizes): size 17 → 5/32" = 3.969 mm
 constexpr double kBallPitchPerBall = 1.2;        // [Estimate] ball spacing on the pitch circle ≥ 1.2·D (cage bars)
 constexpr double kInnerConformity = 0.52, kOuterConformity = 0.53;  // [Harris]
+
+std::string fixed(double v, int digits) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.*f", digits, v);
+  return b;
+}
 
 std::string num(double v) {
   char b[32];
@@ -82,7 +92,7 @@ CupDesign design_cup(int size, int ratio) {
   g.module_m = d / g.teeth_flexspline;
   g.pressure_angle_rad = kPressureAngleDeg * std::numbers::pi / 180.0;
   g.profile_shift_flexspline = kShiftFlexspline;
-  g.profile_shift_circular = kShiftFlexspline + kShiftDifference;
+  g.profile_shift_circular = kShiftFlexspline;  // set_zero_backlash below
   g.cutter_teeth = kCutterTeeth;
   g.addendum_coefficient_flexspline = g.addendum_coefficient_circular = kAddendum;
   g.dedendum_coefficient_flexspline = g.dedendum_coefficient_circular = kAddendum + kTipClearance;
@@ -121,6 +131,7 @@ CupDesign design_cup(int size, int ratio) {
   w.bearing = b;
 
   c.circular_spline = default_circular_spline(g, f.rim_width_m);
+  set_zero_backlash(c, cam_neutral_curve(rim_mean_radius(f), *w.radial_deformation_m));
 
   if (const CatalogDrive* row = catalog_drive(size); row && row->has_rated_torque()) {
     c.rated_torque_Nm = row->rated_torque_Nm;
@@ -138,6 +149,44 @@ CupDesign design_cup(int size, int ratio) {
   return c;
 }
 
+void set_zero_backlash(CupDesign& d, const NeutralCurve& curve) {
+  GearParams g = d.gear;
+  auto tightest = [&](double shift_difference) {
+    g.profile_shift_circular = g.profile_shift_flexspline + shift_difference;
+    return tightest_pair_at_rest(make_backlash_model(g, curve));
+  };
+  // The tightest pair is left 0.1 nm apart, not 0: the case text's 9 digits move the geometry by about 1e-9 of its
+  // 20 mm radius, 2e-11 m, which must not turn the touch into an overlap when the case is read back.
+  constexpr double kLo = -0.2, kHi = 0.3, kStep = 1e-8, kTouch_m = 1e-10;
+  double lo = kLo, hi = kHi;
+  if (!(tightest(lo).clearance_m < kTouch_m && tightest(hi).clearance_m > kTouch_m)) {
+    std::ostringstream os;
+    os << "size " << d.size << ", ratio " << d.ratio << ": no profile shift difference x_c - x_f in [" << kLo << ", "
+       << kHi << "] takes the teeth from overlap to clearance at rest on the " << curve.source << " curve";
+    throw InputError(os.str());
+  }
+  while (hi - lo > 0.25 * kStep) {
+    const double mid = 0.5 * (lo + hi);
+    (tightest(mid).clearance_m < kTouch_m ? lo : hi) = mid;
+  }
+  // Rounded up to the 1e-8 the case text carries (x_c has 9 digits), so that the written case never overlaps.
+  const double shift_difference = std::ceil(hi / kStep) * kStep;
+  const TightestPair t = tightest(shift_difference);
+  const BacklashModel model = make_backlash_model(g, curve);
+  const FlankClearance& touching = t.pair.ccw.clearance_m < t.pair.cw.clearance_m ? t.pair.ccw : t.pair.cw;
+  ZeroBacklash& z = d.zero_backlash;
+  z.curve = curve.source;
+  z.shift_difference = shift_difference;
+  z.tightest_clearance_m = t.clearance_m;
+  // Its distance from the major axis, 0..90°: the generator and the teeth are symmetric about both axes, so the
+  // tightest place is on the four mirror images at once and which one wins is round-off.
+  z.tightest_angle_deg = std::abs(std::remainder(t.pair.phi_rad, std::numbers::pi)) * 180.0 / std::numbers::pi;
+  z.tightest_parts = std::string(part_name(touching.part_f)) + " / " + part_name(touching.part_c);
+  z.major_axis_play_rad =
+      closing_angle_rad(model, 0.0, 0.0, Flank::Ccw) + closing_angle_rad(model, 0.0, 0.0, Flank::Cw);
+  d.gear.profile_shift_circular = g.profile_shift_circular;
+}
+
 std::string design_case_toml(const CupDesign& c) {
   const auto mm = [](double m) { return num(m * 1e3); };
   const GearParams& g = c.gear;
@@ -151,9 +200,15 @@ std::string design_case_toml(const CupDesign& c) {
     << "# d = size x 2.54 mm = " << mm(c.pitch_diameter_m) << " mm; nothing tuned per size. Where each comes from:\n"
     << "# - teeth: z_f = 2 x ratio = " << g.teeth_flexspline << ", z_c = z_f + 2 (two lobes, tooth difference two: Musser, US 2,906,143),\n"
     << "#   module d/z_f = " << mm(g.module_m) << " mm, 20 deg involute (ISO 53), profile shift x_f = " << num(kShiftFlexspline)
-    << ", x_c = x_f + " << num(kShiftDifference) << " and shaper cutter\n"
-    << "#   z_0 = " << kCutterTeeth << " (the backlash paper's set), short teeth h_a* = " << num(kAddendum)
+    << " and shaper cutter z_0 = " << kCutterTeeth << " (the backlash paper's set),\n"
+    << "#   short teeth h_a* = " << num(kAddendum)
     << " on both gears (working depth 1.4 modules < 2 w0), h_f* = h_a* + 0.25 (ISO 53 c*).\n"
+    << "# - zero backlash (harmonic drives are cut without it): x_c = x_f + " << num(c.zero_backlash.shift_difference)
+    << ", the smallest shift at which no pair overlaps at rest\n#   on the " << c.zero_backlash.curve
+    << " curve; the tightest pairs touch at +-" << fixed(c.zero_backlash.tightest_angle_deg, 1)
+    << " deg from the major axis (" << c.zero_backlash.tightest_parts << "),\n#   the major-axis pair keeps "
+    << fixed(c.zero_backlash.major_axis_play_rad * 180.0 / std::numbers::pi * 60.0, 3)
+    << " arcmin of dead band (involute flanks are not all tight at once).\n"
     << "# - w0 = m (Musser: half the tooth difference in modules).\n"
     << "# - rim under the teeth " << num(kRimPerD) << " d, body wall " << num(kWallPerRim) << " x rim, toothed face width "
     << num(kFaceWidthPerD) << " d (Ivanov, Wave gear drives, 1981: 0.01-0.015 d,\n"

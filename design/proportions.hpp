@@ -10,6 +10,7 @@
 #include "contact/circular_spline.hpp"
 #include "gear/gear.hpp"
 #include "generator/wave_generator.hpp"
+#include "kinematics/neutral_curve.hpp"
 #include "mesh/flexspline_params.hpp"
 
 namespace sw {
@@ -17,7 +18,18 @@ namespace sw {
 /// Sizes and ratios `strainwave design` accepts: the component sets' sizes 8–65 and the catalog ratios 50–160
 /// (z_f = 2·ratio; the short-tooth rule is verified against interference over this range of ratios).
 inline constexpr int kDesignSizeMin = 8, kDesignSizeMax = 65;
-inline constexpr int kDesignRatioMin = 50, kDesignRatioMax = 160;
+inline constexpr int kDesignRatioMin = 30, kDesignRatioMax = 160;
+
+/// How the teeth were set to zero backlash (set_zero_backlash): the circular spline's profile shift that leaves the
+/// tightest engaged pair touching at rest, and what the involute flanks leave elsewhere.
+struct ZeroBacklash {
+  std::string curve;               ///< the rim's neutral curve it was solved on ("cam w0·cos2φ ...", "FEM")
+  double shift_difference = 0;     ///< x_c − x_f
+  double tightest_clearance_m = 0; ///< the tightest pair's clearance at rest: 0.1 nm, so that the case text keeps it ≥ 0
+  double tightest_angle_deg = 0;   ///< where that pair is: its material angle's distance from the major axis, 0..90°
+  std::string tightest_parts;      ///< "tip corner / tip corner": where the two outlines touch there
+  double major_axis_play_rad = 0;  ///< the output's dead band at the major-axis pair (closing angles of both flanks)
+};
 
 /// Everything the written case holds (SI), with where the rated torque came from.
 struct CupDesign {
@@ -31,11 +43,19 @@ struct CupDesign {
   CircularSplineParams circular_spline;
   double rated_torque_Nm = 0;
   std::string rated_torque_from;  ///< "catalog size 17 (CSG, ratio 100)" or the scaling used
+  ZeroBacklash zero_backlash;     ///< on the cam's curve from design_cup; on the FEM's when `design` has solved it
 };
 
 /// The design of a size (kDesignSizeMin..kDesignSizeMax) and ratio (kDesignRatioMin..kDesignRatioMax). Throws
 /// InputError "--size 7; must be an integer in [8, 65] ..." for a size or ratio outside them.
 CupDesign design_cup(int size, int ratio);
+
+/// Sets the circular spline's profile shift x_c for zero backlash on the rim's neutral curve `curve` (rigid teeth): the
+/// smallest x_c − x_f (bisection to 1e-8, rounded up) at which no engaged pair comes within 0.1 nm at rest, so that
+/// the tightest pair touches and the output has no free turn there. Makers cut harmonic drive teeth without backlash; with
+/// involute flanks the pairs are not all tight at once, which major_axis_play_rad states. Throws InputError when no
+/// x_c − x_f in [−0.2, 0.3] brackets it (the teeth interfere whatever the shift).
+void set_zero_backlash(CupDesign& d, const NeutralCurve& curve);
 
 /// The design as a case file (TOML, lengths in mm) with a header comment naming the source of every proportion.
 /// It loads with io/case.hpp's load_case and passes the flexspline, gear and bearing validation.

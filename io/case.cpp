@@ -486,6 +486,22 @@ ContactParams read_contact(TableReader r) {
   return p;
 }
 
+/// [lubricant]: every key but kind (default "grease") given; the ranges are common/lubricant.hpp's (validate_lubricant),
+/// checked by parse_case with the key's line.
+Lubricant read_lubricant(TableReader r) {
+  Lubricant l;
+  l.kind = r.choice("kind", l.kind, {"grease", "oil"});
+  for (const char* key : {"viscosity_40C_mm2_s", "viscosity_100C_mm2_s", "temperature_C"})
+    if (!r.given(key))
+      throw InputError(r.file() + ": lubricant." + key + " is missing; [lubricant] gives the base oil's kinematic "
+                                  "viscosities at 40 and 100 C and the temperature it works at");
+  l.viscosity_40C_mm2_s = *r.number("viscosity_40C_mm2_s");
+  l.viscosity_100C_mm2_s = *r.number("viscosity_100C_mm2_s");
+  l.temperature_C = *r.number("temperature_C");
+  r.reject_unknown();
+  return l;
+}
+
 /// [dynamics]: the keys' types here; their ranges are the dynamics stage's own (dynamics/model.hpp validate), checked
 /// by parse_case with the key's line.
 DynamicsParams read_dynamics(TableReader r) {
@@ -641,12 +657,14 @@ Case case_of(const toml::table& root, const std::string& path) {
   c.path = path;
   c.stem = std::filesystem::path(path).stem().string();
   static const std::set<std::string> kTables = {"gear", "flexspline", "material", "wave_generator", "load", "mesh",
-                                                "solver", "catalog", "circular_spline", "contact", "dynamics"};
+                                                "solver", "catalog", "circular_spline", "contact", "lubricant",
+                                                "dynamics"};
   for (const auto& [key, node] : root) {
     if (!kTables.count(std::string(key.str())))
       throw InputError(path + where(&node) + ": [" + std::string(key.str()) +
                        "] is not a known table (allowed: [gear], [flexspline], [material], [wave_generator], "
-                       "[load], [mesh], [solver], [catalog], [circular_spline], [contact], [dynamics])");
+                       "[load], [mesh], [solver], [catalog], [circular_spline], [contact], [lubricant], "
+                       "[dynamics])");
   }
   static const toml::table kEmpty;
   auto table = [&](const char* name) -> const toml::table* { return sub_table(root, name, path); };
@@ -676,6 +694,10 @@ Case case_of(const toml::table& root, const std::string& path) {
   if (auto t = table("contact")) {
     c.contact = read_contact(TableReader(*t, "contact", path));
     locating_key(root, path, c.derived_from, [&] { validate_contact_params(c.contact); });
+  }
+  if (auto t = table("lubricant")) {
+    c.lubricant = read_lubricant(TableReader(*t, "lubricant", path));
+    locating_key(root, path, c.derived_from, [&] { validate_lubricant(*c.lubricant, "lubricant"); });
   }
   if (auto t = table("dynamics")) {
     c.dynamics = read_dynamics(TableReader(*t, "dynamics", path));
@@ -985,6 +1007,11 @@ Tables case_tables(const Case& c) {
   if (c.circular_spline) t["circular_spline"] = circular_spline_table(*c.circular_spline);
   t["contact"] = Tables::object(
       {{"face_slices", c.contact.face_slices}, {"friction_coefficient", c.contact.friction_coefficient}});
+  if (c.lubricant)
+    t["lubricant"] = Tables::object({{"kind", c.lubricant->kind},
+                                     {"viscosity_40C_mm2_s", c.lubricant->viscosity_40C_mm2_s},
+                                     {"viscosity_100C_mm2_s", c.lubricant->viscosity_100C_mm2_s},
+                                     {"temperature_C", c.lubricant->temperature_C}});
   t["mesh"] = mesh_table(c.mesh);
   t["solver"] = solver_table(c.solver);
   if (c.dynamics) t["dynamics"] = dynamics_table(*c.dynamics);

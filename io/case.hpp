@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "common/lubricant.hpp"
 #include "common/material.hpp"
 #include "contact/circular_spline.hpp"
 #include "contact/contact_params.hpp"
@@ -39,6 +40,9 @@ struct Case {
   /// is the toothed face's).
   std::optional<CircularSplineParams> circular_spline;
   ContactParams contact;
+  /// [lubricant]: the oil or grease (base oil) the drive runs in and its temperature (common/lubricant.hpp); absent
+  /// when the table is (the datasheet's losses are then not computed).
+  std::optional<Lubricant> lubricant;
   /// [dynamics]: the dynamics stage's own options (dynamics/dynamics_params.hpp), absent when the table is.
   std::optional<DynamicsParams> dynamics;
   /// Keys the file leaves out whose value is derived from other keys: "table.key" → what it was derived from. A

@@ -28,8 +28,13 @@ ContactResult::Catalog catalog_figures(const SegmentLaw& k) {
 }
 
 ContactResult::CatalogReference reference_figures(const CatalogLaw& k, double rated_torque_Nm) {
-  return {k.size, k.t1_Nm, k.t2_Nm, k.k1_Nm_per_rad, k.k2_Nm_per_rad, k.k3_Nm_per_rad,
-          law_twist(k, k.t1_Nm), law_twist(k, k.t2_Nm), law_twist(k, rated_torque_Nm)};
+  ContactResult::CatalogReference r{k.size, k.ratio, k.t1_Nm, k.t2_Nm, k.k1_Nm_per_rad, k.k2_Nm_per_rad, {},
+                                    law_twist(k, k.t1_Nm), law_twist(k, k.t2_Nm), {}};
+  if (k.k3_Nm_per_rad > 0) {
+    r.K3_Nm_per_rad = k.k3_Nm_per_rad;
+    r.twist_at_rated_rad = law_twist(k, rated_torque_Nm);
+  }
+  return r;
 }
 
 ContactResult::FaceSection face_section_figures(const FaceSection& f) {
@@ -129,9 +134,10 @@ static auto fields(std::type_identity<ContactResult::Catalog>) {
 
 static auto fields(std::type_identity<ContactResult::CatalogReference>) {
   using T = ContactResult::CatalogReference;
-  return std::tuple{field("size", &T::size), field("T1_Nm", &T::T1_Nm), field("T2_Nm", &T::T2_Nm),
-                    field("K1_Nm_per_rad", &T::K1_Nm_per_rad), field("K2_Nm_per_rad", &T::K2_Nm_per_rad),
-                    field("K3_Nm_per_rad", &T::K3_Nm_per_rad), field("twist_at_T1_rad", &T::twist_at_T1_rad),
+  return std::tuple{field("size", &T::size), field("ratio", &T::ratio), field("T1_Nm", &T::T1_Nm),
+                    field("T2_Nm", &T::T2_Nm), field("K1_Nm_per_rad", &T::K1_Nm_per_rad),
+                    field("K2_Nm_per_rad", &T::K2_Nm_per_rad), field("K3_Nm_per_rad", &T::K3_Nm_per_rad),
+                    field("twist_at_T1_rad", &T::twist_at_T1_rad),
                     field("twist_at_T2_rad", &T::twist_at_T2_rad), field("twist_at_rated_rad", &T::twist_at_rated_rad)};
 }
 
@@ -368,7 +374,7 @@ std::string contact_svg(const ContactAnalysis& a, const std::optional<CatalogLaw
     const double T = a.rated_torque_Nm * i / 100.0;
     law.x.push_back(T);
     law.y.push_back(a.catalog.twist_rad(T) * kArcmin);
-    if (reference) {
+    if (reference && std::isfinite(law_twist(*reference, T))) {  // a row without K3 ends at ±T2
       cat.x.push_back(T);
       cat.y.push_back(law_twist(*reference, T) * kArcmin);
     }

@@ -14,7 +14,7 @@ namespace sw {
 
 /// A catalog's three-segment law to set beside the computed one (the case's catalog size).
 struct CatalogLaw {
-  int size = 0;
+  int size = 0, ratio = 0;
   double t1_Nm = 0, t2_Nm = 0, k1_Nm_per_rad = 0, k2_Nm_per_rad = 0, k3_Nm_per_rad = 0;
   SegmentLaw law() const { return {t1_Nm, t2_Nm, k1_Nm_per_rad, k2_Nm_per_rad, k3_Nm_per_rad}; }
 };
@@ -39,9 +39,11 @@ struct ContactResult {
   };
   /// The catalog's law of the case's size, and its twist at its breakpoints and at rated torque.
   struct CatalogReference {
-    int size = 0;
-    double T1_Nm = 0, T2_Nm = 0, K1_Nm_per_rad = 0, K2_Nm_per_rad = 0, K3_Nm_per_rad = 0;
-    double twist_at_T1_rad = 0, twist_at_T2_rad = 0, twist_at_rated_rad = 0;
+    int size = 0, ratio = 0;
+    double T1_Nm = 0, T2_Nm = 0, K1_Nm_per_rad = 0, K2_Nm_per_rad = 0;
+    std::optional<double> K3_Nm_per_rad;  ///< absent where the catalog lists none (ratio 50)
+    double twist_at_T1_rad = 0, twist_at_T2_rad = 0;
+    std::optional<double> twist_at_rated_rad;  ///< absent without K3
   };
   struct FaceSection {
     double z_mm = 0, w_major_um = 0, first_closing_arcmin = 0, overlap_at_rest_um = 0, overlap_angle_deg = 0;

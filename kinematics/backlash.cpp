@@ -546,6 +546,12 @@ NeutralCurve scaled(NeutralCurve c, double factor) {
 
 }  // namespace
 
+TightestPair tightest_pair_at_rest(const BacklashModel& m) {
+  const double step = 0.25 * kPi / 180.0;
+  const auto [clearance, pair] = worst_engaged(m, -kPi + step, kPi, step);
+  return {clearance, pair};
+}
+
 GeometryCheck check_geometry(const GearParams& gear, const NeutralCurve& curve) {
   const BacklashModel m = make_backlash_model(gear, curve);
   GeometryCheck g;
@@ -559,8 +565,10 @@ GeometryCheck check_geometry(const GearParams& gear, const NeutralCurve& curve) 
   g.major_axis_root_tip_m = m.radii.root_f + g.w_major_m - m.radii.tip_c;
   g.major_axis = pair_clearance(m, 0.0, 0.0);
   g.major_axis_play_rad = closing_angle_rad(m, 0.0, 0.0, Flank::Ccw) + closing_angle_rad(m, 0.0, 0.0, Flank::Cw);
+  const TightestPair t = tightest_pair_at_rest(m);
+  g.worst_clearance_m = t.clearance_m;
+  g.worst = t.pair;
   const double step = 0.25 * kPi / 180.0;
-  std::tie(g.worst_clearance_m, g.worst) = worst_engaged(m, -kPi + step, kPi, step);
   g.interference = g.worst_clearance_m < 0;
   if (!g.interference) return g;
   // Remedies, on one engagement zone (the generator's two lobes are alike) at 0.5° steps.

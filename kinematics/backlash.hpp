@@ -151,6 +151,15 @@ struct RevolutionSweep {
 /// min_backlash_m over one revolution at `steps` equal steps (steps ≥ 1). Exact use of the period 2π/z_c.
 RevolutionSweep sweep_revolution(const BacklashModel& model, double phi0_rad, int steps);
 
+/// The tightest place of the mesh at rest (no wind-up): the smallest clearance over the engaged pairs at every material
+/// angle (0.25° grid, refined by Brent around the worst), both flanks and the tip to the root, with the pair where it
+/// is. Metres, < 0: the depth of an interference; +infinity if no pair is engaged.
+struct TightestPair {
+  double clearance_m = 0;
+  PairClearance pair;
+};
+TightestPair tightest_pair_at_rest(const BacklashModel& model);
+
 /// The geometry a designer checks before any sweep (basic model, no load).
 struct GeometryCheck {
   GearRadii radii;

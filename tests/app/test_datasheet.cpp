@@ -3,6 +3,9 @@
 // place of them), reads back as written, and bad input is one line with nothing written.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <fstream>
+
 #include <cmath>
 #include <filesystem>
 
@@ -27,7 +30,16 @@ fs::path sheet_dir() { return scratch("17"); }
 // one contact run, not one per check).
 TEST(Size17Sheet, CarriesTheContactsFiguresThePublishedRowsAndSaysHowEachWasComputed) {
   const fs::path dir = sheet_dir(), contact_dir = dir.string() + "_c";
-  const auto run = run_strainwave("datasheet cases/cup_size17.toml --quiet --out " + dir.string());
+  // The shipped size-17 case in an ISO VG 68 mineral oil (ISO 3448: 68 mm²/s at 40 °C; 8.6 mm²/s at 100 °C, a
+  // viscosity index near 95 by ASTM D2270) at the catalog's 20 °C: a test input, not a recommendation.
+  const fs::path with_oil = dir.string() + "_case.toml";
+  {
+    std::ifstream in("cases/cup_size17.toml");
+    std::ofstream out(with_oil);
+    out << in.rdbuf() << "\n[lubricant]\nkind = \"oil\"\nviscosity_40C_mm2_s = 68\nviscosity_100C_mm2_s = 8.6\n"
+        << "temperature_C = 20\n";
+  }
+  const auto run = run_strainwave("datasheet " + with_oil.string() + " --quiet --out " + dir.string());
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const auto contact_run = run_strainwave("contact cases/cup_size17.toml --quiet --no-vtk --out " + contact_dir.string());
   ASSERT_EQ(contact_run.exit_code, 0) << contact_run.output;
@@ -57,6 +69,26 @@ TEST(Size17Sheet, CarriesTheContactsFiguresThePublishedRowsAndSaysHowEachWasComp
   EXPECT_EQ(f["rated_torque_Nm"]["value"].get<double>(), 31);
   EXPECT_NE(f["K3_Nm_per_rad"]["value"].get<double>(), 1.6e4);  // computed, not copied
 
+  // Where the power goes: the sheet's efficiency is its own split's (P_out over P_out plus the three losses), the
+  // no-load running torque is the bearing's alone (no flank force at zero torque), every loss positive; printed
+  // against the published row (another maker's set: compared, never fitted).
+  const auto& eta = f["efficiency"];
+  ASSERT_TRUE(eta["computed"].get<bool>()) << eta["method"];
+  EXPECT_GT(eta["value"].get<double>(), 0.0);
+  EXPECT_LT(eta["value"].get<double>(), 1.0);
+  EXPECT_GT(f["efficiency_1000rpm"]["value"].get<double>(), eta["value"].get<double>());
+  EXPECT_GT(eta["value"].get<double>(), f["efficiency_half_rated"]["value"].get<double>());
+  EXPECT_GT(f["no_load_running_torque_Nm"]["value"].get<double>(), f["starting_torque_Nm"]["value"].get<double>());
+  EXPECT_FALSE(f["backdriving_torque_Nm"]["computed"].get<bool>());
+  EXPECT_NE(eta["method"].get<std::string>().find("leaves out churning"), std::string::npos);
+  std::printf("size 17 in VG 68 at 20 C: efficiency %.3f at rated and 2,000 rpm (published %.2f), %.3f at 1,000 rpm, "
+              "%.3f at half rated; no-load running torque %.4f N*m (published %.3f), starting %.4f N*m (published "
+              "%.3f)\n", eta["value"].get<double>(), eta["published"].get<double>(),
+              f["efficiency_1000rpm"]["value"].get<double>(), f["efficiency_half_rated"]["value"].get<double>(),
+              f["no_load_running_torque_Nm"]["value"].get<double>(),
+              f["no_load_running_torque_Nm"]["published"].get<double>(), f["starting_torque_Nm"]["value"].get<double>(),
+              f["starting_torque_Nm"]["published"].get<double>());
+
   // Every figure says how it was computed or why not; a figure not computed has no value.
   EXPECT_TRUE(sheet.contains("case") && sheet.contains("version"));
   for (const auto& [name, x] : f.items()) {
@@ -65,6 +97,7 @@ TEST(Size17Sheet, CarriesTheContactsFiguresThePublishedRowsAndSaysHowEachWasComp
   }
   fs::remove_all(dir);
   fs::remove_all(contact_dir);
+  fs::remove(with_oil);
 }
 
 TEST(DatasheetErrors, ACaseWithoutTeethIsRefusedInOneLineBeforeAnyWork) {

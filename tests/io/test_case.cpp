@@ -421,6 +421,33 @@ TEST(CaseFile, StageRangesAreReportedWithTheKeysLine) {
   EXPECT_EQ(e, "cases/x.toml:" + std::to_string(lines) + ": dynamics.damping_Ns_per_m = -1; must be >= 0") << e;
 }
 
+// [lubricant]: the base oil's two viscosities and the temperature, kind defaulting to grease; it reads back from the
+// resolved case; a key left out, a bad kind and viscosities in the wrong order are one line with file, line and key.
+TEST(CaseFile, LubricantTable) {
+  const std::string oil = std::string(kTube) +
+                          "[lubricant]\nviscosity_40C_mm2_s = 68\nviscosity_100C_mm2_s = 8.6\ntemperature_C = 20\n";
+  const Case c = parse_case(oil, "t.toml");
+  ASSERT_TRUE(c.lubricant.has_value());
+  EXPECT_EQ(c.lubricant->kind, "grease");
+  EXPECT_DOUBLE_EQ(c.lubricant->viscosity_40C_mm2_s, 68.0);
+  EXPECT_DOUBLE_EQ(c.lubricant->viscosity_100C_mm2_s, 8.6);
+  EXPECT_DOUBLE_EQ(c.lubricant->temperature_C, 20.0);
+  const Case back = parse_case(describe_case(c), "back.toml");
+  ASSERT_TRUE(back.lubricant.has_value());
+  EXPECT_EQ(back.lubricant->viscosity_100C_mm2_s, 8.6);
+  EXPECT_FALSE(parse_case(kTube, "t.toml").lubricant.has_value());
+  EXPECT_EQ(error_of(std::string(kTube) + "[lubricant]\nviscosity_40C_mm2_s = 68\ntemperature_C = 20\n"),
+            "cases/x.toml: lubricant.viscosity_100C_mm2_s is missing; [lubricant] gives the base oil's kinematic "
+            "viscosities at 40 and 100 C and the temperature it works at");
+  EXPECT_NE(error_of(oil + "kind = \"butter\"\n").find("cases/x.toml:11: lubricant.kind = 'butter'; expected one of"),
+            std::string::npos)
+      << error_of(oil + "kind = \"butter\"\n");
+  const std::string swapped = std::string(kTube) +
+                              "[lubricant]\nviscosity_40C_mm2_s = 8\nviscosity_100C_mm2_s = 68\ntemperature_C = 20\n";
+  EXPECT_EQ(error_of(swapped).rfind("cases/x.toml:8: lubricant.viscosity_40C_mm2_s = 8; must be > "
+                                    "viscosity_100C_mm2_s = 68", 0), 0u) << error_of(swapped);
+}
+
 }  // namespace
 
 }  // namespace sw

@@ -1,0 +1,70 @@
+#pragma once
+// Where the power goes in a running drive at one output torque (circular spline fixed, generator driven at the input
+// speed, the flexspline the output), read from the loaded contact at that torque:
+//  - the generator bearing: Palmgren's friction moment (generator/bearing_friction.hpp) of its balls' loads (the
+//    contact's station forces spread ball by ball, datasheet/limits.hpp ball_loads_N), at the speed of its rings
+//    relative to each other n_in·(1 + 1/ratio) (the inner ring on the plug, the outer in the turning flexspline) and
+//    the lubricant's viscosity at its temperature (ASTM D341, common/lubricant.hpp); its viscous part M0 and load part
+//    M1 kept apart;
+//  - the flanks' sliding: Coulomb friction μ·F_i on each loaded flank times its kinematic sliding speed |s_i|·σ̇
+//    (dynamics/moving_mesh_build.hpp flank_velocity: the two contact points' relative velocity along the profile per
+//    unit σ = θ_w − θ_f, on the rim's generator-deformed neutral curve at rest), σ̇ = ω_in·(1 + 1/ratio).
+// P_in = P_out + the losses, efficiency P_out/P_in, the input torque P_in/ω_in.
+//
+// Idealisations (said in every figure's method): the contact's flank forces and contact points at one generator
+// position and at rest stand for the running mesh (the teeth's sliding read where they touch at rest, not where the
+// load has moved the contact); μ constant over the flank; no churning or drag of the lubricant, no seal, no
+// material damping of the flexspline, no heat (the temperature is the case's). A loss left out makes the
+// efficiency an upper bound.
+#include <string>
+#include <vector>
+
+#include "common/lubricant.hpp"
+#include "contact/loaded_contact.hpp"
+#include "generator/bearing_friction.hpp"
+#include "kinematics/backlash.hpp"
+
+namespace sw {
+
+/// The running conditions of a loss evaluation.
+struct LossConditions {
+  Lubricant lubricant;            ///< with its temperature
+  double input_speed_rpm = 2000;  ///< the generator's speed, ≥ 0
+  double flank_friction = 0;      ///< μ of the flanks, in [0, 1]
+  PalmgrenCoefficients palmgren;  ///< the bearing's coefficients
+};
+
+/// The power balance at one output torque and input speed. W unless named otherwise.
+struct LossSplit {
+  double output_torque_Nm = 0, input_speed_rpm = 0;
+  double output_power_W = 0;
+  double bearing_viscous_W = 0;  ///< Palmgren's M0 at the rings' relative speed
+  double bearing_load_W = 0;     ///< Palmgren's M1
+  double flank_sliding_W = 0;    ///< Σ μ·F·|v_slide| over the loaded flanks (both teeth of a half-turn pair)
+  double viscosity_mm2_s = 0;    ///< the lubricant's at its temperature
+  double loss_W() const { return bearing_viscous_W + bearing_load_W + flank_sliding_W; }
+  double input_power_W() const { return output_power_W + loss_W(); }
+  /// P_out / P_in; 1 with no loss; 0 at zero output torque.
+  double efficiency() const { return input_power_W() > 0 ? output_power_W / input_power_W() : 0.0; }
+  /// The torque the input needs, N·m (P_in / ω_in); at zero output torque the no-load running torque.
+  double input_torque_Nm() const;
+};
+
+/// The kinematic sliding of each of the contact's flanks per unit σ (m/rad, signed), at its tooth's material angle on
+/// `model` (the rim's generator-deformed curve the contact was built on).
+std::vector<double> flank_sliding_m_per_rad(const BacklashModel& model, const ContactAnalysis& contact);
+
+/// The power balance at the contact's step `step` (its torque, magnitude taken: the sense of the load does not change
+/// the losses), with `sliding` from flank_sliding_m_per_rad and the balls' loads of that step. `ratio` = z_f/(z_c − z_f).
+/// Validates the lubricant, the coefficients, μ in [0, 1] and the speed ≥ 0 (InputError naming the field).
+LossSplit drive_losses(const ContactAnalysis& contact, std::size_t step, const std::vector<double>& sliding_m_per_rad,
+                       const GeneratorBearing& bearing, const std::vector<double>& ball_loads_N, int ratio,
+                       const LossConditions& conditions);
+
+/// The input torque that starts the drive from rest with no load on the output, N·m: Palmgren's breakaway moment of
+/// the generator bearing under these ball loads (palmgren_breakaway_moment_Nm: M1 alone, a lower bound) carried to
+/// the input as in the power balance, ×(1 + 1/ratio) (the rings turn against each other at σ̇ = ω_in·(1 + 1/ratio)).
+double starting_torque_Nm(const GeneratorBearing& bearing, const std::vector<double>& ball_loads_N, int ratio,
+                          const PalmgrenCoefficients& palmgren = {});
+
+}  // namespace sw

@@ -1,0 +1,144 @@
+// Where the power goes (datasheet/losses.hpp): the power balance written out by hand on a small contact, the sources
+// apart, the trends the catalogs state (efficiency falls with speed and at low load, rises with temperature), the
+// starting torque, and the bad inputs.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "datasheet/losses.hpp"
+#include "tests/generator/bearings.hpp"
+#include "tests/input_error.hpp"
+
+namespace sw {
+namespace {
+
+using testing::bearing_6205;
+using testing::stribeck_loads;
+
+constexpr double kRadPerS = 2 * std::numbers::pi / 60;
+
+/// Two loaded flanks of a half-turn pair set and one free one, at one step of 20 N·m (forces per tooth).
+ContactAnalysis two_flanks(bool half_turn_pairs) {
+  ContactAnalysis a;
+  a.half_turn_pairs = half_turn_pairs;
+  a.flanks.resize(3);
+  TorqueStep s;
+  s.torque_Nm = 20.0;
+  s.flank_force_N = {100.0, 50.0, 0.0};
+  a.steps = {s};
+  return a;
+}
+
+Lubricant vg68(double temperature_C) {
+  Lubricant oil;
+  oil.kind = "oil";
+  oil.viscosity_40C_mm2_s = 68.0;
+  oil.viscosity_100C_mm2_s = 8.6;
+  oil.temperature_C = temperature_C;
+  return oil;
+}
+
+// Every term against the hand sum: P_out = T·ω_in/ratio, the bearing at σ̇ = ω_in(1 + 1/ratio) with Palmgren's moment
+// of the same balls (generator/bearing_friction.hpp, checked there against a hand evaluation), the flanks
+// Σ μ·F·teeth·|s|·σ̇. Float rounding only: 1e-12.
+TEST(DriveLosses, PowerBalanceIsTheSumOfItsSourcesWrittenOutByHand) {
+  const ContactAnalysis a = two_flanks(true);
+  const std::vector<double> sliding = {2e-3, -1e-3, 5e-3};  // m per rad of σ
+  const GeneratorBearing b = bearing_6205();
+  const std::vector<double> Q = stribeck_loads(9, 1500.0, 0.0);
+  LossConditions c;
+  c.lubricant = vg68(40.0);
+  c.input_speed_rpm = 2000.0;
+  c.flank_friction = 0.08;
+  const int ratio = 50;
+  const LossSplit l = drive_losses(a, 0, sliding, b, Q, ratio, c);
+
+  const double omega_in = 2000.0 * kRadPerS, sigma_rate = omega_in * (1.0 + 1.0 / ratio);
+  EXPECT_NEAR(l.output_power_W, 20.0 * omega_in / ratio, 1e-12 * l.output_power_W);
+  const BearingFrictionMoment m = palmgren_friction_moment(b, Q, 2000.0 * (1.0 + 1.0 / ratio), 68.0);
+  EXPECT_NEAR(l.viscosity_mm2_s, 68.0, 1e-9);  // D341 through its own 40 °C point
+  EXPECT_NEAR(l.bearing_viscous_W, m.viscous_Nm * sigma_rate, 1e-9 * l.bearing_viscous_W);
+  EXPECT_NEAR(l.bearing_load_W, m.load_Nm * sigma_rate, 1e-9 * l.bearing_load_W);
+  const double flanks = 0.08 * (100.0 * 2e-3 + 50.0 * 1e-3) * 2.0 * sigma_rate;  // two teeth per half-turn pair
+  EXPECT_NEAR(l.flank_sliding_W, flanks, 1e-12 * flanks);
+  EXPECT_NEAR(l.input_power_W(), l.output_power_W + l.bearing_viscous_W + l.bearing_load_W + flanks, 1e-9);
+  EXPECT_NEAR(l.efficiency(), l.output_power_W / l.input_power_W(), 1e-15);
+  EXPECT_NEAR(l.input_torque_Nm(), l.input_power_W() / omega_in, 1e-12);
+  // One tooth per unknown (an odd z_f): half the flanks' loss, the rest unchanged.
+  const LossSplit odd = drive_losses(two_flanks(false), 0, sliding, b, Q, ratio, c);
+  EXPECT_NEAR(odd.flank_sliding_W, 0.5 * flanks, 1e-12 * flanks);
+  EXPECT_EQ(odd.bearing_load_W, l.bearing_load_W);
+}
+
+// μ = 0: the flanks lose nothing, the bearing alone sets the efficiency; the output torque's sign does not matter.
+TEST(DriveLosses, FrictionlessFlanksLoseNothingAndTheLoadsSenseDoesNotMatter) {
+  ContactAnalysis a = two_flanks(true);
+  const std::vector<double> sliding = {2e-3, -1e-3, 5e-3};
+  LossConditions c;
+  c.lubricant = vg68(20.0);
+  const LossSplit l = drive_losses(a, 0, sliding, bearing_6205(), stribeck_loads(9, 1500.0, 0.0), 100, c);
+  EXPECT_EQ(l.flank_sliding_W, 0.0);
+  EXPECT_NEAR(l.efficiency(), l.output_power_W / (l.output_power_W + l.bearing_viscous_W + l.bearing_load_W), 1e-15);
+  a.steps[0].torque_Nm = -20.0;
+  EXPECT_EQ(drive_losses(a, 0, sliding, bearing_6205(), stribeck_loads(9, 1500.0, 0.0), 100, c).efficiency(),
+            l.efficiency());
+}
+
+// The catalogs' trends, from the physics of the terms: the viscous moment grows as n^(2/3) (its power as n^(5/3))
+// against an output power ∝ n, so the efficiency falls with speed; the bearing's moment does not fall with the load,
+// so a lighter load is less efficient; a warmer oil is thinner and drags less.
+TEST(DriveLosses, EfficiencyFallsWithSpeedAndAtLowLoadAndRisesWithTemperature) {
+  ContactAnalysis a = two_flanks(true);
+  TorqueStep half = a.steps[0];
+  half.torque_Nm = 10.0;
+  half.flank_force_N = {50.0, 25.0, 0.0};
+  a.steps.push_back(half);
+  const std::vector<double> sliding = {2e-3, -1e-3, 5e-3};
+  const GeneratorBearing b = bearing_6205();
+  const std::vector<double> Q = stribeck_loads(9, 1500.0, 0.0);
+  LossConditions c;
+  c.lubricant = vg68(20.0);
+  c.flank_friction = 0.1;
+  auto eta = [&](std::size_t step, double rpm, double temperature_C) {
+    LossConditions at = c;
+    at.input_speed_rpm = rpm;
+    at.lubricant.temperature_C = temperature_C;
+    return drive_losses(a, step, sliding, b, Q, 100, at).efficiency();
+  };
+  EXPECT_GT(eta(0, 500, 20), eta(0, 1000, 20));
+  EXPECT_GT(eta(0, 1000, 20), eta(0, 3500, 20));
+  EXPECT_GT(eta(0, 2000, 20), eta(1, 2000, 20));
+  EXPECT_GT(eta(0, 2000, 60), eta(0, 2000, 20));
+}
+
+// The starting torque is Palmgren's breakaway moment (M1) of the same balls carried to the input by 1 + 1/ratio.
+TEST(DriveLosses, StartingTorqueIsTheBreakawayMomentAtTheInput) {
+  const GeneratorBearing b = bearing_6205();
+  const std::vector<double> Q = stribeck_loads(9, 800.0, 0.0);
+  EXPECT_NEAR(starting_torque_Nm(b, Q, 100), palmgren_breakaway_moment_Nm(b, Q) * 1.01, 1e-15);
+  EXPECT_NE(sw::testing::message_of([&] { starting_torque_Nm(b, Q, 0); }).find("ratio 0; must be >= 1"),
+            std::string::npos);
+}
+
+TEST(DriveLosses, BadConditionsAreOneLineNamingTheField) {
+  const ContactAnalysis a = two_flanks(true);
+  const std::vector<double> sliding = {0, 0, 0};
+  LossConditions c;
+  c.lubricant = vg68(20.0);
+  c.flank_friction = 1.5;
+  auto message = [&](const LossConditions& at) {
+    return sw::testing::message_of(
+        [&] { drive_losses(a, 0, sliding, bearing_6205(), stribeck_loads(9, 800.0, 0.0), 100, at); });
+  };
+  EXPECT_EQ(message(c), "contact.friction_coefficient = 1.5; must be in [0, 1]");
+  c.flank_friction = 0.1;
+  c.input_speed_rpm = -5;
+  EXPECT_EQ(message(c), "input speed -5 rpm; must be >= 0");
+  c.input_speed_rpm = 2000;
+  c.lubricant.kind = "butter";
+  EXPECT_EQ(message(c).rfind("lubricant.kind = \"butter\"; must be \"grease\" or \"oil\"", 0), 0u) << message(c);
+}
+
+}  // namespace
+}  // namespace sw

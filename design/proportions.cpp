@@ -27,8 +27,10 @@ namespace {
 //             teeth to h_a* = 0.7 after the geometry check (cases/seed_190_192.toml). Its x_c − x_f = 0.05 leaves
 //             1.2 arcmin of play at ratio 100; the design sets x_c for zero backlash instead ([Zero]).
 //  [Zero]     harmonic drive component sets are sold as zero-backlash gearing (the maker's CSF/CSG catalog: lost
-//             motion below 1 arcmin with the elastic twist included, ../shared/reference/catalog_torsional_stiffness.md):
-//             the teeth are cut so that the tightest pair touches at rest (set_zero_backlash).
+//             motion below 1 arcmin with the elastic twist included, ../shared/reference/catalog_torsional_stiffness.md;
+//             "the HDs are usually designed with zero backlash at the gear mesh": Materials 14 (2021) 5057, the
+//             introduction of its lost-motion sensitivity study): the teeth are cut so that the tightest pair touches
+//             at rest (set_zero_backlash).
 //  [Harris]   T. A. Harris, M. N. Kotzalas, Rolling Bearing Analysis, 5th ed., ch. 2: deep-groove groove conformity
 //             0.515–0.53 (inner race closer than outer).
 //  [ISO 6336] ISO 6336-3 tooth-root stress σ_F ∝ F_t/(b·m) = 2T/(d·b·m): with b, m ∝ d the torque capacity of

@@ -95,14 +95,6 @@ BucklingFigure buckling(const Case& c, const FourierSolution& s, const std::file
   return f;
 }
 
-/// The step of the contact's curve nearest `torque_Nm` (on the positive side at zero: the curve's upper limit there).
-std::size_t step_near(const ContactAnalysis& a, double torque_Nm) {
-  std::size_t best = 0;
-  for (std::size_t i = 0; i < a.steps.size(); ++i)
-    if (std::abs(a.steps[i].torque_Nm - torque_Nm) <= std::abs(a.steps[best].torque_Nm - torque_Nm)) best = i;
-  return best;
-}
-
 /// The losses at the catalog's conditions (datasheet/losses.hpp), or why not.
 std::optional<LossFigures> losses(const Case& c, const ContactAnalysis& contact, const ContactBody& body,
                                   const FemReadout& readout, int ratio, std::string& why_not) {
@@ -141,8 +133,8 @@ std::optional<LossFigures> losses(const Case& c, const ContactAnalysis& contact,
   const double rated = contact.steps.back().torque_Nm;
   l.rated_2000 = at_step(contact.steps.size() - 1, kInputSpeed_rpm);
   l.rated_1000 = at_step(contact.steps.size() - 1, 0.5 * kInputSpeed_rpm);
-  l.half_rated_2000 = at_step(step_near(contact, 0.5 * rated), kInputSpeed_rpm);
-  const std::size_t rest = step_near(contact, 0.0);
+  l.half_rated_2000 = at_step(step_nearest(contact, 0.5 * rated), kInputSpeed_rpm);
+  const std::size_t rest = step_nearest(contact, 0.0);
   l.no_load_2000 = at_step(rest, kInputSpeed_rpm);
   l.starting_torque_Nm = starting_torque_Nm(
       bearing, ball_loads_N(body.stations(), contact.steps[rest].station_force_N, bearing.balls), ratio);

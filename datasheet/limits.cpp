@@ -94,6 +94,14 @@ std::vector<double> ball_loads_N(const BodyStations& stations, const std::vector
   return Q;
 }
 
+std::size_t step_nearest(const ContactAnalysis& contact, double torque_Nm) {
+  std::size_t best = 0;
+  for (std::size_t i = 0; i < contact.steps.size(); ++i)
+    if (std::abs(contact.steps[i].torque_Nm - torque_Nm) <= std::abs(contact.steps[best].torque_Nm - torque_Nm))
+      best = i;
+  return best;
+}
+
 BearingLifeFigure generator_bearing_life(const GeneratorBearing& bearing, const BodyStations& stations,
                                          const ContactAnalysis& contact, double ratio, double input_speed_rpm) {
   if (!stations.unilateral || stations.angle_rad.empty() || contact.steps.back().station_force_N.empty())
@@ -105,9 +113,7 @@ BearingLifeFigure generator_bearing_life(const GeneratorBearing& bearing, const 
                                        input_speed_rpm, signed_ratio);
   };
   const TorqueStep& rated = contact.steps.back();
-  const TorqueStep* half = &rated;
-  for (const TorqueStep& s : contact.steps)
-    if (std::abs(s.torque_Nm - rated.torque_Nm / 2) < std::abs(half->torque_Nm - rated.torque_Nm / 2)) half = &s;
+  const TorqueStep* half = &contact.steps[step_nearest(contact, rated.torque_Nm / 2)];
   BearingLifeFigure out;
   out.input_speed_rpm = input_speed_rpm;
   out.l10_h = hours(rated);

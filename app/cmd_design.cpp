@@ -60,7 +60,7 @@ void add_design_command(CLI::App& app) {
   static std::string size, ratio = "100", out;
   cmd->add_option("--size", size, "catalog size: the pitch diameter in tenths of an inch (8-65; 14, 17, 20 have "
                                   "published stiffness)")->required();
-  cmd->add_option("--ratio", ratio, "reduction ratio z_f/(z_c - z_f), 50-160 (default 100)");
+  cmd->add_option("--ratio", ratio, "reduction ratio z_f/(z_c - z_f), 30-160 (default 100)");
   cmd->add_option("--out", out, "case file to write (default: print to stdout)");
   cmd->callback([] {
     CupDesign d = design_cup(parse_int("--size", size), parse_int("--ratio", ratio));

@@ -4,6 +4,7 @@
 // contact/harmonic_body.hpp: the harmonic solver's meridian section). The contact problem itself
 // (contact/loaded_contact.hpp) does not know which.
 #include <functional>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -24,6 +25,11 @@ struct FlankPattern {
   double contact_radius_m = 0;
   int slice = -1;     ///< axial slice of the face (of ContactBody::influence's `slices`); −1: the whole face
   double scale = 1;
+  /// For a body with explicit teeth: the loaded tooth's material angle (its centre line at rest; the partner's is
+  /// + π) and the point of the load in the tooth's own frame (tooth on +x, the gear's centre at the origin). A ring
+  /// body needs neither; NaN: not given.
+  double tooth_angle_rad = std::numeric_limits<double>::quiet_NaN();
+  Eigen::Vector2d tooth_point_m = Eigen::Vector2d::Zero();
 };
 
 /// Axial range (from the closed end) of slice j of n of the toothed face (the whole face for n = 1).

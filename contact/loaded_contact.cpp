@@ -325,12 +325,16 @@ void ContactAnalyser::add_flank(FlankContact f, const FlankClearance& fc, int k,
   const double s = std::atan2(fc.point_f.y(), fc.point_f.x());
   std::vector<double> stations{s};
   if (out_.half_turn_pairs) stations.push_back(s + kPi);
+  // Where the load sits on the tooth itself, for a body with explicit teeth: the contact point taken back into the
+  // tooth's own frame by the tooth's placement on the slice's rim.
+  const ToothPlacement place = place_tooth(slices_[j].curve, f.phi_rad, 0.0);
+  const Eigen::Vector2d on_tooth = Eigen::Rotation2Dd(-place.angle_rad) * (fc.point_f - place.offset_m);
   // One slice loads the whole face; more, each its own band of the rim.
-  patterns_.push_back({stations, -fc.normal, fc.point_f.norm(), n_slices_ > 1 ? j : -1});
+  patterns_.push_back({stations, -fc.normal, fc.point_f.norm(), n_slices_ > 1 ? j : -1, 1, f.phi_rad, on_tooth});
   // With friction, the flank's tangential force: along the profile in the transverse plane (the normal turned by 90°).
   if (opt_.friction_coefficient > 0)
     tangential_.push_back({stations, Eigen::Vector2d(fc.normal.y(), -fc.normal.x()), fc.point_f.norm(),
-                           n_slices_ > 1 ? j : -1});
+                           n_slices_ > 1 ? j : -1, 1, f.phi_rad, on_tooth});
   // Its force on the circular spline: the opposite, at the contact point on the circular spline's tooth.
   const double c = std::atan2(fc.point_c.y(), fc.point_c.x());
   std::vector<double> on_cs{c};
@@ -354,7 +358,8 @@ void ContactAnalyser::watch_zone_edges() {
     const double s = std::atan2(tip.y(), tip.x());
     std::vector<double> stations{s};
     if (out_.half_turn_pairs) stations.push_back(s + kPi);
-    observers_.push_back({stations, Eigen::Vector2d(std::cos(s), std::sin(s)), tip.norm(), -1, 1 / n_teeth_});
+    observers_.push_back({stations, Eigen::Vector2d(std::cos(s), std::sin(s)), tip.norm(), -1, 1 / n_teeth_, phi,
+                          Eigen::Vector2d(model_->radii.tip_f, 0.0)});
     EdgeTooth e;
     e.tooth = k;
     e.phi_rad = phi;
@@ -789,6 +794,15 @@ std::function<double(double, double)> tooth_pair_compliance_of(const FlexsplineM
   const Material m = c.material;
   const GearRadii radii = gear_radii(g);
   const double width = c.flexspline.rim_width_m, bore = c.flexspline.inner_radius_m;
+  if (c.flexspline.teeth == TeethModel::Explicit) {
+    // The body's own teeth carry the flexspline tooth's bending and foundation (contact/tet10_body.hpp
+    // ExplicitToothLoads): in series only the circular spline's tooth and the pair's flattening.
+    return [=](double r_f, double r_c) {
+      const double rf = std::clamp(r_f, radii.form_f, radii.tip_f);
+      const ToothPairCompliance p = tooth_pair_compliance(g, m, rf, kReferenceLineLoad_N_per_m, bore, r_c);
+      return (p.bending_c + p.foundation_c + p.contact) / width;
+    };
+  }
   const FlexsplineToothFem tooth = flexspline_tooth_fem(g, m, bore, rim_outer_radius(c.flexspline, c.gear));
   progress("contact: the flexspline tooth from the explicit-tooth FEM at " + std::to_string(tooth.radius_m.size()) +
            " contact radii (two plane-strain slabs, " + std::to_string(tooth.nodes) + " nodes) in " +
@@ -820,9 +834,6 @@ std::optional<std::string> contact_model_gap(const FlexsplineModel& c) {
   if (!(c.flexspline.rim_width_m > 0))
     return "contact needs a toothed face: flexspline.rim_width_mm > 0 (the width the teeth carry the torque over; a "
            "tube without teeth has none unless it is given)";
-  if (c.flexspline.teeth == TeethModel::Explicit)
-    return "contact needs flexspline.teeth = \"ring\" or \"none\" (the teeth's own compliance is added in series; "
-           "explicit teeth would count it twice)";
   return std::nullopt;
 }
 

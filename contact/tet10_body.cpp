@@ -6,12 +6,15 @@
 #include <optional>
 #include <string>
 
+#include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <Eigen/SparseCore>
 
 #include "common/error.hpp"
 #include "fem/assembly.hpp"
+#include "fem/loads.hpp"
 #include "fem/post.hpp"
+#include "mesh/flexspline.hpp"
 
 namespace sw {
 namespace {
@@ -37,22 +40,30 @@ FlankLoads::FlankLoads(const TetMesh& mesh, double pitch_rad, double z_lo_m, dou
 
 Eigen::VectorXd FlankLoads::pattern(const std::vector<double>& stations, const Eigen::Vector2d& force_dir,
                                     double contact_radius_m) const {
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(3 * mesh_.n_nodes());
+  for (std::size_t i = 0; i < stations.size(); ++i) {
+    // The contact force at this station (turned by π at the partner) and its moment about the axis.
+    const double s = stations[i];
+    const Eigen::Vector2d F = i == 0 ? force_dir : Eigen::Vector2d(-force_dir);
+    const Eigen::Vector2d P = contact_radius_m * Eigen::Vector2d(std::cos(s), std::sin(s));
+    f += wrench(s, Eigen::Vector3d(F.x(), F.y(), P.x() * F.y() - P.y() * F.x()));
+  }
+  return f;
+}
+
+Eigen::VectorXd FlankLoads::wrench(double s, const Eigen::Vector3d& target) const {
   const auto radial_dir = [](double t) { return Eigen::Vector3d(std::cos(t), std::sin(t), 0); };
   const auto tangential_dir = [](double t) { return Eigen::Vector3d(-std::sin(t), std::cos(t), 0); };
   Eigen::VectorXd f = Eigen::VectorXd::Zero(3 * mesh_.n_nodes());
-  for (std::size_t i = 0; i < stations.size(); ++i) {
-    const double s = stations[i];
+  {
     const Eigen::VectorXd radial = hats_.load(s, half_, radial_dir), tangential = hats_.load(s, half_, tangential_dir),
                           outer = hats_.load(s + half_ / 2, half_ / 2, radial_dir),
                           inner = hats_.load(s - half_ / 2, half_ / 2, radial_dir);
     if (radial.size() == 0 || outer.size() == 0 || inner.size() == 0)
       throw InputError("contact: no rim faces under the tooth at " + std::to_string(s * 180 / kPi) +
                        " deg; refine mesh.size_mm");
-    // The contact force at this station (turned by π at the partner) and its moment about the axis: the three
-    // amplitudes reproduce both exactly. Every sum runs over the hats' nodes only (the radial hat's: the others lie
-    // within it); the full vectors are the mesh's size.
-    const Eigen::Vector2d F = i == 0 ? force_dir : Eigen::Vector2d(-force_dir);
-    const Eigen::Vector2d P = contact_radius_m * Eigen::Vector2d(std::cos(s), std::sin(s));
+    // The three amplitudes reproduce the target's force and moment about the axis exactly. Every sum runs over the
+    // hats' nodes only (the radial hat's: the others lie within it); the full vectors are the mesh's size.
     std::vector<Eigen::Index> nodes;
     for (Eigen::Index n = 0; n < static_cast<Eigen::Index>(mesh_.n_nodes()); ++n)
       if (radial.segment<3>(3 * n).any()) nodes.push_back(n);
@@ -69,9 +80,60 @@ Eigen::VectorXd FlankLoads::pattern(const std::vector<double>& stations, const E
         R.col(c) += Eigen::Vector3d(fx, fy, mesh_.nodes(n, 0) * fy - mesh_.nodes(n, 1) * fx);
       }
     }
-    const Eigen::Vector3d target(F.x(), F.y(), P.x() * F.y() - P.y() * F.x());
     const Eigen::VectorXd h = H * R.fullPivLu().solve(target);
     for (Eigen::Index j = 0; j < k; ++j) f.segment<3>(3 * nodes[j]) += h.segment<3>(3 * j);
+  }
+  return f;
+}
+
+ExplicitToothLoads::ExplicitToothLoads(const TetMesh& mesh, double pitch_rad, double spread_m, double z_lo_m,
+                                       double z_hi_m)
+    : mesh_(mesh), pitch_(pitch_rad), spread_(spread_m), hats_(mesh, pitch_rad, z_lo_m, z_hi_m) {
+  for (const BoundaryFace* f : select_faces(mesh, kSurfaceRimOuter)) {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) c += mesh.nodes.row(f->nodes[k]).transpose() / 3;
+    if (c.z() < z_lo_m || c.z() > z_hi_m) continue;
+    faces_.push_back(f);
+    centroid_.push_back(c);
+  }
+}
+
+Eigen::VectorXd ExplicitToothLoads::pattern(const std::vector<double>& stations, const Eigen::Vector2d& force_dir,
+                                            double contact_radius_m, double tooth_angle_rad,
+                                            const Eigen::Vector2d& tooth_point_m) const {
+  if (!std::isfinite(tooth_angle_rad))
+    throw InputError("contact: a load pattern on explicit teeth needs its tooth (angle and point on the tooth)");
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(3 * mesh_.n_nodes());
+  const std::vector<bool> all(mesh_.n_nodes(), true);
+  for (std::size_t i = 0; i < stations.size(); ++i) {
+    const double a = tooth_angle_rad + (i == 0 ? 0.0 : kPi);
+    const Eigen::Vector2d F = i == 0 ? force_dir : Eigen::Vector2d(-force_dir);
+    const Eigen::Vector2d p = Eigen::Rotation2Dd(a) * tooth_point_m;
+    // The tooth's faces on the contact's side of its centre line (both sides for a point on it) within the hat.
+    const double side = std::abs(tooth_point_m.y()) > 1e-3 * spread_ ? (tooth_point_m.y() > 0 ? 1.0 : -1.0) : 0.0;
+    const Eigen::Vector2d across(-std::sin(a), std::cos(a));
+    std::vector<const BoundaryFace*> faces;
+    for (std::size_t k = 0; k < faces_.size(); ++k) {
+      const Eigen::Vector2d c = centroid_[k].head<2>();
+      if (std::abs(std::remainder(std::atan2(c.y(), c.x()) - a, 2 * kPi)) > pitch_ / 2) continue;
+      if (side != 0 && side * c.dot(across) < 0) continue;
+      double reach = 0;  // the face's largest corner distance from its centroid
+      for (int j = 0; j < 3; ++j) reach = std::max(reach, (mesh_.nodes.row(faces_[k]->nodes[j]).head<2>().transpose() - c).norm());
+      if ((c - p).norm() < spread_ + reach) faces.push_back(faces_[k]);
+    }
+    const auto hat = [&](const Eigen::Vector3d& x) { return std::max(0.0, 1 - (x.head<2>() - p).norm() / spread_); };
+    const double integral = faces.empty() ? 0.0 : faces_integral(mesh_, faces, hat);
+    if (!(integral > 0))
+      throw InputError("contact: no flank faces of the explicit tooth at " + std::to_string(a * 180 / kPi) +
+                       " deg under the contact point; refine mesh.size_mm");
+    const Eigen::Vector3d F3(F.x(), F.y(), 0);
+    const Eigen::VectorXd flank =
+        traction_load(mesh_, faces, [&](const Eigen::Vector3d& x, const Eigen::Vector3d&) { return F3 * hat(x) / integral; });
+    // The moment the force has at its place on the deformed rim (the contact's lever), the difference as a pure moment.
+    const double s = stations[i];
+    const Eigen::Vector2d P = contact_radius_m * Eigen::Vector2d(std::cos(s), std::sin(s));
+    const double moment = P.x() * F.y() - P.y() * F.x();
+    f += flank + hats_.wrench(s, Eigen::Vector3d(0, 0, moment - moment_about_z(mesh_, flank, all)));
   }
   return f;
 }
@@ -96,9 +158,29 @@ Eigen::SparseMatrix<double> sparse_columns(const std::vector<Eigen::VectorXd>& c
 std::vector<Eigen::VectorXd> pattern_loads(const FlexsplineModel& c, const TetMesh& mesh,
                                            const std::vector<FlankPattern>& patterns, int slices) {
   const double pitch = 2 * kPi / c.gear->teeth_flexspline;
+  std::vector<Eigen::VectorXd> cols;
+  if (c.flexspline.teeth == TeethModel::Explicit) {
+    // The hat along the profile as wide as an element across the tooth: the load resolved by the mesh that carries it.
+    const double spread = tooth_mesh_size(*c.gear, c.mesh).across_m;
+    const ExplicitToothLoads face(mesh, pitch, spread);
+    std::vector<std::optional<ExplicitToothLoads>> slice(static_cast<std::size_t>(std::max(slices, 1)));
+    for (const FlankPattern& p : patterns) {
+      const ExplicitToothLoads* loads = &face;
+      if (p.slice >= 0 && slices > 1) {
+        auto& s = slice.at(static_cast<std::size_t>(p.slice));
+        if (!s) {
+          const auto [lo, hi] = face_slice_m(c.flexspline, p.slice, slices);
+          s.emplace(mesh, pitch, spread, lo, hi);
+        }
+        loads = &*s;
+      }
+      cols.push_back(p.scale * loads->pattern(p.stations_rad, p.force_dir, p.contact_radius_m, p.tooth_angle_rad,
+                                              p.tooth_point_m));
+    }
+    return cols;
+  }
   const FlankLoads face(mesh, pitch);
   std::vector<std::optional<FlankLoads>> slice(static_cast<std::size_t>(std::max(slices, 1)));
-  std::vector<Eigen::VectorXd> cols;
   for (const FlankPattern& p : patterns) {
     const FlankLoads* loads = &face;
     if (p.slice >= 0 && slices > 1) {

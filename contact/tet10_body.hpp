@@ -33,12 +33,42 @@ public:
   /// radial line of stations[0], and of the same turned by π at a partner stations[1] = stations[0] + π.
   Eigen::VectorXd pattern(const std::vector<double>& stations, const Eigen::Vector2d& force_dir,
                           double contact_radius_m) const;
+  /// Nodal loads at one station of the three hats whose resultant is `target` = (F_x, F_y, M_z about the axis).
+  Eigen::VectorXd wrench(double station_rad, const Eigen::Vector3d& target) const;
 
 private:
   static std::vector<const BoundaryFace*> rim(const TetMesh& mesh, double z_lo_m, double z_hi_m);
   const TetMesh& mesh_;
   double half_;
   AngularHats hats_;
+};
+
+/// Load patterns on explicit teeth (flexspline.teeth = "explicit": the rim's outer surface is the tooth outline). A
+/// flank's force acts on the tooth's own surface where the teeth touch: a traction along the force, spread along the
+/// profile by a linear hat of half-width `spread_m` about the contact point and uniform across the face width (or
+/// the pattern's slice), on the faces of the tooth's flank side (both sides for a point on the centre line, the tip
+/// land included), its resultant exactly the force. The mesh is the rim at rest, so the force sits at the contact's
+/// material point, whose moment about the axis differs from the force's at its place on the generator-deformed rim
+/// (the ring patterns' and the contact's lever) by the generator's displacement of that point × the force: that
+/// difference is added as a pure moment by the ring patterns' three hats (FlankLoads::wrench, zero resultant force),
+/// so both bodies carry each contact force with the same force and moment.
+class ExplicitToothLoads {
+public:
+  ExplicitToothLoads(const TetMesh& mesh, double pitch_rad, double spread_m,
+                     double z_lo_m = -std::numeric_limits<double>::infinity(),
+                     double z_hi_m = std::numeric_limits<double>::infinity());
+  /// The loads of a pattern with its tooth given (FlankPattern::tooth_angle_rad, tooth_point_m): 1 N along
+  /// `force_dir` at the tooth's point, its moment made that of the force at `contact_radius_m` on the radial line of
+  /// stations[0]; the partner tooth (+ π) with the force turned by π.
+  Eigen::VectorXd pattern(const std::vector<double>& stations, const Eigen::Vector2d& force_dir,
+                          double contact_radius_m, double tooth_angle_rad, const Eigen::Vector2d& tooth_point_m) const;
+
+private:
+  const TetMesh& mesh_;
+  double pitch_, spread_;
+  std::vector<const BoundaryFace*> faces_;
+  std::vector<Eigen::Vector3d> centroid_;
+  FlankLoads hats_;
 };
 
 /// The body on a mesh and its factorised system; `generator_u` (3·n_nodes, the FEM's generator case) may be null

@@ -52,7 +52,11 @@ void add_contact_figures(Datasheet& d, const DatasheetInputs& in) {
     d.figures.push_back(computed("hysteresis_loss_arcmin", "hysteresis loss", "arcmin",
                                  a.friction->hysteresis_loss_rad * kArcmin,
                                  "branches' gap at zero torque of the steady loop ±rated, Coulomb μ = " +
-                                     fmt("%.3g", a.friction->friction_coefficient) + " on the flanks"));
+                                     fmt("%.3g", a.friction->friction_coefficient) + " on the flanks" +
+                                     (a.play_rad > 0 ? "; with play the loop closes through the dead band (the "
+                                                       "flanks of one side cannot hold each other at zero torque), "
+                                                       "so what is left is the zero-torque limits' own ±1e-6 of rated"
+                                                     : "")));
   else
     d.figures.push_back(not_computed("hysteresis_loss_arcmin", "hysteresis loss", "arcmin",
                                      "not computed: the case gives no flank friction ([contact] friction_coefficient)"));

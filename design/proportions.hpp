@@ -15,7 +15,7 @@
 
 namespace sw {
 
-/// Sizes and ratios `strainwave design` accepts: the component sets' sizes 8–65 and the catalog ratios 50–160
+/// Sizes and ratios `strainwave design` accepts: the component sets' sizes 8–65 and the catalog ratios 30–160
 /// (z_f = 2·ratio; the short-tooth rule is verified against interference over this range of ratios).
 inline constexpr int kDesignSizeMin = 8, kDesignSizeMax = 65;
 inline constexpr int kDesignRatioMin = 30, kDesignRatioMax = 160;

@@ -109,9 +109,7 @@ std::optional<LossFigures> losses(const Case& c, const ContactAnalysis& contact,
     return std::nullopt;
   }
   const GeneratorBearing& bearing = *c.wave_generator->bearing;
-  const NeutralCurveSamples& nc = readout.neutral_curve;
-  const BacklashModel model = make_backlash_model(
-      *c.gear, fit_neutral_curve(nc.radius_m, nc.phi_rad, nc.w_wg_m, nc.v_wg_m, nc.mu_wg_rad, "FEM"));
+  const BacklashModel model = make_backlash_model(*c.gear, fem_neutral_curve(readout.neutral_curve));
   const std::vector<double> sliding = flank_sliding_m_per_rad(model, contact);
   LossFigures l;
   LossConditions at;
@@ -162,6 +160,10 @@ void add_datasheet_command(CLI::App& app) {
     const Case c = load_case_with_solver(case_path, "fourier", "");
     const FlexsplineModel model = flexspline_model(c);
     naming_file(c.path, [&] { check_contact_model(model); });
+    if (!reduction_ratio(*c.gear))
+      throw InputError(c.path + ": gear.teeth_circular = " + std::to_string(c.gear->teeth_circular) +
+                       "; the datasheet needs a whole reduction ratio z_f / (z_c - z_f) (teeth_flexspline = " +
+                       std::to_string(c.gear->teeth_flexspline) + "), as catalog drives have");
     OutputSet outputs(out.empty() ? default_out_dir(c) : std::filesystem::path(out), kDatasheetFiles);
 
     const FemJobResult fem = solve_flexspline(c, max_memory_gb);
@@ -174,7 +176,7 @@ void add_datasheet_command(CLI::App& app) {
     DatasheetInputs in;
     in.rated_torque_Nm = options.rated_torque_Nm;
     in.rated_torque_origin = rated_torque_origin(c);
-    in.ratio = c.gear->teeth_flexspline / (c.gear->teeth_circular - c.gear->teeth_flexspline);
+    in.ratio = *reduction_ratio(*c.gear);  // whole: checked before any work
     in.catalog_size = c.catalog_size;
     in.contact = &contact;
     in.infinite_life = infinite_life(c, *fem.harmonic, in.rated_torque_Nm, in.why_no_infinite_life);

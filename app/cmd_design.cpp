@@ -12,6 +12,7 @@
 #include "app/commands.hpp"
 #include "app/fem_job.hpp"
 #include "common/error.hpp"
+#include "contact/loaded_contact.hpp"
 #include "design/proportions.hpp"
 #include "io/atomic_file.hpp"
 #include "io/case.hpp"
@@ -40,9 +41,7 @@ int parse_int(const std::string& option, const std::string& text) {
 NeutralCurve generator_deformed_curve(const Case& c) {
   double section_s = 0;
   const FourierSolution fs = solve_fourier_model(c, 0, 0.0, section_s);
-  const NeutralCurveSamples& nc = *fs.figures.neutral_curve;
-  return fit_neutral_curve(nc.radius_m, nc.phi_rad, nc.w_wg_m, nc.v_wg_m, nc.mu_wg_rad,
-                           "FEM's generator-deformed (mid-face, harmonic solver)");
+  return fem_neutral_curve(*fs.figures.neutral_curve, "FEM's generator-deformed (mid-face, harmonic solver)");
 }
 
 /// The case text of a design, read back and checked as any case.

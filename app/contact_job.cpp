@@ -63,13 +63,12 @@ SeriesParts series_parts(const Case& c) {
 }
 
 std::optional<CatalogLaw> catalog_reference(const Case& c) {
-  if (!c.catalog_size || !c.gear || c.gear->teeth_circular <= c.gear->teeth_flexspline) return std::nullopt;
-  const int difference = c.gear->teeth_circular - c.gear->teeth_flexspline;
-  if (c.gear->teeth_flexspline % difference != 0) return std::nullopt;  // no catalog ratio
-  const int ratio = c.gear->teeth_flexspline / difference;
-  const std::optional<CatalogDrive> d = catalog_stiffness(*c.catalog_size, ratio);
+  if (!c.catalog_size || !c.gear) return std::nullopt;
+  const std::optional<int> ratio = reduction_ratio(*c.gear);
+  if (!ratio) return std::nullopt;  // no catalog ratio
+  const std::optional<CatalogDrive> d = catalog_stiffness(*c.catalog_size, *ratio);
   if (!d) return std::nullopt;
-  return CatalogLaw{d->size, ratio, d->t1_Nm, d->t2_Nm, d->k1_Nm_per_rad, d->k2_Nm_per_rad, d->k3_Nm_per_rad};
+  return CatalogLaw{d->size, *ratio, d->t1_Nm, d->t2_Nm, d->k1_Nm_per_rad, d->k2_Nm_per_rad, d->k3_Nm_per_rad};
 }
 
 ContactOptions contact_options(const Case& c, SeriesParts series) {

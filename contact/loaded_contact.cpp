@@ -233,7 +233,7 @@ private:
 void ContactAnalyser::read_rim_at_rest() {
   out_.rated_torque_Nm = opt_.rated_torque_Nm;
   const NeutralCurveSamples& nc = fem_.neutral_curve;
-  curve_ = fit_neutral_curve(nc.radius_m, nc.phi_rad, nc.w_wg_m, nc.v_wg_m, nc.mu_wg_rad, "FEM");
+  curve_ = fem_neutral_curve(nc);
   model_.emplace(make_backlash_model(g_, curve_));
   out_.half_turn_pairs = g_.teeth_flexspline % 2 == 0;
   n_teeth_ = out_.half_turn_pairs ? 2.0 : 1.0;
@@ -278,7 +278,7 @@ void ContactAnalyser::read_face_sections(std::vector<NeutralCurve>& read) {
   for (int j = 0; j < n_slices_ && n_slices_ > 1; ++j)
     z_read.push_back(nc.z_m - face / 2 + face * (j + 0.5) / n_slices_);
   for (const NeutralCurveSamples& at : body_.generator_curves_at(z_read))
-    read.push_back(fit_neutral_curve(at.radius_m, at.phi_rad, at.w_wg_m, at.v_wg_m, at.mu_wg_rad, "FEM"));
+    read.push_back(fem_neutral_curve(at));
   if (!read.empty())
     for (const auto& [z, cz] : {std::pair<double, const NeutralCurve&>{nc.z_m - face / 2, read[0]}, {nc.z_m, curve_},
                                 {nc.z_m + face / 2, read[1]}})
@@ -812,6 +812,10 @@ std::function<double(double, double)> tooth_pair_compliance_of(const FlexsplineM
     const ToothPairCompliance p = tooth_pair_compliance(g, m, rf, kReferenceLineLoad_N_per_m, bore, r_c);
     return (tooth(rf) + p.bending_c + p.foundation_c + p.contact) / width;
   };
+}
+
+NeutralCurve fem_neutral_curve(const NeutralCurveSamples& s, const std::string& source) {
+  return fit_neutral_curve(s.radius_m, s.phi_rad, s.w_wg_m, s.v_wg_m, s.mu_wg_rad, source);
 }
 
 FemReadout fem_readout(const FlexsplineSolution& s) {

@@ -225,6 +225,10 @@ struct FemReadout {
   const Eigen::VectorXd* generator_u = nullptr;  ///< 3·n_nodes of the generator case; null: read back
 };
 
+/// The rim's neutral curve fitted to the FEM's samples of the generator case (its radius, w, v and μ): the curve the
+/// teeth are placed on. `source` names it in reports.
+NeutralCurve fem_neutral_curve(const NeutralCurveSamples& s, const std::string& source = "FEM");
+
 /// The readout of a solved FEM with a generator; its field points into `s`, which must outlive it. Throws InputError
 /// when the solution has no generator-deformed neutral curve.
 FemReadout fem_readout(const FlexsplineSolution& s);

@@ -1,5 +1,6 @@
 #pragma once
 // Gear parameters of a strain wave gear set (the case file's [gear] table), SI units, and their validation.
+#include <optional>
 #include <string>
 
 namespace sw {
@@ -28,5 +29,13 @@ struct GearParams {
 /// proportions). Throws InputError "gear.<key> = value; expectation" naming the first violated constraint; `file` is
 /// prefixed to the message when not empty.
 void validate_gear(const GearParams& g, const std::string& file = "");
+
+/// The reduction ratio z_f / (z_c − z_f) with the circular spline fixed; empty when it is not a whole number (or the
+/// circular spline has no more teeth than the flexspline): no catalog row has such a ratio.
+inline std::optional<int> reduction_ratio(const GearParams& g) {
+  const int difference = g.teeth_circular - g.teeth_flexspline;
+  if (difference <= 0 || g.teeth_flexspline % difference != 0) return std::nullopt;
+  return g.teeth_flexspline / difference;
+}
 
 }  // namespace sw

@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <sstream>
 
 #include <cmath>
 #include <filesystem>
@@ -107,6 +108,29 @@ TEST(DatasheetErrors, ACaseWithoutTeethIsRefusedInOneLineBeforeAnyWork) {
   EXPECT_NE(run.err.find("cases/tube_torsion.toml"), std::string::npos) << run.err;
   EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
   EXPECT_FALSE(fs::exists(dir / "datasheet.json"));
+}
+
+// A reduction ratio that is not a whole number (201 / 2) has no catalog row and no place in the sheet's figures by
+// ratio: refused in one line naming the key, before any solve.
+TEST(DatasheetErrors, ARatioThatIsNotWholeIsRefusedInOneLineBeforeAnyWork) {
+  const fs::path dir = scratch("odd");
+  const fs::path odd = dir.string() + "_case.toml";
+  {
+    std::ifstream in("cases/cup_size17.toml");
+    std::stringstream text;
+    text << in.rdbuf();
+    std::string s = text.str();
+    s.replace(s.find("teeth_flexspline = 200"), 22, "teeth_flexspline = 201");
+    s.replace(s.find("teeth_circular = 202"), 20, "teeth_circular = 203");
+    std::ofstream(odd) << s;
+  }
+  const auto run = run_strainwave("datasheet " + odd.string() + " --quiet --out " + dir.string());
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.err.find("gear.teeth_circular = 203"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("whole reduction ratio"), std::string::npos) << run.err;
+  EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+  EXPECT_FALSE(fs::exists(dir / "datasheet.json"));
+  fs::remove(odd);
 }
 
 }  // namespace

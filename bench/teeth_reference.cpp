@@ -1,0 +1,105 @@
+// bench_teeth_reference: the 3-D reference of the flexspline's teeth against the fast model on one drive. For each
+// TET10 mesh: the loaded contact on the bare rim with the tooth in series (the fast model's teeth, TET10 body) and on
+// explicit teeth (flexspline.teeth = "explicit": the teeth solids on the cup, each flank's force on its own flank);
+// beside them the harmonic solver's fast model at the case's own settings. Twist at T1, T2 and rated torque (from the
+// dead band's edge too, as the two rims at rest keep different play), the split, the wall times; the machine's DGEMM
+// rate in the same run.
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "app/contact_job.hpp"
+#include "bench_util.hpp"
+#include "common/progress.hpp"
+#include "contact/harmonic_body.hpp"
+#include "contact/loaded_contact.hpp"
+#include "contact/torque_twist.hpp"
+#include "design/catalog.hpp"
+#include "dgemm.hpp"
+#include "fem/flexspline_analysis.hpp"
+#include "fem/flexspline_system.hpp"
+#include "fem/fourier_solver.hpp"
+#include "io/case.hpp"
+
+namespace {
+
+constexpr double kArcmin = 10800.0 / 3.141592653589793;
+
+sw::ContactOptions options(const sw::Case& c) {
+  sw::ContactOptions o;
+  o.rated_torque_Nm = c.load.rated_torque_Nm.value_or(c.load.torque_Nm);
+  o.series = sw::app::series_parts(c);
+  if (c.catalog_size)
+    if (const sw::CatalogDrive* d = sw::catalog_drive(*c.catalog_size)) {
+      o.catalog_t1_Nm = d->t1_Nm;
+      o.catalog_t2_Nm = d->t2_Nm;
+    }
+  return o;
+}
+
+void print(const char* what, const sw::ContactAnalysis& a, double seconds) {
+  const double T1 = a.catalog.t1_Nm, T2 = a.catalog.t2_Nm, TR = a.rated_torque_Nm;
+  const double edge = sw::twist_limits(a.curve, 0.0).second;
+  const auto at = [&](double T) { return sw::twist_at(a.curve, T) * kArcmin; };
+  const auto from_edge = [&](double T) { return (sw::twist_at(a.curve, T) - edge) * kArcmin; };
+  std::printf("  %-26s twist at T1/T2/rated %.3f / %.3f / %.3f arcmin, from the dead band's edge %.3f / %.3f / %.3f; "
+              "play %.3f; split body %.1f %%, teeth %.1f %%, generator %.1f %%, circular spline %.1f %%, engagement "
+              "%.1f %%; %.1f s\n", what, at(T1), at(T2), at(TR), from_edge(T1), from_edge(T2), from_edge(TR),
+              a.play_rad * kArcmin, 100 * a.split.body, 100 * a.split.teeth, 100 * a.split.generator,
+              100 * a.split.circular_spline, 100 * a.split.engagement, seconds);
+}
+
+void on_tet10(sw::Case c, sw::TeethModel teeth, const sw::bench::MeshSpec& spec) {
+  using namespace sw;
+  c.flexspline.teeth = teeth;
+  c.solver.method = SolverMethod::Tet10;
+  c.mesh.size_m = spec.size_mm * 1e-3;
+  c.mesh.wall_layers = spec.layers;
+  if (spec.corner_levels >= 0) c.mesh.corner_levels = spec.corner_levels;
+  const FlexsplineModel m = flexspline_model(c);
+  Stopwatch clock;
+  const TetMesh mesh = bench::mesh_for_bench(c);
+  const FlexsplineSystem system = assemble_and_factorise(m, mesh);
+  const FlexsplineSolution fem = analyse_flexspline(m, mesh, system);
+  const ContactAnalysis a = analyse_contact(m, mesh, system, fem_readout(fem), options(c));
+  const std::string what = std::string(teeth == TeethModel::Explicit ? "explicit teeth" : "bare rim + tooth slabs") +
+                           ", " + std::to_string(mesh.n_nodes() / 1000) + "k nodes";
+  print(what.c_str(), a, clock.lap());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"bench_teeth_reference: the loaded contact on explicit teeth (TET10) against the fast model"};
+  std::string path, meshes = "1.0/1";
+  app.add_option("case", path, "case file (a designed drive: teeth = \"none\")")->required();
+  app.add_option("--mesh", meshes, "TET10 meshes, comma-separated SIZE_MM/LAYERS[/CORNER_LEVELS] (default 1.0/1)");
+  CLI11_PARSE(app, argc, argv);
+  try {
+    using namespace sw;
+    const std::vector<bench::MeshSpec> specs = bench::parse_mesh_specs(meshes, "--mesh", true);
+    quiet_progress() = true;
+    const Case c = load_case(path);
+    if (!c.gear || c.flexspline.teeth != TeethModel::None)
+      throw InputError(path + ": flexspline.teeth = \"none\" with a [gear] expected (a case from strainwave design)");
+    std::printf("DGEMM (n = 2000): %.1f GF/s\n", bench::dgemm_gflops(2000, 3));
+    std::printf("%s: z_f = %d, m = %.4g mm\n", path.c_str(), c.gear->teeth_flexspline, c.gear->module_m * 1e3);
+    {
+      Stopwatch clock;
+      const FlexsplineModel m = flexspline_model(c);
+      const FourierSolution fourier = analyse_flexspline_fourier(m, 0, contact_band_request(m, c.contact.face_slices));
+      const ContactAnalysis a = analyse_contact(m, HarmonicBody(m, fourier), fem_readout(fourier.figures), options(c));
+      print("fast model (harmonic)", a, clock.lap());
+    }
+    for (const bench::MeshSpec& s : specs) {
+      std::printf(" TET10 at mesh.size_mm %.3g, wall_layers %d:\n", s.size_mm, s.layers);
+      on_tet10(c, TeethModel::None, s);
+      on_tet10(c, TeethModel::Explicit, s);
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_teeth_reference: %s\n", e.what());
+    return 1;
+  }
+}

@@ -136,6 +136,7 @@ std::optional<LossFigures> losses(const Case& c, const ContactAnalysis& contact,
   l.no_load_2000 = at_step(rest, kInputSpeed_rpm);
   l.starting_torque_Nm = starting_torque_Nm(
       bearing, ball_loads_N(body.stations(), contact.steps[rest].station_force_N, bearing.balls), ratio);
+  l.backdriving_torque_Nm = backdriving_torque_Nm(l.starting_torque_Nm, l.rated_2000, ratio);
   char text[200];
   std::snprintf(text, sizeof text, "%s, base oil %.4g/%.4g mm²/s at 40/100 °C, at %.4g °C: %.4g mm²/s (ASTM D341)",
                 c.lubricant->kind.c_str(), c.lubricant->viscosity_40C_mm2_s, c.lubricant->viscosity_100C_mm2_s,

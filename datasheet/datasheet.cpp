@@ -118,6 +118,7 @@ void add_loss_figures(Datasheet& d, const DatasheetInputs& in) {
     d.figures.push_back(not_computed("no_load_running_torque_Nm", "no-load running torque (input, 2,000 rpm)", "N·m",
                                      in.why_no_losses));
     d.figures.push_back(not_computed("starting_torque_Nm", "starting torque (input)", "N·m", in.why_no_losses));
+    d.figures.push_back(not_computed("backdriving_torque_Nm", "backdriving torque (output)", "N·m", in.why_no_losses));
   } else {
     const LossFigures& l = *in.losses;
     const std::string counts = "counts the generator bearing (Palmgren M0 + M1, balls loaded as the contact loads "
@@ -142,10 +143,18 @@ void add_loss_figures(Datasheet& d, const DatasheetInputs& in) {
     d.figures.push_back(computed("starting_torque_Nm", "starting torque (input)", "N·m", l.starting_torque_Nm,
                                  "Palmgren's breakaway moment M1 of the generator bearing under its preload: a lower "
                                  "bound (the grease's yield stress, seals and stiction left out)"));
+    if (!std::isfinite(l.backdriving_torque_Nm))
+      d.figures.push_back(not_computed("backdriving_torque_Nm", "backdriving torque (output)", "N·m",
+                                       "none: the flanks' sliding per output torque reaches 1/ratio, so the mesh locks "
+                                       "itself against the output"));
+    else
+      d.figures.push_back(computed("backdriving_torque_Nm", "backdriving torque (output)", "N·m",
+                                   l.backdriving_torque_Nm,
+                                   "the output torque whose power at breakaway goes into the starting torque's "
+                                   "breakaway at the input and the flanks' sliding (proportional to the torque, as "
+                                   "at rated torque): ratio x starting torque / (1 - the flanks' share); a lower "
+                                   "bound as the starting torque is"));
   }
-  d.figures.push_back(not_computed("backdriving_torque_Nm", "backdriving torque (output)", "N·m",
-                                   "not computed: driving the input from the output needs the flanks' and the "
-                                   "bearing's friction at breakaway in reverse, which the model does not follow"));
 }
 
 /// The catalog's figures beside the computed ones, for the size and ratio the case names.

@@ -52,6 +52,7 @@ struct ToothRootFigure {
 struct LossFigures {
   LossSplit rated_2000, rated_1000, half_rated_2000, no_load_2000;
   double starting_torque_Nm = 0;
+  double backdriving_torque_Nm = 0;  ///< at the output (datasheet/losses.hpp backdriving_torque_Nm)
   double flank_friction = 0;
   std::string flank_friction_from;  ///< "[contact] friction_coefficient" or why the boundary value is taken
   std::string lubricant;            ///< "grease, base oil 68/8.6 mm²/s at 40/100 °C, 20 °C: 220 mm²/s"

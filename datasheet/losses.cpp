@@ -1,6 +1,7 @@
 #include "datasheet/losses.hpp"
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <sstream>
 
@@ -76,6 +77,16 @@ double starting_torque_Nm(const GeneratorBearing& bearing, const std::vector<dou
                           const PalmgrenCoefficients& palmgren) {
   if (ratio < 1) throw InputError("starting torque: ratio " + std::to_string(ratio) + "; must be >= 1");
   return palmgren_breakaway_moment_Nm(bearing, ball_loads_N, palmgren) * (1.0 + 1.0 / ratio);
+}
+
+double backdriving_torque_Nm(double starting_torque_Nm, const LossSplit& loaded, int ratio) {
+  if (ratio < 1) throw InputError("backdriving torque: ratio " + std::to_string(ratio) + "; must be >= 1");
+  const double omega_in = loaded.input_speed_rpm * 2 * std::numbers::pi / 60;
+  if (!(std::abs(loaded.output_torque_Nm) > 0) || !(omega_in > 0))
+    throw InputError("backdriving torque: the loaded state needs an output torque and an input speed > 0");
+  const double k = loaded.flank_sliding_W / (std::abs(loaded.output_torque_Nm) * omega_in);
+  const double reverse = 1 - ratio * k;
+  return reverse > 0 ? ratio * starting_torque_Nm / reverse : std::numeric_limits<double>::infinity();
 }
 
 }  // namespace sw

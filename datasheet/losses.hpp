@@ -67,4 +67,12 @@ LossSplit drive_losses(const ContactAnalysis& contact, std::size_t step, const s
 double starting_torque_Nm(const GeneratorBearing& bearing, const std::vector<double>& ball_loads_N, int ratio,
                           const PalmgrenCoefficients& palmgren = {});
 
+/// The output torque that starts the drive turning its free input from rest (backdriving), N·m. At breakaway the
+/// output's power goes into the losses: T·ω_out = T_start·ω_in + k·T·ω_in with ω_in = ratio·ω_out, T_start the
+/// starting torque at the input (the generator bearing's breakaway) and k the flanks' sliding loss per output torque
+/// and input speed, read from the loaded state `loaded` (k = flank_sliding_W / (T·ω_in): the flanks' loss is
+/// proportional to their forces, so to the torque). So T = ratio·T_start / (1 − ratio·k); +∞ when ratio·k ≥ 1 (the
+/// mesh locks itself against the output). InputError for ratio < 1 or a loaded state without torque or speed.
+double backdriving_torque_Nm(double starting_torque_Nm, const LossSplit& loaded, int ratio);
+
 }  // namespace sw

@@ -80,7 +80,13 @@ TEST(Size17Sheet, CarriesTheContactsFiguresThePublishedRowsAndSaysHowEachWasComp
   EXPECT_GT(f["efficiency_1000rpm"]["value"].get<double>(), eta["value"].get<double>());
   EXPECT_GT(eta["value"].get<double>(), f["efficiency_half_rated"]["value"].get<double>());
   EXPECT_GT(f["no_load_running_torque_Nm"]["value"].get<double>(), f["starting_torque_Nm"]["value"].get<double>());
-  EXPECT_FALSE(f["backdriving_torque_Nm"]["computed"].get<bool>());
+  // Backdriving: the starting torque through the ratio (100), raised by the flanks' sliding in reverse.
+  const auto& back = f["backdriving_torque_Nm"];
+  ASSERT_TRUE(back["computed"].get<bool>()) << back["method"];
+  EXPECT_GT(back["value"].get<double>(), 100 * f["starting_torque_Nm"]["value"].get<double>());
+  EXPECT_LT(back["value"].get<double>(), 1e3 * f["starting_torque_Nm"]["value"].get<double>());
+  std::printf("size 17: backdriving torque %.4f N*m (published %.2f)\n", back["value"].get<double>(),
+              back["published"].get<double>());
   EXPECT_NE(eta["method"].get<std::string>().find("leaves out churning"), std::string::npos);
   std::printf("size 17 in VG 68 at 20 C: efficiency %.3f at rated and 2,000 rpm (published %.2f), %.3f at 1,000 rpm, "
               "%.3f at half rated; no-load running torque %.4f N*m (published %.3f), starting %.4f N*m (published "

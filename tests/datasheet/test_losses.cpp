@@ -121,6 +121,28 @@ TEST(DriveLosses, StartingTorqueIsTheBreakawayMomentAtTheInput) {
             std::string::npos);
 }
 
+// Backdriving: the output's power at breakaway is the input's breakaway plus the flanks' sliding, which grows with the
+// torque as it does at the loaded state given. Written out: 10 N·m at 2,000 rpm losing 5 W on the flanks is
+// k = 5 / (10 · 209.44 rad/s); at ratio 50 the output needs 50 · T_start / (1 − 50 k). A mesh whose flank loss per
+// output torque reaches 1/ratio locks itself against the output (infinite).
+TEST(DriveLosses, BackdrivingTorqueIsTheStartingTorqueThroughTheRatioAndTheFlanksInReverse) {
+  LossSplit loaded;
+  loaded.output_torque_Nm = -10;  // the sense of the load does not matter
+  loaded.input_speed_rpm = 2000;
+  loaded.flank_sliding_W = 5;
+  const double omega = 2000 * 2 * M_PI / 60, k = 5 / (10 * omega);
+  EXPECT_NEAR(backdriving_torque_Nm(0.02, loaded, 50), 50 * 0.02 / (1 - 50 * k), 1e-14);
+  loaded.flank_sliding_W = 0;
+  EXPECT_NEAR(backdriving_torque_Nm(0.02, loaded, 50), 1.0, 1e-15);  // frictionless flanks: ratio × starting
+  loaded.flank_sliding_W = 10 * omega / 50;                          // k = 1/ratio
+  EXPECT_TRUE(std::isinf(backdriving_torque_Nm(0.02, loaded, 50)));
+  EXPECT_NE(sw::testing::message_of([&] { backdriving_torque_Nm(0.02, loaded, 0); }).find("ratio 0; must be >= 1"),
+            std::string::npos);
+  loaded.output_torque_Nm = 0;
+  EXPECT_NE(sw::testing::message_of([&] { backdriving_torque_Nm(0.02, loaded, 50); }).find("output torque"),
+            std::string::npos);
+}
+
 TEST(DriveLosses, BadConditionsAreOneLineNamingTheField) {
   const ContactAnalysis a = two_flanks(true);
   const std::vector<double> sliding = {0, 0, 0};

@@ -34,14 +34,12 @@ SeriesParts series_parts(const Case& c) {
     // The tooth pair's own compliance per unit face width over the rim's width, at the flank's contact radius (kept
     // on the active flank): contact/loaded_contact.hpp tooth_pair_compliance_of.
     s.tooth_pair_m_per_N = tooth_pair_compliance_of(flexspline_model(c));
-    s.teeth_source =
-        c.flexspline.teeth == TeethModel::Explicit
-            ? "tooth pair compliance (flexspline tooth: the body's own explicit teeth, loaded on their flanks; circular "
-              "spline tooth: beam over the real outline and Sainsot foundation; Weber flattening; both teeth loaded "
-              "where they touch)"
-            : "tooth pair compliance (flexspline tooth: explicit-tooth FEM less the ring model's share; circular "
-              "spline tooth: beam over the real outline and Sainsot foundation; Weber flattening; both teeth "
-              "loaded where they touch)";
+    s.teeth_source = std::string("tooth pair compliance (flexspline tooth: ") +
+                     (c.flexspline.teeth == TeethModel::Explicit
+                          ? "the body's own explicit teeth, loaded on their flanks"
+                          : "explicit-tooth FEM less the ring model's share") +
+                     "; circular spline tooth: beam over the real outline and Sainsot foundation; Weber flattening; "
+                     "both teeth loaded where they touch)";
   }
   if (c.wave_generator && c.wave_generator->bearing) {
     const GeneratorBearing b = *c.wave_generator->bearing;

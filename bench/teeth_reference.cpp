@@ -16,7 +16,6 @@
 #include "contact/harmonic_body.hpp"
 #include "contact/loaded_contact.hpp"
 #include "contact/torque_twist.hpp"
-#include "design/catalog.hpp"
 #include "dgemm.hpp"
 #include "fem/flexspline_analysis.hpp"
 #include "fem/flexspline_system.hpp"
@@ -27,17 +26,7 @@ namespace {
 
 constexpr double kArcmin = 10800.0 / 3.141592653589793;
 
-sw::ContactOptions options(const sw::Case& c) {
-  sw::ContactOptions o;
-  o.rated_torque_Nm = c.load.rated_torque_Nm.value_or(c.load.torque_Nm);
-  o.series = sw::app::series_parts(c);
-  if (c.catalog_size)
-    if (const sw::CatalogDrive* d = sw::catalog_drive(*c.catalog_size)) {
-      o.catalog_t1_Nm = d->t1_Nm;
-      o.catalog_t2_Nm = d->t2_Nm;
-    }
-  return o;
-}
+sw::ContactOptions options(const sw::Case& c) { return sw::app::contact_options(c, sw::app::series_parts(c)); }
 
 void print(const char* what, const sw::ContactAnalysis& a, double seconds) {
   const double T1 = a.catalog.t1_Nm, T2 = a.catalog.t2_Nm, TR = a.rated_torque_Nm;

@@ -794,23 +794,19 @@ std::function<double(double, double)> tooth_pair_compliance_of(const FlexsplineM
   const Material m = c.material;
   const GearRadii radii = gear_radii(g);
   const double width = c.flexspline.rim_width_m, bore = c.flexspline.inner_radius_m;
-  if (c.flexspline.teeth == TeethModel::Explicit) {
-    // The body's own teeth carry the flexspline tooth's bending and foundation (contact/tet10_body.hpp
-    // ExplicitToothLoads): in series only the circular spline's tooth and the pair's flattening.
-    return [=](double r_f, double r_c) {
-      const double rf = std::clamp(r_f, radii.form_f, radii.tip_f);
-      const ToothPairCompliance p = tooth_pair_compliance(g, m, rf, kReferenceLineLoad_N_per_m, bore, r_c);
-      return (p.bending_c + p.foundation_c + p.contact) / width;
-    };
+  // With explicit teeth the body's own teeth carry the flexspline tooth's bending and foundation
+  // (contact/tet10_body.hpp ExplicitToothLoads): in series only the circular spline's tooth and the pair's flattening.
+  std::optional<FlexsplineToothFem> tooth;
+  if (c.flexspline.teeth != TeethModel::Explicit) {
+    tooth = flexspline_tooth_fem(g, m, bore, rim_outer_radius(c.flexspline, c.gear));
+    progress("contact: the flexspline tooth from the explicit-tooth FEM at " + std::to_string(tooth->radius_m.size()) +
+             " contact radii (two plane-strain slabs, " + std::to_string(tooth->nodes) + " nodes) in " +
+             std::to_string(tooth->seconds) + " s");
   }
-  const FlexsplineToothFem tooth = flexspline_tooth_fem(g, m, bore, rim_outer_radius(c.flexspline, c.gear));
-  progress("contact: the flexspline tooth from the explicit-tooth FEM at " + std::to_string(tooth.radius_m.size()) +
-           " contact radii (two plane-strain slabs, " + std::to_string(tooth.nodes) + " nodes) in " +
-           std::to_string(tooth.seconds) + " s");
   return [=](double r_f, double r_c) {
     const double rf = std::clamp(r_f, radii.form_f, radii.tip_f);
     const ToothPairCompliance p = tooth_pair_compliance(g, m, rf, kReferenceLineLoad_N_per_m, bore, r_c);
-    return (tooth(rf) + p.bending_c + p.foundation_c + p.contact) / width;
+    return ((tooth ? (*tooth)(rf) : 0.0) + p.bending_c + p.foundation_c + p.contact) / width;
   };
 }
 

@@ -1,6 +1,7 @@
 #include "contact/tet10_body.hpp"
 
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <numbers>
 #include <optional>
@@ -93,8 +94,11 @@ ExplicitToothLoads::ExplicitToothLoads(const TetMesh& mesh, double pitch_rad, do
     Eigen::Vector3d c = Eigen::Vector3d::Zero();
     for (int k = 0; k < 3; ++k) c += mesh.nodes.row(f->nodes[k]).transpose() / 3;
     if (c.z() < z_lo_m || c.z() > z_hi_m) continue;
+    double reach = 0;  // the face's largest corner distance from its centroid, in the transverse plane
+    for (int k = 0; k < 3; ++k) reach = std::max(reach, (mesh.nodes.row(f->nodes[k]).head<2>().transpose() - c.head<2>()).norm());
     faces_.push_back(f);
     centroid_.push_back(c);
+    reach_.push_back(reach);
   }
 }
 
@@ -117,9 +121,7 @@ Eigen::VectorXd ExplicitToothLoads::pattern(const std::vector<double>& stations,
       const Eigen::Vector2d c = centroid_[k].head<2>();
       if (std::abs(std::remainder(std::atan2(c.y(), c.x()) - a, 2 * kPi)) > pitch_ / 2) continue;
       if (side != 0 && side * c.dot(across) < 0) continue;
-      double reach = 0;  // the face's largest corner distance from its centroid
-      for (int j = 0; j < 3; ++j) reach = std::max(reach, (mesh_.nodes.row(faces_[k]->nodes[j]).head<2>().transpose() - c).norm());
-      if ((c - p).norm() < spread_ + reach) faces.push_back(faces_[k]);
+      if ((c - p).norm() < spread_ + reach_[k]) faces.push_back(faces_[k]);
     }
     const auto hat = [&](const Eigen::Vector3d& x) { return std::max(0.0, 1 - (x.head<2>() - p).norm() / spread_); };
     const double integral = faces.empty() ? 0.0 : faces_integral(mesh_, faces, hat);
@@ -154,46 +156,51 @@ Eigen::SparseMatrix<double> sparse_columns(const std::vector<Eigen::VectorXd>& c
   return L;
 }
 
-/// Nodal loads of each pattern, on its slice's rim faces.
-std::vector<Eigen::VectorXd> pattern_loads(const FlexsplineModel& c, const TetMesh& mesh,
-                                           const std::vector<FlankPattern>& patterns, int slices) {
-  const double pitch = 2 * kPi / c.gear->teeth_flexspline;
+/// Nodal loads of each pattern on its slice's faces: `make(z_lo, z_hi)` builds the loads of a band of the face (the
+/// whole face once, a slice when a pattern first asks for it), `load(loads, pattern)` one pattern's.
+template <class Make, class Load>
+std::vector<Eigen::VectorXd> loads_by_slice(const FlexsplineParams& f, const std::vector<FlankPattern>& patterns,
+                                            int slices, const Make& make, const Load& load) {
+  using Loads = decltype(make(0.0, 0.0));
+  constexpr double kAll = std::numeric_limits<double>::infinity();
+  const Loads face = make(-kAll, kAll);
+  std::vector<std::optional<Loads>> slice(static_cast<std::size_t>(std::max(slices, 1)));
   std::vector<Eigen::VectorXd> cols;
-  if (c.flexspline.teeth == TeethModel::Explicit) {
-    // The hat along the profile as wide as an element across the tooth: the load resolved by the mesh that carries it.
-    const double spread = tooth_mesh_size(*c.gear, c.mesh).across_m;
-    const ExplicitToothLoads face(mesh, pitch, spread);
-    std::vector<std::optional<ExplicitToothLoads>> slice(static_cast<std::size_t>(std::max(slices, 1)));
-    for (const FlankPattern& p : patterns) {
-      const ExplicitToothLoads* loads = &face;
-      if (p.slice >= 0 && slices > 1) {
-        auto& s = slice.at(static_cast<std::size_t>(p.slice));
-        if (!s) {
-          const auto [lo, hi] = face_slice_m(c.flexspline, p.slice, slices);
-          s.emplace(mesh, pitch, spread, lo, hi);
-        }
-        loads = &*s;
-      }
-      cols.push_back(p.scale * loads->pattern(p.stations_rad, p.force_dir, p.contact_radius_m, p.tooth_angle_rad,
-                                              p.tooth_point_m));
-    }
-    return cols;
-  }
-  const FlankLoads face(mesh, pitch);
-  std::vector<std::optional<FlankLoads>> slice(static_cast<std::size_t>(std::max(slices, 1)));
   for (const FlankPattern& p : patterns) {
-    const FlankLoads* loads = &face;
+    const Loads* loads = &face;
     if (p.slice >= 0 && slices > 1) {
       auto& s = slice.at(static_cast<std::size_t>(p.slice));
       if (!s) {
-        const auto [lo, hi] = face_slice_m(c.flexspline, p.slice, slices);
-        s.emplace(mesh, pitch, lo, hi);
+        const auto [lo, hi] = face_slice_m(f, p.slice, slices);
+        s.emplace(make(lo, hi));
       }
       loads = &*s;
     }
-    cols.push_back(p.scale * loads->pattern(p.stations_rad, p.force_dir, p.contact_radius_m));
+    cols.push_back(p.scale * load(*loads, p));
   }
   return cols;
+}
+
+/// Nodal loads of each pattern, on its slice's rim faces: on the teeth's own flanks for explicit teeth, else the ring
+/// patterns on the rim's surface.
+std::vector<Eigen::VectorXd> pattern_loads(const FlexsplineModel& c, const TetMesh& mesh,
+                                           const std::vector<FlankPattern>& patterns, int slices) {
+  const double pitch = 2 * kPi / c.gear->teeth_flexspline;
+  if (c.flexspline.teeth == TeethModel::Explicit) {
+    // The hat along the profile as wide as an element across the tooth: the load resolved by the mesh that carries it.
+    const double spread = tooth_mesh_size(*c.gear, c.mesh).across_m;
+    return loads_by_slice(
+        c.flexspline, patterns, slices,
+        [&](double lo, double hi) { return ExplicitToothLoads(mesh, pitch, spread, lo, hi); },
+        [](const ExplicitToothLoads& l, const FlankPattern& p) {
+          return l.pattern(p.stations_rad, p.force_dir, p.contact_radius_m, p.tooth_angle_rad, p.tooth_point_m);
+        });
+  }
+  return loads_by_slice(
+      c.flexspline, patterns, slices, [&](double lo, double hi) { return FlankLoads(mesh, pitch, lo, hi); },
+      [](const FlankLoads& l, const FlankPattern& p) {
+        return l.pattern(p.stations_rad, p.force_dir, p.contact_radius_m);
+      });
 }
 
 }  // namespace

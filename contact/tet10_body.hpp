@@ -68,6 +68,7 @@ private:
   double pitch_, spread_;
   std::vector<const BoundaryFace*> faces_;
   std::vector<Eigen::Vector3d> centroid_;
+  std::vector<double> reach_;  ///< per face: its corners' largest distance from its centroid, transverse plane
   FlankLoads hats_;
 };
 

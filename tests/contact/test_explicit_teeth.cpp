@@ -14,6 +14,7 @@
 #include "common/error.hpp"
 #include "contact/loaded_contact.hpp"
 #include "contact/tet10_body.hpp"
+#include "contact/torque_twist.hpp"
 #include "design/proportions.hpp"
 #include "fem/flexspline_analysis.hpp"
 #include "fem/flexspline_system.hpp"
@@ -117,15 +118,7 @@ ContactAnalysis contact_of(TeethModel teeth) {
 
 /// Twist at torque T on the loading branch, from the dead band's edge (the zero-torque limit on that side), rad.
 double twist_from_edge(const ContactAnalysis& a, double T) {
-  const std::vector<double>& t = a.curve.torque_Nm;
-  const std::vector<double>& p = a.curve.twist_rad;
-  double edge = -1e300;
-  for (std::size_t i = 0; i < t.size(); ++i)
-    if (t[i] == 0) edge = std::max(edge, p[i]);
-  for (std::size_t i = 1; i < t.size(); ++i)
-    if (t[i - 1] >= 0 && t[i - 1] <= T && T <= t[i] && t[i] > t[i - 1])
-      return p[i - 1] + (p[i] - p[i - 1]) * (T - t[i - 1]) / (t[i] - t[i - 1]) - edge;
-  return std::nan("");
+  return twist_at(a.curve, T) - twist_limits(a.curve, 0.0).second;
 }
 
 // The drive on explicit teeth balances as the fast model does (the flank forces' moments against the torque, the

@@ -73,7 +73,8 @@ void print_summary(const Case& c, const FemJobResult& fem, const std::optional<B
     std::printf("  nominal hoop bending stress %+.0f MPa (thin-ring theory %+.0f MPa); local peaks where the generator "
                 "touches %+.0f / %+.0f MPa\n", s.hoop.nominal_bending_Pa / 1e6, s.hoop.ring_theory_bending_Pa / 1e6,
                 s.hoop.max_tensile_Pa / 1e6, s.hoop.max_compressive_Pa / 1e6);
-  std::printf("  not computed: ratcheting torque, wave-generator bearing life\n");
+  std::printf("  not computed here: the limits (buckling, ratcheting, strength) and the generator bearing's life, which "
+              "`strainwave datasheet` computes\n");
   std::printf("  report: %s\n", (dir / "report.html").string().c_str());
 }
 

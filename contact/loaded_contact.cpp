@@ -100,6 +100,7 @@ public:
     read_rim_at_rest();
     select_flanks();
     watch_zone_edges();
+    watch_ratchet_teeth();
     compute_influence();
     set_up_problem();
     step_through_torques();
@@ -108,6 +109,7 @@ public:
     describe_curve();
     split_compliance();
     measure_zone_edge_teeth();
+    find_ratcheting();
     out_.contact_s += clock_.lap();
     check_independently();
     out_.check_s = clock_.lap();
@@ -141,6 +143,7 @@ private:
   void select_flanks();
   void add_flank(FlankContact f, const FlankClearance& fc, int k, int j);
   void watch_zone_edges();
+  void watch_ratchet_teeth();
   void compute_influence();
   void set_up_problem();
   /// A solve of the contact problem at one torque with the bearing's secants on its diagonal: frictionless
@@ -182,6 +185,7 @@ private:
   void describe_curve();
   void split_compliance();
   void measure_zone_edge_teeth();
+  void find_ratcheting();
   void check_independently();
 
   const FlexsplineModel& c_;
@@ -206,6 +210,13 @@ private:
   std::vector<FlankPattern> cs_patterns_;  // the flanks' forces on the circular spline
   std::vector<double> q_flank_;
   Eigen::Index nf_ = 0, nb_ = 0, no_ = 0;
+  // The ratcheting ramp: the teeth that can carry, radial observers at their tips on the rim and on the ring, and
+  // which of them each flank belongs to.
+  std::vector<RatchetTooth> ratchet_teeth_;
+  std::vector<FlankPattern> ratchet_rim_, ratchet_ring_;
+  std::vector<std::size_t> ratchet_tooth_of_flank_;
+  Eigen::Index nr_ = 0;
+  Eigen::MatrixXd R_rim_, R_ring_;
   // Influence coefficients.
   bool unilateral_ = false;
   BodyInfluence influence_;
@@ -372,6 +383,31 @@ void ContactAnalyser::watch_zone_edges() {
   no_ = static_cast<Eigen::Index>(observers_.size());
 }
 
+/// For the ratcheting ramp: every tooth with a flank in the problem, its overlap at rest (the centre section's) and
+/// radial observers at its tip, on the rim (as the zone edges') and on the circular spline's tip circle at the same
+/// angle.
+void ContactAnalyser::watch_ratchet_teeth() {
+  if (opt_.ratcheting_ceiling_Nm <= 0) return;
+  for (const FlankContact& f : out_.flanks) {
+    std::size_t t = 0;
+    while (t < ratchet_teeth_.size() && ratchet_teeth_[t].tooth != f.tooth) ++t;
+    ratchet_tooth_of_flank_.push_back(t);
+    if (t < ratchet_teeth_.size()) continue;
+    ratchet_teeth_.push_back({f.tooth, f.phi_rad, rest_[f.tooth].depth_m});
+    const ToothPlacement place = place_tooth(curve_, f.phi_rad, 0.0);
+    const Eigen::Vector2d tip =
+        Eigen::Rotation2Dd(place.angle_rad) * Eigen::Vector2d(model_->radii.tip_f, 0.0) + place.offset_m;
+    const double s = std::atan2(tip.y(), tip.x());
+    std::vector<double> stations{s};
+    if (out_.half_turn_pairs) stations.push_back(s + kPi);
+    const Eigen::Vector2d out(std::cos(s), std::sin(s));
+    ratchet_rim_.push_back({stations, out, tip.norm(), -1, 1 / n_teeth_, f.phi_rad,
+                            Eigen::Vector2d(model_->radii.tip_f, 0.0)});
+    ratchet_ring_.push_back({stations, out, model_->radii.tip_c, -1, 1 / n_teeth_});
+  }
+  nr_ = static_cast<Eigen::Index>(ratchet_teeth_.size());
+}
+
 /// The generator's stations, and the influence coefficients of every pattern.
 void ContactAnalyser::compute_influence() {
   unilateral_ = body_.stations().unilateral;
@@ -380,18 +416,21 @@ void ContactAnalyser::compute_influence() {
   progress("contact: influence of " + std::to_string(nf_) + " flank patterns, " + std::to_string(nb_) +
            " generator stations and " + std::to_string(no_) + " zone-edge observers");
   std::vector<FlankPattern> all = observers_;
+  all.insert(all.end(), ratchet_rim_.begin(), ratchet_rim_.end());
   all.insert(all.end(), patterns_.begin(), patterns_.end());
   all.insert(all.end(), tangential_.begin(), tangential_.end());
   influence_ = body_.influence(all, n_slices_);
-  // Columns: observers, flanks, tangential patterns (with friction), stations.
-  const Eigen::Index nt = static_cast<Eigen::Index>(tangential_.size());
-  std::vector<Eigen::Index> body, obs, tan;
+  // Columns: observers (the zone edges', the ratcheting ramp's), flanks, tangential patterns (with friction), stations.
+  const Eigen::Index nt = static_cast<Eigen::Index>(tangential_.size()), n_obs = no_ + nr_;
+  std::vector<Eigen::Index> body, obs, ratchet, tan;
   for (Eigen::Index i = 0; i < no_; ++i) obs.push_back(i);
-  for (Eigen::Index i = 0; i < nf_; ++i) body.push_back(no_ + i);
-  for (Eigen::Index i = 0; i < nt; ++i) tan.push_back(no_ + nf_ + i);
-  for (Eigen::Index i = 0; i < nb_; ++i) body.push_back(no_ + nf_ + nt + i);
+  for (Eigen::Index i = 0; i < nr_; ++i) ratchet.push_back(no_ + i);
+  for (Eigen::Index i = 0; i < nf_; ++i) body.push_back(n_obs + i);
+  for (Eigen::Index i = 0; i < nt; ++i) tan.push_back(n_obs + nf_ + i);
+  for (Eigen::Index i = 0; i < nb_; ++i) body.push_back(n_obs + nf_ + nt + i);
   A_body_ = influence_.A(body, body);
   R_edge_ = influence_.A(obs, body);  // radial motion at the edge teeth's tips
+  R_rim_ = influence_.A(ratchet, body);
   A_tn_ = influence_.A(tan, body);
   A_tt_ = influence_.A(tan, tan);
   out_.influence_s = clock_.lap();
@@ -431,6 +470,13 @@ void ContactAnalyser::set_up_problem() {
   A_noseries_ = P_.A;
   cs_.A = Eigen::MatrixXd::Zero(nf, nf);
   if (opt_.series.circular_spline) cs_ = opt_.series.circular_spline(cs_patterns_);
+  // The ring's radial motion at the ratcheting teeth's tips under the flanks' forces: the cross block of the same ring.
+  R_ring_ = Eigen::MatrixXd::Zero(nr_, nf);
+  if (nr_ > 0 && opt_.series.circular_spline) {
+    std::vector<FlankPattern> with_tips = cs_patterns_;
+    with_tips.insert(with_tips.end(), ratchet_ring_.begin(), ratchet_ring_.end());
+    R_ring_ = opt_.series.circular_spline(with_tips).A.bottomLeftCorner(nr_, nf);
+  }
   P_.A.topLeftCorner(nf, nf) += cs_.A;
   for (Eigen::Index i = 0; i < nf; ++i) P_.A(i, i) += n_teeth_ * out_.flanks[i].compliance_m_per_N;
   out_.unknowns = static_cast<int>(P_.q.size());
@@ -769,6 +815,55 @@ void ContactAnalyser::measure_zone_edge_teeth() {
   }
 }
 
+/// The ramp past rated torque to the ratcheting torque (contact/ratcheting.hpp): with only the teeth that still
+/// overlap taking part, the problem solved as at the curve's steps; each tooth's overlap is its overlap at rest, less
+/// the rim's inward and the ring's outward motion at its tip (both from the change of the loads since rest: the
+/// flanks' forces and the generator's stations'). After the split, like the zone edges' re-solve.
+void ContactAnalyser::find_ratcheting() {
+  if (nr_ == 0) return;
+  const RatchetSolve solve = [&](double T, const std::vector<bool>& carry) -> std::optional<RatchetState> {
+    std::vector<Eigen::Index> keep;
+    for (Eigen::Index i = 0; i < nf_; ++i)
+      if (carry[ratchet_tooth_of_flank_[i]]) keep.push_back(i);
+    const auto kept_flanks = static_cast<Eigen::Index>(keep.size());
+    if (kept_flanks == 0) return std::nullopt;
+    for (Eigen::Index k = nf_; k < P_.q.size(); ++k) keep.push_back(k);
+    ContactProblem Pr;
+    Pr.A = P_.A(keep, keep);
+    Pr.q = P_.q(keep);
+    Pr.lambda = P_.lambda(keep);
+    ContactSolution s;
+    try {
+      s = solve_torque(Pr, kept_flanks, lambda_(keep), T, nullptr).first;
+    } catch (const InputError&) {
+      return std::nullopt;  // those teeth cannot carry T
+    }
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(P_.q.size());
+    x(keep) = s.force_N;
+    Eigen::VectorXd dx(nf_ + nb_);
+    if (unilateral_) dx << x.head(nf_), x.tail(nb_) - p0_;
+    else dx << x, band_solve_ * x;
+    RatchetState st;
+    st.rim_in_m = -(R_rim_ * dx);
+    st.ring_out_m = R_ring_ * x.head(nf_);
+    st.overlap_m.resize(nr_);
+    st.loaded.assign(static_cast<std::size_t>(nr_), false);
+    for (Eigen::Index t = 0; t < nr_; ++t)
+      st.overlap_m[t] = ratchet_teeth_[t].overlap_at_rest_m - st.rim_in_m[t] - st.ring_out_m[t];
+    for (Eigen::Index i = 0; i < nf_; ++i)
+      if (x[i] > 0) st.loaded[ratchet_tooth_of_flank_[i]] = true;
+    st.twist_rad = s.twist_rad;
+    return st;
+  };
+  // From rated torque, which the curve carried with every flank; should the teeth not hold it with those out of
+  // overlap released, the ramp starts lower.
+  try {
+    out_.ratcheting = ratcheting_torque(ratchet_teeth_, solve, T_R_, opt_.ratcheting_ceiling_Nm);
+  } catch (const InputError&) {
+    out_.ratcheting = ratcheting_torque(ratchet_teeth_, solve, 0.05 * T_R_, opt_.ratcheting_ceiling_Nm);
+  }
+}
+
 /// Independent check at +rated: the contact forces as nodal loads on the FEM, the clamp's reaction moment, and the
 /// contacts' displacements by a direct solve against the influence coefficients'.
 void ContactAnalyser::check_independently() {
@@ -777,8 +872,8 @@ void ContactAnalyser::check_independently() {
   else x << at_rated_.force_N, band_solve_ * at_rated_.force_N;
   // The observers (and the tangential patterns: the frictionless state at rated) carry no force.
   const Eigen::Index nt = static_cast<Eigen::Index>(tangential_.size());
-  Eigen::VectorXd x_all = Eigen::VectorXd::Zero(no_ + nf_ + nt + nb_);
-  x_all.segment(no_, nf_) = x.head(nf_);
+  Eigen::VectorXd x_all = Eigen::VectorXd::Zero(no_ + nr_ + nf_ + nt + nb_);
+  x_all.segment(no_ + nr_, nf_) = x.head(nf_);
   x_all.tail(nb_) = x.tail(nb_);
   const BodyCheck check = influence_.check(x_all);
   out_.superposition_error_rel = check.superposition_error_rel;

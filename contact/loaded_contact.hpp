@@ -31,6 +31,7 @@
 #include "contact/circular_spline.hpp"
 #include "contact/contact_body.hpp"
 #include "contact/contact_problem.hpp"
+#include "contact/ratcheting.hpp"
 #include "contact/tet10_body.hpp"
 #include "contact/torque_twist.hpp"
 #include "fem/flexspline_analysis.hpp"
@@ -68,8 +69,11 @@ struct ContactOptions {
   double wg_angle_rad = 0;     ///< where the generator is locked (0: a flexspline tooth on the major axis)
   SeriesParts series;
   /// Flanks closing more than this many body twists at rated torque (C_τ·T_R) after the first stay out; doubled until
-  /// the twist at rated torque stays short of them.
-  double reach_factor = 3.0;
+  /// the twist at rated torque stays short of them. That check sees the rigid turn only, while the rim's elastic
+  /// deformation under load (the wave turning against the generator) closes flanks farther out too: on the designed
+  /// size 17 at ratio 100, two flank pairs beyond 3 body twists close from 23 N·m on (K3 +0.07 %). The default keeps
+  /// every flank in (infinity); a finite reach is for the multibody table, whose phases it keeps small.
+  double reach_factor = std::numeric_limits<double>::infinity();
   /// Axial slices of the face width, each flank one contact per slice (its own gap, load band and 1/n of the face's
   /// tooth stiffness, the slices' springs side by side). The gaps follow the cup's coning: each slice's from the
   /// FEM's rim as the generator leaves it at the slice's centre (needs the solution's generator case). 1: the face
@@ -82,6 +86,9 @@ struct ContactOptions {
   double friction_coefficient = 0;
   /// The loop's torque steps a quarter cycle (T_R/n each; contact/README.md's step study on the size-17 cup).
   int loop_steps_per_quarter = 20;
+  /// > 0: the ramp past rated torque to the ratcheting torque (contact/ratcheting.hpp), looked for up to this torque;
+  /// 0: not computed.
+  double ratcheting_ceiling_Nm = 0;
 };
 
 /// One flank that can take part.
@@ -204,6 +211,9 @@ struct ContactAnalysis {
   double edge_teeth_torque_share = 0;
   double twist_at_rated_without_edge_teeth_rad = 0;
   std::optional<FrictionLoop> friction;  ///< with friction on the flanks
+  /// The ratcheting torque (ContactOptions::ratcheting_ceiling_Nm > 0), the teeth's overlap read on the rim and on
+  /// the circular spline's ring.
+  std::optional<Ratcheting> ratcheting;
   /// The problem solved at every step: flanks (in the order of `flanks`), then the generator's stations when they are
   /// unilateral (their λ 0, their gap the FEM's obstacle); the tooth pairs' compliance on the diagonal, the bearing's
   /// secant not. For the multibody model, which moves the teeth through it.

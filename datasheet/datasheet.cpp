@@ -62,15 +62,45 @@ void add_contact_figures(Datasheet& d, const DatasheetInputs& in) {
                                      "not computed: the case gives no flank friction ([contact] friction_coefficient)"));
 }
 
+/// The ratcheting torque from the loaded contact's ramp past rated torque (contact/ratcheting.hpp), with where the last
+/// teeth held and what parted them.
+void add_ratcheting_figure(Datasheet& d, const DatasheetInputs& in) {
+  const char* name = "ratcheting_torque_Nm";
+  const char* label = "ratcheting torque";
+  if (!in.contact || !in.contact->ratcheting) {
+    d.figures.push_back(not_computed(name, label, "N·m", "not computed: the loaded contact is not at hand"));
+    return;
+  }
+  const Ratcheting& r = *in.contact->ratcheting;
+  const std::string how =
+      "generator locked, torque raised past rated until the teeth still overlapping the circular spline's tip circle "
+      "cannot carry it; each tooth lets go when the rim's inward and the ring's outward give under the flanks' radial "
+      "forces take its overlap; contact normals as at rest (the contact does not climb the flank: an upper bound on "
+      "that count), a released tooth stays out";
+  const double deg = 180 / std::numbers::pi;
+  if (!std::isfinite(r.torque_Nm)) {  // a lower bound: beyond the search
+    d.figures.push_back(computed(name, label, "N·m", r.torque_Nm,
+                                 "above " + fmt("%.0f", r.ceiling_Nm) + " N·m: not reached where the search stops; " +
+                                     how));
+    return;
+  }
+  std::string method = how + "; ±" + fmt("%.1g", 100 * r.tolerance_rel) + " %. First loaded tooth to let go at " +
+                       fmt("%.3g", r.first_release_Nm) + " N·m (" + fmt("%.1f", r.first_phi_rad * deg) +
+                       " deg from the major axis); just below, " + std::to_string(r.teeth_holding) +
+                       " teeth hold, the last at " + fmt("%.1f", r.last_phi_rad * deg) + " deg with " +
+                       fmt("%.2f", r.last_overlap_m * 1e6) + " um of overlap left, its tip parted " +
+                       fmt("%.1f", r.last_rim_in_m * 1e6) + " um by the rim and " +
+                       fmt("%.1f", r.last_ring_out_m * 1e6) + " um by the ring";
+  d.figures.push_back(computed(name, label, "N·m", r.torque_Nm, method));
+}
+
 void add_limit_figures(Datasheet& d, const DatasheetInputs& in) {
   if (in.buckling)
     d.figures.push_back(computed("buckling_torque_Nm", "buckling torque", "N·m", in.buckling->torque_Nm,
                                  in.buckling->method));
   else
     d.figures.push_back(not_computed("buckling_torque_Nm", "buckling torque", "N·m", in.why_no_buckling));
-  d.figures.push_back(not_computed("ratcheting_torque_Nm", "ratcheting torque", "N·m",
-                                   "not computed: the teeth riding over needs the contact followed up the flank to the "
-                                   "tips with the rim's radial give (not in this version)"));
+  add_ratcheting_figure(d, in);
   if (in.infinite_life) {
     const InfiniteLife& l = *in.infinite_life;
     const FatigueState& w = l.at_limit;
@@ -92,11 +122,21 @@ void add_limit_figures(Datasheet& d, const DatasheetInputs& in) {
     d.figures.push_back(
         not_computed("tooth_root_limit_Nm", "torque at the teeth's root limit", "N·m", in.why_no_tooth_root));
   // The momentary limit: the first of yield, ratcheting and buckling. Yield is not computed (no yield strength in the
-  // case) and neither is ratcheting, so the sheet does not name one: buckling alone would be far above it.
-  std::string why = "not computed: the first of yield, ratcheting and buckling, and yield and ratcheting are not "
-                    "computed";
-  if (in.buckling) why += " (the elastic buckling torque alone is " + fmt("%.0f", in.buckling->torque_Nm) + " N·m)";
-  d.figures.push_back(not_computed("momentary_limit_Nm", "momentary limit", "N·m", why));
+  // case), so the first of the other two is an upper bound, and the sheet says so.
+  const DatasheetFigure* ratchet = d.find("ratcheting_torque_Nm");
+  const bool has_ratchet = ratchet && ratchet->value;
+  if (!in.buckling && !has_ratchet) {
+    d.figures.push_back(not_computed("momentary_limit_Nm", "momentary limit", "N·m",
+                                     "not computed: the first of yield, ratcheting and buckling, none of them computed"));
+  } else {
+    const bool buckles_first = in.buckling && (!has_ratchet || in.buckling->torque_Nm <= *ratchet->value);
+    const double limit = buckles_first ? in.buckling->torque_Nm : *ratchet->value;
+    std::string method = std::string("the first of ratcheting and buckling: ") +
+                         (buckles_first ? "buckling" : "ratcheting") +
+                         "; yield is not checked (the case gives no yield strength), so an upper bound";
+    if (buckles_first && !has_ratchet) method += " (the ratcheting torque is above it or not computed)";
+    d.figures.push_back(computed("momentary_limit_Nm", "momentary limit", "N·m", limit, method));
+  }
 }
 
 void add_life_figures(Datasheet& d, const DatasheetInputs& in) {
@@ -130,6 +170,8 @@ void add_loss_figures(Datasheet& d, const DatasheetInputs& in) {
              fmt("%.3g", s.bearing_load_W) + " W, flanks " + fmt("%.3g", s.flank_sliding_W) + " W, of " +
              fmt("%.3g", s.input_power_W()) + " W in)";
     };
+    d.loss_map = l.map;
+    d.loss_map_counts = counts;
     d.figures.push_back(computed("efficiency", "efficiency (rated torque, 2,000 rpm)", "", l.rated_2000.efficiency(),
                                  "P_out/P_in; " + counts + split(l.rated_2000)));
     d.figures.push_back(computed("efficiency_1000rpm", "efficiency (rated torque, 1,000 rpm)", "",

@@ -56,6 +56,7 @@ struct LossFigures {
   double flank_friction = 0;
   std::string flank_friction_from;  ///< "[contact] friction_coefficient" or why the boundary value is taken
   std::string lubricant;            ///< "grease, base oil 68/8.6 mm²/s at 40/100 °C, 20 °C: 220 mm²/s"
+  LossMap map;                      ///< over speed, load and temperature (the sheet's plot page)
 };
 
 /// Everything the sheet is made from; an empty optional is a figure not computed, with `why_not` naming the reason.
@@ -79,6 +80,9 @@ struct Datasheet {
   std::vector<DatasheetFigure> figures;
   /// What the figures take as given or leave out, in words (the page says them too).
   std::vector<std::string> idealisations;
+  /// The losses over speed, load and temperature (with the loss figures), and what they count.
+  std::optional<LossMap> loss_map;
+  std::string loss_map_counts;
   const DatasheetFigure* find(const std::string& name) const;
 };
 

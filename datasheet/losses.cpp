@@ -73,6 +73,42 @@ LossSplit drive_losses(const ContactAnalysis& contact, std::size_t step, const s
   return out;
 }
 
+LossMap loss_map(const ContactAnalysis& contact, const LossAt& at, const LossConditions& base) {
+  if (contact.steps.empty()) throw InputError("loss map: the contact has no torque steps");
+  const double rated = contact.steps.back().torque_Nm;
+  const auto step_at = [&](double torque_Nm) {
+    std::size_t best = 0;
+    for (std::size_t i = 0; i < contact.steps.size(); ++i)
+      if (contact.steps[i].torque_Nm >= 0 &&
+          std::abs(contact.steps[i].torque_Nm - torque_Nm) < std::abs(contact.steps[best].torque_Nm - torque_Nm))
+        best = i;
+    return best;
+  };
+  LossMap m;
+  m.temperature_C = base.lubricant.temperature_C;
+  LossConditions c = base;
+  for (const double load : m.load_fractions) {
+    const std::size_t step = step_at(load * rated);
+    std::vector<double>& row = m.efficiency.emplace_back();
+    for (const double rpm : m.speeds_rpm) {
+      c.input_speed_rpm = rpm;
+      row.push_back(at(step, c).efficiency());
+    }
+  }
+  const std::size_t rated_step = step_at(rated), rest = step_at(0.0);
+  for (const double t : m.temperatures_C) {
+    c.lubricant.temperature_C = t;
+    c.input_speed_rpm = m.rated_speed_rpm;
+    m.efficiency_at_rated.push_back(at(rated_step, c).efficiency());
+    std::vector<double>& row = m.no_load_torque_Nm.emplace_back();
+    for (const double rpm : m.speeds_rpm) {
+      c.input_speed_rpm = rpm;
+      row.push_back(at(rest, c).input_torque_Nm());
+    }
+  }
+  return m;
+}
+
 double starting_torque_Nm(const GeneratorBearing& bearing, const std::vector<double>& ball_loads_N, int ratio,
                           const PalmgrenCoefficients& palmgren) {
   if (ratio < 1) throw InputError("starting torque: ratio " + std::to_string(ratio) + "; must be >= 1");

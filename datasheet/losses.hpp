@@ -16,6 +16,7 @@
 // load has moved the contact); μ constant over the flank; no churning or drag of the lubricant, no seal, no
 // material damping of the flexspline, no heat (the temperature is the case's). A loss left out makes the
 // efficiency an upper bound.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -60,6 +61,28 @@ std::vector<double> flank_sliding_m_per_rad(const BacklashModel& model, const Co
 LossSplit drive_losses(const ContactAnalysis& contact, std::size_t step, const std::vector<double>& sliding_m_per_rad,
                        const GeneratorBearing& bearing, const std::vector<double>& ball_loads_N, int ratio,
                        const LossConditions& conditions);
+
+/// The losses over the running conditions a catalog plots: the efficiency against input speed at several loads (the
+/// case's temperature), against the lubricant's temperature at rated torque and 2,000 rpm, and the no-load running
+/// torque against speed at several temperatures. Every point is drive_losses at the contact's step nearest that load.
+struct LossMap {
+  double temperature_C = 0;  ///< the case's: the speed and load curves'
+  std::vector<double> speeds_rpm = {500, 1000, 1500, 2000, 2500, 3000, 3500};
+  std::vector<double> load_fractions = {0.1, 0.25, 0.5, 0.75, 1.0};  ///< of rated torque
+  std::vector<double> temperatures_C = {-10, 0, 10, 20, 30, 40};
+  double rated_speed_rpm = 2000;                            ///< of the temperature curve
+  std::vector<std::vector<double>> efficiency;              ///< [load][speed] at temperature_C
+  std::vector<double> efficiency_at_rated;                  ///< [temperature] at rated torque and rated_speed_rpm
+  std::vector<std::vector<double>> no_load_torque_Nm;       ///< [temperature][speed], at the input
+};
+
+/// One point of the map: the power balance at the contact's step `step` under `conditions` (drive_losses with that
+/// step's ball loads).
+using LossAt = std::function<LossSplit(std::size_t step, const LossConditions& conditions)>;
+
+/// The map of `contact` (its steps from −rated to +rated; the loads read at the nearest step at or above zero) under
+/// `base` (its lubricant's temperature the curves' by speed and load).
+LossMap loss_map(const ContactAnalysis& contact, const LossAt& at, const LossConditions& base);
 
 /// The input torque that starts the drive from rest with no load on the output, N·m: Palmgren's breakaway moment of
 /// the generator bearing under these ball loads (palmgren_breakaway_moment_Nm: M1 alone, a lower bound) carried to

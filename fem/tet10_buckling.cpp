@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -15,6 +16,7 @@
 
 #include "common/error.hpp"
 #include "common/progress.hpp"
+#include "fem/cholmod_factor.hpp"
 #include "fem/elasticity.hpp"
 #include "fem/flexspline_analysis.hpp"
 #include "fem/loads.hpp"
@@ -298,23 +300,52 @@ SparseMatrix generator_radial_holds(const FlexsplineModel& c, const TetMesh& mes
   return L;
 }
 
+SymmetricCsc stiffness_with_prestress(const TetMesh& mesh, const Material& material, const DofMap& dofs,
+                                      const SymmetricCsc& K, const Eigen::VectorXd& base_u) {
+  const SparseMatrix Ks = geometric_stiffness(mesh, material, dofs, base_u);
+  using Upper64 = Eigen::SparseMatrix<double, Eigen::ColMajor, std::int64_t>;
+  std::vector<Eigen::Triplet<double, std::int64_t>> entries;
+  entries.reserve(K.nnz() + static_cast<std::size_t>(Ks.nonZeros() / 2 + K.n));
+  for (std::int64_t j = 0; j < K.n; ++j)
+    for (std::int64_t k = K.column_start[j]; k < K.column_start[j + 1]; ++k) entries.emplace_back(K.row[k], j, K.value[k]);
+  for (Eigen::Index j = 0; j < Ks.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(Ks, j); it; ++it)
+      if (it.row() <= it.col()) entries.emplace_back(it.row(), it.col(), it.value());
+  Upper64 sum(K.n, K.n);
+  sum.setFromTriplets(entries.begin(), entries.end());
+  sum.makeCompressed();
+  SymmetricCsc out;
+  out.n = K.n;
+  out.column_start.assign(sum.outerIndexPtr(), sum.outerIndexPtr() + K.n + 1);
+  out.row.assign(sum.innerIndexPtr(), sum.innerIndexPtr() + sum.nonZeros());
+  out.value.assign(sum.valuePtr(), sum.valuePtr() + sum.nonZeros());
+  return out;
+}
+
 BucklingResultTet10 torsion_buckling_tet10(const FlexsplineModel& c, const TetMesh& mesh,
                                            const FlexsplineSystem& system, bool generator_held,
-                                           const Tet10BucklingOptions& o) {
+                                           const Tet10BucklingOptions& o, const Eigen::VectorXd& base_u) {
   check_options(o);
   const double T = c.load.torque_Nm != 0.0 ? c.load.torque_Nm : 1.0;
   const SparseMatrix held = generator_held ? generator_radial_holds(c, mesh) : SparseMatrix();
   progress("buckling: assemble K again and K_sigma of the torque case (" + std::to_string(T) + " N m)" +
-           (generator_held ? ", " + std::to_string(held.cols()) + " generator stations held radially" : ""));
+           (generator_held ? ", " + std::to_string(held.cols()) + " generator stations held radially" : "") +
+           (base_u.size() ? "; K + K_sigma of the base state factorised for the eigenproblem" : ""));
   const SymmetricCsc K = assemble_stiffness(mesh, c.material, system.dofs);
-  // The prestress: K_c⁻¹·F of the torque loads on the free dofs (the held stations' constraint included).
+  // The torque's prestress, linear on K: K_c⁻¹·F of its loads on the free dofs (the held stations included).
   const SparseMatrix L = held.cols() > 0 ? restrict_columns(system.dofs, held) : SparseMatrix(K.n, 0);
   const Eigen::MatrixXd W = L.cols() > 0 ? solve_columns(*system.factor, L) : Eigen::MatrixXd(K.n, 0);
   StiffnessOp B(K, *system.factor, L, W);
   const Eigen::VectorXd f = restrict_to_free(system.dofs, torque_load_vector(c, mesh, T));
   const Eigen::VectorXd u =
       expand_to_full(system.dofs, B.inverse(f), Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(mesh.n_nodes())));
-  return solve_pencil(mesh, c.material, system.dofs, B, u, o);
+  if (!base_u.size()) return solve_pencil(mesh, c.material, system.dofs, B, u, o);
+  // About the base state: (K + K_σ(base) + λ·K_σ(torque))·x = 0, the pencil on the base's tangent.
+  const SymmetricCsc Kb = stiffness_with_prestress(mesh, c.material, system.dofs, K, base_u);
+  const CholmodFactor tangent(Kb, equation_nodes(system.dofs));
+  const Eigen::MatrixXd Wb = L.cols() > 0 ? solve_columns(tangent, L) : Eigen::MatrixXd(K.n, 0);
+  StiffnessOp Bb(Kb, tangent, L, Wb);
+  return solve_pencil(mesh, c.material, system.dofs, Bb, u, o);
 }
 
 }  // namespace sw

@@ -70,12 +70,23 @@ BucklingResultTet10 buckling_tet10(const TetMesh& mesh, const Material& material
 /// radial displacement. Throws InputError when the model has no wave generator or no bore face lies in its band.
 Eigen::SparseMatrix<double> generator_radial_holds(const FlexsplineModel& c, const TetMesh& mesh);
 
+/// K + K_σ(base_u) as an upper triangle on the same equations: the tangent stiffness about a base state (the
+/// generator's deformation) whose stress stiffens (tension) or softens (compression) the body, linear in that stress.
+SymmetricCsc stiffness_with_prestress(const TetMesh& mesh, const Material& material, const DofMap& dofs,
+                                      const SymmetricCsc& K, const Eigen::VectorXd& base_u);
+
 /// The case's torsion buckling: prestress = the torque case's loads (torque_load_vector at load.torque_Nm, 1 N·m when
 /// it is 0) on the system's clamp, with the generator's stations held radially in the prestress and the buckling
 /// problem when `generator_held` (the generator as a bilateral support; needs a wave generator). K is assembled again
 /// (the system keeps only its factor). λ multiplies the case's torque.
+///
+/// `base_u` (3·n_nodes; empty: none) is a state the torque is added to, the generator's deformation: the eigenproblem
+/// is (K + K_σ(base) + λ·K_σ(torque))·x = 0, on the base's tangent (stiffness_with_prestress, factorised again), the
+/// torque's prestress linear on K as without a base; λ multiplies the torque alone (the base stays as it is). Linear
+/// in the base's stress: its displacements do not change the geometry. A base that is a times the torque case's
+/// displacement gives λ − a exactly (K + (a + λ)·K_σ(torque)).
 BucklingResultTet10 torsion_buckling_tet10(const FlexsplineModel& c, const TetMesh& mesh,
                                            const FlexsplineSystem& system, bool generator_held = false,
-                                           const Tet10BucklingOptions& o = {});
+                                           const Tet10BucklingOptions& o = {}, const Eigen::VectorXd& base_u = {});
 
 }  // namespace sw

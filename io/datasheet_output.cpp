@@ -29,6 +29,56 @@ std::string value_text(const std::optional<double>& v) {
   return buf;
 }
 
+/// The efficiency against input speed per load, against temperature at rated torque, and the no-load running torque
+/// against speed per temperature: the catalogs' efficiency curves, with what they count under them.
+std::string loss_map_svg(const Datasheet& d) {
+  const LossMap& m = *d.loss_map;
+  static const char* colours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2"};
+  const auto colour = [](std::size_t i) { return colours[i % 7]; };
+  char buf[160];
+  LinePlot by_speed;
+  std::snprintf(buf, sizeof buf, "efficiency against input speed at %.4g °C", m.temperature_C);
+  by_speed.title = buf;
+  by_speed.x_label = "input speed (rpm)";
+  by_speed.y_label = "efficiency (%)";
+  for (std::size_t k = 0; k < m.load_fractions.size(); ++k) {
+    PlotSeries s;
+    std::snprintf(buf, sizeof buf, "%.0f %% of rated torque", 100 * m.load_fractions[k]);
+    s.label = buf;
+    s.x = m.speeds_rpm;
+    for (const double e : m.efficiency[k]) s.y.push_back(100 * e);
+    s.colour = colour(k);
+    s.markers = false;
+    by_speed.series.push_back(s);
+  }
+  LinePlot by_temperature;
+  std::snprintf(buf, sizeof buf, "efficiency at rated torque and %.0f rpm against temperature", m.rated_speed_rpm);
+  by_temperature.title = buf;
+  by_temperature.x_label = "lubricant temperature (°C)";
+  by_temperature.y_label = "efficiency (%)";
+  PlotSeries t;
+  t.x = m.temperatures_C;
+  for (const double e : m.efficiency_at_rated) t.y.push_back(100 * e);
+  by_temperature.series.push_back(t);
+  LinePlot no_load;
+  no_load.title = "no-load running torque at the input against speed";
+  no_load.x_label = "input speed (rpm)";
+  no_load.y_label = "no-load running torque (mN·m)";
+  for (std::size_t k = 0; k < m.temperatures_C.size(); ++k) {
+    PlotSeries s;
+    std::snprintf(buf, sizeof buf, "%.4g °C", m.temperatures_C[k]);
+    s.label = buf;
+    s.x = m.speeds_rpm;
+    for (const double v : m.no_load_torque_Nm[k]) s.y.push_back(1e3 * v);
+    s.colour = colour(k);
+    no_load.series.push_back(s);
+  }
+  Figure f;
+  f.header = {"Where the power goes"};
+  f.panels = {by_speed, by_temperature, no_load};
+  return svg_figure(f);
+}
+
 }  // namespace
 
 std::string datasheet_json(const Datasheet& d, const Case& c) {
@@ -54,6 +104,20 @@ std::string datasheet_json(const Datasheet& d, const Case& c) {
   j["figures"] = figures;
   j["order"] = order;
   j["idealisations"] = d.idealisations;
+  if (d.loss_map) {
+    const LossMap& m = *d.loss_map;
+    j["loss_map"] = {{"counts", d.loss_map_counts},
+                     {"temperature_C", m.temperature_C},
+                     {"speeds_rpm", m.speeds_rpm},
+                     {"load_fractions", m.load_fractions},
+                     {"temperatures_C", m.temperatures_C},
+                     {"rated_speed_rpm", m.rated_speed_rpm},
+                     {"efficiency", m.efficiency},
+                     {"efficiency_at_rated", m.efficiency_at_rated},
+                     {"no_load_torque_Nm", m.no_load_torque_Nm}};
+  } else {
+    j["loss_map"] = nullptr;
+  }
   return j.dump(2) + "\n";
 }
 
@@ -77,6 +141,22 @@ Datasheet read_datasheet(const std::filesystem::path& path) {
     d.figures.push_back(std::move(out));
   }
   for (const JsonIn& s : j["idealisations"].elements()) d.idealisations.push_back(s.text());
+  if (const std::optional<JsonIn> lm = j.find("loss_map"); lm && !lm->is_null()) {
+    LossMap m;
+    d.loss_map_counts = (*lm)["counts"].text();
+    m.temperature_C = (*lm)["temperature_C"].finite();
+    m.speeds_rpm = (*lm)["speeds_rpm"].numbers();
+    m.load_fractions = (*lm)["load_fractions"].numbers();
+    m.temperatures_C = (*lm)["temperatures_C"].numbers();
+    m.rated_speed_rpm = (*lm)["rated_speed_rpm"].finite();
+    m.efficiency.clear();
+    for (const JsonIn& row : (*lm)["efficiency"].elements(m.load_fractions.size()))
+      m.efficiency.push_back(row.numbers());
+    m.efficiency_at_rated = (*lm)["efficiency_at_rated"].numbers();
+    for (const JsonIn& row : (*lm)["no_load_torque_Nm"].elements(m.temperatures_C.size()))
+      m.no_load_torque_Nm.push_back(row.numbers());
+    d.loss_map = std::move(m);
+  }
   return d;
 }
 
@@ -111,7 +191,12 @@ std::string datasheet_html(const Datasheet& d, const Case& c) {
                       : "") +
          "</td><td class=\"m\">" + html_escape(f.method) + "</td></tr>\n";
   }
-  h += "</table>\n<h2>What the figures take as given</h2>\n<ul>\n";
+  h += "</table>\n";
+  if (d.loss_map)
+    h += "<h2>Where the power goes, over speed, load and temperature</h2>\n<p>Each point is the power balance at the "
+         "loaded contact's torque step nearest the load; it " + html_escape(d.loss_map_counts) + ".</p>\n" +
+         loss_map_svg(d) + "\n";
+  h += "<h2>What the figures take as given</h2>\n<ul>\n";
   for (const std::string& s : d.idealisations) h += "<li>" + html_escape(s) + "</li>\n";
   h += "</ul>\n</body></html>\n";
   return h;

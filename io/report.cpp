@@ -270,7 +270,8 @@ std::string run_report_html(const RunReportInputs& in) {
          "\"none\")</li>";
   if (!fs::exists(in.out_dir / "contact.json") || !read_contact_result(in.out_dir / "contact.json").friction)
     s << "<li>friction in the tooth contacts (the loop: [contact] friction_coefficient)</li>";
-  s << "<li>ratcheting torque</li><li>wave-generator bearing life</li></ul>\n";
+  s << "<li>the limits (buckling, ratcheting, strength) and the wave-generator bearing's life: "
+       "<code>strainwave datasheet</code></li></ul>\n";
   s << "<h2>3-D results</h2>\n<p><a href='flexspline.pvd'>flexspline.pvd</a> (one .vtu per load case):";
   for (const auto& lc : r.load_cases) {
     const std::string f = "flexspline_" + lc.name + ".vtu";

@@ -1,6 +1,7 @@
 // `strainwave datasheet` through the command line: the sheet of the size-17 case carries the loaded contact's
 // figures as `contact` computes them, the catalog's published figures for its size and ratio beside them (never in
 // place of them), reads back as written, and bad input is one line with nothing written.
+#include <algorithm>
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -10,6 +11,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "io/datasheet_output.hpp"
 #include "tests/cli.hpp"
 
 namespace sw {
@@ -70,6 +72,22 @@ TEST(Size17Sheet, CarriesTheContactsFiguresThePublishedRowsAndSaysHowEachWasComp
   EXPECT_EQ(f["rated_torque_Nm"]["value"].get<double>(), 31);
   EXPECT_NE(f["K3_Nm_per_rad"]["value"].get<double>(), 1.6e4);  // computed, not copied
 
+  // The ratcheting torque from the ramp past rated torque (the search held against closed forms in test_ratcheting,
+  // its torque on the harmonic body against the TET10 body's in test_harmonic_contact): above rated torque, its
+  // method naming the idealisation; the momentary limit the first of it and buckling, said to be an upper bound.
+  const auto& ratchet = f["ratcheting_torque_Nm"];
+  ASSERT_TRUE(ratchet["computed"].get<bool>()) << ratchet["method"];
+  EXPECT_GT(ratchet["value"].get<double>(), f["rated_torque_Nm"]["value"].get<double>());
+  EXPECT_NE(ratchet["method"].get<std::string>().find("contact normals as at rest"), std::string::npos);
+  const auto& momentary = f["momentary_limit_Nm"];
+  ASSERT_TRUE(momentary["computed"].get<bool>()) << momentary["method"];
+  EXPECT_EQ(momentary["value"].get<double>(),
+            std::min(ratchet["value"].get<double>(), f["buckling_torque_Nm"]["value"].get<double>()));
+  EXPECT_NE(momentary["method"].get<std::string>().find("upper bound"), std::string::npos);
+  std::printf("size 17: ratcheting torque %.0f N*m (published %.0f), momentary limit %.0f (published %.0f)\n",
+              ratchet["value"].get<double>(), ratchet["published"].get<double>(), momentary["value"].get<double>(),
+              momentary["published"].get<double>());
+
   // Where the power goes: the sheet's efficiency is its own split's (P_out over P_out plus the three losses), the
   // no-load running torque is the bearing's alone (no flank force at zero torque), every loss positive; printed
   // against the published row (another maker's set: compared, never fitted).
@@ -88,6 +106,27 @@ TEST(Size17Sheet, CarriesTheContactsFiguresThePublishedRowsAndSaysHowEachWasComp
   std::printf("size 17: backdriving torque %.4f N*m (published %.2f)\n", back["value"].get<double>(),
               back["published"].get<double>());
   EXPECT_NE(eta["method"].get<std::string>().find("leaves out churning"), std::string::npos);
+  // The map over speed, load and temperature: its point at rated torque, 2,000 rpm and the oil's 20 °C is the sheet's
+  // efficiency (the same step and conditions), and the page draws it.
+  const auto& map = sheet["loss_map"];
+  ASSERT_FALSE(map.is_null());
+  const std::vector<double> temperatures = map["temperatures_C"].get<std::vector<double>>();
+  const auto at20 = std::find(temperatures.begin(), temperatures.end(), 20.0);
+  ASSERT_NE(at20, temperatures.end());
+  EXPECT_NEAR(map["efficiency_at_rated"][at20 - temperatures.begin()].get<double>(), eta["value"].get<double>(), 1e-12);
+  EXPECT_EQ(map["efficiency"].size(), map["load_fractions"].size());
+  // Read back by the reader beside the writer: the same map.
+  const Datasheet read_back = read_datasheet(dir / "datasheet.json");
+  ASSERT_TRUE(read_back.loss_map.has_value());
+  EXPECT_EQ(read_back.loss_map->efficiency_at_rated, map["efficiency_at_rated"].get<std::vector<double>>());
+  EXPECT_EQ(read_back.loss_map->no_load_torque_Nm, map["no_load_torque_Nm"].get<std::vector<std::vector<double>>>());
+  EXPECT_EQ(*read_back.find("ratcheting_torque_Nm")->value, f["ratcheting_torque_Nm"]["value"].get<double>());
+  {
+    std::ifstream html(dir / "datasheet.html");
+    const std::string page((std::istreambuf_iterator<char>(html)), std::istreambuf_iterator<char>());
+    EXPECT_NE(page.find("efficiency against input speed"), std::string::npos);
+    EXPECT_NE(page.find("no-load running torque at the input"), std::string::npos);
+  }
   std::printf("size 17 in VG 68 at 20 C: efficiency %.3f at rated and 2,000 rpm (published %.2f), %.3f at 1,000 rpm, "
               "%.3f at half rated; no-load running torque %.4f N*m (published %.3f), starting %.4f N*m (published "
               "%.3f)\n", eta["value"].get<double>(), eta["published"].get<double>(),

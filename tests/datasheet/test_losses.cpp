@@ -143,6 +143,56 @@ TEST(DriveLosses, BackdrivingTorqueIsTheStartingTorqueThroughTheRatioAndTheFlank
             std::string::npos);
 }
 
+// The map over speed, load and temperature: each point is drive_losses at the step nearest its load (to round-off),
+// and the curves keep the trends the terms make (above): along speed the efficiency falls and the no-load running
+// torque rises (M0 ∝ n^(2/3)); along load the efficiency rises; with temperature the oil thins, the efficiency rises
+// and the no-load running torque falls.
+TEST(DriveLosses, TheMapIsThePowerBalanceAtEachPointAndKeepsTheTrends) {
+  ContactAnalysis a = two_flanks(true);
+  a.steps.clear();
+  for (const double T : {-20.0, -10.0, -1e-6, 1e-6, 2.0, 5.0, 10.0, 15.0, 20.0}) {  // rated 20 N·m
+    TorqueStep s;
+    s.torque_Nm = T;
+    s.flank_force_N = {std::max(T, 0.0) * 5.0, std::max(T, 0.0) * 2.5, 0.0};
+    a.steps.push_back(s);
+  }
+  const std::vector<double> sliding = {2e-3, -1e-3, 5e-3};
+  const GeneratorBearing b = bearing_6205();
+  const std::vector<double> Q = stribeck_loads(9, 1500.0, 0.0);
+  const LossAt at = [&](std::size_t step, const LossConditions& c) {
+    return drive_losses(a, step, sliding, b, Q, 100, c);
+  };
+  LossConditions base;
+  base.lubricant = vg68(20.0);
+  base.flank_friction = 0.1;
+  const LossMap m = loss_map(a, at, base);
+  ASSERT_EQ(m.efficiency.size(), m.load_fractions.size());
+  ASSERT_EQ(m.no_load_torque_Nm.size(), m.temperatures_C.size());
+  EXPECT_EQ(m.temperature_C, 20.0);
+  // The points: 10 % of rated is the 2 N·m step, rated the last; no load the 1e-6 N·m limit.
+  LossConditions c = base;
+  c.input_speed_rpm = 1500;
+  EXPECT_NEAR(m.efficiency[0][2], at(4, c).efficiency(), 1e-15);
+  EXPECT_NEAR(m.efficiency.back()[2], at(8, c).efficiency(), 1e-15);
+  c.lubricant.temperature_C = -10;
+  c.input_speed_rpm = 2000;
+  EXPECT_NEAR(m.efficiency_at_rated[0], at(8, c).efficiency(), 1e-15);
+  c.input_speed_rpm = 3500;
+  EXPECT_NEAR(m.no_load_torque_Nm[0].back(), at(3, c).input_torque_Nm(), 1e-15);
+  for (std::size_t k = 0; k < m.load_fractions.size(); ++k)
+    for (std::size_t j = 1; j < m.speeds_rpm.size(); ++j) {
+      EXPECT_LT(m.efficiency[k][j], m.efficiency[k][j - 1]) << k << " " << j;
+      if (k > 0) EXPECT_GT(m.efficiency[k][j], m.efficiency[k - 1][j]) << k << " " << j;
+    }
+  for (std::size_t t = 1; t < m.temperatures_C.size(); ++t) {
+    EXPECT_GT(m.efficiency_at_rated[t], m.efficiency_at_rated[t - 1]);
+    for (std::size_t j = 0; j < m.speeds_rpm.size(); ++j) {
+      EXPECT_LT(m.no_load_torque_Nm[t][j], m.no_load_torque_Nm[t - 1][j]);
+      if (j > 0) EXPECT_GT(m.no_load_torque_Nm[t][j], m.no_load_torque_Nm[t][j - 1]);
+    }
+  }
+}
+
 TEST(DriveLosses, BadConditionsAreOneLineNamingTheField) {
   const ContactAnalysis a = two_flanks(true);
   const std::vector<double> sliding = {0, 0, 0};

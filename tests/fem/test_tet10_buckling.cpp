@@ -229,6 +229,38 @@ TEST(Tet10Buckling, GeneratorStationsHeldRadiallyAreMetByTheModesAndRaiseTheLoad
   EXPECT_GT(std::abs(held.load_factors[0]), lowest(coarse_tube().buckling));
 }
 
+// A base state (the generator's deformation in the drive) enters as its stress's geometric stiffness added to K. A base
+// that is a times the torque case itself turns the pencil into (K + (a + λ)·K_σ)·x = 0, so each load factor drops by
+// a exactly: through the sum of the two matrices, its new factorisation and the pencil on it. Held to the Lanczos
+// tolerance (1e-9 on μ; 1e-7 of λ leaves a margin of 100).
+constexpr double kShiftedExactly = 1e-7;
+
+TEST(Tet10Buckling, ABaseStateOfTheTorqueItselfShiftsEveryFactorByItsMultiple) {
+  const TubeRun& r = coarse_tube();
+  const Eigen::VectorXd u = r.system.solve(torque_load_vector(r.c, r.mesh, r.c.load.torque_Nm)).col(0);
+  const double a = 0.4 * lowest(r.buckling);
+  Tet10BucklingOptions o;
+  o.modes = 4;
+  const BucklingResultTet10 shifted = torsion_buckling_tet10(r.c, r.mesh, r.system, false, o, a * u);
+  // The positive pair (the mode and its quarter-wave turn) moves down by a; the negative one moves away, so other
+  // modes take its place among the smallest |λ|: compare the two smallest positive factors.
+  const auto positive = [](const std::vector<double>& l) {
+    std::vector<double> p;
+    for (const double x : l)
+      if (x > 0) p.push_back(x);
+    std::sort(p.begin(), p.end());
+    return p;
+  };
+  const std::vector<double> before = positive(r.buckling.load_factors), after = positive(shifted.load_factors);
+  ASSERT_GE(before.size(), 2u);
+  ASSERT_GE(after.size(), 2u);
+  for (std::size_t k = 0; k < 2; ++k) {
+    std::printf("lambda %.8g with no base, %.8g on a base of %.6g x the torque (%+.1e)\n", before[k], after[k], a,
+                (after[k] - (before[k] - a)) / std::abs(before[k]));
+    EXPECT_NEAR(after[k], before[k] - a, kShiftedExactly * std::abs(before[k])) << k;
+  }
+}
+
 /// A dof map with no dof fixed.
 DofMap all_free(const TetMesh& mesh) { return make_dof_map(std::vector<bool>(3 * mesh.n_nodes(), false)); }
 

@@ -132,7 +132,7 @@ inline ContactResult sample_contact_result() {
   r.rated_torque_Nm = 31.0;
   r.torque_twist = {{-31.0, -f(), f.whole(), f()}, {0.0, -f(), 0, 0.0}, {0.0, f(), 0, 0.0}, {31.0, f(), f.whole(), f()}};
   r.catalog = {f(), f(), f(), f(), f(), "fitted to the curve"};
-  r.catalog_reference = ContactResult::CatalogReference{17, f(), f(), f(), f(), f(), f(), f(), f()};
+  r.catalog_reference = ContactResult::CatalogReference{17, f.whole(), f(), f(), f(), f(), f(), f(), f()};
   r.lost_motion_arcmin = f(), r.play_arcmin = f(), r.overlap_at_rest_um = f(), r.min_closing_angle_arcmin = -f();
   r.face_slices = 3;
   r.face_sections = {{f(), f(), f(), f(), f()}, {f(), f(), f(), 0.0, 0.0}, {f(), f(), -f(), f(), f()}};

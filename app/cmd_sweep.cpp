@@ -32,6 +32,7 @@
 #include "io/case.hpp"
 #include "io/case_edit.hpp"
 #include "io/contact_output.hpp"
+#include "io/datasheet_output.hpp"
 #include "io/fem_output.hpp"
 
 extern char** environ;
@@ -101,15 +102,27 @@ struct SweepOptions {
   std::vector<std::string> sets;
   int jobs = 0;
   bool contact = false;  ///< each point runs `strainwave contact` (the FEM and the drive's loaded contact)
+  bool datasheet = false;  ///< each point runs `strainwave datasheet` (the drive's catalog sheet)
 };
 
 /// The command each point runs.
-std::string point_command(const SweepOptions& o) { return o.contact ? "contact" : "fem"; }
+std::string point_command(const SweepOptions& o) { return o.datasheet ? "datasheet" : o.contact ? "contact" : "fem"; }
 
-/// A finished point: its result.json (and with --contact its contact.json) reads and was made from this case text.
+/// A point's files: result.json (with --contact also contact.json), or with --datasheet datasheet.json alone.
+std::vector<std::string> point_files(const SweepOptions& o) {
+  if (o.datasheet) return {"datasheet.json"};
+  if (o.contact) return {"result.json", "contact.json"};
+  return {"result.json"};
+}
+
+/// A finished point: its files read and were made from this case text.
 bool finished(const fs::path& dir, const std::string& case_text, const SweepOptions& o) {
   if (read_text(dir / "case.toml") != case_text) return false;
   try {
+    if (o.datasheet) {
+      (void)read_datasheet(dir / "datasheet.json");
+      return true;
+    }
     (void)read_fem_result(dir / "result.json");
     if (o.contact) (void)read_contact_result(dir / "contact.json");
     return true;
@@ -149,7 +162,8 @@ std::vector<std::string> child_environment(int jobs) {
 /// to the point's log; returns its process id.
 pid_t start_point(const Point& p, const SweepOptions& o, const std::string& self, char* const* env) {
   std::vector<std::string> args = {self, point_command(o), (p.dir / "case.toml").string(), "--out", p.dir.string(),
-                                   "--no-vtk", "--quiet"};
+                                   "--quiet"};
+  if (!o.datasheet) args.push_back("--no-vtk");  // the sheet writes its one mode shape
   if (!o.solver.empty()) args.insert(args.end(), {"--solver", o.solver});
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
@@ -235,17 +249,25 @@ DriveFigures drive_figures(const fs::path& contact_json) {
   return d;
 }
 
-/// What a point gave: the FEM's result.json, and with --contact the drive's figures.
+/// What a point gave: the FEM's result.json, and with --contact the drive's figures; with --datasheet its sheet alone.
 struct PointResult {
-  FemResult fem;
+  std::optional<FemResult> fem;
   std::optional<DriveFigures> drive;
+  std::optional<Datasheet> sheet;
 };
 
 /// A figure of a point's result; NaN where the point has none (no generator).
 using PointFigure = std::function<double(const PointResult&)>;
 
 PointFigure of_fem(double (*figure)(const FemResult&)) {
-  return [figure](const PointResult& r) { return figure(r.fem); };
+  return [figure](const PointResult& r) { return r.fem ? figure(*r.fem) : std::nan(""); };
+}
+/// A figure of the sheet by its key: NaN when not computed, infinity beyond its search (the ratcheting torque).
+PointFigure of_sheet(const std::string& name) {
+  return [name](const PointResult& r) {
+    const DatasheetFigure* f = r.sheet ? r.sheet->find(name) : nullptr;
+    return f && f->value ? *f->value : std::nan("");
+  };
 }
 PointFigure of_drive(double DriveFigures::*figure) {
   return [figure](const PointResult& r) { return r.drive ? (*r.drive).*figure : std::nan(""); };
@@ -267,8 +289,14 @@ struct Column {
 };
 
 /// sweep.csv's figures: the FEM's, then with --contact the drive's (named as their keys in contact.json where the
-/// file has them).
-std::vector<Column> csv_columns(bool drive) {
+/// file has them); with --datasheet every figure of the sheet, named as its key in datasheet.json.
+std::vector<Column> csv_columns(const PointResult& first) {
+  if (first.sheet) {
+    std::vector<Column> c;
+    for (const DatasheetFigure& f : first.sheet->figures) c.push_back({f.name, of_sheet(f.name)});
+    return c;
+  }
+  const bool drive = first.drive.has_value();
   std::vector<Column> c = {{"phi0_rad", of_fem(phi0)},
                            {"compliance_rad_per_Nm", of_fem(compliance)},
                            {"max_hoop_stress_Pa", of_fem(max_hoop_stress)},
@@ -300,7 +328,7 @@ std::vector<Column> csv_columns(bool drive) {
 
 std::string sweep_csv(const std::vector<SweepAxis>& axes, const std::vector<Point>& points,
                       const std::vector<PointResult>& results) {
-  const std::vector<Column> columns = csv_columns(results.front().drive.has_value());
+  const std::vector<Column> columns = csv_columns(results.front());
   std::ostringstream s;
   s << "point";
   for (const auto& a : axes) s << "," << a.name();
@@ -328,8 +356,17 @@ struct Panel {
   double scale;  ///< to the unit in the title
 };
 
-/// sweep.svg's panels: φ₀, C_τ, max hoop stress, generator force; with --contact the twist at rated torque and K3.
-std::vector<Panel> svg_panels(bool drive) {
+/// sweep.svg's panels: φ₀, C_τ, max hoop stress, generator force; with --contact the twist at rated torque and K3;
+/// with --datasheet the limits, K3, the bearing's life and the efficiency.
+std::vector<Panel> svg_panels(const PointResult& first) {
+  if (first.sheet)
+    return {{"buckling torque (N·m)", of_sheet("buckling_torque_Nm"), 1.0},
+            {"ratcheting torque (N·m)", of_sheet("ratcheting_torque_Nm"), 1.0},
+            {"torque for infinite life (N·m)", of_sheet("infinite_life_torque_Nm"), 1.0},
+            {"K3 (N·m/rad)", of_sheet("K3_Nm_per_rad"), 1.0},
+            {"generator bearing L10 (h)", of_sheet("bearing_life_L10_h"), 1.0},
+            {"efficiency, rated torque and 2,000 rpm (%)", of_sheet("efficiency"), 100.0}};
+  const bool drive = first.drive.has_value();
   std::vector<Panel> panels = {{"φ₀ (rad)", of_fem(phi0), 1.0},
                                {"C_τ (rad/(N·m))", of_fem(compliance), 1.0},
                                {"max hoop stress (MPa)", of_fem(max_hoop_stress), 1e-6},
@@ -351,7 +388,7 @@ std::string sweep_svg(const std::vector<SweepAxis>& axes, const std::vector<Poin
   for (std::size_t k = 1; k < axes.size(); ++k) head += (k == 1 ? " (lines: " : ", ") + axes[k].name();
   f.header = {head + (axes.size() > 1 ? ")" : "")};
   f.columns = 2;
-  for (const auto& panel : svg_panels(results.front().drive.has_value())) {
+  for (const auto& panel : svg_panels(results.front())) {
     LinePlot p;
     p.title = panel.title;
     p.x_label = axes[0].name();
@@ -419,7 +456,7 @@ std::vector<Point> grid_points(const std::string& base, const std::vector<SweepA
     p.case_text = point_case_text(base, o.case_path, axes, p.values);
     Case pc = parse_case(p.case_text, "--set (point " + std::to_string(i) + " of " + o.case_path + ")");
     apply_solver_option(pc, o.solver);
-    if (o.contact) check_contact_case(pc);
+    if (o.contact || o.datasheet) check_contact_case(pc);
     points.push_back(std::move(p));
   }
   return points;
@@ -436,8 +473,7 @@ std::vector<const Point*> points_to_run(const std::vector<Point>& points, std::p
       continue;
     }
     fs::create_directories(p.dir);
-    fs::remove(p.dir / "result.json");
-    fs::remove(p.dir / "contact.json");
+    for (const char* f : {"result.json", "contact.json", "datasheet.json"}) fs::remove(p.dir / f);
     write_file_atomic(p.dir / "case.toml", p.case_text);
     todo.push_back(&p);
   }
@@ -458,22 +494,28 @@ void merge_points(const fs::path& dir, const std::vector<SweepAxis>& axes, const
                   const SweepOptions& o) {
   std::vector<PointResult> results;
   for (const auto& p : points) {
-    PointResult r{read_fem_result(p.dir / "result.json"), std::nullopt};
+    PointResult r;
+    if (o.datasheet) r.sheet = read_datasheet(p.dir / "datasheet.json");
+    else r.fem = read_fem_result(p.dir / "result.json");
     if (o.contact) r.drive = drive_figures(p.dir / "contact.json");
     results.push_back(std::move(r));
   }
-  // Each point's folder is a set of its own (`strainwave fem` or `contact`).
+  // Each point's folder is a set of its own (`strainwave fem`, `contact` or `datasheet`).
   OutputSet outputs(dir, {"sweep.csv", "sweep.svg"});
   write_file_atomic(outputs.staging() / "sweep.csv", sweep_csv(axes, points, results));
   write_file_atomic(outputs.staging() / "sweep.svg", sweep_svg(axes, points, results));
   outputs.commit();
+  std::string files;
+  for (const std::string& f : point_files(o)) files += (files.empty() ? "" : " and ") + f;
   std::printf("  wrote %s (sweep.csv, sweep.svg, %zu points' %s)\n", dir.string().c_str(), points.size(),
-              o.contact ? "result.json and contact.json" : "result.json");
+              files.c_str());
 }
 
 void run_sweep(const SweepOptions& o) {
+  if (o.datasheet && !o.solver.empty())
+    throw InputError("--solver " + o.solver + " with --datasheet; the sheet reads the harmonic solver (drop --solver)");
   Case base_case = load_case(o.case_path);  // the base case must be valid itself
-  if (o.contact) check_contact_case(base_case);
+  if (o.contact || o.datasheet) check_contact_case(base_case);
   const std::string base = case_file_toml(o.case_path);
   std::vector<SweepAxis> axes;
   for (const auto& s : o.sets) axes.push_back(parse_set(s));
@@ -515,6 +557,11 @@ void add_sweep_command(CLI::App& app) {
                 "run `strainwave contact` on each point (the FEM and the drive's loaded contact; the case needs [gear] "
                 "and a generator): sweep.csv adds the twist at T1, T2 and rated torque, K1..K3, lost motion, play, "
                 "the largest flank force and the compliance split, sweep.svg the twist at rated torque and K3");
+  cmd->add_flag("--datasheet", o.datasheet,
+                "run `strainwave datasheet` on each point (the drive's catalog sheet on the harmonic solver): "
+                "sweep.csv has every figure of the sheet, sweep.svg the limits, K3, the bearing's life and the "
+                "efficiency")
+      ->excludes("--contact");
   cmd->add_option("--out", o.out, "output directory (default out/<case stem>_sweep/)");
   cmd->callback([] { run_sweep(o); });
 }

@@ -129,7 +129,9 @@ TEST(Sweep, BadInputIsOneLine) {
         {" --set flexspline.wall_thicknes_mm=0.8:1.2:3", "wall_thicknes_mm"},
         {" --set flexspline.wall_thickness_mm=-1:1.2:3", "wall_thickness_mm"},
         {" --set flexspline.wall_thickness_mm=0.8:1.2:3 --shard 3/2", "--shard 3/2"},
-        {" --set flexspline.wall_thickness_mm=0.8:1.2:3 --contact", "base.toml: contact needs a [gear] table"}}) {
+        {" --set flexspline.wall_thickness_mm=0.8:1.2:3 --contact", "base.toml: contact needs a [gear] table"},
+        {" --set flexspline.wall_thickness_mm=0.8:1.2:3 --datasheet --solver tet10",
+         "--solver tet10 with --datasheet; the sheet reads the harmonic solver (drop --solver)"}}) {
     const CommandRun r = run_strainwave(base + args);
     EXPECT_EQ(r.exit_code, 2) << args << ": " << r.output;
     EXPECT_NE(r.output.find(expect), std::string::npos) << args << ": " << r.output;
@@ -241,6 +243,38 @@ TEST(Sweep, ContactOutputsPerPointAndResume) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("1 points run"), std::string::npos) << r.output;
   EXPECT_TRUE(fs::exists(d / "s" / "point_0001" / "contact.json"));
+  fs::remove_all(d);
+}
+
+// Two wall thicknesses of the coarse designed cup with --datasheet: each point's sheet (its datasheet.json), every
+// figure a column of sweep.csv under its key, equal to the file's to the csv's digits (not computed: nan); the
+// thinner body wall buckles at a lower torque; the plot has the sheet's panels; a second call reruns nothing.
+TEST(Sweep, DatasheetPerPointAndResume) {
+  const fs::path d = fresh_dir("datasheet");
+  const std::string sweep = "sweep " + coarse_cup14(d).string() +
+                            " --datasheet --jobs 1 --set flexspline.wall_thickness_mm=0.30:0.40:2 --out " +
+                            (d / "s").string();
+  CommandRun r = run_strainwave(sweep);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("2 points run"), std::string::npos) << r.output;
+  const auto rows = csv_rows(d / "s" / "sweep.csv");
+  ASSERT_EQ(rows.size(), 2u);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const auto sheet = read_json(d / "s" / ("point_000" + std::to_string(i)) / "datasheet.json");
+    for (const auto& [name, f] : sheet["figures"].items()) {
+      ASSERT_TRUE(rows[i].count(name)) << name;
+      if (!f["computed"].get<bool>()) EXPECT_TRUE(std::isnan(rows[i].at(name))) << name;
+      else if (f["value"].is_null()) EXPECT_TRUE(std::isinf(rows[i].at(name))) << name;  // beyond the search
+      else expect_csv_equals(rows[i].at(name), f["value"], name.c_str());
+    }
+  }
+  EXPECT_LT(rows[0].at("buckling_torque_Nm"), rows[1].at("buckling_torque_Nm"));
+  const std::string svg = read_text(d / "s" / "sweep.svg");
+  for (const char* panel : {"buckling torque (N·m)", "ratcheting torque (N·m)", "generator bearing L10 (h)"})
+    EXPECT_NE(svg.find(panel), std::string::npos) << panel;
+  r = run_strainwave(sweep);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("0 points run"), std::string::npos) << r.output;
   fs::remove_all(d);
 }
 

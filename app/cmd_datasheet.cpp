@@ -54,6 +54,16 @@ std::string rated_torque_origin(const Case& c) {
 }
 
 /// The torque for infinite life, searched up to 20 × rated (beyond it the sheet says so).
+/// The flexspline's first yield (fem/infinite_life.hpp), or why not.
+std::optional<FirstYield> first_yield(const Case& c, const FourierSolution& s, double rated_Nm, std::string& why) {
+  if (!c.material.yield_strength_Pa) {
+    why = "not computed: the case gives no [material] yield_strength_MPa";
+    return std::nullopt;
+  }
+  progress("datasheet: the flexspline's first yield over a generator revolution");
+  return first_yield_torque(s, flexspline_model(c), 100 * rated_Nm);
+}
+
 std::optional<InfiniteLife> infinite_life(const Case& c, const FourierSolution& s, double rated_Nm, std::string& why) {
   if (!c.material.fatigue_limit_Pa) {
     why = "not computed: the case gives no [material] fatigue_limit_MPa and ultimate_strength_MPa";
@@ -191,6 +201,7 @@ void add_datasheet_command(CLI::App& app) {
     in.catalog_size = c.catalog_size;
     in.contact = &contact;
     in.infinite_life = infinite_life(c, *fem.harmonic, in.rated_torque_Nm, in.why_no_infinite_life);
+    in.first_yield = first_yield(c, *fem.harmonic, in.rated_torque_Nm, in.why_no_yield);
     in.buckling = naming_file(c.path, [&] { return buckling(c, *fem.harmonic, outputs.staging()); });
     if (c.wave_generator->bearing)
       in.bearing = naming_file(c.path, [&] {

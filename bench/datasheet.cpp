@@ -63,7 +63,7 @@ int main(int argc, char** argv) {
   fs::create_directories(dir);
   std::printf("DGEMM (n = 2000): %.1f GF/s\n", sw::bench::dgemm_gflops(2000, 3));
   std::printf("size ratio | K1 K2 K3 (1e4 N·m/rad) | lost motion, play, hysteresis (arcmin) | buckling | ratcheting | "
-              "infinite life | "
+              "first yield | momentary | infinite life | "
               "tooth root | L10 (h) | exponent | efficiency 2000/1000 rpm, half load | no-load, starting (mN·m) | "
               "seconds\n");
   for (const int size : integers(sizes))
@@ -97,12 +97,13 @@ int main(int argc, char** argv) {
         continue;
       }
       const nlohmann::json f = sw::testing::read_json(out / "datasheet.json")["figures"];
-      std::printf("%d %d | %s %s %s | %s, %s, %s | %s | %s | %s | %s | %s | %s | %s / %s, %s | %s, %s | %.1f\n", size,
-                  ratio,
+      std::printf("%d %d | %s %s %s | %s, %s, %s | %s | %s | %s | %s | %s | %s | %s | %s | %s / %s, %s | %s, %s | "
+                  "%.1f\n", size, ratio,
                   figure(f, "K1_Nm_per_rad", "%.2f", 1e-4).c_str(), figure(f, "K2_Nm_per_rad", "%.2f", 1e-4).c_str(),
                   figure(f, "K3_Nm_per_rad", "%.2f", 1e-4).c_str(), figure(f, "lost_motion_arcmin", "%.2f").c_str(),
                   figure(f, "play_arcmin", "%.2f").c_str(), figure(f, "hysteresis_loss_arcmin", "%.3f").c_str(),
                   figure(f, "buckling_torque_Nm", "%.0f").c_str(), figure(f, "ratcheting_torque_Nm", "%.0f").c_str(),
+                  figure(f, "first_yield_torque_Nm", "%.0f").c_str(), figure(f, "momentary_limit_Nm", "%.0f").c_str(),
                   figure(f, "infinite_life_torque_Nm", "%.0f").c_str(),
                   figure(f, "tooth_root_limit_Nm", "%.0f").c_str(), figure(f, "bearing_life_L10_h", "%.0f").c_str(),
                   figure(f, "bearing_life_exponent", "%.2f").c_str(), figure(f, "efficiency", "%.2f").c_str(),

@@ -11,6 +11,7 @@ struct Material {
   double density_kg_m3 = 7850.0;
   std::optional<double> fatigue_limit_Pa;      ///< endurance limit (fully reversed) for the Goodman safety factor
   std::optional<double> ultimate_strength_Pa;  ///< tensile strength, the Goodman line's intercept
+  std::optional<double> yield_strength_Pa;     ///< 0.2 % proof stress: the flexspline's first yield (momentary limit)
   double shear_modulus_Pa() const { return youngs_modulus_Pa / (2.0 * (1.0 + poisson_ratio)); }
 };
 

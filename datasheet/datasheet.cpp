@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 
 #include "design/catalog.hpp"
@@ -60,6 +61,25 @@ void add_contact_figures(Datasheet& d, const DatasheetInputs& in) {
   else
     d.figures.push_back(not_computed("hysteresis_loss_arcmin", "hysteresis loss", "arcmin",
                                      "not computed: the case gives no flank friction ([contact] friction_coefficient)"));
+}
+
+/// The flexspline's first yield: the torque at which its largest von Mises stress over a revolution reaches R_e.
+void add_first_yield_figure(Datasheet& d, const DatasheetInputs& in) {
+  if (!in.first_yield) {
+    d.figures.push_back(not_computed("first_yield_torque_Nm", "torque at first yield (flexspline)", "N·m",
+                                     in.why_no_yield));
+    return;
+  }
+  const FirstYield& y = *in.first_yield;
+  std::string method = "the largest von Mises stress of the flexspline body over a generator revolution (harmonic "
+                       "solution, the generator's bending plus the torque's stresses, at each instant) reaching the "
+                       "yield strength, at " + y.at_yield.place + " r = " + fmt("%.2f", y.at_yield.r_m * 1e3) +
+                       " mm, z = " + fmt("%.2f", y.at_yield.z_m * 1e3) + " mm; the generator alone " +
+                       fmt("%.0f", y.at_zero.von_mises_Pa / 1e6) +
+                       " MPa; the rim without its teeth and the clamp's corner left out, as for the fatigue";
+  if (y.torque_Nm == 0) method = "0: the generator's bending alone reaches the yield strength (" + method + ")";
+  d.figures.push_back(computed("first_yield_torque_Nm", "torque at first yield (flexspline)", "N·m", y.torque_Nm,
+                               method));
 }
 
 /// The ratcheting torque from the loaded contact's ramp past rated torque (contact/ratcheting.hpp), with where the last
@@ -121,22 +141,34 @@ void add_limit_figures(Datasheet& d, const DatasheetInputs& in) {
   else
     d.figures.push_back(
         not_computed("tooth_root_limit_Nm", "torque at the teeth's root limit", "N·m", in.why_no_tooth_root));
-  // The momentary limit: the first of yield, ratcheting and buckling. Yield is not computed (no yield strength in the
-  // case), so the first of the other two is an upper bound, and the sheet says so.
-  const DatasheetFigure* ratchet = d.find("ratcheting_torque_Nm");
-  const bool has_ratchet = ratchet && ratchet->value;
-  if (!in.buckling && !has_ratchet) {
+  add_first_yield_figure(d, in);
+  // The momentary limit: the first of yield, ratcheting and buckling, those computed; an upper bound when one is not.
+  struct Limit {
+    const char* name;
+    const char* what;
+  };
+  double limit = std::numeric_limits<double>::infinity();
+  std::string first, missing;
+  for (const Limit& l : {Limit{"first_yield_torque_Nm", "yield"}, Limit{"ratcheting_torque_Nm", "ratcheting"},
+                         Limit{"buckling_torque_Nm", "buckling"}}) {
+    const DatasheetFigure* f = d.find(l.name);
+    if (!f || !f->value) {
+      missing += (missing.empty() ? "" : " and ") + std::string(l.what);
+      continue;
+    }
+    if (*f->value < limit) {
+      limit = *f->value;
+      first = l.what;
+    }
+  }
+  if (first.empty()) {
     d.figures.push_back(not_computed("momentary_limit_Nm", "momentary limit", "N·m",
                                      "not computed: the first of yield, ratcheting and buckling, none of them computed"));
-  } else {
-    const bool buckles_first = in.buckling && (!has_ratchet || in.buckling->torque_Nm <= *ratchet->value);
-    const double limit = buckles_first ? in.buckling->torque_Nm : *ratchet->value;
-    std::string method = std::string("the first of ratcheting and buckling: ") +
-                         (buckles_first ? "buckling" : "ratcheting") +
-                         "; yield is not checked (the case gives no yield strength), so an upper bound";
-    if (buckles_first && !has_ratchet) method += " (the ratcheting torque is above it or not computed)";
-    d.figures.push_back(computed("momentary_limit_Nm", "momentary limit", "N·m", limit, method));
+    return;
   }
+  std::string method = "the first of yield, ratcheting and buckling: " + first;
+  if (!missing.empty()) method += "; " + missing + " not computed, so an upper bound";
+  d.figures.push_back(computed("momentary_limit_Nm", "momentary limit", "N·m", limit, method));
 }
 
 void add_life_figures(Datasheet& d, const DatasheetInputs& in) {

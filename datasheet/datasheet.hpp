@@ -67,11 +67,12 @@ struct DatasheetInputs {
   std::optional<int> catalog_size;
   const ContactAnalysis* contact = nullptr;  ///< the loaded contact (with friction when the case gives μ)
   std::optional<InfiniteLife> infinite_life;
+  std::optional<FirstYield> first_yield;
   std::optional<BucklingFigure> buckling;
   std::optional<BearingLifeFigure> bearing;
   std::optional<ToothRootFigure> tooth_root;
   std::optional<LossFigures> losses;
-  std::string why_no_infinite_life, why_no_buckling, why_no_bearing, why_no_tooth_root, why_no_losses;
+  std::string why_no_infinite_life, why_no_yield, why_no_buckling, why_no_bearing, why_no_tooth_root, why_no_losses;
 };
 
 struct Datasheet {

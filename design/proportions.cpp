@@ -116,7 +116,10 @@ CupDesign design_cup(int size, int ratio) {
   f.fillet_radius_m = kFilletPerWall * f.wall_thickness_m;
 
   c.material.fatigue_limit_Pa = 500e6;  // typical Ni-Cr-Mo flexspline steel, as the other cases
+  // A quenched and tempered Ni-Cr-Mo steel, 34CrNiMo6+QT at 16–40 mm (EN 10083-3:2006, Table 6): R_m 1100–1300 MPa
+  // (the lower end, as the Goodman line's intercept above), R_e ≥ 900 MPa.
   c.material.ultimate_strength_Pa = 1100e6;
+  c.material.yield_strength_Pa = 900e6;
 
   WaveGeneratorParams& w = c.wave_generator;
   w.model = Cam{};
@@ -250,7 +253,9 @@ std::string design_case_toml(const CupDesign& c) {
     << num(c.material.poisson_ratio) << "\ndensity_kg_m3 = " << num(c.material.density_kg_m3)
     << "\n# Fatigue (Goodman): typical values for a quenched and tempered Ni-Cr-Mo flexspline steel, not a certificate.\n"
     << "fatigue_limit_MPa = " << num(*c.material.fatigue_limit_Pa / 1e6) << "\nultimate_strength_MPa = "
-    << num(*c.material.ultimate_strength_Pa / 1e6) << "\n\n";
+    << num(*c.material.ultimate_strength_Pa / 1e6)
+    << "\n# First yield: the minimum R_e of 34CrNiMo6+QT at 16-40 mm (EN 10083-3), whose R_m range starts at the above.\n"
+    << "yield_strength_MPa = " << num(*c.material.yield_strength_Pa / 1e6) << "\n\n";
   s << "[wave_generator]\nmodel = \"cam\"\nradial_deformation_mm = " << mm(*w.radial_deformation_m)
     << "\naxial_position_mm = " << mm(w.axial_position_m) << "\nband_width_mm = " << mm(w.band_width_m)
     << "\nprofile = \"polar\"\nfit_um = 0.0\n"

@@ -147,7 +147,77 @@ FatigueState worst(const Histories& h, const FourierSolution& s, const Flexsplin
   return w;
 }
 
+/// The largest von Mises stress of the combined history (generator + T × the unit torque's) over the revolution.
+double peak_von_mises(const StressHistory& g, const StressHistory& t, double T) {
+  double peak = 0;
+  for (int q = 0; q < kSamples; ++q) {
+    std::array<double, 6> x{};
+    for (int k = 0; k < 6; ++k) x[k] = g[k][q] + T * t[k][q];
+    const double v = 0.5 * ((x[0] - x[1]) * (x[0] - x[1]) + (x[1] - x[2]) * (x[1] - x[2]) +
+                            (x[2] - x[0]) * (x[2] - x[0])) +
+                     3 * (x[3] * x[3] + x[4] * x[4] + x[5] * x[5]);
+    peak = std::max(peak, v);
+  }
+  return std::sqrt(peak);
+}
+
+/// The point whose peak von Mises stress is largest at torque T.
+StressPeak largest_peak(const Histories& h, const FourierSolution& s, const FlexsplineModel& c, double T) {
+  StressPeak w;
+  w.torque_Nm = T;
+  for (std::size_t j = 0; j < h.node.size(); ++j) {
+    const double v = peak_von_mises(h.generator[j], h.torque_unit[j], T);
+    if (v > w.von_mises_Pa) {
+      w.von_mises_Pa = v;
+      w.r_m = s.section.nodes(h.node[j], 0);
+      w.z_m = s.section.nodes(h.node[j], 1);
+    }
+  }
+  w.place = place_of(c, w.z_m);
+  return w;
+}
+
 }  // namespace
+
+StressPeak flexspline_peak_stress_at(const FourierSolution& s, const FlexsplineModel& c, double torque_Nm) {
+  return largest_peak(histories(s, c), s, c, torque_Nm);
+}
+
+FirstYield first_yield_torque(const FourierSolution& s, const FlexsplineModel& c, double search_limit_Nm) {
+  if (!c.material.yield_strength_Pa)
+    throw InputError("the flexspline's first yield needs material.yield_strength_MPa");
+  if (!c.wave_generator) throw InputError("the flexspline's first yield needs a [wave_generator]");
+  const double Sy = *c.material.yield_strength_Pa;
+  const Histories h = histories(s, c);
+  FirstYield out;
+  out.at_zero = largest_peak(h, s, c, 0.0);
+  const auto yields = [&](double T) { return largest_peak(h, s, c, T).von_mises_Pa >= Sy; };
+  if (out.at_zero.von_mises_Pa >= Sy) {
+    out.at_yield = out.at_zero;
+    return out;
+  }
+  if (!yields(search_limit_Nm)) {
+    out.at_yield = largest_peak(h, s, c, search_limit_Nm);
+    out.torque_Nm = std::numeric_limits<double>::infinity();
+    return out;
+  }
+  double lo = 0, hi = search_limit_Nm;
+  for (int k = 1; k <= kScanSteps; ++k) {
+    const double T = search_limit_Nm * k / kScanSteps;
+    if (yields(T)) {
+      hi = T;
+      break;
+    }
+    lo = T;
+  }
+  while (hi - lo > kTorqueTolerance * hi) {
+    const double mid = 0.5 * (lo + hi);
+    (yields(mid) ? hi : lo) = mid;
+  }
+  out.torque_Nm = 0.5 * (lo + hi);
+  out.at_yield = largest_peak(h, s, c, out.torque_Nm);
+  return out;
+}
 
 double sines_goodman_safety_factor(const StressHistory& history, double fatigue_limit_Pa,
                                    double ultimate_strength_Pa) {

@@ -53,6 +53,29 @@ struct InfiniteLife {
   double torque_Nm = 0;        ///< 0 when the generator alone exceeds the limit; infinity beyond `search_limit_Nm`
 };
 
+/// The largest von Mises stress over one revolution at a torque, and where (the same surface points as the fatigue's).
+struct StressPeak {
+  double torque_Nm = 0;
+  double von_mises_Pa = 0;
+  double r_m = 0, z_m = 0;
+  std::string place;
+};
+
+/// The torque at which the flexspline first yields (von Mises against material.yield_strength_MPa, the instantaneous
+/// field of the generator plus the torque at every sample of the revolution): the static limit beside the fatigue's.
+struct FirstYield {
+  StressPeak at_zero;   ///< the generator's bending alone
+  StressPeak at_yield;  ///< at the torque found
+  double torque_Nm = 0;  ///< 0 when the generator alone yields; infinity beyond the search
+};
+
+/// The largest von Mises stress of the harmonic solution `s` at output torque T over the fatigue's points.
+StressPeak flexspline_peak_stress_at(const FourierSolution& s, const FlexsplineModel& c, double torque_Nm);
+
+/// The smallest torque at which the largest von Mises stress reaches the yield strength: the same scan and bisection
+/// (1e-4 of the torque) as infinite_life_torque. InputError without material.yield_strength_MPa or a generator.
+FirstYield first_yield_torque(const FourierSolution& s, const FlexsplineModel& c, double search_limit_Nm);
+
 /// The worst point of the harmonic solution `s` of model `c` at output torque T (N·m), over the section's nodes
 /// outside the boss and more than one wall from a clamped node.
 FatigueState flexspline_fatigue_at(const FourierSolution& s, const FlexsplineModel& c, double torque_Nm);

@@ -231,6 +231,13 @@ Material read_material(TableReader r) {
   if (m.fatigue_limit_Pa && !(*m.fatigue_limit_Pa < *m.ultimate_strength_Pa))
     r.fail_value("fatigue_limit_MPa", *m.fatigue_limit_Pa / 1e6,
                  "must be < material.ultimate_strength_MPa = " + format_number(*m.ultimate_strength_Pa / 1e6));
+  if (auto sy = r.number("yield_strength_MPa")) {
+    if (!(*sy > 0)) r.fail_value("yield_strength_MPa", *sy, "must be > 0");
+    if (m.ultimate_strength_Pa && !(*sy * 1e6 <= *m.ultimate_strength_Pa))
+      r.fail_value("yield_strength_MPa", *sy,
+                   "must be <= material.ultimate_strength_MPa = " + format_number(*m.ultimate_strength_Pa / 1e6));
+    m.yield_strength_Pa = *sy * 1e6;
+  }
   r.reject_unknown();
   return m;
 }
@@ -868,6 +875,7 @@ Tables material_table(const Material& m) {
     t["fatigue_limit_MPa"] = file_value(*m.fatigue_limit_Pa, 1e6);
     t["ultimate_strength_MPa"] = file_value(*m.ultimate_strength_Pa, 1e6);
   }
+  if (m.yield_strength_Pa) t["yield_strength_MPa"] = file_value(*m.yield_strength_Pa, 1e6);
   return t;
 }
 

@@ -74,19 +74,23 @@ TEST(Size17Sheet, CarriesTheContactsFiguresThePublishedRowsAndSaysHowEachWasComp
 
   // The ratcheting torque from the ramp past rated torque (the search held against closed forms in test_ratcheting,
   // its torque on the harmonic body against the TET10 body's in test_harmonic_contact): above rated torque, its
-  // method naming the idealisation; the momentary limit the first of it and buckling, said to be an upper bound.
+  // method naming the idealisation; the momentary limit the first of yield (the case's EN 10083-3 R_e), it and
+  // buckling.
   const auto& ratchet = f["ratcheting_torque_Nm"];
   ASSERT_TRUE(ratchet["computed"].get<bool>()) << ratchet["method"];
   EXPECT_GT(ratchet["value"].get<double>(), f["rated_torque_Nm"]["value"].get<double>());
   EXPECT_NE(ratchet["method"].get<std::string>().find("contact normals as at rest"), std::string::npos);
   const auto& momentary = f["momentary_limit_Nm"];
   ASSERT_TRUE(momentary["computed"].get<bool>()) << momentary["method"];
+  const auto& yield = f["first_yield_torque_Nm"];
+  ASSERT_TRUE(yield["computed"].get<bool>()) << yield["method"];
   EXPECT_EQ(momentary["value"].get<double>(),
-            std::min(ratchet["value"].get<double>(), f["buckling_torque_Nm"]["value"].get<double>()));
-  EXPECT_NE(momentary["method"].get<std::string>().find("upper bound"), std::string::npos);
-  std::printf("size 17: ratcheting torque %.0f N*m (published %.0f), momentary limit %.0f (published %.0f)\n",
-              ratchet["value"].get<double>(), ratchet["published"].get<double>(), momentary["value"].get<double>(),
-              momentary["published"].get<double>());
+            std::min({yield["value"].get<double>(), ratchet["value"].get<double>(),
+                      f["buckling_torque_Nm"]["value"].get<double>()}));
+  EXPECT_EQ(momentary["method"].get<std::string>().find("upper bound"), std::string::npos);  // all three computed
+  std::printf("size 17: ratcheting torque %.0f N*m (published %.0f), first yield %.0f, momentary limit %.0f "
+              "(published %.0f)\n", ratchet["value"].get<double>(), ratchet["published"].get<double>(),
+              yield["value"].get<double>(), momentary["value"].get<double>(), momentary["published"].get<double>());
 
   // Where the power goes: the sheet's efficiency is its own split's (P_out over P_out plus the three losses), the
   // no-load running torque is the bearing's alone (no flank force at zero torque), every loss positive; printed

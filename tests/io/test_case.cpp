@@ -246,6 +246,16 @@ TEST(CaseFile, FatigueDataComeInPairsBelowTheUltimateStrength) {
             std::string::npos);
 }
 
+TEST(CaseFile, TheYieldStrengthIsPositiveAndNotAboveTheUltimate) {
+  const std::string mat = std::string(kTube) + "[material]\n";
+  EXPECT_DOUBLE_EQ(*parse_case(mat + "yield_strength_MPa = 900\n", "m.toml").material.yield_strength_Pa, 900e6);
+  EXPECT_NE(error_of(mat + "yield_strength_MPa = -5\n").find("material.yield_strength_MPa = -5; must be > 0"),
+            std::string::npos);
+  EXPECT_NE(error_of(mat + "fatigue_limit_MPa = 500\nultimate_strength_MPa = 1100\nyield_strength_MPa = 1200\n")
+                .find("material.yield_strength_MPa = 1200; must be <= material.ultimate_strength_MPa = 1100"),
+            std::string::npos);
+}
+
 // Found by bench/fuzz/fuzz_case: toml++ 3.3 reaches undefined behaviour (TOML_UNREACHABLE) when it tests some
 // non-ASCII characters for whitespace; the case reader refuses them outside comments first.
 TEST(CaseFile, NonAsciiOutsideCommentsIsRefusedWithLineAndColumn) {

@@ -856,12 +856,19 @@ void ContactAnalyser::find_ratcheting() {
     return st;
   };
   // From rated torque, which the curve carried with every flank; should the teeth not hold it with those out of
-  // overlap released, the ramp starts lower.
-  try {
-    out_.ratcheting = ratcheting_torque(ratchet_teeth_, solve, T_R_, opt_.ratcheting_ceiling_Nm);
-  } catch (const InputError&) {
-    out_.ratcheting = ratcheting_torque(ratchet_teeth_, solve, 0.05 * T_R_, opt_.ratcheting_ceiling_Nm);
+  // overlap released, the ramp starts at a thousandth of it, and a drive whose teeth do not hold even that ratchets
+  // at once (0).
+  for (const double from : {T_R_, 1e-3 * T_R_}) {
+    try {
+      out_.ratcheting = ratcheting_torque(ratchet_teeth_, solve, from, opt_.ratcheting_ceiling_Nm);
+      return;
+    } catch (const InputError&) {
+    }
   }
+  Ratcheting at_once;
+  at_once.torque_Nm = at_once.first_release_Nm = 0;
+  at_once.ceiling_Nm = opt_.ratcheting_ceiling_Nm;
+  out_.ratcheting = at_once;
 }
 
 /// Independent check at +rated: the contact forces as nodal loads on the FEM, the clamp's reaction moment, and the

@@ -104,6 +104,11 @@ void add_ratcheting_figure(Datasheet& d, const DatasheetInputs& in) {
                                      how));
     return;
   }
+  if (r.torque_Nm == 0) {
+    d.figures.push_back(computed(name, label, "N·m", 0.0,
+                                 "0: the teeth still overlapping do not hold a thousandth of rated torque; " + how));
+    return;
+  }
   std::string method = how + "; ±" + fmt("%.1g", 100 * r.tolerance_rel) + " %. First loaded tooth to let go at " +
                        fmt("%.3g", r.first_release_Nm) + " N·m (" + fmt("%.1f", r.first_phi_rad * deg) +
                        " deg from the major axis); just below, " + std::to_string(r.teeth_holding) +

@@ -53,8 +53,7 @@ std::string rated_torque_origin(const Case& c) {
   return "[load] torque_Nm (the case gives no rated_torque_Nm)";
 }
 
-/// The torque for infinite life, searched up to 20 × rated (beyond it the sheet says so).
-/// The flexspline's first yield (fem/infinite_life.hpp), or why not.
+/// The flexspline's first yield (fem/infinite_life.hpp), searched up to 100 × rated, or why not.
 std::optional<FirstYield> first_yield(const Case& c, const FourierSolution& s, double rated_Nm, std::string& why) {
   if (!c.material.yield_strength_Pa) {
     why = "not computed: the case gives no [material] yield_strength_MPa";
@@ -64,6 +63,7 @@ std::optional<FirstYield> first_yield(const Case& c, const FourierSolution& s, d
   return first_yield_torque(s, flexspline_model(c), 100 * rated_Nm);
 }
 
+/// The torque for infinite life, searched up to 20 × rated (beyond it the sheet says so).
 std::optional<InfiniteLife> infinite_life(const Case& c, const FourierSolution& s, double rated_Nm, std::string& why) {
   if (!c.material.fatigue_limit_Pa) {
     why = "not computed: the case gives no [material] fatigue_limit_MPa and ultimate_strength_MPa";

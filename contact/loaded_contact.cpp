@@ -137,6 +137,29 @@ private:
     return false;
   }
   bool near_edge(int k, int pitches) const { return near_edge_in(rest_, k, pitches); }
+  /// A radial observer (unit outward, per tooth of the unknown) at the flexspline tip of the tooth at material angle
+  /// phi on the rim at rest, and at its half-turn partner's.
+  FlankPattern tip_observer(double phi) const {
+    const ToothPlacement place = place_tooth(curve_, phi, 0.0);
+    const Eigen::Vector2d tip =
+        Eigen::Rotation2Dd(place.angle_rad) * Eigen::Vector2d(model_->radii.tip_f, 0.0) + place.offset_m;
+    const double s = std::atan2(tip.y(), tip.x());
+    std::vector<double> stations{s};
+    if (out_.half_turn_pairs) stations.push_back(s + kPi);
+    return {stations, Eigen::Vector2d(std::cos(s), std::sin(s)), tip.norm(), -1, 1 / n_teeth_, phi,
+            Eigen::Vector2d(model_->radii.tip_f, 0.0)};
+  }
+  /// The change of the body's loads since rest for contact forces x (flanks, then stations when unilateral): the
+  /// flanks' forces and the stations' change from the generator's state, or the band's reactions when it is held.
+  Eigen::VectorXd load_change(const Eigen::VectorXd& x) const {
+    Eigen::VectorXd dx(nf_ + nb_);
+    if (unilateral_) dx << x.head(nf_), x.tail(nb_) - p0_;
+    else dx << x, band_solve_ * x;
+    return dx;
+  }
+  /// The problem at torque T with only the flanks `flanks` (and every station) taking part; empty when they cannot
+  /// carry T. The forces come back in the full problem's order, zero for the flanks left out.
+  std::optional<ContactSolution> solve_with_flanks(std::vector<Eigen::Index> flanks, double T);
 
   void read_rim_at_rest();
   void read_face_sections(std::vector<NeutralCurve>& read);
@@ -363,14 +386,7 @@ void ContactAnalyser::watch_zone_edges() {
   for (int k = 0; k < g_.teeth_flexspline; ++k) {
     const double phi = tooth_angle(k);
     if (on_other_half(phi) || !near_edge(k, 3)) continue;
-    const ToothPlacement place = place_tooth(curve_, phi, 0.0);
-    const Eigen::Vector2d tip =
-        Eigen::Rotation2Dd(place.angle_rad) * Eigen::Vector2d(model_->radii.tip_f, 0.0) + place.offset_m;
-    const double s = std::atan2(tip.y(), tip.x());
-    std::vector<double> stations{s};
-    if (out_.half_turn_pairs) stations.push_back(s + kPi);
-    observers_.push_back({stations, Eigen::Vector2d(std::cos(s), std::sin(s)), tip.norm(), -1, 1 / n_teeth_, phi,
-                          Eigen::Vector2d(model_->radii.tip_f, 0.0)});
+    observers_.push_back(tip_observer(phi));
     EdgeTooth e;
     e.tooth = k;
     e.phi_rad = phi;
@@ -394,16 +410,10 @@ void ContactAnalyser::watch_ratchet_teeth() {
     ratchet_tooth_of_flank_.push_back(t);
     if (t < ratchet_teeth_.size()) continue;
     ratchet_teeth_.push_back({f.tooth, f.phi_rad, rest_[f.tooth].depth_m});
-    const ToothPlacement place = place_tooth(curve_, f.phi_rad, 0.0);
-    const Eigen::Vector2d tip =
-        Eigen::Rotation2Dd(place.angle_rad) * Eigen::Vector2d(model_->radii.tip_f, 0.0) + place.offset_m;
-    const double s = std::atan2(tip.y(), tip.x());
-    std::vector<double> stations{s};
-    if (out_.half_turn_pairs) stations.push_back(s + kPi);
-    const Eigen::Vector2d out(std::cos(s), std::sin(s));
-    ratchet_rim_.push_back({stations, out, tip.norm(), -1, 1 / n_teeth_, f.phi_rad,
-                            Eigen::Vector2d(model_->radii.tip_f, 0.0)});
-    ratchet_ring_.push_back({stations, out, model_->radii.tip_c, -1, 1 / n_teeth_});
+    const FlankPattern rim = tip_observer(f.phi_rad);
+    ratchet_rim_.push_back(rim);
+    // The ring's at the same angle and along the same radial line, on the circular spline's tip circle.
+    ratchet_ring_.push_back({rim.stations_rad, rim.force_dir, model_->radii.tip_c, -1, 1 / n_teeth_});
   }
   nr_ = static_cast<Eigen::Index>(ratchet_teeth_.size());
 }
@@ -722,10 +732,7 @@ TorqueStep ContactAnalyser::torque_step(double T, const ContactSolution& s) {
 
 /// The edge teeth's radial overlap in the state `s` (from the generator's state at rest).
 void ContactAnalyser::follow_edge_teeth(const ContactSolution& s) {
-  Eigen::VectorXd dx(nf_ + nb_);
-  if (unilateral_) dx << s.force_N.head(nf_), s.force_N.tail(nb_) - p0_;
-  else dx << s.force_N, band_solve_ * s.force_N;
-  const Eigen::VectorXd du = R_edge_ * dx;
+  const Eigen::VectorXd du = R_edge_ * load_change(s.force_N);
   for (Eigen::Index e = 0; e < no_; ++e) {
     EdgeTooth& et = out_.edges[e];
     const double overlap = et.overlap_at_rest_m + du[e];
@@ -797,22 +804,32 @@ void ContactAnalyser::measure_zone_edge_teeth() {
     if (near_edge(out_.flanks[i].tooth, 2)) edge_moment += lambda_[i] * at_rated_.force_N[i];
     else keep.push_back(i);
   }
-  const auto kept_flanks = static_cast<Eigen::Index>(keep.size());
-  for (Eigen::Index k = nf_; k < P_.q.size(); ++k) keep.push_back(k);
   out_.edge_teeth_torque_share = edge_moment / T_R_;
   out_.twist_at_rated_without_edge_teeth_rad = out_.curve.twist_rad.back();
-  if (kept_flanks == nf_) return;
-  ContactProblem Pe;
-  Pe.A = P_.A(keep, keep);
-  Pe.q = P_.q(keep);
-  Pe.lambda = P_.lambda(keep);
-  const Eigen::VectorXd moments = lambda_(keep);
+  if (static_cast<Eigen::Index>(keep.size()) == nf_) return;
+  const std::optional<ContactSolution> s = solve_with_flanks(keep, T_R_);
+  out_.twist_at_rated_without_edge_teeth_rad =
+      s ? s->twist_rad : std::numeric_limits<double>::infinity();  // nothing else carries it
+}
+
+std::optional<ContactSolution> ContactAnalyser::solve_with_flanks(std::vector<Eigen::Index> keep, double T) {
+  const auto kept_flanks = static_cast<Eigen::Index>(keep.size());
+  if (kept_flanks == 0) return std::nullopt;
+  for (Eigen::Index k = nf_; k < P_.q.size(); ++k) keep.push_back(k);
+  ContactProblem Pr;
+  Pr.A = P_.A(keep, keep);
+  Pr.q = P_.q(keep);
+  Pr.lambda = P_.lambda(keep);
+  ContactSolution s;
   try {
-    const ContactSolution s = solve_torque(Pe, kept_flanks, moments, T_R_, nullptr).first;
-    out_.twist_at_rated_without_edge_teeth_rad = s.twist_rad;
+    s = solve_torque(Pr, kept_flanks, lambda_(keep), T, nullptr).first;
   } catch (const InputError&) {
-    out_.twist_at_rated_without_edge_teeth_rad = std::numeric_limits<double>::infinity();  // nothing else carries it
+    return std::nullopt;
   }
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(P_.q.size());
+  x(keep) = s.force_N;
+  s.force_N = x;
+  return s;
 }
 
 /// The ramp past rated torque to the ratcheting torque (contact/ratcheting.hpp): with only the teeth that still
@@ -825,26 +842,11 @@ void ContactAnalyser::find_ratcheting() {
     std::vector<Eigen::Index> keep;
     for (Eigen::Index i = 0; i < nf_; ++i)
       if (carry[ratchet_tooth_of_flank_[i]]) keep.push_back(i);
-    const auto kept_flanks = static_cast<Eigen::Index>(keep.size());
-    if (kept_flanks == 0) return std::nullopt;
-    for (Eigen::Index k = nf_; k < P_.q.size(); ++k) keep.push_back(k);
-    ContactProblem Pr;
-    Pr.A = P_.A(keep, keep);
-    Pr.q = P_.q(keep);
-    Pr.lambda = P_.lambda(keep);
-    ContactSolution s;
-    try {
-      s = solve_torque(Pr, kept_flanks, lambda_(keep), T, nullptr).first;
-    } catch (const InputError&) {
-      return std::nullopt;  // those teeth cannot carry T
-    }
-    Eigen::VectorXd x = Eigen::VectorXd::Zero(P_.q.size());
-    x(keep) = s.force_N;
-    Eigen::VectorXd dx(nf_ + nb_);
-    if (unilateral_) dx << x.head(nf_), x.tail(nb_) - p0_;
-    else dx << x, band_solve_ * x;
+    const std::optional<ContactSolution> s = solve_with_flanks(keep, T);
+    if (!s) return std::nullopt;  // those teeth cannot carry T
+    const Eigen::VectorXd& x = s->force_N;
     RatchetState st;
-    st.rim_in_m = -(R_rim_ * dx);
+    st.rim_in_m = -(R_rim_ * load_change(x));
     st.ring_out_m = R_ring_ * x.head(nf_);
     st.overlap_m.resize(nr_);
     st.loaded.assign(static_cast<std::size_t>(nr_), false);
@@ -852,7 +854,7 @@ void ContactAnalyser::find_ratcheting() {
       st.overlap_m[t] = ratchet_teeth_[t].overlap_at_rest_m - st.rim_in_m[t] - st.ring_out_m[t];
     for (Eigen::Index i = 0; i < nf_; ++i)
       if (x[i] > 0) st.loaded[ratchet_tooth_of_flank_[i]] = true;
-    st.twist_rad = s.twist_rad;
+    st.twist_rad = s->twist_rad;
     return st;
   };
   // From rated torque, which the curve carried with every flank; should the teeth not hold it with those out of

@@ -104,13 +104,19 @@ void add_contact_command(CLI::App& app) {
                                      "are used and its load cases not solved again (the model is still factorised)");
   cmd->add_option("--out", out, "output directory (default out/<case stem>/)");
   add_solver_options(cmd, solver, backend);
+  static ContactJobOptions job;
+  cmd->add_option("--accuracy-class", job.accuracy_class,
+                  "also the band over drives whose teeth deviate within this ISO 1328-1:2013 tolerance class (1-11)")
+      ->check(CLI::Range(1, 11));
+  cmd->add_option("--accuracy-drives", job.accuracy_drives, "drives the band draws (default 16)")
+      ->check(CLI::Range(2, 1000));
   cmd->callback([] {
     const Case c = load_case_with_solver(case_path, solver, backend);
     naming_file(c.path, [&] { check_contact_model(flexspline_model(c)); });  // before any work: nothing is written for a case contact cannot take
     OutputSet outputs(out.empty() ? default_out_dir(c) : std::filesystem::path(out));
     const ContactFem fem = fem_json.empty() ? fem_solved(c, outputs, fem_options)
                                             : fem_from_run(c, fem_json, fem_options.max_memory_gb);
-    run_contact_job(c, *contact_body(c, fem.job, fem.readout.generator_u), fem.readout, outputs);
+    run_contact_job(c, *contact_body(c, fem.job, fem.readout.generator_u), fem.readout, outputs, job);
     outputs.commit();
     std::printf("  wrote %s\n", outputs.dir().string().c_str());
   });

@@ -227,6 +227,27 @@ void print_overlap_and_balance(const ContactAnalysis& a) {
                 "output's less the locked generator's share\n", a.circular_spline_torque_Nm);
 }
 
+/// The band over drives of one tolerance class: each figure's smallest, median and largest.
+void print_accuracy_band(const ContactResult::AccuracyBand& b) {
+  const auto of = [](const ContactResult::Spread& s, const char* format) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, format, s.min, s.median, s.max);
+    return std::string(buf);
+  };
+  std::printf("  over %d drives of %s class %d (teeth placed within ±f_pT/2: f_pT %.2f µm flexspline, %.2f µm circular "
+              "spline%s; runout, profile and helix deviations left out), smallest / median / largest: K1 %s, K2 %s, "
+              "K3 %s N·m/rad; twist at rated %s arcmin; lost motion %s arcmin; play %s arcmin; preload at rest %s µm%s\n",
+              b.drives, b.standard.c_str(), b.tolerance_class, b.single_pitch_tolerance_flexspline_um,
+              b.single_pitch_tolerance_circular_spline_um,
+              b.outside_scope ? ("; " + *b.outside_scope).c_str() : "", of(b.K1_Nm_per_rad, "%.3g/%.3g/%.3g").c_str(),
+              of(b.K2_Nm_per_rad, "%.3g/%.3g/%.3g").c_str(), of(b.K3_Nm_per_rad, "%.3g/%.3g/%.3g").c_str(),
+              of(b.twist_at_rated_arcmin, "%.3f/%.3f/%.3f").c_str(), of(b.lost_motion_arcmin, "%.3f/%.3f/%.3f").c_str(),
+              of(b.play_arcmin, "%.3f/%.3f/%.3f").c_str(), of(b.preload_overlap_at_rest_um, "%.2f/%.2f/%.2f").c_str(),
+              b.hysteresis_loss_arcmin
+                  ? ("; hysteresis loss " + of(*b.hysteresis_loss_arcmin, "%.3f/%.3f/%.3f") + " arcmin").c_str()
+                  : "");
+}
+
 }  // namespace
 
 std::unique_ptr<ContactBody> contact_body(const Case& c, const FemJobResult& fem, const Eigen::VectorXd* fem_u) {
@@ -235,13 +256,22 @@ std::unique_ptr<ContactBody> contact_body(const Case& c, const FemJobResult& fem
   return std::make_unique<Tet10Body>(flexspline_model(c), *fem.mesh, *fem.system, fem_u);
 }
 
-ContactAnalysis run_contact_job(const Case& c, const ContactBody& body, const FemReadout& fem, OutputSet& out) {
+ContactAnalysis run_contact_job(const Case& c, const ContactBody& body, const FemReadout& fem, OutputSet& out,
+                                const ContactJobOptions& job) {
   const ContactOptions o = contact_options(c, series_parts(c));
   const std::optional<CatalogLaw> reference = catalog_reference(c);
   const ContactAnalysis a =
       naming_file(c.path, [&] { return analyse_contact(flexspline_model(c), body, fem, o); });
+  ContactResult result = contact_result(a, c, reference);
+  std::optional<AccuracyBand> band;
+  if (job.accuracy_class > 0) {
+    band = naming_file(c.path, [&] {
+      return accuracy_band(flexspline_model(c), body, fem, o, job.accuracy_class, job.accuracy_drives);
+    });
+    result.accuracy_band = accuracy_band_figures(*band);
+  }
   out.own(kContactJobFiles);
-  write_file_atomic(out.staging() / "contact.json", contact_json(contact_result(a, c, reference)));
+  write_file_atomic(out.staging() / "contact.json", contact_json(result));
   write_file_atomic(out.staging() / "torque_twist.csv", torque_twist_csv(a));
   write_file_atomic(out.staging() / "contact.svg", contact_svg(a, reference));
   print_contact_headline(c, a, o.series.teeth_source);
@@ -260,6 +290,7 @@ ContactAnalysis run_contact_job(const Case& c, const ContactBody& body, const Fe
   }
   if (a.face_sections.size() == 3) print_coning(a);
   print_overlap_and_balance(a);
+  if (result.accuracy_band) print_accuracy_band(*result.accuracy_band);
   return a;
 }
 

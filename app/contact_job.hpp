@@ -35,9 +35,17 @@ ContactOptions contact_options(const Case& c, SeriesParts series);
 /// The catalog's law of the case's catalog size, when the catalog gives its stiffness.
 std::optional<CatalogLaw> catalog_reference(const Case& c);
 
+/// What a contact run adds to the nominal drive.
+struct ContactJobOptions {
+  int accuracy_class = 0;   ///< > 0: the band over drives made to this ISO 1328-1 tolerance class (1–11)
+  int accuracy_drives = 16; ///< how many drives the band draws
+};
+
 /// Runs the contact analysis on the flexspline body with what the FEM gave (`fem`: solved now or read back from an
 /// earlier run's result.json), writes contact.json, torque_twist.csv and contact.svg into the set `out` (owning
 /// kContactJobFiles), prints the summary.
-ContactAnalysis run_contact_job(const Case& c, const ContactBody& body, const FemReadout& fem, OutputSet& out);
+/// With `job.accuracy_class`, the band over drives of that class too (contact.json's accuracy_band, one line).
+ContactAnalysis run_contact_job(const Case& c, const ContactBody& body, const FemReadout& fem, OutputSet& out,
+                                const ContactJobOptions& job = {});
 
 }  // namespace sw::app

@@ -165,6 +165,7 @@ private:
   void read_face_sections(std::vector<NeutralCurve>& read);
   void select_flanks();
   void add_flank(FlankContact f, const FlankClearance& fc, int k, int j);
+  double deviation_gap(const FlankClearance& fc, int k, int j) const;
   void watch_zone_edges();
   void watch_ratchet_teeth();
   void compute_influence();
@@ -344,8 +345,7 @@ void ContactAnalyser::select_flanks() {
   }
   if (out_.flanks.empty()) throw InputError("contact: no tooth flank in the mesh zone can close");
   out_.min_closing_rad = std::min(first_closing_[0], first_closing_[1]);
-  for (const auto& f : out_.flanks)
-    out_.overlap_at_rest_m = std::max(out_.overlap_at_rest_m, -std::abs(f.lever_m) * f.closing_angle_rad);
+  for (const double q : q_flank_) out_.overlap_at_rest_m = std::max(out_.overlap_at_rest_m, -q / n_teeth_);
   nf_ = static_cast<Eigen::Index>(out_.flanks.size());
 }
 
@@ -374,8 +374,27 @@ void ContactAnalyser::add_flank(FlankContact f, const FlankClearance& fc, int k,
   std::vector<double> on_cs{c};
   if (out_.half_turn_pairs) on_cs.push_back(c + kPi);
   cs_patterns_.push_back({on_cs, fc.normal, fc.point_c.norm(), n_slices_ > 1 ? j : -1});
-  q_flank_.push_back(n_teeth_ * std::abs(f.lever_m) * f.closing_angle_rad);
+  q_flank_.push_back(n_teeth_ * (std::abs(f.lever_m) * f.closing_angle_rad + deviation_gap(fc, k, j)));
   out_.flanks.push_back(f);
+}
+
+/// How tooth k's and its circular spline tooth's pitch deviations change the flank's gap (m): the flexspline's tooth
+/// moved along the rim by e_f (an output turn of e_f/r_f: −lever·e_f/r_f), the circular spline's tooth turned about
+/// the axis by e_c/r_c ((p_c × n)·e_c/r_c). The ccw flank touches the circular spline tooth ccw of the space the
+/// tooth faces, the cw flank the one cw of it (tooth i of the circular spline lies between spaces i and i + 1).
+double ContactAnalyser::deviation_gap(const FlankClearance& fc, int k, int j) const {
+  const ToothDeviations& d = opt_.deviations;
+  double gap = 0;
+  if (!d.flexspline_m.empty())
+    gap -= fc.lever_arm_m * d.flexspline_m[k] / (g_.module_m * g_.teeth_flexspline / 2);
+  if (!d.circular_spline_m.empty()) {
+    const int zc = g_.teeth_circular;
+    const bool ccw = fc.lever_arm_m > 0;
+    const int i = (((k + slices_[j].rest[k].space - (ccw ? 0 : 1)) % zc) + zc) % zc;
+    const double cross = fc.point_c.x() * fc.normal.y() - fc.point_c.y() * fc.normal.x();
+    gap += cross * d.circular_spline_m[i] / (g_.module_m * zc / 2);
+  }
+  return gap;
 }
 
 /// The zones' edges: the teeth within three pitches of a change of engagement. Whether such a tooth can touch at all
@@ -945,6 +964,31 @@ void check_contact_model(const FlexsplineModel& c) {
   if (const std::optional<std::string> gap = contact_model_gap(c)) throw InputError(*gap);
 }
 
+namespace {
+
+/// One deviation per tooth of each gear (or none), finite, and a tooth's equal to its half-turn partner's when the
+/// flexspline's teeth pair (an even z_f: the circular spline's z_c is then even too).
+void check_deviations(const GearParams& g, const ToothDeviations& d) {
+  const auto check = [&](const std::vector<double>& e, int z, const char* gear) {
+    if (e.empty()) return;
+    if (static_cast<int>(e.size()) != z)
+      throw InputError(std::string("contact: ") + std::to_string(e.size()) + " pitch deviations of the " + gear +
+                       "'s teeth; expected one per tooth (" + std::to_string(z) + ")");
+    for (int k = 0; k < z; ++k) {
+      if (!std::isfinite(e[k]))
+        throw InputError(std::string("contact: the ") + gear + "'s tooth " + std::to_string(k) +
+                         " has a pitch deviation that is not a number");
+      if (g.teeth_flexspline % 2 == 0 && e[k] != e[(k + z / 2) % z])
+        throw InputError(std::string("contact: the ") + gear + "'s tooth " + std::to_string(k) +
+                         " deviates otherwise than its half-turn partner; the contact pairs them (an even z_f)");
+    }
+  };
+  check(d.flexspline_m, g.teeth_flexspline, "flexspline");
+  check(d.circular_spline_m, g.teeth_circular, "circular spline");
+}
+
+}  // namespace
+
 ContactAnalysis analyse_contact(const FlexsplineModel& c, const TetMesh& mesh, const FlexsplineSystem& sys,
                                 const FemReadout& fem, const ContactOptions& opt) {
   return analyse_contact(c, Tet10Body(c, mesh, sys, fem.generator_u), fem, opt);
@@ -954,6 +998,7 @@ ContactAnalysis analyse_contact(const FlexsplineModel& c, const ContactBody& bod
                                 const ContactOptions& opt) {
   check_contact_model(c);
   if (!(opt.rated_torque_Nm > 0)) throw InputError("contact needs a rated torque > 0");
+  check_deviations(*c.gear, opt.deviations);
   for (double reach_factor = opt.reach_factor;; reach_factor *= 2) {
     if (std::optional<ContactAnalysis> a = ContactAnalyser(c, body, fem, opt, reach_factor).run()) {
       a->solver = body.solver();

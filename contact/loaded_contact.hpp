@@ -63,6 +63,16 @@ struct SeriesParts {
 std::function<double(double contact_radius_f_m, double contact_radius_c_m)> tooth_pair_compliance_of(
     const FlexsplineModel& model);
 
+/// Where each tooth sits off its nominal place along its pitch circle (m, positive counter-clockwise): the pitch
+/// deviations of manufacture (contact/accuracy_band.hpp draws them for an ISO 1328-1 class). A flexspline tooth's
+/// deviation moves it along the rim as a turn of the output would (its flanks' gaps change by −lever·e/r); a circular
+/// spline tooth's turns it about the axis (the gap changes by (p_c × n)·e/r at the contact point). Empty: exact teeth.
+/// With the half-turn pairs (an even z_f) a tooth and its partner share one unknown: their deviations must agree.
+struct ToothDeviations {
+  std::vector<double> flexspline_m;       ///< z_f entries, or none
+  std::vector<double> circular_spline_m;  ///< z_c entries, or none
+};
+
 struct ContactOptions {
   double rated_torque_Nm = 0;  ///< the curve runs from −rated to +rated
   int steps = 20;              ///< torque steps each way (beyond the two limits at zero)
@@ -89,6 +99,7 @@ struct ContactOptions {
   /// > 0: the ramp past rated torque to the ratcheting torque (contact/ratcheting.hpp), looked for up to this torque;
   /// 0: not computed.
   double ratcheting_ceiling_Nm = 0;
+  ToothDeviations deviations;  ///< the teeth's pitch deviations (none: exact teeth)
 };
 
 /// One flank that can take part.

@@ -110,7 +110,55 @@ ContactResult contact_result(const ContactAnalysis& a, const Case& c, const std:
   return r;
 }
 
+ContactResult::AccuracyBand accuracy_band_figures(const AccuracyBand& band) {
+  ContactResult::AccuracyBand r;
+  r.standard = "ISO 1328-1:2013";
+  r.deviations = "each tooth's position uniform in +-f_pT/2 (single pitch within f_pT), a tooth's equal to its "
+                 "half-turn partner's; runout, profile and helix deviations left out";
+  r.tolerance_class = band.tolerance_class;
+  r.drives = band.drives;
+  r.single_pitch_tolerance_flexspline_um = band.flexspline.single_pitch_um;
+  r.single_pitch_tolerance_circular_spline_um = band.circular_spline.single_pitch_um;
+  r.outside_scope = band.outside_scope;
+  const auto over = [&](auto figure, double scale) {
+    std::vector<double> v;
+    for (const AccuracyBand::Drive& d : band.drive) v.push_back(figure(d) * scale);
+    const Spread s = spread(v);
+    return ContactResult::Spread{s.min, s.median, s.max};
+  };
+  using D = AccuracyBand::Drive;
+  r.K1_Nm_per_rad = over([](const D& d) { return d.k1_Nm_per_rad; }, 1);
+  r.K2_Nm_per_rad = over([](const D& d) { return d.k2_Nm_per_rad; }, 1);
+  r.K3_Nm_per_rad = over([](const D& d) { return d.k3_Nm_per_rad; }, 1);
+  r.twist_at_rated_arcmin = over([](const D& d) { return d.twist_at_rated_rad; }, kArcmin);
+  r.lost_motion_arcmin = over([](const D& d) { return d.lost_motion_rad; }, kArcmin);
+  r.play_arcmin = over([](const D& d) { return d.play_rad; }, kArcmin);
+  r.preload_overlap_at_rest_um = over([](const D& d) { return d.overlap_at_rest_m; }, 1e6);
+  if (!band.drive.empty() && band.drive.front().hysteresis_rad)
+    r.hysteresis_loss_arcmin = over([](const D& d) { return d.hysteresis_rad.value_or(0); }, kArcmin);
+  return r;
+}
+
 // ---- contact.json's field tables: its keys, each with the member that holds it
+
+static auto fields(std::type_identity<ContactResult::Spread>) {
+  using T = ContactResult::Spread;
+  return std::tuple{field("min", &T::min), field("median", &T::median), field("max", &T::max)};
+}
+
+static auto fields(std::type_identity<ContactResult::AccuracyBand>) {
+  using T = ContactResult::AccuracyBand;
+  return std::tuple{field("standard", &T::standard), field("tolerance_class", &T::tolerance_class),
+                    field("drives", &T::drives), field("deviations", &T::deviations),
+                    field("single_pitch_tolerance_flexspline_um", &T::single_pitch_tolerance_flexspline_um),
+                    field("single_pitch_tolerance_circular_spline_um", &T::single_pitch_tolerance_circular_spline_um),
+                    null_when_absent("outside_scope", &T::outside_scope),
+                    field("K1_Nm_per_rad", &T::K1_Nm_per_rad), field("K2_Nm_per_rad", &T::K2_Nm_per_rad),
+                    field("K3_Nm_per_rad", &T::K3_Nm_per_rad), field("twist_at_rated_arcmin", &T::twist_at_rated_arcmin),
+                    field("lost_motion_arcmin", &T::lost_motion_arcmin), field("play_arcmin", &T::play_arcmin),
+                    field("preload_overlap_at_rest_um", &T::preload_overlap_at_rest_um),
+                    field("hysteresis_loss_arcmin", &T::hysteresis_loss_arcmin)};
+}
 
 static auto fields(std::type_identity<ContactResult::Step>) {
   using T = ContactResult::Step;
@@ -212,7 +260,7 @@ static auto fields(std::type_identity<ContactResult>) {
                     field("solver", &T::solver), field("friction", &T::friction),
                     field("hysteresis_loss_arcmin", &T::hysteresis_loss_arcmin),
                     field("dissipated_energy_J", &T::dissipated_energy_J), field("friction_work_J", &T::friction_work_J),
-                    field("case_file", &T::case_path), flattened(&T::provenance)};
+                    field("accuracy_band", &T::accuracy_band), field("case_file", &T::case_path), flattened(&T::provenance)};
 }
 
 std::string contact_json(const ContactResult& r) { return to_json_object(r).dump(2) + "\n"; }

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "contact/accuracy_band.hpp"
 #include "contact/loaded_contact.hpp"
 #include "io/provenance.hpp"
 
@@ -73,6 +74,21 @@ struct ContactResult {
     double closing_angle_rad = 0, lever_m = 0, contact_radius_m = 0, tooth_pair_compliance_m_per_N = 0;
     double force_at_plus_rated_N = 0, force_at_minus_rated_N = 0;
   };
+  /// Smallest, median and largest over the drives of an accuracy band.
+  struct Spread {
+    double min = 0, median = 0, max = 0;
+  };
+  /// The drive's figures over drives whose teeth deviate within one ISO 1328-1 tolerance class
+  /// (contact/accuracy_band.hpp: `contact --accuracy-class`).
+  struct AccuracyBand {
+    std::string standard, deviations;  ///< the standard; how the deviations are drawn and what is left out
+    int tolerance_class = 0, drives = 0;
+    double single_pitch_tolerance_flexspline_um = 0, single_pitch_tolerance_circular_spline_um = 0;
+    std::optional<std::string> outside_scope;
+    Spread K1_Nm_per_rad, K2_Nm_per_rad, K3_Nm_per_rad, twist_at_rated_arcmin, lost_motion_arcmin, play_arcmin,
+        preload_overlap_at_rest_um;
+    std::optional<Spread> hysteresis_loss_arcmin;  ///< with friction on the flanks
+  };
   struct Timings {
     double setup = 0, influence = 0, contact = 0, check = 0;
   };
@@ -100,7 +116,11 @@ struct ContactResult {
   Solver solver;
   std::optional<Friction> friction;
   std::optional<double> hysteresis_loss_arcmin, dissipated_energy_J, friction_work_J;  ///< with friction
+  std::optional<AccuracyBand> accuracy_band;
 };
+
+/// The band's figures as contact.json keeps them.
+ContactResult::AccuracyBand accuracy_band_figures(const AccuracyBand& band);
 
 /// The file's figures of a contact analysis of the case `c`. `reference`: the catalog's law of the case's size, if any.
 ContactResult contact_result(const ContactAnalysis& a, const Case& c, const std::optional<CatalogLaw>& reference);

@@ -5,22 +5,9 @@
 #include <utility>
 
 #include "common/error.hpp"
+#include "common/first_crossing.hpp"
 
 namespace sw {
-namespace {
-
-/// Where `fails` starts in (lo, hi], given it does not hold at lo and does at hi: bisection to hi − lo ≤ tol·hi;
-/// the last torque that did not fail and the first that did.
-template <class Fails>
-std::pair<double, double> bisect(double lo, double hi, double tol, const Fails& fails) {
-  while (hi - lo > tol * hi) {
-    const double mid = 0.5 * (lo + hi);
-    (fails(mid) ? hi : lo) = mid;
-  }
-  return {lo, hi};
-}
-
-}  // namespace
 
 std::optional<std::pair<std::vector<bool>, RatchetState>> teeth_holding(const std::vector<RatchetTooth>& teeth,
                                                                          const RatchetSolve& solve, double torque_Nm) {
@@ -70,7 +57,8 @@ Ratcheting ratcheting_torque(const std::vector<RatchetTooth>& teeth, const Ratch
   // The first release: at the start already, or between the start and the torque that does not hold.
   const double release_hi = reached ? hi : ceiling_Nm;
   if (engaged_released(at_from->first) >= 0) r.first_release_Nm = from_Nm;
-  else if (releases(release_hi)) r.first_release_Nm = bisect(from_Nm, release_hi, tolerance_rel, releases).second;
+  else if (releases(release_hi))
+    r.first_release_Nm = first_crossing(from_Nm, release_hi, 0, tolerance_rel, releases).second;
   if (std::isfinite(r.first_release_Nm)) {
     const auto h = teeth_holding(teeth, solve, r.first_release_Nm);
     const int t = h ? engaged_released(h->first) : -1;
@@ -80,7 +68,7 @@ Ratcheting ratcheting_torque(const std::vector<RatchetTooth>& teeth, const Ratch
     }
   }
   if (!reached) return r;
-  const auto [below, at] = bisect(lo, hi, tolerance_rel, fails);
+  const auto [below, at] = first_crossing(lo, hi, 0, tolerance_rel, fails);
   r.torque_Nm = at;
   // What holds just below it.
   if (const auto h = teeth_holding(teeth, solve, below)) {

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "common/error.hpp"
+#include "common/first_crossing.hpp"
 
 namespace sw {
 namespace {
@@ -201,19 +202,7 @@ FirstYield first_yield_torque(const FourierSolution& s, const FlexsplineModel& c
     out.torque_Nm = std::numeric_limits<double>::infinity();
     return out;
   }
-  double lo = 0, hi = search_limit_Nm;
-  for (int k = 1; k <= kScanSteps; ++k) {
-    const double T = search_limit_Nm * k / kScanSteps;
-    if (yields(T)) {
-      hi = T;
-      break;
-    }
-    lo = T;
-  }
-  while (hi - lo > kTorqueTolerance * hi) {
-    const double mid = 0.5 * (lo + hi);
-    (yields(mid) ? hi : lo) = mid;
-  }
+  const auto [lo, hi] = first_crossing(0.0, search_limit_Nm, kScanSteps, kTorqueTolerance, yields);
   out.torque_Nm = 0.5 * (lo + hi);
   out.at_yield = largest_peak(h, s, c, out.torque_Nm);
   return out;
@@ -246,19 +235,8 @@ InfiniteLife infinite_life_torque(const FourierSolution& s, const FlexsplineMode
     return out;
   }
   // The first crossing on a scan (the safety factor need not fall monotonically with torque), then bisection.
-  double lo = 0, hi = search_limit_Nm;
-  for (int k = 1; k <= kScanSteps; ++k) {
-    const double T = search_limit_Nm * k / kScanSteps;
-    if (worst(h, s, c, T).safety_factor <= 1) {
-      hi = T;
-      break;
-    }
-    lo = T;
-  }
-  while (hi - lo > kTorqueTolerance * hi) {
-    const double mid = 0.5 * (lo + hi);
-    (worst(h, s, c, mid).safety_factor > 1 ? lo : hi) = mid;
-  }
+  const auto [lo, hi] = first_crossing(0.0, search_limit_Nm, kScanSteps, kTorqueTolerance,
+                                       [&](double T) { return worst(h, s, c, T).safety_factor <= 1; });
   out.torque_Nm = 0.5 * (lo + hi);
   out.at_limit = worst(h, s, c, out.torque_Nm);
   return out;

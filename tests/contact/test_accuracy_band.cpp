@@ -7,39 +7,24 @@
 //  - the refusals.
 #include <cmath>
 #include <cstdio>
-#include <memory>
 
 #include <gtest/gtest.h>
 
-#include "app/contact_job.hpp"
 #include "common/error.hpp"
 #include "contact/accuracy_band.hpp"
-#include "contact/harmonic_body.hpp"
-#include "fem/fourier_solver.hpp"
-#include "io/case.hpp"
+#include "tests/contact/size17_harmonic.hpp"
 
 namespace sw {
 namespace {
 
-struct Solved {
-  Case c;
-  std::unique_ptr<FourierSolution> fourier;
-  std::unique_ptr<HarmonicBody> body;
-  FemReadout readout;
-  ContactOptions options;
+struct Solved : test::Size17Harmonic {
   ContactAnalysis exact;
 };
 
 const Solved& size17() {
   static const Solved* s = [] {
-    auto* k = new Solved;
-    k->c = load_case("cases/cup_size17.toml");
-    const FlexsplineModel m = flexspline_model(k->c);
-    k->fourier = std::make_unique<FourierSolution>(analyse_flexspline_fourier(m, 0, contact_band_request(m, 1)));
-    k->body = std::make_unique<HarmonicBody>(m, *k->fourier);
-    k->readout = fem_readout(k->fourier->figures);
-    k->options = app::contact_options(k->c, app::series_parts(k->c));
-    k->exact = analyse_contact(m, *k->body, k->readout, k->options);
+    auto* k = new Solved{test::size17_harmonic(), {}};
+    k->exact = analyse_contact(flexspline_model(k->c), *k->body, k->readout, k->options);
     return k;
   }();
   return *s;

@@ -75,11 +75,12 @@ void print_summary(const DynamicsModel& m, const DynamicsSummary& r, const Dynam
     std::printf("  ");
   std::printf("torque balance %.2e; energy balance %.2e\n", r.torque_balance_error_rel, r.energy_error_rel);
   const SteadyPower& w = r.power;
-  std::printf("  efficiency of the mesh %.4f (the flanks' friction, mu = %g, and the model's damping; the generator "
-              "bearing and the lubricant are not in this model: `strainwave datasheet` with a [lubricant] counts the "
-              "bearing): %.4g W in, %.4g W out, %.4g W friction, %.4g W damping; power balance %.2e\n",
-              w.efficiency, m.friction_coefficient, w.input_W, w.output_W, w.friction_W, w.dissipated_W,
-              w.balance_error_rel);
+  std::printf("  efficiency %.4f: output over output + the flanks' friction (mu = %g) + the generator bearing's "
+              "(%s); the contact's damping beside it; churning, seals and the flexspline's damping not modelled: "
+              "%.4g W in, %.4g W out, %.4g W flank friction, %.4g W generator bearing, %.4g W damping; power balance "
+              "%.2e\n",
+              w.efficiency, m.friction_coefficient, info.bearing_source.c_str(), w.input_W, w.output_W, w.friction_W,
+              w.bearing_W, w.dissipated_W, w.balance_error_rel);
   std::printf("  mesh frequency %.2f Hz; strongest line %s\n", r.theory.mesh_frequency_Hz,
               r.lines.empty() ? "none" : (std::to_string(r.lines[0].frequency_Hz) + " Hz").c_str());
   std::printf("  steady window: mesh deflection %.4g to %.4g mrad, largest flank force %.4g N, %g to %g flanks in "
@@ -121,6 +122,7 @@ void run_dynamics(const std::string& case_path, const std::string& out_dir, cons
   DynamicsReportInfo info;
   info.case_path = case_path;
   info.clearance_source = job.source;
+  info.bearing_source = job.bearing_source;
   info.simulate_time_s = sim.lap();
   progress("dynamics: integrated " + std::to_string(p.duration_s) + " s in " + std::to_string(info.simulate_time_s) +
            " s (" + std::to_string(s.stats.steps) + " steps)");

@@ -1,6 +1,8 @@
 #include "app/dynamics_job.hpp"
 
 #include <algorithm>
+#include <functional>
+#include <numbers>
 #include <sstream>
 #include <vector>
 
@@ -8,6 +10,9 @@
 #include "app/fem_job.hpp"
 #include "common/error.hpp"
 #include "common/progress.hpp"
+#include "contact/harmonic_body.hpp"
+#include "datasheet/limits.hpp"
+#include "generator/bearing_friction.hpp"
 #include "dynamics/kinematic_pairs.hpp"
 #include "dynamics/moving_mesh_build.hpp"
 #include "io/case.hpp"
@@ -59,6 +64,48 @@ std::vector<ToothPair> frozen_pairs(const Case& c, const DynamicsParams& p, cons
   return pairs;
 }
 
+/// The generator bearing's running friction moment against the speed of its rings relative to each other: Palmgren's
+/// M0 + M1 (generator/bearing_friction.hpp) with the lubricant's viscosity at its temperature and the balls loaded as
+/// the loaded contact loads them at the run's load torque (the flexspline and the contact on the harmonic solver:
+/// seconds; the step nearest that torque, at most rated). The balls' loads stay those of that torque through the run
+/// (the load's ramp and the mesh's fluctuation do not change them): an idealisation, said in `source`. Empty, with
+/// the reason in `source`, without a [lubricant] or without a bearing whose balls a cam or rollers load.
+std::function<double(double)> bearing_moment(const Case& c, double load_torque_Nm, std::string& source) {
+  if (!c.lubricant) {
+    source = "frictionless: the case gives no [lubricant]";
+    return {};
+  }
+  if (!c.wave_generator || !c.wave_generator->bearing || contact_model_gap(flexspline_model(c))) {
+    source = "frictionless: the generator bearing's friction needs its balls (a [wave_generator] bearing) loaded by "
+             "the loaded contact";
+    return {};
+  }
+  progress("dynamics: the generator bearing's ball loads from the loaded contact at " +
+           std::to_string(load_torque_Nm) + " N·m (harmonic solver)");
+  double section_s = 0;
+  const FourierSolution fourier = solve_fourier_model(c, 0, 0.0, section_s);
+  const FlexsplineModel m = flexspline_model(c);
+  const HarmonicBody body(m, fourier);
+  const ContactAnalysis contact =
+      naming_file(c.path, [&] { return analyse_contact(m, body, fem_readout(fourier.figures), contact_options(c, series_parts(c))); });
+  if (!body.stations().unilateral || contact.steps.back().station_force_N.empty()) {
+    source = "frictionless: the generator's stations are held (the force idealisation), no ball is loaded by contact";
+    return {};
+  }
+  const GeneratorBearing bearing = *c.wave_generator->bearing;
+  const std::size_t i = step_nearest(contact, std::abs(load_torque_Nm));
+  const std::vector<double> balls = ball_loads_N(body.stations(), contact.steps[i].station_force_N, bearing.balls);
+  const double nu = kinematic_viscosity_mm2_s(*c.lubricant, c.lubricant->temperature_C);
+  std::ostringstream os;
+  os << "Palmgren's M0 + M1 (f0 = 2, z = 0.0005, y = 0.55), the lubricant's " << nu << " mm²/s at "
+     << c.lubricant->temperature_C << " °C, the balls loaded as at " << contact.steps[i].torque_Nm
+     << " N·m in the loaded contact (held there through the run)";
+  source = os.str();
+  return [bearing, balls, nu](double relative_speed_rad_s) {
+    return palmgren_friction_moment(bearing, balls, relative_speed_rad_s * 30 / std::numbers::pi, nu).total_Nm;
+  };
+}
+
 }  // namespace
 
 std::shared_ptr<const MovingMesh> moving_mesh(const Case& c, const DynamicsParams& p, OutputSet& out) {
@@ -107,6 +154,7 @@ DynamicsJobModel dynamics_model(const Case& c, DynamicsParams p, const DynamicsM
     r.source = r.model.moving->source;
   }
   r.model.friction_coefficient = c.contact.friction_coefficient;
+  r.model.generator_bearing_moment_Nm = bearing_moment(c, p.load_torque_Nm, r.bearing_source);
   return r;
 }
 

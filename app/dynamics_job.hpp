@@ -22,6 +22,8 @@ struct DynamicsModelOptions {
 struct DynamicsJobModel {
   DynamicsModel model;
   std::string source;  ///< where the pairs and their clearances come from (reports and progress)
+  /// How the generator bearing's friction moment was found, or why the bearing is frictionless in this model.
+  std::string bearing_source;
 };
 
 /// The moving mesh of the case: a rigid rim on the case's generator curve (flank table every pitch/64), or, for

@@ -28,15 +28,15 @@ ToothRootFigure tooth_root_limit(const GearParams& gear, const FlexsplineParams&
 /// balls is left out). Their sum is the stations' (both halves) exactly.
 std::vector<double> ball_loads_N(const BodyStations& stations, const std::vector<double>& station_force_N, int balls);
 
+/// The index of the contact's step whose torque is nearest `torque_Nm`; of two as near, the later (at zero torque the
+/// curve's limit from the positive side).
+std::size_t step_nearest(const ContactAnalysis& contact, double torque_Nm);
+
 /// L10 of the generator bearing (generator/bearing_life.hpp: Lundberg–Palmgren raceway ratings, the load zone turning
 /// with the cam) from the ball loads of the loaded contact at +rated torque, in hours at `input_speed_rpm` for a cup
 /// drive with the circular spline fixed (the output turns against the input); the life exponent against torque from
 /// the step nearest half rated. Throws InputError when the generator's stations are not in the contact (the force
 /// idealisation holds the band instead) or the contact has no station forces.
-/// The index of the contact's step whose torque is nearest `torque_Nm`; of two as near, the later (at zero torque the
-/// curve's limit from the positive side).
-std::size_t step_nearest(const ContactAnalysis& contact, double torque_Nm);
-
 BearingLifeFigure generator_bearing_life(const GeneratorBearing& bearing, const BodyStations& stations,
                                          const ContactAnalysis& contact, double ratio, double input_speed_rpm);
 

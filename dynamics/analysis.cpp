@@ -147,10 +147,11 @@ SteadyPower steady_power(const DynamicsSeries& s, Window w) {
   p.input_W = (b.input_J - a.input_J) / span;
   p.output_W = (b.output_J - a.output_J) / span;
   p.friction_W = (b.friction_J - a.friction_J) / span;
+  p.bearing_W = (b.bearing_J - a.bearing_J) / span;
   p.dissipated_W = (b.dissipated_J - a.dissipated_J) / span;
   p.stored_W = ((b.kinetic_J + b.potential_J - b.parametric_J) - (a.kinetic_J + a.potential_J - a.parametric_J)) / span;
-  if (p.friction_W > 0.0) p.efficiency = p.output_W / (p.output_W + p.friction_W);
-  p.balance_error_rel = std::abs(p.input_W - (p.output_W + p.friction_W + p.dissipated_W + p.stored_W)) /
+  if (p.friction_W + p.bearing_W > 0.0) p.efficiency = p.output_W / (p.output_W + p.friction_W + p.bearing_W);
+  p.balance_error_rel = std::abs(p.input_W - (p.output_W + p.friction_W + p.bearing_W + p.dissipated_W + p.stored_W)) /
                         std::max(std::abs(p.input_W), 1e-300);
   return p;
 }

@@ -41,10 +41,12 @@ struct SteadyPower {
   double input_W = 0.0;        ///< the drive's
   double output_W = 0.0;       ///< into the load and the drags
   double friction_W = 0.0;     ///< the flanks' friction, Σ |F_t·v_slide|
+  double bearing_W = 0.0;      ///< the generator bearing's friction, M·|ω_w − ω_rim|
   double dissipated_W = 0.0;   ///< contact damping and torsion-spring damping
   double stored_W = 0.0;       ///< rate of kinetic + potential energy, less the parametric power of k(t)
-  /// The mesh's efficiency under the flanks' friction: output / (output + friction); 1 without friction. The contact
-  /// damping's loss (dissipated_W) is the model's idealisation of the teeth's damping, reported beside it.
+  /// The drive's efficiency under the flanks' and the generator bearing's friction: output / (output + friction +
+  /// bearing); 1 without either. The contact damping's loss (dissipated_W) is the model's idealisation of the teeth's
+  /// damping, reported beside it.
   double efficiency = 1.0;
   double balance_error_rel = 0.0;  ///< |input − (output + friction + dissipated + stored)| / |input|
 };

@@ -28,6 +28,7 @@
 // (= z_c·|ω_c − ω_w|/2π by the relation above); both engagement zones are in phase when z_f is even:
 //     f_m = z_f·|n_f − n_w|/60 Hz (speeds in rpm): cs_fixed z_c·n_w/60, fs_fixed z_f·n_w/60, wg_fixed z_f·n_f/60.
 #include <array>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -81,6 +82,10 @@ struct DynamicsModel {
   /// The friction force μ·F·tanh(v/v_s) is smoothed over this sliding speed v_s (m/s), > 0: far below the flanks'
   /// sliding, whose sign changes where a tooth turns back out of the circular spline's space (dynamics/README.md).
   double friction_smoothing_m_per_s = 1.0e-3;
+  /// The wave generator bearing's running friction moment (N·m, ≥ 0) at the speed of its rings relative to each other
+  /// (rad/s, ≥ 0): between the generator and the flexspline's rim, against their relative turn, the Coulomb step
+  /// smoothed over params.drag_smoothing_rad_per_s. Empty: a frictionless bearing.
+  std::function<double(double relative_speed_rad_s)> generator_bearing_moment_Nm;
 };
 
 enum class BodyRole { Fixed, Driven, Free, MergedIntoFlange };

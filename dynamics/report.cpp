@@ -145,6 +145,7 @@ DynamicsResult dynamics_result(const DynamicsModel& m, const DynamicsSeries& s, 
   d.teeth_circular = m.teeth_circular;
   d.pairs = m.moving ? PairMotion::Moving : PairMotion::Frozen;
   d.clearance_source = info.clearance_source;
+  d.bearing_source = info.bearing_source;
   d.speeds = r.speeds;
   d.max_speed_error_rel = r.max_speed_error_rel;
   d.pair_forces = r.pair_forces;

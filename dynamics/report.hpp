@@ -17,6 +17,7 @@ namespace sw {
 struct DynamicsReportInfo {
   std::string case_path;
   std::string clearance_source;   ///< e.g. "kinematics (basic, φ₀ = 0)" or "approximate (dynamics stand-in)"
+  std::string bearing_source;     ///< the generator bearing's friction moment: how it was found, or why none
   double total_time_s = 0.0;      ///< wall clock of the whole command
   double simulate_time_s = 0.0;   ///< wall clock of the integration
 };
@@ -50,6 +51,7 @@ struct DynamicsResult {
   int teeth_flexspline = 0, teeth_circular = 0;
   PairMotion pairs = PairMotion::Frozen;
   std::string clearance_source;
+  std::string bearing_source;  ///< the generator bearing's friction moment: how it was found, or why none
   std::vector<SpeedCheck> speeds;
   double max_speed_error_rel = 0.0;
   std::vector<PairForceCheck> pair_forces;                ///< frozen pairs

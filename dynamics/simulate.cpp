@@ -20,7 +20,7 @@
 namespace sw {
 namespace {
 
-constexpr int kWorkQuadratures = 4;  // input, output, dissipated, parametric work; then friction when there is friction
+constexpr int kWorkQuadratures = 4;  // input, output, dissipated, parametric work; then friction, the bearing's, when there
 constexpr double kSpeedScale_per_s = 1.0e5;  // absolute tolerance on speed deviations = atol_rad · this (contact modes)
 constexpr double kWorkTolerance_J = 1.0e-10;
 
@@ -52,7 +52,7 @@ struct Snapshot {
   double travel_torque = 0.0;  ///< M_σ: torque of the teeth's travel (moving pairs)
   double mesh_torque = 0.0, total_force = 0.0, drive_torque = 0.0, load_torque = 0.0, stiffness = 0.0;
   double kinetic = 0.0, potential = 0.0;
-  double p_in = 0.0, p_out = 0.0, p_diss = 0.0, p_param = 0.0, p_friction = 0.0;
+  double p_in = 0.0, p_out = 0.0, p_diss = 0.0, p_param = 0.0, p_friction = 0.0, p_bearing = 0.0;
   std::array<double, kBodyCount> accel_dev{};  ///< v̇ of free bodies
   std::vector<double> pair_force;   ///< frozen: per pair; moving: per tooth (signed, ccw flank positive)
   double deflection = 0.0;          ///< mesh deflection e [rad]
@@ -110,9 +110,13 @@ public:
                           rho_ * (ratio_[idx(BodyId::CircularSpline)] - ratio_[idx(BodyId::WaveGenerator)]);
     mesh_phase_rate_ = m.teeth_flexspline * std::abs(ratio_[idx(fs_)] - ratio_[idx(BodyId::WaveGenerator)]);
     friction_ = m.moving && m.friction_coefficient > 0.0;
+    bearing_ = static_cast<bool>(m.generator_bearing_moment_Nm);
   }
-  /// The work quadratures: input, output, dissipated, parametric, and the friction's when the flanks have friction.
-  int quadratures() const { return kWorkQuadratures + (friction_ ? 1 : 0); }
+  /// The work quadratures: input, output, dissipated, parametric, then the friction's when the flanks have friction
+  /// and the generator bearing's when it has a friction moment.
+  int quadratures() const { return kWorkQuadratures + (friction_ ? 1 : 0) + (bearing_ ? 1 : 0); }
+  bool flank_friction() const { return friction_; }
+  bool bearing_friction() const { return bearing_; }
   int size() const { return 2 * int(free_.size()) + quadratures(); }
   const std::vector<int>& free_bodies() const { return free_; }
   const SteadyState& steady() const { return ss_; }
@@ -137,7 +141,8 @@ public:
     } else {
       frozen_forces(s, ms, load);
     }
-    const std::array<double, kBodyCount> Q = internal_torques(dev, load);
+    std::array<double, kBodyCount> Q = internal_torques(dev, load);
+    s.p_bearing = bearing_ ? bearing_friction(s, Q) : 0.0;
     const std::array<double, kBodyCount> T = applied_torques(t, s);
     balance(d, Q, T, s);
     // what the mesh takes off the flexspline (Q_f = −M − M_σ − friction_σ + friction_e)
@@ -163,6 +168,7 @@ public:
     ydot[q + 2] = s.p_diss;
     ydot[q + 3] = s.p_param;
     if (friction_) ydot[q + 4] = s.p_friction;
+    if (bearing_) ydot[q + 4 + (friction_ ? 1 : 0)] = s.p_bearing;
   }
 
   Snapshot make_snapshot() const {
@@ -387,6 +393,18 @@ private:
     return Q;
   }
 
+  /// The generator bearing's friction moment between the generator and the flexspline's rim, against their relative
+  /// turn (smoothed over drag_smoothing_rad_per_s): added to Q; its power (≥ 0) returned.
+  double bearing_friction(const Snapshot& s, std::array<double, kBodyCount>& Q) const {
+    const int w = idx(BodyId::WaveGenerator), f = idx(fs_);
+    const double relative = s.omega[w] - s.omega[f];
+    const double M = m_.generator_bearing_moment_Nm(std::abs(relative)) *
+                     std::tanh(relative / p_.drag_smoothing_rad_per_s);
+    Q[w] -= M;
+    Q[f] += M;
+    return M * relative;
+  }
+
   /// The applied torques: the ramped load and the drag on the output body, the brake on a free circular spline.
   std::array<double, kBodyCount> applied_torques(double t, Snapshot& s) const {
     std::array<double, kBodyCount> T{};
@@ -423,6 +441,7 @@ private:
   double kinematic_residual_ = 0.0;  ///< de/dΘ of the reference motion: 0 up to rounding
   bool compliant_ = false;
   bool friction_ = false;  ///< moving pairs with μ > 0
+  bool bearing_ = false;   ///< the generator bearing has a friction moment
   BodyId fs_ = BodyId::FlexsplineFlange;
   std::vector<int> free_;
 };
@@ -558,15 +577,17 @@ std::vector<double> decimate(const std::vector<double>& x, const OutputGrid& g) 
 }
 
 /// The energy terms from the start to one instant: the work quadratures of the state `quadratures` (input, output,
-/// dissipated, parametric, then friction when `with_friction`), the kinetic energy and the change of the potential
-/// since the start.
-EnergyBalance energy_at(const double* quadratures, bool with_friction, const Snapshot& now, double potential_at_start_J) {
+/// dissipated, parametric, then friction when `with_friction`, the bearing's when `with_bearing`), the kinetic energy
+/// and the change of the potential since the start.
+EnergyBalance energy_at(const double* quadratures, bool with_friction, bool with_bearing, const Snapshot& now,
+                        double potential_at_start_J) {
   EnergyBalance e;
   e.input_J = quadratures[0];
   e.output_J = quadratures[1];
   e.dissipated_J = quadratures[2];
   e.parametric_J = quadratures[3];
   if (with_friction) e.friction_J = quadratures[4];
+  if (with_bearing) e.bearing_J = quadratures[4 + (with_friction ? 1 : 0)];
   e.kinetic_J = now.kinetic;
   e.potential_J = now.potential - potential_at_start_J;
   return e;
@@ -606,8 +627,8 @@ public:
     out.stiffness_N_per_m.push_back(s.stiffness);
     out.flanks_in_contact.push_back(s.in_contact);
     out.max_pair_force_N.push_back(s.max_force);
-    out.energy_to_sample.push_back(energy_at(y + 2 * ev_.free_bodies().size(), ev_.quadratures() > kWorkQuadratures, s,
-                                             potential_at_start_J_));
+    out.energy_to_sample.push_back(energy_at(y + 2 * ev_.free_bodies().size(), ev_.flank_friction(),
+                                             ev_.bearing_friction(), s, potential_at_start_J_));
   }
 
   /// The series with the filtered signals decimated to the output steps.
@@ -638,7 +659,8 @@ private:
 }  // namespace
 
 double EnergyBalance::error_rel() const {
-  const double lhs = input_J + parametric_J, rhs = output_J + dissipated_J + friction_J + kinetic_J + potential_J;
+  const double lhs = input_J + parametric_J,
+               rhs = output_J + dissipated_J + friction_J + bearing_J + kinetic_J + potential_J;
   return std::abs(lhs - rhs) / std::max(std::abs(input_J), 1e-300);
 }
 

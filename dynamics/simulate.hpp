@@ -22,10 +22,11 @@ struct EnergyBalance {
   double output_J = 0.0;       ///< work done by the bodies on the load and the drags
   double dissipated_J = 0.0;   ///< contact damping + torsion-spring damping
   double friction_J = 0.0;     ///< the flanks' friction: ∫ Σ |F_t·v_slide| dt
+  double bearing_J = 0.0;      ///< the generator bearing's friction: ∫ M·|ω_w − ω_rim| dt
   double parametric_J = 0.0;   ///< ∫ ∂U/∂t dt of the time-varying mesh stiffness (0 for constant k)
   double kinetic_J = 0.0;      ///< at the end (starts from rest)
   double potential_J = 0.0;    ///< contact + torsion spring, at the end minus at the start
-  double error_rel() const;    ///< |input + parametric − (output + dissipated + friction + kinetic + potential)| / |input|
+  double error_rel() const;    ///< |input + parametric − (output + dissipated + friction + bearing + kinetic + potential)| / |input|
 };
 
 struct SolverStats {

@@ -179,7 +179,7 @@ void check_fields(Io& io, R& r) {
   io("/energy_J/potential", r.energy.potential_J);
 }
 
-/// The steady window's powers, the efficiency and the run's friction work.
+/// The steady window's powers, the efficiency and the run's friction work (the flanks' and the generator bearing's).
 template <class Io, class R>
 void power_fields(Io& io, R& r) {
   io.group("/efficiency", r.steady_power, [&r](auto& sub, auto& p) {
@@ -187,10 +187,13 @@ void power_fields(Io& io, R& r) {
     sub("/power_W/input", p.input_W);
     sub("/power_W/output", p.output_W);
     sub("/power_W/friction", p.friction_W);
+    sub("/power_W/generator_bearing", p.bearing_W);
     sub("/power_W/dissipated", p.dissipated_W);
     sub("/power_W/stored", p.stored_W);
     sub("/power_balance_error_rel", p.balance_error_rel);
     sub("/energy_J/friction", r.energy.friction_J);
+    sub("/energy_J/generator_bearing", r.energy.bearing_J);
+    sub("/generator_bearing_friction", r.bearing_source);
   });
 }
 

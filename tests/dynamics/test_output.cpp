@@ -34,8 +34,12 @@ DynamicsResult every_field_set() {
   r.load_torque_Nm = 99.5;
   r.torque_balance_error_rel = 6.25e-4;
   r.energy_error_rel = 1.5e-6;
-  r.energy = {73.5, 68.25, 5.125, 1.25, 0.75, 0.0625, 0.03125};
-  r.steady_power = SteadyPower{962.75, 805.5, 92.5, 64.75, -0.0078125, 0.896875, 1.25e-8};
+  r.energy = {.input_J = 73.5, .output_J = 68.25, .dissipated_J = 5.125, .friction_J = 1.25, .bearing_J = 2.5,
+              .parametric_J = 0.75, .kinetic_J = 0.0625, .potential_J = 0.03125};
+  r.steady_power = SteadyPower{.input_W = 962.75, .output_W = 805.5, .friction_W = 92.5, .bearing_W = 12.25,
+                               .dissipated_W = 64.75, .stored_W = -0.0078125, .efficiency = 0.896875,
+                               .balance_error_rel = 1.25e-8};
+  r.bearing_source = "a bearing's moment";
   r.mesh_frequency_Hz = 466.5;
   r.generator_frequency_Hz = 17.9375;
   r.mean_total_force_N = 7669.25;
@@ -92,6 +96,9 @@ TEST(DynamicsOutput, EveryFieldSurvivesWritingAndReadingBack) {
   EXPECT_EQ(back.steady_power->efficiency, 0.896875);
   EXPECT_EQ(back.steady_power->friction_W, 92.5);
   EXPECT_EQ(back.energy.friction_J, 1.25);
+  EXPECT_EQ(back.steady_power->bearing_W, 12.25);
+  EXPECT_EQ(back.energy.bearing_J, 2.5);
+  EXPECT_EQ(back.bearing_source, "a bearing's moment");
 }
 
 TEST(DynamicsOutput, MovingPairsHaveNoPairForceErrorKey) {

@@ -2,8 +2,7 @@
 // noise and quantisation; reconcile must name each effect and recover its headline parameter, stay silent on null
 // recordings, find a masked harmonic and both effects of a two-effect case.
 //
-// Fixed noise (per kind, response units): torsion white 1e-6 rad + AR(1) 1e-6 rad (phi 0.8) + 5e-7 rad quantum;
-// transmission 2e-6 + 2e-6 + 1e-6 rad; backlash 0.2 + 0.2 + 0.1 um. 4000 samples.
+// Fixed noise per kind: tests/reconcile/proof_noise.hpp.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,6 +13,7 @@
 #include "common/progress.hpp"
 #include "reconcile/reconcile.hpp"
 #include "reconcile/synth.hpp"
+#include "tests/reconcile/proof_noise.hpp"
 #include "tests/reconcile/result_lookup.hpp"
 
 using namespace sw::reconcile;
@@ -26,33 +26,7 @@ constexpr double kParamTol = 0.25;
 /// Concealment of the identification cases: effect RMS / noise RMS.
 constexpr double kConcealment = 0.5;
 
-double basic_backlash_um(double wg_rad) { return 20.0 + 15.0 * std::cos(2.0 * wg_rad); }
-
-SynthOptions options(Kind kind, int seed) {
-  SynthOptions o;
-  o.samples = 4000;
-  o.seed = seed;
-  o.ar1_phi = 0.8;
-  switch (kind) {
-    case Kind::Torsion:
-      o.baseline.prediction = TorsionPrediction{.compliance_rad_per_Nm = 5e-5};
-      o.white_sd = 1e-6; o.ar1_sd = 1e-6; o.quantum = 5e-7;
-      break;
-    case Kind::Transmission:
-      o.baseline.gear = {.teeth_flexspline = 190, .teeth_circular = 192};
-      o.baseline.prediction = TransmissionPrediction{};
-      o.rows = TransmissionRows{.output_revolutions = 2.0};
-      o.white_sd = 2e-6; o.ar1_sd = 2e-6; o.quantum = 1e-6;
-      break;
-    default:
-      o.baseline.gear.pitch_radius_m = 0.019;
-      o.baseline.prediction = BacklashPrediction{.backlash_um = basic_backlash_um};
-      o.rows = BacklashRows{};
-      o.white_sd = 0.2; o.ar1_sd = 0.2; o.quantum = 0.1;
-      break;
-  }
-  return o;
-}
+SynthOptions options(Kind kind, int seed) { return proof_options(kind, static_cast<std::uint64_t>(seed)); }
 
 struct Outcome {
   Result result;

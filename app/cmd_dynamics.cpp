@@ -97,14 +97,6 @@ void run_dynamics(const std::string& case_path, const std::string& out_dir, cons
   Case c = load_case(case_path);
   if (!c.gear) throw InputError(case_path + ": [gear] is missing; the dynamics needs the tooth numbers and module");
   const DynamicsParams p = resolved_params(c, pairs_option, rim_option);
-  // The rim coupled through the FEM reads the TET10 model: "auto" takes it, an explicit "fourier" is refused before
-  // any work.
-  if (p.rim == RimCoupling::Fem) {
-    take_tet10_under_auto(c, "the dynamics' rim = \"fem\" couples the TET10 model");
-    if (c.solver.method == SolverMethod::Fourier)
-      throw InputError(case_path + ": solver.method = \"fourier\"; the dynamics' rim = \"fem\" couples the TET10 "
-                                   "model (set method = \"tet10\" or \"auto\", or --rim rigid)");
-  }
   OutputSet outputs(out_dir.empty() ? default_out_dir(c) : std::filesystem::path(out_dir),
                     {"dynamics.csv", "dynamics.json", "dynamics.svg"});
   progress("case:\n" + describe(p));

@@ -121,11 +121,12 @@ std::shared_ptr<const MovingMesh> moving_mesh(const Case& c, const DynamicsParam
   FemJobOptions o;
   o.write_vtk = false;
   const FemJobResult fem = run_fem_job(c, out, o);
-  if (!fem.mesh || !fem.system) throw InputError(c.path + ": rim = \"fem\" needs the TET10 solver (solver.method)");
+  const FemReadout readout = fem_readout(fem.solution);
+  const std::unique_ptr<ContactBody> body = contact_body(c, fem, readout.generator_u);
   const double rated = c.load.rated_torque_Nm.value_or(c.load.torque_Nm);
   return std::make_shared<MovingMesh>(naming_file(c.path, [&] {  // the flank table every pitch/64: see test_moving
-    return fem_coupled_mesh(flexspline_model(c), *fem.mesh, *fem.system, fem_readout(fem.solution), teeth, rated,
-                            p.compliance_phases, std::max(1, 64 / p.compliance_phases));
+    return fem_coupled_mesh(flexspline_model(c), *body, readout, teeth, rated, p.compliance_phases,
+                            std::max(1, 64 / p.compliance_phases));
   }));
 }
 

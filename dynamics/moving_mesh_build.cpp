@@ -102,9 +102,9 @@ MovingMesh rigid_rim_mesh(const GearParams& g, const NeutralCurve& curve, const 
   return m;
 }
 
-MovingMesh fem_coupled_mesh(const FlexsplineModel& c, const TetMesh& mesh, const FlexsplineSystem& system,
-                            const FemReadout& fem, const ToothCompliance& teeth, double rated_torque_Nm,
-                            int phases, int table_per_phase, double reach_factor) {
+MovingMesh fem_coupled_mesh(const FlexsplineModel& c, const ContactBody& body, const FemReadout& fem,
+                            const ToothCompliance& teeth, double rated_torque_Nm, int phases, int table_per_phase,
+                            double reach_factor) {
   check_contact_model(c);
   if (phases < 1 || table_per_phase < 1) throw InputError("dynamics: phases and table samples must be >= 1");
   const GearParams& g = *c.gear;
@@ -126,7 +126,7 @@ MovingMesh fem_coupled_mesh(const FlexsplineModel& c, const TetMesh& mesh, const
     o.reach_factor = reach_factor;  // body only: the teeth come from the table, the generator bearing is not modelled
     progress("dynamics: loaded-contact problem at generator phase " + std::to_string(s + 1) + "/" +
              std::to_string(phases));
-    const ContactAnalysis a = analyse_contact(c, mesh, system, fem, o);
+    const ContactAnalysis a = analyse_contact(c, body, fem, o);
     const auto nf = static_cast<Eigen::Index>(a.flanks.size());
     ph.A_body = a.problem.A;
     ph.q_correction.resize(nf);

@@ -4,6 +4,7 @@
 #include <functional>
 
 #include "fem/flexspline_model.hpp"
+#include "contact/contact_body.hpp"
 #include "contact/loaded_contact.hpp"
 #include "dynamics/moving_mesh.hpp"
 #include "fem/flexspline_analysis.hpp"
@@ -22,13 +23,14 @@ using ToothCompliance = std::function<double(double contact_radius_f_m, double c
 MovingMesh rigid_rim_mesh(const GearParams& gear, const NeutralCurve& curve, const ToothCompliance& teeth,
                           int samples_per_pitch);
 
-/// Pairs coupled through the rim: the loaded contact's problem (contact/loaded_contact.hpp, every flank that can close
+/// Pairs coupled through the rim: on the flexspline body `body` (the harmonic solver's or TET10's), the loaded contact's
+/// problem (contact/loaded_contact.hpp, every flank that can close
 /// within reach_factor body twists at rated torque, the generator's stations when unilateral) at `phases` generator
 /// phases over one pitch, and the flank table on the FEM's generator-deformed neutral curve, sampled every
 /// pitch/(phases·table_per_phase) so that the phases fall on its grid.
-MovingMesh fem_coupled_mesh(const FlexsplineModel& model, const TetMesh& mesh, const FlexsplineSystem& system,
-                            const FemReadout& fem, const ToothCompliance& teeth, double rated_torque_Nm,
-                            int phases, int table_per_phase, double reach_factor = 12.0);
+MovingMesh fem_coupled_mesh(const FlexsplineModel& model, const ContactBody& body, const FemReadout& fem,
+                            const ToothCompliance& teeth, double rated_torque_Nm, int phases, int table_per_phase,
+                            double reach_factor = 12.0);
 
 /// The relative velocity at one flank's contact when the mesh follows the kinematics (zero mesh deflection): the
 /// flexspline's contact point (fc.point_f, carried by its tooth at material angle φ along the deformed neutral curve)

@@ -12,6 +12,7 @@
 
 #include "contact/contact_problem.hpp"
 #include "contact/loaded_contact.hpp"
+#include "contact/tet10_body.hpp"
 #include "dynamics/analysis.hpp"
 #include "dynamics/kinematic_pairs.hpp"
 #include "dynamics/moving_mesh_build.hpp"
@@ -75,7 +76,9 @@ const CoarseSeed& coarse_seed() {
 const MovingMesh& coarse_coupled() {
   static const MovingMesh* m = [] {
     const CoarseSeed& k = coarse_seed();
-    return new MovingMesh(fem_coupled_mesh(flexspline_model(k.c), k.mesh, k.system, fem_readout(k.fem), teeth_of(k.c), 44.1, 8, 8));
+    const FemReadout readout = fem_readout(k.fem);
+    const Tet10Body body(flexspline_model(k.c), k.mesh, k.system, readout.generator_u);
+    return new MovingMesh(fem_coupled_mesh(flexspline_model(k.c), body, readout, teeth_of(k.c), 44.1, 8, 8));
   }();
   return *m;
 }

@@ -11,12 +11,14 @@ if [ ! -d "$pydir/paraview" ] || ! command -v pvbatch >/dev/null || ! command -v
 fi
 # One X server at a time, across processes (a lock), with a 24-bit screen for OpenGL. Under load Xvfb sometimes is
 # not ready when pvbatch connects ("bad X server connection", SIGABRT, seen in CI): that case alone is retried.
+# flock -o: the lock stays with flock itself, not with the command's children; an Xvfb that outlived its xvfb-run
+# (seen once in a CI run: left behind holding the inherited lock, it stalled every later render) cannot hold it.
 export PYTHONPATH="$pydir${PYTHONPATH:+:$PYTHONPATH}"
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 for attempt in 1 2 3 4; do
   set +e
-  flock "${TMPDIR:-/tmp}/strainwave-pvbatch.lock" xvfb-run -a -s "-screen 0 1600x1200x24" pvbatch "$@" 2> >(tee "$log" >&2)
+  flock -o "${TMPDIR:-/tmp}/strainwave-pvbatch.lock" xvfb-run -a -s "-screen 0 1600x1200x24" pvbatch "$@" 2> >(tee "$log" >&2)
   rc=$?
   set -e
   wait  # the tee of stderr

@@ -229,7 +229,7 @@ void print_overlap_and_balance(const ContactAnalysis& a) {
 
 /// The band over drives of one tolerance class: each figure's smallest, median and largest.
 void print_accuracy_band(const ContactResult::AccuracyBand& b) {
-  const auto of = [](const ContactResult::Spread& s, const char* format) {
+  const auto of = [](const Spread& s, const char* format) {
     char buf[96];
     std::snprintf(buf, sizeof buf, format, s.min, s.median, s.max);
     return std::string(buf);

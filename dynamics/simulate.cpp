@@ -142,7 +142,7 @@ public:
       frozen_forces(s, ms, load);
     }
     std::array<double, kBodyCount> Q = internal_torques(dev, load);
-    s.p_bearing = bearing_ ? bearing_friction(s, Q) : 0.0;
+    s.p_bearing = bearing_ ? add_bearing_friction(s, Q) : 0.0;
     const std::array<double, kBodyCount> T = applied_torques(t, s);
     balance(d, Q, T, s);
     // what the mesh takes off the flexspline (Q_f = −M − M_σ − friction_σ + friction_e)
@@ -395,7 +395,7 @@ private:
 
   /// The generator bearing's friction moment between the generator and the flexspline's rim, against their relative
   /// turn (smoothed over drag_smoothing_rad_per_s): added to Q; its power (≥ 0) returned.
-  double bearing_friction(const Snapshot& s, std::array<double, kBodyCount>& Q) const {
+  double add_bearing_friction(const Snapshot& s, std::array<double, kBodyCount>& Q) const {
     const int w = idx(BodyId::WaveGenerator), f = idx(fs_);
     const double relative = s.omega[w] - s.omega[f];
     const double M = m_.generator_bearing_moment_Nm(std::abs(relative)) *

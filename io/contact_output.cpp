@@ -123,8 +123,7 @@ ContactResult::AccuracyBand accuracy_band_figures(const AccuracyBand& band) {
   const auto over = [&](auto figure, double scale) {
     std::vector<double> v;
     for (const AccuracyBand::Drive& d : band.drive) v.push_back(figure(d) * scale);
-    const Spread s = spread(v);
-    return ContactResult::Spread{s.min, s.median, s.max};
+    return spread(v);
   };
   using D = AccuracyBand::Drive;
   r.K1_Nm_per_rad = over([](const D& d) { return d.k1_Nm_per_rad; }, 1);
@@ -141,8 +140,8 @@ ContactResult::AccuracyBand accuracy_band_figures(const AccuracyBand& band) {
 
 // ---- contact.json's field tables: its keys, each with the member that holds it
 
-static auto fields(std::type_identity<ContactResult::Spread>) {
-  using T = ContactResult::Spread;
+static auto fields(std::type_identity<Spread>) {
+  using T = Spread;
   return std::tuple{field("min", &T::min), field("median", &T::median), field("max", &T::max)};
 }
 

@@ -74,12 +74,8 @@ struct ContactResult {
     double closing_angle_rad = 0, lever_m = 0, contact_radius_m = 0, tooth_pair_compliance_m_per_N = 0;
     double force_at_plus_rated_N = 0, force_at_minus_rated_N = 0;
   };
-  /// Smallest, median and largest over the drives of an accuracy band.
-  struct Spread {
-    double min = 0, median = 0, max = 0;
-  };
-  /// The drive's figures over drives whose teeth deviate within one ISO 1328-1 tolerance class
-  /// (contact/accuracy_band.hpp: `contact --accuracy-class`).
+  /// The drive's figures over drives whose teeth deviate within one ISO 1328-1 tolerance class (`contact
+  /// --accuracy-class`), each as its smallest, median and largest over the drives (contact/accuracy_band.hpp Spread).
   struct AccuracyBand {
     std::string standard, deviations;  ///< the standard; how the deviations are drawn and what is left out
     int tolerance_class = 0, drives = 0;

@@ -124,8 +124,12 @@ std::shared_ptr<const MovingMesh> moving_mesh(const Case& c, const DynamicsParam
   const FemReadout readout = fem_readout(fem.solution);
   const std::unique_ptr<ContactBody> body = contact_body(c, fem, readout.generator_u);
   const double rated = c.load.rated_torque_Nm.value_or(c.load.torque_Nm);
+  // The constant law's pair is a compliance 1/k too (linear with the rim coupled: validate_moving); its least value
+  // (the stiffest k of the variation) is what the contact problem adds at least on the flanks' diagonal.
+  const double k_max = p.stiffness_N_per_m + std::abs(p.stiffness_variation_N_per_m);
+  const ToothCompliance pairs = teeth ? teeth : ToothCompliance([k_max](double, double) { return 1.0 / k_max; });
   return std::make_shared<MovingMesh>(naming_file(c.path, [&] {  // the flank table every pitch/64: see test_moving
-    return fem_coupled_mesh(flexspline_model(c), *body, readout, teeth, rated, p.compliance_phases,
+    return fem_coupled_mesh(flexspline_model(c), *body, readout, pairs, rated, p.compliance_phases,
                             std::max(1, 64 / p.compliance_phases));
   }));
 }

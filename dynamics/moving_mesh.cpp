@@ -4,9 +4,11 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <string>
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 
 #include "common/error.hpp"
 
@@ -238,6 +240,56 @@ void set_body(const MovingMesh& m, const MeshPlace& at, const std::vector<int>& 
   }
 }
 
+/// Interval s (phase s to the next) as a cubic in a over the flanks continuing into the next phase and the stations,
+/// with the phases' slopes of A and the gap correction's slopes.
+void set_interval(MovingMesh& m, int s, const Eigen::MatrixXd& tangent0, const Eigen::MatrixXd& tangent1,
+                  const std::vector<std::vector<double>>& q_tangent) {
+  const int S = static_cast<int>(m.phases.size());
+  const int nb = static_cast<int>(m.station_q.size());
+  const double h = m.pitch_rad / S;
+  MeshPhase& P0 = m.phases[s];
+  const MeshPhase& P1 = m.phases[(s + 1) % S];
+  P0.continuing.clear();
+  for (std::size_t i = 0; i < P0.key.size(); ++i)
+    if (P0.next[i] >= 0) P0.continuing.push_back(static_cast<int>(i));
+  const int n0 = static_cast<int>(P0.key.size()), n1 = static_cast<int>(P1.key.size());
+  std::vector<int> i0(P0.continuing), i1;
+  for (int i : P0.continuing) i1.push_back(P0.next[i]);
+  for (int j = 0; j < nb; ++j) {
+    i0.push_back(n0 + j);
+    i1.push_back(n1 + j);
+  }
+  // The Hermite segment over a ∈ [0, 1] as a cubic: A0 + a·hT0 + a²·(3ΔA − 2hT0 − hT1) + a³·(hT0 + hT1 − 2ΔA).
+  const Eigen::MatrixXd A0 = P0.A_body(i0, i0);
+  const Eigen::MatrixXd dA = P1.A_body(i1, i1) - A0;
+  const Eigen::MatrixXd T0 = h * tangent0(i0, i0), T1 = h * tangent1(i1, i1);
+  P0.A_cubic[0] = A0;
+  P0.A_cubic[1] = T0;
+  P0.A_cubic[2] = 3 * dA - 2 * T0 - T1;
+  P0.A_cubic[3] = T0 + T1 - 2 * dA;
+  P0.q_slope_start.clear();
+  P0.q_slope_end.clear();
+  for (int i : P0.continuing) {
+    P0.q_slope_start.push_back(q_tangent[s][i]);
+    P0.q_slope_end.push_back(q_tangent[(s + 1) % S][P0.next[i]]);
+  }
+}
+
+/// The contact problem's matrix on the interval, its cubic with `series_m_per_N` on the continuing flanks' diagonal
+/// (their tooth pairs' least compliance there), at a = k/16, k = 1..15: the eigenvector of its least eigenvalue at the
+/// first point where that is not positive, else nothing.
+std::optional<Eigen::VectorXd> negative_direction(const MeshPhase& P, const Eigen::VectorXd& series_m_per_N) {
+  for (int k = 1; k < 16; ++k) {
+    const double a = k / 16.0;
+    Eigen::MatrixXd A = P.A_cubic[0] + a * (P.A_cubic[1] + a * (P.A_cubic[2] + a * P.A_cubic[3]));
+    A.diagonal().head(series_m_per_N.size()) += series_m_per_N;
+    if (A.llt().info() == Eigen::Success) continue;
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(A);
+    return eig.eigenvectors().col(0);  // eigenvalues ascending
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 void mesh_instant(const MovingMesh& m, double sigma, MeshInstant& out, bool with_sliding) {
@@ -340,34 +392,69 @@ void prepare_intervals(MovingMesh& m) {
                               hi >= 0 ? next.q_correction[hi] : 0.0);
     }
   }
-  for (int s = 0; s < S; ++s) {
-    MeshPhase& P0 = m.phases[s];
-    const MeshPhase& P1 = m.phases[(s + 1) % S];
-    P0.continuing.clear();
-    for (std::size_t i = 0; i < P0.key.size(); ++i)
-      if (P0.next[i] >= 0) P0.continuing.push_back(static_cast<int>(i));
-    const int n0 = static_cast<int>(P0.key.size()), n1 = static_cast<int>(P1.key.size());
-    std::vector<int> i0(P0.continuing), i1;
-    for (int i : P0.continuing) i1.push_back(P0.next[i]);
-    for (int j = 0; j < nb; ++j) {
-      i0.push_back(n0 + j);
-      i1.push_back(n1 + j);
+  // An interval's Hermite family need not stay positive definite: central slopes overshoot where an entry changes
+  // fast between phases (a flank's own compliance as it enters or leaves the zone), and a flank present in one
+  // neighbouring phase only has a one-sided slope beside the central ones. Seen on the designed size 17 (−6.6e-7 m/N
+  // against the tooth pairs' 2e-8 in series): the contact problem then has no unique solution. Where an interval fails, the slopes of A at its two phases are halved in the
+  // rows and columns that carry the failure (the entries of the most negative eigenvector's within a quarter of its
+  // largest), until it passes; after six halvings a row's slopes are zero, and once every row's is, the segment is the
+  // convex blend A0 + (3a² − 2a³)(A1 − A0) of two positive definite matrices, positive definite at every a. A phase's
+  // slopes stay shared with the neighbouring interval (C¹ kept), which is checked again. The check: the matrix the
+  // contact problem solves at its least (each flank's tooth pair at its least compliance over the interval; 0 for
+  // rigid teeth) at 15 points inside the interval (a = k/16), by Cholesky.
+  // Each continuing flank's least tooth-pair compliance over the interval: the table's at the grid angles its
+  // material angle passes (φ falls by h; the table's interpolant is monotone between them); 0 off the table.
+  auto least_series = [&](int s) {
+    const MeshPhase& P = m.phases[s];
+    const FlankTable& t = m.table;
+    Eigen::VectorXd out = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(P.continuing.size()));
+    if (t.step_rad <= 0) return out;
+    for (std::size_t c = 0; c < P.continuing.size(); ++c) {
+      const int i = P.continuing[c], side = P.side[i];
+      const double phi = wrap_phi(P.phi_rad[i], m.teeth_per_unknown);
+      const auto lo = static_cast<int>(std::floor((phi - h - t.phi_start_rad) / t.step_rad - 1e-9));
+      const auto hi = static_cast<int>(std::ceil((phi - t.phi_start_rad) / t.step_rad + 1e-9));
+      if (lo < 0 || hi >= t.size()) continue;
+      double least = std::numeric_limits<double>::infinity();
+      for (int j = lo; j <= hi; ++j) least = std::min(least, t.compliance_m_per_N[side][j]);
+      if (std::isfinite(least)) out[static_cast<Eigen::Index>(c)] = least;  // NaN anywhere: min is NaN, not finite
     }
-    // The Hermite segment over a ∈ [0, 1] as a cubic: A0 + a·hT0 + a²·(3ΔA − 2hT0 − hT1) + a³·(hT0 + hT1 − 2ΔA).
-    const Eigen::MatrixXd A0 = P0.A_body(i0, i0);
-    const Eigen::MatrixXd dA = P1.A_body(i1, i1) - A0;
-    const Eigen::MatrixXd T0 = h * tangent[s](i0, i0), T1 = h * tangent[(s + 1) % S](i1, i1);
-    P0.A_cubic[0] = A0;
-    P0.A_cubic[1] = T0;
-    P0.A_cubic[2] = 3 * dA - 2 * T0 - T1;
-    P0.A_cubic[3] = T0 + T1 - 2 * dA;
-    P0.q_slope_start.clear();
-    P0.q_slope_end.clear();
-    for (int i : P0.continuing) {
-      P0.q_slope_start.push_back(q_tangent[s][i]);
-      P0.q_slope_end.push_back(q_tangent[(s + 1) % S][P0.next[i]]);
+    return out;
+  };
+  std::vector<Eigen::VectorXd> row_scale(S);  // per phase, per unknown: the factor on its row's and column's slopes
+  for (int s = 0; s < S; ++s) row_scale[s] = Eigen::VectorXd::Ones(m.phases[s].A_body.rows());
+  auto scaled = [&](int s) { return Eigen::MatrixXd(row_scale[s].asDiagonal() * tangent[s] * row_scale[s].asDiagonal()); };
+  auto halve = [](double& x) {
+    if (x <= 0) return false;
+    x = x > 1.0 / 64 ? x / 2 : 0.0;
+    return true;
+  };
+  std::vector<char> reduced(S, 0);
+  for (;;) {
+    bool changed = false, failed = false;
+    for (int s = 0; s < S; ++s) {
+      set_interval(m, s, scaled(s), scaled((s + 1) % S), q_tangent);
+      const std::optional<Eigen::VectorXd> v = negative_direction(m.phases[s], least_series(s));
+      if (!v) continue;
+      failed = true;
+      // v's entries: the interval's continuing flanks then the stations, in both end phases' numbering.
+      const MeshPhase& P0 = m.phases[s];
+      const int e = (s + 1) % S;
+      const auto nc = static_cast<Eigen::Index>(P0.continuing.size());
+      const double cut = 0.25 * v->cwiseAbs().maxCoeff();
+      for (Eigen::Index k = 0; k < v->size(); ++k) {
+        if (std::abs((*v)[k]) < cut) continue;
+        const Eigen::Index i0 = k < nc ? P0.continuing[k] : P0.key.size() + (k - nc);
+        const Eigen::Index i1 = k < nc ? P0.next[P0.continuing[k]] : m.phases[e].key.size() + (k - nc);
+        if (halve(row_scale[s][i0])) changed = reduced[s] = 1;
+        if (halve(row_scale[e][i1])) changed = reduced[e] = 1;
+      }
     }
+    if (!failed) break;
+    if (!changed)  // every slope that carries the failure is zero already: a phase's own matrix is not positive definite
+      throw InputError("dynamics: the rim's compliance at a generator phase is not positive definite");
   }
+  m.reduced_phases = static_cast<int>(std::count(reduced.begin(), reduced.end(), 1));
 }
 
 int solve_lcp(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& x, std::vector<char>& active) {

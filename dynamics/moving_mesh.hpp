@@ -19,7 +19,8 @@
 // stations, contact/loaded_contact.hpp's ContactAnalysis::problem) at `phases` generator phases over one tooth pitch.
 // Between phases every entry of A and each flank's gap correction (the generator's own state) is interpolated by a
 // cubic Hermite segment whose slopes (central differences over the neighbouring phases) are shared across the phase
-// boundaries. Linear segments made the forces jump at every boundary: the damping acts on the gap's rate, and the
+// boundaries; where that segment would leave positive definiteness the phase's slope of A is reduced (at worst to
+// zero, the segment then a convex blend of the two phases' matrices). Linear segments made the forces jump at every boundary: the damping acts on the gap's rate, and the
 // teeth's travel torque ½xᵀ(∂A/∂σ)x on A's slope; each jump cut the integrator's step. A shift by one pitch renames
 // tooth k as tooth k − 1, so the phases cover every angle. The same flank must be in both neighbouring phases, else it is left out over that
 // sub-interval (it is then beyond the problem's reach: far from closing).
@@ -78,6 +79,7 @@ struct MovingMesh {
   std::vector<MeshPhase> phases;  ///< empty: a rigid rim (independent pairs)
   Eigen::VectorXd station_q;      ///< gaps of the generator's unilateral stations (constant in the generator frame)
   std::string source;             ///< for reports: where the clearances and the compliance come from
+  int reduced_phases = 0;         ///< phases whose slope of A is reduced to keep the intervals positive definite
   bool coupled() const { return !phases.empty(); }
   int key_period() const { return teeth_flexspline / teeth_per_unknown; }
 };
@@ -116,7 +118,10 @@ FlankTable make_flank_table(double phi_start_rad, double phi_end_rad, double ste
                             const std::function<double(double, double)>& tooth_compliance_m_per_N);
 
 /// Fills every phase's continuing flanks, A_cubic and the gap correction's slopes from the phases' A_body,
-/// q_correction and next (a coupled mesh).
+/// q_correction and next (a coupled mesh). An interval whose cubic (with each flank's tooth pair at its least compliance
+/// there) is not positive definite gets its phases' slopes of A halved in the rows and columns that carry the failure
+/// until it is (at worst zero: the convex blend of its two phases); reduced_phases counts the phases touched. Throws
+/// InputError if a phase's own matrix is not positive definite.
 void prepare_intervals(MovingMesh& m);
 
 /// The problem at σ (rad), with the flanks' sliding and tangent arms when `with_sliding` (the flanks' friction; else

@@ -162,7 +162,11 @@ MovingMesh fem_coupled_mesh(const FlexsplineModel& c, const ContactBody& body, c
   prepare_intervals(m);
   m.source = "moving pairs coupled through the rim (loaded-contact body compliance at " + std::to_string(phases) +
              " phases per pitch, interpolated; clearances on the FEM's neutral curve every pitch/" +
-             std::to_string(phases * table_per_phase) + ")";
+             std::to_string(phases * table_per_phase) +
+             (m.reduced_phases ? "; the compliance's slope reduced at " + std::to_string(m.reduced_phases) + " of " +
+                                     std::to_string(phases) + " phases, to keep it positive definite"
+                            : std::string()) +
+             ")";
   return m;
 }
 

@@ -8,6 +8,7 @@
 #include <memory>
 #include <numbers>
 
+#include <Eigen/Cholesky>
 #include <gtest/gtest.h>
 
 #include "contact/contact_problem.hpp"
@@ -48,6 +49,61 @@ TEST(MovingMeshLcp, SolvesTwoCoupledContactsOneOpen) {
   EXPECT_NEAR(x[0], 2.0, 1e-14);
   EXPECT_EQ(x[1], 0.0);
   EXPECT_TRUE(active[0] && !active[1]);
+}
+
+/// One flank and no station at S phases over a unit pitch, with body compliance values[s] at phase s.
+MovingMesh one_flank_mesh(const std::vector<double>& values) {
+  MovingMesh m;
+  m.teeth_flexspline = 1;
+  m.pitch_rad = 1.0;
+  for (std::size_t s = 0; s < values.size(); ++s) {
+    MeshPhase P;
+    P.shift_rad = static_cast<double>(s) / values.size();
+    P.key = {0};
+    P.side = {0};
+    P.phi_rad = {0.0};
+    P.next = {0};
+    P.A_body = Eigen::MatrixXd::Constant(1, 1, values[s]);
+    P.q_correction = Eigen::VectorXd::Zero(1);
+    m.phases.push_back(P);
+  }
+  prepare_intervals(m);
+  return m;
+}
+
+/// Interval s's compliance and its slope per unit a at a ∈ [0, 1].
+std::pair<double, double> interval_at(const MeshPhase& P, double a) {
+  const auto& C = P.A_cubic;
+  return {C[0](0, 0) + a * (C[1](0, 0) + a * (C[2](0, 0) + a * C[3](0, 0))),
+          C[1](0, 0) + a * (2 * C[2](0, 0) + 3 * a * C[3](0, 0))};
+}
+
+// The compliance between phases stays positive definite and C¹. Values 1, 0.01, 0.01, 1: the central slopes at the two
+// low phases (−0.495 and +0.495 per interval) make the Hermite segment between them dip to 0.01 − 0.124 = −0.114 at
+// its middle, a compliance below zero that no body has. Those two phases' row factor is halved until the segment
+// passes the check (a diagonal slope scales with the factor squared: 1/16 after two halvings, 0.0023 at the middle);
+// the neighbouring segments keep their other end's central slope, every join keeps value and slope. A family that stays positive keeps the plain Hermite segments (the central differences).
+TEST(MovingMesh, BetweenPhasesTheCompliancesStayPositiveAndJoinSmoothly) {
+  const MovingMesh m = one_flank_mesh({1.0, 0.01, 0.01, 1.0});
+  EXPECT_EQ(m.reduced_phases, 2);
+  const int S = 4;
+  double least = 1.0, worst_value = 0.0, worst_slope = 0.0;
+  for (int s = 0; s < S; ++s) {
+    for (int k = 0; k <= 1000; ++k) least = std::min(least, interval_at(m.phases[s], k / 1000.0).first);
+    const auto end = interval_at(m.phases[s], 1.0), start = interval_at(m.phases[(s + 1) % S], 0.0);
+    worst_value = std::max(worst_value, std::abs(end.first - start.first));
+    worst_slope = std::max(worst_slope, std::abs(end.second - start.second));
+  }
+  EXPECT_GT(least, 0.0);
+  EXPECT_LT(worst_value, 1e-14);  // round-off of the cubic's sums (values of order 1)
+  EXPECT_LT(worst_slope, 1e-14);
+  EXPECT_NEAR(interval_at(m.phases[1], 0.5).first, 0.01 - 0.12375 / 16, 1e-15);
+  EXPECT_NEAR(interval_at(m.phases[0], 0.0).second, -0.495, 1e-15);  // phase 0 keeps its central slope
+
+  const MovingMesh smooth = one_flank_mesh({1.0, 0.8, 0.7, 0.9});
+  EXPECT_EQ(smooth.reduced_phases, 0);
+  EXPECT_NEAR(interval_at(smooth.phases[1], 0.0).second, (0.7 - 1.0) / 2, 1e-15);
+  EXPECT_NEAR(interval_at(smooth.phases[3], 0.0).second, (1.0 - 0.7) / 2, 1e-15);
 }
 
 struct CoarseSeed {
@@ -93,7 +149,7 @@ TEST(MovingMesh, CompliancePhasesJoinWithContinuousGapsRatesAndCompliance) {
   MovingMesh m = coarse_coupled();
   const int S = static_cast<int>(m.phases.size());
   const double h = m.pitch_rad / S, eps = 1e-9 * h;
-  double worst_q = 0, worst_dq = 0, worst_A = 0, worst_form = 0;
+  double worst_q = 0, worst_dq = 0, worst_A = 0, worst_form = 0, form_scale = 0;
   for (int b = 1; b <= S; ++b) {
     const double sigma = 3 * m.pitch_rad + b * h;
     MeshInstant lo, hi;
@@ -132,12 +188,27 @@ TEST(MovingMesh, CompliancePhasesJoinWithContinuousGapsRatesAndCompliance) {
     Eigen::VectorXd xl = Eigen::VectorXd::Zero(lo.unknowns()), xh = Eigen::VectorXd::Zero(hi.unknowns());
     for (std::size_t c = 0; c < il.size(); ++c) xl[il[c]] = xh[ih[c]] = 100.0;
     const double fl = body_travel_torque_Nm(lo, xl), fh = body_travel_torque_Nm(hi, xh);
-    worst_form = std::max(worst_form, std::abs(fl - fh) / std::max(std::abs(fl), std::abs(fh)));
+    form_scale = std::max({form_scale, std::abs(fl), std::abs(fh)});
+    worst_form = std::max(worst_form, std::abs(fl - fh));
     std::printf("boundary %d: %d common flanks of %d / %d; travel torque form %.6g / %.6g N·m\n", b, common,
                 lo.flanks(), hi.flanks(), fl, fh);
   }
+  worst_form /= form_scale;  // of the largest form at a boundary: where a phase's slope is reduced, the form is small
   std::printf("largest jumps across a phase boundary: q %.2e, dq/dsigma %.2e, A %.2e, x'(dA/dsigma)x %.2e\n", worst_q,
               worst_dq, worst_A, worst_form);
+  // Between the phases the contact problem's matrix (the body's cubic, the tooth pairs in series) stays positive
+  // definite, at 32 points per interval (the tool checks 15 per interval).
+  int indefinite = 0;
+  for (int k = 0; k < 32 * S; ++k) {
+    MeshInstant in;
+    mesh_instant(m, 3 * m.pitch_rad + (k + 0.5) * h / 32, in);
+    in.series.head(in.flanks()) = in.compliance;
+    Eigen::MatrixXd A(in.unknowns(), in.unknowns());
+    for (int j = 0; j < in.unknowns(); ++j) A.col(j) = Eigen::Map<const Eigen::VectorXd>(in.column(j), in.unknowns());
+    indefinite += A.llt().info() != Eigen::Success;
+  }
+  std::printf("%d phases with a reduced slope of %d; indefinite instants %d of %d\n", m.reduced_phases, S, indefinite, 32 * S);
+  EXPECT_EQ(indefinite, 0);
   EXPECT_LT(worst_q, 1e-6);
   EXPECT_LT(worst_dq, 1e-6);
   EXPECT_LT(worst_A, 1e-6);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <functional>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <vector>
 
@@ -64,13 +65,32 @@ std::vector<ToothPair> frozen_pairs(const Case& c, const DynamicsParams& p, cons
   return pairs;
 }
 
+/// The flexspline as the fem job solved it (its files in the command's output set) and the loaded contact's body on it.
+struct SolvedBody {
+  FemJobResult fem;
+  FemReadout readout;
+  std::unique_ptr<ContactBody> body;
+};
+
+SolvedBody solve_body(const Case& c, OutputSet& out) {
+  FemJobOptions o;
+  o.write_vtk = false;
+  SolvedBody s;
+  s.fem = run_fem_job(c, out, o);
+  s.readout = fem_readout(s.fem.solution);
+  s.body = contact_body(c, s.fem, s.readout.generator_u);
+  return s;
+}
+
 /// The generator bearing's running friction moment against the speed of its rings relative to each other: Palmgren's
 /// M0 + M1 (generator/bearing_friction.hpp) with the lubricant's viscosity at its temperature and the balls loaded as
-/// the loaded contact loads them at the run's load torque (the flexspline and the contact on the harmonic solver:
-/// seconds; the step nearest that torque, at most rated). The balls' loads stay those of that torque through the run
-/// (the load's ramp and the mesh's fluctuation do not change them): an idealisation, said in `source`. Empty, with
-/// the reason in `source`, without a [lubricant] or without a bearing whose balls a cam or rollers load.
-std::function<double(double)> bearing_moment(const Case& c, double load_torque_Nm, std::string& source) {
+/// the loaded contact loads them at the run's load torque (the step nearest that torque, at most rated), on the body
+/// the rim's coupling solved (`solved`), else on the harmonic solver's (seconds). The balls' loads stay those of that
+/// torque through the run (the load's ramp and the mesh's fluctuation do not change them): an idealisation, said in
+/// `source`. Empty, with the reason in `source`, without a [lubricant] or without a bearing whose balls a cam or
+/// rollers load.
+std::function<double(double)> bearing_moment(const Case& c, double load_torque_Nm, const SeriesParts& series,
+                                             const SolvedBody* solved, std::string& source) {
   if (!c.lubricant) {
     source = "frictionless: the case gives no [lubricant]";
     return {};
@@ -81,13 +101,19 @@ std::function<double(double)> bearing_moment(const Case& c, double load_torque_N
     return {};
   }
   progress("dynamics: the generator bearing's ball loads from the loaded contact at " +
-           std::to_string(load_torque_Nm) + " N·m (harmonic solver)");
-  double section_s = 0;
-  const FourierSolution fourier = solve_fourier_model(c, 0, 0.0, section_s);
+           std::to_string(load_torque_Nm) + " N·m");
   const FlexsplineModel m = flexspline_model(c);
-  const HarmonicBody body(m, fourier);
+  std::optional<FourierSolution> fourier;
+  std::optional<HarmonicBody> harmonic;
+  if (!solved) {
+    double section_s = 0;
+    fourier = solve_fourier_model(c, 0, 0.0, section_s);
+    harmonic.emplace(m, *fourier);
+  }
+  const ContactBody& body = solved ? *solved->body : static_cast<const ContactBody&>(*harmonic);
+  const FemReadout readout = solved ? solved->readout : fem_readout(fourier->figures);
   const ContactAnalysis contact =
-      naming_file(c.path, [&] { return analyse_contact(m, body, fem_readout(fourier.figures), contact_options(c, series_parts(c))); });
+      naming_file(c.path, [&] { return analyse_contact(m, body, readout, contact_options(c, series)); });
   if (!body.stations().unilateral || contact.steps.back().station_force_N.empty()) {
     source = "frictionless: the generator's stations are held (the force idealisation), no ball is loaded by contact";
     return {};
@@ -106,33 +132,29 @@ std::function<double(double)> bearing_moment(const Case& c, double load_torque_N
   };
 }
 
-}  // namespace
-
-std::shared_ptr<const MovingMesh> moving_mesh(const Case& c, const DynamicsParams& p, OutputSet& out) {
-  const ToothCompliance teeth =
-      p.pair_stiffness == PairStiffness::Teeth ? series_parts(c).tooth_pair_m_per_N : ToothCompliance{};
-  if (p.rim == RimCoupling::Rigid) {
+/// The moving mesh of the case: a rigid rim on the case's generator curve (flank table every pitch/64), or, for
+/// rim = "fem", the rim coupled through the body the fem job solved (`solved`); the tooth pairs from `series`.
+std::shared_ptr<const MovingMesh> moving_mesh(const Case& c, const DynamicsParams& p, const SeriesParts& series,
+                                              const SolvedBody* solved) {
+  const ToothCompliance teeth = p.pair_stiffness == PairStiffness::Teeth ? series.tooth_pair_m_per_N : ToothCompliance{};
+  if (!solved) {
     const double rm = rim_mean_radius(c.flexspline), w0 = radial_deformation_m(flexspline_model(c));
     const NeutralCurve curve =
         c.wave_generator ? generator_neutral_curve(rm, w0, *c.wave_generator) : cam_neutral_curve(rm, w0);
     return std::make_shared<MovingMesh>(rigid_rim_mesh(*c.gear, curve, teeth, 64));
   }
-  naming_file(c.path, [&] { check_contact_model(flexspline_model(c)); });
-  FemJobOptions o;
-  o.write_vtk = false;
-  const FemJobResult fem = run_fem_job(c, out, o);
-  const FemReadout readout = fem_readout(fem.solution);
-  const std::unique_ptr<ContactBody> body = contact_body(c, fem, readout.generator_u);
   const double rated = c.load.rated_torque_Nm.value_or(c.load.torque_Nm);
   // The constant law's pair is a compliance 1/k too (linear with the rim coupled: validate_moving); its least value
   // (the stiffest k of the variation) is what the contact problem adds at least on the flanks' diagonal.
   const double k_max = p.stiffness_N_per_m + std::abs(p.stiffness_variation_N_per_m);
   const ToothCompliance pairs = teeth ? teeth : ToothCompliance([k_max](double, double) { return 1.0 / k_max; });
   return std::make_shared<MovingMesh>(naming_file(c.path, [&] {  // the flank table every pitch/64: see test_moving
-    return fem_coupled_mesh(flexspline_model(c), *body, readout, pairs, rated, p.compliance_phases,
+    return fem_coupled_mesh(flexspline_model(c), *solved->body, solved->readout, pairs, rated, p.compliance_phases,
                             std::max(1, 64 / p.compliance_phases));
   }));
 }
+
+}  // namespace
 
 DynamicsJobModel dynamics_model(const Case& c, DynamicsParams p, const DynamicsModelOptions& o, OutputSet& out) {
   const bool moving = p.pair_motion == PairMotion::Moving;
@@ -153,13 +175,22 @@ DynamicsJobModel dynamics_model(const Case& c, DynamicsParams p, const DynamicsM
   std::vector<ToothPair> pairs = frozen_pairs(c, p, o, r.source);
   r.model = make_model(*c.gear, c.flexspline, c.flexspline.shape == FlexsplineShape::Cup, c.material, p,
                        std::move(pairs), c.path);
+  // The tooth pairs' compliance (an FEM of its own, run once here) where the moving pairs or the bearing's loads use it.
+  const bool teeth_used = (moving && p.pair_stiffness == PairStiffness::Teeth) || c.lubricant.has_value();
+  const SeriesParts series = teeth_used ? series_parts(c) : SeriesParts{};
+  std::optional<SolvedBody> solved;  // the rim coupled through the FEM: its body serves the bearing's loads too
+  if (moving && p.rim == RimCoupling::Fem) {
+    naming_file(c.path, [&] { check_contact_model(flexspline_model(c)); });
+    solved = solve_body(c, out);
+  }
   if (moving) {
-    r.model.moving = moving_mesh(c, p, out);
+    r.model.moving = moving_mesh(c, p, series, solved ? &*solved : nullptr);
     r.model.pairs.clear();
     r.source = r.model.moving->source;
   }
   r.model.friction_coefficient = c.contact.friction_coefficient;
-  r.model.generator_bearing_moment_Nm = bearing_moment(c, p.load_torque_Nm, r.bearing_source);
+  r.model.generator_bearing_moment_Nm =
+      bearing_moment(c, p.load_torque_Nm, series, solved ? &*solved : nullptr, r.bearing_source);
   return r;
 }
 

@@ -26,11 +26,6 @@ struct DynamicsJobModel {
   std::string bearing_source;
 };
 
-/// The moving mesh of the case: a rigid rim on the case's generator curve (flank table every pitch/64), or, for
-/// rim = "fem", the rim coupled through the FEM's body (runs the FEM job first, its files into the set `out`; TET10
-/// only).
-std::shared_ptr<const MovingMesh> moving_mesh(const Case& c, const DynamicsParams& p, OutputSet& out);
-
 /// The model `strainwave dynamics` integrates: the case's [dynamics] values `p` (already resolved), pairs moving or
 /// frozen as p.pair_motion says. Precondition: c.gear is set. Throws InputError on invalid values (validate()).
 DynamicsJobModel dynamics_model(const Case& c, DynamicsParams p, const DynamicsModelOptions& options, OutputSet& out);

@@ -4,10 +4,12 @@
 // as its case file (load_case), bad ones in one line naming the output.
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <set>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -143,6 +145,12 @@ poisson_ratio = 0.29
 density_kg_m3 = 7800
 fatigue_limit_MPa = 480
 ultimate_strength_MPa = 1050
+yield_strength_MPa = 900
+[lubricant]
+kind = "oil"
+viscosity_40C_mm2_s = 100
+viscosity_100C_mm2_s = 11
+temperature_C = 35
 [load]
 torque_Nm = 20
 torque_loading = "uniform"
@@ -230,6 +238,61 @@ TEST(ResolvedCase, EveryKeyReadsBackWithItsValue) {
     expect_reads_back(c, name);
     expect_file_keys_written(text, c, name);
   }
+}
+
+/// The section of a Markdown file from its heading line `heading` to the next heading of the same level.
+std::string section_of(const std::string& text, const std::string& heading) {
+  const auto start = text.find("\n" + heading + "\n");
+  if (start == std::string::npos) return "";
+  const auto end = text.find("\n## ", start + 1);
+  return text.substr(start, end == std::string::npos ? std::string::npos : end - start);
+}
+
+/// Whether `key` stands in `text` as a word (not inside a longer name).
+bool names(const std::string& text, const std::string& key) {
+  auto is_name = [](char ch) { return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_'; };
+  for (auto at = text.find(key); at != std::string::npos; at = text.find(key, at + 1)) {
+    const bool before = at > 0 && is_name(text[at - 1]);
+    const bool after = at + key.size() < text.size() && is_name(text[at + key.size()]);
+    if (!before && !after) return true;
+  }
+  return false;
+}
+
+// Every key the reader takes is documented: the resolved case of the every-key case (each generator model in turn)
+// names each table's keys, and each must stand in its table's section of docs/case-keys.md, the keys of inline tables
+// and lists of tables included. A key added to a reader without its line in the documentation fails here.
+TEST(ResolvedCase, EveryKeyTheReaderTakesIsDocumented) {
+  const std::string docs = read_text("docs/case-keys.md");
+  ASSERT_FALSE(docs.empty());
+  std::set<std::string> missing;
+  int keys = 0;
+  for (const char* generator : kGenerators) {
+    const sw::Case c = sw::parse_case(std::string(kEveryKey) + generator, "every key");
+    const toml::table written = toml::parse(sw::describe_case(c));
+    for (const auto& [table_name, node] : written) {
+      const std::string table(table_name.str());
+      const std::string where = section_of(docs, "## `[" + table + "]`");
+      EXPECT_FALSE(where.empty()) << "no section for [" << table << "] in docs/case-keys.md";
+      auto check = [&](const std::string& key) {
+        ++keys;
+        if (!names(where, key)) missing.insert("[" + table + "] " + key);
+      };
+      for (const auto& [key, value] : *node.as_table()) {
+        check(std::string(key.str()));
+        if (const toml::table* inline_table = value.as_table())
+          for (const auto& [sub, unused] : *inline_table) check(std::string(sub.str()));
+        if (const toml::array* list = value.as_array())
+          for (const toml::node& item : *list)
+            if (const toml::table* t = item.as_table())
+              for (const auto& [sub, unused] : *t) check(std::string(sub.str()));
+      }
+    }
+  }
+  std::string list;
+  for (const auto& m : missing) list += "\n  " + m;
+  EXPECT_TRUE(missing.empty()) << missing.size() << " keys without their documentation:" << list;
+  EXPECT_GT(keys, 100);  // the every-key case's tables were read
 }
 
 // The keys a case leaves out are written with the value the reader gave them: a tube's derived rim, the default mesh,

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <map>
 #include <set>
 #include <string>
 
@@ -113,7 +114,8 @@ TEST(ResolvedCase, EveryDesignReadsBackWithTheDesignsValues) {
     }
 }
 
-// Every key the reader takes, none at its default; the generator's models in turn (each takes its own keys).
+// Every key the reader takes, none at its default but circular_spline.mounting (the other value takes no bolt
+// circles); the generator's models in turn (each takes its own keys).
 constexpr const char* kEveryKey = R"([gear]
 module_mm = 0.2
 teeth_flexspline = 190
@@ -161,6 +163,7 @@ size = 17
 [circular_spline]
 outer_radius_mm = 28.5
 width_mm = 5.5
+mounting = "bolted_face"
 bolt_circle_inner_mm = 21.5
 bolt_circle_outer_mm = 25
 [contact]
@@ -293,6 +296,44 @@ TEST(ResolvedCase, EveryKeyTheReaderTakesIsDocumented) {
   for (const auto& m : missing) list += "\n  " + m;
   EXPECT_TRUE(missing.empty()) << missing.size() << " keys without their documentation:" << list;
   EXPECT_GT(keys, 100);  // the every-key case's tables were read
+}
+
+// The every-key case is what its name says: each table's reader, asked for a key it does not know, lists the keys it
+// asks for (its "allowed" list); over the generator models every one of them is set by the every-key case and stands in
+// its table's section of docs/case-keys.md. A key added to a reader and to neither fails here.
+TEST(ResolvedCase, EveryKeyCaseSetsEveryKeyTheReaderAsksFor) {
+  const std::string docs = read_text("docs/case-keys.md");
+  std::map<std::string, std::set<std::string>> asked, given;
+  for (const char* generator : kGenerators) {
+    const std::string text = std::string(kEveryKey) + generator;
+    const toml::table parsed = toml::parse(text);
+    for (const auto& [table_name, node] : parsed) {
+      const std::string table(table_name.str());
+      for (const auto& [key, unused] : *node.as_table()) given[table].insert(std::string(key.str()));
+      std::string probed = text;
+      const std::string header = "[" + table + "]\n";
+      probed.insert(probed.find(header) + header.size(), "zz_probe = 1\n");
+      try {
+        sw::parse_case(probed, "probe");
+        ADD_FAILURE() << "[" << table << "] took an unknown key";
+      } catch (const sw::InputError& e) {
+        const std::string what = e.what(), tag = "(allowed: ";
+        const auto at = what.find(tag);
+        ASSERT_NE(at, std::string::npos) << what;
+        std::istringstream list(what.substr(at + tag.size(), what.rfind(')') - at - tag.size()));
+        for (std::string key; std::getline(list >> std::ws, key, ',');) asked[table].insert(key);
+      }
+    }
+  }
+  int keys = 0;
+  for (const auto& [table, names_asked] : asked)
+    for (const std::string& key : names_asked) {
+      ++keys;
+      EXPECT_TRUE(given[table].count(key)) << "[" << table << "] " << key << ": the every-key case does not set it";
+      EXPECT_TRUE(names(section_of(docs, "## `[" + table + "]`"), key))
+          << "[" << table << "] " << key << ": not in docs/case-keys.md";
+    }
+  EXPECT_GT(keys, 90);  // every table's list was read (99 keys of the top level today)
 }
 
 // The keys a case leaves out are written with the value the reader gave them: a tube's derived rim, the default mesh,

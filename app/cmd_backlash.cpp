@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <numbers>
 
+#include <CLI/CLI.hpp>
+
 #include "app/backlash_job.hpp"
 #include "app/commands.hpp"
 #include "common/error.hpp"

@@ -6,6 +6,8 @@
 #include <memory>
 #include <optional>
 
+#include <CLI/CLI.hpp>
+
 #include "app/commands.hpp"
 #include "app/contact_job.hpp"
 #include "app/fem_job.hpp"

@@ -8,6 +8,8 @@
 #include <limits>
 #include <string>
 
+#include <CLI/CLI.hpp>
+
 #include "app/commands.hpp"
 #include "app/contact_job.hpp"
 #include "app/fem_job.hpp"

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "app/commands.hpp"
 #include "app/fem_job.hpp"
 #include "common/error.hpp"

@@ -5,6 +5,8 @@
 #include <numbers>
 #include <optional>
 
+#include <CLI/CLI.hpp>
+
 #include "app/backlash_job.hpp"
 #include "app/contact_job.hpp"
 #include "app/commands.hpp"

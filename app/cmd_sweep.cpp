@@ -22,6 +22,8 @@
 #include <sstream>
 #include <thread>
 
+#include <CLI/CLI.hpp>
+
 #include "app/commands.hpp"
 #include "app/fem_job.hpp"
 #include "common/error.hpp"

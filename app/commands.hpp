@@ -2,9 +2,12 @@
 // Each subcommand of `strainwave` lives in its own app/cmd_<name>.cpp and registers itself on the CLI11 app here.
 #include <filesystem>
 
-#include <CLI/CLI.hpp>
 
 #include "io/case.hpp"
+
+namespace CLI {
+class App;
+}
 
 namespace sw::app {
 

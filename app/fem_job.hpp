@@ -6,17 +6,12 @@
 #include <string>
 #include <vector>
 
-
 #include "app/commands.hpp"
 #include "io/atomic_file.hpp"
 #include "io/case.hpp"
 #include "fem/flexspline_analysis.hpp"
 #include "fem/fourier_solver.hpp"
 #include "mesh/tet_mesh.hpp"
-
-namespace CLI {
-class App;  // CLI/CLI.hpp costs some 6 s of compile per unit at -O3: only the commands include it
-}
 
 namespace sw::app {
 

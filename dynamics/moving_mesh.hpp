@@ -19,11 +19,12 @@
 // stations, contact/loaded_contact.hpp's ContactAnalysis::problem) at `phases` generator phases over one tooth pitch.
 // Between phases every entry of A and each flank's gap correction (the generator's own state) is interpolated by a
 // cubic Hermite segment whose slopes (central differences over the neighbouring phases) are shared across the phase
-// boundaries; where that segment would leave positive definiteness the phase's slope of A is reduced (at worst to
-// zero, the segment then a convex blend of the two phases' matrices). Linear segments made the forces jump at every boundary: the damping acts on the gap's rate, and the
-// teeth's travel torque ½xᵀ(∂A/∂σ)x on A's slope; each jump cut the integrator's step. A shift by one pitch renames
-// tooth k as tooth k − 1, so the phases cover every angle. The same flank must be in both neighbouring phases, else it is left out over that
-// sub-interval (it is then beyond the problem's reach: far from closing).
+// boundaries; where that segment would leave positive definiteness the phase's slope of A is reduced (at worst to zero,
+// the segment then a convex blend of the two phases' matrices). Linear segments made the forces jump at every boundary:
+// the damping acts on the gap's rate, and the teeth's travel torque ½xᵀ(∂A/∂σ)x on A's slope; each jump cut the
+// integrator's step. A shift by one pitch renames tooth k as tooth k − 1, so the phases cover every angle. The same
+// flank must be in both neighbouring phases, else it is left out over that sub-interval (it is then beyond the
+// problem's reach: far from closing).
 #include <functional>
 #include <string>
 #include <vector>

@@ -82,7 +82,8 @@ std::pair<double, double> interval_at(const MeshPhase& P, double a) {
 // low phases (−0.495 and +0.495 per interval) make the Hermite segment between them dip to 0.01 − 0.124 = −0.114 at
 // its middle, a compliance below zero that no body has. Those two phases' row factor is halved until the segment
 // passes the check (a diagonal slope scales with the factor squared: 1/16 after two halvings, 0.0023 at the middle);
-// the neighbouring segments keep their other end's central slope, every join keeps value and slope. A family that stays positive keeps the plain Hermite segments (the central differences).
+// the neighbouring segments keep their other end's central slope, every join keeps value and slope. A family that
+// stays positive keeps the plain Hermite segments (the central differences).
 TEST(MovingMesh, BetweenPhasesTheCompliancesStayPositiveAndJoinSmoothly) {
   const MovingMesh m = one_flank_mesh({1.0, 0.01, 0.01, 1.0});
   EXPECT_EQ(m.reduced_phases, 2);
@@ -207,7 +208,8 @@ TEST(MovingMesh, CompliancePhasesJoinWithContinuousGapsRatesAndCompliance) {
     for (int j = 0; j < in.unknowns(); ++j) A.col(j) = Eigen::Map<const Eigen::VectorXd>(in.column(j), in.unknowns());
     indefinite += A.llt().info() != Eigen::Success;
   }
-  std::printf("%d phases with a reduced slope of %d; indefinite instants %d of %d\n", m.reduced_phases, S, indefinite, 32 * S);
+  std::printf("%d phases with a reduced slope of %d; indefinite instants %d of %d\n", m.reduced_phases, S, indefinite,
+              32 * S);
   EXPECT_EQ(indefinite, 0);
   EXPECT_LT(worst_q, 1e-6);
   EXPECT_LT(worst_dq, 1e-6);

@@ -13,7 +13,7 @@ namespace sw::app {
 
 /// The files the backlash job writes in its output folder: a command that runs it owns them (OutputSet).
 inline const std::vector<std::string> kBacklashJobFiles = {"backlash.json", "backlash.csv", "backlash.svg",
-                                                           "profiles.vtp"};
+                                                           "profiles.vtp", "drive.svg"};
 
 struct BacklashJobOptions {
   std::optional<std::filesystem::path> fem_result;  ///< --fem DIR/result.json: φ₀ (or C_τ·T) and neutral_curve.csv
@@ -22,7 +22,8 @@ struct BacklashJobOptions {
   int revolution_steps = 3600;                      ///< 0.1° steps
 };
 
-/// Builds the model from the case, sweeps, writes backlash.json/.csv/.svg and profiles.vtp into the set `out` (owning
+/// Builds the model from the case, sweeps, writes backlash.json/.csv/.svg, profiles.vtp and drive.svg (the drawing of
+/// the drive's parts) into the set `out` (owning
 /// kBacklashJobFiles; an fem result of the same set is read as staged), prints the paper's table on stdout. Throws
 /// InputError for a case without [gear] or without wave_generator.radial_deformation_mm.
 BacklashReport run_backlash_job(const Case& c, const BacklashJobOptions& options, OutputSet& out);

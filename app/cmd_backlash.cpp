@@ -12,7 +12,9 @@
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "io/atomic_file.hpp"
+#include "contact/circular_spline.hpp"
 #include "io/case.hpp"
+#include "io/drive_drawing.hpp"
 #include "io/fem_output.hpp"
 #include "io/provenance.hpp"
 
@@ -72,6 +74,18 @@ void sweep(BacklashReport& r, const BacklashModel& m, int revolution_steps) {
   const double t_rev = clock.lap();
   progress("backlash: 1440 pair positions in " + std::to_string(t_positions) + " s; revolution (" +
            std::to_string(revolution_steps) + " steps x 2) in " + std::to_string(t_rev) + " s");
+}
+
+/// The radii of the drive's drawing from the case: the circular spline's outside by its design rule when the case has
+/// no [circular_spline].
+DriveOutline drive_outline(const Case& c) {
+  DriveOutline o;
+  o.bore_radius_m = c.flexspline.inner_radius_m;
+  o.circular_spline_outer_radius_m = c.circular_spline ? c.circular_spline->outer_radius_m
+                                                       : default_circular_spline(*c.gear, c.flexspline.rim_width_m).outer_radius_m;
+  o.bearing = c.wave_generator->bearing;
+  o.generator = model_name(c.wave_generator->model);
+  return o;
 }
 
 /// The geometry check, the play over a revolution and the paper's table, on stdout.
@@ -139,6 +153,7 @@ BacklashReport run_backlash_job(const Case& c, const BacklashJobOptions& o, Outp
   write_file_atomic(out.staging() / "backlash.csv", backlash_csv(r));
   write_file_atomic(out.staging() / "backlash.svg", backlash_svg(r));
   write_profiles_vtp(out.staging() / "profiles.vtp", m, r.phi0_rad);
+  write_file_atomic(out.staging() / "drive.svg", drive_svg(m, drive_outline(c), c.path));
   print_backlash_summary(c, r);
   return r;
 }

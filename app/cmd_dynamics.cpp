@@ -81,6 +81,11 @@ void print_summary(const DynamicsModel& m, const DynamicsSummary& r, const Dynam
               "%.2e\n",
               w.efficiency, m.friction_coefficient, info.bearing_source.c_str(), w.input_W, w.output_W, w.friction_W,
               w.bearing_W, w.dissipated_W, w.balance_error_rel);
+  if (w.damping_exceeds_output)
+    std::printf("  WARNING: the contact's damping dissipates %.4g W, more than the %.4g W the output delivers: the run "
+                "is dominated by vibration the contact's damper (the model's idealisation of the teeth's damping) "
+                "sets, so the efficiency and the loss split above describe that damper more than the drive\n",
+                w.dissipated_W, w.output_W);
   std::printf("  mesh frequency %.2f Hz; strongest line %s\n", r.theory.mesh_frequency_Hz,
               r.lines.empty() ? "none" : (std::to_string(r.lines[0].frequency_Hz) + " Hz").c_str());
   std::printf("  steady window: mesh deflection %.4g to %.4g mrad, largest flank force %.4g N, %g to %g flanks in "

@@ -153,6 +153,7 @@ SteadyPower steady_power(const DynamicsSeries& s, Window w) {
   if (p.friction_W + p.bearing_W > 0.0) p.efficiency = p.output_W / (p.output_W + p.friction_W + p.bearing_W);
   p.balance_error_rel = std::abs(p.input_W - (p.output_W + p.friction_W + p.bearing_W + p.dissipated_W + p.stored_W)) /
                         std::max(std::abs(p.input_W), 1e-300);
+  p.damping_exceeds_output = p.dissipated_W > p.output_W;
   return p;
 }
 

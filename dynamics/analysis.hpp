@@ -49,6 +49,11 @@ struct SteadyPower {
   /// damping, reported beside it.
   double efficiency = 1.0;
   double balance_error_rel = 0.0;  ///< |input − (output + friction + dissipated + stored)| / |input|
+  /// dissipated_W > output_W: the contact's damper (the paper's idealisation, not a loss the drive's physics gives)
+  /// takes more than the output delivers, so the run is dominated by vibration that damper sets, and the efficiency
+  /// and the loss split describe the model's damper more than the drive (e.g. the FEM-coupled rim ringing at a mesh
+  /// harmonic, or no load).
+  bool damping_exceeds_output = false;
 };
 
 struct DynamicsSummary {

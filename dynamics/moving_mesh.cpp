@@ -397,8 +397,8 @@ void prepare_intervals(MovingMesh& m) {
   // phase only has a one-sided slope beside the central ones. Seen on the designed size 17 (−6.6e-7 m/N against the
   // tooth pairs' 2e-8 in series): the contact problem then has no unique solution. Where an interval fails, the slopes
   // of A at its two phases are halved in the rows and columns that carry the failure (the entries of the most negative
-  // eigenvector's within a quarter of its largest), until it passes; after six halvings a row's slopes are zero, and
-  // once every row's is, the segment is the convex blend A0 + (3a² − 2a³)(A1 − A0) of two positive definite matrices,
+  // eigenvector's within a quarter of its largest; once those are zero, every row of the interval), until it passes;
+  // after six halvings a row's slopes are zero, and once every row's is, the segment is the convex blend A0 + (3a² − 2a³)(A1 − A0) of two positive definite matrices,
   // positive definite at every a. A phase's slopes stay shared with the neighbouring interval (C¹ kept), which is
   // checked again. The check: the matrix the contact problem solves at its least (each flank's tooth pair at its least
   // compliance over the interval; 0 for rigid teeth) at 15 points inside the interval (a = k/16), by Cholesky.
@@ -441,17 +441,22 @@ void prepare_intervals(MovingMesh& m) {
       const MeshPhase& P0 = m.phases[s];
       const int e = (s + 1) % S;
       const auto nc = static_cast<Eigen::Index>(P0.continuing.size());
-      const double cut = 0.25 * v->cwiseAbs().maxCoeff();
-      for (Eigen::Index k = 0; k < v->size(); ++k) {
-        if (std::abs((*v)[k]) < cut) continue;
-        const Eigen::Index i0 = k < nc ? P0.continuing[k] : P0.key.size() + (k - nc);
-        const Eigen::Index i1 = k < nc ? P0.next[P0.continuing[k]] : m.phases[e].key.size() + (k - nc);
-        if (halve(row_scale[s][i0])) changed = reduced[s] = 1;
-        if (halve(row_scale[e][i1])) changed = reduced[e] = 1;
+      // The rows that carry the failure first; once their slopes are zero, every row of the interval.
+      bool here = false;
+      for (const double cut : {0.25 * v->cwiseAbs().maxCoeff(), 0.0}) {
+        for (Eigen::Index k = 0; k < v->size(); ++k) {
+          if (std::abs((*v)[k]) < cut) continue;
+          const Eigen::Index i0 = k < nc ? P0.continuing[k] : P0.key.size() + (k - nc);
+          const Eigen::Index i1 = k < nc ? P0.next[P0.continuing[k]] : m.phases[e].key.size() + (k - nc);
+          if (halve(row_scale[s][i0])) here = reduced[s] = 1;
+          if (halve(row_scale[e][i1])) here = reduced[e] = 1;
+        }
+        if (here) break;
       }
+      changed = changed || here;
     }
     if (!failed) break;
-    if (!changed)  // every slope that carries the failure is zero already: a phase's own matrix is not positive definite
+    if (!changed)  // every slope of a failing interval is zero already: a phase's own matrix is not positive definite
       throw InputError("dynamics: the rim's compliance at a generator phase is not positive definite");
   }
   m.reduced_phases = static_cast<int>(std::count(reduced.begin(), reduced.end(), 1));

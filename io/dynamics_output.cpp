@@ -191,6 +191,7 @@ void power_fields(Io& io, R& r) {
     sub("/power_W/dissipated", p.dissipated_W);
     sub("/power_W/stored", p.stored_W);
     sub("/power_balance_error_rel", p.balance_error_rel);
+    sub("/contact_damping_exceeds_output", p.damping_exceeds_output);
     sub("/energy_J/friction", r.energy.friction_J);
     sub("/energy_J/generator_bearing", r.energy.bearing_J);
     sub("/generator_bearing_friction", r.bearing_source);

@@ -199,6 +199,17 @@ TEST(Cases, SeedGearSetHasNoInterferenceAndReportsItsPlay) {
   fs::remove_all(out);
 }
 
+// The README's drawing of the drive's parts (docs/drive.svg) is the tool's own: `backlash` on the shipped size-17 case
+// writes it byte for byte. When the geometry or the drawing changes, this fails until the copy is written again
+// (`build/strainwave backlash cases/cup_size17.toml --out DIR` and DIR/drive.svg to docs/).
+TEST(Cases, ReadmeDrawingIsTheToolsOwn) {
+  const fs::path out = fresh_dir("drawing");
+  const CommandRun r = run_strainwave("backlash --quiet cases/cup_size17.toml --steps 360 --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(read_text(out / "drive.svg") == read_text("docs/drive.svg"))
+      << "docs/drive.svg is not what the tool draws now: copy " << (out / "drive.svg") << " there";
+}
+
 // `strainwave design` writes the shipped size-17 case byte for byte (the case in cases/ is the rule set's, not edited
 // by hand), atomically to --out; bad sizes and ratios give one line, a non-zero exit and no file.
 TEST(Design, WritesTheShippedCaseAndRefusesBadSizesWithOneLine) {

@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include <Eigen/Cholesky>
+#include <Eigen/LU>
 #include <gtest/gtest.h>
 
 #include "contact/contact_problem.hpp"
@@ -105,6 +106,44 @@ TEST(MovingMesh, BetweenPhasesTheCompliancesStayPositiveAndJoinSmoothly) {
   EXPECT_EQ(smooth.reduced_phases, 0);
   EXPECT_NEAR(interval_at(smooth.phases[1], 0.0).second, (0.7 - 1.0) / 2, 1e-15);
   EXPECT_NEAR(interval_at(smooth.phases[3], 0.0).second, (1.0 - 0.7) / 2, 1e-15);
+}
+
+// When the failure's direction lies on rows whose slopes are already zero, the other rows' slopes give way. Two flanks,
+// a constant 2 × 2 compliance [[1e-3, 0.0216], [0.0216, d]] with d = 1, 0.5, 0.5, 1 at the four phases: every phase is
+// positive definite (det 3.3e-5 at d = 0.5), but d's Hermite segment between the two low phases dips to 0.4375 at its
+// middle (central slopes ∓0.25 per interval), where det = 4.375e-4 − 4.6656e-4 < 0. The negative direction is about
+// (1, −0.05): the first flank's row, whose slopes are zero (its entries are constant). Halving the second flank's
+// slopes once (its diagonal's by 4) lifts the middle to 0.484 and passes. Before, this threw after zeroing row one.
+TEST(MovingMesh, WhenTheFailingRowsAreFlatTheOtherRowsGiveWay) {
+  MovingMesh m;
+  m.teeth_flexspline = 1;
+  m.pitch_rad = 1.0;
+  const double d[] = {1.0, 0.5, 0.5, 1.0};
+  for (int s = 0; s < 4; ++s) {
+    MeshPhase P;
+    P.shift_rad = s / 4.0;
+    P.key = {0, 1};
+    P.side = {0, 0};
+    P.phi_rad = {0.0, 0.0};
+    P.next = {0, 1};
+    P.A_body.resize(2, 2);
+    P.A_body << 1e-3, 0.0216, 0.0216, d[s];
+    P.q_correction = Eigen::VectorXd::Zero(2);
+    m.phases.push_back(P);
+  }
+  ASSERT_NO_THROW(prepare_intervals(m));
+  EXPECT_EQ(m.reduced_phases, 2);
+  double least = 1.0;
+  for (int s = 0; s < 4; ++s)
+    for (int k = 0; k <= 1000; ++k) {
+      const double a = k / 1000.0;
+      const auto& C = m.phases[s].A_cubic;
+      const Eigen::Matrix2d A = C[0] + a * (C[1] + a * (C[2] + a * C[3]));
+      least = std::min(least, A.determinant());
+    }
+  EXPECT_GT(least, 0.0);
+  const auto& C = m.phases[1].A_cubic;
+  EXPECT_NEAR((C[0] + 0.5 * (C[1] + 0.5 * (C[2] + 0.5 * C[3])))(1, 1), 0.5 - 0.0625 / 4, 1e-15);
 }
 
 struct CoarseSeed {

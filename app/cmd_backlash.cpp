@@ -9,6 +9,7 @@
 
 #include "app/backlash_job.hpp"
 #include "app/commands.hpp"
+#include "common/constants.hpp"
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "io/atomic_file.hpp"
@@ -24,8 +25,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kArcmin = 180.0 / kPi * 60.0;
 
 /// φ₀ and where it came from: --phi0, else C_τ·T of the FEM's result.json, else its φ₀, else none.
 void set_phi0(BacklashReport& r, const Case& c, const BacklashJobOptions& o, const OutputSet& out) {
@@ -172,12 +171,14 @@ void add_backlash_command(CLI::App& app) {
   cmd->add_option("--out", out, "output directory (default out/<case stem>/)");
   cmd->callback([phi0_opt] {
     const Case c = load_case(case_path);
+    progress(case_headline(c));
     BacklashJobOptions o;
     if (!fem.empty()) o.fem_result = fem;
     if (phi0_opt->count() > 0) o.phi0_rad = phi0;
     o.fem_curve = curve == "fem";
     o.revolution_steps = steps;
     OutputSet outputs(out.empty() ? default_out_dir(c) : fs::path(out));
+    write_resolved_case(c, outputs);
     run_backlash_job(c, o, outputs);
     outputs.commit();
     std::printf("  wrote %s\n", outputs.dir().string().c_str());

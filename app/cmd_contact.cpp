@@ -116,6 +116,7 @@ void add_contact_command(CLI::App& app) {
     const Case c = load_case_with_solver(case_path, solver, backend);
     naming_file(c.path, [&] { check_contact_model(flexspline_model(c)); });  // before any work: nothing is written for a case contact cannot take
     OutputSet outputs(out.empty() ? default_out_dir(c) : std::filesystem::path(out));
+    write_resolved_case(c, outputs);
     const ContactFem fem = fem_json.empty() ? fem_solved(c, outputs, fem_options)
                                             : fem_from_run(c, fem_json, fem_options.max_memory_gb);
     run_contact_job(c, *contact_body(c, fem.job, fem.readout.generator_u), fem.readout, outputs, job);

@@ -187,6 +187,7 @@ void add_datasheet_command(CLI::App& app) {
                        "; the datasheet needs a whole reduction ratio z_f / (z_c - z_f) (teeth_flexspline = " +
                        std::to_string(c.gear->teeth_flexspline) + "), as catalog drives have");
     OutputSet outputs(out.empty() ? default_out_dir(c) : std::filesystem::path(out), kDatasheetFiles);
+    write_resolved_case(c, outputs);
 
     const FemJobResult fem = solve_flexspline(c, max_memory_gb);
     const FemReadout readout = fem_readout(fem.solution);

@@ -104,7 +104,7 @@ void run_dynamics(const std::string& case_path, const std::string& out_dir, cons
   const DynamicsParams p = resolved_params(c, pairs_option, rim_option);
   OutputSet outputs(out_dir.empty() ? default_out_dir(c) : std::filesystem::path(out_dir),
                     {"dynamics.csv", "dynamics.json", "dynamics.svg"});
-  progress("case:\n" + describe(p));
+  progress(case_headline(c) + "\n[dynamics] as run:\n" + describe(p));
   DynamicsModelOptions o;
   o.clearances = clearances;
   o.interference = interference;
@@ -126,6 +126,7 @@ void run_dynamics(const std::string& case_path, const std::string& out_dir, cons
   const DynamicsSummary r = summarize(m, s);
   Case resolved = c;  // --pairs and --rim as run
   resolved.dynamics = p;
+  write_resolved_case(resolved, outputs);
   write_outputs(outputs.staging(), m, s, r, info, total, resolved);
   outputs.commit();
   print_summary(m, r, info, outputs.dir().string());

@@ -28,6 +28,17 @@ namespace fs = std::filesystem;
 
 fs::path default_out_dir(const Case& c) { return fs::path("out") / c.stem; }
 
+std::string case_headline(const Case& c) {
+  const std::string derived = describe_derived(c);
+  return "case " + c.path + " (resolved, every key with its default: resolved_case.toml in the output folder)" +
+         (derived.empty() ? "" : "; values not in the file:\n" + derived.substr(0, derived.size() - 1));
+}
+
+void write_resolved_case(const Case& c, OutputSet& out) {
+  out.own({"resolved_case.toml"});
+  write_file_atomic(out.staging() / "resolved_case.toml", describe_case(c));
+}
+
 void add_fem_job_options(CLI::App* cmd, FemJobOptions& o) {
   cmd->add_flag("--no-vtk", [&o](std::int64_t) { o.write_vtk = false; },
                 "leave out flexspline.pvd and the .vtu files (an earlier run's go with the new set)");
@@ -83,7 +94,7 @@ Case load_case_with_solver(const std::string& path, const std::string& solver, c
   Case c = load_case(path);
   apply_solver_option(c, solver, backend);
   if (solver.empty() && !tet10_needed_for.empty()) take_tet10_under_auto(c, tet10_needed_for);
-  progress("case:\n" + describe_case(c));
+  progress(case_headline(c));
   return c;
 }
 
@@ -240,6 +251,7 @@ void add_fem_command(CLI::App& app) {
     const Case c =
         load_case_with_solver(case_path, solver, backend, options.export_inp ? "--export-inp writes a TET10 deck" : "");
     OutputSet outputs(out.empty() ? default_out_dir(c) : fs::path(out));
+    write_resolved_case(c, outputs);
     run_fem_job(c, outputs, options);
     outputs.commit();
     std::printf("  wrote %s\n", outputs.dir().string().c_str());

@@ -57,6 +57,7 @@ reconcile::Result update_model(const ReconcileArgs& a, const Case& c, const reco
 
 void run_reconcile(const ReconcileArgs& a) {
   const Case c = load_case(a.case_path);
+  progress(case_headline(c));
   const reconcile::Recording rec = reconcile::load_recording(a.recording_path);
   BaselineSources src;
   src.case_file = c;
@@ -84,6 +85,7 @@ void run_reconcile(const ReconcileArgs& a) {
   for (const auto& n : notes) progress("reconcile: " + n);
   OutputSet outputs(a.out.empty() ? default_out_dir(c) : std::filesystem::path(a.out),
                     {"reconcile.json", "reconcile.html", "reconciled.toml"});
+  write_resolved_case(c, outputs);
   write_file_atomic(outputs.staging() / "reconcile.json", reconcile_json(reconcile::report_of(r), provenance_of(c)));
   write_file_atomic(outputs.staging() / "reconcile.html", reconcile::report_html(e, rec, r, notes));
   if (!reconciled.empty()) write_file_atomic(outputs.staging() / "reconciled.toml", reconciled);

@@ -11,6 +11,7 @@
 #include "app/contact_job.hpp"
 #include "app/commands.hpp"
 #include "app/fem_job.hpp"
+#include "common/constants.hpp"
 #include "common/progress.hpp"
 #include "io/atomic_file.hpp"
 #include "io/case.hpp"
@@ -43,7 +44,6 @@ RunReportInputs report_inputs(const Case& c, const OutputSet& out) {
 void print_summary(const Case& c, const FemJobResult& fem, const std::optional<BacklashReport>& b,
                    const std::optional<ContactAnalysis>& contact, const std::filesystem::path& dir) {
   const FlexsplineSolution& s = fem.solution;
-  constexpr double kArcmin = 180.0 / std::numbers::pi * 60.0;
   std::printf("\nsummary of %s\n", c.path.c_str());
   std::printf("  flexspline body: wind-up phi0 %.4e rad (%.3f arcmin) at %.4g N·m; torsional stiffness of the body "
               "alone %.4g N·m/rad\n", s.phi0_rad, s.phi0_rad * kArcmin, s.torque_Nm,
@@ -97,6 +97,7 @@ void add_run_command(CLI::App& app) {
   cmd->callback([] {
     const Case c = load_case_with_solver(case_path, solver, backend);
     OutputSet outputs(out.empty() ? default_out_dir(c) : std::filesystem::path(out), {"report.html"});
+    write_resolved_case(c, outputs);
     outputs.own(kBacklashJobFiles);  // also when this case has no backlash or contact stage: none stays from before
     outputs.own(kContactJobFiles);
     const bool contact_stage = !contact_model_gap(flexspline_model(c));

@@ -26,6 +26,7 @@
 
 #include "app/commands.hpp"
 #include "app/fem_job.hpp"
+#include "common/constants.hpp"
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "common/svg_plot.hpp"
@@ -214,7 +215,6 @@ std::vector<const Point*> run_points(const std::vector<const Point*>& todo, int 
   return failed;
 }
 
-constexpr double kArcmin = 10800.0 / std::numbers::pi;
 
 /// A point's drive figures, from its contact.json (`strainwave contact`), in the file's units.
 struct DriveFigures {

@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "io/atomic_file.hpp"
@@ -23,7 +24,6 @@
 namespace sw::app {
 namespace {
 
-constexpr double kArcmin = 10800.0 / std::numbers::pi;
 
 }  // namespace
 

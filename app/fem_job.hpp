@@ -74,7 +74,7 @@ void add_solver_options(CLI::App* cmd, std::string& solver, std::string& backend
 /// serve, before any work).
 void take_tet10_under_auto(Case& c, const std::string& why);
 
-/// The case at `path` with the command line's solver and backend applied, its resolved keys shown as progress.
+/// The case at `path` with the command line's solver and backend applied, its headline shown as progress.
 /// `tet10_needed_for`: what of the command needs the TET10 model, if anything (take_tet10_under_auto, unless --solver
 /// is given).
 Case load_case_with_solver(const std::string& path, const std::string& solver, const std::string& backend,

@@ -12,6 +12,7 @@
 #include "app/commands.hpp"
 #include "app/dynamics_job.hpp"
 #include "common/error.hpp"
+#include "common/format.hpp"
 #include "dynamics/model.hpp"
 #include "dynamics/kinematic_pairs.hpp"
 #include "dynamics/simulate.hpp"
@@ -31,12 +32,6 @@ namespace {
 constexpr double kBaselineRelativeTolerance = 1e-8, kBaselineAbsoluteTolerance_rad = 1e-13;
 
 double compliance_from_fem(const std::string& path) { return read_fem_compliance(path); }
-
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
 
 /// Slope (rad per N*m) of the polyline's first or last segment with a torque step.
 double end_slope(const TorqueTwist& c, bool top) {
@@ -58,7 +53,7 @@ void hold_against_loop(const TorqueLoop& loop, double rated_Nm, const std::vecto
                        reconcile::TorsionPrediction& p, std::vector<std::string>& notes) {
   const double loss = hysteresis_loss_rad(loop);
   const std::string what = "the curve is a loop (friction in the teeth; hysteresis loss " +
-                           num(loss * 10800 / M_PI) + " arcmin at +-" + num(rated_Nm) + " N*m)";
+                           six_digits(loss * 10800 / M_PI) + " arcmin at +-" + six_digits(rated_Nm) + " N*m)";
   const double tol = kCurveEndTolerance * rated_Nm;
   auto cycled_to_rated = [&] {
     if (!torque || torque->empty()) return false;
@@ -66,7 +61,7 @@ void hold_against_loop(const TorqueLoop& loop, double rated_Nm, const std::vecto
     return std::abs(*tmax - rated_Nm) <= tol && std::abs(*tmin + rated_Nm) <= tol;
   };
   if (!cycled_to_rated()) {
-    notes.push_back(what + "; the recording is not cycled to +-" + num(rated_Nm) +
+    notes.push_back(what + "; the recording is not cycled to +-" + six_digits(rated_Nm) +
                     " N*m, so it is held against the loop's middle line");
     return;
   }
@@ -90,13 +85,13 @@ void contact_baseline(const BaselineSources& src, reconcile::Baseline& b, std::v
   if (torque && !torque->empty()) {
     const auto [tmin, tmax] = std::minmax_element(torque->begin(), torque->end());
     if (*tmin < lo - tol || *tmax > hi + tol)
-      throw InputError(src.recording->path + ": torque_Nm spans [" + num(*tmin) + ", " + num(*tmax) +
-                       "] N*m but the torque-twist curve of " + src.contact_result + " covers [" + num(lo) + ", " +
-                       num(hi) + "] N*m (rated " + num(contact.rated_torque_Nm) +
+      throw InputError(src.recording->path + ": torque_Nm spans [" + six_digits(*tmin) + ", " + six_digits(*tmax) +
+                       "] N*m but the torque-twist curve of " + src.contact_result + " covers [" + six_digits(lo) + ", " +
+                       six_digits(hi) + "] N*m (rated " + six_digits(contact.rated_torque_Nm) +
                        " N*m); the curve is not extrapolated: record within it, or compare with --baseline fem");
     if (*tmin < lo || *tmax > hi)
-      notes.push_back("the recording's torque [" + num(*tmin) + ", " + num(*tmax) + "] N*m passes the curve's ends [" +
-                      num(lo) + ", " + num(hi) + "] N*m by less than " + num(100 * kCurveEndTolerance) +
+      notes.push_back("the recording's torque [" + six_digits(*tmin) + ", " + six_digits(*tmax) + "] N*m passes the curve's ends [" +
+                      six_digits(lo) + ", " + six_digits(hi) + "] N*m by less than " + six_digits(100 * kCurveEndTolerance) +
                       " % of rated torque; its end segments are extended there");
   }
   if (src.compliance || !src.fem_result.empty())
@@ -107,12 +102,12 @@ void contact_baseline(const BaselineSources& src, reconcile::Baseline& b, std::v
   p.compliance_rad_per_Nm = 0.5 * (end_slope(curve, false) + end_slope(curve, true));
   if (!(p.compliance_rad_per_Nm > 0.0))
     throw InputError(src.contact_result + ": torque_twist: the curve's end slopes give " +
-                     num(p.compliance_rad_per_Nm) + " rad/(N*m); twist must rise with torque");
+                     six_digits(p.compliance_rad_per_Nm) + " rad/(N*m); twist must rise with torque");
   p.curve_t1_Nm = contact.catalog_t1_Nm;
   p.curve_t2_Nm = contact.catalog_t2_Nm;
   notes.push_back("torsion baseline: the drive's torque-twist curve of " + src.contact_result + " (middle line, " +
-                  std::to_string(curve.torque_Nm.size()) + " points over [" + num(lo) + ", " + num(hi) +
-                  "] N*m; end slope " + num(p.compliance_rad_per_Nm) + " rad/(N*m))");
+                  std::to_string(curve.torque_Nm.size()) + " points over [" + six_digits(lo) + ", " + six_digits(hi) +
+                  "] N*m; end slope " + six_digits(p.compliance_rad_per_Nm) + " rad/(N*m))");
   if (contact.loop) hold_against_loop(*contact.loop, contact.rated_torque_Nm, torque, p, notes);
   b.prediction = p;
 }
@@ -302,8 +297,8 @@ DynamicsParams baseline_dynamics_params(const Case& c, std::vector<std::string>&
   if (q.relative_tolerance > kBaselineRelativeTolerance || q.absolute_tolerance_rad > kBaselineAbsoluteTolerance_rad) {
     q.relative_tolerance = std::min(q.relative_tolerance, kBaselineRelativeTolerance);
     q.absolute_tolerance_rad = std::min(q.absolute_tolerance_rad, kBaselineAbsoluteTolerance_rad);
-    notes.push_back("the baseline integrates at relative_tolerance " + num(q.relative_tolerance) +
-                    ", absolute_tolerance_rad " + num(q.absolute_tolerance_rad) +
+    notes.push_back("the baseline integrates at relative_tolerance " + six_digits(q.relative_tolerance) +
+                    ", absolute_tolerance_rad " + six_digits(q.absolute_tolerance_rad) +
                     " (tighter than the case's): its effects are differences between runs");
   }
   return q;
@@ -330,7 +325,7 @@ void dynamics_baseline_of(const Case* c, const BaselineSources& src, reconcile::
   b.prediction = reconcile::with_remembered_runs(p);  // synth and the experiment share runs
   if (p.analysis_from_s > 0.0)
     notes.push_back("moving tooth pairs: the recording is compared from dynamics.steady_from_s = " +
-                    num(p.analysis_from_s) + " s on (in the run-up and at load steps the teeth separate and "
+                    six_digits(p.analysis_from_s) + " s on (in the run-up and at load steps the teeth separate and "
                     "strike again, and the meshing force answers the model's parameters by the impacts' timing)");
   notes.push_back("dynamics baseline: the [dynamics] model of " + c->path + " (" + to_string(q.configuration) + ", " +
                   d.source + ", constant mesh stiffness; " + job.source + "); f_m = " +

@@ -8,6 +8,7 @@
 
 #include "app/contact_job.hpp"
 #include "common/error.hpp"
+#include "common/format.hpp"
 #include "contact/harmonic_body.hpp"
 #include "fem/fourier_solver.hpp"
 #include "io/case_edit.hpp"
@@ -19,12 +20,6 @@ using reconcile::ModelCandidate;
 using reconcile::ModelKeyValues;
 
 namespace {
-
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
 
 /// Keys the series parts (series_parts: tooth pairs, generator bearing, circular spline ring) do not read: a re-run
 /// that changes only these keeps the base case's parts (the tooth's FEM and the ring are most of a run).
@@ -162,8 +157,8 @@ ModelCandidate parse_candidate(const Case& c, const std::string& spec, TorsionBa
       throw InputError("--candidate " + spec + ": expected TABLE.KEY=LO:HI with numbers LO < HI");
   }
   if (!(cand.lo < cand.hi) || !(*value >= cand.lo && *value <= cand.hi))
-    throw InputError("--candidate " + spec + ": the range [" + num(cand.lo) + ", " + num(cand.hi) + "] must have LO < HI" +
-                     " and hold the case value " + num(*value));
+    throw InputError("--candidate " + spec + ": the range [" + six_digits(cand.lo) + ", " + six_digits(cand.hi) + "] must have LO < HI" +
+                     " and hold the case value " + six_digits(*value));
   return cand;
 }
 
@@ -183,8 +178,8 @@ std::string reconciled_case_text(const Case& c, const reconcile::Refit& refit) {
   std::string head = "# " + c.path + " with the values reconcile fitted to the recording (the model re-run with them\n"
                      "# explains it; the other keys resolved as in the case):\n";
   for (const reconcile::RefitValue& v : refit.values)
-    head += "#   " + v.key + " = " + num(v.value) + " (95 % interval [" + num(v.lo) + ", " + num(v.hi) +
-            "]; the case had " + num(v.case_value) + ")\n";
+    head += "#   " + v.key + " = " + six_digits(v.value) + " (95 % interval [" + six_digits(v.lo) + ", " + six_digits(v.hi) +
+            "]; the case had " + six_digits(v.case_value) + ")\n";
   return head + case_text_with(describe_case(c), c.path, refit.key_values, "reconciled case");
 }
 

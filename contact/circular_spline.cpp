@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "contact/hat_patterns.hpp"
@@ -16,8 +17,6 @@
 
 namespace sw {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 // The ring's section. Radially: cells a quarter module deep at the inner surface (a pitch-wide hat's harmonics up to
 // n ≈ z_c decay over r/n ≈ m/2), growing by 0.4 of their distance from it up to 0.15 of the ring's depth. Bolted on a

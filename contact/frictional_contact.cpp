@@ -12,15 +12,10 @@
 #include <Eigen/LU>
 
 #include "common/error.hpp"
+#include "common/format.hpp"
 
 namespace sw {
 namespace {
-
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
 
 // ---- The bounded problem: min ½xᵀHx + cᵀx subject to aᵀx = t, lo ≤ x ≤ hi ------------------------------------
 
@@ -211,7 +206,7 @@ void check_problem(const FrictionalContactProblem& p) {
     throw std::invalid_argument("frictional contact: the blocks, gaps, arms and friction coefficients differ in size");
   for (Eigen::Index i = 0; i < n; ++i)
     if (!(p.friction_coefficient[i] >= 0 && std::isfinite(p.friction_coefficient[i])))
-      throw InputError("contact: friction_coefficient = " + num(p.friction_coefficient[i]) + " at contact " +
+      throw InputError("contact: friction_coefficient = " + six_digits(p.friction_coefficient[i]) + " at contact " +
                        std::to_string(i) + "; must be a finite number >= 0");
 }
 
@@ -265,7 +260,7 @@ QpIterate cold_start(const FrictionalContactProblem& p, const BoundedQp& qp) {
     if (p.lambda[i] * qp.t > 0 && turn < first_turn) first_turn = turn, first = i;
   }
   if (first < 0)
-    throw InputError("contact: no tooth flank can carry a torque of " + num(qp.t) +
+    throw InputError("contact: no tooth flank can carry a torque of " + six_digits(qp.t) +
                      " N·m (no flank pair closes in that direction)");
   QpIterate s{Eigen::VectorXd::Zero(2 * n), std::vector<Bound>(2 * n, Bound::Lower)};
   for (Eigen::Index i = 0; i < n; ++i)
@@ -440,9 +435,9 @@ FrictionalStep solve_frictional_step(const FrictionalContactProblem& p, double T
     bound = next;
     warm = it.where;
   }
-  throw InputError("contact: the load step to " + num(T) + " N·m found no Coulomb solution in " +
+  throw InputError("contact: the load step to " + six_digits(T) + " N·m found no Coulomb solution in " +
                    std::to_string(kMaxPasses) + " fixed-point passes; friction_coefficient up to " +
-                   num(p.friction_coefficient.maxCoeff()) + " is too large for a unique load increment");
+                   six_digits(p.friction_coefficient.maxCoeff()) + " is too large for a unique load increment");
 }
 
 LoadStep frictional_step_of(const FrictionalContactProblem& p) {
@@ -457,7 +452,7 @@ std::vector<FrictionalStep> run_torque_history(const LoadStep& step, const Frict
     try {
       out.push_back(step(torques_Nm[k], k ? out.back() : start));
     } catch (const InputError& e) {
-      throw InputError("torque history step " + std::to_string(k) + " (" + num(torques_Nm[k]) + " N·m): " + e.what());
+      throw InputError("torque history step " + std::to_string(k) + " (" + six_digits(torques_Nm[k]) + " N·m): " + e.what());
     }
   }
   return out;

@@ -8,13 +8,12 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "common/constants.hpp"
 #include "contact/hat_patterns.hpp"
 #include "mesh/tet_mesh.hpp"
 
 namespace sw {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 /// Every response the harmonic pass solved for the contact: the requested bands, then the stations' band.
 std::vector<const BandResponse*> responses(const FourierSolution& s) {

@@ -1,5 +1,6 @@
 #include "contact/loaded_contact.hpp"
 
+#include "common/constants.hpp"
 #include "contact/tooth_fem.hpp"
 
 #include <algorithm>
@@ -27,8 +28,6 @@
 
 namespace sw {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 /// The normal forces of a solution of either kind.
 const Eigen::VectorXd& normal_forces(const ContactSolution& s) { return s.force_N; }

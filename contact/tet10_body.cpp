@@ -11,6 +11,7 @@
 #include <Eigen/LU>
 #include <Eigen/SparseCore>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 #include "fem/assembly.hpp"
 #include "fem/loads.hpp"
@@ -19,8 +20,6 @@
 
 namespace sw {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 }  // namespace
 
@@ -204,7 +203,6 @@ std::vector<Eigen::VectorXd> pattern_loads(const FlexsplineModel& c, const TetMe
 }
 
 }  // namespace
-
 
 Tet10Body::Tet10Body(const FlexsplineModel& c, const TetMesh& mesh, const FlexsplineSystem& system,
                      const Eigen::VectorXd* generator_u)

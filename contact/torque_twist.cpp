@@ -9,6 +9,7 @@
 #include <string>
 
 #include "common/error.hpp"
+#include "common/format.hpp"
 
 namespace sw {
 namespace {
@@ -16,12 +17,6 @@ namespace {
 /// The analysis samples its curve at T_R·s/N: the ends may differ from ±T_R by rounding. The curve's own readings at
 /// ±T_R (the segment law) pass an end by this fraction of the end torque, along the end segment.
 constexpr double kEndRounding = 1e-12;
-
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
 
 /// Twist along segment (k, k + 1) at torque T.
 double along(const TorqueTwist& c, std::size_t k, double T) {
@@ -45,8 +40,8 @@ double twist_at(const TorqueTwist& c, double T, double end_tolerance_Nm) {
   const auto& t = c.torque_Nm;
   assert(t.size() >= 2 && t.size() == c.twist_rad.size() && t.front() < t.back());
   if (!(T >= t.front() - end_tolerance_Nm && T <= t.back() + end_tolerance_Nm))
-    throw InputError("torque " + num(T) + " N*m is beyond the torque-twist curve, which covers [" + num(t.front()) +
-                     ", " + num(t.back()) + "] N*m; the curve is not extrapolated");
+    throw InputError("torque " + six_digits(T) + " N*m is beyond the torque-twist curve, which covers [" + six_digits(t.front()) +
+                     ", " + six_digits(t.back()) + "] N*m; the curve is not extrapolated");
   if (T <= t.front() || T >= t.back()) {
     // At or just beyond an end: the end segment (the first/last with a torque step), extended.
     std::size_t a = 0;

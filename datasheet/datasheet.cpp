@@ -6,12 +6,12 @@
 #include <limits>
 #include <numbers>
 
+#include "common/constants.hpp"
 #include "design/catalog.hpp"
 
 namespace sw {
 namespace {
 
-constexpr double kArcmin = 10800.0 / std::numbers::pi;
 
 std::string fmt(const char* f, double v) {
   char buf[64];

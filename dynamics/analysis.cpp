@@ -7,10 +7,11 @@
 
 #include <fftw3.h>
 
+#include "common/constants.hpp"
+
 namespace sw {
 namespace {
 
-constexpr double kRpmPerRadS = 60.0 / (2.0 * std::numbers::pi);
 constexpr int kLines = 10;
 // Without load the references of the relative errors vanish; below these floors the errors are taken against them.
 constexpr double kForceFloor_N = 1e-6;

@@ -6,12 +6,11 @@
 #include <numbers>
 #include <sstream>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 
 namespace sw {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 double ring_inertia(double density, double width, double r1, double r2) {
   return density * kPi * width * (std::pow(r2, 4) - std::pow(r1, 4)) / 2.0;

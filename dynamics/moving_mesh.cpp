@@ -10,12 +10,12 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 
 namespace sw {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// φ wrapped to (−π, π], or to (−π/2, π/2] when one unknown stands for a tooth and its half-turn partner.

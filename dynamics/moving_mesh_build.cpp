@@ -10,6 +10,7 @@
 
 #include <Eigen/Geometry>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "contact/loaded_contact.hpp"
@@ -17,8 +18,6 @@
 
 namespace sw {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 /// The backlash module's view of one flank: gap |ℓ|·δ at zero deflection, signed lever ℓ, contact radius on the
 /// flexspline tooth and on the circular spline's, the flanks' sliding and the profile direction's arm; false where it

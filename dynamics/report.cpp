@@ -6,12 +6,12 @@
 #include <numbers>
 #include <sstream>
 
+#include "common/constants.hpp"
 #include "common/svg_plot.hpp"
 
 namespace sw {
 namespace {
 
-constexpr double kRpmPerRadS = 60.0 / (2.0 * std::numbers::pi);
 
 void append(std::string& out, double v) {
   char buf[32];

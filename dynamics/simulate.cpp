@@ -77,7 +77,7 @@ struct Deviations {
 };
 
 /// The mesh at one instant: deflection e [rad] and its rate, stiffness k(t) [N/m] and its rate.
-struct MeshState {
+struct MeshStep {
   double e = 0.0, e_rate = 0.0, k = 0.0, k_rate = 0.0;
 };
 
@@ -132,7 +132,7 @@ public:
       s.theta[b] = ratio_[b] * d.angle + dev.x[b];
       s.omega[b] = ratio_[b] * d.speed + dev.v[b];
     }
-    const MeshState ms = mesh_state(d, dev);
+    const MeshStep ms = mesh_state(d, dev);
     MeshLoad load;
     s.deflection = ms.e;
     if (m_.moving) {
@@ -199,11 +199,11 @@ private:
   /// Mesh deflection and stiffness. The reference motion is kinematic when steady_state() is right, so its share κ·Θ
   /// of e is zero to rounding; it is kept so that a wrong speed ratio shows up as a slipping body instead of being
   /// assumed away.
-  MeshState mesh_state(const DriveMotion& d, const Deviations& dev) const {
+  MeshStep mesh_state(const DriveMotion& d, const Deviations& dev) const {
     const int w = idx(BodyId::WaveGenerator), c = idx(BodyId::CircularSpline), f = idx(fs_);
     const auto& x = dev.x;
     const auto& v = dev.v;
-    MeshState ms;
+    MeshStep ms;
     ms.e = kinematic_residual_ * d.angle + (x[f] - x[w]) - rho_ * (x[c] - x[w]);
     ms.e_rate = kinematic_residual_ * d.speed + (v[f] - v[w]) - rho_ * (v[c] - v[w]);
     const double psi = mesh_phase_rate_ * d.angle + p_.stiffness_phase_deg * std::numbers::pi / 180.0;
@@ -213,7 +213,7 @@ private:
   }
 
   /// Frozen pairs: the drive and the coast flank of each pair under the contact law.
-  void frozen_forces(Snapshot& s, const MeshState& ms, MeshLoad& load) const {
+  void frozen_forces(Snapshot& s, const MeshStep& ms, MeshLoad& load) const {
     const double m1 = p_.exponent_stiffness;
     for (std::size_t i = 0; i < m_.pairs.size(); ++i) {
       double F = 0.0;
@@ -242,7 +242,7 @@ private:
   /// Forces of the moving pairs at mesh deflection e (rate ė) and generator angle σ = θ_w − θ_f relative to the
   /// flexspline (rate σ̇). Adds to M = Σ λ_i x_i (through e) and M_σ = Σ x_i ∂(q − λe)_i/∂σ + ½ x_elᵀ ∂A/∂σ x_el, the
   /// torque of the teeth's travel (Q_w += M_σ, Q_f −= M_σ: U(e, σ) = −min_x ½xᵀAx + (q − λe)ᵀx depends on σ).
-  void moving_forces(Snapshot& s, const MeshState& ms, double sigma, double sigma_rate, MeshLoad& load) const {
+  void moving_forces(Snapshot& s, const MeshStep& ms, double sigma, double sigma_rate, MeshLoad& load) const {
     const MovingMesh& mm = *m_.moving;
     mesh_instant(mm, sigma, s.inst, friction_);
     const MeshInstant& in = s.inst;
@@ -272,7 +272,7 @@ private:
 
   /// Rim coupled through the body: the tooth pairs' series compliance on the body's diagonal, the contact problem
   /// solved from the last instant's contact set, its potential ½xᵀAx and the body's share of the travel torque.
-  void coupled_elastic_forces(Snapshot& s, const MeshState& ms, MeshLoad& load) const {
+  void coupled_elastic_forces(Snapshot& s, const MeshStep& ms, MeshLoad& load) const {
     const MovingMesh& mm = *m_.moving;
     MeshInstant& inst = s.inst;
     const int nf = inst.flanks(), nb = static_cast<int>(mm.station_q.size());
@@ -290,7 +290,7 @@ private:
   }
 
   /// Rigid rim: each flank alone, under the constant law (k per tooth) or its tooth pair's compliance.
-  void independent_elastic_forces(Snapshot& s, const MeshState& ms, MeshLoad& load) const {
+  void independent_elastic_forces(Snapshot& s, const MeshStep& ms, MeshLoad& load) const {
     const MeshInstant& in = s.inst;
     const double n = m_.moving->teeth_per_unknown;
     const bool constant = p_.pair_stiffness == PairStiffness::Constant;
@@ -313,7 +313,7 @@ private:
   /// Damping acts on the rigid approach rate δ̇ = λė − ∂(q − λe)/∂σ·σ̇ (per tooth), in parallel with the pair's
   /// series chain (tooth, and the rim when coupled), only where the elastic force is positive; the total is clamped
   /// at 0. The flanks' forces make the pair forces, M, M_σ, the total and the flanks in contact.
-  void damped_flank_forces(Snapshot& s, const MeshState& ms, double sigma_rate, MeshLoad& load) const {
+  void damped_flank_forces(Snapshot& s, const MeshStep& ms, double sigma_rate, MeshLoad& load) const {
     const MeshInstant& in = s.inst;
     const double n = m_.moving->teeth_per_unknown;
     const bool constant = p_.pair_stiffness == PairStiffness::Constant;
@@ -351,7 +351,7 @@ private:
   /// sliding v = (s·σ̇ + t·ė)/n (n teeth per unknown; s, t and the normal force x from the flank problem). Its virtual
   /// power Σ n·F_t·v = Σ F_t·(s·σ̇ + t·ė) gives its generalized forces on σ (Σ F_t·s) and on e (Σ F_t·t); it dissipates
   /// Σ n·|F_t·v|.
-  void flank_friction(const Snapshot& s, const MeshState& ms, double sigma_rate, MeshLoad& load) const {
+  void flank_friction(const Snapshot& s, const MeshStep& ms, double sigma_rate, MeshLoad& load) const {
     const MeshInstant& in = s.inst;
     const double n = m_.moving->teeth_per_unknown, mu = m_.friction_coefficient;
     for (int i = 0; i < in.flanks(); ++i) {

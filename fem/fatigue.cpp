@@ -6,10 +6,11 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "common/constants.hpp"
+
 namespace sw {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr int kSteps = 360;  // 1° of generator rotation
 
 /// Normal stress along the unit vector d of a Voigt stress (xx yy zz yz xz xy).

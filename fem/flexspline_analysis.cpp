@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "fem/assembly.hpp"
@@ -17,11 +18,7 @@
 namespace sw {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr int kRingSamples = 360;                     // 1° steps around the reading circle
 
-double wrap_pi(double a) { return std::remainder(a, 2 * kPi); }
-double theta_of(const Eigen::Vector3d& x) { return std::atan2(x[1], x[0]); }
 /// A tube without teeth: the torque is the exact torsion shear on its open end, and φ₀ is read on that face.
 bool is_plain_tube(const FlexsplineParams& f) {
   return f.shape == FlexsplineShape::Tube && f.teeth == TeethModel::None;
@@ -168,9 +165,6 @@ double neutral_radius(const FlexsplineParams& f) {
 
 namespace {
 
-// A station touches when it carries force or its gap is within 0.25 % of w0 (0.5 µm at w0 = 0.2 mm: the roughness
-// of a ground bearing race, and the level at which the mesh's own asymmetry shows in the gaps).
-constexpr double kTouchingGap = 2.5e-3;
 Eigen::VectorXd contact_load(const BandStations& st, const Eigen::VectorXd& p) { return st.loads * p; }
 
 /// Total radial force (N) of a full load vector: Σ f·e_r over the nodes.
@@ -331,7 +325,6 @@ struct TorqueIncrement {
   std::vector<std::pair<double, double>> sweep;
 };
 
-constexpr double kSweep[] = {0.25, 0.5, 1.0, 2.0};  // the sweep's torques, in T_ref
 
 /// The torque without a generator: linear, one compliance at every torque.
 TorqueIncrement torque_alone(const TetMesh& mesh, const UnitSolutions& unit, const RotationReader& rotation,

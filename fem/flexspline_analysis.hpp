@@ -38,6 +38,15 @@
 
 namespace sw {
 
+// Shared by the TET10 and the harmonic analysis, so that both read the flexspline alike.
+/// Points on the reading circle (1° steps).
+inline constexpr int kRingSamples = 360;
+/// A generator station touches when it carries force or its gap is within 0.25 % of w0 (0.5 µm at w0 = 0.2 mm: the
+/// roughness of a ground bearing race, and the level at which the mesh's own asymmetry shows in the gaps).
+inline constexpr double kTouchingGap = 2.5e-3;
+/// The torque sweep's torques, in T_ref.
+inline constexpr double kSweep[] = {0.25, 0.5, 1.0, 2.0};
+
 struct LoadCaseSolution {
   std::string name;      ///< "generator", "torque", "generator_torque"
   Eigen::VectorXd u;     ///< 3·n_nodes, m

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <string>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "generator/cam_profile.hpp"
@@ -16,10 +17,7 @@
 namespace sw {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr int kSolveChunk = 24;  // right-hand sides per CHOLMOD solve (memory: n_eq × 24 doubles)
-double wrap_pi(double a) { return std::remainder(a, 2 * kPi); }
-double theta_of(const Eigen::Vector3d& x) { return std::atan2(x[1], x[0]); }
 
 /// Radial outward patch loads on the inner wall, one per force, each of magnitude weight (N) as the integral of the
 /// pressure over its patch.
@@ -122,7 +120,6 @@ double rollers_setout(const WaveGeneratorParams& w, double w_unit_m) {
   return *w.radial_deformation_m / w_unit_m;
 }
 
-
 GeneratorStations generator_stations(const FlexsplineModel& c, const TetMesh& mesh) {
   const auto& w = *c.wave_generator;
   const auto& f = c.flexspline;
@@ -136,6 +133,5 @@ GeneratorStations generator_stations(const FlexsplineModel& c, const TetMesh& me
   if (!g.unilateral) g.force_load = generator_load(c, mesh);
   return g;
 }
-
 
 }  // namespace sw

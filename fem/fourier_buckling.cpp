@@ -14,6 +14,7 @@
 #include <Eigen/Sparse>
 #include <Spectra/SymGEigsSolver.h>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 #include "fem/cholmod_factor.hpp"
 
@@ -22,7 +23,6 @@ namespace {
 
 using namespace fourier;
 
-constexpr double kPi = std::numbers::pi;
 // Lanczos basis size: Spectra's advice is ncv ≥ 2·nev (nev = 1 here); 20 vectors keep restarts few when the largest
 // ν are close (neighbouring axial wave patterns of one harmonic), for 20 vectors of memory.
 constexpr int kLanczosVectors = 20;

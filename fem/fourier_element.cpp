@@ -7,12 +7,12 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 
 namespace sw {
 namespace fourier {
 namespace {
-constexpr double kPi = std::numbers::pi;
 }  // namespace
 
 Mat6x2 coords(const SectionMesh& s, std::size_t e) {

@@ -8,6 +8,7 @@
 
 #include <Eigen/LU>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 #include "mesh/flexspline.hpp"
 #include "mesh/shapes.hpp"
@@ -15,7 +16,6 @@
 namespace sw {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr int kInterior = -1;  // a block side that is not on the boundary (or lies on the axis)
 
 using V2 = Eigen::Vector2d;

@@ -14,6 +14,7 @@
 #include <Eigen/Geometry>
 #include <Eigen/Sparse>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "generator/cam_profile.hpp"
@@ -26,13 +27,10 @@ namespace {
 
 using namespace fourier;
 
-constexpr double kPi = std::numbers::pi;
-constexpr int kRingSamples = 360;                     // 1° steps around the reading circle (as the tet10 path)
 constexpr double kPatchHalfAngle = kGeneratorPatchHalfAngle_rad;  // as the tet10 path
 // A harmonic whose loads are below this fraction of the largest harmonic load is zero by the load's symmetry (e.g.
 // the odd harmonics of a generator symmetric about both axes: the sum is exactly 0, the computed one round-off).
 constexpr double kNoLoad = 1e-12;
-
 
 /// A load piecewise constant in θ: weight over [from, to].
 struct Window {
@@ -106,8 +104,6 @@ void harmonic_loads(const std::vector<LoadTerm>& terms, int n, Eigen::MatrixXd& 
   }
 }
 
-// A station touches when it carries force or its gap is within 0.25 % of w0 (as the tet10 path).
-constexpr double kTouchingGap = 2.5e-3;
 
 /// The stations of the case's generator (angles, hats, normals and standoffs as fem/flexspline_system.cpp's
 /// generator_stations), but no finer than the series resolves: a hat of half-width Δ has its spectrum's main lobe up
@@ -155,7 +151,6 @@ HarmonicStations harmonic_stations(const FlexsplineModel& c, const Eigen::Vector
 /// Moment about z (N·m) of the physical loads whose harmonic-0 antisymmetric generalised forces are F (n_nodes × 3).
 double moment_z(const SectionMesh& s, const Eigen::MatrixXd& anti0) { return -s.nodes.col(0).dot(anti0.col(1)); }
 
-
 /// The bands' unit loads E_r = (S, 0, 0) and E_θ = (0, S, 0) on the equations of a numbering: columns 2b, 2b + 1.
 Eigen::MatrixXd band_load_columns(const HarmonicDofs& d, const std::vector<BandResponse>& bands, Eigen::Index nodes) {
   Eigen::MatrixXd B(d.n_eq, 2 * static_cast<Eigen::Index>(bands.size()));
@@ -177,9 +172,6 @@ void store_band_responses(std::vector<BandResponse>& bands, int n, const Harmoni
     bands[b].Ut[n] = to_nodes(d, X.col(first + 2 * static_cast<Eigen::Index>(b) + 1), zero);
   }
 }
-
-
-
 
 /// A field's circumferential series as terms: term r is cos nθ (is_sine false) or sin nθ of n = harmonic[r], and
 /// column r of `amplitudes` its amplitude at every section node (9·n_section_nodes x n_terms, node by node: u_r, u_θ,
@@ -237,7 +229,6 @@ LoadTerm unit_moment_term(const SectionMesh& s, const std::vector<const SectionE
   return t;
 }
 
-constexpr double kSweep[] = {0.25, 0.5, 1.0, 2.0};
 
 /// w, v and the normal's rotation μ = (v − dw/dθ)/r of field u on the circle of radius r through probe p, at 1°
 /// steps; dw/dθ exactly from the series (the θ-derivative of the radial amplitudes).
@@ -1002,7 +993,6 @@ std::vector<BandResponse> band_responses(const SectionMesh& s, const Material& m
 Eigen::MatrixXd section_traction_load(const SectionMesh& s, int marker, const Eigen::Vector3d& traction) {
   return edge_integral(s, select_edges(s, marker), [&](const Eigen::Vector2d&) { return traction; });
 }
-
 
 SectionMesh case_section(const FlexsplineModel& c) {
   std::optional<std::pair<double, double>> band;

@@ -7,6 +7,7 @@
 
 #include <Eigen/Cholesky>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "fem/loads.hpp"
@@ -14,9 +15,6 @@
 namespace sw {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-double wrap_pi(double a) { return std::remainder(a, 2 * kPi); }
-double theta_of(const Eigen::Vector3d& x) { return std::atan2(x[1], x[0]); }
 
 }  // namespace
 

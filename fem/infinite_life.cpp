@@ -6,13 +6,13 @@
 #include <numbers>
 #include <set>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 #include "common/first_crossing.hpp"
 
 namespace sw {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr int kSamples = 360;                 // 1° steps over the revolution, as fem/fatigue.hpp's history
 constexpr double kTorqueTolerance = 1e-4;     // bisection's relative width on the limit torque
 constexpr int kScanSteps = 64;                // the scan for the first crossing before the bisection

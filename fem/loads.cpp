@@ -100,10 +100,6 @@ Resultant load_resultant(const TetMesh& mesh, const Eigen::VectorXd& f) {
   return r;
 }
 
-namespace {
-double wrap_pi(double a) { return std::remainder(a, 2 * std::numbers::pi); }
-double theta_of(const Eigen::Vector3d& x) { return std::atan2(x[1], x[0]); }
-}  // namespace
 
 AngularHats::AngularHats(const TetMesh& mesh, std::vector<const BoundaryFace*> faces)
     : mesh_(mesh), faces_(std::move(faces)) {

@@ -2,7 +2,9 @@
 // Consistent nodal loads: surface tractions integrated over quadratic (TRI6) boundary faces with the isoparametric
 // map, so curved faces get their true area. For a uniform traction on a flat TRI6 the corner loads are zero and each
 // midside node takes one third of the face's resultant.
+#include <cmath>
 #include <functional>
+#include <numbers>
 #include <vector>
 
 #include <Eigen/Core>
@@ -10,6 +12,11 @@
 #include "mesh/tet_mesh.hpp"
 
 namespace sw {
+
+/// An angle brought into (−π, π].
+inline double wrap_pi(double a) { return std::remainder(a, 2 * std::numbers::pi); }
+/// The polar angle of a point about the axis (z), in (−π, π].
+inline double theta_of(const Eigen::Vector3d& x) { return std::atan2(x[1], x[0]); }
 
 /// Traction (Pa, 3-vector) at surface point x (m) with outward unit normal n.
 using TractionField = std::function<Eigen::Vector3d(const Eigen::Vector3d& x, const Eigen::Vector3d& n)>;

@@ -14,6 +14,7 @@
 #include <Eigen/Sparse>
 #include <Spectra/SymGEigsSolver.h>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "fem/cholmod_factor.hpp"
@@ -24,7 +25,6 @@
 namespace sw {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 // The stiffness's 4-point degree-2 rule for the unit tetrahedron (fem/elasticity.cpp): a = (5 + 3√5)/20,
 // b = (5 − √5)/20, weights 1/24 (a quarter of the unit tet's volume 1/6). CalculiX's C3D10 integrates with the same
 // 4 points (its manual's element C3D10; tests/fem/test_tet10_buckling.cpp agrees with ccx *BUCKLE to 7e-8). On K_σ

@@ -4,13 +4,12 @@
 #include <numbers>
 #include <sstream>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 
 namespace sw {
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 [[noreturn]] void bad_gear(const std::string& what) { throw InputError("[gear]: " + what); }
 

@@ -4,6 +4,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 #include "gear/tooth_profile.hpp"
 
@@ -11,29 +12,27 @@ namespace sw {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
-[[noreturn]] void bad(const std::string& field, double value, const std::string& expectation) {
+[[noreturn]] void bad_input(const std::string& field, double value, const std::string& expectation) {
   std::ostringstream s;
   s << "tooth root: " << field << " = " << value << "; " << expectation;
   throw InputError(s.str());
 }
 
 void validate_teeth(const SpurTeeth& g) {
-  if (g.teeth < 5) bad("teeth", g.teeth, "must be >= 5");
-  if (!(g.module_m > 0)) bad("module_m", g.module_m, "must be > 0");
+  if (g.teeth < 5) bad_input("teeth", g.teeth, "must be >= 5");
+  if (!(g.module_m > 0)) bad_input("module_m", g.module_m, "must be > 0");
   const double alpha_deg = g.pressure_angle_rad * 180.0 / kPi;
-  if (!(alpha_deg > 5.0 && alpha_deg < 45.0)) bad("pressure_angle_deg", alpha_deg, "must be in (5, 45)");
-  if (!(g.addendum_coefficient > 0)) bad("addendum_coefficient", g.addendum_coefficient, "must be > 0");
-  if (!(g.tool.addendum_coefficient > 0)) bad("tool.addendum_coefficient", g.tool.addendum_coefficient, "must be > 0");
+  if (!(alpha_deg > 5.0 && alpha_deg < 45.0)) bad_input("pressure_angle_deg", alpha_deg, "must be in (5, 45)");
+  if (!(g.addendum_coefficient > 0)) bad_input("addendum_coefficient", g.addendum_coefficient, "must be > 0");
+  if (!(g.tool.addendum_coefficient > 0)) bad_input("tool.addendum_coefficient", g.tool.addendum_coefficient, "must be > 0");
   if (!(g.tool.tip_radius_coefficient >= 0))
-    bad("tool.tip_radius_coefficient", g.tool.tip_radius_coefficient, "must be >= 0");
+    bad_input("tool.tip_radius_coefficient", g.tool.tip_radius_coefficient, "must be >= 0");
   // Half the tool's flat tip land, E/m of ISO 6336-3:2006 6.2: the tip radius must fit on the tool's tooth.
   const double a = g.pressure_angle_rad;
   const double land = kPi / 4.0 - g.tool.addendum_coefficient * std::tan(a) + g.tool.protuberance_coefficient / std::cos(a) -
                       (1.0 - std::sin(a)) * g.tool.tip_radius_coefficient / std::cos(a);
   if (land < 0)
-    bad("tool.tip_radius_coefficient", g.tool.tip_radius_coefficient,
+    bad_input("tool.tip_radius_coefficient", g.tool.tip_radius_coefficient,
         "does not fit on the tool's tip (half tip land E/m = " + std::to_string(land) + " < 0); make it smaller");
 }
 
@@ -77,13 +76,13 @@ double spur_contact_ratio(const SpurTeeth& p, const SpurTeeth& w) {
 
 double single_pair_outer_radius_m(const SpurTeeth& g, double contact_ratio, bool internal) {
   validate_teeth(g);
-  if (!(contact_ratio >= 1.0)) bad("contact_ratio", contact_ratio, "must be >= 1");
+  if (!(contact_ratio >= 1.0)) bad_input("contact_ratio", contact_ratio, "must be >= 1");
   const double a = g.pressure_angle_rad, m = g.module_m;
   const double rb = m * g.teeth / 2.0 * std::cos(a), ra = spur_tip_radius_m(g, internal);
-  if (!(ra > rb)) bad("addendum_coefficient", g.addendum_coefficient, "puts the tip inside the base circle");
+  if (!(ra > rb)) bad_input("addendum_coefficient", g.addendum_coefficient, "puts the tip inside the base circle");
   const double base_pitch = kPi * m * std::cos(a);
   const double roll = std::sqrt(ra * ra - rb * rb) + (internal ? 1.0 : -1.0) * base_pitch * (contact_ratio - 1.0);
-  if (roll < 0) bad("contact_ratio", contact_ratio, "puts the single-pair point below the base circle");
+  if (roll < 0) bad_input("contact_ratio", contact_ratio, "puts the single-pair point below the base circle");
   return std::hypot(roll, rb);
 }
 
@@ -93,7 +92,7 @@ ToothRootForm external_root_form(const SpurTeeth& g, double load_radius_m) {
   const double hfP = g.tool.addendum_coefficient, rho = g.tool.tip_radius_coefficient;  // in modules
   const double rb = m * z / 2.0 * std::cos(a), ra = spur_tip_radius_m(g, false);
   if (!(load_radius_m > rb && load_radius_m <= ra * (1.0 + 1e-12)))
-    bad("load_radius_mm", load_radius_m * 1e3,
+    bad_input("load_radius_mm", load_radius_m * 1e3,
         "must lie on the flank, in (base radius " + std::to_string(rb * 1e3) + ", tip radius " + std::to_string(ra * 1e3) + "] mm");
   // ISO 6336-3:2006 6.2: E, G, H and the 30° tangent angle ϑ (lengths in modules).
   const double E = kPi / 4.0 - hfP * std::tan(a) + g.tool.protuberance_coefficient / std::cos(a) -
@@ -104,11 +103,11 @@ ToothRootForm external_root_form(const SpurTeeth& g, double load_radius_m) {
   // f(0) = H; f increases up to cos²ϑ = 2G/z when G > 0 (beyond, a second, spurious root near π/2), else to π/2.
   double lo = 0.0, hi = kPi / 2.0 - 1e-9;
   if (G > 0) {
-    if (2.0 * G / z >= 1.0) bad("profile_shift", x, "too large for the tooth count: no 30° tangent point in the fillet");
+    if (2.0 * G / z >= 1.0) bad_input("profile_shift", x, "too large for the tooth count: no 30° tangent point in the fillet");
     hi = std::acos(std::sqrt(2.0 * G / z));
   }
   if (!(f(lo) < 0 && f(hi) > 0))
-    bad("profile_shift", x, "leaves no 30° tangent point on the root fillet (ISO 6336-3 6.2 does not apply)");
+    bad_input("profile_shift", x, "leaves no 30° tangent point on the root fillet (ISO 6336-3 6.2 does not apply)");
   for (int i = 0; i < 200 && hi - lo > 1e-15; ++i) {
     const double mid = 0.5 * (lo + hi);
     (f(mid) < 0 ? lo : hi) = mid;
@@ -125,9 +124,9 @@ ToothRootForm external_root_form(const SpurTeeth& g, double load_radius_m) {
   r.bending_arm_m = 0.5 * m *
                     ((std::cos(gamma_e) - std::sin(gamma_e) * std::tan(r.load_angle_rad)) * 2.0 * load_radius_m / m -
                      z * std::cos(kPi / 3.0 - t) - G / std::cos(t) + rho);
-  if (!(r.critical_chord_m > 0)) bad("profile_shift", x, "gives a critical chord s_Fn <= 0 (undercut tooth)");
-  if (!(r.bending_arm_m > 0)) bad("load_radius_mm", load_radius_m * 1e3, "gives a bending arm h_Fe <= 0");
-  if (!(r.fillet_radius_m > 0)) bad("tool.tip_radius_coefficient", rho, "gives a fillet radius rho_F <= 0");
+  if (!(r.critical_chord_m > 0)) bad_input("profile_shift", x, "gives a critical chord s_Fn <= 0 (undercut tooth)");
+  if (!(r.bending_arm_m > 0)) bad_input("load_radius_mm", load_radius_m * 1e3, "gives a bending arm h_Fe <= 0");
+  if (!(r.fillet_radius_m > 0)) bad_input("tool.tip_radius_coefficient", rho, "gives a fillet radius rho_F <= 0");
   // Y_F of ISO 6336-3:2006 6.2 and Y_S of clause 7.
   const double sm = r.critical_chord_m / m;
   r.form_factor = 6.0 * (r.bending_arm_m / m) * std::cos(r.load_angle_rad) / (sm * sm * std::cos(a));
@@ -142,12 +141,12 @@ ToothRootForm internal_root_form(const SpurTeeth& g, double load_radius_m) {
   const double spr = g.tool.protuberance_coefficient * m;
   const double ra = spur_tip_radius_m(g, true), rf = spur_root_radius_m(g, true);
   const double rb = m * g.teeth / 2.0 * std::cos(a);
-  if (!(ra > rb)) bad("addendum_coefficient", g.addendum_coefficient, "puts the internal tip inside the base circle");
+  if (!(ra > rb)) bad_input("addendum_coefficient", g.addendum_coefficient, "puts the internal tip inside the base circle");
   if (!(load_radius_m >= ra * (1.0 - 1e-12) && load_radius_m < rf))
-    bad("load_radius_mm", load_radius_m * 1e3,
+    bad_input("load_radius_mm", load_radius_m * 1e3,
         "must lie on the internal tooth, in [tip radius " + std::to_string(ra * 1e3) + ", root radius " +
             std::to_string(rf * 1e3) + ") mm");
-  if (!(rho > 0)) bad("tool.tip_radius_coefficient", 0.0, "must be > 0 for an internal gear (it is the fillet radius)");
+  if (!(rho > 0)) bad_input("tool.tip_radius_coefficient", 0.0, "must be > 0 for an internal gear (it is the fillet radius)");
   // The rack-shaped internal tooth (ISO 6336-3:2006 6.2, internal gears): the 30° tangent touches the root fillet of
   // radius ρ_fP (centre at depth ρ_fP, tangent to the root line and the flank) where its normal makes 30° with the
   // root line: half-chord = flank offset of the centre − ρ cos 30°, depth ρ (1 − sin 30°).
@@ -159,8 +158,8 @@ ToothRootForm internal_root_form(const SpurTeeth& g, double load_radius_m) {
   const double depth = rf - load_radius_m;                               // y_e, from the root line
   const double half_thickness = kPi * m / 4.0 + (hfP - depth) * std::tan(a);  // s_e at that depth
   r.bending_arm_m = depth - half_thickness * std::tan(a) - rho * (1.0 - std::sin(kTangent));
-  if (!(r.critical_chord_m > 0)) bad("tool.tip_radius_coefficient", g.tool.tip_radius_coefficient, "gives s_Fn <= 0");
-  if (!(r.bending_arm_m > 0)) bad("load_radius_mm", load_radius_m * 1e3, "gives a bending arm h_Fe <= 0");
+  if (!(r.critical_chord_m > 0)) bad_input("tool.tip_radius_coefficient", g.tool.tip_radius_coefficient, "gives s_Fn <= 0");
+  if (!(r.bending_arm_m > 0)) bad_input("load_radius_mm", load_radius_m * 1e3, "gives a bending arm h_Fe <= 0");
   const double sm = r.critical_chord_m / m;
   r.form_factor = 6.0 * (r.bending_arm_m / m) * std::cos(r.load_angle_rad) / (sm * sm * std::cos(a));
   set_stress_correction(r);
@@ -168,20 +167,20 @@ ToothRootForm internal_root_form(const SpurTeeth& g, double load_radius_m) {
 }
 
 double rim_thickness_factor(double rim_thickness_m, double tooth_depth_m) {
-  if (!(tooth_depth_m > 0)) bad("tooth_depth_mm", tooth_depth_m * 1e3, "must be > 0");
+  if (!(tooth_depth_m > 0)) bad_input("tooth_depth_mm", tooth_depth_m * 1e3, "must be > 0");
   if (rim_thickness_m == 0) return 1.0;  // solid gear
   const double ratio = rim_thickness_m / tooth_depth_m;
   // ISO 6336-3:2006 clause 8, external gears.
-  if (!(ratio > 0.5)) bad("rim thickness / tooth depth s_R/h_t", ratio, "must be > 0.5 (ISO 6336-3's limit for Y_B)");
+  if (!(ratio > 0.5)) bad_input("rim thickness / tooth depth s_R/h_t", ratio, "must be > 0.5 (ISO 6336-3's limit for Y_B)");
   if (ratio >= 1.2) return 1.0;
   return 1.6 * std::log(2.242 / ratio);
 }
 
 double nominal_root_stress_Pa(const ToothRootForm& form, double module_m, double tangential_force_N,
                               double face_width_m, const RootStressFactors& y) {
-  if (!(module_m > 0)) bad("module_m", module_m, "must be > 0");
-  if (!(face_width_m > 0)) bad("face_width_mm", face_width_m * 1e3, "must be > 0");
-  if (!(tangential_force_N >= 0)) bad("tangential_force_N", tangential_force_N, "must be >= 0");
+  if (!(module_m > 0)) bad_input("module_m", module_m, "must be > 0");
+  if (!(face_width_m > 0)) bad_input("face_width_mm", face_width_m * 1e3, "must be > 0");
+  if (!(tangential_force_N >= 0)) bad_input("tangential_force_N", tangential_force_N, "must be >= 0");
   // ISO 6336-3:2006 method B: σ_F0 = F_t/(b m_n) Y_F Y_S Y_β Y_B Y_DT.
   return tangential_force_N / (face_width_m * module_m) * form.form_factor * form.stress_correction * y.helix *
          y.rim_thickness * y.deep_tooth;
@@ -189,9 +188,9 @@ double nominal_root_stress_Pa(const ToothRootForm& form, double module_m, double
 
 double tangential_force_at_root_stress_N(const ToothRootForm& form, double module_m, double allowable_stress_Pa,
                                          double face_width_m, const RootStressFactors& y) {
-  if (!(allowable_stress_Pa > 0)) bad("allowable_stress_MPa", allowable_stress_Pa * 1e-6, "must be > 0");
+  if (!(allowable_stress_Pa > 0)) bad_input("allowable_stress_MPa", allowable_stress_Pa * 1e-6, "must be > 0");
   const double stress_per_newton = nominal_root_stress_Pa(form, module_m, 1.0, face_width_m, y);
-  if (!(stress_per_newton > 0)) bad("form_factor * stress_correction", form.form_factor * form.stress_correction, "must be > 0");
+  if (!(stress_per_newton > 0)) bad_input("form_factor * stress_correction", form.form_factor * form.stress_correction, "must be > 0");
   return allowable_stress_Pa / stress_per_newton;
 }
 

@@ -8,13 +8,13 @@
 
 #include <Eigen/Geometry>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 #include "gear/tooth_profile.hpp"
 
 namespace sw {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr double kShearFactor = 1.2;  // Timoshenko's κ of a rectangular section (Yang & Lin 1987; Tian 2004)
 constexpr int kSamples = 600;          // outline samples from root to contact: the integrals converge to < 1e-5
 

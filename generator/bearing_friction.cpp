@@ -5,16 +5,11 @@
 #include <sstream>
 
 #include "common/error.hpp"
+#include "common/format.hpp"
 #include "generator/bearing_life.hpp"
 
 namespace sw {
 namespace {
-
-std::string num(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
 
 /// Palmgren's viscous term switches form at ν·n = 2000 mm²/s·rpm (Palmgren 1959; Harris & Kotzalas vol. 1).
 constexpr double kViscousThreshold = 2000.0;
@@ -36,22 +31,22 @@ double zone_integral(double a) {
 void validate_palmgren_coefficients(const PalmgrenCoefficients& c, const std::string& where) {
   const std::string at = (where.empty() ? std::string("palmgren") : where) + ".";
   if (!(c.f0 > 0 && c.f0 <= 10))
-    throw InputError(at + "f0 = " + num(c.f0) + "; must be in (0, 10] (deep-groove ball bearings: 0.7-2 grease, 2 oil bath, 4 oil jet)");
+    throw InputError(at + "f0 = " + six_digits(c.f0) + "; must be in (0, 10] (deep-groove ball bearings: 0.7-2 grease, 2 oil bath, 4 oil jet)");
   if (!(c.z > 0 && c.z <= 0.01))
-    throw InputError(at + "z = " + num(c.z) + "; must be in (0, 0.01] (deep-groove ball bearings: 0.0004-0.0006)");
+    throw InputError(at + "z = " + six_digits(c.z) + "; must be in (0, 0.01] (deep-groove ball bearings: 0.0004-0.0006)");
   if (!(c.y > 0 && c.y <= 1))
-    throw InputError(at + "y = " + num(c.y) + "; must be in (0, 1] (deep-groove ball bearings: 0.55)");
+    throw InputError(at + "y = " + six_digits(c.y) + "; must be in (0, 1] (deep-groove ball bearings: 0.55)");
 }
 
 double palmgren_equivalent_load_N(const GeneratorBearing& b, const std::vector<double>& Q, double y) {
   validate_generator_bearing(b);
-  if (!(y > 0 && y <= 1)) throw InputError("palmgren.y = " + num(y) + "; must be in (0, 1]");
+  if (!(y > 0 && y <= 1)) throw InputError("palmgren.y = " + six_digits(y) + "; must be in (0, 1]");
   if (static_cast<int>(Q.size()) != b.balls)
-    throw InputError(num(static_cast<double>(Q.size())) + " ball loads for a bearing of " + num(b.balls) +
+    throw InputError(six_digits(static_cast<double>(Q.size())) + " ball loads for a bearing of " + six_digits(b.balls) +
                      " balls; need one load per ball");
   double sum = 0;
   for (double q : Q) {
-    if (!(q >= 0)) throw InputError("ball load " + num(q) + " N; must be >= 0 (a ball only pushes)");
+    if (!(q >= 0)) throw InputError("ball load " + six_digits(q) + " N; must be >= 0 (a ball only pushes)");
     sum += std::pow(q, 1.0 + y);
   }
   const double Z = b.balls;
@@ -63,8 +58,8 @@ double palmgren_equivalent_load_N(const GeneratorBearing& b, const std::vector<d
 BearingFrictionMoment palmgren_friction_moment(const GeneratorBearing& b, const std::vector<double>& Q,
                                                double relative_speed_rpm, double nu, const PalmgrenCoefficients& c) {
   validate_palmgren_coefficients(c, "");
-  if (!(nu > 0)) throw InputError("lubricant viscosity " + num(nu) + " mm^2/s; must be > 0");
-  if (!std::isfinite(relative_speed_rpm)) throw InputError("relative ring speed " + num(relative_speed_rpm) + " rpm; must be finite");
+  if (!(nu > 0)) throw InputError("lubricant viscosity " + six_digits(nu) + " mm^2/s; must be > 0");
+  if (!std::isfinite(relative_speed_rpm)) throw InputError("relative ring speed " + six_digits(relative_speed_rpm) + " rpm; must be finite");
   BearingFrictionMoment m;
   m.equivalent_load_N = palmgren_equivalent_load_N(b, Q, c.y);
   m.static_rating_N = basic_static_load_rating_N(b);

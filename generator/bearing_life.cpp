@@ -7,15 +7,10 @@
 #include <sstream>
 
 #include "common/error.hpp"
+#include "common/format.hpp"
 
 namespace sw {
 namespace {
-
-std::string num(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
 
 /// ISO 281:2007 Table 2, column "single-row radial contact groove ball bearings": f_c at γ = 0.01, 0.02, …, 0.40.
 constexpr std::array<double, 40> kIso281Fc = {
@@ -77,14 +72,14 @@ double raceway_life(double Qc, double Qe) {
 
 double iso281_fc_radial_ball(double gamma) {
   if (!(gamma >= 0.01 && gamma <= 0.40))
-    throw InputError("D_w*cos(alpha)/D_pw = " + num(gamma) +
+    throw InputError("D_w*cos(alpha)/D_pw = " + six_digits(gamma) +
                      "; ISO 281 Table 2 gives f_c for 0.01 to 0.40 (ball diameter / pitch diameter of the bearing)");
   return interpolate(kIso281Fc, 0.01, gamma);
 }
 
 double iso76_f0_radial_ball(double gamma) {
   if (!(gamma >= 0.0 && gamma <= 0.40))
-    throw InputError("D_w*cos(alpha)/D_pw = " + num(gamma) + "; ISO 76 Table 1 gives f_0 for 0 to 0.40");
+    throw InputError("D_w*cos(alpha)/D_pw = " + six_digits(gamma) + "; ISO 76 Table 1 gives f_0 for 0 to 0.40");
   return interpolate(kIso76F0, 0.0, gamma);
 }
 
@@ -116,10 +111,10 @@ RacewayRatings raceway_dynamic_load_ratings_N(const GeneratorBearing& b) {
 BearingLife rating_life_from_ball_loads(const GeneratorBearing& b, const std::vector<double>& Q, LoadFixedTo fixed_to) {
   const RacewayRatings Qc = raceway_dynamic_load_ratings_N(b);
   if (static_cast<int>(Q.size()) != b.balls)
-    throw InputError(num(static_cast<double>(Q.size())) + " ball loads for a bearing of " + num(b.balls) +
+    throw InputError(six_digits(static_cast<double>(Q.size())) + " ball loads for a bearing of " + six_digits(b.balls) +
                      " balls; need one load per ball");
   for (double q : Q)
-    if (!(q >= 0)) throw InputError("ball load " + num(q) + " N; must be >= 0 (a ball only pushes)");
+    if (!(q >= 0)) throw InputError("ball load " + six_digits(q) + " N; must be >= 0 (a ball only pushes)");
   // The raceway that turns relative to the load: cubic mean; the one standing still on it: 10/3 mean.
   const double rotating = power_mean(Q, 3.0), standing = power_mean(Q, 10.0 / 3.0);
   BearingLife L;
@@ -134,13 +129,13 @@ BearingLife rating_life_from_ball_loads(const GeneratorBearing& b, const std::ve
 
 double ring_relative_speed_rpm(double input_speed_rpm, double ratio) {
   if (!(std::abs(ratio) > 1.0))
-    throw InputError("ratio = " + num(ratio) + "; must satisfy |ratio| > 1 (input speed / output speed, signed)");
+    throw InputError("ratio = " + six_digits(ratio) + "; must satisfy |ratio| > 1 (input speed / output speed, signed)");
   return std::abs(input_speed_rpm * (1.0 - 1.0 / ratio));
 }
 
 double life_hours(double life_Mrev, double relative_speed_rpm) {
   if (!(relative_speed_rpm > 0))
-    throw InputError("relative ring speed " + num(relative_speed_rpm) + " rpm; must be > 0 for a life in hours");
+    throw InputError("relative ring speed " + six_digits(relative_speed_rpm) + " rpm; must be > 0 for a life in hours");
   return life_Mrev * 1e6 / (60.0 * relative_speed_rpm);
 }
 

@@ -6,18 +6,13 @@
 #include <sstream>
 
 #include "common/error.hpp"
+#include "common/format.hpp"
 
 namespace sw {
 namespace {
 
-std::string num(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
 [[noreturn]] void reject(const std::string& file, const std::string& key, double value, const std::string& expectation) {
-  throw InputError((file.empty() ? "" : file + ": ") + "wave_generator.bearing." + key + " = " + num(value) + "; " +
+  throw InputError((file.empty() ? "" : file + ": ") + "wave_generator.bearing." + key + " = " + six_digits(value) + "; " +
                    expectation);
 }
 
@@ -81,12 +76,12 @@ void validate_generator_bearing(const GeneratorBearing& b, const std::string& fi
            "must be in (0.5, 1) (groove radius / ball diameter; deep-groove bearings 0.515-0.53)");
   if (!(b.pitch_radius_m > D))
     reject(file, "ball_diameter_mm", D * 1e3,
-           "must be < the pitch radius " + num(b.pitch_radius_m * 1e3) +
+           "must be < the pitch radius " + six_digits(b.pitch_radius_m * 1e3) +
                " mm (bore radius less 0.75 ball diameters): the balls do not fit inside the flexspline");
   if (!(b.balls * D < 2.0 * std::numbers::pi * b.pitch_radius_m))
     reject(file, "balls", b.balls,
            "must be < 2*pi*pitch radius / ball diameter = " +
-               num(std::floor(2.0 * std::numbers::pi * b.pitch_radius_m / D)) + " (the balls must fit on the circle)");
+               six_digits(std::floor(2.0 * std::numbers::pi * b.pitch_radius_m / D)) + " (the balls must fit on the circle)");
   if (!(b.youngs_modulus_Pa > 0)) reject(file, "youngs_modulus_Pa", b.youngs_modulus_Pa, "must be > 0");
   if (!(b.poisson_ratio > -1.0 && b.poisson_ratio < 0.5)) reject(file, "poisson_ratio", b.poisson_ratio, "must be in (-1, 0.5)");
 }
@@ -108,14 +103,14 @@ HertzPointContact outer_race_contact(const GeneratorBearing& b, double Q) {
 }
 
 double ball_approach_m(const GeneratorBearing& b, double Q) {
-  if (!(Q >= 0)) throw InputError("ball load " + num(Q) + " N; must be >= 0 (a ball only pushes)");
+  if (!(Q >= 0)) throw InputError("ball load " + six_digits(Q) + " N; must be >= 0 (a ball only pushes)");
   return inner_race_contact(b, Q).approach_m + outer_race_contact(b, Q).approach_m;
 }
 
 double ball_approach_derivative_m_per_N(const GeneratorBearing& b, double Q) {
   if (!(Q > 0)) {
     if (Q == 0) return std::numeric_limits<double>::infinity();
-    throw InputError("ball load " + num(Q) + " N; must be >= 0 (a ball only pushes)");
+    throw InputError("ball load " + six_digits(Q) + " N; must be >= 0 (a ball only pushes)");
   }
   return 2.0 / 3.0 * ball_approach_m(b, Q) / Q;
 }

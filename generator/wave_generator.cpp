@@ -4,12 +4,12 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "common/constants.hpp"
 #include "common/overloaded.hpp"
 #include "generator/cam_profile.hpp"
 
 namespace sw {
 namespace {
-constexpr double kPi = std::numbers::pi;
 }  // namespace
 
 const char* model_name(const GeneratorModel& m) {

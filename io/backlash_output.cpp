@@ -15,6 +15,7 @@
 #include <vtkPolyData.h>
 #include <vtkXMLPolyDataWriter.h>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 #include "common/svg_plot.hpp"
 #include "io/atomic_file.hpp"
@@ -24,12 +25,9 @@ namespace sw {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = 180.0 / kPi;
 
 double change_percent(double basic, double comp) { return basic != 0 ? 100.0 * (comp - basic) / std::abs(basic) : 0.0; }
 
-constexpr double kArcmin = kDeg * 60.0;
 
 BacklashResult::Side side_figures(const FlankClearance& c) {
   return {c.clearance_m * 1e6, c.lever_arm_m * 1e3, std::string(part_name(c.part_f)) + " / " + part_name(c.part_c)};

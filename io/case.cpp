@@ -31,7 +31,7 @@ namespace sw {
 namespace {
 
 constexpr double kMm = 1e-3;
-constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr double kRadPerDeg = std::numbers::pi / 180.0;
 
 std::string format_number(double v) {
   std::ostringstream s;
@@ -169,7 +169,7 @@ GearParams read_gear(TableReader r) {
   g.module_m = r.number("module_mm", g.module_m / kMm) * kMm;
   g.teeth_flexspline = r.integer("teeth_flexspline", g.teeth_flexspline, 4);
   g.teeth_circular = r.integer("teeth_circular", g.teeth_circular, 5);
-  g.pressure_angle_rad = r.number("pressure_angle_deg", g.pressure_angle_rad / kDeg) * kDeg;
+  g.pressure_angle_rad = r.number("pressure_angle_deg", g.pressure_angle_rad / kRadPerDeg) * kRadPerDeg;
   g.profile_shift_flexspline = r.number("profile_shift_flexspline", g.profile_shift_flexspline);
   g.profile_shift_circular = r.number("profile_shift_circular", g.profile_shift_circular);
   g.cutter_teeth = r.integer("cutter_teeth", g.cutter_teeth, 8);
@@ -285,11 +285,11 @@ void read_cam_profile(TableReader& r, Cam& cam, WaveGeneratorParams& w, double b
     if (!angle || !radius)
       throw InputError(r.file() + ": " + p.name() + " needs angle_deg and radius_mm");
     if (!(*angle >= 0 && *angle < 180)) p.fail_value("angle_deg", *angle, "must be in [0, 180) (a half turn from the major axis)");
-    if (!cam.points.empty() && !(*angle * kDeg > cam.points.back().angle_rad))
+    if (!cam.points.empty() && !(*angle * kRadPerDeg > cam.points.back().angle_rad))
       p.fail_value("angle_deg", *angle, "must be larger than the point before's (increasing angles)");
     if (!(*radius > 0)) p.fail_value("radius_mm", *radius, "must be > 0");
     p.reject_unknown();
-    point.angle_rad = *angle * kDeg;
+    point.angle_rad = *angle * kRadPerDeg;
     point.radius_m = *radius * kMm;
     cam.points.push_back(point);
   }
@@ -308,7 +308,7 @@ void read_cam_profile(TableReader& r, Cam& cam, WaveGeneratorParams& w, double b
 double read_beta(TableReader& r) {
   const double beta = r.number("beta_deg", 30.0);
   if (!(beta > 0.0 && beta < 90.0)) r.fail_value("beta_deg", beta, "must be in (0, 90)");
-  return beta * kDeg;
+  return beta * kRadPerDeg;
 }
 
 /// forces = [{angle_deg, weight}, ...] of model = "forces".
@@ -323,7 +323,7 @@ GivenForces read_given_forces(TableReader& r) {
     if (!t) r.fail("forces", *list->get(i), "expected tables {angle_deg = ..., weight = ...}");
     TableReader f(*t, r.name() + ".forces[" + std::to_string(i) + "]", r.file());
     WaveGeneratorForce force;
-    force.angle_rad = f.number("angle_deg", 0.0) * kDeg;
+    force.angle_rad = f.number("angle_deg", 0.0) * kRadPerDeg;
     force.weight = f.positive("weight", 1.0);
     f.reject_unknown();
     g.forces.push_back(force);
@@ -378,7 +378,7 @@ LoadParams read_load(TableReader r) {
   l.torque_loading = how == "uniform" ? TorqueLoading::Uniform : TorqueLoading::EngagementZones;
   const double half = r.number("engagement_half_angle_deg", 20.0);
   if (!(half > 0.0 && half <= 90.0)) r.fail_value("engagement_half_angle_deg", half, "must be in (0, 90]");
-  l.engagement_half_angle_rad = half * kDeg;
+  l.engagement_half_angle_rad = half * kRadPerDeg;
   if (auto rated = r.number("rated_torque_Nm")) {
     if (!(*rated > 0)) r.fail_value("rated_torque_Nm", *rated, "must be > 0 (the torque the drive is loaded to, both ways)");
     l.rated_torque_Nm = *rated;
@@ -837,7 +837,7 @@ Tables gear_table(const GearParams& g) {
   return Tables::object({{"module_mm", file_value(g.module_m, kMm)},
                          {"teeth_flexspline", g.teeth_flexspline},
                          {"teeth_circular", g.teeth_circular},
-                         {"pressure_angle_deg", file_value(g.pressure_angle_rad, kDeg)},
+                         {"pressure_angle_deg", file_value(g.pressure_angle_rad, kRadPerDeg)},
                          {"profile_shift_flexspline", g.profile_shift_flexspline},
                          {"profile_shift_circular", g.profile_shift_circular},
                          {"cutter_teeth", g.cutter_teeth},
@@ -899,13 +899,13 @@ Tables list_of(const std::vector<T>& items, F&& table) {
 void put_model_keys(Tables& t, const GeneratorModel& model) {
   static const char* kProfiles[] = {"polar", "ellipse", "list"};
   const auto force = [](const WaveGeneratorForce& f) {
-    return Tables::object({{"angle_deg", file_value(f.angle_rad, kDeg)}, {"weight", f.weight}});
+    return Tables::object({{"angle_deg", file_value(f.angle_rad, kRadPerDeg)}, {"weight", f.weight}});
   };
   const auto point = [](const CamPoint& p) {
-    return Tables::object({{"angle_deg", file_value(p.angle_rad, kDeg)}, {"radius_mm", file_value(p.radius_m, kMm)}});
+    return Tables::object({{"angle_deg", file_value(p.angle_rad, kRadPerDeg)}, {"radius_mm", file_value(p.radius_m, kMm)}});
   };
-  std::visit(overloaded{[&](const FourForce& f) { t["beta_deg"] = file_value(f.beta_rad, kDeg); },
-                        [&](const Rollers& r) { t["beta_deg"] = file_value(r.beta_rad, kDeg); },
+  std::visit(overloaded{[&](const FourForce& f) { t["beta_deg"] = file_value(f.beta_rad, kRadPerDeg); },
+                        [&](const Rollers& r) { t["beta_deg"] = file_value(r.beta_rad, kRadPerDeg); },
                         [](const TwoForce&) {},
                         [&](const GivenForces& g) { t["forces"] = list_of(g.forces, force); },
                         [&](const Cam& cam) {
@@ -933,7 +933,7 @@ Tables load_table(const LoadParams& l) {
   Tables t = Tables::object(
       {{"torque_Nm", l.torque_Nm},
        {"torque_loading", l.torque_loading == TorqueLoading::Uniform ? "uniform" : "engagement_zones"},
-       {"engagement_half_angle_deg", file_value(l.engagement_half_angle_rad, kDeg)}});
+       {"engagement_half_angle_deg", file_value(l.engagement_half_angle_rad, kRadPerDeg)}});
   if (l.rated_torque_Nm) t["rated_torque_Nm"] = *l.rated_torque_Nm;
   return t;
 }
@@ -1076,6 +1076,19 @@ std::string describe_case(const Case& c) {
       if (const auto note = notes.find(table.key() + "." + key.key()); note != notes.end()) s += "  # " + note->second;
       s += "\n";
     }
+  }
+  return s;
+}
+
+std::string describe_derived(const Case& c) {
+  const Tables tables = case_tables(c);
+  std::string s;
+  for (const auto& [key, note] : case_notes(c)) {
+    const std::size_t dot = key.find('.');
+    const std::string table = key.substr(0, dot), name = key.substr(dot + 1);
+    if (!tables.contains(table) || !tables[table].contains(name)) continue;  // a table the case does not have
+    if (note == "from the case file") continue;                              // given, only said where
+    s += "  " + key + " = " + toml_text(tables[table][name]) + "  # " + note + "\n";
   }
   return s;
 }

@@ -74,6 +74,10 @@ std::string case_file_toml(const std::string& path);
 /// back to the same case (printed at the start of a run).
 std::string describe_case(const Case& c);
 
+/// The keys whose value came from elsewhere than the file (derived from other keys, the catalog's rated torque, the
+/// solver "auto" chose), one line each as "  table.key = value  # where it came from"; empty when there are none.
+std::string describe_derived(const Case& c);
+
 /// The same tables and keys as a JSON object's text (the "case" the outputs store); load_case reads it back from an
 /// output. A number is the shortest decimal that reads back to the same value; a default derived in SI that no
 /// decimal reaches is written 1 ulp away, and the same again once read back.

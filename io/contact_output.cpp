@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 #include "common/svg_plot.hpp"
 #include "io/json_file.hpp"
@@ -18,7 +19,6 @@
 namespace sw {
 namespace {
 
-constexpr double kArcmin = 10800.0 / std::numbers::pi;
 
 double law_twist(const CatalogLaw& k, double T) { return k.law().twist_rad(T); }
 
@@ -265,13 +265,13 @@ static auto fields(std::type_identity<ContactResult>) {
 std::string contact_json(const ContactResult& r) { return to_json_object(r).dump(2) + "\n"; }
 
 namespace {
-constexpr const char* kCannotOpen =
+constexpr const char* kContactCannotOpen =
     "cannot be read; give the contact.json written by `strainwave contact CASE.toml` (or `strainwave run`)";
-constexpr const char* kExpected = "the contact.json of `strainwave contact`";
+constexpr const char* kContactExpected = "the contact.json of `strainwave contact`";
 }  // namespace
 
 ContactResult read_contact_result(const std::filesystem::path& path) {
-  return read_object<ContactResult>(JsonIn::open(path, kCannotOpen, kExpected));
+  return read_object<ContactResult>(JsonIn::open(path, kContactCannotOpen, kContactExpected));
 }
 
 namespace {
@@ -343,11 +343,11 @@ ContactCurve contact_curve(const JsonIn& j) {
 }  // namespace
 
 ContactCurve read_contact_curve(const std::filesystem::path& path) {
-  return contact_curve(JsonIn::open(path, kCannotOpen, kExpected));
+  return contact_curve(JsonIn::open(path, kContactCannotOpen, kContactExpected));
 }
 
 ContactCurve parse_contact_curve(const std::string& contact_json_text, const std::string& name) {
-  return contact_curve(JsonIn::parse(contact_json_text, name, kExpected));
+  return contact_curve(JsonIn::parse(contact_json_text, name, kContactExpected));
 }
 
 std::string torque_twist_csv(const ContactAnalysis& a) {

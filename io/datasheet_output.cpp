@@ -13,8 +13,8 @@
 namespace sw {
 namespace {
 
-constexpr const char* kCannotOpen = "cannot be read; give the datasheet.json written by `strainwave datasheet CASE.toml`";
-constexpr const char* kExpected = "the datasheet.json of `strainwave datasheet`";
+constexpr const char* kDatasheetCannotOpen = "cannot be read; give the datasheet.json written by `strainwave datasheet CASE.toml`";
+constexpr const char* kDatasheetExpected = "the datasheet.json of `strainwave datasheet`";
 
 nlohmann::json number_or_null(const std::optional<double>& v) {
   return v && std::isfinite(*v) ? nlohmann::json(*v) : nlohmann::json(nullptr);
@@ -122,7 +122,7 @@ std::string datasheet_json(const Datasheet& d, const Case& c) {
 }
 
 Datasheet read_datasheet(const std::filesystem::path& path) {
-  const JsonIn j = JsonIn::open(path, kCannotOpen, kExpected);
+  const JsonIn j = JsonIn::open(path, kDatasheetCannotOpen, kDatasheetExpected);
   Datasheet d;
   if (!j["catalog_size"].is_null()) d.catalog_size = static_cast<int>(j["catalog_size"].integer());
   d.ratio = static_cast<int>(j["ratio"].integer());

@@ -8,13 +8,13 @@
 
 #include <Eigen/Core>
 
+#include "common/constants.hpp"
 #include "common/svg_plot.hpp"
 #include "gear/tooth_profile.hpp"
 
 namespace sw {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr int kFlankPoints = 6;     // segments per flank: the teeth read as teeth at the enlarged views' scale
 constexpr int kCirclePoints = 360;  // the rings' curves, every degree
 

@@ -18,8 +18,8 @@ namespace sw {
 namespace {
 
 /// How result.json's readers name it in their messages.
-constexpr const char* kExpected = "the result.json of `strainwave fem`";
-constexpr const char* kCannotOpen = "cannot open; give the result.json written by `strainwave fem CASE.toml`";
+constexpr const char* kResultExpected = "the result.json of `strainwave fem`";
+constexpr const char* kResultCannotOpen = "cannot open; give the result.json written by `strainwave fem CASE.toml`";
 
 // ---- from the solution to the file's figures
 
@@ -378,7 +378,7 @@ std::string fem_result_json(const FemResult& r) {
 }
 
 namespace {
-JsonIn open_result_json(const std::filesystem::path& path) { return JsonIn::open(path, kCannotOpen, kExpected); }
+JsonIn open_result_json(const std::filesystem::path& path) { return JsonIn::open(path, kResultCannotOpen, kResultExpected); }
 }  // namespace
 
 FemResult read_fem_result(const std::filesystem::path& path) {

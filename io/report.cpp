@@ -7,6 +7,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 #include "common/svg_plot.hpp"
 #include "io/provenance.hpp"
@@ -19,7 +20,6 @@ namespace sw {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr double kDeg = 180.0 / std::numbers::pi;
 
 std::string slurp(const fs::path& p) {
   std::ifstream in(p);

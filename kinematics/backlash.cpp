@@ -8,13 +8,13 @@
 #include <string>
 #include <tuple>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 
 namespace sw {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr int kSamples = 8;  // intervals of the coarse scan along the flexspline flank before Brent refines
 
 Eigen::Matrix2d rot(double a) {

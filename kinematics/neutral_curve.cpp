@@ -10,14 +10,13 @@
 
 #include <Eigen/Dense>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 #include "common/overloaded.hpp"
 
 namespace sw {
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 /// Derived series v = −∫₀^φ w dφ and μ = −(1/r_m) dw/dφ of an inextensible ring from w (w must have no constant term).
 void derive_inextensible(NeutralCurve& c) {

@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 #include "gear/tooth_profile.hpp"
 #include "mesh/flexspline.hpp"
@@ -19,7 +20,6 @@ namespace sw {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 // TET10 nodes per layered cell (along² × across) of a wall, measured: the seed cup (182,783 nodes at 0.6 mm, 2
 // layers) and the size-17 cup (119,688 at 0.8 mm, 1 layer) both give 11.8 (within 1 %); the structured tube mesh of
 // mesh_tube() gives 20.6 (tube_torsion.toml: 147,864 nodes).

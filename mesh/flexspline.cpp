@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <string>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 #include "gear/tooth_profile.hpp"
 #include "mesh/estimate.hpp"
@@ -13,10 +14,6 @@
 
 namespace sw {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-
 
 // Profile under construction: edges are added once each; mesh_revolved merges repeated vertices and splits edges
 // at the layer lines that end on them.

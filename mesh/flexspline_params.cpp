@@ -7,14 +7,13 @@
 #include <tuple>
 #include <utility>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 #include "gear/tooth_profile.hpp"
 #include "mesh/shapes.hpp"
 
 namespace sw {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 [[noreturn]] void reject(const std::string& key, double value_m, const std::string& expectation) {
   throw InputError("flexspline." + key + " = " + mm_text(value_m) + "; " + expectation);

@@ -8,13 +8,12 @@
 
 #include <Eigen/Geometry>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 #include "mesh/tetgen_mesh.hpp"
 
 namespace sw {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 Eigen::Vector2d closest_profile_point(const ProfileSurface& s, const Eigen::Vector2d& q) {
   if (s.kind == ProfileSurface::Kind::Line) {
@@ -130,7 +129,6 @@ bool well_shaped(const TetMesh& m, const std::array<int, 10>& t) {
     if (!(tet10_det(m, t, p[0], p[1], p[2]) > kMinDetRatio * straight)) return false;
   return true;
 }
-
 
 /// Where a projected midside node distorts its element too much (a coarse ring near the axis, a thin layer under a
 /// strongly curved surface, an edge on two surfaces), puts that element's midside nodes back on its straight edges: a

@@ -16,6 +16,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 #include "mesh/tetgen_terminate.hpp"
 
@@ -370,7 +371,6 @@ MeshQuality mesh_quality(const TetMesh& mesh) {
   q.min_dihedral_deg = 180.0;
   q.max_dihedral_deg = 0.0;
   q.max_radius_edge_ratio = 0.0;
-  constexpr double kDeg = 180.0 / 3.14159265358979323846;
   for (const auto& tet : mesh.tets) {
     Eigen::Vector3d p[4];
     for (int k = 0; k < 4; ++k) p[k] = mesh.nodes.row(tet[k]);

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <vector>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 #include "gear/tooth_profile.hpp"
 #include "mesh/tetgen_mesh.hpp"
@@ -101,7 +102,6 @@ ToothSlab extrude_with_retries(const std::vector<Eigen::Vector2d>& outline, cons
 }  // namespace
 
 ToothSlab mesh_tooth_slab(const GearParams& g, const ToothSlabOptions& o) {
-  constexpr double kPi = std::numbers::pi;
   const GearRadii r = gear_radii(g);
   if (!(o.bore_radius_m > 0 && o.bore_radius_m < r.root_f) || o.teeth_each_side < 0 ||
       2 * o.teeth_each_side + 1 > g.teeth_flexspline) {
@@ -146,7 +146,6 @@ ToothSlab mesh_tooth_slab(const GearParams& g, const ToothSlabOptions& o) {
 }
 
 ToothSlab mesh_ring_slab(const GearParams& g, const ToothSlabOptions& o, double r_o) {
-  constexpr double kPi = std::numbers::pi;
   const GearRadii r = gear_radii(g);
   if (!(o.bore_radius_m > 0 && o.bore_radius_m < r_o) || o.teeth_each_side < 0 ||
       2 * o.teeth_each_side + 1 > g.teeth_flexspline) {

@@ -18,7 +18,7 @@ using Mat = Eigen::MatrixXd;
 /// The continuation of a generator's help over several lines.
 const std::string kHelpMore = "\n                  ";
 
-Mat col(const Vec& v) { return v; }
+Mat column_matrix(const Vec& v) { return v; }
 std::pair<Vec, Vec> no_bounds(const Experiment&) { return {Vec(0), Vec(0)}; }
 std::pair<Vec, Vec> bounds1(double lo, double hi) { return {Vec::Constant(1, lo), Vec::Constant(1, hi)}; }
 
@@ -28,7 +28,7 @@ EffectSpec linear_effect(const std::string& name, const std::string& physics, co
   return {.name = name,
           .physics = physics,
           .bounds = no_bounds,
-          .columns = [column](const Experiment& e, const Vec&) { return col(column(e)); },
+          .columns = [column](const Experiment& e, const Vec&) { return column_matrix(column(e)); },
           .headline = [parameter](const Experiment&, const FitResult& f, int t) {
             return NamedValues{{parameter, f.terms[t].beta[0]}};
           }};
@@ -47,7 +47,6 @@ SynthGenerator linear_generator(const std::string& name, const std::string& para
           })};
 }
 
-const TorsionExperiment& torsion(const Experiment& e) { return as<TorsionExperiment>(e); }
 
 // ---- torsion ------------------------------------------------------------------------------------------------------
 
@@ -357,7 +356,7 @@ Effect lost_motion_effect() {
             return bounds1(0.001 * torsion(e).torque_amplitude_Nm, 0.05 * torsion(e).torque_amplitude_Nm);
           },
       .columns =
-          [](const Experiment& e, const Vec& th) { return col(lost_motion_column(torsion(e).torque_Nm, th[0])); },
+          [](const Experiment& e, const Vec& th) { return column_matrix(lost_motion_column(torsion(e).torque_Nm, th[0])); },
       .headline =
           [](const Experiment&, const FitResult& f, int t) {
             return NamedValues{{"width_rad", f.terms[t].beta[0]},
@@ -486,7 +485,6 @@ std::vector<Effect> backlash_effects() {
 
 // ---- dynamics -----------------------------------------------------------------------------------------------------
 
-const DynamicsExperiment& dynamics(const Experiment& e) { return as<DynamicsExperiment>(e); }
 
 Effect mesh_stiffness_effect() {
   // The responses to r sin(psi) and r cos(psi) (the sensitivity columns at phase 0 and pi/2; k(t) is linear in

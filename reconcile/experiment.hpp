@@ -2,6 +2,7 @@
 // The recorded experiment put side by side with the simulated one (the baseline): the response, the baseline's
 // prediction of it, and the derived inputs each effect's model is built from (torque direction, reversal torques,
 // angles). Everything is SI except backlash responses, which stay in micrometres as recorded.
+#include <cmath>
 #include <functional>
 #include <string>
 #include <utility>
@@ -183,6 +184,11 @@ template <class K>
 const K& as(const Experiment& e) {
   return std::get<K>(e.data);
 }
+inline const TorsionExperiment& torsion(const Experiment& e) { return as<TorsionExperiment>(e); }
+inline const DynamicsExperiment& dynamics(const Experiment& e) { return as<DynamicsExperiment>(e); }
+
+/// The root mean square of v's entries; 0 for an empty v.
+inline double rms(const Eigen::VectorXd& v) { return v.size() ? std::sqrt(v.squaredNorm() / v.size()) : 0.0; }
 
 /// The response a prediction gives on the experiment's rows (n), as make_experiment reads the baseline's: torsion the
 /// twist at each row's torque, backlash the backlash at each row's wave-generator angle. Throws InputError when the

@@ -6,6 +6,7 @@
 #include <map>
 
 #include "common/error.hpp"
+#include "common/format.hpp"
 #include "common/progress.hpp"
 #include "reconcile/fit.hpp"
 #include "reconcile/rerun.hpp"
@@ -30,13 +31,6 @@ constexpr double kNoResponse = 1e-6;
 constexpr int kMaxIterations = 12;
 constexpr double kConvergedStep = 1e-3;
 
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-
-double rms(const Vec& v) { return v.size() ? std::sqrt(v.squaredNorm() / v.size()) : 0.0; }
 
 /// The response of a re-run with `values` set.
 Vec response_at(const Experiment& e, const Baseline& base, const ModelKeyValues& values) {
@@ -84,8 +78,8 @@ EffectSpec model_spec(const Experiment& e, const ModelCandidate& c, double at, c
   s.implausible = [at, c](const Experiment&, const FitResult& f, int t) {
     const double v = at + f.terms[t].beta[0];
     if (v >= c.lo && v <= c.hi) return std::string();
-    return "the recording asks for " + c.key + " = " + fmt("%.4g", v) + ", outside its plausible range [" +
-           fmt("%g", c.lo) + ", " + fmt("%g", c.hi) + "] (case " + fmt("%g", c.case_value) +
+    return "the recording asks for " + c.key + " = " + formatted("%.4g", v) + ", outside its plausible range [" +
+           formatted("%g", c.lo) + ", " + formatted("%g", c.hi) + "] (case " + formatted("%g", c.case_value) +
            "): this part alone does not explain it";
   };
   s.held = [](const Experiment&, const FitResult&, int, const std::string& parameter) {
@@ -121,7 +115,7 @@ void add_indistinguishable(const Experiment& e, const ModelEffects& fx, Result& 
         a.params.push_back({"or:" + fx.candidates[j].key, cj + scale * (v.value - cv), std::min(lo, hi),
                             std::max(lo, hi)});
         a.physics += "; the recording cannot tell it from " + fx.specs[j].name + " (columns correlate at " +
-                     fmt("%.3f", corr) + "): " + fx.candidates[j].physics;
+                     formatted("%.3f", corr) + "): " + fx.candidates[j].physics;
       }
     }
 }
@@ -202,8 +196,8 @@ void set_refitted_values(const Refit& refit, Result& r) {
           if (h.name == "value") {
             h = {"value", v.value, v.lo, v.hi};
             if (v.at_range_edge)
-              a.meaning = "the refit stops at the edge of the key's plausible range (" + fmt("%g", v.range_lo) +
-                          " to " + fmt("%g", v.range_hi) + "): the recording asks for more than this part can "
+              a.meaning = "the refit stops at the edge of the key's plausible range (" + formatted("%g", v.range_lo) +
+                          " to " + formatted("%g", v.range_hi) + "): the recording asks for more than this part can "
                           "plausibly give, so read it as a direction, not a value";
           }
 }
@@ -246,9 +240,9 @@ std::shared_ptr<const ModelEffects> model_effects(const Experiment& e, const Bas
     const Vec column = sensitivity_at(e, base, c, at, value_at(c, at));
     const double change = column.norm() * (c.hi - c.lo);
     if (!(change > kNoResponse * scale)) {
-      fx->rejected.push_back({model_effect_name(c.key), model_effect_name(c.key) + ": over [" + fmt("%g", c.lo) +
-                                                            ", " + fmt("%g", c.hi) + "] the model's response changes by " +
-                                                            fmt("%.3g", change / scale) + " of the baseline's: not read"});
+      fx->rejected.push_back({model_effect_name(c.key), model_effect_name(c.key) + ": over [" + formatted("%g", c.lo) +
+                                                            ", " + formatted("%g", c.hi) + "] the model's response changes by " +
+                                                            formatted("%.3g", change / scale) + " of the baseline's: not read"});
       continue;
     }
     fx->candidates.push_back(c);
@@ -292,7 +286,7 @@ std::optional<Refit> refit_model(const Experiment& e, const Baseline& base, cons
   out.prediction = f.response + k.linear * f.linear_beta;
   out.rms = rms(Vec(e.measured - out.prediction));
   progress("reconcile: refit of " + std::to_string(k.keys.size()) + " case keys on re-runs of the model: " +
-           std::to_string(out.iterations) + " iterations, RMS " + fmt("%.4g", out.rms));
+           std::to_string(out.iterations) + " iterations, RMS " + formatted("%.4g", out.rms));
   return out;
 }
 

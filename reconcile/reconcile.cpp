@@ -7,6 +7,7 @@
 #include <set>
 
 #include "common/error.hpp"
+#include "common/format.hpp"
 #include "common/progress.hpp"
 #include "reconcile/catalog.hpp"
 #include "reconcile/model_update.hpp"
@@ -19,13 +20,6 @@ using Mat = Eigen::MatrixXd;
 
 namespace {
 
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-
-double rms(const Vec& v) { return v.size() ? std::sqrt(v.squaredNorm() / v.size()) : 0.0; }
 
 /// Resolvable values per nonlinear parameter in the Bonferroni bound that lets a decisive F statistic stand in for
 /// the bootstrap (see Analysis::effect_test).
@@ -183,7 +177,7 @@ struct Analysis {
       out = bound <= opt.alpha_effect ? std::make_pair(bound, std::string("F, search-corrected"))
                                       : std::make_pair(bootstrap_p(reduced, full), std::string("bootstrap"));
       if (out.second == "bootstrap")
-        progress("reconcile: bootstrap of " + spec.id() + " against " + ids(reduced.terms) + ": p " + fmt("%.3g", out.first));
+        progress("reconcile: bootstrap of " + spec.id() + " against " + ids(reduced.terms) + ": p " + formatted("%.3g", out.first));
     }
     return test_cache[key] = out;
   }
@@ -222,7 +216,7 @@ Location make_location(const Experiment& e, const SignatureSpec& s, const SigTes
   const double amp = c.cwiseAbs().maxCoeff();
   std::string d = s.what;
   if (s.periodic) {
-    d += "; amplitude " + fmt("%.3g", amp) + " " + e.response_unit;
+    d += "; amplitude " + formatted("%.3g", amp) + " " + e.response_unit;
   } else {
     const Vec w = s.where(e);
     double lo = INFINITY, hi = -INFINITY;
@@ -234,8 +228,8 @@ Location make_location(const Experiment& e, const SignatureSpec& s, const SigTes
     loc.has_range = std::isfinite(lo);
     loc.lo = lo;
     loc.hi = hi;
-    d += "; strongest for " + s.domain + " in [" + fmt("%.4g", lo) + ", " + fmt("%.4g", hi) + "] " + s.where_unit +
-         ", up to " + fmt("%.3g", amp) + " " + e.response_unit;
+    d += "; strongest for " + s.domain + " in [" + formatted("%.4g", lo) + ", " + formatted("%.4g", hi) + "] " + s.where_unit +
+         ", up to " + formatted("%.3g", amp) + " " + e.response_unit;
   }
   loc.description = d;
   return loc;
@@ -271,7 +265,7 @@ void fit_noise(Analysis& a, Result& r) {
   r.noise = a.ar;
   r.calibration = a.cal;
   progress("reconcile: " + kind_name(a.e.kind()) + ", " + std::to_string(a.e.n) + " samples, noise AR(" +
-           std::to_string(a.ar.order()) + ") sd " + fmt("%.3g", a.ar.process_sd));
+           std::to_string(a.ar.order()) + ") sd " + formatted("%.3g", a.ar.process_sd));
 }
 
 /// The baseline with its nuisance columns only (offsets, scale): the starting model.
@@ -320,8 +314,8 @@ std::string simpler_rival(Analysis& a, const EffectSpec& spec, const FitResult& 
       needed = a.significant(i, rv_fit.terms) && !a.significant(i, alt.terms);
     }
     if (!needed && (!(dbic_rv < -a.opt.min_delta_bic) || !(h_alt < h_rv)))
-      return rv->label + " explains as much (BIC " + fmt("%.1f", dbic_rv) + " vs it, held-out " +
-             fmt("%.4g", h_rv) + " -> " + fmt("%.4g", h_alt) + ")";
+      return rv->label + " explains as much (BIC " + formatted("%.1f", dbic_rv) + " vs it, held-out " +
+             formatted("%.4g", h_rv) + " -> " + formatted("%.4g", h_alt) + ")";
   }
   return "";
 }
@@ -377,7 +371,7 @@ void admit_one_at_a_time(Analysis& a) {
       const std::string id = spec->id(), label = spec->label;
       const double dbic = alt.bic() - a.cur.bic();
       if (!(dbic < -bar)) {
-        reject(*spec, label + ": BIC changes by " + fmt("%.1f", dbic) + " (needs < -" + fmt("%.0f", bar) + ")");
+        reject(*spec, label + ": BIC changes by " + formatted("%.1f", dbic) + " (needs < -" + formatted("%.0f", bar) + ")");
         continue;
       }
       if (const std::string why = implausible(a, *spec, alt); !why.empty()) {
@@ -392,7 +386,7 @@ void admit_one_at_a_time(Analysis& a) {
         continue;
       }
       if (!(h_alt < h_cur)) {
-        reject(*spec, label + ": held-out RMS not improved (" + fmt("%.4g", h_cur) + " -> " + fmt("%.4g", h_alt) + ")");
+        reject(*spec, label + ": held-out RMS not improved (" + formatted("%.4g", h_cur) + " -> " + formatted("%.4g", h_alt) + ")");
         continue;
       }
       bool removes = false;
@@ -403,7 +397,7 @@ void admit_one_at_a_time(Analysis& a) {
         if (!a.located[i] || !points || !a.significant(i, a.cur.terms)) continue;
         const double after = a.signature(i, alt.terms).p_adj;
         if (after >= a.opt.alpha_family) removes = true;
-        else left = a.sigs[i].name + " (p " + fmt("%.2g", after) + ")";
+        else left = a.sigs[i].name + " (p " + formatted("%.2g", after) + ")";
       }
       if (!removes) {
         reject(*spec, label + ": " + (left.empty() ? "its signatures are already explained by other effects"
@@ -416,7 +410,7 @@ void admit_one_at_a_time(Analysis& a) {
         if (spec->conflicts(*t.spec)) nl_extra -= t.spec->n_nonlinear();
       const auto [p, test] = a.effect_test(a.cur, alt, nl_extra);
       if (!(p <= a.opt.alpha_effect)) {
-        reject(*spec, label + ": not significant against the estimated noise (" + test + " p = " + fmt("%.3g", p) + ")");
+        reject(*spec, label + ": not significant against the estimated noise (" + test + " p = " + formatted("%.3g", p) + ")");
         continue;
       }
       a.accept(*spec, dbic, p, test);
@@ -424,7 +418,7 @@ void admit_one_at_a_time(Analysis& a) {
         if (spec->conflicts(*t.spec)) a.accepted.erase(t.spec->id());
       a.cur = alt;
       added = true;
-      progress("reconcile: accepted " + label + " (dBIC " + fmt("%.1f", dbic) + ", " + test + " p " + fmt("%.3g", p) + ")");
+      progress("reconcile: accepted " + label + " (dBIC " + formatted("%.1f", dbic) + ", " + test + " p " + formatted("%.3g", p) + ")");
       break;
     }
     if (!added) break;
@@ -482,7 +476,7 @@ void admit_jointly(Analysis& a) {
     const double h_joint = a.heldout(joint.terms);
     // Any improvement admits the set: prune() then holds every effect of it to the full bar.
     if (!(dbic < 0.0) || !(h_joint < h_cur)) {
-      failed = names + " (BIC " + fmt("%.1f", dbic) + ", held-out " + fmt("%.4g", h_cur) + " -> " + fmt("%.4g", h_joint) + ")";
+      failed = names + " (BIC " + formatted("%.1f", dbic) + ", held-out " + formatted("%.4g", h_cur) + " -> " + formatted("%.4g", h_joint) + ")";
       continue;
     }
     if (joint.bic() < best.bic()) {
@@ -498,7 +492,7 @@ void admit_jointly(Analysis& a) {
           a.rejected[s->id()] = s->label + ": admitted jointly, the model does not improve: " + failed;
     return;
   }
-  progress("reconcile: admitted jointly " + best_names + " (dBIC " + fmt("%.1f", best.bic() - a.cur.bic()) + ")");
+  progress("reconcile: admitted jointly " + best_names + " (dBIC " + formatted("%.1f", best.bic() - a.cur.bic()) + ")");
   for (const EffectSpec* s : best_add) a.accept(*s, best.bic() - a.cur.bic(), 1.0, "joint");
   a.cur = best;
 }
@@ -538,9 +532,9 @@ void prune(Analysis& a) {
         const double cost = red.bic() - a.cur.bic();
         std::string why;
         if (!(cost > bar)) {
-          why = "BIC rises by only " + fmt("%.1f", cost);
+          why = "BIC rises by only " + formatted("%.1f", cost);
         } else if (const double h_red = a.heldout(red.terms); !(h_cur < h_red)) {
-          why = "held-out RMS " + fmt("%.4g", h_red) + " without it, " + fmt("%.4g", h_cur) + " with it";
+          why = "held-out RMS " + formatted("%.4g", h_red) + " without it, " + formatted("%.4g", h_cur) + " with it";
         } else {
           // Test the term as the last one of the full model against the reduction.
           std::vector<Term> order = without(a.cur.terms, i);
@@ -548,7 +542,7 @@ void prune(Analysis& a) {
           FitResult full = a.cur;
           full.terms = order;
           const auto [p, test] = a.effect_test(red, full, nl_extra);
-          if (!(p <= a.opt.alpha_effect)) why = "not significant against the estimated noise (" + test + " p = " + fmt("%.3g", p) + ")";
+          if (!(p <= a.opt.alpha_effect)) why = "not significant against the estimated noise (" + test + " p = " + formatted("%.3g", p) + ")";
           else if (red.terms.size() < a.cur.terms.size()) {
             auto& rec = a.accepted[spec.id()];
             rec.name = spec.name;
@@ -638,8 +632,8 @@ bool prefer_simpler(Analysis& a) {
         for (const EffectSpec* rv : rivals) a.accept(*rv, 0.0, 1.0, "swap");  // tested by prune()
       }
       a.rejected[cx.id()] = cx.label + ": with the other effects in, the simpler " + label +
-                            " explains as much (BIC " + fmt("%.1f", dbic) + " vs it, held-out " + fmt("%.4g", h_rv) +
-                            " -> " + fmt("%.4g", h_cx) + ")";
+                            " explains as much (BIC " + formatted("%.1f", dbic) + " vs it, held-out " + formatted("%.4g", h_rv) +
+                            " -> " + formatted("%.4g", h_cx) + ")";
       a.accepted.erase(cx.id());
       progress("reconcile: replaced " + cx.id() + " by the simpler " + label);
       a.cur = a.refine(sw);
@@ -680,11 +674,11 @@ bool retry_richer_law(Analysis& a) {
       const double h_cur = a.heldout(a.cur.terms), h_alt = a.heldout(alt.terms);
       std::string why;
       if (!left.empty()) why = "it leaves " + left;
-      else if (!(h_alt <= h_cur)) why = "held-out RMS " + fmt("%.4g", h_cur) + " -> " + fmt("%.4g", h_alt);
+      else if (!(h_alt <= h_cur)) why = "held-out RMS " + formatted("%.4g", h_cur) + " -> " + formatted("%.4g", h_alt);
       else if (const auto [p, test] = a.effect_test(a.cur, with_last(alt, alt.find(rich.name)),
                                                     rich.n_nonlinear() - poor.n_nonlinear());
                !(p <= a.opt.alpha_effect))
-        why = "not significant against the estimated noise (" + test + " p = " + fmt("%.3g", p) + ")";
+        why = "not significant against the estimated noise (" + test + " p = " + formatted("%.3g", p) + ")";
       else a.accept(rich, alt.bic() - a.cur.bic(), p, test);
       if (!why.empty()) {
         a.rejected[rich.id()] = rich.label + ": tried where " + poor.label + " leaves structure; " + why;
@@ -715,7 +709,7 @@ void fold_series_into_law(const Analysis& a, Result& r) {
   if (series == r.effects.end()) return;
   r.rejected.push_back({"series_compliance", "series_compliance: held in the last slope of stiffness_nonlinearity "
                                              "(the law replaces the model's torque-twist curve; compliance " +
-                                                 fmt("%.4g", added_series_compliance(a.cur)) + " rad/(N*m))"});
+                                                 formatted("%.4g", added_series_compliance(a.cur)) + " rad/(N*m))"});
   r.effects.erase(series);
 }
 
@@ -795,7 +789,7 @@ std::optional<RunRefit> refit_runs(const Analysis& a) {
   out.unbounded.resize(f.terms.size());
   const auto listed = [](const Vec& values) {
     std::string s;
-    for (double v : values) s += (s.empty() ? "" : ", ") + fmt("%.4g", v);
+    for (double v : values) s += (s.empty() ? "" : ", ") + formatted("%.4g", v);
     return "(" + s + ")";
   };
   progress("reconcile: refitting the dynamics effects on re-runs of the model from " +
@@ -862,7 +856,7 @@ std::optional<RunRefit> refit_runs(const Analysis& a) {
     if (std::isinf(halves[q])) unbounded += (unbounded.empty() ? "" : ", ") + h.name;
   }
   progress("reconcile: dynamics effects refitted on " + std::to_string(fit.runs) + " re-runs of the model (" +
-           std::to_string(fit.iterations) + " iterations) to " + listed(fit.values) + ", RMS " + fmt("%.4g", out.rms));
+           std::to_string(fit.iterations) + " iterations) to " + listed(fit.values) + ", RMS " + formatted("%.4g", out.rms));
   return out;
 }
 

@@ -24,8 +24,6 @@ SignatureSpec signature(const std::string& name, const std::string& domain, cons
           where_unit, periodic};
 }
 
-const TorsionExperiment& torsion(const Experiment& e) { return as<TorsionExperiment>(e); }
-const DynamicsExperiment& dynamics(const Experiment& e) { return as<DynamicsExperiment>(e); }
 
 std::vector<SignatureSpec> dynamics_signatures() {
   return {

@@ -16,7 +16,6 @@ using Vec = Eigen::VectorXd;
 
 namespace {
 
-double rms(const Vec& v) { return std::sqrt(v.squaredNorm() / std::max<Eigen::Index>(1, v.size())); }
 
 /// Headline parameters as the truth file writes them (a harmonic's order as an integer).
 nlohmann::json json_of(const NamedValues& values) {

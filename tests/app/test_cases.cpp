@@ -11,6 +11,7 @@
 #include <fstream>
 #include <iterator>
 #include <numbers>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -208,6 +209,35 @@ TEST(Cases, ReadmeDrawingIsTheToolsOwn) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_TRUE(read_text(out / "drive.svg") == read_text("docs/drive.svg"))
       << "docs/drive.svg is not what the tool draws now: copy " << (out / "drive.svg") << " there";
+}
+
+// A command keeps the case it ran as resolved_case.toml in its output folder (every key, defaults filled in), which runs again
+// to the same resolved case; the console names only the values the file did not give, not every table.
+TEST(Cases, ACommandKeepsItsResolvedCaseAndTheConsoleNamesWhatWasDerived) {
+  const fs::path out = fresh_dir("resolved"), again = fresh_dir("resolved_again");
+  const CommandRun r = run_strainwave("backlash cases/cup_size17.toml --steps 36 --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string text = read_text(out / "resolved_case.toml");
+  ASSERT_FALSE(text.empty());
+  EXPECT_NE(r.err.find("case cases/cup_size17.toml (resolved"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("mesh.size_mm = "), std::string::npos) << r.err;  // derived from the bore
+  EXPECT_EQ(r.err.find("load.rated_torque_Nm"), std::string::npos) << r.err;  // given: not repeated
+  EXPECT_EQ(r.err.find("[material]"), std::string::npos) << r.err;  // no table printed whole
+  const CommandRun r2 = run_strainwave("--quiet backlash " + (out / "resolved_case.toml").string() + " --steps 36 --out " +
+                                       again.string());
+  ASSERT_EQ(r2.exit_code, 0) << r2.output;
+  const std::string text2 = read_text(again / "resolved_case.toml");
+  // The values, without the first line (it names the file) and the notes of where a value came from: read back, every
+  // value stands in the file.
+  const auto values = [](const std::string& t) {
+    std::string out, line;
+    std::istringstream in(t.substr(t.find('\n') + 1));
+    while (std::getline(in, line)) out += line.substr(0, line.find("  # ")) + "\n";
+    return out;
+  };
+  EXPECT_EQ(values(text2), values(text));
+  fs::remove_all(out);
+  fs::remove_all(again);
 }
 
 // `strainwave design` writes the shipped size-17 case byte for byte (the case in cases/ is the rule set's, not edited
@@ -528,7 +558,6 @@ TEST(CliErrors, AHarmonicModelThatWouldNotFitIsRefusedFromItsSection) {
   EXPECT_FALSE(fs::exists(out / "result.json"));
   fs::remove_all(dir);
 }
-
 
 // The dynamics' rim coupled through the FEM runs on the body the case's solver gives: the seed's [dynamics] has
 // rim = "fem", and a case that asks for the harmonic solver by name couples its moving pairs through the harmonic

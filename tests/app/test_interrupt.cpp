@@ -74,7 +74,8 @@ bool is_earlier_set(const fs::path& dir) {
 
 /// The tube's whole fem set (its one load case), every file complete, the other command's file kept.
 bool is_new_set(const fs::path& dir) {
-  if (names_in(dir) != std::set<std::string>{"backlash.json", "flexspline.pvd", "flexspline_torque.vtu", "result.json"})
+  if (names_in(dir) != std::set<std::string>{"backlash.json", "flexspline.pvd", "flexspline_torque.vtu", "result.json",
+                                             "resolved_case.toml"})
     return false;
   const auto ends_with = [](const std::string& text, const std::string& tail) {
     return text.size() >= tail.size() && text.compare(text.size() - tail.size(), tail.size(), tail) == 0;

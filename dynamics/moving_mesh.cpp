@@ -398,8 +398,8 @@ void prepare_intervals(MovingMesh& m) {
   // tooth pairs' 2e-8 in series): the contact problem then has no unique solution. Where an interval fails, the slopes
   // of A at its two phases are halved in the rows and columns that carry the failure (the entries of the most negative
   // eigenvector's within a quarter of its largest; once those are zero, every row of the interval), until it passes;
-  // after six halvings a row's slopes are zero, and once every row's is, the segment is the convex blend A0 + (3a² − 2a³)(A1 − A0) of two positive definite matrices,
-  // positive definite at every a. A phase's slopes stay shared with the neighbouring interval (C¹ kept), which is
+  // after six halvings a row's slopes are zero, and once every row's is, the segment is the convex blend
+  // A0 + (3a² − 2a³)(A1 − A0) of two positive definite matrices, positive definite at every a. A phase's slopes stay shared with the neighbouring interval (C¹ kept), which is
   // checked again. The check: the matrix the contact problem solves at its least (each flank's tooth pair at its least
   // compliance over the interval; 0 for rigid teeth) at 15 points inside the interval (a = k/16), by Cholesky.
   // Each continuing flank's least tooth-pair compliance over the interval: the table's at the grid angles its

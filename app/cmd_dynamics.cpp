@@ -104,7 +104,7 @@ void run_dynamics(const std::string& case_path, const std::string& out_dir, cons
   const DynamicsParams p = resolved_params(c, pairs_option, rim_option);
   OutputSet outputs(out_dir.empty() ? default_out_dir(c) : std::filesystem::path(out_dir),
                     {"dynamics.csv", "dynamics.json", "dynamics.svg"});
-  progress(case_headline(c) + "\n[dynamics] as run:\n" + describe(p));
+  progress(case_headline(c) + "\n[dynamics] as run:\n" + keys_toml(p, dynamics_keys()));
   DynamicsModelOptions o;
   o.clearances = clearances;
   o.interference = interference;

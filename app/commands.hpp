@@ -36,5 +36,6 @@ void add_sweep_command(CLI::App& app);
 void add_contact_command(CLI::App& app);
 void add_design_command(CLI::App& app);
 void add_datasheet_command(CLI::App& app);
+void add_keys_command(CLI::App& app);
 
 }  // namespace sw::app

@@ -53,6 +53,7 @@ int main(int argc, char** argv) {
   sw::app::add_sweep_command(app);
   sw::app::add_design_command(app);
   sw::app::add_datasheet_command(app);
+  sw::app::add_keys_command(app);
   try {
     std::vector<const char*> kept;
     for (const auto& a : args) kept.push_back(a.c_str());

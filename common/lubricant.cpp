@@ -1,6 +1,7 @@
 #include "common/lubricant.hpp"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "common/error.hpp"
@@ -25,22 +26,36 @@ double loglog(double nu) { return std::log10(std::log10(nu + kWaltherOffset_mm2_
 
 }  // namespace
 
+const std::vector<CaseKey<Lubricant>>& lubricant_keys() {
+  using L = Lubricant;
+  static const std::vector<CaseKey<L>> keys = {
+      choice_key<L>("kind", &L::kind, {{"grease", std::string("grease")}, {"oil", std::string("oil")}},
+                    "a grease (described by its base oil) or an oil"),
+      number_key<L>("viscosity_40C_mm2_s", &L::viscosity_40C_mm2_s, 1, "mm^2/s",
+                    within(-std::numeric_limits<double>::infinity(), kWaltherMaxViscosity_mm2_s, false, false,
+                           "the top of ASTM D341's charts"),
+                    "the (base) oil's kinematic viscosity at 40 C, > viscosity_100C_mm2_s")
+          .with_default("required"),
+      number_key<L>("viscosity_100C_mm2_s", &L::viscosity_100C_mm2_s, 1, "mm^2/s",
+                    at_least(kWaltherMinViscosity_mm2_s, "ASTM D341's Walther equation holds from 2.0 mm^2/s"),
+                    "the (base) oil's kinematic viscosity at 100 C")
+          .with_default("required"),
+      number_key<L>("temperature_C", &L::temperature_C, 1, "C", above(-kZeroCelsius_K, "absolute zero"),
+                    "where it works: the temperature its viscosity is taken at (ASTM D341)")
+          .with_default("required"),
+  };
+  return keys;
+}
+
 void validate_lubricant(const Lubricant& l, const std::string& where) {
-  const std::string at = (where.empty() ? std::string("lubricant") : where) + ".";
+  const std::string table = where.empty() ? std::string("lubricant") : where;
   if (l.kind != "grease" && l.kind != "oil")
-    throw InputError(at + "kind = \"" + l.kind + "\"; must be \"grease\" or \"oil\"");
-  if (!(l.viscosity_100C_mm2_s >= kWaltherMinViscosity_mm2_s))
-    throw InputError(at + "viscosity_100C_mm2_s = " + num(l.viscosity_100C_mm2_s) +
-                     "; must be >= 2 (ASTM D341's Walther equation holds from 2.0 mm^2/s)");
+    throw InputError(table + ".kind = \"" + l.kind + "\"; must be \"grease\" or \"oil\"");
+  check_key_ranges(l, lubricant_keys(), table);
   if (!(l.viscosity_40C_mm2_s > l.viscosity_100C_mm2_s))
-    throw InputError(at + "viscosity_40C_mm2_s = " + num(l.viscosity_40C_mm2_s) +
+    throw InputError(table + ".viscosity_40C_mm2_s = " + num(l.viscosity_40C_mm2_s) +
                      "; must be > viscosity_100C_mm2_s = " + num(l.viscosity_100C_mm2_s) +
                      " (an oil thins as it warms; for a grease give its base oil's viscosities)");
-  if (!(l.viscosity_40C_mm2_s <= kWaltherMaxViscosity_mm2_s))
-    throw InputError(at + "viscosity_40C_mm2_s = " + num(l.viscosity_40C_mm2_s) +
-                     "; must be <= 2e7 (the top of ASTM D341's charts)");
-  if (!(l.temperature_C > -kZeroCelsius_K))
-    throw InputError(at + "temperature_C = " + num(l.temperature_C) + "; must be above absolute zero (-273.15)");
 }
 
 double walther_kinematic_viscosity_mm2_s(double T1_C, double nu1, double T2_C, double nu2, double T_C) {

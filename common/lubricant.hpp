@@ -12,6 +12,9 @@
 // Idealisations: a Newtonian oil whose viscosity–temperature line is straight on D341's chart (not for oils thickened
 // with polymer viscosity-index improvers, whose curve bends); no pressure or shear dependence.
 #include <string>
+#include <vector>
+
+#include "common/case_keys.hpp"
 
 namespace sw {
 
@@ -25,6 +28,9 @@ struct Lubricant {
 
 /// Lowest kinematic viscosity for which D341's Z = ν + 0.7 holds (ASTM D341-20 §5.1: 2.0 mm²/s).
 inline constexpr double kWaltherMinViscosity_mm2_s = 2.0;
+
+/// The [lubricant] table's schema (common/case_keys.hpp); every key but kind is required.
+const std::vector<CaseKey<Lubricant>>& lubricant_keys();
 
 /// Checks the lubricant: kind "grease" or "oil"; ν100 ≥ 2.0 mm²/s (D341's range, see above); ν40 > ν100 (an oil thins
 /// as it warms); ν40 ≤ 2e7 mm²/s (the top of D341's charts); the temperature above absolute zero. Throws InputError "<where>.<key> = value; expectation",

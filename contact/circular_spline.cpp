@@ -128,6 +128,30 @@ std::pair<double, double> default_bolt_circles_m(double root_radius_m, double ou
   return {root_radius_m + kBoltCircleInnerFraction * depth, root_radius_m + kBoltCircleOuterFraction * depth};
 }
 
+const std::vector<CaseKey<CircularSplineParams>>& circular_spline_keys() {
+  using C = CircularSplineParams;
+  const auto bolted = [](const C& c) { return c.mounting == CircularSplineMounting::BoltedFace; };
+  static const std::vector<CaseKey<C>> keys = {
+      number_key<C>("outer_radius_mm", &C::outer_radius_m, 1e-3, "mm", any_value(),
+                    "the ring's outer radius, > its root radius")
+          .with_default("0.7 x the pitch diameter z_c m (design rule)"),
+      number_key<C>("width_mm", &C::width_m, 1e-3, "mm", any_value(), "the ring's axial width, > 0")
+          .with_default("flexspline.rim_width_mm (the toothed face)"),
+      choice_key<C>("mounting", &C::mounting,
+                    {{"outer", CircularSplineMounting::Outer}, {"bolted_face", CircularSplineMounting::BoltedFace}},
+                    "held on its outside cylinder, or bolted by its end face (as catalog drives are)"),
+      number_key<C>("bolt_circle_inner_mm", &C::bolt_circle_inner_m, 1e-3, "mm", any_value(),
+                    "inner edge of the held annulus on the end face, >= the root radius")
+          .with_default("0.4 of the way from the root circle to the outer radius (the bolt heads' footprint)")
+          .only_when(bolted, "mounting = \"bolted_face\""),
+      number_key<C>("bolt_circle_outer_mm", &C::bolt_circle_outer_m, 1e-3, "mm", any_value(),
+                    "outer edge of the held annulus, in (bolt_circle_inner_mm, outer_radius_mm]")
+          .with_default("0.8 of the way from the root circle to the outer radius")
+          .only_when(bolted, "mounting = \"bolted_face\""),
+  };
+  return keys;
+}
+
 void validate_circular_spline(const CircularSplineParams& c, double root_radius_m, const std::string& file) {
   const std::string at = file.empty() ? "" : file + ": ";
   if (!(c.width_m > 0)) throw InputError(at + "circular_spline.width_mm = " + mm(c.width_m) + "; must be > 0");

@@ -37,6 +37,9 @@ struct CircularSplineParams {
   double bolt_circle_inner_m = 0, bolt_circle_outer_m = 0;  ///< bolted_face: the held annulus on the end face
 };
 
+/// The [circular_spline] table's schema (common/case_keys.hpp); its ranges depend on [gear] (validate_circular_spline).
+const std::vector<CaseKey<CircularSplineParams>>& circular_spline_keys();
+
 /// "outer" | "bolted_face".
 std::string to_string(CircularSplineMounting m);
 

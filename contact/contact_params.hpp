@@ -1,9 +1,9 @@
 #pragma once
 // The loaded contact's own case keys (the case file's [contact] table) and their ranges.
-#include <sstream>
 #include <string>
+#include <vector>
 
-#include "common/error.hpp"
+#include "common/case_keys.hpp"
 
 namespace sw {
 
@@ -19,17 +19,20 @@ struct ContactParams {
 /// Most slices of the face: each slice repeats the flanks' influence solves.
 inline constexpr int kMaxFaceSlices = 8;
 
-/// Checks face_slices in [1, kMaxFaceSlices] and friction_coefficient in [0, 1]; throws InputError
-/// "contact.face_slices = 9; must be ..." or "contact.friction_coefficient = -0.1; must be in [0, 1]".
-inline void validate_contact_params(const ContactParams& p) {
-  if (p.face_slices < 1 || p.face_slices > kMaxFaceSlices)
-    throw InputError("contact.face_slices = " + std::to_string(p.face_slices) + "; must be in [1, " +
-                     std::to_string(kMaxFaceSlices) + "] (each slice repeats the flanks' influence solves)");
-  if (!(p.friction_coefficient >= 0 && p.friction_coefficient <= 1)) {
-    std::ostringstream os;
-    os << "contact.friction_coefficient = " << p.friction_coefficient << "; must be in [0, 1]";
-    throw InputError(os.str());
-  }
+/// The [contact] table's schema (common/case_keys.hpp).
+inline const std::vector<CaseKey<ContactParams>>& contact_keys() {
+  using P = ContactParams;
+  static const std::vector<CaseKey<P>> keys = {
+      integer_key<P>("face_slices", &P::face_slices,
+                     within(1, kMaxFaceSlices, false, false, "each slice repeats the flanks' influence solves"),
+                     "axial slices of the toothed face, each flank one contact per slice with its own gap"),
+      number_key<P>("friction_coefficient", &P::friction_coefficient, 1, "", within(0, 1),
+                    "Coulomb's mu on the tooth flanks (the loaded contact's loop, the dynamics' moving pairs)"),
+  };
+  return keys;
 }
+
+/// Checks the keys' ranges; throws InputError "contact.face_slices = 9; must be in [1, 8] ...".
+inline void validate_contact_params(const ContactParams& p) { check_key_ranges(p, contact_keys(), "contact"); }
 
 }  // namespace sw

@@ -1,10 +1,12 @@
 #pragma once
-// The case file's [dynamics] table, SI units. Header-only and dependent on the standard library alone, so that
-// io/case.hpp can hold it without depending on the dynamics module. Millimetre keys of the file are converted once by
+// The case file's [dynamics] table, SI units, and its schema. Header-only and dependent on the standard library (and
+// common/case_keys.hpp) alone, so that io/case.hpp can hold it without depending on the dynamics module. Millimetre keys of the file are converted once by
 // the case parser; every key has the default written here.
 #include <optional>
-#include <sstream>
 #include <string>
+#include <vector>
+
+#include "common/case_keys.hpp"
 
 namespace sw {
 
@@ -113,47 +115,78 @@ inline std::optional<RampShape> parse_ramp_shape(const std::string& s) {
   return std::nullopt;
 }
 
-/// The resolved [dynamics] table in the case file's own keys and units (millimetres where the key says _mm).
-inline std::string describe(const DynamicsParams& p) {
-  std::ostringstream o;
-  o.precision(10);
-  o << "[dynamics]\n"
-    << "configuration = \"" << to_string(p.configuration) << "\"\n"
-    << "ramp = \"" << to_string(p.ramp_shape) << "\"\n"
-    << "pairs = \"" << to_string(p.pair_motion) << "\"\n"
-    << "pair_stiffness = \"" << to_string(p.pair_stiffness) << "\"\n"
-    << "rim = \"" << to_string(p.rim) << "\"\n"
-    << "compliance_phases = " << p.compliance_phases << "\n"
-    << "oversampling = " << p.oversampling << "\n"
-    << "drive_speed_rpm = " << p.drive_speed_rpm << "\n"
-    << "drive_ramp_start_s = " << p.drive_ramp_start_s << "\n"
-    << "drive_ramp_end_s = " << p.drive_ramp_end_s << "\n"
-    << "load_torque_Nm = " << p.load_torque_Nm << "\n"
-    << "load_ramp_start_s = " << p.load_ramp_start_s << "\n"
-    << "load_ramp_end_s = " << p.load_ramp_end_s << "\n"
-    << "stiffness_N_per_m = " << p.stiffness_N_per_m << "\n"
-    << "stiffness_variation_N_per_m = " << p.stiffness_variation_N_per_m << "\n"
-    << "stiffness_phase_deg = " << p.stiffness_phase_deg << "\n"
-    << "damping_Ns_per_m = " << p.damping_Ns_per_m << "\n"
-    << "exponent_stiffness = " << p.exponent_stiffness << "\n"
-    << "exponent_damping = " << p.exponent_damping << "\n"
-    << "exponent_indentation = " << p.exponent_indentation << "\n"
-    << "flexspline_compliance_rad_per_Nm = " << p.flexspline_compliance_rad_per_Nm << "\n"
-    << "flexspline_torsion_damping_Nms_per_rad = " << p.flexspline_torsion_damping_Nms_per_rad << "\n"
-    << "circular_spline_drag_Nms_per_rad = " << p.circular_spline_drag_Nms_per_rad << "\n"
-    << "load_inertia_kgm2 = " << p.load_inertia_kgm2 << "\n"
-    << "output_drag_coulomb_Nm = " << p.output_drag_coulomb_Nm << "\n"
-    << "output_drag_viscous_Nms_per_rad = " << p.output_drag_viscous_Nms_per_rad << "\n"
-    << "drag_smoothing_rad_per_s = " << p.drag_smoothing_rad_per_s << "\n"
-    << "circular_spline_outer_radius_mm = " << p.circular_spline_outer_radius_m * 1e3 << "\n"
-    << "circular_spline_width_mm = " << p.circular_spline_width_m * 1e3 << "\n"
-    << "base_clearance_mm = " << p.base_clearance_m * 1e3 << "\n"
-    << "duration_s = " << p.duration_s << "\n"
-    << "output_step_s = " << p.output_step_s << "\n"
-    << "steady_from_s = " << p.steady_from_s << "\n"
-    << "relative_tolerance = " << p.relative_tolerance << "\n"
-    << "absolute_tolerance_rad = " << p.absolute_tolerance_rad << "\n";
-  return o.str();
+/// The [dynamics] table's schema (common/case_keys.hpp): every key, its unit, range and meaning. validate() checks its
+/// ranges, then the rules between keys; the case reader and writer and `strainwave keys` read it.
+inline const std::vector<CaseKey<DynamicsParams>>& dynamics_keys() {
+  using P = DynamicsParams;
+  static const std::vector<CaseKey<P>> keys = {
+      choice_key<P>("configuration", &P::configuration,
+                    {{"cs_fixed", DynamicsConfiguration::CsFixed}, {"fs_fixed", DynamicsConfiguration::FsFixed},
+                     {"wg_fixed", DynamicsConfiguration::WgFixed}, {"all_free", DynamicsConfiguration::AllFree}},
+                    "which body is held: circular spline, flexspline, generator, or none (a brake on the circular spline)"),
+      choice_key<P>("ramp", &P::ramp_shape, {{"paper", RampShape::Paper}, {"cubic", RampShape::Cubic}},
+                    "shape of the speed and load ramps: the seed paper's two parabolas or the cubic STEP"),
+      choice_key<P>("pairs", &P::pair_motion, {{"moving", PairMotion::Moving}, {"frozen", PairMotion::Frozen}},
+                    "tooth pairs travel through the mesh (moving) or stay at generator angle 0 (frozen, the paper's)"),
+      choice_key<P>("pair_stiffness", &P::pair_stiffness,
+                    {{"teeth", PairStiffness::Teeth}, {"constant", PairStiffness::Constant}},
+                    "a moving pair's stiffness: the teeth's own compliance, or the contact law k d^m1 below"),
+      choice_key<P>("rim", &P::rim, {{"fem", RimCoupling::Fem}, {"rigid", RimCoupling::Rigid}},
+                    "moving pairs joined through the flexspline's condensed compliance (fem) or independent"),
+      integer_key<P>("compliance_phases", &P::compliance_phases, at_least(1),
+                     "rim = \"fem\": generator phases per tooth pitch at which the body's compliance is solved"),
+      integer_key<P>("oversampling", &P::oversampling, at_least(1),
+                     "samples per output step, low-passed before decimation (1: plain samples)"),
+      number_key<P>("drive_speed_rpm", &P::drive_speed_rpm, 1, "rpm", above(0), "final speed of the driven body"),
+      number_key<P>("drive_ramp_start_s", &P::drive_ramp_start_s, 1, "s", at_least(0), "the speed ramp's start"),
+      number_key<P>("drive_ramp_end_s", &P::drive_ramp_end_s, 1, "s", any_value(),
+                    "the speed ramp's end, > drive_ramp_start_s"),
+      number_key<P>("load_torque_Nm", &P::load_torque_Nm, 1, "N m", at_least(0, "it always resists the output"),
+                    "final load on the output body"),
+      number_key<P>("load_ramp_start_s", &P::load_ramp_start_s, 1, "s", at_least(0), "the load ramp's start"),
+      number_key<P>("load_ramp_end_s", &P::load_ramp_end_s, 1, "s", any_value(),
+                    "the load ramp's end, > load_ramp_start_s"),
+      number_key<P>("stiffness_N_per_m", &P::stiffness_N_per_m, 1, "N/m^m1", above(0),
+                    "pair_stiffness = \"constant\": k0 of the contact law f = k d^m1 + c d' |d'|^m2 d^m3"),
+      number_key<P>("stiffness_variation_N_per_m", &P::stiffness_variation_N_per_m, 1, "N/m^m1", at_least(0),
+                    "dk of k(t) = k0 + dk sin(2 pi f_m t + phase), < stiffness_N_per_m"),
+      number_key<P>("stiffness_phase_deg", &P::stiffness_phase_deg, 1, "deg", any_value(), "the phase of k(t)"),
+      number_key<P>("damping_Ns_per_m", &P::damping_Ns_per_m, 1, "N s/m", at_least(0), "c of the contact law"),
+      number_key<P>("exponent_stiffness", &P::exponent_stiffness, 1, "", at_least(1), "m1 of the contact law"),
+      number_key<P>("exponent_damping", &P::exponent_damping, 1, "", at_least(0), "m2 of the contact law"),
+      number_key<P>("exponent_indentation", &P::exponent_indentation, 1, "", at_least(0), "m3 of the contact law"),
+      number_key<P>("flexspline_compliance_rad_per_Nm", &P::flexspline_compliance_rad_per_Nm, 1, "rad/(N m)",
+                    at_least(0, "0 = rigid flexspline"),
+                    "C_tau between the toothed rim and the output flange (rim = \"rigid\"; fem's result.json)"),
+      number_key<P>("flexspline_torsion_damping_Nms_per_rad", &P::flexspline_torsion_damping_Nms_per_rad, 1,
+                    "N m s/rad", at_least(0), "viscous damping in parallel with 1/C_tau"),
+      number_key<P>("circular_spline_drag_Nms_per_rad", &P::circular_spline_drag_Nms_per_rad, 1, "N m s/rad", above(0),
+                    "all_free: the viscous brake on the circular spline that reacts the load"),
+      number_key<P>("load_inertia_kgm2", &P::load_inertia_kgm2, 1, "kg m^2", at_least(0),
+                    "added to the output body's own"),
+      number_key<P>("output_drag_coulomb_Nm", &P::output_drag_coulomb_Nm, 1, "N m", at_least(0),
+                    "T_c of the output's drag -(T_c tanh(w/w_s) + b w)"),
+      number_key<P>("output_drag_viscous_Nms_per_rad", &P::output_drag_viscous_Nms_per_rad, 1, "N m s/rad",
+                    at_least(0), "b of the output's drag"),
+      number_key<P>("drag_smoothing_rad_per_s", &P::drag_smoothing_rad_per_s, 1, "rad/s", above(0),
+                    "w_s: the Coulomb drag's step smoothed over this speed"),
+      number_key<P>("circular_spline_outer_radius_mm", &P::circular_spline_outer_radius_m, 1e-3, "mm",
+                    at_least(0, "0 = default"), "for the inertia: 0 = pitch radius + 2.25 m + 0.15 pitch radius"),
+      number_key<P>("circular_spline_width_mm", &P::circular_spline_width_m, 1e-3, "mm", at_least(0, "0 = default"),
+                    "for the inertia: 0 = flexspline.rim_width_mm"),
+      number_key<P>("base_clearance_mm", &P::base_clearance_m, 1e-3, "mm", any_value(),
+                    "pairs = \"frozen\": the clearance of the approximate clearance model"),
+      number_key<P>("duration_s", &P::duration_s, 1, "s", above(0), "simulated time"),
+      number_key<P>("output_step_s", &P::output_step_s, 1, "s", above(0),
+                    "sampling of dynamics.csv, at most duration_s/16"),
+      number_key<P>("steady_from_s", &P::steady_from_s, 1, "s", at_least(0),
+                    "start of the steady window (means, balances, spectra); 8 samples at least before duration_s"),
+      number_key<P>("relative_tolerance", &P::relative_tolerance, 1, "", within(0, 1e-2, true, true),
+                    "the integrator's (CVODE BDF) local error control"),
+      number_key<P>("absolute_tolerance_rad", &P::absolute_tolerance_rad, 1, "rad", above(0),
+                    "on the angles' deviation from the kinematic motion"),
+  };
+  return keys;
 }
 
 }  // namespace sw

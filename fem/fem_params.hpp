@@ -1,7 +1,11 @@
 #pragma once
-// The FEM's loads and solver (the case file's [load] and [solver] tables), SI units.
+// The FEM's loads and solver (the case file's [load] and [solver] tables), SI units, and their schemas.
+#include <numbers>
 #include <optional>
 #include <string>
+#include <vector>
+
+#include "common/case_keys.hpp"
 
 namespace sw {
 
@@ -28,5 +32,47 @@ struct SolverParams {
   int harmonics = 64;  ///< fourier only: highest circumferential harmonic kept
   SolverBackend backend = SolverBackend::Cholmod;  ///< tet10 only
 };
+
+/// The [load] table's schema (common/case_keys.hpp).
+inline const std::vector<CaseKey<LoadParams>>& load_keys() {
+  using L = LoadParams;
+  static const std::vector<CaseKey<L>> keys = {
+      number_key<L>("torque_Nm", &L::torque_Nm, 1, "N m", any_value(), "the FEM's output torque on the flexspline"),
+      choice_key<L>("torque_loading", &L::torque_loading,
+                    {{"engagement_zones", TorqueLoading::EngagementZones}, {"uniform", TorqueLoading::Uniform}},
+                    "the FEM's torque as tangential load on the teeth's zones about the major axis, or all round"),
+      number_key<L>("engagement_half_angle_deg", &L::engagement_half_angle_rad, std::numbers::pi / 180, "deg",
+                    within(0, 90, true, false), "half width of each engagement zone of torque_loading"),
+      optional_number_key<L>("rated_torque_Nm", &L::rated_torque_Nm, 1, "N m",
+                             above(0, "the torque the drive is loaded to, both ways"),
+                             "the contact's torque-twist curve runs from -rated to +rated")
+          .with_default("the rated torque of [catalog] size, else none"),
+  };
+  return keys;
+}
+
+/// [solver] method: the file's "auto" is resolved when the case is read (io/case.cpp), so the resolved case holds
+/// "tet10" or "fourier".
+inline CaseKey<SolverParams> method_key() {
+  auto k = choice_key<SolverParams>(
+      "method", &SolverParams::method, {{"tet10", SolverMethod::Tet10}, {"fourier", SolverMethod::Fourier}},
+      "the flexspline's FEM: 3-D quadratic tetrahedra, or the meridian section with harmonics");
+  k.choices.insert(k.choices.begin(), "auto");
+  return std::move(k).with_default(
+      "\"auto\": fourier for a body of revolution, tet10 for explicit teeth or backend \"petsc\"");
+}
+
+/// The [solver] table's schema (common/case_keys.hpp). The file's method "auto" is resolved when the case is read.
+inline const std::vector<CaseKey<SolverParams>>& solver_keys() {
+  using S = SolverParams;
+  static const std::vector<CaseKey<S>> keys = {
+      method_key(),
+      integer_key<S>("harmonics", &S::harmonics, within(0, 4096), "fourier: highest circumferential harmonic kept")
+          .with_default("the case's need (fem/fourier_solver.hpp default_harmonics)"),
+      choice_key<S>("backend", &S::backend, {{"cholmod", SolverBackend::Cholmod}, {"petsc", SolverBackend::Petsc}},
+                    "tet10: factorise with CHOLMOD here, or with PETSc on the ranks of an mpirun launch"),
+  };
+  return keys;
+}
 
 }  // namespace sw

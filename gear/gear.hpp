@@ -2,6 +2,9 @@
 // Gear parameters of a strain wave gear set (the case file's [gear] table), SI units, and their validation.
 #include <optional>
 #include <string>
+#include <vector>
+
+#include "common/case_keys.hpp"
 
 namespace sw {
 
@@ -24,6 +27,9 @@ struct GearParams {
   double tip_rounding_flexspline_m = 0;
   double tip_rounding_circular_m = 0;
 };
+
+/// The [gear] table's schema (common/case_keys.hpp).
+const std::vector<CaseKey<GearParams>>& gear_keys();
 
 /// Checks the ranges and the consistency of a gear set that can be made (tooth numbers, module, pressure angle,
 /// proportions). Throws InputError "gear.<key> = value; expectation" naming the first violated constraint; `file` is

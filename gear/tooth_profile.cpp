@@ -41,37 +41,6 @@ double roll_at_radius(double base_radius_m, double radius_m) {
   return std::sqrt(std::max(q * q - 1.0, 0.0));
 }
 
-void validate_gear(const GearParams& g, const std::string& file) {
-  const std::string at = file.empty() ? "" : file + ": ";
-  auto fail = [&](const std::string& key, double value, const std::string& expectation) {
-    std::ostringstream s;
-    s << at << "gear." << key << " = " << value << "; " << expectation;
-    throw InputError(s.str());
-  };
-  if (!(g.module_m > 0)) fail("module_mm", g.module_m * 1e3, "must be > 0");
-  if (g.teeth_flexspline < 4) fail("teeth_flexspline", g.teeth_flexspline, "must be >= 4");
-  if (g.teeth_circular <= g.teeth_flexspline)
-    fail("teeth_circular", g.teeth_circular,
-         "must be > gear.teeth_flexspline = " + std::to_string(g.teeth_flexspline) +
-             " (the flexspline has fewer teeth than the circular spline)");
-  if ((g.teeth_circular - g.teeth_flexspline) % 2 != 0)
-    fail("teeth_circular", g.teeth_circular, "z_c - z_f must be even (a two-lobe wave generator engages two zones)");
-  const double alpha_deg = g.pressure_angle_rad * 180.0 / kPi;
-  if (!(alpha_deg > 5.0 && alpha_deg < 45.0)) fail("pressure_angle_deg", alpha_deg, "must be in (5, 45)");
-  if (g.cutter_teeth < 8) fail("cutter_teeth", g.cutter_teeth, "must be >= 8");
-  const std::pair<const char*, double> proportions[] = {
-      {"addendum_coefficient_flexspline", g.addendum_coefficient_flexspline},
-      {"addendum_coefficient_circular", g.addendum_coefficient_circular},
-      {"dedendum_coefficient_flexspline", g.dedendum_coefficient_flexspline},
-      {"dedendum_coefficient_circular", g.dedendum_coefficient_circular}};
-  for (const auto& [key, v] : proportions)
-    if (!(v > 0.1 && v < 2.0)) fail(key, v, "must be in (0.1, 2) modules");
-  if (!(g.tip_rounding_flexspline_m >= 0 && g.tip_rounding_flexspline_m < g.module_m))
-    fail("tip_rounding_flexspline_mm", g.tip_rounding_flexspline_m * 1e3, "must be in [0, module)");
-  if (!(g.tip_rounding_circular_m >= 0 && g.tip_rounding_circular_m < g.module_m))
-    fail("tip_rounding_circular_mm", g.tip_rounding_circular_m * 1e3, "must be in [0, module)");
-}
-
 GearRadii gear_radii(const GearParams& g) {
   validate_gear(g);
   const double m = g.module_m, al = g.pressure_angle_rad;

@@ -62,18 +62,28 @@ double bearing_pitch_radius_m(double bore_radius_m, double ball_diameter_m) {
   return bore_radius_m - (kOuterRingWallPerBallDiameter + 0.5) * ball_diameter_m;
 }
 
-void validate_generator_bearing(const GeneratorBearing& b, const std::string& file) {
-  if (b.balls < 3) reject(file, "balls", b.balls, "must be >= 3");
-  const double D = b.ball_diameter_m;
-  if (!(D > 0)) reject(file, "ball_diameter_mm", D * 1e3, "must be > 0");
+const std::vector<CaseKey<GeneratorBearing>>& generator_bearing_keys() {
+  using B = GeneratorBearing;
   // A conformity at or below 0.5 makes the groove tighter than the ball; at 1 and beyond the groove is flatter than
   // any bearing's (Harris & Kotzalas ch. 2: deep-groove bearings 0.515–0.53).
-  if (!(b.inner_groove_conformity > 0.5 && b.inner_groove_conformity < 1.0))
-    reject(file, "inner_groove_conformity", b.inner_groove_conformity,
-           "must be in (0.5, 1) (groove radius / ball diameter; deep-groove bearings 0.515-0.53)");
-  if (!(b.outer_groove_conformity > 0.5 && b.outer_groove_conformity < 1.0))
-    reject(file, "outer_groove_conformity", b.outer_groove_conformity,
-           "must be in (0.5, 1) (groove radius / ball diameter; deep-groove bearings 0.515-0.53)");
+  const auto conformity = within(0.5, 1, true, true, "groove radius / ball diameter; deep-groove bearings 0.515-0.53");
+  static const std::vector<CaseKey<B>> keys = {
+      integer_key<B>("balls", &B::balls, at_least(3), "the bearing's balls; they fit on the pitch circle")
+          .with_default("required"),
+      number_key<B>("ball_diameter_mm", &B::ball_diameter_m, 1e-3, "mm", above(0),
+                    "D; the pitch radius is the bore's less 0.75 D")
+          .with_default("required"),
+      number_key<B>("inner_groove_conformity", &B::inner_groove_conformity, 1, "", conformity,
+                    "f_i, the inner race's (on the cam) groove radius / D"),
+      number_key<B>("outer_groove_conformity", &B::outer_groove_conformity, 1, "", conformity,
+                    "f_o, the flexible outer race's groove radius / D"),
+  };
+  return keys;
+}
+
+void validate_generator_bearing(const GeneratorBearing& b, const std::string& file) {
+  check_key_ranges(b, generator_bearing_keys(), "wave_generator.bearing", file.empty() ? "" : file + ": ");
+  const double D = b.ball_diameter_m;
   if (!(b.pitch_radius_m > D))
     reject(file, "ball_diameter_mm", D * 1e3,
            "must be < the pitch radius " + six_digits(b.pitch_radius_m * 1e3) +

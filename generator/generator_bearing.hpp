@@ -1,7 +1,8 @@
 #pragma once
 // The wave generator's flexible ball bearing: Hertzian point contacts of a ball with the inner race (on the cam) and
 // the outer race (the flexible ring pressed into the flexspline's bore), and the radial approach of the two races
-// under a ball load Q. SI units. Standard library only, so that the case's option structs can hold it.
+// under a ball load Q. SI units. Standard library only (and common/case_keys.hpp), so that the case's option structs
+// can hold it.
 //
 // Geometry (Harris & Kotzalas, Rolling Bearing Analysis, 5th ed. 2006, vol. 1 "Essential Concepts of Bearing
 // Technology", ch. 2 "Rolling bearing macrogeometry", the ball–raceway curvature sum and difference of a radial
@@ -20,6 +21,9 @@
 // 3·w0/r_p², about 3 % at w0 = m); no clearance, no preload beyond what the caller's ball load holds; no centrifugal
 // force (quasi-static); rings rigid beyond the Hertzian zone (their bending is the flexspline's and the cam's part).
 #include <string>
+#include <vector>
+
+#include "common/case_keys.hpp"
 
 namespace sw {
 
@@ -44,6 +48,9 @@ inline constexpr double kOuterRingWallPerBallDiameter = 0.25;
 /// bore, its wall under the groove kOuterRingWallPerBallDiameter·D, the ball centres D/2 further in:
 /// r_p = r_bore − (0.25 + 0.5)·D. The cam's radius under the inner ring follows (r_p − D/2 − the inner ring's wall).
 double bearing_pitch_radius_m(double bore_radius_m, double ball_diameter_m);
+
+/// The [wave_generator] bearing = {...} table's schema (common/case_keys.hpp).
+const std::vector<CaseKey<GeneratorBearing>>& generator_bearing_keys();
 
 /// Checks the bearing (balls ≥ 3, D > 0, 0.5 < f < 1 for both races, pitch radius > D so the inner race exists,
 /// balls fit on the pitch circle: z·D < 2π·r_p, E > 0, −1 < ν < 0.5). Throws InputError naming the key in mm, e.g.

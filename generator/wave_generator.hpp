@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include "common/case_keys.hpp"
 #include "generator/generator_bearing.hpp"
 
 namespace sw {
@@ -65,6 +66,10 @@ struct WaveGeneratorParams {
   /// The ball bearing between the cam and the flexspline (generator/generator_bearing.hpp); absent: a rigid generator.
   std::optional<GeneratorBearing> bearing;
 };
+
+/// The [wave_generator] table's schema (common/case_keys.hpp): which keys each model takes. The reader and writer of
+/// io/case.cpp handle the model's own keys (its lists, the cam's profile, the bearing's table) themselves.
+const std::vector<CaseKey<WaveGeneratorParams>>& wave_generator_keys();
 
 /// The case key's spelling of the model ("four_force", "two_force", "forces", "cam", "rollers").
 const char* model_name(const GeneratorModel& m);

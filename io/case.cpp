@@ -95,6 +95,29 @@ public:
     return static_cast<int>(*v);
   }
 
+  /// An integer the table gives (its range is the schema's, checked by the stage's validation), else nullopt.
+  std::optional<int> integer(const std::string& key) {
+    constexpr int kLeftOut = std::numeric_limits<int>::min();
+    const int v = integer(key, kLeftOut, kLeftOut + 1);
+    return v == kLeftOut ? std::nullopt : std::optional<int>(v);
+  }
+
+  /// Runs a stage's validation of what this table gave; its message about one of the table's keys
+  /// ("table.key = value; ...") gets the file and the key's line in front.
+  template <class F>
+  void locate(F&& validate) const {
+    try {
+      validate();
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      const std::size_t eq = what.find(" = ");
+      const std::string prefix = name_ + ".";
+      const bool ours = eq != std::string::npos && what.compare(0, prefix.size(), prefix) == 0;
+      const std::string key = ours ? what.substr(prefix.size(), eq - prefix.size()) : "";
+      throw InputError(file_ + (ours ? where(table_.get(key)) : "") + ": " + what);
+    }
+  }
+
   std::string choice(const std::string& key, const std::string& fallback, const std::vector<std::string>& allowed) {
     used_.insert(key);
     const toml::node* node = table_.get(key);
@@ -164,81 +187,75 @@ const toml::table* sub_table(const toml::table& root, const std::string& name, c
   return node->as_table();
 }
 
+/// Reads key `k` of the schema into `t` when the table gives it, as the key's type (number, integer, one of its
+/// words); its range is the stage's validation's, which the callers run through TableReader::locate.
+template <class T>
+void read_key(TableReader& r, T& t, const CaseKey<T>& k) {
+  switch (k.kind) {
+    case KeyKind::Number:
+      if (const auto v = r.number(k.name)) k.set(t, *v);
+      break;
+    case KeyKind::Integer:
+      if (const auto v = r.integer(k.name)) k.set(t, static_cast<long long>(*v));
+      break;
+    case KeyKind::Choice:
+      if (const std::string w = r.choice(k.name, "", k.choices); !w.empty()) k.set(t, w);
+      break;
+    case KeyKind::List:
+    case KeyKind::Table:
+      throw std::logic_error("case key " + k.name + " is read by its table's own reader");
+  }
+}
+
+/// Every key of the schema that applies to `t` as read so far, in the schema's order.
+template <class T>
+void read_keys(TableReader& r, T& t, const std::vector<CaseKey<T>>& keys) {
+  for (const CaseKey<T>& k : keys)
+    if (k.applies_to(t)) read_key(r, t, k);
+}
+
+template <class T>
+const CaseKey<T>& key_named(const std::vector<CaseKey<T>>& keys, const std::string& name) {
+  for (const CaseKey<T>& k : keys)
+    if (k.name == name) return k;
+  throw std::logic_error("no case key " + name);
+}
+
 GearParams read_gear(TableReader r) {
   GearParams g;
-  g.module_m = r.number("module_mm", g.module_m / kMm) * kMm;
-  g.teeth_flexspline = r.integer("teeth_flexspline", g.teeth_flexspline, 4);
-  g.teeth_circular = r.integer("teeth_circular", g.teeth_circular, 5);
-  g.pressure_angle_rad = r.number("pressure_angle_deg", g.pressure_angle_rad / kRadPerDeg) * kRadPerDeg;
-  g.profile_shift_flexspline = r.number("profile_shift_flexspline", g.profile_shift_flexspline);
-  g.profile_shift_circular = r.number("profile_shift_circular", g.profile_shift_circular);
-  g.cutter_teeth = r.integer("cutter_teeth", g.cutter_teeth, 8);
-  g.addendum_coefficient_flexspline = r.number("addendum_coefficient_flexspline", g.addendum_coefficient_flexspline);
-  g.addendum_coefficient_circular = r.number("addendum_coefficient_circular", g.addendum_coefficient_circular);
-  g.dedendum_coefficient_flexspline = r.number("dedendum_coefficient_flexspline", g.dedendum_coefficient_flexspline);
-  g.dedendum_coefficient_circular = r.number("dedendum_coefficient_circular", g.dedendum_coefficient_circular);
-  g.tip_rounding_flexspline_m = r.number("tip_rounding_flexspline_mm", g.tip_rounding_flexspline_m / kMm) * kMm;
-  g.tip_rounding_circular_m = r.number("tip_rounding_circular_mm", g.tip_rounding_circular_m / kMm) * kMm;
+  read_keys(r, g, gear_keys());
   r.reject_unknown();
-  validate_gear(g, r.file());  // gear/ owns the ranges and the consistency of a set that can be made
+  r.locate([&] { validate_gear(g); });  // gear/ owns the ranges and the consistency of a set that can be made
   return g;
 }
 
 FlexsplineParams read_flexspline(TableReader r) {
+  const auto& keys = flexspline_keys();
   FlexsplineParams f;
-  const std::string shape = r.choice("shape", "cup", {"cup", "tube"});
-  f.shape = shape == "cup" ? FlexsplineShape::Cup : FlexsplineShape::Tube;
   // Ranges and consistency: mesh/flexspline.hpp validate_flexspline, once the mesh table is read (parse_case).
-  f.inner_radius_m = r.number("inner_radius_mm", f.inner_radius_m / kMm) * kMm;
-  f.wall_thickness_m = r.number("wall_thickness_mm", f.wall_thickness_m / kMm) * kMm;
-  f.length_m = r.number("length_mm", f.length_m / kMm) * kMm;
-  const std::string teeth = r.choice("teeth", shape == "cup" ? "ring" : "none", {"none", "ring", "explicit"});
-  f.teeth = teeth == "none" ? TeethModel::None : teeth == "ring" ? TeethModel::Ring : TeethModel::Explicit;
-  const bool has_rim = f.teeth != TeethModel::None;
-  // Without teeth a tube has no rim: its rim keys are accepted when >= 0 and not used.
-  f.rim_width_m = (has_rim ? r.number("rim_width_mm", f.rim_width_m / kMm) : r.non_negative("rim_width_mm", 0.0)) * kMm;
-  if (has_rim) f.rim_thickness_m = r.number("rim_thickness_mm", f.rim_thickness_m / kMm) * kMm;
-  else if (const auto t = r.number("rim_thickness_mm"); t && !(*t >= 0)) r.fail_value("rim_thickness_mm", *t, "must be >= 0");
-  else f.rim_thickness_m = t ? *t * kMm : f.wall_thickness_m;  // derived, not checked: a tube without teeth has no rim
-  if (f.shape == FlexsplineShape::Cup) {
-    f.diaphragm_thickness_m = r.number("diaphragm_thickness_mm", f.diaphragm_thickness_m / kMm) * kMm;
-    f.boss_radius_m = r.number("boss_radius_mm", f.boss_radius_m / kMm) * kMm;
-    f.fillet_radius_m = r.number("fillet_radius_mm", f.fillet_radius_m / kMm) * kMm;
+  for (const char* key : {"shape", "inner_radius_mm", "wall_thickness_mm", "length_mm"}) read_key(r, f, key_named(keys, key));
+  f.teeth = f.shape == FlexsplineShape::Cup ? TeethModel::Ring : TeethModel::None;
+  read_key(r, f, key_named(keys, "teeth"));
+  if (f.teeth != TeethModel::None) {
+    for (const char* key : {"rim_width_mm", "rim_thickness_mm"}) read_key(r, f, key_named(keys, key));
+  } else {  // without teeth there is no rim: its keys are accepted when >= 0 and not used
+    f.rim_width_m = r.non_negative("rim_width_mm", 0.0) * kMm;
+    const auto t = r.number("rim_thickness_mm");
+    if (t && !(*t >= 0)) r.fail_value("rim_thickness_mm", *t, "must be >= 0");
+    f.rim_thickness_m = t ? *t * kMm : f.wall_thickness_m;
   }
-  // A tube has no diaphragm, boss or fillet: those keys stay unknown for it and are rejected as such.
+  // A tube has no diaphragm, boss or fillet: those keys do not apply to it and are rejected as unknown.
+  for (const char* key : {"diaphragm_thickness_mm", "boss_radius_mm", "fillet_radius_mm"})
+    if (key_named(keys, key).applies_to(f)) read_key(r, f, key_named(keys, key));
   r.reject_unknown();
   return f;
 }
 
 Material read_material(TableReader r) {
   Material m;
-  m.youngs_modulus_Pa = r.positive("youngs_modulus_Pa", m.youngs_modulus_Pa);
-  m.poisson_ratio = r.number("poisson_ratio", m.poisson_ratio);
-  if (!(m.poisson_ratio > -1.0 && m.poisson_ratio < 0.5))
-    r.fail_value("poisson_ratio", m.poisson_ratio, "must be in (-1, 0.5)");
-  m.density_kg_m3 = r.positive("density_kg_m3", m.density_kg_m3);
-  if (auto se = r.number("fatigue_limit_MPa")) {
-    if (!(*se > 0)) r.fail_value("fatigue_limit_MPa", *se, "must be > 0");
-    m.fatigue_limit_Pa = *se * 1e6;
-  }
-  if (auto su = r.number("ultimate_strength_MPa")) {
-    if (!(*su > 0)) r.fail_value("ultimate_strength_MPa", *su, "must be > 0");
-    m.ultimate_strength_Pa = *su * 1e6;
-  }
-  if (m.fatigue_limit_Pa.has_value() != m.ultimate_strength_Pa.has_value())
-    throw InputError(r.file() + ": material.fatigue_limit_MPa and material.ultimate_strength_MPa go together (the "
-                                "Goodman line needs both)");
-  if (m.fatigue_limit_Pa && !(*m.fatigue_limit_Pa < *m.ultimate_strength_Pa))
-    r.fail_value("fatigue_limit_MPa", *m.fatigue_limit_Pa / 1e6,
-                 "must be < material.ultimate_strength_MPa = " + format_number(*m.ultimate_strength_Pa / 1e6));
-  if (auto sy = r.number("yield_strength_MPa")) {
-    if (!(*sy > 0)) r.fail_value("yield_strength_MPa", *sy, "must be > 0");
-    if (m.ultimate_strength_Pa && !(*sy * 1e6 <= *m.ultimate_strength_Pa))
-      r.fail_value("yield_strength_MPa", *sy,
-                   "must be <= material.ultimate_strength_MPa = " + format_number(*m.ultimate_strength_Pa / 1e6));
-    m.yield_strength_Pa = *sy * 1e6;
-  }
+  read_keys(r, m, material_keys());
   r.reject_unknown();
+  r.locate([&] { validate_material(m); });
   return m;
 }
 
@@ -246,18 +263,13 @@ Material read_material(TableReader r) {
 /// radius follows from the flexspline's bore (generator/generator_bearing.hpp), and the bearing checks itself.
 GeneratorBearing read_bearing(TableReader r, double bore_radius_m) {
   GeneratorBearing b;
-  b.balls = r.integer("balls", 0, 3);
-  const std::optional<double> ball = r.number("ball_diameter_mm");
-  if (b.balls == 0 || !ball)
-    throw InputError(r.file() + ": " + r.name() + "." + (b.balls == 0 ? "balls" : "ball_diameter_mm") +
-                     " is missing; a bearing needs balls and ball_diameter_mm");
-  if (!(*ball > 0)) r.fail_value("ball_diameter_mm", *ball, "must be > 0");
-  b.ball_diameter_m = *ball * kMm;
-  b.inner_groove_conformity = r.number("inner_groove_conformity", b.inner_groove_conformity);
-  b.outer_groove_conformity = r.number("outer_groove_conformity", b.outer_groove_conformity);
+  for (const char* key : {"balls", "ball_diameter_mm"})
+    if (!r.given(key))
+      throw InputError(r.file() + ": " + r.name() + "." + key + " is missing; a bearing needs balls and ball_diameter_mm");
+  read_keys(r, b, generator_bearing_keys());
   r.reject_unknown();
   b.pitch_radius_m = bearing_pitch_radius_m(bore_radius_m, b.ball_diameter_m);
-  validate_generator_bearing(b, r.file());
+  r.locate([&] { validate_generator_bearing(b); });
   return b;
 }
 
@@ -373,18 +385,10 @@ WaveGeneratorParams read_wave_generator(TableReader r, double bore_radius_m) {
 
 LoadParams read_load(TableReader r) {
   LoadParams l;
-  l.torque_Nm = r.number("torque_Nm", l.torque_Nm);
-  const std::string how = r.choice("torque_loading", "engagement_zones", {"engagement_zones", "uniform"});
-  l.torque_loading = how == "uniform" ? TorqueLoading::Uniform : TorqueLoading::EngagementZones;
-  const double half = r.number("engagement_half_angle_deg", 20.0);
-  if (!(half > 0.0 && half <= 90.0)) r.fail_value("engagement_half_angle_deg", half, "must be in (0, 90]");
-  l.engagement_half_angle_rad = half * kRadPerDeg;
-  if (auto rated = r.number("rated_torque_Nm")) {
-    if (!(*rated > 0)) r.fail_value("rated_torque_Nm", *rated, "must be > 0 (the torque the drive is loaded to, both ways)");
-    l.rated_torque_Nm = *rated;
-    l.rated_torque_from = "the case file";
-  }
+  read_keys(r, l, load_keys());
+  if (l.rated_torque_Nm) l.rated_torque_from = "the case file";
   r.reject_unknown();
+  r.locate([&] { check_key_ranges(l, load_keys(), "load"); });
   return l;
 }
 
@@ -398,11 +402,8 @@ MeshParams read_mesh(TableReader r, const FlexsplineParams& f) {
   if (const int v = r.integer("wall_layers", kLeftOut, kLeftOut + 1); v != kLeftOut) given.wall_layers = v;
   if (const int v = r.integer("corner_levels", kLeftOut, kLeftOut + 1); v != kLeftOut) given.corner_levels = v;
   MeshParams m = derive_mesh(f, given);
-  m.max_radius_edge_ratio = r.number("max_radius_edge_ratio", m.max_radius_edge_ratio);
-  if (!(m.max_radius_edge_ratio >= 1.1)) r.fail_value("max_radius_edge_ratio", m.max_radius_edge_ratio, "must be >= 1.1");
-  m.min_dihedral_deg = r.number("min_dihedral_deg", m.min_dihedral_deg);
-  if (!(m.min_dihedral_deg >= 0.0 && m.min_dihedral_deg < 20.0))
-    r.fail_value("min_dihedral_deg", m.min_dihedral_deg, "must be in [0, 20) (TetGen cannot guarantee more)");
+  for (const char* quality : {"max_radius_edge_ratio", "min_dihedral_deg"})
+    read_key(r, m, key_named(mesh_keys(), quality));  // their ranges: validate_mesh, with the flexspline's
   r.reject_unknown();
   return m;
 }
@@ -425,10 +426,11 @@ SolverParams read_solver(TableReader r, const FlexsplineModel& model, std::map<s
   } else {
     s.method = method == "fourier" ? SolverMethod::Fourier : SolverMethod::Tet10;
   }
-  s.harmonics = r.integer("harmonics", default_harmonics(model), 0);
-  if (s.harmonics > 4096) r.fail_value("harmonics", s.harmonics, "must be <= 4096");
+  s.harmonics = default_harmonics(model);
+  read_key(r, s, key_named(solver_keys(), "harmonics"));
   if (!r.given("harmonics")) derived["solver.harmonics"] = default_harmonics_origin(model);
   r.reject_unknown();
+  r.locate([&] { check_key_ranges(s, solver_keys(), "solver"); });
   return s;
 }
 
@@ -487,8 +489,7 @@ void check_circular_spline(const CircularSplineParams& c, const GearParams& gear
 /// the key's line).
 ContactParams read_contact(TableReader r) {
   ContactParams p;
-  p.face_slices = r.integer("face_slices", p.face_slices, std::numeric_limits<int>::min());
-  p.friction_coefficient = r.number("friction_coefficient", p.friction_coefficient);
+  read_keys(r, p, contact_keys());
   r.reject_unknown();
   return p;
 }
@@ -497,14 +498,11 @@ ContactParams read_contact(TableReader r) {
 /// checked by parse_case with the key's line.
 Lubricant read_lubricant(TableReader r) {
   Lubricant l;
-  l.kind = r.choice("kind", l.kind, {"grease", "oil"});
   for (const char* key : {"viscosity_40C_mm2_s", "viscosity_100C_mm2_s", "temperature_C"})
     if (!r.given(key))
       throw InputError(r.file() + ": lubricant." + key + " is missing; [lubricant] gives the base oil's kinematic "
                                   "viscosities at 40 and 100 C and the temperature it works at");
-  l.viscosity_40C_mm2_s = *r.number("viscosity_40C_mm2_s");
-  l.viscosity_100C_mm2_s = *r.number("viscosity_100C_mm2_s");
-  l.temperature_C = *r.number("temperature_C");
+  read_keys(r, l, lubricant_keys());
   r.reject_unknown();
   return l;
 }
@@ -513,45 +511,7 @@ Lubricant read_lubricant(TableReader r) {
 /// by parse_case with the key's line.
 DynamicsParams read_dynamics(TableReader r) {
   DynamicsParams d;
-  const std::string conf = r.choice("configuration", to_string(d.configuration),
-                                    {"cs_fixed", "fs_fixed", "wg_fixed", "all_free"});
-  d.configuration = *parse_configuration(conf);
-  d.ramp_shape = *parse_ramp_shape(r.choice("ramp", "paper", {"paper", "cubic"}));
-  d.pair_motion = r.choice("pairs", "moving", {"moving", "frozen"}) == "moving" ? PairMotion::Moving : PairMotion::Frozen;
-  d.pair_stiffness =
-      r.choice("pair_stiffness", "teeth", {"teeth", "constant"}) == "teeth" ? PairStiffness::Teeth : PairStiffness::Constant;
-  d.rim = r.choice("rim", "fem", {"fem", "rigid"}) == "fem" ? RimCoupling::Fem : RimCoupling::Rigid;
-  d.compliance_phases = r.integer("compliance_phases", d.compliance_phases, std::numeric_limits<int>::min());
-  d.oversampling = r.integer("oversampling", d.oversampling, std::numeric_limits<int>::min());
-  d.drive_speed_rpm = r.number("drive_speed_rpm", d.drive_speed_rpm);
-  d.drive_ramp_start_s = r.number("drive_ramp_start_s", d.drive_ramp_start_s);
-  d.drive_ramp_end_s = r.number("drive_ramp_end_s", d.drive_ramp_end_s);
-  d.load_torque_Nm = r.number("load_torque_Nm", d.load_torque_Nm);
-  d.load_ramp_start_s = r.number("load_ramp_start_s", d.load_ramp_start_s);
-  d.load_ramp_end_s = r.number("load_ramp_end_s", d.load_ramp_end_s);
-  d.stiffness_N_per_m = r.number("stiffness_N_per_m", d.stiffness_N_per_m);
-  d.stiffness_variation_N_per_m = r.number("stiffness_variation_N_per_m", d.stiffness_variation_N_per_m);
-  d.stiffness_phase_deg = r.number("stiffness_phase_deg", d.stiffness_phase_deg);
-  d.damping_Ns_per_m = r.number("damping_Ns_per_m", d.damping_Ns_per_m);
-  d.exponent_stiffness = r.number("exponent_stiffness", d.exponent_stiffness);
-  d.exponent_damping = r.number("exponent_damping", d.exponent_damping);
-  d.exponent_indentation = r.number("exponent_indentation", d.exponent_indentation);
-  d.flexspline_compliance_rad_per_Nm = r.number("flexspline_compliance_rad_per_Nm", d.flexspline_compliance_rad_per_Nm);
-  d.flexspline_torsion_damping_Nms_per_rad =
-      r.number("flexspline_torsion_damping_Nms_per_rad", d.flexspline_torsion_damping_Nms_per_rad);
-  d.circular_spline_drag_Nms_per_rad = r.number("circular_spline_drag_Nms_per_rad", d.circular_spline_drag_Nms_per_rad);
-  d.load_inertia_kgm2 = r.number("load_inertia_kgm2", d.load_inertia_kgm2);
-  d.output_drag_coulomb_Nm = r.number("output_drag_coulomb_Nm", d.output_drag_coulomb_Nm);
-  d.output_drag_viscous_Nms_per_rad = r.number("output_drag_viscous_Nms_per_rad", d.output_drag_viscous_Nms_per_rad);
-  d.drag_smoothing_rad_per_s = r.number("drag_smoothing_rad_per_s", d.drag_smoothing_rad_per_s);
-  d.circular_spline_outer_radius_m = r.number("circular_spline_outer_radius_mm", 0.0) * kMm;
-  d.circular_spline_width_m = r.number("circular_spline_width_mm", 0.0) * kMm;
-  d.base_clearance_m = r.number("base_clearance_mm", 0.0) * kMm;
-  d.duration_s = r.number("duration_s", d.duration_s);
-  d.output_step_s = r.number("output_step_s", d.output_step_s);
-  d.steady_from_s = r.number("steady_from_s", d.steady_from_s);
-  d.relative_tolerance = r.number("relative_tolerance", d.relative_tolerance);
-  d.absolute_tolerance_rad = r.number("absolute_tolerance_rad", d.absolute_tolerance_rad);
+  read_keys(r, d, dynamics_keys());
   r.reject_unknown();
   return d;
 }
@@ -819,71 +779,14 @@ namespace {
 
 using Tables = nlohmann::ordered_json;
 
-/// A value in the file's unit (the reader multiplies what it reads by `unit`): the shortest decimal the reader turns
-/// back into `si` exactly. A value no decimal reaches (a default derived in SI) becomes the shortest decimal of the
-/// value nearest to it that one reaches (1 ulp away), which is written the same again once read back.
-double file_value(double si, double unit = 1.0) {
-  const double exact = si / unit;
-  for (const double target : {si, exact * unit})
-    for (int digits = 1; digits <= 17; ++digits) {
-      char text[32];
-      std::snprintf(text, sizeof text, "%.*g", digits, exact);
-      if (const double v = std::strtod(text, nullptr); v * unit == target) return v;
-    }
-  return exact;  // not reached: `exact` itself, at 17 digits, reaches exact * unit
-}
-
-Tables gear_table(const GearParams& g) {
-  return Tables::object({{"module_mm", file_value(g.module_m, kMm)},
-                         {"teeth_flexspline", g.teeth_flexspline},
-                         {"teeth_circular", g.teeth_circular},
-                         {"pressure_angle_deg", file_value(g.pressure_angle_rad, kRadPerDeg)},
-                         {"profile_shift_flexspline", g.profile_shift_flexspline},
-                         {"profile_shift_circular", g.profile_shift_circular},
-                         {"cutter_teeth", g.cutter_teeth},
-                         {"addendum_coefficient_flexspline", g.addendum_coefficient_flexspline},
-                         {"addendum_coefficient_circular", g.addendum_coefficient_circular},
-                         {"dedendum_coefficient_flexspline", g.dedendum_coefficient_flexspline},
-                         {"dedendum_coefficient_circular", g.dedendum_coefficient_circular},
-                         {"tip_rounding_flexspline_mm", file_value(g.tip_rounding_flexspline_m, kMm)},
-                         {"tip_rounding_circular_mm", file_value(g.tip_rounding_circular_m, kMm)}});
-}
-
-/// A tube has no diaphragm, boss or fillet: the reader refuses those keys for it.
-Tables flexspline_table(const FlexsplineParams& f) {
-  const bool cup = f.shape == FlexsplineShape::Cup;
-  Tables t = Tables::object({{"shape", cup ? "cup" : "tube"},
-                             {"inner_radius_mm", file_value(f.inner_radius_m, kMm)},
-                             {"wall_thickness_mm", file_value(f.wall_thickness_m, kMm)},
-                             {"length_mm", file_value(f.length_m, kMm)},
-                             {"teeth", teeth_name(f.teeth)},
-                             {"rim_width_mm", file_value(f.rim_width_m, kMm)},
-                             {"rim_thickness_mm", file_value(f.rim_thickness_m, kMm)}});
-  if (cup) {
-    t["diaphragm_thickness_mm"] = file_value(f.diaphragm_thickness_m, kMm);
-    t["boss_radius_mm"] = file_value(f.boss_radius_m, kMm);
-    t["fillet_radius_mm"] = file_value(f.fillet_radius_m, kMm);
-  }
-  return t;
-}
-
-Tables material_table(const Material& m) {
-  Tables t = Tables::object({{"youngs_modulus_Pa", m.youngs_modulus_Pa},
-                             {"poisson_ratio", m.poisson_ratio},
-                             {"density_kg_m3", m.density_kg_m3}});
-  if (m.fatigue_limit_Pa && m.ultimate_strength_Pa) {  // both or neither (the reader's rule)
-    t["fatigue_limit_MPa"] = file_value(*m.fatigue_limit_Pa, 1e6);
-    t["ultimate_strength_MPa"] = file_value(*m.ultimate_strength_Pa, 1e6);
-  }
-  if (m.yield_strength_Pa) t["yield_strength_MPa"] = file_value(*m.yield_strength_Pa, 1e6);
-  return t;
-}
-
-Tables bearing_table(const GeneratorBearing& b) {
-  return Tables::object({{"balls", b.balls},
-                         {"ball_diameter_mm", file_value(b.ball_diameter_m, kMm)},
-                         {"inner_groove_conformity", b.inner_groove_conformity},
-                         {"outer_groove_conformity", b.outer_groove_conformity}});
+/// The keys of the schema that apply to `t`, with their values in the file's units, in the schema's order.
+template <class T>
+Tables key_table(const T& t, const std::vector<CaseKey<T>>& keys) {
+  Tables o = Tables::object();
+  for (const CaseKey<T>& k : keys)
+    if (k.applies_to(t))
+      if (const std::optional<KeyValue> v = k.get(t)) std::visit([&](const auto& x) { o[k.name] = x; }, *v);
+  return o;
 }
 
 /// A list of key tables, one per element of `items`.
@@ -899,19 +802,19 @@ Tables list_of(const std::vector<T>& items, F&& table) {
 void put_model_keys(Tables& t, const GeneratorModel& model) {
   static const char* kProfiles[] = {"polar", "ellipse", "list"};
   const auto force = [](const WaveGeneratorForce& f) {
-    return Tables::object({{"angle_deg", file_value(f.angle_rad, kRadPerDeg)}, {"weight", f.weight}});
+    return Tables::object({{"angle_deg", file_units(f.angle_rad, kRadPerDeg)}, {"weight", f.weight}});
   };
   const auto point = [](const CamPoint& p) {
-    return Tables::object({{"angle_deg", file_value(p.angle_rad, kRadPerDeg)}, {"radius_mm", file_value(p.radius_m, kMm)}});
+    return Tables::object({{"angle_deg", file_units(p.angle_rad, kRadPerDeg)}, {"radius_mm", file_units(p.radius_m, kMm)}});
   };
-  std::visit(overloaded{[&](const FourForce& f) { t["beta_deg"] = file_value(f.beta_rad, kRadPerDeg); },
-                        [&](const Rollers& r) { t["beta_deg"] = file_value(r.beta_rad, kRadPerDeg); },
+  std::visit(overloaded{[&](const FourForce& f) { t["beta_deg"] = file_units(f.beta_rad, kRadPerDeg); },
+                        [&](const Rollers& r) { t["beta_deg"] = file_units(r.beta_rad, kRadPerDeg); },
                         [](const TwoForce&) {},
                         [&](const GivenForces& g) { t["forces"] = list_of(g.forces, force); },
                         [&](const Cam& cam) {
                           t["profile"] = kProfiles[static_cast<int>(cam.profile)];
                           if (cam.profile == CamProfile::List) t["profile_points"] = list_of(cam.points, point);
-                          t["fit_um"] = file_value(cam.clearance_m, 1e-6);
+                          t["fit_um"] = file_units(cam.clearance_m, 1e-6);
                         }},
              model);
 }
@@ -920,109 +823,30 @@ void put_model_keys(Tables& t, const GeneratorModel& model) {
 /// the given forces take force_N.
 Tables wave_generator_table(const WaveGeneratorParams& w) {
   Tables t = Tables::object({{"model", model_name(w.model)}});
-  if (w.radial_deformation_m) t["radial_deformation_mm"] = file_value(*w.radial_deformation_m, kMm);
+  if (w.radial_deformation_m) t["radial_deformation_mm"] = file_units(*w.radial_deformation_m, kMm);
   if (!pushes_only(w.model)) t["force_N"] = w.force_N;
-  t["axial_position_mm"] = file_value(w.axial_position_m, kMm);
-  t["band_width_mm"] = file_value(w.band_width_m, kMm);
+  t["axial_position_mm"] = file_units(w.axial_position_m, kMm);
+  t["band_width_mm"] = file_units(w.band_width_m, kMm);
   put_model_keys(t, w.model);
-  if (w.bearing) t["bearing"] = bearing_table(*w.bearing);
-  return t;
-}
-
-Tables load_table(const LoadParams& l) {
-  Tables t = Tables::object(
-      {{"torque_Nm", l.torque_Nm},
-       {"torque_loading", l.torque_loading == TorqueLoading::Uniform ? "uniform" : "engagement_zones"},
-       {"engagement_half_angle_deg", file_value(l.engagement_half_angle_rad, kRadPerDeg)}});
-  if (l.rated_torque_Nm) t["rated_torque_Nm"] = *l.rated_torque_Nm;
-  return t;
-}
-
-Tables mesh_table(const MeshParams& m) {
-  return Tables::object({{"size_mm", file_value(m.size_m, kMm)},
-                         {"wall_layers", m.wall_layers},
-                         {"corner_levels", m.corner_levels},
-                         {"max_radius_edge_ratio", m.max_radius_edge_ratio},
-                         {"min_dihedral_deg", m.min_dihedral_deg}});
-}
-
-Tables solver_table(const SolverParams& s) {
-  return Tables::object({{"method", s.method == SolverMethod::Fourier ? "fourier" : "tet10"},
-                         {"harmonics", s.harmonics},
-                         {"backend", s.backend == SolverBackend::Petsc ? "petsc" : "cholmod"}});
-}
-
-Tables dynamics_table(const DynamicsParams& d) {
-  return Tables::object(
-      {{"configuration", to_string(d.configuration)},
-       {"ramp", to_string(d.ramp_shape)},
-       {"pairs", to_string(d.pair_motion)},
-       {"pair_stiffness", to_string(d.pair_stiffness)},
-       {"rim", to_string(d.rim)},
-       {"compliance_phases", d.compliance_phases},
-       {"oversampling", d.oversampling},
-       {"drive_speed_rpm", d.drive_speed_rpm},
-       {"drive_ramp_start_s", d.drive_ramp_start_s},
-       {"drive_ramp_end_s", d.drive_ramp_end_s},
-       {"load_torque_Nm", d.load_torque_Nm},
-       {"load_ramp_start_s", d.load_ramp_start_s},
-       {"load_ramp_end_s", d.load_ramp_end_s},
-       {"stiffness_N_per_m", d.stiffness_N_per_m},
-       {"stiffness_variation_N_per_m", d.stiffness_variation_N_per_m},
-       {"stiffness_phase_deg", d.stiffness_phase_deg},
-       {"damping_Ns_per_m", d.damping_Ns_per_m},
-       {"exponent_stiffness", d.exponent_stiffness},
-       {"exponent_damping", d.exponent_damping},
-       {"exponent_indentation", d.exponent_indentation},
-       {"flexspline_compliance_rad_per_Nm", d.flexspline_compliance_rad_per_Nm},
-       {"flexspline_torsion_damping_Nms_per_rad", d.flexspline_torsion_damping_Nms_per_rad},
-       {"circular_spline_drag_Nms_per_rad", d.circular_spline_drag_Nms_per_rad},
-       {"load_inertia_kgm2", d.load_inertia_kgm2},
-       {"output_drag_coulomb_Nm", d.output_drag_coulomb_Nm},
-       {"output_drag_viscous_Nms_per_rad", d.output_drag_viscous_Nms_per_rad},
-       {"drag_smoothing_rad_per_s", d.drag_smoothing_rad_per_s},
-       {"circular_spline_outer_radius_mm", file_value(d.circular_spline_outer_radius_m, kMm)},
-       {"circular_spline_width_mm", file_value(d.circular_spline_width_m, kMm)},
-       {"base_clearance_mm", file_value(d.base_clearance_m, kMm)},
-       {"duration_s", d.duration_s},
-       {"output_step_s", d.output_step_s},
-       {"steady_from_s", d.steady_from_s},
-       {"relative_tolerance", d.relative_tolerance},
-       {"absolute_tolerance_rad", d.absolute_tolerance_rad}});
-}
-
-/// [circular_spline]: the bolt circles only for a ring bolted by its face.
-Tables circular_spline_table(const CircularSplineParams& c) {
-  Tables t = Tables::object({{"outer_radius_mm", file_value(c.outer_radius_m, kMm)},
-                             {"width_mm", file_value(c.width_m, kMm)},
-                             {"mounting", to_string(c.mounting)}});
-  if (c.mounting == CircularSplineMounting::BoltedFace) {
-    t["bolt_circle_inner_mm"] = file_value(c.bolt_circle_inner_m, kMm);
-    t["bolt_circle_outer_mm"] = file_value(c.bolt_circle_outer_m, kMm);
-  }
+  if (w.bearing) t["bearing"] = key_table(*w.bearing, generator_bearing_keys());
   return t;
 }
 
 /// Every table of the case in the order of a case file, optional tables when the case has them.
 Tables case_tables(const Case& c) {
   Tables t = Tables::object();
-  if (c.gear) t["gear"] = gear_table(*c.gear);
-  t["flexspline"] = flexspline_table(c.flexspline);
-  t["material"] = material_table(c.material);
+  if (c.gear) t["gear"] = key_table(*c.gear, gear_keys());
+  t["flexspline"] = key_table(c.flexspline, flexspline_keys());
+  t["material"] = key_table(c.material, material_keys());
   if (c.wave_generator) t["wave_generator"] = wave_generator_table(*c.wave_generator);
-  t["load"] = load_table(c.load);
+  t["load"] = key_table(c.load, load_keys());
   if (c.catalog_size) t["catalog"] = Tables::object({{"size", *c.catalog_size}});
-  if (c.circular_spline) t["circular_spline"] = circular_spline_table(*c.circular_spline);
-  t["contact"] = Tables::object(
-      {{"face_slices", c.contact.face_slices}, {"friction_coefficient", c.contact.friction_coefficient}});
-  if (c.lubricant)
-    t["lubricant"] = Tables::object({{"kind", c.lubricant->kind},
-                                     {"viscosity_40C_mm2_s", c.lubricant->viscosity_40C_mm2_s},
-                                     {"viscosity_100C_mm2_s", c.lubricant->viscosity_100C_mm2_s},
-                                     {"temperature_C", c.lubricant->temperature_C}});
-  t["mesh"] = mesh_table(c.mesh);
-  t["solver"] = solver_table(c.solver);
-  if (c.dynamics) t["dynamics"] = dynamics_table(*c.dynamics);
+  if (c.circular_spline) t["circular_spline"] = key_table(*c.circular_spline, circular_spline_keys());
+  t["contact"] = key_table(c.contact, contact_keys());
+  if (c.lubricant) t["lubricant"] = key_table(*c.lubricant, lubricant_keys());
+  t["mesh"] = key_table(c.mesh, mesh_keys());
+  t["solver"] = key_table(c.solver, solver_keys());
+  if (c.dynamics) t["dynamics"] = key_table(*c.dynamics, dynamics_keys());
   return t;
 }
 
@@ -1094,5 +918,76 @@ std::string describe_derived(const Case& c) {
 }
 
 std::string case_json(const Case& c) { return case_tables(c).dump(); }
+
+namespace {
+
+/// One table of the keys reference: a row per key with its unit, default, range and meaning.
+template <class T>
+std::string reference_table(const std::string& table, const std::string& about, const std::vector<CaseKey<T>>& keys) {
+  std::string s = "## [" + table + "]\n\n" + about + "\n\n| key | unit | default | range | meaning |\n|---|---|---|---|---|\n";
+  const T defaults{};
+  for (const CaseKey<T>& k : keys) {
+    std::string range = k.range.text();
+    if (k.kind == KeyKind::Choice) {
+      range = "one of";
+      for (std::size_t i = 0; i < k.choices.size(); ++i) range += (i ? ", \"" : " \"") + k.choices[i] + "\"";
+    } else if (k.kind == KeyKind::List) {
+      range = "a list of tables";
+    } else if (k.kind == KeyKind::Table) {
+      range = "a table";
+    } else if (k.kind == KeyKind::Integer) {
+      range = range.empty() ? "an integer" : "an integer " + range;
+    }
+    if (!k.range.why.empty()) range += " (" + k.range.why + ")";
+    std::string fallback = k.default_rule;
+    if (fallback.empty()) {
+      const std::optional<KeyValue> v = k.get(defaults);
+      fallback = v ? key_value_toml(*v) : "none";
+    }
+    std::string meaning = k.meaning;
+    if (!k.applies_when.empty()) meaning += "; only with " + k.applies_when;
+    auto cell = [](std::string text) {
+      for (std::size_t at = text.find('|'); at != std::string::npos; at = text.find('|', at + 2)) text.replace(at, 1, "\\|");
+      return text;
+    };
+    s += "| `" + k.name + "` | " + cell(k.unit) + " | " + cell(fallback) + " | " + cell(range) + " | " + cell(meaning) +
+         " |\n";
+  }
+  return s + "\n";
+}
+
+}  // namespace
+
+std::string case_keys_reference() {
+  std::string s =
+      "# Case keys: the reference\n\n"
+      "Every key of a case file, by table, as the tool's schema holds it (written by `strainwave keys`; a test holds "
+      "this page to it). Units are the file's; a default in words is derived from other keys or tables. A key out of "
+      "its range, of the wrong type or unknown to its table is refused naming the file, the line, the key, the "
+      "value and what was expected. What the keys mean for the physics: [case-keys.md](case-keys.md).\n\n";
+  s += reference_table("gear", "The gear set; defaults: the seed gear. Optional for a flexspline without teeth.",
+                       gear_keys());
+  s += reference_table("flexspline", "The flexspline's geometry (required); the ranges between its keys are checked "
+                                     "together with the mesh's.",
+                       flexspline_keys());
+  s += reference_table("material", "The steel of the drive's parts.", material_keys());
+  s += reference_table("wave_generator", "The generator; optional (without it the flexspline is loaded by torque only).",
+                       wave_generator_keys());
+  s += reference_table("wave_generator.bearing", "Written inline: `bearing = {balls = 15, ball_diameter_mm = 3.175}`.",
+                       generator_bearing_keys());
+  s += reference_table("load", "The FEM's torque and the contact's rated torque.", load_keys());
+  s += "## [catalog]\n\n| key | unit | default | range | meaning |\n|---|---|---|---|---|\n| `size` |  | required | "
+       "one of " + catalog_sizes_text() + " | the catalog size the case is held against (its rated torque, T1, T2, "
+       "stiffness) |\n\n";
+  s += reference_table("circular_spline", "The circular spline's ring (needs [gear]); present by default when the "
+                                          "flexspline has teeth.",
+                       circular_spline_keys());
+  s += reference_table("contact", "The loaded contact.", contact_keys());
+  s += reference_table("lubricant", "Optional: the lubricant the losses are computed with.", lubricant_keys());
+  s += reference_table("mesh", "The TET10 mesh and the harmonic section's grading.", mesh_keys());
+  s += reference_table("solver", "How the flexspline is solved.", solver_keys());
+  s += reference_table("dynamics", "Optional: the multibody run of `strainwave dynamics`.", dynamics_keys());
+  return s;
+}
 
 }  // namespace sw

@@ -74,6 +74,10 @@ std::string case_file_toml(const std::string& path);
 /// back to the same case (printed at the start of a run).
 std::string describe_case(const Case& c);
 
+/// Every key of every table from the stages' schemas (common/case_keys.hpp): unit, default or the rule that derives it,
+/// range and meaning, as a Markdown page (`strainwave keys`, docs/keys.md).
+std::string case_keys_reference();
+
 /// The keys whose value came from elsewhere than the file (derived from other keys, the catalog's rated torque, the
 /// solver "auto" chose), one line each as "  table.key = value  # where it came from"; empty when there are none.
 std::string describe_derived(const Case& c);

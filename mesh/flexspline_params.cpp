@@ -99,6 +99,57 @@ std::string mesh_size_text(const MeshParams& mesh) {
          key("wall_layers", std::to_string(mesh.wall_layers), mesh.wall_layers_from);
 }
 
+const std::vector<CaseKey<FlexsplineParams>>& flexspline_keys() {
+  using F = FlexsplineParams;
+  const auto cup = [](const F& f) { return f.shape == FlexsplineShape::Cup; };
+  static const std::vector<CaseKey<F>> keys = {
+      choice_key<F>("shape", &F::shape, {{"cup", FlexsplineShape::Cup}, {"tube", FlexsplineShape::Tube}},
+                    "a cup (diaphragm and boss at the closed end) or a tube clamped at one end"),
+      number_key<F>("inner_radius_mm", &F::inner_radius_m, 1e-3, "mm", any_value(), "the bore's radius, > 0"),
+      number_key<F>("wall_thickness_mm", &F::wall_thickness_m, 1e-3, "mm", any_value(), "the body wall's, > 0"),
+      number_key<F>("length_mm", &F::length_m, 1e-3, "mm", any_value(),
+                    "the clamped end (or the diaphragm's outer face) to the open end, > 0"),
+      choice_key<F>("teeth", &F::teeth,
+                    {{"none", TeethModel::None}, {"ring", TeethModel::Ring}, {"explicit", TeethModel::Explicit}},
+                    "no teeth, the teeth as a ring on the rim, or as solids on the cup (the 3-D reference, TET10)")
+          .with_default("\"ring\" for a cup, \"none\" for a tube"),
+      number_key<F>("rim_width_mm", &F::rim_width_m, 1e-3, "mm", any_value(),
+                    "the toothed rim's axial width at the open end, > 0 and short of the diaphragm's fillet"),
+      number_key<F>("rim_thickness_mm", &F::rim_thickness_m, 1e-3, "mm", any_value(),
+                    "radial thickness under the teeth, >= wall_thickness_mm; bore + it = the teeth's root circle")
+          .with_default("0.7 (a tube without teeth: wall_thickness_mm)"),
+      number_key<F>("diaphragm_thickness_mm", &F::diaphragm_thickness_m, 1e-3, "mm", any_value(),
+                    "the cup's bottom, > 0 and < length_mm")
+          .only_when(cup, "shape = \"cup\""),
+      number_key<F>("boss_radius_mm", &F::boss_radius_m, 1e-3, "mm", any_value(),
+                    "the clamped hub's radius, in (0, inner_radius_mm)")
+          .only_when(cup, "shape = \"cup\""),
+      number_key<F>("fillet_radius_mm", &F::fillet_radius_m, 1e-3, "mm", any_value(),
+                    "where the diaphragm meets the wall, >= 0 and < inner_radius_mm - boss_radius_mm")
+          .only_when(cup, "shape = \"cup\""),
+  };
+  return keys;
+}
+
+const std::vector<CaseKey<MeshParams>>& mesh_keys() {
+  using M = MeshParams;
+  static const std::vector<CaseKey<M>> keys = {
+      number_key<M>("size_mm", &M::size_m, 1e-3, "mm", above(0), "target edge length away from thin walls")
+          .with_default("160 edges around the bore, 4 across the rim, within [t, 4 t] of the wall t (derive_mesh)"),
+      integer_key<M>("wall_layers", &M::wall_layers, at_least(1), "least TET10 layers through any wall")
+          .with_default("1, more for a wall thicker than size_mm (derive_mesh)"),
+      integer_key<M>("corner_levels", &M::corner_levels,
+                     within(-1, kMaxCornerLevels, false, false, "-1: the rule's value, 0: none"),
+                     "halvings of the diaphragm's layer toward a cup's clamp corners (both solvers)")
+          .with_default("3 + floor(log2(layers through the diaphragm)) for a cup, 0 for a tube"),
+      number_key<M>("max_radius_edge_ratio", &M::max_radius_edge_ratio, 1, "", at_least(1.1), "TetGen's -q bound"),
+      number_key<M>("min_dihedral_deg", &M::min_dihedral_deg, 1, "deg",
+                    within(0, 20, false, true, "TetGen cannot guarantee more"),
+                    "TetGen's least dihedral angle (0: TetGen's default)"),
+  };
+  return keys;
+}
+
 void validate_mesh(const MeshParams& mesh) {
   if (!(mesh.size_m > 0.0))
     throw InputError(mesh_key_message("size_mm", mm_text(mesh.size_m), mesh.size_from, "must be > 0"));
@@ -109,6 +160,7 @@ void validate_mesh(const MeshParams& mesh) {
     throw InputError(mesh_key_message("corner_levels", std::to_string(mesh.corner_levels), mesh.corner_levels_from,
                                       "must be in [-1, " + std::to_string(kMaxCornerLevels) +
                                           "] (-1: the rule's value, 0: none)"));
+  check_key_ranges(mesh, mesh_keys(), "mesh");  // the TetGen quality keys (the three above said where they came from)
 }
 
 void validate_flexspline(const FlexsplineParams& f, const MeshParams& mesh) {

@@ -3,7 +3,9 @@
 // validation: the mesh stage owns them.
 #include <optional>
 #include <string>
+#include <vector>
 
+#include "common/case_keys.hpp"
 #include "gear/gear.hpp"
 
 namespace sw {
@@ -96,6 +98,11 @@ std::string mm_text(double length_m);
 /// The mesh's size_mm and wall_layers for a message: "mesh.size_mm = 1.2, mesh.wall_layers = 1", each derived value
 /// followed by what it was derived from.
 std::string mesh_size_text(const MeshParams& mesh);
+
+/// The [flexspline] table's schema (common/case_keys.hpp). Its ranges depend on each other and are validate_flexspline's.
+const std::vector<CaseKey<FlexsplineParams>>& flexspline_keys();
+/// The [mesh] table's schema; size_mm, wall_layers and corner_levels derived by derive_mesh where left out.
+const std::vector<CaseKey<MeshParams>>& mesh_keys();
 
 /// Checks the mesh keys: size_mm > 0, wall_layers >= 1, corner_levels in [-1, kMaxCornerLevels]. Throws InputError
 /// "mesh.<key> = value; expectation", for a derived value with what it was derived from and the key that sets it.

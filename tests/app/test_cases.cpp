@@ -211,6 +211,15 @@ TEST(Cases, ReadmeDrawingIsTheToolsOwn) {
       << "docs/drive.svg is not what the tool draws now: copy " << (out / "drive.svg") << " there";
 }
 
+// docs/keys.md, the reference of every case key, is what `strainwave keys` prints from the stages' schemas. When a
+// key is added or changed, this fails until the page is written again (`build/strainwave keys --out docs/keys.md`).
+TEST(Cases, TheKeysReferenceIsTheToolsOwn) {
+  const CommandRun r = run_strainwave("keys");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(r.out == read_text("docs/keys.md"))
+      << "docs/keys.md is not what `strainwave keys` prints now: build/strainwave keys --out docs/keys.md";
+}
+
 // A command keeps the case it ran as resolved_case.toml in its output folder (every key, defaults filled in), which runs again
 // to the same resolved case; the console names only the values the file did not give, not every table.
 TEST(Cases, ACommandKeepsItsResolvedCaseAndTheConsoleNamesWhatWasDerived) {

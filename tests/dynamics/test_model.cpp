@@ -198,10 +198,11 @@ TEST(DynamicsValidation, RejectsOutOfRangeKeysWithFileKeyValueAndConstraint) {
   EXPECT_NO_THROW(validate(DynamicsParams{}, "c.toml"));
 }
 
-TEST(DynamicsParamsText, DescribeListsEveryKeyAndTheEnumSpellingsRoundTrip) {
-  const std::string text = describe(DynamicsParams{});
+TEST(DynamicsParamsText, TheSchemaWritesEveryKeyAndTheEnumSpellingsRoundTrip) {
+  const std::string text = keys_toml(DynamicsParams{}, dynamics_keys());
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 35) << text;  // one line per key of [dynamics]
   for (const char* key : {"configuration = \"cs_fixed\"", "ramp = \"paper\"", "drive_speed_rpm = 1000",
-                          "stiffness_N_per_m = 80000000", "damping_Ns_per_m = 1000", "output_step_s = 1e-05",
+                          "stiffness_N_per_m = 8e+07", "damping_Ns_per_m = 1000", "output_step_s = 1e-05",
                           "circular_spline_drag_Nms_per_rad = 1000", "base_clearance_mm = 0"})
     EXPECT_NE(text.find(key), std::string::npos) << key << "\n" << text;
   for (auto c : {DynamicsConfiguration::CsFixed, DynamicsConfiguration::FsFixed, DynamicsConfiguration::WgFixed,

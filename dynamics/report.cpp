@@ -111,28 +111,6 @@ std::vector<OrderLine> in_orders(const std::vector<SpectralLine>& lines, double 
   return out;
 }
 
-DynamicsRunParameters run_parameters(const DynamicsParams& p) {
-  DynamicsRunParameters q;
-  q.drive_speed_rpm = p.drive_speed_rpm;
-  q.drive_ramp_start_s = p.drive_ramp_start_s;
-  q.drive_ramp_end_s = p.drive_ramp_end_s;
-  q.load_torque_Nm = p.load_torque_Nm;
-  q.load_ramp_start_s = p.load_ramp_start_s;
-  q.load_ramp_end_s = p.load_ramp_end_s;
-  q.ramp = p.ramp_shape;
-  q.stiffness_N_per_m = p.stiffness_N_per_m;
-  q.stiffness_variation_N_per_m = p.stiffness_variation_N_per_m;
-  q.damping_Ns_per_m = p.damping_Ns_per_m;
-  q.exponent_stiffness = p.exponent_stiffness;
-  q.exponent_damping = p.exponent_damping;
-  q.exponent_indentation = p.exponent_indentation;
-  q.flexspline_compliance_rad_per_Nm = p.flexspline_compliance_rad_per_Nm;
-  q.output_step_s = p.output_step_s;
-  q.duration_s = p.duration_s;
-  q.relative_tolerance = p.relative_tolerance;
-  return q;
-}
-
 }  // namespace
 
 DynamicsResult dynamics_result(const DynamicsModel& m, const DynamicsSeries& s, const DynamicsSummary& r,
@@ -181,7 +159,7 @@ DynamicsResult dynamics_result(const DynamicsModel& m, const DynamicsSeries& s, 
   d.oversampling = p.oversampling;
   d.output_filter = "Blackman-windowed sinc, flat to 0.4/output_step_s, >= 74 dB from 0.5/output_step_s";
   d.inertia = m.inertia;
-  d.parameters = run_parameters(p);
+  d.parameters = p;
   d.solver_method = "CVODE BDF (SUNDIALS), dense Newton";
   d.solver = s.stats;
   d.simulate_time_s = info.simulate_time_s;

@@ -30,18 +30,6 @@ struct OrderLine {
   double generator_order = 0.0;  ///< frequency / f_g
 };
 
-/// The [dynamics] values dynamics.json repeats.
-struct DynamicsRunParameters {
-  double drive_speed_rpm = 0.0;
-  double drive_ramp_start_s = 0.0, drive_ramp_end_s = 0.0;
-  double load_torque_Nm = 0.0;
-  double load_ramp_start_s = 0.0, load_ramp_end_s = 0.0;
-  RampShape ramp = RampShape::Paper;
-  double stiffness_N_per_m = 0.0, stiffness_variation_N_per_m = 0.0, damping_Ns_per_m = 0.0;
-  double exponent_stiffness = 0.0, exponent_damping = 0.0, exponent_indentation = 0.0;
-  double flexspline_compliance_rad_per_Nm = 0.0;
-  double output_step_s = 0.0, duration_s = 0.0, relative_tolerance = 0.0;
-};
 
 /// Everything dynamics.json holds: the summary of the run over its steady window, with the facts of the model, the
 /// integration and the command that it reports beside it.
@@ -78,7 +66,7 @@ struct DynamicsResult {
   int oversampling = 1;
   std::string output_filter;                              ///< the output low-pass, in words
   BodyInertias inertia;
-  DynamicsRunParameters parameters;
+  DynamicsParams parameters;  ///< the run's [dynamics] table (dynamics.json repeats the ramps, contact law and integrator)
   std::string solver_method;
   SolverStats solver;
   double simulate_time_s = 0.0, total_time_s = 0.0;       ///< wall clock

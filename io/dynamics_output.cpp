@@ -230,7 +230,7 @@ void parameter_fields(Io& io, P& p) {
   io("/parameters/load_torque_Nm", p.load_torque_Nm);
   io("/parameters/load_ramp_s/0", p.load_ramp_start_s);
   io("/parameters/load_ramp_s/1", p.load_ramp_end_s);
-  io.spelling("/parameters/ramp", p.ramp, parse_ramp_shape);
+  io.spelling("/parameters/ramp", p.ramp_shape, parse_ramp_shape);
   io("/parameters/stiffness_N_per_m", p.stiffness_N_per_m);
   io("/parameters/stiffness_variation_N_per_m", p.stiffness_variation_N_per_m);
   io("/parameters/damping_Ns_per_m", p.damping_Ns_per_m);

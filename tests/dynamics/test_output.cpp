@@ -61,8 +61,24 @@ DynamicsResult every_field_set() {
   r.oversampling = 8;
   r.output_filter = "a filter";
   r.inertia.kgm2 = {1.25e-6, 1.5e-6, 3.75e-7, 7.125e-6};
-  r.parameters = {1000.5, 0.0625, 0.01, 100.25, 0.0125, 0.02, RampShape::Cubic, 8e7, 1.6e7, 1000.0, 1.5, 0.25,
-                  1.125, 2e-5, 1e-5, 0.1, 1e-8};
+  DynamicsParams& p = r.parameters;
+  p.drive_speed_rpm = 1000.5;
+  p.drive_ramp_start_s = 0.0625;
+  p.drive_ramp_end_s = 0.01;
+  p.load_torque_Nm = 100.25;
+  p.load_ramp_start_s = 0.0125;
+  p.load_ramp_end_s = 0.02;
+  p.ramp_shape = RampShape::Cubic;
+  p.stiffness_N_per_m = 8e7;
+  p.stiffness_variation_N_per_m = 1.6e7;
+  p.damping_Ns_per_m = 1000.0;
+  p.exponent_stiffness = 1.5;
+  p.exponent_damping = 0.25;
+  p.exponent_indentation = 1.125;
+  p.flexspline_compliance_rad_per_Nm = 2e-5;
+  p.output_step_s = 1e-5;
+  p.duration_s = 0.1;
+  p.relative_tolerance = 1e-8;
   r.solver_method = "CVODE";
   r.solver = {117938, 174549, 2237, 14932, 96};
   r.simulate_time_s = 0.589;
@@ -81,7 +97,7 @@ TEST(DynamicsOutput, EveryFieldSurvivesWritingAndReadingBack) {
   // Typed values, not strings: the enums, the optional, the integers and a nested array.
   EXPECT_EQ(back.configuration, DynamicsConfiguration::AllFree);
   EXPECT_EQ(back.pairs, PairMotion::Frozen);
-  EXPECT_EQ(back.parameters.ramp, RampShape::Cubic);
+  EXPECT_EQ(back.parameters.ramp_shape, RampShape::Cubic);
   ASSERT_TRUE(back.max_pair_force_error_rel.has_value());
   EXPECT_EQ(*back.max_pair_force_error_rel, 2.1e-3);
   ASSERT_EQ(back.pair_forces.size(), 2u);

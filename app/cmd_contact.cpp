@@ -11,9 +11,10 @@
 #include "app/commands.hpp"
 #include "app/contact_job.hpp"
 #include "app/fem_job.hpp"
-#include "contact/harmonic_body.hpp"
 #include "common/error.hpp"
 #include "common/progress.hpp"
+#include "contact/harmonic_body.hpp"
+#include "fem/fourier_analysis.hpp"
 #include "io/case.hpp"
 #include "io/fem_output.hpp"
 

@@ -18,8 +18,10 @@ void add_keys_command(CLI::App& app) {
   cmd->add_option("--out", *out, "write the reference to this file instead of printing it");
   cmd->callback([out] {
     const std::string page = case_keys_reference();
-    if (out->empty()) std::fputs(page.c_str(), stdout);
-    else write_file_atomic(*out, page);
+    if (out->empty())
+      std::fputs(page.c_str(), stdout);
+    else
+      write_file_atomic(*out, page);
   });
 }
 

@@ -8,6 +8,7 @@
 #include "common/progress.hpp"
 #include "contact/harmonic_body.hpp"
 #include "contact/loaded_contact.hpp"
+#include "fem/fourier_analysis.hpp"
 #include "fem/fourier_solver.hpp"
 #include "io/atomic_file.hpp"
 #include "io/fem_output.hpp"

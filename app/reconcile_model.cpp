@@ -10,6 +10,7 @@
 #include "common/error.hpp"
 #include "common/format.hpp"
 #include "contact/harmonic_body.hpp"
+#include "fem/fourier_analysis.hpp"
 #include "fem/fourier_solver.hpp"
 #include "io/case_edit.hpp"
 #include "io/contact_output.hpp"

@@ -32,6 +32,7 @@
 #include "contact/harmonic_body.hpp"
 #include "contact/loaded_contact.hpp"
 #include "dgemm.hpp"
+#include "fem/fourier_analysis.hpp"
 #include "fem/fourier_solver.hpp"
 #include "io/case.hpp"
 

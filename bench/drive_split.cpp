@@ -13,6 +13,7 @@
 #include "contact/harmonic_body.hpp"
 #include "contact/loaded_contact.hpp"
 #include "design/catalog.hpp"
+#include "fem/fourier_analysis.hpp"
 #include "fem/fourier_solver.hpp"
 #include "io/case.hpp"
 #include "io/contact_output.hpp"

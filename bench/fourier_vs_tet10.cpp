@@ -29,6 +29,7 @@
 #include "common/progress.hpp"
 #include "dgemm.hpp"
 #include "fem/flexspline_analysis.hpp"
+#include "fem/fourier_analysis.hpp"
 #include "fem/fourier_solver.hpp"
 #include "io/case.hpp"
 #include "io/inp.hpp"

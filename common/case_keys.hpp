@@ -50,8 +50,12 @@ struct KeyRange {
 };
 
 inline KeyRange any_value() { return {}; }
-inline KeyRange above(double lo, std::string why = "") { return {lo, std::numeric_limits<double>::infinity(), true, false, why}; }
-inline KeyRange at_least(double lo, std::string why = "") { return {lo, std::numeric_limits<double>::infinity(), false, false, why}; }
+inline KeyRange above(double lo, std::string why = "") {
+  return {lo, std::numeric_limits<double>::infinity(), true, false, why};
+}
+inline KeyRange at_least(double lo, std::string why = "") {
+  return {lo, std::numeric_limits<double>::infinity(), false, false, why};
+}
 /// [lo, hi] by default; open ends as asked.
 inline KeyRange within(double lo, double hi, bool lo_open = false, bool hi_open = false, std::string why = "") {
   return {lo, hi, lo_open, hi_open, why};
@@ -64,8 +68,8 @@ using KeyValue = std::variant<double, long long, std::string>;
 enum class KeyKind { Number, Integer, Choice, List, Table };
 
 /// The shortest decimal of `si` in the file's unit (`si_per_unit` SI per file unit: 1e-3 for mm) that reads back to
-/// `si` exactly once multiplied by the unit. A value no decimal reaches (one derived in SI) becomes the shortest decimal
-/// of the value nearest to it that one reaches (1 ulp away), which is written the same again once read back.
+/// `si` exactly once multiplied by the unit. A value no decimal reaches (one derived in SI) becomes the shortest
+/// decimal of the value nearest to it that one reaches (1 ulp away), which is written the same again once read back.
 inline double file_units(double si, double si_per_unit = 1.0) {
   const double exact = si / si_per_unit;
   for (const double target : {si, exact * si_per_unit})
@@ -80,19 +84,19 @@ inline double file_units(double si, double si_per_unit = 1.0) {
 /// One key of a table whose values an option struct T holds.
 template <class T>
 struct CaseKey {
-  std::string name;                 ///< the TOML key
+  std::string name;  ///< the TOML key
   KeyKind kind = KeyKind::Number;
-  std::string unit;                 ///< the file's unit ("mm", "deg", "N m"), "" for a pure number or a word
-  KeyRange range;                   ///< numbers and integers; checked by check_key_ranges
-  std::vector<std::string> choices; ///< the words a choice takes
-  std::string meaning;              ///< one line
+  std::string unit;                  ///< the file's unit ("mm", "deg", "N m"), "" for a pure number or a word
+  KeyRange range;                    ///< numbers and integers; checked by check_key_ranges
+  std::vector<std::string> choices;  ///< the words a choice takes
+  std::string meaning;               ///< one line
   /// How the value of a key the file leaves out is found when it is not T{}'s ("" : T{}'s value is the default);
   /// "required" for a key without default.
   std::string default_rule;
-  std::string applies_when;         ///< in words, for a key that exists only for some values of others ("" : always)
+  std::string applies_when;  ///< in words, for a key that exists only for some values of others ("" : always)
   std::function<std::optional<KeyValue>(const T&)> get;  ///< in the file's units; nullopt: the object has no value
-  std::function<void(T&, const KeyValue&)> set;           ///< from the file's units
-  std::function<bool(const T&)> applies;                  ///< empty: always
+  std::function<void(T&, const KeyValue&)> set;          ///< from the file's units
+  std::function<bool(const T&)> applies;                 ///< empty: always
 
   bool applies_to(const T& t) const { return !applies || applies(t); }
   /// The key with a condition (read and written only where `when` holds of the object read so far).
@@ -119,8 +123,8 @@ CaseKey<T> number_key(std::string name, double T::*member, double si_per_unit, s
 
 /// A number without default (the object holds it only when given).
 template <class T>
-CaseKey<T> optional_number_key(std::string name, std::optional<double> T::*member, double si_per_unit,
-                               std::string unit, KeyRange range, std::string meaning) {
+CaseKey<T> optional_number_key(std::string name, std::optional<double> T::*member, double si_per_unit, std::string unit,
+                               KeyRange range, std::string meaning) {
   CaseKey<T> k{std::move(name), KeyKind::Number, std::move(unit), std::move(range), {}, std::move(meaning)};
   k.default_rule = "none";
   k.get = [=](const T& t) -> std::optional<KeyValue> {
@@ -171,8 +175,10 @@ CaseKey<T> structured_key(std::string name, KeyKind kind, std::string meaning) {
 inline std::string key_value_text(const KeyValue& v) {
   if (const auto* s = std::get_if<std::string>(&v)) return "\"" + *s + "\"";
   std::ostringstream o;
-  if (const auto* i = std::get_if<long long>(&v)) o << *i;
-  else o << std::get<double>(v);
+  if (const auto* i = std::get_if<long long>(&v))
+    o << *i;
+  else
+    o << std::get<double>(v);
   return o.str();
 }
 

@@ -1,7 +1,7 @@
 #pragma once
-// The case file's [dynamics] table, SI units, and its schema. Header-only and dependent on the standard library (and
-// common/case_keys.hpp) alone, so that io/case.hpp can hold it without depending on the dynamics module. Millimetre keys of the file are converted once by
-// the case parser; every key has the default written here.
+// The case file's [dynamics] table, SI units, and its schema. Header-only and dependent on the standard library
+// (and common/case_keys.hpp) alone, so that io/case.hpp can hold it without depending on the dynamics module.
+// Millimetre keys of the file are converted once by the case parser; every key has the default written here.
 #include <optional>
 #include <string>
 #include <vector>
@@ -25,7 +25,8 @@ enum class RampShape { Paper, Cubic };
 
 /// How the tooth pairs move. Moving: every tooth travels through the mesh with the generator's rotation relative to the
 /// flexspline (clearances from the backlash module at the tooth's current angle). Frozen: the pairs of generator angle
-/// 0 stay where they are (the passing of teeth only through the optional k(t)); kept for comparison.
+/// 0 stay where they are (the passing of teeth only through the optional k(t)): the seed paper's model, the reference
+/// the moving mesh's checks reduce to (dynamics/README.md).
 enum class PairMotion { Moving, Frozen };
 /// Stiffness of a moving pair. Teeth: the loaded contact's tooth-pair compliance (bending, foundation and flattening of
 /// both teeth at the contact radius, gear/tooth_stiffness.hpp; linear). Constant: the paper's k·δ^m1 with k(t).
@@ -123,7 +124,8 @@ inline const std::vector<CaseKey<DynamicsParams>>& dynamics_keys() {
       choice_key<P>("configuration", &P::configuration,
                     {{"cs_fixed", DynamicsConfiguration::CsFixed}, {"fs_fixed", DynamicsConfiguration::FsFixed},
                      {"wg_fixed", DynamicsConfiguration::WgFixed}, {"all_free", DynamicsConfiguration::AllFree}},
-                    "which body is held: circular spline, flexspline, generator, or none (a brake on the circular spline)"),
+                    "which body is held: circular spline, flexspline, generator, or none (a brake on the circular "
+                    "spline)"),
       choice_key<P>("ramp", &P::ramp_shape, {{"paper", RampShape::Paper}, {"cubic", RampShape::Cubic}},
                     "shape of the speed and load ramps: the seed paper's two parabolas or the cubic STEP"),
       choice_key<P>("pairs", &P::pair_motion, {{"moving", PairMotion::Moving}, {"frozen", PairMotion::Frozen}},

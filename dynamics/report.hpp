@@ -66,7 +66,8 @@ struct DynamicsResult {
   int oversampling = 1;
   std::string output_filter;                              ///< the output low-pass, in words
   BodyInertias inertia;
-  DynamicsParams parameters;  ///< the run's [dynamics] table (dynamics.json repeats the ramps, contact law and integrator)
+  /// The run's [dynamics] table (dynamics.json repeats the ramps, the contact law and the integrator's settings).
+  DynamicsParams parameters;
   std::string solver_method;
   SolverStats solver;
   double simulate_time_s = 0.0, total_time_s = 0.0;       ///< wall clock

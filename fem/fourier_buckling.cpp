@@ -17,6 +17,7 @@
 #include "common/constants.hpp"
 #include "common/error.hpp"
 #include "fem/cholmod_factor.hpp"
+#include "fem/fourier_analysis.hpp"
 
 namespace sw {
 namespace {

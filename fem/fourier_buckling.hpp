@@ -32,6 +32,7 @@
 
 #include "common/material.hpp"
 #include "fem/flexspline_model.hpp"
+#include "fem/fourier_analysis.hpp"
 #include "fem/fourier_element.hpp"
 #include "fem/fourier_section.hpp"
 #include "fem/fourier_solver.hpp"

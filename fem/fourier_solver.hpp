@@ -205,16 +205,6 @@ SectionMesh case_section(const FlexsplineModel& c);
 /// at its case mesh 251 MB against 336 estimated; at a 0.1 mm section, 62k nodes, 4.8 GB against 5.2).
 ModelSizeEstimate fourier_model_size(const FlexsplineModel& c, const SectionMesh& section);
 
-/// Solves the case (teeth "ring" or "none") by harmonics 0..c.solver.harmonics on its meridian section. With
-/// `grid_sectors` > 0 also revolves the section into a TET10 grid of that many sectors (midside nodes included,
-/// every node evaluated from the series) and fills figures.cases[].u / .stress on it for VTU output.
-FourierSolution analyse_flexspline_fourier(const FlexsplineModel& c, int grid_sectors = 0,
-                                          const BandRequest& request = {});
-
-/// Same on a given section (tests: the annulus of fem/fourier_section.hpp).
-FourierSolution analyse_section_fourier(const FlexsplineModel& c, SectionMesh section, int grid_sectors = 0,
-                                        const BandRequest& request = {});
-
 /// The rim's neutral curves (w, v, μ at 1° steps in the *_wg fields) of a harmonic field (the generator case) at
 /// sections z_m of the neutral radius: the harmonic counterpart of fem/flexspline_analysis.hpp's neutral_curves_at.
 std::vector<NeutralCurveSamples> neutral_curves_at(const SectionMesh& s, const HarmonicField& u, double radius_m,

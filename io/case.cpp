@@ -233,7 +233,8 @@ FlexsplineParams read_flexspline(TableReader r) {
   const auto& keys = flexspline_keys();
   FlexsplineParams f;
   // Ranges and consistency: mesh/flexspline.hpp validate_flexspline, once the mesh table is read (parse_case).
-  for (const char* key : {"shape", "inner_radius_mm", "wall_thickness_mm", "length_mm"}) read_key(r, f, key_named(keys, key));
+  for (const char* key : {"shape", "inner_radius_mm", "wall_thickness_mm", "length_mm"})
+    read_key(r, f, key_named(keys, key));
   f.teeth = f.shape == FlexsplineShape::Cup ? TeethModel::Ring : TeethModel::None;
   read_key(r, f, key_named(keys, "teeth"));
   if (f.teeth != TeethModel::None) {
@@ -265,7 +266,8 @@ GeneratorBearing read_bearing(TableReader r, double bore_radius_m) {
   GeneratorBearing b;
   for (const char* key : {"balls", "ball_diameter_mm"})
     if (!r.given(key))
-      throw InputError(r.file() + ": " + r.name() + "." + key + " is missing; a bearing needs balls and ball_diameter_mm");
+      throw InputError(r.file() + ": " + r.name() + "." + key +
+                       " is missing; a bearing needs balls and ball_diameter_mm");
   read_keys(r, b, generator_bearing_keys());
   r.reject_unknown();
   b.pitch_radius_m = bearing_pitch_radius_m(bore_radius_m, b.ball_diameter_m);
@@ -924,7 +926,8 @@ namespace {
 /// One table of the keys reference: a row per key with its unit, default, range and meaning.
 template <class T>
 std::string reference_table(const std::string& table, const std::string& about, const std::vector<CaseKey<T>>& keys) {
-  std::string s = "## [" + table + "]\n\n" + about + "\n\n| key | unit | default | range | meaning |\n|---|---|---|---|---|\n";
+  std::string s = "## [" + table + "]\n\n" + about +
+                  "\n\n| key | unit | default | range | meaning |\n|---|---|---|---|---|\n";
   const T defaults{};
   for (const CaseKey<T>& k : keys) {
     std::string range = k.range.text();
@@ -947,7 +950,8 @@ std::string reference_table(const std::string& table, const std::string& about, 
     std::string meaning = k.meaning;
     if (!k.applies_when.empty()) meaning += "; only with " + k.applies_when;
     auto cell = [](std::string text) {
-      for (std::size_t at = text.find('|'); at != std::string::npos; at = text.find('|', at + 2)) text.replace(at, 1, "\\|");
+      for (std::size_t at = text.find('|'); at != std::string::npos; at = text.find('|', at + 2))
+        text.replace(at, 1, "\\|");
       return text;
     };
     s += "| `" + k.name + "` | " + cell(k.unit) + " | " + cell(fallback) + " | " + cell(range) + " | " + cell(meaning) +
@@ -971,7 +975,8 @@ std::string case_keys_reference() {
                                      "together with the mesh's.",
                        flexspline_keys());
   s += reference_table("material", "The steel of the drive's parts.", material_keys());
-  s += reference_table("wave_generator", "The generator; optional (without it the flexspline is loaded by torque only).",
+  s += reference_table("wave_generator",
+                       "The generator; optional (without it the flexspline is loaded by torque only).",
                        wave_generator_keys());
   s += reference_table("wave_generator.bearing", "Written inline: `bearing = {balls = 15, ball_diameter_mm = 3.175}`.",
                        generator_bearing_keys());

@@ -99,7 +99,7 @@ std::string mm_text(double length_m);
 /// followed by what it was derived from.
 std::string mesh_size_text(const MeshParams& mesh);
 
-/// The [flexspline] table's schema (common/case_keys.hpp). Its ranges depend on each other and are validate_flexspline's.
+/// The [flexspline] table's schema (common/case_keys.hpp). Its ranges depend on each other: validate_flexspline's.
 const std::vector<CaseKey<FlexsplineParams>>& flexspline_keys();
 /// The [mesh] table's schema; size_mm, wall_layers and corner_levels derived by derive_mesh where left out.
 const std::vector<CaseKey<MeshParams>>& mesh_keys();

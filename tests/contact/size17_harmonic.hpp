@@ -5,6 +5,7 @@
 
 #include "app/contact_job.hpp"
 #include "contact/harmonic_body.hpp"
+#include "fem/fourier_analysis.hpp"
 #include "fem/fourier_solver.hpp"
 #include "io/case.hpp"
 

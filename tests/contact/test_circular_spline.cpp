@@ -19,6 +19,7 @@
 #include "contact/harmonic_body.hpp"
 #include "contact/hat_patterns.hpp"
 #include "contact/loaded_contact.hpp"
+#include "fem/fourier_analysis.hpp"
 #include "gear/tooth_profile.hpp"
 #include "io/case.hpp"
 

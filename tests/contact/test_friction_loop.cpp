@@ -8,6 +8,7 @@
 #include "app/contact_job.hpp"
 #include "contact/harmonic_body.hpp"
 #include "contact/loaded_contact.hpp"
+#include "fem/fourier_analysis.hpp"
 #include "fem/fourier_solver.hpp"
 #include "io/case.hpp"
 #include "io/contact_output.hpp"

@@ -17,6 +17,7 @@
 #include "contact/loaded_contact.hpp"
 #include "contact/tet10_body.hpp"
 #include "fem/flexspline_analysis.hpp"
+#include "fem/fourier_analysis.hpp"
 #include "fem/fourier_solver.hpp"
 #include "io/case.hpp"
 #include "mesh/flexspline.hpp"

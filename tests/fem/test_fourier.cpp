@@ -9,6 +9,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "fem/fourier_analysis.hpp"
 #include "fem/fourier_section.hpp"
 #include "fem/fourier_solver.hpp"
 

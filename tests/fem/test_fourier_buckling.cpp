@@ -11,6 +11,7 @@
 #include <string>
 
 #include "common/error.hpp"
+#include "fem/fourier_analysis.hpp"
 #include "fem/fourier_buckling.hpp"
 #include "fem/fourier_section.hpp"
 #include "fem/fourier_solver.hpp"

@@ -10,6 +10,7 @@
 #include <cstdio>
 
 #include "fem/flexspline_analysis.hpp"
+#include "fem/fourier_analysis.hpp"
 #include "fem/fourier_solver.hpp"
 #include "mesh/shapes.hpp"
 

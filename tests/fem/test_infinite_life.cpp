@@ -7,6 +7,7 @@
 #include <limits>
 #include <numbers>
 
+#include "fem/fourier_analysis.hpp"
 #include "fem/infinite_life.hpp"
 #include "io/case.hpp"
 

@@ -21,6 +21,7 @@
 #include "fem/elasticity.hpp"
 #include "fem/flexspline_analysis.hpp"
 #include "fem/flexspline_system.hpp"
+#include "fem/fourier_analysis.hpp"
 #include "fem/fourier_buckling.hpp"
 #include "fem/fourier_section.hpp"
 #include "fem/fourier_solver.hpp"

@@ -90,7 +90,8 @@ TEST(CaseFile, SolverTable) {
             SolverMethod::Fourier);
   EXPECT_NE(error_of(std::string(kTube) + "[solver]\nmethod = \"fft\"\n").find("solver.method = 'fft'; expected one of"),
             std::string::npos);
-  EXPECT_NE(error_of(std::string(kTube) + "[solver]\nharmonics = -1\n").find("solver.harmonics = -1; must be in [0, 4096]"),
+  EXPECT_NE(error_of(std::string(kTube) + "[solver]\nharmonics = -1\n")
+                .find("solver.harmonics = -1; must be in [0, 4096]"),
             std::string::npos);
   EXPECT_NE(error_of(std::string(kTube) + "[solver]\nharmonic = 8\n").find("solver.harmonic = 8; unknown key"),
             std::string::npos);

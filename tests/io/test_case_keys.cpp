@@ -53,10 +53,12 @@ std::map<std::string, std::set<std::string>> schema_names() {
           {"dynamics", names(dynamics_keys())}};
 }
 
-constexpr const char* kTube = "[flexspline]\nshape = \"tube\"\ninner_radius_mm = 18.5\nwall_thickness_mm = 1.0\n"
-                              "length_mm = 30\nteeth = \"none\"\n";
-constexpr const char* kExtras = "\n[contact]\nface_slices = 2\n[lubricant]\nviscosity_40C_mm2_s = 100\n"
-                                "viscosity_100C_mm2_s = 10\ntemperature_C = 40\n[dynamics]\n";
+constexpr const char* kTube =
+    "[flexspline]\nshape = \"tube\"\ninner_radius_mm = 18.5\nwall_thickness_mm = 1.0\n"
+    "length_mm = 30\nteeth = \"none\"\n";
+constexpr const char* kExtras =
+    "\n[contact]\nface_slices = 2\n[lubricant]\nviscosity_40C_mm2_s = 100\n"
+    "viscosity_100C_mm2_s = 10\ntemperature_C = 40\n[dynamics]\n";
 
 /// The shipped cases, with the optional tables added, and a tube under each generator model.
 std::vector<std::pair<std::string, std::string>> case_texts() {
@@ -78,11 +80,13 @@ std::vector<std::pair<std::string, std::string>> case_texts() {
   texts.emplace_back("two_force.toml", wg + "model = \"two_force\"\nforce_N = 50\n");
   texts.emplace_back("rollers.toml", wg + "model = \"rollers\"\nradial_deformation_mm = 0.2\n");
   texts.emplace_back("forces.toml", wg + "model = \"forces\"\nforces = [{angle_deg = 10, weight = 1}]\n");
-  texts.emplace_back("list_cam.toml", wg + "model = \"cam\"\nprofile = \"list\"\nfit_um = -2\nprofile_points = "
-                                           "[{angle_deg = 0, radius_mm = 18.7}, {angle_deg = 45, radius_mm = 18.6},\n"
-                                           "{angle_deg = 90, radius_mm = 18.3}, {angle_deg = 135, radius_mm = 18.6}]\n");
-  texts.emplace_back("strengths.toml", std::string(kTube) + "[material]\nfatigue_limit_MPa = 400\n"
-                                                            "ultimate_strength_MPa = 900\nyield_strength_MPa = 700\n");
+  texts.emplace_back("list_cam.toml", wg +
+                                          "model = \"cam\"\nprofile = \"list\"\nfit_um = -2\nprofile_points = "
+                                          "[{angle_deg = 0, radius_mm = 18.7}, {angle_deg = 45, radius_mm = 18.6},\n"
+                                          "{angle_deg = 90, radius_mm = 18.3}, {angle_deg = 135, radius_mm = 18.6}]\n");
+  texts.emplace_back("strengths.toml", std::string(kTube) +
+                                           "[material]\nfatigue_limit_MPa = 400\n"
+                                           "ultimate_strength_MPa = 900\nyield_strength_MPa = 700\n");
   return texts;
 }
 
@@ -140,8 +144,10 @@ std::string outside(const CaseKey<T>& k) {
   s.precision(17);
   const KeyRange& r = k.range;
   const double step = k.kind == KeyKind::Integer ? 1.0 : 0.5;
-  if (std::isfinite(r.lo)) s << (r.lo_open ? r.lo : r.lo - step * std::max(1.0, std::abs(r.lo)));
-  else s << (r.hi_open ? r.hi : r.hi + step * std::max(1.0, std::abs(r.hi)));
+  if (std::isfinite(r.lo))
+    s << (r.lo_open ? r.lo : r.lo - step * std::max(1.0, std::abs(r.lo)));
+  else
+    s << (r.hi_open ? r.hi : r.hi + step * std::max(1.0, std::abs(r.hi)));
   std::string v = s.str();
   if (k.kind == KeyKind::Number && v.find_first_of(".e") == std::string::npos) v += ".0";
   return v;

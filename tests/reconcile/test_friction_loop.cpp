@@ -15,6 +15,7 @@
 #include "app/reconcile_baseline.hpp"
 #include "contact/harmonic_body.hpp"
 #include "contact/loaded_contact.hpp"
+#include "fem/fourier_analysis.hpp"
 #include "fem/fourier_solver.hpp"
 #include "io/atomic_file.hpp"
 #include "io/case.hpp"

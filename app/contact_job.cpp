@@ -73,8 +73,7 @@ ContactOptions contact_options(const Case& c, SeriesParts series) {
   ContactOptions o;
   o.rated_torque_Nm = c.load.rated_torque_Nm.value_or(c.load.torque_Nm);
   o.series = std::move(series);
-  o.face_slices = c.contact.face_slices;
-  o.friction_coefficient = c.contact.friction_coefficient;
+  o.contact = c.contact;
   if (const std::optional<CatalogLaw> reference = catalog_reference(c)) {
     o.catalog_t1_Nm = reference->t1_Nm;
     o.catalog_t2_Nm = reference->t2_Nm;

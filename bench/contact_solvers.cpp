@@ -135,8 +135,8 @@ sw::ContactAnalysis contact_of(const SolvedCase& s, double mu, int loop_steps) {
   sw::ContactOptions o;
   o.rated_torque_Nm = s.c.load.rated_torque_Nm.value_or(s.c.load.torque_Nm);
   o.series = s.series;
-  o.face_slices = s.c.contact.face_slices;
-  o.friction_coefficient = mu;
+  o.contact.face_slices = s.c.contact.face_slices;
+  o.contact.friction_coefficient = mu;
   o.loop_steps_per_quarter = loop_steps;
   return sw::analyse_contact(s.m, sw::HarmonicBody(s.m, s.fourier), sw::fem_readout(s.fourier.figures), o);
 }

@@ -104,7 +104,7 @@ public:
     set_up_problem();
     step_through_torques();
     if (twist_reaches_flanks_left_out()) return std::nullopt;
-    if (opt_.friction_coefficient > 0) run_friction_loop();
+    if (opt_.contact.friction_coefficient > 0) run_friction_loop();
     describe_curve();
     split_compliance();
     measure_zone_edge_teeth();
@@ -273,7 +273,7 @@ void ContactAnalyser::read_rim_at_rest() {
   n_teeth_ = out_.half_turn_pairs ? 2.0 : 1.0;
   // The face width in axial slices, each with the rim as the generator leaves it at the slice's centre (the FEM's
   // generator case read there: the cup's coning). One slice is the centre section's curve itself.
-  n_slices_ = std::max(1, opt_.face_slices);
+  n_slices_ = std::max(1, opt_.contact.face_slices);
   std::vector<NeutralCurve> read;
   read_face_sections(read);
   if (n_slices_ > 1 && read.empty())
@@ -365,7 +365,7 @@ void ContactAnalyser::add_flank(FlankContact f, const FlankClearance& fc, int k,
   // One slice loads the whole face; more, each its own band of the rim.
   patterns_.push_back({stations, -fc.normal, fc.point_f.norm(), n_slices_ > 1 ? j : -1, 1, f.phi_rad, on_tooth});
   // With friction, the flank's tangential force: along the profile in the transverse plane (the normal turned by 90°).
-  if (opt_.friction_coefficient > 0)
+  if (opt_.contact.friction_coefficient > 0)
     tangential_.push_back({stations, Eigen::Vector2d(fc.normal.y(), -fc.normal.x()), fc.point_f.norm(),
                            n_slices_ > 1 ? j : -1, 1, f.phi_rad, on_tooth});
   // Its force on the circular spline: the opposite, at the contact point on the circular spline's tooth.
@@ -677,7 +677,7 @@ FrictionalContactProblem ContactAnalyser::frictional_problem() const {
   for (Eigen::Index k = nf_; k < n; ++k) F.A_tt(k, k) = A_tt_.diagonal().mean();  // keeps the block definite
   F.lambda_t = lambda_t_.head(n);
   F.friction_coefficient = Eigen::VectorXd::Zero(n);
-  F.friction_coefficient.head(nf_).setConstant(opt_.friction_coefficient);
+  F.friction_coefficient.head(nf_).setConstant(opt_.contact.friction_coefficient);
   return F;
 }
 
@@ -701,7 +701,7 @@ void ContactAnalyser::run_friction_loop() {
   const SteadyLoop loop = run_steady_loop(step, unloaded_state(F), T_R_, N, 1e-4, 4);
   bearing_c_ = at_rated;
   FrictionLoop f;
-  f.friction_coefficient = opt_.friction_coefficient;
+  f.friction_coefficient = opt_.contact.friction_coefficient;
   f.steps_per_quarter = N;
   f.cycles = loop.cycles;
   f.hysteresis_loss_rad = loop.reading.hysteresis_loss_rad;

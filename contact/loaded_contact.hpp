@@ -30,6 +30,7 @@
 #include "fem/flexspline_model.hpp"
 #include "contact/circular_spline.hpp"
 #include "contact/contact_body.hpp"
+#include "contact/contact_params.hpp"
 #include "contact/contact_problem.hpp"
 #include "contact/ratcheting.hpp"
 #include "contact/tet10_body.hpp"
@@ -84,16 +85,15 @@ struct ContactOptions {
   /// size 17 at ratio 100, two flank pairs beyond 3 body twists close from 23 N·m on (K3 +0.07 %). The default keeps
   /// every flank in (infinity); a finite reach is for the multibody table, whose phases it keeps small.
   double reach_factor = std::numeric_limits<double>::infinity();
-  /// Axial slices of the face width, each flank one contact per slice (its own gap, load band and 1/n of the face's
-  /// tooth stiffness, the slices' springs side by side). The gaps follow the cup's coning: each slice's from the
-  /// FEM's rim as the generator leaves it at the slice's centre (needs the solution's generator case). 1: the face
-  /// width as one contact at its centre section.
-  int face_slices = 1;
+  /// The case's [contact] table (contact/contact_params.hpp). face_slices: axial slices of the face width, each flank
+  /// one contact per slice (its own gap, load band and 1/n of the face's tooth stiffness, the slices' springs side by
+  /// side); the gaps follow the cup's coning: each slice's from the FEM's rim as the generator leaves it at the
+  /// slice's centre (needs the solution's generator case); 1: the face width as one contact at its centre section.
+  /// friction_coefficient: Coulomb's μ on the tooth flanks; > 0 adds the load cycle's loop (ContactAnalysis::friction).
+  /// The generator's stations roll: frictionless.
+  ContactParams contact;
   /// Catalog breakpoints (T1, T2) to read K1..K3 at; 0: fitted to the curve.
   double catalog_t1_Nm = 0, catalog_t2_Nm = 0;
-  /// Coulomb's μ on the tooth flanks ([contact] friction_coefficient); > 0 adds the load cycle's loop
-  /// (ContactAnalysis::friction). The generator's stations roll: frictionless.
-  double friction_coefficient = 0;
   /// The loop's torque steps a quarter cycle (T_R/n each; contact/README.md's step study on the size-17 cup).
   int loop_steps_per_quarter = 20;
   /// > 0: the ramp past rated torque to the ratcheting torque (contact/ratcheting.hpp), looked for up to this torque;
@@ -105,7 +105,7 @@ struct ContactOptions {
 /// One flank that can take part.
 struct FlankContact {
   int tooth = 0;               ///< flexspline tooth index (its half-turn partner is tooth + z_f/2 when paired)
-  int slice = 0;               ///< axial slice of the face width (ContactOptions::face_slices)
+  int slice = 0;               ///< axial slice of the face width (ContactOptions::contact.face_slices)
   double phi_rad = 0;          ///< material angle from the major axis
   Flank flank = Flank::Ccw;
   double closing_angle_rad = 0;  ///< rigid turn of the output that closes it (< 0: overlap at rest)

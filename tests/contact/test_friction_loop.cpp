@@ -42,7 +42,7 @@ ContactAnalysis loop_at(double mu, int loop_steps, bool band_held = false) {
   o.rated_torque_Nm = *s.c.load.rated_torque_Nm;
   o.series = app::series_parts(s.c);
   o.loop_steps_per_quarter = loop_steps;
-  o.friction_coefficient = mu;
+  o.contact.friction_coefficient = mu;
   return analyse_contact(m, HarmonicBody(m, s.fourier), fem_readout(s.fourier.figures), o);
 }
 

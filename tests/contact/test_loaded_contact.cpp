@@ -227,7 +227,7 @@ TEST(LoadedContact, FaceSlicesFollowTheCupsConing) {
   ContactOptions o;
   o.rated_torque_Nm = 44.1;
   o.steps = 4;
-  o.face_slices = 3;
+  o.contact.face_slices = 3;
   o.series.tooth_pair_m_per_N = [](double, double) { return 1e-8; };
   const ContactAnalysis a = analyse_contact(flexspline_model(k.c), k.mesh, k.system, fem_readout(k.fem), o);
   double first[3] = {1, 1, 1};

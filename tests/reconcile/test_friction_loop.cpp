@@ -55,9 +55,9 @@ const Drive& preloaded_size17() {
     ContactOptions o;
     o.rated_torque_Nm = *k->c.load.rated_torque_Nm;
     o.series = app::series_parts(k->c);
-    o.face_slices = 3;
+    o.contact.face_slices = 3;
     k->frictionless = analyse_contact(m, HarmonicBody(m, f), fem_readout(f.figures), o);
-    o.friction_coefficient = 0.1;
+    o.contact.friction_coefficient = 0.1;
     k->loop = analyse_contact(m, HarmonicBody(m, f), fem_readout(f.figures), o);
     k->dir = std::filesystem::temp_directory_path() / ("sw_reconcile_loop_" + std::to_string(::getpid()));
     std::filesystem::create_directories(k->dir);

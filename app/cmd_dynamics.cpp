@@ -18,7 +18,7 @@
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "dynamics/analysis.hpp"
-#include "dynamics/report.hpp"
+#include "dynamics/run_summary.hpp"
 #include "io/atomic_file.hpp"
 #include "io/case.hpp"
 #include "io/dynamics_output.hpp"

@@ -23,7 +23,7 @@
 #include "io/provenance.hpp"
 #include "io/reconcile_output.hpp"
 #include "reconcile/reconcile.hpp"
-#include "reconcile/report.hpp"
+#include "reconcile/verdict.hpp"
 
 namespace sw::app {
 namespace {

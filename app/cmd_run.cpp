@@ -8,14 +8,14 @@
 #include <CLI/CLI.hpp>
 
 #include "app/backlash_job.hpp"
-#include "app/contact_job.hpp"
 #include "app/commands.hpp"
+#include "app/contact_job.hpp"
 #include "app/fem_job.hpp"
 #include "common/constants.hpp"
 #include "common/progress.hpp"
 #include "io/atomic_file.hpp"
 #include "io/case.hpp"
-#include "io/report.hpp"
+#include "io/run_report.hpp"
 #include "kinematics/neutral_curve.hpp"
 
 namespace sw::app {

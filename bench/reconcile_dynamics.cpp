@@ -35,7 +35,7 @@
 #include "app/reconcile_baseline.hpp"
 #include "common/progress.hpp"
 #include "io/case.hpp"
-#include "reconcile/catalog.hpp"
+#include "reconcile/effects.hpp"
 #include "reconcile/fit.hpp"
 #include "reconcile/reconcile.hpp"
 #include "reconcile/stats.hpp"

@@ -1,12 +1,12 @@
 #pragma once
-// dynamics.json, the typed result of `strainwave dynamics` (dynamics/report.hpp's DynamicsResult): its writer and its
+// dynamics.json, the typed result of `strainwave dynamics` (dynamics/run_summary.hpp's DynamicsResult): its writer and its
 // reader side by side, one key for one field. Keys in SPEC.md ("Dynamics result"); objects' keys sorted. The path of
 // the case file the run read is "case_file".
 #include <filesystem>
 #include <optional>
 #include <string>
 
-#include "dynamics/report.hpp"
+#include "dynamics/run_summary.hpp"
 #include "io/provenance.hpp"
 
 namespace sw {

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "io/provenance.hpp"
-#include "reconcile/report.hpp"
+#include "reconcile/verdict.hpp"
 
 namespace sw {
 

@@ -6,7 +6,7 @@
 
 #include <Eigen/Dense>
 
-#include "reconcile/catalog.hpp"
+#include "reconcile/effects.hpp"
 #include "reconcile/stats.hpp"
 
 namespace sw::reconcile {

@@ -11,7 +11,7 @@
 
 #include <Eigen/Dense>
 
-#include "reconcile/catalog.hpp"
+#include "reconcile/effects.hpp"
 #include "reconcile/experiment.hpp"
 #include "reconcile/reconcile.hpp"
 

@@ -9,7 +9,7 @@
 #include "common/error.hpp"
 #include "common/format.hpp"
 #include "common/progress.hpp"
-#include "reconcile/catalog.hpp"
+#include "reconcile/effects.hpp"
 #include "reconcile/model_update.hpp"
 #include "reconcile/rerun.hpp"
 

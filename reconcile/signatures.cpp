@@ -2,7 +2,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "reconcile/catalog.hpp"
+#include "reconcile/effects.hpp"
 
 namespace sw::reconcile {
 

@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/error.hpp"
-#include "reconcile/catalog.hpp"
+#include "reconcile/effects.hpp"
 
 namespace sw::reconcile {
 

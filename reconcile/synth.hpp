@@ -6,7 +6,7 @@
 #include <variant>
 #include <vector>
 
-#include "reconcile/catalog.hpp"
+#include "reconcile/effects.hpp"
 #include "reconcile/experiment.hpp"
 #include "reconcile/recording.hpp"
 

@@ -8,7 +8,7 @@
 
 #include "common/error.hpp"
 #include "dynamics/model.hpp"
-#include "dynamics/report.hpp"
+#include "dynamics/run_summary.hpp"
 #include "dynamics/simulate.hpp"
 #include "tests/dynamics/seed_models.hpp"
 

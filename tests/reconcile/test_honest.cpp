@@ -14,9 +14,9 @@
 #include "common/progress.hpp"
 #include "reconcile/laws.hpp"
 #include "reconcile/reconcile.hpp"
-#include "reconcile/report.hpp"
 #include "reconcile/rerun.hpp"
 #include "reconcile/synth.hpp"
+#include "reconcile/verdict.hpp"
 #include "tests/reconcile/result_lookup.hpp"
 
 using namespace sw::reconcile;

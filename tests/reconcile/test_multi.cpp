@@ -13,7 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/progress.hpp"
-#include "reconcile/catalog.hpp"
+#include "reconcile/effects.hpp"
 #include "reconcile/reconcile.hpp"
 #include "reconcile/synth.hpp"
 #include "tests/reconcile/result_lookup.hpp"

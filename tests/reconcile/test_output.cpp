@@ -11,7 +11,7 @@
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "io/reconcile_output.hpp"
-#include "reconcile/report.hpp"
+#include "reconcile/verdict.hpp"
 
 using namespace sw::reconcile;
 

@@ -1,4 +1,4 @@
-#include "reconcile/report.hpp"
+#include "reconcile/verdict.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <fftw3.h>
 
 #include "common/svg_plot.hpp"
-#include "reconcile/catalog.hpp"
+#include "reconcile/effects.hpp"
 
 namespace sw::reconcile {
 

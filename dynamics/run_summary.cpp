@@ -1,4 +1,4 @@
-#include "dynamics/report.hpp"
+#include "dynamics/run_summary.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "io/report.hpp"
+#include "io/run_report.hpp"
 
 #include <algorithm>
 #include <cmath>

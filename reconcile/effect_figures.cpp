@@ -2,7 +2,7 @@
 // torque.
 #include <cmath>
 
-#include "reconcile/catalog.hpp"
+#include "reconcile/effects.hpp"
 #include "reconcile/fit.hpp"
 
 namespace sw::reconcile {

@@ -1,4 +1,4 @@
-#include "reconcile/catalog.hpp"
+#include "reconcile/effects.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -12,7 +12,7 @@
 
 #include "common/error.hpp"
 #include "common/svg_plot.hpp"
-#include "io/report.hpp"
+#include "io/run_report.hpp"
 #include "tests/io/output_samples.hpp"
 
 namespace {

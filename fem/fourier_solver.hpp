@@ -32,6 +32,7 @@
 #include "fem/cholmod_factor.hpp"
 #include "fem/flexspline_analysis.hpp"
 #include "fem/fourier_element.hpp"
+#include "fem/fourier_loads.hpp"
 #include "fem/fourier_section.hpp"
 #include "mesh/estimate.hpp"
 #include "mesh/tet_mesh.hpp"
@@ -64,94 +65,8 @@ Eigen::MatrixXd solve_harmonic(const SectionMesh& s, const Material& m, int n, c
 Eigen::MatrixXd section_traction_load(const SectionMesh& s, int marker, const Eigen::Vector3d& traction);
 
 
-/// The wave generator's contact stations (fem/flexspline_system.hpp's generator_stations) in the harmonic basis.
-/// Station pair j's unit load, 1 N of normal force spread by the hat at θ_j and at θ_j + π, uniform across the band,
-/// has the generalised loads of harmonic n
-///   symmetric family: Φs(j,0)·E_r + Φs(j,1)·E_θ,   antisymmetric family: Φa(j,0)·E_r + Φa(j,1)·E_θ,
-/// with E_r = (S, 0, 0), E_θ = (0, S, 0), S_i = ∫ N_i r ds over the band's inner-wall edges, and Φ the θ moments of
-/// the hat times the normal's components (Φs = (∫g_r cos nθ, ∫g_θ sin nθ), Φa = (∫g_r sin nθ, −∫g_θ cos nθ), g the
-/// traction per unit S). So every station's load of a harmonic lies in the span of E_r and E_θ: two solves per
-/// harmonic, U_r = K_n⁻¹E_r and U_θ = K_n⁻¹E_θ, give the whole influence matrix (exact up to the truncation at N)
-///   C = Σ_n Φs_n·G_n·Φs_nᵀ + Φa_n·G_n·Φa_nᵀ,   G_n(a, b) = E_aᵀ·U_b,
-/// and the displacement of any station forces p is Σ_n (Φs_nᵀp)·(U_r, U_θ) per family.
-struct HarmonicStations {
-  bool unilateral = false;
-  std::vector<double> angle_rad;      ///< first station of each pair (the other at + π)
-  double half_width_rad = 0;          ///< of each station's hat (the stations' spacing)
-  Eigen::VectorXd obstacle_m;         ///< per pair, as GeneratorStations::obstacle_m
-  Eigen::VectorXd S;                  ///< n_nodes
-  std::vector<Eigen::MatrixXd> phi_sym, phi_anti;  ///< per harmonic: pairs × 2
-
-  Eigen::MatrixXd unit(int component) const {
-    Eigen::MatrixXd E = Eigen::MatrixXd::Zero(S.size(), 3);
-    E.col(component) = S;
-    return E;
-  }
-  double load_norm(int n) const {
-    return std::max(phi_sym[n].cwiseAbs().maxCoeff(), phi_anti[n].cwiseAbs().maxCoeff()) * S.cwiseAbs().maxCoeff();
-  }
-  /// (E_rᵀu, E_θᵀu) of amplitudes u (n_nodes × 3).
-  Eigen::Vector2d moments(const Eigen::MatrixXd& u) const { return {S.dot(u.col(0)), S.dot(u.col(1))}; }
-  Eigen::MatrixXd influence(const std::vector<Eigen::MatrixXd>& Ur, const std::vector<Eigen::MatrixXd>& Ut) const {
-    const Eigen::Index m = static_cast<Eigen::Index>(angle_rad.size());
-    Eigen::MatrixXd C = Eigen::MatrixXd::Zero(m, m);
-    for (std::size_t n = 0; n < Ur.size(); ++n) {
-      if (Ur[n].size() == 0) continue;
-      Eigen::Matrix2d G;
-      G.col(0) = moments(Ur[n]);
-      G.col(1) = moments(Ut[n]);
-      C.noalias() += phi_sym[n] * G * phi_sym[n].transpose() + phi_anti[n] * G * phi_anti[n].transpose();
-    }
-    return 0.5 * (C + C.transpose());  // symmetric up to round-off (G_n is); make it exactly so
-  }
-  /// Work-conjugate displacement of each pair (f_jᵀu) in a field.
-  Eigen::VectorXd project(const HarmonicField& u) const {
-    Eigen::VectorXd v = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(angle_rad.size()));
-    for (std::size_t n = 0; n < u.sym.size(); ++n)
-      if (u.sym[n].size() != 0) v += phi_sym[n] * moments(u.sym[n]) + phi_anti[n] * moments(u.anti[n]);
-    return v;
-  }
-  HarmonicField field(const Eigen::VectorXd& p, const std::vector<Eigen::MatrixXd>& Ur,
-                      const std::vector<Eigen::MatrixXd>& Ut) const {
-    HarmonicField h;
-    h.sym.assign(Ur.size(), {});
-    h.anti.assign(Ur.size(), {});
-    for (std::size_t n = 0; n < Ur.size(); ++n) {
-      if (Ur[n].size() == 0) continue;
-      const Eigen::Vector2d s = phi_sym[n].transpose() * p, a = phi_anti[n].transpose() * p;
-      h.sym[n] = s[0] * Ur[n] + s[1] * Ut[n];
-      h.anti[n] = a[0] * Ur[n] + a[1] * Ut[n];
-    }
-    return h;
-  }
-  /// Adds the generalised loads of harmonic n of station forces p to sym, anti (n_nodes × 3).
-  void loads(const Eigen::VectorXd& p, int n, Eigen::MatrixXd& sym, Eigen::MatrixXd& anti) const {
-    if (p.size() == 0 || n >= static_cast<int>(phi_sym.size())) return;
-    const Eigen::Vector2d s = phi_sym[n].transpose() * p, a = phi_anti[n].transpose() * p;
-    sym.col(0) += s[0] * S;
-    sym.col(1) += s[1] * S;
-    anti.col(0) += a[0] * S;
-    anti.col(1) += a[1] * S;
-  }
-};
 
 
-/// A part of the section's boundary on which a later stage puts loads of its own: the edges with `marker` whose
-/// midside node lies in z_lo_m..z_hi_m. Every traction uniform across it along e_r or e_θ, of any angular shape, has
-/// the generalised loads of harmonic n in the span of E_r = (S, 0, 0) and E_θ = (0, S, 0), S_i = ∫ N_i r ds over the
-/// band: its responses K_n⁻¹E_r, K_n⁻¹E_θ give every such load's response (the loaded contact's flanks,
-/// contact/harmonic_body.hpp).
-struct SurfaceBand {
-  int marker = kSurfaceOther;
-  double z_lo_m = -std::numeric_limits<double>::infinity(), z_hi_m = std::numeric_limits<double>::infinity();
-};
-
-/// A band's spatial vector S and its responses per harmonic 0..N (n_nodes × 3 amplitudes (a, b, c); empty where the
-/// harmonic was not solved).
-struct BandResponse {
-  Eigen::VectorXd S;
-  std::vector<Eigen::MatrixXd> Ur, Ut;
-};
 
 /// The responses of `bands` on a section with supports of the caller's (a body other than the case's flexspline: the
 /// circular spline, contact/circular_spline.hpp): per band its S and, for harmonics 0..N (the even ones only unless

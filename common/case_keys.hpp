@@ -81,6 +81,9 @@ inline double file_units(double si, double si_per_unit = 1.0) {
   return exact;  // not reached: `exact` itself, at 17 digits, reaches exact * si_per_unit
 }
 
+/// The default rule of a key without default: the file must give it.
+inline const std::string kRequired = "required";
+
 /// One key of a table whose values an option struct T holds.
 template <class T>
 struct CaseKey {
@@ -105,6 +108,7 @@ struct CaseKey {
     applies_when = std::move(in_words);
     return std::move(*this);
   }
+  bool required() const { return default_rule == kRequired; }
   CaseKey with_default(std::string rule) && {
     default_rule = std::move(rule);
     return std::move(*this);

@@ -35,14 +35,14 @@ const std::vector<CaseKey<Lubricant>>& lubricant_keys() {
                     within(-std::numeric_limits<double>::infinity(), kWaltherMaxViscosity_mm2_s, false, false,
                            "the top of ASTM D341's charts"),
                     "the (base) oil's kinematic viscosity at 40 C, > viscosity_100C_mm2_s")
-          .with_default("required"),
+          .with_default(kRequired),
       number_key<L>("viscosity_100C_mm2_s", &L::viscosity_100C_mm2_s, 1, "mm^2/s",
                     at_least(kWaltherMinViscosity_mm2_s, "ASTM D341's Walther equation holds from 2.0 mm^2/s"),
                     "the (base) oil's kinematic viscosity at 100 C")
-          .with_default("required"),
+          .with_default(kRequired),
       number_key<L>("temperature_C", &L::temperature_C, 1, "C", above(-kZeroCelsius_K, "absolute zero"),
                     "where it works: the temperature its viscosity is taken at (ASTM D341)")
-          .with_default("required"),
+          .with_default(kRequired),
   };
   return keys;
 }

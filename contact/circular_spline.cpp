@@ -138,7 +138,8 @@ const std::vector<CaseKey<CircularSplineParams>>& circular_spline_keys() {
       number_key<C>("width_mm", &C::width_m, 1e-3, "mm", any_value(), "the ring's axial width, > 0")
           .with_default("flexspline.rim_width_mm (the toothed face)"),
       choice_key<C>("mounting", &C::mounting,
-                    {{"outer", CircularSplineMounting::Outer}, {"bolted_face", CircularSplineMounting::BoltedFace}},
+                    {{to_string(CircularSplineMounting::Outer), CircularSplineMounting::Outer},
+                     {to_string(CircularSplineMounting::BoltedFace), CircularSplineMounting::BoltedFace}},
                     "held on its outside cylinder, or bolted by its end face (as catalog drives are)"),
       number_key<C>("bolt_circle_inner_mm", &C::bolt_circle_inner_m, 1e-3, "mm", any_value(),
                     "inner edge of the held annulus on the end face, >= the root radius")

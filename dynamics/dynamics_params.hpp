@@ -2,6 +2,7 @@
 // The case file's [dynamics] table, SI units, and its schema. Header-only and dependent on the standard library
 // (and common/case_keys.hpp) alone, so that io/case.hpp can hold it without depending on the dynamics module.
 // Millimetre keys of the file are converted once by the case parser; every key has the default written here.
+#include <initializer_list>
 #include <optional>
 #include <string>
 #include <vector>
@@ -116,24 +117,32 @@ inline std::optional<RampShape> parse_ramp_shape(const std::string& s) {
   return std::nullopt;
 }
 
+/// The case-file words of enumeration values, as to_string spells them (a choice key's words).
+template <class E>
+std::vector<std::pair<std::string, E>> words_of(std::initializer_list<E> values) {
+  std::vector<std::pair<std::string, E>> words;
+  for (const E v : values) words.emplace_back(to_string(v), v);
+  return words;
+}
+
 /// The [dynamics] table's schema (common/case_keys.hpp): every key, its unit, range and meaning. validate() checks its
 /// ranges, then the rules between keys; the case reader and writer and `strainwave keys` read it.
 inline const std::vector<CaseKey<DynamicsParams>>& dynamics_keys() {
   using P = DynamicsParams;
   static const std::vector<CaseKey<P>> keys = {
       choice_key<P>("configuration", &P::configuration,
-                    {{"cs_fixed", DynamicsConfiguration::CsFixed}, {"fs_fixed", DynamicsConfiguration::FsFixed},
-                     {"wg_fixed", DynamicsConfiguration::WgFixed}, {"all_free", DynamicsConfiguration::AllFree}},
+                    words_of({DynamicsConfiguration::CsFixed, DynamicsConfiguration::FsFixed,
+                              DynamicsConfiguration::WgFixed, DynamicsConfiguration::AllFree}),
                     "which body is held: circular spline, flexspline, generator, or none (a brake on the circular "
                     "spline)"),
-      choice_key<P>("ramp", &P::ramp_shape, {{"paper", RampShape::Paper}, {"cubic", RampShape::Cubic}},
+      choice_key<P>("ramp", &P::ramp_shape, words_of({RampShape::Paper, RampShape::Cubic}),
                     "shape of the speed and load ramps: the seed paper's two parabolas or the cubic STEP"),
-      choice_key<P>("pairs", &P::pair_motion, {{"moving", PairMotion::Moving}, {"frozen", PairMotion::Frozen}},
+      choice_key<P>("pairs", &P::pair_motion, words_of({PairMotion::Moving, PairMotion::Frozen}),
                     "tooth pairs travel through the mesh (moving) or stay at generator angle 0 (frozen, the paper's)"),
       choice_key<P>("pair_stiffness", &P::pair_stiffness,
-                    {{"teeth", PairStiffness::Teeth}, {"constant", PairStiffness::Constant}},
+                    words_of({PairStiffness::Teeth, PairStiffness::Constant}),
                     "a moving pair's stiffness: the teeth's own compliance, or the contact law k d^m1 below"),
-      choice_key<P>("rim", &P::rim, {{"fem", RimCoupling::Fem}, {"rigid", RimCoupling::Rigid}},
+      choice_key<P>("rim", &P::rim, words_of({RimCoupling::Fem, RimCoupling::Rigid}),
                     "moving pairs joined through the flexspline's condensed compliance (fem) or independent"),
       integer_key<P>("compliance_phases", &P::compliance_phases, at_least(1),
                      "rim = \"fem\": generator phases per tooth pitch at which the body's compliance is solved"),

@@ -69,10 +69,10 @@ const std::vector<CaseKey<GeneratorBearing>>& generator_bearing_keys() {
   const auto conformity = within(0.5, 1, true, true, "groove radius / ball diameter; deep-groove bearings 0.515-0.53");
   static const std::vector<CaseKey<B>> keys = {
       integer_key<B>("balls", &B::balls, at_least(3), "the bearing's balls; they fit on the pitch circle")
-          .with_default("required"),
+          .with_default(kRequired),
       number_key<B>("ball_diameter_mm", &B::ball_diameter_m, 1e-3, "mm", above(0),
                     "D; the pitch radius is the bore's less 0.75 D")
-          .with_default("required"),
+          .with_default(kRequired),
       number_key<B>("inner_groove_conformity", &B::inner_groove_conformity, 1, "", conformity,
                     "f_i, the inner race's (on the cam) groove radius / D"),
       number_key<B>("outer_groove_conformity", &B::outer_groove_conformity, 1, "", conformity,

@@ -97,9 +97,11 @@ public:
 
   /// An integer the table gives (its range is the schema's, checked by the stage's validation), else nullopt.
   std::optional<int> integer(const std::string& key) {
-    constexpr int kLeftOut = std::numeric_limits<int>::min();
-    const int v = integer(key, kLeftOut, kLeftOut + 1);
-    return v == kLeftOut ? std::nullopt : std::optional<int>(v);
+    if (!given(key)) {
+      used_.insert(key);
+      return std::nullopt;
+    }
+    return integer(key, 0, std::numeric_limits<int>::min());
   }
 
   /// Runs a stage's validation of what this table gave; its message about one of the table's keys
@@ -214,6 +216,14 @@ void read_keys(TableReader& r, T& t, const std::vector<CaseKey<T>>& keys) {
     if (k.applies_to(t)) read_key(r, t, k);
 }
 
+/// Throws "<file>: <table>.<key> is missing; <why>" for the first key the schema requires that the table leaves out.
+template <class T>
+void require_keys(const TableReader& r, const std::vector<CaseKey<T>>& keys, const std::string& why) {
+  for (const CaseKey<T>& k : keys)
+    if (k.required() && !r.given(k.name))
+      throw InputError(r.file() + ": " + r.name() + "." + k.name + " is missing; " + why);
+}
+
 template <class T>
 const CaseKey<T>& key_named(const std::vector<CaseKey<T>>& keys, const std::string& name) {
   for (const CaseKey<T>& k : keys)
@@ -264,10 +274,7 @@ Material read_material(TableReader r) {
 /// radius follows from the flexspline's bore (generator/generator_bearing.hpp), and the bearing checks itself.
 GeneratorBearing read_bearing(TableReader r, double bore_radius_m) {
   GeneratorBearing b;
-  for (const char* key : {"balls", "ball_diameter_mm"})
-    if (!r.given(key))
-      throw InputError(r.file() + ": " + r.name() + "." + key +
-                       " is missing; a bearing needs balls and ball_diameter_mm");
+  require_keys(r, generator_bearing_keys(), "a bearing needs balls and ball_diameter_mm");
   read_keys(r, b, generator_bearing_keys());
   r.reject_unknown();
   b.pitch_radius_m = bearing_pitch_radius_m(bore_radius_m, b.ball_diameter_m);
@@ -397,12 +404,11 @@ LoadParams read_load(TableReader r) {
 /// The keys the table gives; derive_mesh (mesh/flexspline_params.hpp) derives the others from the flexspline.
 MeshParams read_mesh(TableReader r, const FlexsplineParams& f) {
   // size_mm, wall_layers and corner_levels: their ranges are the mesh's (mesh/shapes.hpp wall_size,
-  // mesh/flexspline.hpp corner_levels), checked with the flexspline's. kLeftOut marks a key the table does not give.
-  constexpr int kLeftOut = std::numeric_limits<int>::min();
+  // mesh/flexspline.hpp corner_levels), checked with the flexspline's.
   MeshKeysGiven given;
   if (const auto size = r.number("size_mm")) given.size_m = *size * kMm;
-  if (const int v = r.integer("wall_layers", kLeftOut, kLeftOut + 1); v != kLeftOut) given.wall_layers = v;
-  if (const int v = r.integer("corner_levels", kLeftOut, kLeftOut + 1); v != kLeftOut) given.corner_levels = v;
+  given.wall_layers = r.integer("wall_layers");
+  given.corner_levels = r.integer("corner_levels");
   MeshParams m = derive_mesh(f, given);
   for (const char* quality : {"max_radius_edge_ratio", "min_dihedral_deg"})
     read_key(r, m, key_named(mesh_keys(), quality));  // their ranges: validate_mesh, with the flexspline's
@@ -500,10 +506,8 @@ ContactParams read_contact(TableReader r) {
 /// checked by parse_case with the key's line.
 Lubricant read_lubricant(TableReader r) {
   Lubricant l;
-  for (const char* key : {"viscosity_40C_mm2_s", "viscosity_100C_mm2_s", "temperature_C"})
-    if (!r.given(key))
-      throw InputError(r.file() + ": lubricant." + key + " is missing; [lubricant] gives the base oil's kinematic "
-                                  "viscosities at 40 and 100 C and the temperature it works at");
+  require_keys(r, lubricant_keys(), "[lubricant] gives the base oil's kinematic viscosities at 40 and 100 C and the "
+                                    "temperature it works at");
   read_keys(r, l, lubricant_keys());
   r.reject_unknown();
   return l;

@@ -110,7 +110,9 @@ const std::vector<CaseKey<FlexsplineParams>>& flexspline_keys() {
       number_key<F>("length_mm", &F::length_m, 1e-3, "mm", any_value(),
                     "the clamped end (or the diaphragm's outer face) to the open end, > 0"),
       choice_key<F>("teeth", &F::teeth,
-                    {{"none", TeethModel::None}, {"ring", TeethModel::Ring}, {"explicit", TeethModel::Explicit}},
+                    {{teeth_name(TeethModel::None), TeethModel::None},
+                     {teeth_name(TeethModel::Ring), TeethModel::Ring},
+                     {teeth_name(TeethModel::Explicit), TeethModel::Explicit}},
                     "no teeth, the teeth as a ring on the rim, or as solids on the cup (the 3-D reference, TET10)")
           .with_default("\"ring\" for a cup, \"none\" for a tube"),
       number_key<F>("rim_width_mm", &F::rim_width_m, 1e-3, "mm", any_value(),
@@ -151,16 +153,18 @@ const std::vector<CaseKey<MeshParams>>& mesh_keys() {
 }
 
 void validate_mesh(const MeshParams& mesh) {
-  if (!(mesh.size_m > 0.0))
-    throw InputError(mesh_key_message("size_mm", mm_text(mesh.size_m), mesh.size_from, "must be > 0"));
-  if (mesh.wall_layers < 1)
-    throw InputError(
-        mesh_key_message("wall_layers", std::to_string(mesh.wall_layers), mesh.wall_layers_from, "must be >= 1"));
-  if (mesh.corner_levels < -1 || mesh.corner_levels > kMaxCornerLevels)
-    throw InputError(mesh_key_message("corner_levels", std::to_string(mesh.corner_levels), mesh.corner_levels_from,
-                                      "must be in [-1, " + std::to_string(kMaxCornerLevels) +
-                                          "] (-1: the rule's value, 0: none)"));
-  check_key_ranges(mesh, mesh_keys(), "mesh");  // the TetGen quality keys (the three above said where they came from)
+  // The schema's ranges; a value the file left out says what it was derived from and which key sets it.
+  const std::pair<const char*, const std::string*> derived[] = {
+      {"size_mm", &mesh.size_from}, {"wall_layers", &mesh.wall_layers_from}, {"corner_levels", &mesh.corner_levels_from}};
+  for (const CaseKey<MeshParams>& k : mesh_keys()) {
+    const KeyValue v = *k.get(mesh);
+    const double x = k.kind == KeyKind::Integer ? static_cast<double>(std::get<long long>(v)) : std::get<double>(v);
+    if (k.range.contains(x)) continue;
+    std::string from;
+    for (const auto& [key, origin] : derived)
+      if (k.name == key) from = *origin;
+    throw InputError(mesh_key_message(k.name, key_value_text(v), from, k.range.expectation()));
+  }
 }
 
 void validate_flexspline(const FlexsplineParams& f, const MeshParams& mesh) {

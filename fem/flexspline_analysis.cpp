@@ -151,14 +151,6 @@ double reading_rotation(const FlexsplineModel& c, const TetMesh& mesh, const Eig
   return RotationReader(c, mesh)(u);
 }
 
-std::vector<bool> clamped_nodes(const TetMesh& mesh) {
-  std::vector<bool> fixed(mesh.n_nodes(), false);
-  for (const auto& f : mesh.faces)
-    if (f.marker == kSurfaceClamped)
-      for (int v : f.nodes) fixed[v] = true;
-  return fixed;
-}
-
 double neutral_radius(const FlexsplineParams& f) {
   return f.inner_radius_m + 0.5 * (f.teeth == TeethModel::None ? f.wall_thickness_m : f.rim_thickness_m);
 }

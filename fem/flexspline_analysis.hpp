@@ -28,7 +28,6 @@
 #include <Eigen/Core>
 
 #include "fem/flexspline_model.hpp"
-#include "fem/flexspline_model.hpp"
 #include "fem/cholmod_factor.hpp"
 #include "fem/fatigue.hpp"
 #include "fem/flexspline_system.hpp"
@@ -149,9 +148,6 @@ struct FlexsplineSolution {
   FemChecks checks;
   FemTimings timings;
 };
-
-/// Nodes fixed by the supports: every node on a kSurfaceClamped face (size n_nodes).
-std::vector<bool> clamped_nodes(const TetMesh& mesh);
 
 /// Radius of the rim's neutral circle (mid-thickness under the teeth, or of the body wall for a plain tube).
 double neutral_radius(const FlexsplineParams& f);

@@ -10,7 +10,6 @@
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "generator/cam_profile.hpp"
-#include "fem/flexspline_analysis.hpp"
 #include "fem/loads.hpp"
 #include "fem/petsc_solver.hpp"
 
@@ -82,6 +81,14 @@ Eigen::MatrixXd FlexsplineSystem::influence(const Eigen::SparseMatrix<double>& l
     C.middleCols(j0, k) = loads.transpose() * U;
   }
   return 0.5 * (C + C.transpose());  // symmetric up to round-off; make it exactly so
+}
+
+std::vector<bool> clamped_nodes(const TetMesh& mesh) {
+  std::vector<bool> fixed(mesh.n_nodes(), false);
+  for (const auto& f : mesh.faces)
+    if (f.marker == kSurfaceClamped)
+      for (int v : f.nodes) fixed[v] = true;
+  return fixed;
 }
 
 FlexsplineSystem assemble_and_factorise(const FlexsplineModel& c, const TetMesh& mesh) {

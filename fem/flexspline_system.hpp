@@ -10,7 +10,6 @@
 #include <Eigen/SparseCore>
 
 #include "fem/flexspline_model.hpp"
-#include "fem/flexspline_model.hpp"
 #include "fem/assembly.hpp"
 #include "fem/cholmod_factor.hpp"
 #include "fem/linear_solver.hpp"
@@ -31,6 +30,9 @@ struct FlexsplineSystem {
   /// under a unit amount of each other (m × m, symmetric positive definite), solved in chunks of right-hand sides.
   Eigen::MatrixXd influence(const Eigen::SparseMatrix<double>& loads) const;
 };
+
+/// Nodes fixed by the supports: every node on a kSurfaceClamped face (size n_nodes).
+std::vector<bool> clamped_nodes(const TetMesh& mesh);
 
 /// Supports (every node on a kSurfaceClamped face), assembly and the one factorisation (progress on stderr), on the
 /// model's solver.backend: CHOLMOD in this process, or PETSc on the MPI ranks (each assembles its share).

@@ -67,9 +67,6 @@ double cam_list_w0_m(const std::vector<CamPoint>& points, double bore_radius_m) 
   return list_spline(points)(0.0) - bore_radius_m;
 }
 
-CamSurface::CamSurface(const WaveGeneratorParams& w, double bore_radius_m)
-    : CamSurface(std::get<Cam>(w.model), w.radial_deformation_m.value_or(0.0), bore_radius_m) {}
-
 CamSurface::CamSurface(const Cam& cam, double w0_m, double bore_radius_m)
     : profile_(cam.profile), r_(bore_radius_m), w0_(w0_m), fit_(cam.clearance_m) {
   if (profile_ == CamProfile::List) list_.push_back(list_spline(cam.points));

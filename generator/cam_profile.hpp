@@ -8,9 +8,26 @@
 //             smoothly between the points.
 #include <vector>
 
-#include "generator/wave_generator.hpp"
-
 namespace sw {
+
+/// A point of a listed cam: the radius of the generator's surface that touches the bore, at an angle from the major
+/// axis.
+struct CamPoint {
+  double angle_rad = 0.0;
+  double radius_m = 0.0;
+};
+
+/// The cam's outer surface: polar r + w0·cos2φ (the first-order shape the linear model works in; the default), a
+/// true ellipse of semi-axes r + w0 and r − w0 (inside the polar form by up to 1.5·w0²/r at ±45°), or a list of radii
+/// against angle over a half turn (generator/cam_profile.hpp).
+enum class CamProfile { Polar, Ellipse, List };
+
+/// An elliptical cam pushing on the bore.
+struct Cam {
+  CamProfile profile = CamProfile::Polar;
+  double clearance_m = 0.0;     ///< radial fit to the bore, clearance > 0, interference < 0
+  std::vector<CamPoint> points; ///< profile = List: angles in [0, π), increasing
+};
 
 /// Periodic cubic interpolating spline (natural in the sense of C² across the period's seam). Written here because
 /// Eigen 3.4's unsupported Splines module has no periodic interpolation and the knots are few (a dense solve).
@@ -29,8 +46,6 @@ private:
 
 class CamSurface {
 public:
-  /// The cam of a cam generator `w` (throws std::bad_variant_access for another model).
-  CamSurface(const WaveGeneratorParams& w, double bore_radius_m);
   CamSurface(const Cam& cam, double w0_m, double bore_radius_m);
   double radius_m(double theta_rad) const;   ///< ρ(θ)
   double standoff_m(double theta_rad) const; ///< ρ(θ) − r − fit: > 0 where the cam would push the bore out

@@ -124,8 +124,9 @@ StationLayout station_layout(const WaveGeneratorParams& w, double bore_radius_m,
     every_spacing();
     s.obstacle_m = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(s.angle_rad.size()));
   };
-  std::visit(overloaded{[&](const Cam&) {
-                          const auto cam = std::make_shared<const CamSurface>(w, bore_radius_m);
+  std::visit(overloaded{[&](const Cam& c) {
+                          const auto cam = std::make_shared<const CamSurface>(
+                              c, w.radial_deformation_m.value_or(0.0), bore_radius_m);
                           every_spacing();
                           s.tilt = [cam](double t) { return cam->tilt(t); };
                           s.obstacle_m.resize(static_cast<Eigen::Index>(s.angle_rad.size()));

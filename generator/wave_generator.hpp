@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 
 #include "common/case_keys.hpp"
+#include "generator/cam_profile.hpp"
 #include "generator/generator_bearing.hpp"
 
 namespace sw {
@@ -20,18 +21,6 @@ struct WaveGeneratorForce {
   double angle_rad = 0.0;  ///< from the major axis
   double weight = 1.0;
 };
-
-/// A point of a listed cam: the radius of the generator's surface that touches the bore, at an angle from the major
-/// axis.
-struct CamPoint {
-  double angle_rad = 0.0;
-  double radius_m = 0.0;
-};
-
-/// The cam's outer surface: polar r + w0·cos2φ (the first-order shape the linear model works in; the default), a
-/// true ellipse of semi-axes r + w0 and r − w0 (inside the polar form by up to 1.5·w0²/r at ±45°), or a list of radii
-/// against angle over a half turn (generator/cam_profile.hpp).
-enum class CamProfile { Polar, Ellipse, List };
 
 inline constexpr double kDefaultBeta_rad = 0.5235987755982988;  ///< 30°
 
@@ -44,12 +33,6 @@ struct TwoForce {};
 /// The case's list of forces (angle, weight) at one end of the major axis.
 struct GivenForces {
   std::vector<WaveGeneratorForce> forces;
-};
-/// An elliptical cam pushing on the bore.
-struct Cam {
-  CamProfile profile = CamProfile::Polar;
-  double clearance_m = 0.0;     ///< radial fit to the bore, clearance > 0, interference < 0
-  std::vector<CamPoint> points; ///< profile = List: angles in [0, π), increasing
 };
 /// Rigid rollers at ±β from both ends of the major axis, set out so that the major axis reaches w0.
 struct Rollers {

@@ -403,7 +403,7 @@ LoadParams read_load(TableReader r) {
 
 /// The keys the table gives; derive_mesh (mesh/flexspline_params.hpp) derives the others from the flexspline.
 MeshParams read_mesh(TableReader r, const FlexsplineParams& f) {
-  // size_mm, wall_layers and corner_levels: their ranges are the mesh's (mesh/shapes.hpp wall_size,
+  // size_mm, wall_layers and corner_levels: their ranges are the mesh's (mesh/flexspline_params.hpp wall_size,
   // mesh/flexspline.hpp corner_levels), checked with the flexspline's.
   MeshKeysGiven given;
   if (const auto size = r.number("size_mm")) given.size_m = *size * kMm;
@@ -924,6 +924,10 @@ std::string describe_derived(const Case& c) {
 }
 
 std::string case_json(const Case& c) { return case_tables(c).dump(); }
+
+Provenance provenance_of(const Case& c) {  // keys sorted (nlohmann::json, not ordered_json)
+  return {nlohmann::json::parse(case_json(c)).dump(), tool_version()};
+}
 
 namespace {
 

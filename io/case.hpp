@@ -16,6 +16,7 @@
 #include "fem/flexspline_model.hpp"
 #include "gear/gear.hpp"
 #include "generator/wave_generator.hpp"
+#include "io/provenance.hpp"
 #include "mesh/flexspline_params.hpp"
 
 namespace sw {
@@ -86,5 +87,8 @@ std::string describe_derived(const Case& c);
 /// output. A number is the shortest decimal that reads back to the same value; a default derived in SI that no
 /// decimal reaches is written 1 ulp away, and the same again once read back.
 std::string case_json(const Case& c);
+
+/// The provenance of a run of `c` by this build: its case_json and tool_version().
+Provenance provenance_of(const Case& c);
 
 }  // namespace sw

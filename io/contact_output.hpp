@@ -9,6 +9,7 @@
 
 #include "contact/accuracy_band.hpp"
 #include "contact/loaded_contact.hpp"
+#include "io/case.hpp"
 #include "io/provenance.hpp"
 
 namespace sw {

@@ -1,10 +1,8 @@
 #pragma once
 // What produced an output: the resolved case and the tool's version, stored beside the figures of every output JSON
 // (result.json, backlash.json, contact.json, dynamics.json, reconcile.json) as "case" and "version". Given such a
-// file in place of a case file, a command runs the stored case again (io/case.hpp load_case).
+// file in place of a case file, a command runs the stored case again (io/case.hpp load_case); io/case.hpp makes it (provenance_of).
 #include <string>
-
-#include "io/case.hpp"
 
 namespace sw {
 
@@ -19,8 +17,5 @@ struct Provenance {
   std::string version;        ///< key "version": tool_version() of the build that wrote the output
   bool operator==(const Provenance&) const = default;
 };
-
-/// The provenance of a run of `c` by this build.
-Provenance provenance_of(const Case& c);
 
 }  // namespace sw

@@ -13,7 +13,7 @@
 #include "common/constants.hpp"
 #include "common/error.hpp"
 #include "gear/tooth_profile.hpp"
-#include "mesh/flexspline.hpp"
+#include "mesh/flexspline_sizes.hpp"
 #include "mesh/shapes.hpp"
 
 namespace sw {

@@ -10,7 +10,6 @@
 #include "common/constants.hpp"
 #include "common/error.hpp"
 #include "gear/tooth_profile.hpp"
-#include "mesh/shapes.hpp"
 
 namespace sw {
 namespace {
@@ -214,6 +213,16 @@ void check_teeth_on_rim(const FlexsplineParams& f, const std::optional<GearParam
     throw InputError("flexspline.teeth = \"explicit\": the teeth's root circle " + mm_text(root) +
                      " mm (from [gear]) must lie outside the body wall, inner_radius_mm + wall_thickness_mm = " +
                      mm_text(ro) + " mm; reduce wall_thickness_mm or inner_radius_mm");
+}
+
+WallSize wall_size(double thickness_m, const MeshParams& mesh) {
+  validate_mesh(mesh);
+  WallSize w;
+  // Thick walls get more layers, so no layer is thicker than the target size.
+  w.layers = std::max(mesh.wall_layers, static_cast<int>(std::ceil(thickness_m / mesh.size_m - 1e-9)));
+  w.across_m = thickness_m / w.layers;
+  w.along_m = std::min(mesh.size_m, kMaxLayerAspect * w.across_m);
+  return w;
 }
 
 }  // namespace sw

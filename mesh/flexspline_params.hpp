@@ -85,6 +85,21 @@ struct MeshKeysGiven {
 /// the flexspline first (validate_flexspline does).
 MeshParams derive_mesh(const FlexsplineParams& f, const MeshKeysGiven& given);
 
+/// Largest ratio of along-wall to through-wall edge length in a layered wall. TetGen does not insert layers by
+/// itself (a wall meshed at edge t / layers everywhere came out one tet thick), so walls are split into layers by
+/// internal surfaces and the along-wall edge may be longer; 2:1 keeps the quadratic tets well shaped.
+inline constexpr double kMaxLayerAspect = 2.0;
+
+/// Edge lengths for a wall of thickness t (m): `layers` = max(wall_layers, ceil(t / size)) layers each one tet
+/// thick, `across` = t / layers, `along` = min(size, kMaxLayerAspect * across). Throws InputError for mesh.size_mm <= 0 or
+/// mesh.wall_layers < 1.
+struct WallSize {
+  double across_m = 0.0;
+  double along_m = 0.0;
+  int layers = 1;
+};
+WallSize wall_size(double thickness_m, const MeshParams& mesh);
+
 /// The rule's corner_levels for the mesh's size and layers: kDerivedCornerLevels + floor(log2(layers through the
 /// diaphragm)) for a cup, 0 for a tube.
 int derived_corner_levels(const FlexsplineParams& f, const MeshParams& mesh);

@@ -19,16 +19,6 @@ void require_positive(const char* what, double value_m) {
 
 }  // namespace
 
-WallSize wall_size(double thickness_m, const MeshParams& mesh) {
-  validate_mesh(mesh);
-  WallSize w;
-  // Thick walls get more layers, so no layer is thicker than the target size.
-  w.layers = std::max(mesh.wall_layers, static_cast<int>(std::ceil(thickness_m / mesh.size_m - 1e-9)));
-  w.across_m = thickness_m / w.layers;
-  w.along_m = std::min(mesh.size_m, kMaxLayerAspect * w.across_m);
-  return w;
-}
-
 TetMesh mesh_tube(double r_inner_m, double r_outer_m, double length_m, const MeshParams& mesh) {
   require_positive("tube inner radius", r_inner_m);
   require_positive("tube length", length_m);

@@ -6,7 +6,6 @@
 #include <stdexcept>
 
 #include "common/error.hpp"
-#include "reconcile/fit.hpp"
 
 namespace sw::reconcile {
 
@@ -768,6 +767,38 @@ double baseline_play_rad(const TorsionExperiment& t) {
 double added_series_compliance(const FitResult& f) {
   const int s = f.find("series_compliance");
   return s >= 0 ? f.terms[s].beta[0] : 0.0;
+}
+
+std::string model_effect_name(const std::string& key) { return "model:" + key; }
+
+bool is_model_effect(const EffectSpec& spec) { return spec.name.rfind(model_effect_name(""), 0) == 0; }
+
+double FitResult::bic() const {
+  return n_w * std::log(std::max(rss_w, 1e-300) / n_w) + k * std::log(static_cast<double>(n_w));
+}
+
+Eigen::VectorXd FitResult::params() const {
+  std::vector<double> p(nuisance_beta.data(), nuisance_beta.data() + nuisance_beta.size());
+  for (const auto& t : terms) {
+    p.insert(p.end(), t.beta.data(), t.beta.data() + t.beta.size());
+    p.insert(p.end(), t.theta.data(), t.theta.data() + t.theta.size());
+  }
+  return Eigen::Map<Eigen::VectorXd>(p.data(), p.size());
+}
+
+void FitResult::set_params(const Eigen::VectorXd& p) {
+  int i = 0;
+  for (int j = 0; j < nuisance_beta.size(); ++j) nuisance_beta[j] = p[i++];
+  for (auto& t : terms) {
+    for (int j = 0; j < t.beta.size(); ++j) t.beta[j] = p[i++];
+    for (int j = 0; j < t.theta.size(); ++j) t.theta[j] = p[i++];
+  }
+}
+
+int FitResult::find(const std::string& name) const {
+  for (std::size_t i = 0; i < terms.size(); ++i)
+    if (terms[i].spec->name == name) return static_cast<int>(i);
+  return -1;
 }
 
 }  // namespace sw::reconcile

@@ -23,7 +23,7 @@
 
 namespace sw::reconcile {
 
-struct FitResult;       // fit.hpp
+struct FitResult;       // below
 struct CatalogReading;  // below
 
 using NamedValues = std::vector<std::pair<std::string, double>>;
@@ -87,6 +87,36 @@ struct EffectSpec {
   bool conflicts(const EffectSpec& o) const { return exclusive_variants && o.name == name && o.id() != id(); }
   int n_nonlinear() const { return static_cast<int>(nonlinear_names.size()); }
 };
+
+/// An effect of the catalog in a model, with its parameters (the fit, reconcile/fit.hpp, sets them).
+struct Term {
+  const EffectSpec* spec = nullptr;
+  Eigen::VectorXd theta;  ///< nonlinear parameters (size spec->n_nonlinear())
+  Eigen::VectorXd beta;   ///< linear coefficients (size spec->n_linear)
+};
+
+struct FitResult {
+  std::vector<Term> terms;
+  Eigen::VectorXd nuisance_beta;
+  Eigen::VectorXd contribution;  ///< nuisance + effects for every row of the experiment (response units)
+  double rss_w = 0.0;            ///< whitened residual sum of squares over the fitted rows
+  int n_w = 0;                   ///< whitened rows
+  int k = 0;                     ///< free parameters (rank of the linear part + nonlinear parameters)
+  Eigen::MatrixXd cov;           ///< covariance of params() (whitened Gauss-Newton, s^2 (J^T J)^+)
+  Eigen::MatrixXd jac_w;         ///< the whitened Jacobian J of params() behind cov (n_w rows)
+  double bic() const;
+  /// All parameters stacked: nuisance beta, then per term beta then theta.
+  Eigen::VectorXd params() const;
+  /// Sets the parameters from params() layout (contribution is not recomputed).
+  void set_params(const Eigen::VectorXd& p);
+  /// Index of the first term with this effect name; -1 when absent.
+  int find(const std::string& name) const;
+};
+
+/// The name of a physical effect, a change of a case key (reconcile/model_update.hpp): "model:" + the key.
+std::string model_effect_name(const std::string& key);
+/// Is this effect a physical candidate (a case key)?
+bool is_model_effect(const EffectSpec& spec);
 
 /// One hidden effect synth adds: a generator's name, its harmonic order (0 if none) and its parameters in SPEC units.
 /// Missing parameters take defaults (see synth_effect_help()).

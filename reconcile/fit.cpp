@@ -13,34 +13,6 @@ namespace sw::reconcile {
 using Vec = Eigen::VectorXd;
 using Mat = Eigen::MatrixXd;
 
-double FitResult::bic() const {
-  return n_w * std::log(std::max(rss_w, 1e-300) / n_w) + k * std::log(static_cast<double>(n_w));
-}
-
-Vec FitResult::params() const {
-  std::vector<double> p(nuisance_beta.data(), nuisance_beta.data() + nuisance_beta.size());
-  for (const auto& t : terms) {
-    p.insert(p.end(), t.beta.data(), t.beta.data() + t.beta.size());
-    p.insert(p.end(), t.theta.data(), t.theta.data() + t.theta.size());
-  }
-  return Eigen::Map<Vec>(p.data(), p.size());
-}
-
-void FitResult::set_params(const Vec& p) {
-  int i = 0;
-  for (int j = 0; j < nuisance_beta.size(); ++j) nuisance_beta[j] = p[i++];
-  for (auto& t : terms) {
-    for (int j = 0; j < t.beta.size(); ++j) t.beta[j] = p[i++];
-    for (int j = 0; j < t.theta.size(); ++j) t.theta[j] = p[i++];
-  }
-}
-
-int FitResult::find(const std::string& name) const {
-  for (std::size_t i = 0; i < terms.size(); ++i)
-    if (terms[i].spec->name == name) return static_cast<int>(i);
-  return -1;
-}
-
 std::vector<double> start_grid(double lo, double hi, int count) {
   std::vector<double> g(count);
   const bool log_spaced = lo > 0.0 && hi / lo > 20.0;

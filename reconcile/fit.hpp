@@ -11,30 +11,6 @@
 
 namespace sw::reconcile {
 
-struct Term {
-  const EffectSpec* spec = nullptr;
-  Eigen::VectorXd theta;  ///< nonlinear parameters (size spec->n_nonlinear())
-  Eigen::VectorXd beta;   ///< linear coefficients (size spec->n_linear)
-};
-
-struct FitResult {
-  std::vector<Term> terms;
-  Eigen::VectorXd nuisance_beta;
-  Eigen::VectorXd contribution;  ///< nuisance + effects for every row of the experiment (response units)
-  double rss_w = 0.0;            ///< whitened residual sum of squares over the fitted rows
-  int n_w = 0;                   ///< whitened rows
-  int k = 0;                     ///< free parameters (rank of the linear part + nonlinear parameters)
-  Eigen::MatrixXd cov;           ///< covariance of params() (whitened Gauss-Newton, s^2 (J^T J)^+)
-  Eigen::MatrixXd jac_w;         ///< the whitened Jacobian J of params() behind cov (n_w rows)
-  double bic() const;
-  /// All parameters stacked: nuisance beta, then per term beta then theta.
-  Eigen::VectorXd params() const;
-  /// Sets the parameters from params() layout (contribution is not recomputed).
-  void set_params(const Eigen::VectorXd& p);
-  /// Index of the first term with this effect name; -1 when absent.
-  int find(const std::string& name) const;
-};
-
 /// The design matrix (n rows): nuisance columns, then each term's columns at its theta.
 Eigen::MatrixXd design_matrix(const Experiment& e, const std::vector<Term>& terms);
 

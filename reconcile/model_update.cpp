@@ -19,7 +19,6 @@ using Mat = Eigen::MatrixXd;
 
 namespace {
 
-constexpr const char* kPrefix = "model:";
 
 /// Below this fraction of the baseline's size, the change a candidate makes over its whole plausible range is taken
 /// as no response (the model does not read the key for this recording).
@@ -223,10 +222,6 @@ void keep_baseline_figures(const Result& first, Result& r) {
 
 }  // namespace
 
-std::string model_effect_name(const std::string& key) { return kPrefix + key; }
-
-bool is_model_effect(const EffectSpec& spec) { return spec.name.rfind(kPrefix, 0) == 0; }
-
 double sensitivity_step(const ModelCandidate& c) { return kSensitivityStepFraction * (c.hi - c.lo); }
 
 std::shared_ptr<const ModelEffects> model_effects(const Experiment& e, const Baseline& base,
@@ -322,7 +317,7 @@ ModelUpdate selected(const Experiment& e, const Baseline& base, const std::vecto
 void keep_first_records(const Result& first, Result& r) {
   for (AcceptedEffect& a : r.effects)
     for (const AcceptedEffect& f : first.effects)
-      if (a.name == f.name && a.name.rfind(kPrefix, 0) == 0) {
+      if (a.name == f.name && a.name.rfind(model_effect_name(""), 0) == 0) {
         a.delta_bic = f.delta_bic;
         a.p_value = f.p_value;
         a.test = f.test;

@@ -26,11 +26,6 @@ struct ModelCandidate {
   double case_value = 0.0;
 };
 
-/// The name of a physical effect: "model:" + the key.
-std::string model_effect_name(const std::string& key);
-/// Is this effect a physical candidate (a case key)?
-bool is_model_effect(const EffectSpec& spec);
-
 /// Fraction of a candidate's plausible range used as the half step of its central difference (see sensitivity_step).
 inline constexpr double kSensitivityStepFraction = 0.02;
 

@@ -10,7 +10,6 @@
 #include "common/format.hpp"
 #include "common/progress.hpp"
 #include "reconcile/effects.hpp"
-#include "reconcile/model_update.hpp"
 #include "reconcile/rerun.hpp"
 
 namespace sw::reconcile {

@@ -14,24 +14,19 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr double kR = 18.4e-3, kW0 = 0.2e-3;
 
-WaveGeneratorParams cam(CamProfile p) {
-  WaveGeneratorParams w;
-  w.model = Cam{p};
-  w.radial_deformation_m = kW0;
-  return w;
-}
+Cam cam(CamProfile p) { return Cam{p}; }
 
-WaveGeneratorParams listed_from(const CamSurface& s, double step_deg) {
-  WaveGeneratorParams w = cam(CamProfile::List);
-  for (double deg = 0; deg < 180 - 1e-9; deg += step_deg) std::get<Cam>(w.model).points.push_back({deg * kPi / 180, s.radius_m(deg * kPi / 180)});
-  return w;
+Cam listed_from(const CamSurface& s, double step_deg) {
+  Cam c = cam(CamProfile::List);
+  for (double deg = 0; deg < 180 - 1e-9; deg += step_deg) c.points.push_back({deg * kPi / 180, s.radius_m(deg * kPi / 180)});
+  return c;
 }
 
 // Points every 5°: the periodic cubic spline's error is h⁴·max|ρ''''|/384 = (5°)⁴·16·w0/384 ≈ 2.4e-6·w0 in radius and
 // of order h³ in slope; bounds 1e-5·w0 and 1e-3 of the largest tilt.
 TEST(CamProfile, AListSampledFromPolarOrEllipseIsThatCam) {
   for (const CamProfile p : {CamProfile::Polar, CamProfile::Ellipse}) {
-    const CamSurface exact(cam(p), kR), listed(listed_from(exact, 5.0), kR);
+    const CamSurface exact(cam(p), kW0, kR), listed(listed_from(exact, 5.0), kW0, kR);
     const double tilt_max = 2 * kW0 / (kR - kW0);
     double worst_r = 0, worst_t = 0;
     for (double deg = -180; deg <= 180; deg += 0.7) {
@@ -47,8 +42,8 @@ TEST(CamProfile, AListSampledFromPolarOrEllipseIsThatCam) {
 
 // The tilt is ρ'/ρ: against a central difference of the radius, for each form.
 TEST(CamProfile, TiltIsTheRadiusSlopeOverTheRadius) {
-  const CamSurface polar(cam(CamProfile::Polar), kR), ellipse(cam(CamProfile::Ellipse), kR);
-  const CamSurface listed(listed_from(ellipse, 10.0), kR);
+  const CamSurface polar(cam(CamProfile::Polar), kW0, kR), ellipse(cam(CamProfile::Ellipse), kW0, kR);
+  const CamSurface listed(listed_from(ellipse, 10.0), kW0, kR);
   for (const CamSurface* s : {&polar, &ellipse, &listed})
     for (double deg = 3; deg < 360; deg += 17) {
       const double t = deg * kPi / 180, h = 1e-6;
@@ -60,7 +55,7 @@ TEST(CamProfile, TiltIsTheRadiusSlopeOverTheRadius) {
 // Ellipse vs polar: equal at the axes, the ellipse inside by 1.5·w0²/r·sin²2θ to leading order (w0/r ≈ 1 %: the next
 // order is a further 1 % of it).
 TEST(CamProfile, EllipseLiesInsideThePolarFormBySecondOrder) {
-  const CamSurface polar(cam(CamProfile::Polar), kR), ellipse(cam(CamProfile::Ellipse), kR);
+  const CamSurface polar(cam(CamProfile::Polar), kW0, kR), ellipse(cam(CamProfile::Ellipse), kW0, kR);
   for (const double deg : {0.0, 90.0, 180.0}) EXPECT_NEAR(ellipse.radius_m(deg * kPi / 180), polar.radius_m(deg * kPi / 180), 1e-15);
   for (double deg = 5; deg < 90; deg += 5) {
     const double t = deg * kPi / 180, s2 = std::sin(2 * t);

@@ -12,6 +12,7 @@
 #include <limits>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <variant>
@@ -173,6 +174,14 @@ CaseKey<T> structured_key(std::string name, KeyKind kind, std::string meaning) {
   k.get = [](const T&) -> std::optional<KeyValue> { return std::nullopt; };
   k.set = [](T&, const KeyValue&) {};
   return k;
+}
+
+/// The key of `keys` named `name` (std::logic_error when there is none: a caller naming a key its schema lacks).
+template <class T>
+const CaseKey<T>& key_named(const std::vector<CaseKey<T>>& keys, const std::string& name) {
+  for (const CaseKey<T>& k : keys)
+    if (k.name == name) return k;
+  throw std::logic_error("no case key " + name);
 }
 
 /// A key's value as the messages and the reference print it: 6 significant digits, words quoted.

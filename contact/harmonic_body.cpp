@@ -48,7 +48,7 @@ BandSeries band_series(const HarmonicField& u, const Eigen::VectorXd& S, int k) 
 }
 
 /// ∫ f(θ)·g(θ) dθ over [lo, hi] for a linear g (g(lo) = g_lo, g(hi) = g_hi), to round-off for a series up to N
-/// (fem/fourier_solver.hpp series_quadrature).
+/// (fem/fourier_loads.hpp series_quadrature).
 template <class F>
 double integrate_linear(const F& f, double lo, double hi, double g_lo, double g_hi, int N) {
   double sum = 0;

@@ -3,11 +3,16 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <initializer_list>
+#include <optional>
 #include <numbers>
 #include <sstream>
+#include <stdexcept>
 
+#include "common/case_keys.hpp"
 #include "common/error.hpp"
 #include "design/catalog.hpp"
+#include "fem/fem_params.hpp"
 #include "gear/tooth_profile.hpp"
 #include "kinematics/backlash.hpp"
 
@@ -70,6 +75,34 @@ std::string num(double v) {
   char b[32];
   std::snprintf(b, sizeof b, "%.9g", v);
   return b;
+}
+
+/// One line of a table `design` writes: a key of the table's schema, a comment line before it, a comment after it.
+struct DesignLine {
+  const char* key;
+  const char* comment_before = "";
+  const char* comment_after = "";
+};
+
+/// The keys `lines` of `t` by its table's schema (common/case_keys.hpp): names and units the reader's, numbers to 9
+/// significant digits (the design's precision, a person's reading), words quoted; one key a line, or, with a
+/// separator, the inner part of an inline table.
+template <class T>
+std::string key_lines(const T& t, const std::vector<CaseKey<T>>& keys, std::initializer_list<DesignLine> lines,
+                      const char* separator = nullptr) {
+  std::string s;
+  for (const DesignLine& l : lines) {
+    const CaseKey<T>& k = key_named(keys, l.key);
+    const std::optional<KeyValue> v = k.get(t);
+    if (!v || !k.applies_to(t)) throw std::logic_error(std::string("design writes ") + l.key + ", which its case lacks");
+    const auto* x = std::get_if<double>(&*v);
+    if (separator && !s.empty()) s += separator;
+    if (*l.comment_before) s += std::string("# ") + l.comment_before + "\n";
+    s += k.name + " = " + (x ? num(*x) : key_value_toml(*v));
+    if (*l.comment_after) s += std::string("   # ") + l.comment_after;
+    if (!separator) s += "\n";
+  }
+  return s;
 }
 
 }  // namespace
@@ -236,37 +269,42 @@ std::string design_case_toml(const CupDesign& c) {
     << "# Supports: the boss clamped; the cam pushes the bore over its band; the torque on the rim's engagement zones.\n"
     << "# Mesh: no [mesh] table, so the mesh is derived from the part (the same at every size up to scale).\n"
     << "# Run: build/strainwave run CASE.toml (fem, backlash, contact)\n";
-  s << "[gear]\nmodule_mm = " << mm(g.module_m) << "\nteeth_flexspline = " << g.teeth_flexspline
-    << "\nteeth_circular = " << g.teeth_circular << "\npressure_angle_deg = " << num(kPressureAngleDeg)
-    << "\nprofile_shift_flexspline = " << num(g.profile_shift_flexspline)
-    << "\nprofile_shift_circular = " << num(g.profile_shift_circular) << "\ncutter_teeth = " << g.cutter_teeth
-    << "\naddendum_coefficient_flexspline = " << num(g.addendum_coefficient_flexspline)
-    << "\naddendum_coefficient_circular = " << num(g.addendum_coefficient_circular)
-    << "\ndedendum_coefficient_flexspline = " << num(g.dedendum_coefficient_flexspline)
-    << "\ndedendum_coefficient_circular = " << num(g.dedendum_coefficient_circular) << "\n\n";
-  s << "[flexspline]\nshape = \"cup\"\ninner_radius_mm = " << mm(f.inner_radius_m)
-    << "\nwall_thickness_mm = " << mm(f.wall_thickness_m) << "\nlength_mm = " << mm(f.length_m)
-    << "\nrim_width_mm = " << mm(f.rim_width_m) << "\nrim_thickness_mm = " << mm(f.rim_thickness_m)
-    << "\nteeth = \"none\"   # the rim alone; the teeth act in series (contact)\ndiaphragm_thickness_mm = " << mm(f.diaphragm_thickness_m)
-    << "\nboss_radius_mm = " << mm(f.boss_radius_m) << "\nfillet_radius_mm = " << mm(f.fillet_radius_m) << "\n\n";
-  s << "[material]\nyoungs_modulus_Pa = " << num(c.material.youngs_modulus_Pa) << "\npoisson_ratio = "
-    << num(c.material.poisson_ratio) << "\ndensity_kg_m3 = " << num(c.material.density_kg_m3)
-    << "\n# Fatigue (Goodman): typical values for a quenched and tempered Ni-Cr-Mo flexspline steel, not a certificate.\n"
-    << "fatigue_limit_MPa = " << num(*c.material.fatigue_limit_Pa / 1e6) << "\nultimate_strength_MPa = "
-    << num(*c.material.ultimate_strength_Pa / 1e6)
-    << "\n# First yield: the minimum R_e of 34CrNiMo6+QT at 16-40 mm (EN 10083-3), whose R_m range starts at the above.\n"
-    << "yield_strength_MPa = " << num(*c.material.yield_strength_Pa / 1e6) << "\n\n";
-  s << "[wave_generator]\nmodel = \"cam\"\nradial_deformation_mm = " << mm(*w.radial_deformation_m)
-    << "\naxial_position_mm = " << mm(w.axial_position_m) << "\nband_width_mm = " << mm(w.band_width_m)
-    << "\nprofile = \"polar\"\nfit_um = 0.0\n"
-    << "bearing = { balls = " << b.balls << ", ball_diameter_mm = " << mm(b.ball_diameter_m)
-    << ", inner_groove_conformity = " << num(b.inner_groove_conformity)
-    << ", outer_groove_conformity = " << num(b.outer_groove_conformity) << " }\n\n";
-  s << "[load]\ntorque_Nm = " << num(c.rated_torque_Nm) << "\nrated_torque_Nm = " << num(c.rated_torque_Nm) << "\n\n";
-  s << "[circular_spline]\nouter_radius_mm = " << mm(c.circular_spline.outer_radius_m)
-    << "\nwidth_mm = " << mm(c.circular_spline.width_m) << "\nmounting = \"" << to_string(c.circular_spline.mounting)
-    << "\"\nbolt_circle_inner_mm = " << mm(c.circular_spline.bolt_circle_inner_m)
-    << "\nbolt_circle_outer_mm = " << mm(c.circular_spline.bolt_circle_outer_m) << "\n";
+  const auto teeth_note = "the rim alone; the teeth act in series (contact)";
+  LoadParams load;  // the FEM's torque and the contact's rated torque: the design's rating
+  load.torque_Nm = c.rated_torque_Nm;
+  load.rated_torque_Nm = c.rated_torque_Nm;
+  s << "[gear]\n"
+    << key_lines(g, gear_keys(),
+                 {{"module_mm"}, {"teeth_flexspline"}, {"teeth_circular"}, {"pressure_angle_deg"},
+                  {"profile_shift_flexspline"}, {"profile_shift_circular"}, {"cutter_teeth"},
+                  {"addendum_coefficient_flexspline"}, {"addendum_coefficient_circular"},
+                  {"dedendum_coefficient_flexspline"}, {"dedendum_coefficient_circular"}})
+    << "\n[flexspline]\n"
+    << key_lines(f, flexspline_keys(),
+                 {{"shape"}, {"inner_radius_mm"}, {"wall_thickness_mm"}, {"length_mm"}, {"rim_width_mm"},
+                  {"rim_thickness_mm"}, {"teeth", "", teeth_note}, {"diaphragm_thickness_mm"}, {"boss_radius_mm"},
+                  {"fillet_radius_mm"}})
+    << "\n[material]\n"
+    << key_lines(c.material, material_keys(),
+                 {{"youngs_modulus_Pa"}, {"poisson_ratio"}, {"density_kg_m3"},
+                  {"fatigue_limit_MPa", "Fatigue (Goodman): typical values for a quenched and tempered Ni-Cr-Mo "
+                                        "flexspline steel, not a certificate."},
+                  {"ultimate_strength_MPa"},
+                  {"yield_strength_MPa", "First yield: the minimum R_e of 34CrNiMo6+QT at 16-40 mm (EN 10083-3), "
+                                         "whose R_m range starts at the above."}})
+    << "\n[wave_generator]\n"
+    << key_lines(w, wave_generator_keys(),
+                 {{"model"}, {"radial_deformation_mm"}, {"axial_position_mm"}, {"band_width_mm"}, {"profile"},
+                  {"fit_um"}})
+    << "bearing = { "
+    << key_lines(b, generator_bearing_keys(),
+                 {{"balls"}, {"ball_diameter_mm"}, {"inner_groove_conformity"}, {"outer_groove_conformity"}}, ", ")
+    << " }\n"
+    << "\n[load]\n"
+    << key_lines(load, load_keys(), {{"torque_Nm"}, {"rated_torque_Nm"}})
+    << "\n[circular_spline]\n"
+    << key_lines(c.circular_spline, circular_spline_keys(),
+                 {{"outer_radius_mm"}, {"width_mm"}, {"mounting"}, {"bolt_circle_inner_mm"}, {"bolt_circle_outer_mm"}});
   if (catalog_drive(c.size)) s << "\n[catalog]\nsize = " << c.size << "\n";
   return s.str();
 }

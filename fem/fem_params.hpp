@@ -68,7 +68,7 @@ inline const std::vector<CaseKey<SolverParams>>& solver_keys() {
   static const std::vector<CaseKey<S>> keys = {
       method_key(),
       integer_key<S>("harmonics", &S::harmonics, within(0, 4096), "fourier: highest circumferential harmonic kept")
-          .with_default("the case's need (fem/fourier_solver.hpp default_harmonics)"),
+          .with_default("the case's need (fem/flexspline_model.hpp default_harmonics)"),
       choice_key<S>("backend", &S::backend, {{"cholmod", SolverBackend::Cholmod}, {"petsc", SolverBackend::Petsc}},
                     "tet10: factorise with CHOLMOD here, or with PETSc on the ranks of an mpirun launch"),
   };

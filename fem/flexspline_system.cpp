@@ -45,12 +45,6 @@ Eigen::VectorXd generator_load(const FlexsplineModel& c, const TetMesh& mesh) {
 
 }  // namespace
 
-double station_spacing(const FlexsplineModel& c) {
-  const double two_edges_deg = 2 * c.mesh.size_m / c.flexspline.inner_radius_m * 180 / kPi;
-  const double n = std::round(180.0 / std::clamp(two_edges_deg, 2.0, 6.0));
-  return kPi / n;
-}
-
 Eigen::MatrixXd FlexsplineSystem::solve(const Eigen::MatrixXd& loads) const {
   Eigen::MatrixXd B(dofs.n_equations, loads.cols());
   for (Eigen::Index j = 0; j < loads.cols(); ++j) B.col(j) = restrict_to_free(dofs, loads.col(j));

@@ -58,8 +58,4 @@ inline constexpr double kGeneratorPatchHalfAngle_rad = 3.0 * 3.141592653589793 /
 /// rollers do not push the major axis outward.
 double rollers_setout(const WaveGeneratorParams& w, double w_unit_m);
 
-/// Angular spacing of the contact stations: two element edges at the bore (a contact pressure resolved more finely
-/// than the displacement field checkerboards), at least 2° and at most 6°, dividing 180° evenly.
-double station_spacing(const FlexsplineModel& c);
-
 }  // namespace sw

@@ -6,7 +6,24 @@
 #include "fem/flexspline_analysis.hpp"
 #include "fem/flexspline_system.hpp"
 
-namespace sw::fourier {
+namespace sw {
+
+std::vector<std::pair<double, double>> series_quadrature(double lo, double hi, int N) {
+  static const double gx[8] = {-0.9602898564975363, -0.7966664774136267, -0.5255324099163290, -0.1834346424956498,
+                               0.1834346424956498,  0.5255324099163290,  0.7966664774136267,  0.9602898564975363};
+  static const double gw[8] = {0.1012285362903763, 0.2223810344533745, 0.3137066458778873, 0.3626837833783620,
+                               0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
+  const int pieces = static_cast<int>(std::ceil(N * (hi - lo) / 0.5)) + 1;
+  std::vector<std::pair<double, double>> points;
+  points.reserve(8 * static_cast<std::size_t>(pieces));
+  for (int q = 0; q < pieces; ++q) {
+    const double a = lo + (hi - lo) * q / pieces, b = lo + (hi - lo) * (q + 1) / pieces;
+    for (int g = 0; g < 8; ++g) points.emplace_back(0.5 * (a + b) + 0.5 * (b - a) * gx[g], 0.5 * (b - a) * gw[g]);
+  }
+  return points;
+}
+
+namespace fourier {
 
 double cos_moment(const std::vector<Window>& ws, int n) {  // ∫ g(θ) cos nθ dθ
   double m = 0;
@@ -167,4 +184,5 @@ void ring_curve(const HarmonicField& u, const Probe& p, double radius_m, std::ve
   }
 }
 
-}  // namespace sw::fourier
+}  // namespace fourier
+}  // namespace sw

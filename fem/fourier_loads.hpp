@@ -16,6 +16,10 @@
 
 namespace sw {
 
+/// Gauss–Legendre points (8 a piece) on [lo, hi] in pieces short enough for a series up to harmonic N (N·piece ≤
+/// 0.5): a smooth function on each piece times a linear one (a hat's flank) integrates to round-off. (θ, weight).
+std::vector<std::pair<double, double>> series_quadrature(double lo, double hi, int N);
+
 /// The wave generator's contact stations (fem/flexspline_system.hpp's generator_stations) in the harmonic basis.
 /// Station pair j's unit load, 1 N of normal force spread by the hat at θ_j and at θ_j + π, uniform across the band,
 /// has the generalised loads of harmonic n

@@ -27,49 +27,6 @@ namespace sw {
 
 using namespace fourier;
 
-std::vector<std::pair<double, double>> series_quadrature(double lo, double hi, int N) {
-  static const double gx[8] = {-0.9602898564975363, -0.7966664774136267, -0.5255324099163290, -0.1834346424956498,
-                               0.1834346424956498,  0.5255324099163290,  0.7966664774136267,  0.9602898564975363};
-  static const double gw[8] = {0.1012285362903763, 0.2223810344533745, 0.3137066458778873, 0.3626837833783620,
-                               0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
-  const int pieces = static_cast<int>(std::ceil(N * (hi - lo) / 0.5)) + 1;
-  std::vector<std::pair<double, double>> points;
-  points.reserve(8 * static_cast<std::size_t>(pieces));
-  for (int q = 0; q < pieces; ++q) {
-    const double a = lo + (hi - lo) * q / pieces, b = lo + (hi - lo) * (q + 1) / pieces;
-    for (int g = 0; g < 8; ++g) points.emplace_back(0.5 * (a + b) + 0.5 * (b - a) * gx[g], 0.5 * (b - a) * gw[g]);
-  }
-  return points;
-}
-
-namespace {
-
-constexpr int kBaseHarmonics = 64;
-
-/// The three needs of default_harmonics: the base, the stations', the teeth's.
-std::array<int, 3> harmonic_needs(const FlexsplineModel& c) {
-  std::array<int, 3> need{kBaseHarmonics, 0, 0};
-  if (c.wave_generator && c.flexspline.inner_radius_m > 0 && c.mesh.size_m > 0)
-    need[1] = 2 * static_cast<int>(std::lround(kPi / station_spacing(c)));
-  if (c.gear && c.gear->teeth_flexspline > 0 && c.flexspline.rim_width_m > 0)  // a toothed face: the contact's
-    need[2] = (c.gear->teeth_flexspline + 1) / 2;
-  return need;
-}
-
-}  // namespace
-
-int default_harmonics(const FlexsplineModel& c) {
-  const auto need = harmonic_needs(c);
-  return std::max({need[0], need[1], need[2]});
-}
-
-std::string default_harmonics_origin(const FlexsplineModel& c) {
-  const auto need = harmonic_needs(c);
-  return "the largest of " + std::to_string(need[0]) + " (the base), " + std::to_string(need[1]) +
-         " (two per generator station pair) and " + std::to_string(need[2]) +
-         " (z_f/2: the teeth's flank patterns in the loaded contact)";
-}
-
 Eigen::Matrix<double, 18, 18> harmonic_element_stiffness(const Eigen::Matrix<double, 6, 2>& X, const Material& m,
                                                          int n) {
   const auto D = elasticity(m);

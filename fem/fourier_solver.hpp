@@ -39,18 +39,6 @@
 
 namespace sw {
 
-/// The harmonics a case needs (the default of solver.harmonics): 64, or more where the generator's contact stations
-/// need them (a hat of half-width Δ has its spectrum's main lobe up to 2π/Δ: two harmonics per station pair) or the
-/// teeth's flank patterns do (hats one tooth pitch wide: the loaded contact's twist at rated torque settles at
-/// z_f/2, contact/README.md).
-int default_harmonics(const FlexsplineModel& c);
-/// Where default_harmonics' value comes from, in words (for the resolved case).
-std::string default_harmonics_origin(const FlexsplineModel& c);
-
-/// Gauss–Legendre points (8 a piece) on [lo, hi] in pieces short enough for a series up to harmonic N (N·piece ≤
-/// 0.5): a smooth function on each piece times a linear one (a hat's flank) integrates to round-off. (θ, weight).
-std::vector<std::pair<double, double>> series_quadrature(double lo, double hi, int N);
-
 /// Stiffness of a 6-node triangle of the section for harmonic n (18 × 18, dofs node-major (a, b, c)), N/m.
 Eigen::Matrix<double, 18, 18> harmonic_element_stiffness(const Eigen::Matrix<double, 6, 2>& X, const Material& m,
                                                          int n);
@@ -63,8 +51,6 @@ Eigen::MatrixXd solve_harmonic(const SectionMesh& s, const Material& m, int n, c
 /// ∫ t N_i r ds over the boundary edges with `marker` (n_nodes × 3) for a traction t = (t_r, t_θ, t_z) uniform on
 /// them: times the θ integral of the load's angular shape it is the generalised load of a harmonic.
 Eigen::MatrixXd section_traction_load(const SectionMesh& s, int marker, const Eigen::Vector3d& traction);
-
-
 
 
 

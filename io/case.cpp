@@ -21,7 +21,7 @@
 #include "common/overloaded.hpp"
 #include "design/catalog.hpp"
 #include "dynamics/model.hpp"
-#include "fem/fourier_solver.hpp"
+#include "fem/flexspline_model.hpp"
 #include "generator/cam_profile.hpp"
 #include "gear/tooth_profile.hpp"
 #include "io/json_file.hpp"
@@ -224,13 +224,6 @@ void require_keys(const TableReader& r, const std::vector<CaseKey<T>>& keys, con
       throw InputError(r.file() + ": " + r.name() + "." + k.name + " is missing; " + why);
 }
 
-template <class T>
-const CaseKey<T>& key_named(const std::vector<CaseKey<T>>& keys, const std::string& name) {
-  for (const CaseKey<T>& k : keys)
-    if (k.name == name) return k;
-  throw std::logic_error("no case key " + name);
-}
-
 GearParams read_gear(TableReader r) {
   GearParams g;
   read_keys(r, g, gear_keys());
@@ -417,7 +410,7 @@ MeshParams read_mesh(TableReader r, const FlexsplineParams& f) {
 }
 
 /// [solver]: method "auto" (the default) takes the harmonic solver for a body of revolution and TET10 for explicit
-/// teeth or the petsc backend; harmonics left out are the case's need (fem/fourier_solver.hpp default_harmonics). Both
+/// teeth or the petsc backend; harmonics left out are the case's need (fem/flexspline_model.hpp default_harmonics). Both
 /// resolved against the model read so far, their origins recorded in `derived`.
 SolverParams read_solver(TableReader r, const FlexsplineModel& model, std::map<std::string, std::string>& derived) {
   SolverParams s;

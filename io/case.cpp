@@ -104,22 +104,6 @@ public:
     return integer(key, 0, std::numeric_limits<int>::min());
   }
 
-  /// Runs a stage's validation of what this table gave; its message about one of the table's keys
-  /// ("table.key = value; ...") gets the file and the key's line in front.
-  template <class F>
-  void locate(F&& validate) const {
-    try {
-      validate();
-    } catch (const InputError& e) {
-      const std::string what = e.what();
-      const std::size_t eq = what.find(" = ");
-      const std::string prefix = name_ + ".";
-      const bool ours = eq != std::string::npos && what.compare(0, prefix.size(), prefix) == 0;
-      const std::string key = ours ? what.substr(prefix.size(), eq - prefix.size()) : "";
-      throw InputError(file_ + (ours ? where(table_.get(key)) : "") + ": " + what);
-    }
-  }
-
   std::string choice(const std::string& key, const std::string& fallback, const std::vector<std::string>& allowed) {
     used_.insert(key);
     const toml::node* node = table_.get(key);
@@ -190,7 +174,7 @@ const toml::table* sub_table(const toml::table& root, const std::string& name, c
 }
 
 /// Reads key `k` of the schema into `t` when the table gives it, as the key's type (number, integer, one of its
-/// words); its range is the stage's validation's, which the callers run through TableReader::locate.
+/// words); its range is the stage's validation's, which case_of runs after the table is read (locating_key).
 template <class T>
 void read_key(TableReader& r, T& t, const CaseKey<T>& k) {
   switch (k.kind) {
@@ -228,7 +212,6 @@ GearParams read_gear(TableReader r) {
   GearParams g;
   read_keys(r, g, gear_keys());
   r.reject_unknown();
-  r.locate([&] { validate_gear(g); });  // gear/ owns the ranges and the consistency of a set that can be made
   return g;
 }
 
@@ -259,7 +242,6 @@ Material read_material(TableReader r) {
   Material m;
   read_keys(r, m, material_keys());
   r.reject_unknown();
-  r.locate([&] { validate_material(m); });
   return m;
 }
 
@@ -271,7 +253,6 @@ GeneratorBearing read_bearing(TableReader r, double bore_radius_m) {
   read_keys(r, b, generator_bearing_keys());
   r.reject_unknown();
   b.pitch_radius_m = bearing_pitch_radius_m(bore_radius_m, b.ball_diameter_m);
-  r.locate([&] { validate_generator_bearing(b); });
   return b;
 }
 
@@ -390,7 +371,6 @@ LoadParams read_load(TableReader r) {
   read_keys(r, l, load_keys());
   if (l.rated_torque_Nm) l.rated_torque_from = "the case file";
   r.reject_unknown();
-  r.locate([&] { check_key_ranges(l, load_keys(), "load"); });
   return l;
 }
 
@@ -431,7 +411,6 @@ SolverParams read_solver(TableReader r, const FlexsplineModel& model, std::map<s
   read_key(r, s, key_named(solver_keys(), "harmonics"));
   if (!r.given("harmonics")) derived["solver.harmonics"] = default_harmonics_origin(model);
   r.reject_unknown();
-  r.locate([&] { check_key_ranges(s, solver_keys(), "solver"); });
   return s;
 }
 
@@ -596,8 +575,12 @@ void locating_key(const toml::table& root, const std::string& path, const std::m
     const std::size_t dot = what.find('.'), eq = what.find(" = "), semi = what.find("; ", eq);
     if (dot == std::string::npos || eq == std::string::npos || dot > eq) throw InputError(path + ": " + what);
     const std::string key = what.substr(0, eq);
-    const toml::node* table = root.get(key.substr(0, dot));
-    const toml::node* node = table && table->is_table() ? table->as_table()->get(key.substr(dot + 1)) : nullptr;
+    const toml::node* node = &root;  // down the key's dotted path: table.key, table.inline_table.key
+    for (std::size_t from = 0; node && from <= key.size();) {
+      const std::size_t to = std::min(key.find('.', from), key.size());
+      node = node->is_table() ? node->as_table()->get(key.substr(from, to - from)) : nullptr;
+      from = to + 1;
+    }
     if (node && node->source().begin) throw InputError(path + ":" + std::to_string(node->source().begin.line) + ": " + what);
     const auto from = derived.find(key);
     if (node || from == derived.end() || semi == std::string::npos) throw InputError(path + ": " + what);
@@ -634,16 +617,27 @@ Case case_of(const toml::table& root, const std::string& path) {
   }
   static const toml::table kEmpty;
   auto table = [&](const char* name) -> const toml::table* { return sub_table(root, name, path); };
-  if (auto t = table("gear")) c.gear = read_gear(TableReader(*t, "gear", path));
+  // Each stage validates what its table gave (ranges from its schema, then its rules between keys); a message about a
+  // key gets the file and the key's line in front (locating_key).
+  const auto validated = [&](auto&& validate) { locating_key(root, path, c.derived_from, validate); };
+  if (auto t = table("gear")) {
+    c.gear = read_gear(TableReader(*t, "gear", path));
+    validated([&] { validate_gear(*c.gear); });  // gear/ owns the ranges and the consistency of a set that can be made
+  }
   if (!table("flexspline")) throw InputError(path + ": [flexspline] is missing; every case describes its flexspline");
   c.flexspline = read_flexspline(TableReader(*table("flexspline"), "flexspline", path));
   c.material = read_material(TableReader(table("material") ? *table("material") : kEmpty, "material", path));
-  if (auto t = table("wave_generator"))
+  validated([&] { validate_material(c.material); });
+  if (auto t = table("wave_generator")) {
     c.wave_generator = read_wave_generator(TableReader(*t, "wave_generator", path), c.flexspline.inner_radius_m);
+    if (c.wave_generator->bearing) validated([&] { validate_generator_bearing(*c.wave_generator->bearing); });
+  }
   c.load = read_load(TableReader(table("load") ? *table("load") : kEmpty, "load", path));
+  validated([&] { check_key_ranges(c.load, load_keys(), "load"); });
   c.mesh = read_mesh(TableReader(table("mesh") ? *table("mesh") : kEmpty, "mesh", path), c.flexspline);
   c.solver = read_solver(TableReader(table("solver") ? *table("solver") : kEmpty, "solver", path),
                          flexspline_model(c), c.derived_from);
+  validated([&] { check_key_ranges(c.solver, solver_keys(), "solver"); });
   if (auto t = table("catalog")) c.catalog_size = read_catalog(TableReader(*t, "catalog", path));
   if (!c.load.rated_torque_Nm && c.catalog_size && catalog_drive(*c.catalog_size)->has_rated_torque()) {
     c.load.rated_torque_Nm = catalog_drive(*c.catalog_size)->rated_torque_Nm;
@@ -653,27 +647,27 @@ Case case_of(const toml::table& root, const std::string& path) {
     c.circular_spline = read_circular_spline(
         TableReader(table("circular_spline") ? *table("circular_spline") : kEmpty, "circular_spline", path), *c.gear,
         c.flexspline.rim_width_m, c.derived_from);
-    locating_key(root, path, c.derived_from, [&] { check_circular_spline(*c.circular_spline, *c.gear); });
+    validated([&] { check_circular_spline(*c.circular_spline, *c.gear); });
   } else if (table("circular_spline")) {
     throw InputError(path + ": [circular_spline] needs a [gear] table (its root circle comes from the teeth)");
   }
   if (auto t = table("contact")) {
     c.contact = read_contact(TableReader(*t, "contact", path));
-    locating_key(root, path, c.derived_from, [&] { validate_contact_params(c.contact); });
+    validated([&] { validate_contact_params(c.contact); });
   }
   if (auto t = table("lubricant")) {
     c.lubricant = read_lubricant(TableReader(*t, "lubricant", path));
-    locating_key(root, path, c.derived_from, [&] { validate_lubricant(*c.lubricant, "lubricant"); });
+    validated([&] { validate_lubricant(*c.lubricant, "lubricant"); });
   }
   if (auto t = table("dynamics")) {
     c.dynamics = read_dynamics(TableReader(*t, "dynamics", path));
-    locating_key(root, path, c.derived_from, [&] { validate(*c.dynamics, ""); });
+    validated([&] { validate(*c.dynamics, ""); });
   }
   if (c.flexspline.teeth != TeethModel::None && !c.gear)
     throw InputError(path + ": flexspline.teeth = \"" +
                      std::string(c.flexspline.teeth == TeethModel::Ring ? "ring" : "explicit") +
                      "\" needs a [gear] table (module and teeth), or set teeth = \"none\"");
-  locating_key(root, path, c.derived_from, [&] { validate_flexspline(c.flexspline, c.mesh); });
+  validated([&] { validate_flexspline(c.flexspline, c.mesh); });
   if (c.solver.method == SolverMethod::Fourier && c.flexspline.teeth == TeethModel::Explicit)
     throw InputError(path + ": solver.method = \"fourier\" needs a body of revolution; flexspline.teeth = \"explicit\" "
                             "is not one (use teeth = \"ring\" or \"none\", or method = \"tet10\")");

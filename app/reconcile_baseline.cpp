@@ -11,6 +11,7 @@
 
 #include "app/commands.hpp"
 #include "app/dynamics_job.hpp"
+#include "common/constants.hpp"
 #include "common/error.hpp"
 #include "common/format.hpp"
 #include "dynamics/model.hpp"
@@ -53,7 +54,7 @@ void hold_against_loop(const TorqueLoop& loop, double rated_Nm, const std::vecto
                        reconcile::TorsionPrediction& p, std::vector<std::string>& notes) {
   const double loss = hysteresis_loss_rad(loop);
   const std::string what = "the curve is a loop (friction in the teeth; hysteresis loss " +
-                           six_digits(loss * 10800 / M_PI) + " arcmin at +-" + six_digits(rated_Nm) + " N*m)";
+                           six_digits(loss * kArcmin) + " arcmin at +-" + six_digits(rated_Nm) + " N*m)";
   const double tol = kCurveEndTolerance * rated_Nm;
   auto cycled_to_rated = [&] {
     if (!torque || torque->empty()) return false;

@@ -94,7 +94,8 @@ std::string key_lines(const T& t, const std::vector<CaseKey<T>>& keys, std::init
   for (const DesignLine& l : lines) {
     const CaseKey<T>& k = key_named(keys, l.key);
     const std::optional<KeyValue> v = k.get(t);
-    if (!v || !k.applies_to(t)) throw std::logic_error(std::string("design writes ") + l.key + ", which its case lacks");
+    if (!v || !k.applies_to(t))
+      throw std::logic_error(std::string("design writes ") + l.key + ", which its case lacks");
     const auto* x = std::get_if<double>(&*v);
     if (separator && !s.empty()) s += separator;
     if (*l.comment_before) s += std::string("# ") + l.comment_before + "\n";

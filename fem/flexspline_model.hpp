@@ -16,7 +16,7 @@ namespace sw {
 
 struct FlexsplineModel {
   FlexsplineParams flexspline;
-  std::optional<GearParams> gear;  ///< the teeth as a ring: the rim's outer radius (mesh/flexspline.hpp)
+  std::optional<GearParams> gear;  ///< the teeth as a ring: the rim's outer radius (mesh/flexspline_sizes.hpp)
   Material material;
   std::optional<WaveGeneratorParams> wave_generator;  ///< absent: torque alone
   LoadParams load;

@@ -175,8 +175,8 @@ SectionSizes section_sizes(const FlexsplineParams& f, const std::optional<GearPa
   // sections). The cells at the junction are split geometrically (halving) toward it, in r in the diaphragm and the
   // boss, in z through every wall's layers (the layers are shared by all walls, so their outermost layers are thin
   // everywhere) and in the boss above the diaphragm. Levels: mesh.corner_levels, the TET10 size field's key
-  // (mesh/flexspline.hpp corner_levels: the rule's kDerivedCornerLevels + log2 of the diaphragm's layers unless the
-  // case gives it, so the corner cell shrinks about as h²).
+  // (mesh/flexspline_sizes.hpp corner_levels: the rule's kDerivedCornerLevels + log2 of the diaphragm's layers unless
+  // the case gives it, so the corner cell shrinks about as h²).
   s.levels = corner_levels(f, mesh);
   s.lay = graded(s.layers, s.levels, true, true);
   return s;

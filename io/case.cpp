@@ -218,7 +218,7 @@ GearParams read_gear(TableReader r) {
 FlexsplineParams read_flexspline(TableReader r) {
   const auto& keys = flexspline_keys();
   FlexsplineParams f;
-  // Ranges and consistency: mesh/flexspline.hpp validate_flexspline, once the mesh table is read (parse_case).
+  // Ranges and consistency: mesh/flexspline_params.hpp validate_flexspline, once the mesh table is read (parse_case).
   for (const char* key : {"shape", "inner_radius_mm", "wall_thickness_mm", "length_mm"})
     read_key(r, f, key_named(keys, key));
   f.teeth = f.shape == FlexsplineShape::Cup ? TeethModel::Ring : TeethModel::None;
@@ -377,7 +377,7 @@ LoadParams read_load(TableReader r) {
 /// The keys the table gives; derive_mesh (mesh/flexspline_params.hpp) derives the others from the flexspline.
 MeshParams read_mesh(TableReader r, const FlexsplineParams& f) {
   // size_mm, wall_layers and corner_levels: their ranges are the mesh's (mesh/flexspline_params.hpp wall_size,
-  // mesh/flexspline.hpp corner_levels), checked with the flexspline's.
+  // mesh/flexspline_sizes.hpp corner_levels), checked with the flexspline's.
   MeshKeysGiven given;
   if (const auto size = r.number("size_mm")) given.size_m = *size * kMm;
   given.wall_layers = r.integer("wall_layers");
@@ -390,8 +390,8 @@ MeshParams read_mesh(TableReader r, const FlexsplineParams& f) {
 }
 
 /// [solver]: method "auto" (the default) takes the harmonic solver for a body of revolution and TET10 for explicit
-/// teeth or the petsc backend; harmonics left out are the case's need (fem/flexspline_model.hpp default_harmonics). Both
-/// resolved against the model read so far, their origins recorded in `derived`.
+/// teeth or the petsc backend; harmonics left out are the case's need (fem/flexspline_model.hpp default_harmonics).
+/// Both resolved against the model read so far, their origins recorded in `derived`.
 SolverParams read_solver(TableReader r, const FlexsplineModel& model, std::map<std::string, std::string>& derived) {
   SolverParams s;
   const std::string method = r.choice("method", "auto", {"auto", "tet10", "fourier"});

@@ -1,7 +1,8 @@
 #pragma once
 // What produced an output: the resolved case and the tool's version, stored beside the figures of every output JSON
 // (result.json, backlash.json, contact.json, dynamics.json, reconcile.json) as "case" and "version". Given such a
-// file in place of a case file, a command runs the stored case again (io/case.hpp load_case); io/case.hpp makes it (provenance_of).
+// file in place of a case file, a command runs the stored case again (io/case.hpp load_case); io/case.hpp makes it
+// (provenance_of).
 #include <string>
 
 namespace sw {

@@ -41,7 +41,7 @@ inline const char* teeth_name(TeethModel t) {
 ///   loads' axial spread) need, but within [t, kMaxLayerAspect·t] for the body wall's thickness t: one layer through
 ///   it, and no longer along it than that layer allows. The teeth follow: a ring is the rim's outer layer, meshed with
 ///   the rim; explicit teeth take their edges from their own thickness, axially no longer than size_mm
-///   (tooth_mesh_size in mesh/flexspline.hpp).
+///   (tooth_mesh_size in mesh/flexspline_sizes.hpp).
 /// - corner_levels = kDerivedCornerLevels + floor(log2(layers through the diaphragm)) for a cup, 0 for a tube (the
 ///   corner edge is the diaphragm's layer halved that many times: it shrinks about as size² when a mesh is refined,
 ///   as the singular corners want). The same value grades the TET10 mesh and the harmonic section.
@@ -52,7 +52,7 @@ inline const char* teeth_name(TeethModel t) {
 /// more: −0.29 % and −0.34 % for 1.6x the nodes.
 /// A message about a derived value says what it was derived from and which key to write (the *_from members). The
 /// members' initial values are for code that builds a MeshParams itself (tests, benches); corner_levels = -1 there
-/// asks for the rule's value (corner_levels() in mesh/flexspline.hpp resolves it for both solvers).
+/// asks for the rule's value (corner_levels() in mesh/flexspline_sizes.hpp resolves it for both solvers).
 struct MeshParams {
   double size_m = 0.6e-3;    ///< target edge length away from thin walls
   int wall_layers = 2;       ///< minimum TET10 layers through any wall

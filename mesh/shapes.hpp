@@ -7,7 +7,8 @@ namespace sw {
 
 /// Annular tube about z, r_inner < r < r_outer, 0 <= z <= length (also the thick cylinder and the short ring).
 /// Markers: kSurfaceClamped at z = 0, kSurfaceOpenEnd at z = length, kSurfaceInner, kSurfaceOuter. Region 0.
-/// The wall is wall_layers layers thick (wall_size, mesh/flexspline_params.hpp); curved-surface nodes lie on the true cylinders.
+/// The wall is wall_layers layers thick (wall_size, mesh/flexspline_params.hpp); curved-surface nodes lie on the true
+/// cylinders.
 TetMesh mesh_tube(double r_inner_m, double r_outer_m, double length_m, const MeshParams& mesh);
 
 /// Bar 0 <= x <= length, |y| <= width/2, |z| <= height/2 (cross-section centred on the x axis). Markers:

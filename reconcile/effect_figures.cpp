@@ -55,7 +55,7 @@ std::optional<CatalogFigures> catalog_figures(const Experiment& e, const FitResu
   const double c_series = added_series_compliance(f);
   const double c_last = t->model.compliance_rad_per_Nm + c_series;
   c.k1 = c.k2 = c.k3 = 1.0 / c_last;
-  c.hysteresis_loss_arcmin = t->model.loop_loss_rad * kArcminPerRad;  // a loop baseline's own; effects add to it
+  c.hysteresis_loss_arcmin = t->model.loop_loss_rad * kArcmin;  // a loop baseline's own; effects add to it
   // The middle line of the loop after cycling to +-R: everything but the branch-dependent part of hysteresis. A
   // curve baseline (the contact stage's) is its own middle line.
   r.middle_twist_rad = [c_last](double T) { return c_last * T; };
@@ -63,7 +63,7 @@ std::optional<CatalogFigures> catalog_figures(const Experiment& e, const FitResu
     r.middle_twist_rad = [curve = t->model.twist_rad, c_series](double T) { return curve(T) + c_series * T; };
   for (std::size_t i = 0; i < f.terms.size(); ++i)
     if (f.terms[i].spec->catalog) f.terms[i].spec->catalog(e, f, static_cast<int>(i), r);
-  c.catalog_lost_motion_arcmin = (r.middle_twist_rad(0.04 * R) - r.middle_twist_rad(-0.04 * R)) * kArcminPerRad;
+  c.catalog_lost_motion_arcmin = (r.middle_twist_rad(0.04 * R) - r.middle_twist_rad(-0.04 * R)) * kArcmin;
   const bool stiffness_effect = c.segments > 1;
   const double t1 = t->model.curve_t1_Nm, t2 = t->model.curve_t2_Nm, top = t->torque_amplitude_Nm;
   if (t->model.twist_rad && !stiffness_effect && t1 > 0.0 && t2 > t1 && top > t2) read_curve_segments(*t, c_series, c);

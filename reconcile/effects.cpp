@@ -224,7 +224,7 @@ EffectSpec hysteresis_variant(int elements) {
     const Vec& th = f.terms[t].theta;
     double loss = 0.0;
     for (int j = 0; j < th.size(); ++j) loss += hysteresis_loss_rad(b[j], th[j], torsion(e).torque_amplitude_Nm);
-    NamedValues v{{"loss_rad", loss}, {"loss_arcmin", loss * kArcminPerRad}};
+    NamedValues v{{"loss_rad", loss}, {"loss_arcmin", loss * kArcmin}};
     if (elements == 1) {
       v.emplace_back("transition_Nm", th[0]);
     } else {
@@ -249,7 +249,7 @@ EffectSpec hysteresis_variant(int elements) {
     const double R = r.figures.rated_torque_Nm;
     for (int j = 0; j < t.theta.size(); ++j) {
       const double h = t.beta[j], th = t.theta[j];
-      r.figures.hysteresis_loss_arcmin += hysteresis_loss_rad(h, th, R) * kArcminPerRad;
+      r.figures.hysteresis_loss_arcmin += hysteresis_loss_rad(h, th, R) * kArcmin;
       r.middle_twist_rad = [mid = r.middle_twist_rad, h, th, R](double T) {
         return mid(T) + hysteresis_middle_twist(h, th, R, T);
       };
@@ -278,11 +278,11 @@ EffectSpec hysteresis_profile_variant() {
   s.columns = [](const Experiment& e, const Vec&) { return gap_profile_columns(torsion(e), kGapProfileIntervals); };
   s.headline = [](const Experiment&, const FitResult& f, int t) {
     const Vec& b = f.terms[t].beta;
-    return NamedValues{{"loss_rad", b[0]}, {"loss_arcmin", b[0] * kArcminPerRad},
-                       {"widest_gap_arcmin", b.maxCoeff() * kArcminPerRad}};
+    return NamedValues{{"loss_rad", b[0]}, {"loss_arcmin", b[0] * kArcmin},
+                       {"widest_gap_arcmin", b.maxCoeff() * kArcmin}};
   };
   s.catalog = [](const Experiment&, const FitResult& f, int i, CatalogReading& r) {
-    r.figures.hysteresis_loss_arcmin += f.terms[i].beta[0] * kArcminPerRad;  // the middle line is unchanged
+    r.figures.hysteresis_loss_arcmin += f.terms[i].beta[0] * kArcmin;  // the middle line is unchanged
   };
   return s;
 }
@@ -325,7 +325,7 @@ Effect hysteresis_effect() {
 
 std::string arcmin(double rad) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g arcmin", rad * kArcminPerRad);
+  std::snprintf(buf, sizeof buf, "%.3g arcmin", rad * kArcmin);
   return buf;
 }
 
@@ -359,14 +359,14 @@ Effect lost_motion_effect() {
       .headline =
           [](const Experiment&, const FitResult& f, int t) {
             return NamedValues{{"width_rad", f.terms[t].beta[0]},
-                               {"width_arcmin", f.terms[t].beta[0] * kArcminPerRad},
+                               {"width_arcmin", f.terms[t].beta[0] * kArcmin},
                                {"transition_Nm", f.terms[t].theta[0]}};
           },
       .meaning = play_meaning,
       .catalog =
           [](const Experiment&, const FitResult& f, int i, CatalogReading& r) {
             const double w = f.terms[i].beta[0], ts = f.terms[i].theta[0];
-            r.figures.play_arcmin = w * kArcminPerRad;
+            r.figures.play_arcmin = w * kArcmin;
             r.middle_twist_rad = [mid = r.middle_twist_rad, w, ts](double T) {
               return mid(T) + w * lost_motion_twist(T, ts);
             };

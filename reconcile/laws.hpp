@@ -3,11 +3,10 @@
 // multiplies by its linear coefficients) and as functions of torque (what the catalog figures read).
 #include <Eigen/Dense>
 
+#include "common/constants.hpp"
 #include "reconcile/experiment.hpp"
 
 namespace sw::reconcile {
-
-inline constexpr double kArcminPerRad = 10800.0 / M_PI;
 
 /// cos(k angle), sin(k angle) (n x 2): a line of order k in an angle.
 Eigen::MatrixXd harmonic_columns(const Eigen::VectorXd& angle_rad, int order);

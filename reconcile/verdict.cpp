@@ -30,7 +30,7 @@ struct Display {
 Display display_of(const Experiment& e) {
   std::string name = e.response_name.substr(0, e.response_name.rfind('_'));
   std::replace(name.begin(), name.end(), '_', ' ');
-  if (e.response_unit == "rad") return {kArcminPerRad, name + " (arcmin)"};
+  if (e.response_unit == "rad") return {kArcmin, name + " (arcmin)"};
   return {1.0, name + " (" + (e.response_unit == "um" ? std::string("µm") : e.response_unit) + ")"};
 }
 

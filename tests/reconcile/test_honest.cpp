@@ -36,7 +36,7 @@ constexpr double kDrivePlay_rad = 3.49066e-5;  // 0.12 arcmin
 
 /// The model's curve as the contact stage gives it for size 17: stiffer than the drive (2.824e4 N*m/rad) with a
 /// dead band of 1.165 arcmin from the teeth's profile shifts (its jump across zero torque).
-constexpr double kCurveK = 2.824e4, kCurvePlay_rad = 1.165 / kArcminPerRad;
+constexpr double kCurveK = 2.824e4, kCurvePlay_rad = 1.165 / sw::kArcmin;
 double model_curve(double T) { return T / kCurveK + (T > 0.0 ? 0.5 : T < 0.0 ? -0.5 : 0.0) * kCurvePlay_rad; }
 Baseline curve_baseline() {
   Baseline b;

@@ -112,19 +112,19 @@ TEST_P(ShippedRecording, IsExplainedByEveryEffectItHoldsWithTheCatalogFiguresRec
               "(noise %.3g); %.1f s\n",
               size, c.k1, ts["K1_Nm_per_rad"].get<double>(), c.k2, ts["K2_Nm_per_rad"].get<double>(), c.k3,
               ts["K3_Nm_per_rad"].get<double>(), c.t1, ts["T1_Nm"].get<double>(), c.t2, ts["T2_Nm"].get<double>(),
-              c.hysteresis_loss_arcmin, truth_params(truth, "hysteresis")["loss_rad"].get<double>() * kArcminPerRad,
-              c.play_arcmin, truth_params(truth, "lost_motion")["width_rad"].get<double>() * kArcminPerRad,
+              c.hysteresis_loss_arcmin, truth_params(truth, "hysteresis")["loss_rad"].get<double>() * sw::kArcmin,
+              c.play_arcmin, truth_params(truth, "lost_motion")["width_rad"].get<double>() * sw::kArcmin,
               c.catalog_lost_motion_arcmin, r.final_heldout_rms, truth["noise"]["rms"].get<double>(), r.seconds);
   EXPECT_LT(rel_err(c.k1, ts["K1_Nm_per_rad"].get<double>()), kStiffnessTol);
   EXPECT_LT(rel_err(c.k2, ts["K2_Nm_per_rad"].get<double>()), kStiffnessTol);
   EXPECT_LT(rel_err(c.k3, ts["K3_Nm_per_rad"].get<double>()), kStiffnessTol);
   // Hysteresis loss at +-rated (the recording cycles to rated) and the play's width.
   EXPECT_LT(rel_err(c.hysteresis_loss_arcmin,
-                    truth_params(truth, "hysteresis")["loss_rad"].get<double>() * kArcminPerRad), kLossTol);
-  EXPECT_LT(rel_err(c.play_arcmin, truth_params(truth, "lost_motion")["width_rad"].get<double>() * kArcminPerRad),
+                    truth_params(truth, "hysteresis")["loss_rad"].get<double>() * sw::kArcmin), kLossTol);
+  EXPECT_LT(rel_err(c.play_arcmin, truth_params(truth, "lost_motion")["width_rad"].get<double>() * sw::kArcmin),
             kLossTol);
   // The catalog's lost motion includes the elastic twist over +-4 % of rated: never below 2 * 0.04 * T_R / K1.
-  EXPECT_GT(c.catalog_lost_motion_arcmin, 2 * 0.04 * c.rated_torque_Nm / c.k1 * kArcminPerRad);
+  EXPECT_GT(c.catalog_lost_motion_arcmin, 2 * 0.04 * c.rated_torque_Nm / c.k1 * sw::kArcmin);
   bool other_friction = false;
   for (const auto& fx : truth["effects"])
     other_friction = other_friction || fx.value("generator", "") == "friction_bouc_wen";

@@ -1,8 +1,8 @@
 // `strainwave design --size N [--ratio R] [--out CASE.toml]`: a cup-type case for a catalog size from the one set of
 // proportions in design/proportions.hpp, its teeth set to zero backlash on the rim as the generator leaves it (the
-// harmonic FEM of the designed cup: the neutral curve the loaded contact meshes the teeth on). The text is read back
-// by the case reader and the flexspline checked before anything is written; --out is written atomically, without it
-// the case goes to stdout.
+// harmonic FEM of the designed cup: the neutral curves at the face's sections the loaded contact meshes the teeth
+// on). The text is read back by the case reader and the flexspline checked before anything is written; --out is
+// written atomically, without it the case goes to stdout.
 #include <cstdio>
 #include <numbers>
 #include <string>
@@ -12,7 +12,9 @@
 #include "app/commands.hpp"
 #include "app/fem_job.hpp"
 #include "common/error.hpp"
+#include "contact/contact_body.hpp"
 #include "contact/loaded_contact.hpp"
+#include "fem/fourier_solver.hpp"
 #include "design/proportions.hpp"
 #include "io/atomic_file.hpp"
 #include "io/case.hpp"
@@ -36,12 +38,25 @@ int parse_int(const std::string& option, const std::string& text) {
   return v;
 }
 
-/// The rim's neutral curve at mid-face under the generator alone, from the case's harmonic FEM: the curve the loaded
-/// contact places the teeth on.
-NeutralCurve generator_deformed_curve(const Case& c) {
+/// The rim's neutral curves under the generator alone at the face's sections the loaded contact meshes (`sections`
+/// of contact/contact_body.hpp face_slice: for the design's three, its closed-end edge, its centre and its open end),
+/// from the case's harmonic FEM: the curves the contact places the teeth on.
+std::vector<NeutralCurve> generator_deformed_sections(const Case& c, int sections) {
   double section_s = 0;
   const FourierSolution fs = solve_fourier_model(c, 0, 0.0, section_s);
-  return fem_neutral_curve(*fs.figures.neutral_curve, "FEM's generator-deformed (mid-face, harmonic solver)");
+  const double face = c.flexspline.rim_width_m, mid = fs.figures.neutral_curve->z_m;
+  std::vector<double> z;
+  for (int j = 0; j < sections; ++j) z.push_back(mid - face / 2 + face * face_slice(j, sections).at);
+  std::vector<NeutralCurve> curves;
+  const std::vector<NeutralCurveSamples> read =
+      neutral_curves_at(fs.section, fs.generator, neutral_radius(c.flexspline), z);
+  for (std::size_t j = 0; j < read.size(); ++j) {
+    char where[64];
+    std::snprintf(where, sizeof where, "%.4g mm from the face's centre", (z[j] - mid) * 1e3);
+    curves.push_back(
+        fem_neutral_curve(read[j], std::string("FEM's generator-deformed (harmonic solver, ") + where + ")"));
+  }
+  return curves;
 }
 
 /// The case text of a design, read back and checked as any case.
@@ -64,7 +79,8 @@ void add_design_command(CLI::App& app) {
   cmd->callback([] {
     CupDesign d = design_cup(parse_int("--size", size), parse_int("--ratio", ratio));
     const std::string name = out.empty() ? "cup_size" + std::to_string(d.size) + ".toml" : out;
-    set_zero_backlash(d, generator_deformed_curve(checked_case(design_case_toml(d), name)));
+    set_zero_backlash(d, generator_deformed_sections(checked_case(design_case_toml(d), name), d.face_sections),
+                      "FEM's generator-deformed (harmonic solver) face-end and mid-face");
     const std::string text = design_case_toml(d);
     checked_case(text, name);
     if (out.empty()) {
@@ -76,10 +92,10 @@ void add_design_command(CLI::App& app) {
                 d.size, d.ratio, d.pitch_diameter_m * 1e3, d.gear.module_m * 1e3, d.gear.teeth_flexspline,
                 d.gear.teeth_circular, d.rated_torque_Nm, out.c_str());
     const ZeroBacklash& z = d.zero_backlash;
-    std::printf("  zero backlash on the %s curve: x_c - x_f = %.8f, the tightest pairs touching at +-%.1f deg (%s); "
-                "the major-axis pair's dead band %.3f arcmin\n",
+    std::printf("  zero backlash on the %s curves: x_c - x_f = %.8f, the tightest pairs touching at +-%.1f deg (%s) "
+                "on the %s curve; the major-axis pair's dead band at mid-face %.3f arcmin\n",
                 z.curve.c_str(), z.shift_difference, z.tightest_angle_deg, z.tightest_parts.c_str(),
-                z.major_axis_play_rad * 180.0 / std::numbers::pi * 60.0);
+                z.tightest_section.c_str(), z.major_axis_play_rad * 180.0 / std::numbers::pi * 60.0);
   });
 }
 

@@ -208,7 +208,8 @@ void print_coning(const ContactAnalysis& a) {
               "axis %.1f / %.1f / %.1f µm; at rest %s / %s / %s; %s\n", d->w_major_m * 1e6, m->w_major_m * 1e6,
               o->w_major_m * 1e6, closing(*d).c_str(), closing(*m).c_str(), closing(*o).c_str(),
               a.face_slices > 1
-                  ? ("the contact meshes straight teeth in " + std::to_string(a.face_slices) + " axial slices").c_str()
+                  ? ("the contact meshes straight teeth in " + std::to_string(a.face_slices) +
+                     " sections across the face (its ends and evenly between)").c_str()
                   : "the contact takes the teeth as relieved along the face for it (every section meshing as the "
                     "centre; [contact] face_slices meshes straight teeth)");
 }

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <cstdlib>
 #include <filesystem>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -19,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "dgemm.hpp"
+#include "io/case_edit.hpp"
 #include "tests/cli.hpp"
 
 namespace {
@@ -76,9 +78,14 @@ int main(int argc, char** argv) {
         std::printf("%d %d | design failed: %s", size, ratio, design.output.c_str());
         continue;
       }
+      if (friction > 0) {  // into the design's [contact] table (the key set as `sweep --set` sets it)
+        std::ifstream in(case_file);
+        const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        std::ofstream(case_file) << sw::case_text_with(text, case_file.string(),
+                                                       {{"contact.friction_coefficient", friction}}, "--friction");
+      }
       {
         std::ofstream add(case_file, std::ios::app);
-        if (friction > 0) add << "\n[contact]\nfriction_coefficient = " << friction << "\n";
         if (!lubricant.empty()) {
           std::stringstream ss(lubricant);
           std::string nu40, nu100, temperature;

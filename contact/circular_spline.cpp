@@ -65,7 +65,7 @@ std::vector<double> corners_through(std::vector<double> breaks, const Size& s) {
   return out;
 }
 
-/// The ring's meridian section: radial node lines through the bolt circles, axial ones through the slices' ends.
+/// The ring's meridian section: radial node lines through the bolt circles, axial ones through the slices' bands' ends.
 SectionMesh ring_section(const CircularSplineParams& c, double root_m, double module_m, int z_c, int slices) {
   const double depth = c.outer_radius_m - root_m, edge = kEdgeCellPerModule * module_m;
   const bool bolted = c.mounting == CircularSplineMounting::BoltedFace;
@@ -81,7 +81,8 @@ SectionMesh ring_section(const CircularSplineParams& c, double root_m, double mo
   };
   std::vector<double> r_breaks{root_m, c.outer_radius_m}, z_breaks;
   if (bolted) r_breaks.insert(r_breaks.end(), bolts.begin(), bolts.end());
-  for (int j = 0; j <= slices; ++j) z_breaks.push_back(c.width_m * j / slices);
+  z_breaks.push_back(0);
+  for (int j = 0; j < slices; ++j) z_breaks.push_back(c.width_m * face_slice(j, slices).hi);
   return mesh_annulus_section(corners_through(r_breaks, radial), corners_through(z_breaks, axial));
 }
 
@@ -103,7 +104,7 @@ std::vector<bool> held_nodes(const SectionMesh& s, const CircularSplineParams& c
 std::vector<SurfaceBand> inner_bands(const CircularSplineParams& c, int slices) {
   std::vector<SurfaceBand> b{{kSurfaceInner}};
   for (int j = 0; slices > 1 && j < slices; ++j)
-    b.push_back({kSurfaceInner, c.width_m * j / slices, c.width_m * (j + 1) / slices});
+    b.push_back({kSurfaceInner, c.width_m * face_slice(j, slices).lo, c.width_m * face_slice(j, slices).hi});
   return b;
 }
 

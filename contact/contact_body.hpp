@@ -3,6 +3,7 @@
 // off either model of the flexspline (contact/tet10_body.hpp: the TET10 mesh's one factorisation;
 // contact/harmonic_body.hpp: the harmonic solver's meridian section). The contact problem itself
 // (contact/loaded_contact.hpp) does not know which.
+#include <algorithm>
 #include <functional>
 #include <limits>
 #include <string>
@@ -32,10 +33,24 @@ struct FlankPattern {
   Eigen::Vector2d tooth_point_m = Eigen::Vector2d::Zero();
 };
 
+/// Where the loaded contact samples the toothed face, as fractions of its width from the edge nearer the closed end:
+/// n sections at the face's two ends and evenly between, each standing for the band of the face nearer to it than to
+/// any other (the trapezoid rule across the width: an end section carries half a band), so the ends, where the cup's
+/// coning makes the teeth tightest or loosest, are sampled themselves. n = 1: the centre section for the whole face.
+struct FaceSlice {
+  double at = 0.5, lo = 0, hi = 1;
+};
+inline FaceSlice face_slice(int j, int n) {
+  if (n <= 1) return {};
+  const double h = 1.0 / (n - 1), at = j * h;
+  return {at, std::max(0.0, at - h / 2), std::min(1.0, at + h / 2)};
+}
+
 /// Axial range (from the closed end) of slice j of n of the toothed face (the whole face for n = 1).
 inline std::pair<double, double> face_slice_m(const FlexsplineParams& f, int j, int n) {
   const double face = f.rim_width_m, lo = f.length_m - face;
-  return {lo + face * j / n, lo + face * (j + 1) / n};
+  const FaceSlice s = face_slice(j, n);
+  return {lo + face * s.lo, lo + face * s.hi};
 }
 
 /// The independent check of a body's influence coefficients at one loaded state.

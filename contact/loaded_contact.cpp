@@ -282,7 +282,8 @@ void ContactAnalyser::read_rim_at_rest() {
                      "run contact without --fem (or face_slices = 1)");
   const double face = c_.flexspline.rim_width_m;
   for (int j = 0; j < n_slices_; ++j) {
-    const double z_lo = nc.z_m - face / 2 + face * j / n_slices_, z_hi = z_lo + face / n_slices_;
+    const FaceSlice f = face_slice(j, n_slices_);
+    const double z_lo = nc.z_m - face / 2 + face * f.lo, z_hi = nc.z_m - face / 2 + face * f.hi;
     const NeutralCurve& cj = n_slices_ > 1 ? read[2 + j] : curve_;
     slices_.push_back({z_lo, z_hi, cj, n_slices_ > 1 ? make_backlash_model(g_, cj) : *model_, {}});
   }
@@ -310,7 +311,7 @@ void ContactAnalyser::read_face_sections(std::vector<NeutralCurve>& read) {
   const double face = c_.flexspline.rim_width_m;
   std::vector<double> z_read = {nc.z_m - face / 2, nc.z_m + face / 2};
   for (int j = 0; j < n_slices_ && n_slices_ > 1; ++j)
-    z_read.push_back(nc.z_m - face / 2 + face * (j + 0.5) / n_slices_);
+    z_read.push_back(nc.z_m - face / 2 + face * face_slice(j, n_slices_).at);
   for (const NeutralCurveSamples& at : body_.generator_curves_at(z_read))
     read.push_back(fem_neutral_curve(at));
   if (!read.empty())
@@ -353,7 +354,8 @@ void ContactAnalyser::add_flank(FlankContact f, const FlankClearance& fc, int k,
   f.tooth = k;
   f.slice = j;
   f.compliance_m_per_N = opt_.series.tooth_pair_m_per_N
-                             ? n_slices_ * opt_.series.tooth_pair_m_per_N(f.contact_radius_m, f.contact_radius_c_m)
+                             ? opt_.series.tooth_pair_m_per_N(f.contact_radius_m, f.contact_radius_c_m) /
+                                   (face_slice(j, n_slices_).hi - face_slice(j, n_slices_).lo)
                              : 0.0;
   const double s = std::atan2(fc.point_f.y(), fc.point_f.x());
   std::vector<double> stations{s};

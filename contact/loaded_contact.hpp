@@ -85,10 +85,12 @@ struct ContactOptions {
   /// size 17 at ratio 100, two flank pairs beyond 3 body twists close from 23 N·m on (K3 +0.07 %). The default keeps
   /// every flank in (infinity); a finite reach is for the multibody table, whose phases it keeps small.
   double reach_factor = std::numeric_limits<double>::infinity();
-  /// The case's [contact] table (contact/contact_params.hpp). face_slices: axial slices of the face width, each flank
-  /// one contact per slice (its own gap, load band and 1/n of the face's tooth stiffness, the slices' springs side by
-  /// side); the gaps follow the cup's coning: each slice's from the FEM's rim as the generator leaves it at the
-  /// slice's centre (needs the solution's generator case); 1: the face width as one contact at its centre section.
+  /// The case's [contact] table (contact/contact_params.hpp). face_slices: sections of the face, its two ends and
+  /// evenly between (contact/contact_body.hpp face_slice), each flank one contact per section (its own gap, the band
+  /// of the face nearer to it than to another section as its load band and its share of the face's tooth stiffness,
+  /// the sections' springs side by side: the trapezoid rule across the width); the gaps follow the cup's coning:
+  /// each section's from the FEM's rim as the generator leaves it there (needs the solution's generator case);
+  /// 1: the face width as one contact at its centre section.
   /// friction_coefficient: Coulomb's μ on the tooth flanks; > 0 adds the load cycle's loop (ContactAnalysis::friction).
   /// The generator's stations roll: frictionless.
   ContactParams contact;

@@ -11,6 +11,7 @@
 
 #include "common/case_keys.hpp"
 #include "common/error.hpp"
+#include "contact/contact_params.hpp"
 #include "design/catalog.hpp"
 #include "fem/fem_params.hpp"
 #include "gear/tooth_profile.hpp"
@@ -170,7 +171,7 @@ CupDesign design_cup(int size, int ratio) {
   w.bearing = b;
 
   c.circular_spline = default_circular_spline(g, f.rim_width_m);
-  set_zero_backlash(c, cam_neutral_curve(rim_mean_radius(f), *w.radial_deformation_m));
+  set_zero_backlash(c, {cam_neutral_curve(rim_mean_radius(f), *w.radial_deformation_m)});
 
   if (const CatalogDrive* row = catalog_drive(size); row && row->has_rated_torque()) {
     c.rated_torque_Nm = row->rated_torque_Nm;
@@ -188,12 +189,24 @@ CupDesign design_cup(int size, int ratio) {
   return c;
 }
 
-void set_zero_backlash(CupDesign& d, const NeutralCurve& curve) {
+void set_zero_backlash(CupDesign& d, const std::vector<NeutralCurve>& sections, const std::string& what) {
+  if (sections.empty()) throw std::invalid_argument("set_zero_backlash: no neutral curve");
   GearParams g = d.gear;
+  std::size_t tightest_on = 0;  // the section of the last call's tightest pair
   auto tightest = [&](double shift_difference) {
     g.profile_shift_circular = g.profile_shift_flexspline + shift_difference;
-    return tightest_pair_at_rest(make_backlash_model(g, curve));
+    TightestPair t;
+    for (std::size_t i = 0; i < sections.size(); ++i) {
+      const TightestPair ti = tightest_pair_at_rest(make_backlash_model(g, sections[i]));
+      if (i == 0 || ti.clearance_m < t.clearance_m) {
+        t = ti;
+        tightest_on = i;
+      }
+    }
+    return t;
   };
+  const NeutralCurve& curve = sections[sections.size() / 2];  // the middle one: the face's centre
+  const std::string curves = what.empty() ? sections.front().source : what;
   // The tightest pair is left 0.1 nm apart, not 0: the case text's 9 digits move the geometry by about 1e-9 of its
   // 20 mm radius, 2e-11 m, which must not turn the touch into an overlap when the case is read back.
   constexpr double kLo = -0.2, kHi = 0.3, kStep = 1e-8, kTouch_m = 1e-10;
@@ -201,7 +214,7 @@ void set_zero_backlash(CupDesign& d, const NeutralCurve& curve) {
   if (!(tightest(lo).clearance_m < kTouch_m && tightest(hi).clearance_m > kTouch_m)) {
     std::ostringstream os;
     os << "size " << d.size << ", ratio " << d.ratio << ": no profile shift difference x_c - x_f in [" << kLo << ", "
-       << kHi << "] takes the teeth from overlap to clearance at rest on the " << curve.source << " curve";
+       << kHi << "] takes the teeth from overlap to clearance at rest on the " << curves << " curve";
     throw InputError(os.str());
   }
   while (hi - lo > 0.25 * kStep) {
@@ -214,7 +227,8 @@ void set_zero_backlash(CupDesign& d, const NeutralCurve& curve) {
   const BacklashModel model = make_backlash_model(g, curve);
   const FlankClearance& touching = t.pair.ccw.clearance_m < t.pair.cw.clearance_m ? t.pair.ccw : t.pair.cw;
   ZeroBacklash& z = d.zero_backlash;
-  z.curve = curve.source;
+  z.curve = curves;
+  z.tightest_section = sections[tightest_on].source;
   z.shift_difference = shift_difference;
   z.tightest_clearance_m = t.clearance_m;
   // Its distance from the major axis, 0..90°: the generator and the teeth are symmetric about both axes, so the
@@ -244,10 +258,14 @@ std::string design_case_toml(const CupDesign& c) {
     << " on both gears (working depth 1.4 modules < 2 w0), h_f* = h_a* + 0.25 (ISO 53 c*).\n"
     << "# - zero backlash (harmonic drives are cut without it): x_c = x_f + " << num(c.zero_backlash.shift_difference)
     << ", the smallest shift at which no pair overlaps at rest\n#   on the " << c.zero_backlash.curve
-    << " curve; the tightest pairs touch at +-" << fixed(c.zero_backlash.tightest_angle_deg, 1)
-    << " deg from the major axis (" << c.zero_backlash.tightest_parts << "),\n#   the major-axis pair keeps "
+    << " curves;\n#   the tightest pairs touch at +-" << fixed(c.zero_backlash.tightest_angle_deg, 1)
+    << " deg from the major axis (" << c.zero_backlash.tightest_parts << ") on the "
+    << c.zero_backlash.tightest_section << " curve,\n#   the major-axis pair keeps "
     << fixed(c.zero_backlash.major_axis_play_rad * 180.0 / std::numbers::pi * 60.0, 3)
-    << " arcmin of dead band (involute flanks are not all tight at once).\n"
+    << " arcmin of dead band at mid-face (involute flanks and the cup's coning: not every pair is tight at once).\n"
+    << "# - straight teeth across the face (shaped or hobbed, no relief along it): the contact meshes the face in "
+    << c.face_sections << " sections,\n#   its ends and centre, each with the rim as the generator leaves it there "
+    << "([contact] face_slices).\n"
     << "# - w0 = m (Musser: half the tooth difference in modules).\n"
     << "# - rim under the teeth " << num(kRimPerD) << " d, body wall " << num(kWallPerRim) << " x rim, toothed face width "
     << num(kFaceWidthPerD) << " d (Ivanov, Wave gear drives, 1981: 0.01-0.015 d,\n"
@@ -272,6 +290,8 @@ std::string design_case_toml(const CupDesign& c) {
     << "# Run: build/strainwave run CASE.toml (fem, backlash, contact)\n";
   const auto teeth_note = "the rim alone; the teeth act in series (contact)";
   LoadParams load;  // the FEM's torque and the contact's rated torque: the design's rating
+  ContactParams contact;
+  contact.face_slices = c.face_sections;
   load.torque_Nm = c.rated_torque_Nm;
   load.rated_torque_Nm = c.rated_torque_Nm;
   s << "[gear]\n"
@@ -305,7 +325,9 @@ std::string design_case_toml(const CupDesign& c) {
     << key_lines(load, load_keys(), {{"torque_Nm"}, {"rated_torque_Nm"}})
     << "\n[circular_spline]\n"
     << key_lines(c.circular_spline, circular_spline_keys(),
-                 {{"outer_radius_mm"}, {"width_mm"}, {"mounting"}, {"bolt_circle_inner_mm"}, {"bolt_circle_outer_mm"}});
+                 {{"outer_radius_mm"}, {"width_mm"}, {"mounting"}, {"bolt_circle_inner_mm"}, {"bolt_circle_outer_mm"}})
+    << "\n[contact]\n"
+    << key_lines(contact, contact_keys(), {{"face_slices", "", "the face's ends and centre: straight teeth"}});
   if (catalog_drive(c.size)) s << "\n[catalog]\nsize = " << c.size << "\n";
   return s.str();
 }

@@ -5,6 +5,7 @@
 // comment of the written case. Since all lengths scale with d, the drive of one ratio is the same shape at every size;
 // the teeth's geometry in modules depends on the ratio alone.
 #include <string>
+#include <vector>
 
 #include "common/material.hpp"
 #include "contact/circular_spline.hpp"
@@ -23,13 +24,22 @@ inline constexpr int kDesignRatioMin = 30, kDesignRatioMax = 160;
 /// How the teeth were set to zero backlash (set_zero_backlash): the circular spline's profile shift that leaves the
 /// tightest engaged pair touching at rest, and what the involute flanks leave elsewhere.
 struct ZeroBacklash {
-  std::string curve;               ///< the rim's neutral curve it was solved on ("cam w0·cos2φ ...", "FEM")
+  std::string curve;               ///< the rim's neutral curves it was solved on ("cam w0·cos2φ ...", "FEM ...")
+  std::string tightest_section;    ///< the curve (a section of the face) on which the tightest pair sits
   double shift_difference = 0;     ///< x_c − x_f
   double tightest_clearance_m = 0; ///< the tightest pair's clearance at rest: 0.1 nm, so that the case text keeps it ≥ 0
   double tightest_angle_deg = 0;   ///< where that pair is: its material angle's distance from the major axis, 0..90°
   std::string tightest_parts;      ///< "tip corner / tip corner": where the two outlines touch there
-  double major_axis_play_rad = 0;  ///< the output's dead band at the major-axis pair (closing angles of both flanks)
+  /// The output's dead band at the major-axis pair (closing angles of both flanks) on the middle curve of those given
+  /// (the face's centre when they are its sections).
+  double major_axis_play_rad = 0;
 };
+
+/// The design's teeth are straight across the face, as shaped or hobbed (no relief along it), so the cup's coning
+/// gives every section of the face its own clearance: the loaded contact meshes them in this many sections, the
+/// face's two ends and its centre (contact/contact_body.hpp face_slice), and the teeth are set to zero backlash on
+/// all of them (the design's [contact] face_slices).
+inline constexpr int kDesignFaceSections = 3;
 
 /// Everything the written case holds (SI), with where the rated torque came from.
 struct CupDesign {
@@ -44,18 +54,23 @@ struct CupDesign {
   double rated_torque_Nm = 0;
   std::string rated_torque_from;  ///< "catalog size 17 (CSG, ratio 100)" or the scaling used
   ZeroBacklash zero_backlash;     ///< on the cam's curve from design_cup; on the FEM's when `design` has solved it
+  int face_sections = kDesignFaceSections;  ///< the case's [contact] face_slices
 };
 
 /// The design of a size (kDesignSizeMin..kDesignSizeMax) and ratio (kDesignRatioMin..kDesignRatioMax). Throws
 /// InputError "--size 7; must be an integer in [8, 65] ..." for a size or ratio outside them.
 CupDesign design_cup(int size, int ratio);
 
-/// Sets the circular spline's profile shift x_c for zero backlash on the rim's neutral curve `curve` (rigid teeth): the
-/// smallest x_c − x_f (bisection to 1e-8, rounded up) at which no engaged pair comes within 0.1 nm at rest, so that
-/// the tightest pair touches and the output has no free turn there. Makers cut harmonic drive teeth without backlash; with
-/// involute flanks the pairs are not all tight at once, which major_axis_play_rad states. Throws InputError when no
-/// x_c − x_f in [−0.2, 0.3] brackets it (the teeth interfere whatever the shift).
-void set_zero_backlash(CupDesign& d, const NeutralCurve& curve);
+/// Sets the circular spline's profile shift x_c for zero backlash on the rim's neutral curves `sections` (rigid teeth;
+/// the sections of the face the contact meshes, each with the rim as the generator leaves it there): the smallest
+/// x_c − x_f (bisection to 1e-8, rounded up) at which no engaged pair on any of them comes within 0.1 nm at rest, so
+/// that the tightest pair touches and the output has no free turn there, and no section of a straight tooth
+/// interferes (the largest of the shifts each section alone would need). Makers cut harmonic drive teeth without
+/// backlash; with involute flanks and the cup's coning the pairs are not all tight at once, which
+/// major_axis_play_rad states. `what` names the curves in the written case (empty: the first one's source). Throws
+/// InputError when no x_c − x_f in [−0.2, 0.3] brackets it (the teeth interfere whatever the shift), and
+/// std::invalid_argument for no curve.
+void set_zero_backlash(CupDesign& d, const std::vector<NeutralCurve>& sections, const std::string& what = "");
 
 /// The design as a case file (TOML, lengths in mm) with a header comment naming the source of every proportion.
 /// It loads with io/case.hpp's load_case and passes the flexspline, gear and bearing validation.

@@ -281,9 +281,9 @@ TEST(CircularSplineRing, OneHarmonicPerToothHoldsThePatterns) {
   for (int i = 0; i < 4; ++i) EXPECT_NEAR(A(i, i) / twice(i, i), 1.0, 0.005) << i;
 }
 
-// Cut into axial slices as the flexspline's face, a flank's force split evenly over the slices loads the ring as the
-// whole width does: their block summed is the whole width's (the slices' bands add up to the inner surface), to
-// round-off. A slice the ring was not cut into is a logic error.
+// Cut into axial slices as the flexspline's face, a flank's force split over the slices by their bands' widths loads
+// the ring as the whole width does: their block summed is the whole width's (the slices' bands add up to the inner
+// surface), to round-off. A slice the ring was not cut into is a logic error.
 TEST(CircularSplineRing, SlicesAddUpToTheWholeWidth) {
   const GearParams g = size17_gear();
   const CircularSplineParams c = ring_params(g, 6e-3, CircularSplineMounting::Outer);
@@ -293,7 +293,7 @@ TEST(CircularSplineRing, SlicesAddUpToTheWholeWidth) {
   for (int j = 0; j < 3; ++j) {
     sliced.push_back(whole);
     sliced.back().slice = j;
-    sliced.back().scale = 1.0 / 3;
+    sliced.back().scale = face_slice(j, 3).hi - face_slice(j, 3).lo;  // the ends a quarter, the centre a half
   }
   const double A_whole = circular_spline_block(ring, {whole}).A(0, 0);
   EXPECT_NEAR(circular_spline_block(ring, sliced).A.sum() / A_whole, 1.0, 1e-10);

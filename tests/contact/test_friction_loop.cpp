@@ -29,7 +29,7 @@ const Solved& size17(bool band_held) {
     k->c = load_case("cases/cup_size17.toml");
     if (band_held) k->c.wave_generator->model = FourForce{};
     const FlexsplineModel m = flexspline_model(k->c);
-    k->fourier = analyse_flexspline_fourier(m, 0, contact_band_request(m, 1));
+    k->fourier = analyse_flexspline_fourier(m, 0, contact_band_request(m, k->c.contact.face_slices));
     s[band_held] = k;
   }
   return *s[band_held];
@@ -42,15 +42,17 @@ ContactAnalysis loop_at(double mu, int loop_steps, bool band_held = false) {
   o.rated_torque_Nm = *s.c.load.rated_torque_Nm;
   o.series = app::series_parts(s.c);
   o.loop_steps_per_quarter = loop_steps;
+  o.contact = s.c.contact;  // the case's face sections
   o.contact.friction_coefficient = mu;
   return analyse_contact(m, HarmonicBody(m, s.fourier), fem_readout(s.fourier.figures), o);
 }
 
 // The loop's area ∮T dψ is the friction work Σ|q||Δs| (the power balance of an elastic system with Coulomb friction):
-// 1 % at 40 steps a quarter, measured −0.14 / +0.03 / +0.13 % at μ = 0.02 / 0.05 / 0.1, with the band held radially.
-// With the cam the area is 1.6–1.7 % above the work at every μ and step count: the locked cam's share of the torque
-// (through its tilted normal) is counted in the output's torque while its stations' gaps do not see the output's turn
-// (contact/README.md), an idealisation that is not conservative. Both grow with μ.
+// 1 % at 40 steps a quarter, measured −0.14 / −0.06 / −0.13 % at μ = 0.02 / 0.05 / 0.1, with the band held radially.
+// With the cam the area is above the work at every μ and step count, +0.19 / +0.23 / +0.29 % on the designed drive's
+// straight teeth in three sections (+1.6–1.7 % on the teeth cut for the centre section alone): the locked cam's share
+// of the torque (through its tilted normal) is counted in the output's torque while its stations' gaps do not see the
+// output's turn (contact/README.md), an idealisation that is not conservative. Both grow with μ.
 TEST(FrictionLoop, AreaIsTheFrictionWorkAndGrowsWithMu) {
   for (const bool band_held : {true, false}) {
     double last = 0;
@@ -62,7 +64,8 @@ TEST(FrictionLoop, AreaIsTheFrictionWorkAndGrowsWithMu) {
                   "arcmin, lost motion %.3f arcmin, %d cycles\n", band_held ? "band held" : "cam", mu,
                   f.dissipated_energy_J, f.friction_work_J, 100 * (f.dissipated_energy_J / f.friction_work_J - 1),
                   f.hysteresis_loss_rad * 10800 / M_PI, f.lost_motion_rad * 10800 / M_PI, f.cycles);
-      EXPECT_NEAR(f.dissipated_energy_J / f.friction_work_J, band_held ? 1.0 : 1.017, 0.01) << mu;
+      EXPECT_NEAR(f.dissipated_energy_J / f.friction_work_J, 1.0, 0.01) << mu;
+      if (!band_held) EXPECT_GT(f.dissipated_energy_J, f.friction_work_J) << mu;  // the cam's share, not conservative
       EXPECT_GT(f.friction_work_J, last) << mu;
       last = f.friction_work_J;
       // The branches: loading from −rated to +rated, then unloading back.

@@ -1,5 +1,6 @@
 // Catalog sizes and `strainwave design`'s proportions: the table is the reference's, and every written case loads,
 // validates and has no interference at rest on the cam curve, for sizes 14..32 at ratios 50..160, from one rule set.
+#include <algorithm>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -84,7 +85,7 @@ TEST(Design, ZeroBacklashIsTheSmallestShiftWithoutOverlap) {
   WaveGeneratorParams ring = d.wave_generator;
   ring.model = FourForce{};
   const NeutralCurve curve = generator_neutral_curve(r_m, w0, ring);
-  set_zero_backlash(d, curve);
+  set_zero_backlash(d, {curve});
   EXPECT_EQ(d.zero_backlash.curve, curve.source);
   EXPECT_NEAR(d.gear.profile_shift_circular - d.gear.profile_shift_flexspline, d.zero_backlash.shift_difference, 1e-15);
   const TightestPair at = tightest_pair_at_rest(make_backlash_model(d.gear, curve));
@@ -96,12 +97,44 @@ TEST(Design, ZeroBacklashIsTheSmallestShiftWithoutOverlap) {
   EXPECT_GT(d.zero_backlash.major_axis_play_rad, 0.0);  // involute flanks: not every pair tight at once
 }
 
+// Straight teeth on several sections of the face (the cup's coning: each its own deflection): the shift that keeps
+// every section clear is the largest of those each section alone needs (to the bisection's 1e-8), the tightest pair
+// sits on that section, and the dead band is the middle curve's. Here three cam curves, w0 ± 15 % about the design's.
+TEST(Design, ZeroBacklashOnSectionsIsTheLargestOfTheirShifts) {
+  CupDesign d = design_cup(17, 100);
+  const double r_m = rim_mean_radius(d.flexspline), w0 = *d.wave_generator.radial_deformation_m;
+  const std::vector<NeutralCurve> sections = {cam_neutral_curve(r_m, 0.85 * w0), cam_neutral_curve(r_m, w0),
+                                              cam_neutral_curve(r_m, 1.15 * w0)};
+  std::vector<double> alone;
+  std::vector<double> play;
+  for (const NeutralCurve& s : sections) {
+    CupDesign one = d;
+    set_zero_backlash(one, {s});
+    alone.push_back(one.zero_backlash.shift_difference);
+    play.push_back(one.zero_backlash.major_axis_play_rad);
+  }
+  set_zero_backlash(d, sections, "three cams");
+  const auto largest = std::max_element(alone.begin(), alone.end());
+  std::printf("shifts alone %.8f / %.8f / %.8f, together %.8f\n", alone[0], alone[1], alone[2],
+              d.zero_backlash.shift_difference);
+  EXPECT_NEAR(d.zero_backlash.shift_difference, *largest, 1.01e-8);
+  EXPECT_EQ(d.zero_backlash.tightest_section, sections[static_cast<std::size_t>(largest - alone.begin())].source);
+  EXPECT_EQ(d.zero_backlash.curve, "three cams");
+  // The sections are not all tight at one shift (else the check above says nothing), and the others keep clearance.
+  EXPECT_GT(*largest - *std::min_element(alone.begin(), alone.end()), 1e-3);
+  for (const NeutralCurve& s : sections)
+    EXPECT_GE(tightest_pair_at_rest(make_backlash_model(d.gear, s)).clearance_m, 1e-10);
+  // The middle curve's dead band, with the larger shift than its own: wider than its own.
+  EXPECT_GE(d.zero_backlash.major_axis_play_rad, play[1]);
+  EXPECT_THROW(set_zero_backlash(d, {}), std::invalid_argument);
+}
+
 // A curve on which no shift takes the teeth from overlap to clearance (no bulge: nothing engages) is refused in one
 // line naming the size, the ratio and the curve.
 TEST(Design, ZeroBacklashWithoutEngagementIsRefused) {
   CupDesign d = design_cup(17, 100);
   const NeutralCurve flat = cam_neutral_curve(rim_mean_radius(d.flexspline), 1e-9);
-  const std::string what = sw::testing::message_of([&] { set_zero_backlash(d, flat); });
+  const std::string what = sw::testing::message_of([&] { set_zero_backlash(d, {flat}); });
   EXPECT_EQ(what.rfind("size 17, ratio 100: no profile shift difference x_c - x_f in [-0.2, 0.3]", 0), 0u) << what;
   EXPECT_NE(what.find(flat.source), std::string::npos) << what;
 }

@@ -179,7 +179,9 @@ int probe(const std::string& base, const std::string& table, const T& of, const 
 // Each stated range is the reader's: a value just outside it is refused with the file, the key's line, the key and
 // the schema's words (a range stated in the schema but checked otherwise, or not at all, fails here).
 TEST(CaseKeys, EveryRangeTheSchemaStatesIsTheOneTheReaderRefuses) {
-  const Case c = parse_case(read_text("cases/cup_size17.toml") + kExtras, "cases/cup_size17.toml");
+  const std::string extras = kExtras;  // but [contact]: the designed case has its own
+  const Case c = parse_case(read_text("cases/cup_size17.toml") + "\n" + extras.substr(extras.find("[lubricant]")),
+                            "cases/cup_size17.toml");
   ASSERT_TRUE(c.gear && c.wave_generator && c.wave_generator->bearing && c.lubricant && c.dynamics);
   const std::string base = describe_case(c);
   int probed = 0;

@@ -6,8 +6,10 @@
 #include <numeric>
 #include <cstdio>
 #include <numbers>
+#include <tuple>
 
 #include "common/error.hpp"
+#include "contact/contact_body.hpp"
 #include "gear/tooth_root.hpp"
 #include "generator/bearing_life.hpp"
 
@@ -22,33 +24,46 @@ ToothRootFigure tooth_root_limit(const GearParams& gear, const FlexsplineParams&
   if (!material.fatigue_limit_Pa || !material.ultimate_strength_Pa)
     throw InputError("the teeth's root limit needs material.fatigue_limit_MPa and material.ultimate_strength_MPa");
   const TorqueStep& rated = contact.steps.back();
-  std::size_t top = 0;
-  for (std::size_t i = 0; i < contact.flanks.size(); ++i)
-    if (rated.flank_force_N[i] > rated.flank_force_N[top]) top = i;
-  const FlankContact& f = contact.flanks[top];
-  // A face cut in slices has one contact per slice: the flank's force over the face is their sum.
-  double face_force_N = 0;
-  for (std::size_t i = 0; i < contact.flanks.size(); ++i)
-    if (contact.flanks[i].tooth == contact.flanks[top].tooth && contact.flanks[i].flank == contact.flanks[top].flank)
-      face_force_N += rated.flank_force_N[i];
   const SpurTeeth teeth = flexspline_teeth(gear);
-  const ToothRootForm form = external_root_form(teeth, f.contact_radius_m);
+  (void)external_root_form(teeth, spur_tip_radius_m(teeth, false));  // the tooth itself: its errors are the case's
   RootStressFactors factors;
   const double depth_m = (gear.addendum_coefficient_flexspline + gear.dedendum_coefficient_flexspline) * gear.module_m;
   factors.rim_thickness = rim_thickness_factor(flexspline.rim_thickness_m, depth_m);
-  const double Ft = face_force_N * std::cos(gear.pressure_angle_rad);
-  const double sigma = nominal_root_stress_Pa(form, gear.module_m, Ft, flexspline.rim_width_m, factors);
+  // Each contact over its own band of the face (a face in sections: each section's force over the band it stands
+  // for, so the load's gathering along the face is in the stress, as ISO's K_Fβ would put it), at its own radius.
+  double sigma = 0, force_N = 0, radius_m = 0, band_m = 0;
+  int below = 0;
+  ToothRootForm form;
+  for (std::size_t i = 0; i < contact.flanks.size(); ++i) {
+    if (!(rated.flank_force_N[i] > 0)) continue;
+    const FlankContact& f = contact.flanks[i];
+    const FaceSlice slice = face_slice(f.slice, contact.face_slices);
+    const double band = flexspline.rim_width_m * (slice.hi - slice.lo);
+    ToothRootForm at;
+    try {
+      at = external_root_form(teeth, f.contact_radius_m);
+    } catch (const InputError&) {  // loaded below the 30° tangent's section (arm ≤ 0) or off the flank
+      ++below;
+      continue;
+    }
+    const double s = nominal_root_stress_Pa(at, gear.module_m, rated.flank_force_N[i] * std::cos(gear.pressure_angle_rad),
+                                            band, factors);
+    if (s > sigma) std::tie(sigma, force_N, radius_m, band_m, form) = std::tuple{s, rated.flank_force_N[i],
+                                                                               f.contact_radius_m, band, at};
+  }
   const double allowable = pulsating_allowable_stress_Pa(*material.fatigue_limit_Pa, *material.ultimate_strength_Pa);
   ToothRootFigure out;
   out.root_stress_at_rated_Pa = sigma;
   out.torque_Nm = sigma > 0 ? contact.rated_torque_Nm * allowable / sigma : std::numeric_limits<double>::infinity();
-  char buf[512];
+  char buf[640];
   std::snprintf(buf, sizeof buf,
-                "ISO 6336-3 method B on the flexspline's most loaded flank at rated torque (%.1f N, contact radius "
-                "%.3f mm): Y_F %.3f, Y_S %.3f, Y_B %.3f, root stress %.0f MPa against the pulsating allowable %.0f MPa "
-                "(Goodman, the material's S_e and S_u); the flank force taken proportional to torque beyond rated",
-                face_force_N, f.contact_radius_m * 1e3, form.form_factor, form.stress_correction, factors.rim_thickness,
-                sigma / 1e6, allowable / 1e6);
+                "ISO 6336-3 method B on the flexspline's flank contact of largest root stress at rated torque (%.1f N "
+                "over %.2f mm of the face, contact radius %.3f mm): Y_F %.3f, Y_S %.3f, Y_B %.3f, root stress %.0f MPa "
+                "against the pulsating allowable %.0f MPa (Goodman, the material's S_e and S_u); %d loaded contacts "
+                "below the root's critical section left out (the method does not cover them); the flank force taken "
+                "proportional to torque beyond rated",
+                force_N, band_m * 1e3, radius_m * 1e3, form.form_factor, form.stress_correction, factors.rim_thickness,
+                sigma / 1e6, allowable / 1e6, below);
   out.method = buf;
   return out;
 }

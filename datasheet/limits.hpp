@@ -1,6 +1,7 @@
 #pragma once
 // The limits of the datasheet that stand on the loaded contact: the teeth's root strength (ISO 6336-3 on the contact's
-// largest flank force). Each returns the figure with the one line that says how it was computed.
+// flank forces, each over its band of the face). Each returns the figure with the one line that says how it was
+// computed.
 #include "contact/loaded_contact.hpp"
 #include "datasheet/datasheet.hpp"
 #include "gear/gear.hpp"
@@ -13,11 +14,13 @@ namespace sw {
 /// a polished specimen's, no notch or size factor beyond ISO 6336-3's Y_S).
 double pulsating_allowable_stress_Pa(double fatigue_limit_Pa, double ultimate_strength_Pa);
 
-/// The flexspline teeth's root limit: at +rated torque, the flank carrying the largest force in the loaded contact,
-/// its tangential part F_t = F_n·cos α at its contact radius, the root stress by ISO 6336-3 method B
-/// (gear/tooth_root.hpp: Y_F, Y_S at that load radius, Y_B of the rim under the teeth) over the face width; the torque
-/// at which it reaches the pulsating allowable, the flank force taken proportional to the torque beyond rated.
-/// Throws InputError without the material's fatigue data.
+/// The flexspline teeth's root limit: at +rated torque, every loaded flank contact of the loaded contact, its
+/// tangential part F_t = F_n·cos α at its contact radius, the root stress by ISO 6336-3 method B (gear/tooth_root.hpp:
+/// Y_F, Y_S at that load radius, Y_B of the rim under the teeth) over the band of the face it stands for (the whole face
+/// for one section); the largest of them, and the torque at which it reaches the pulsating allowable, the flank force
+/// taken proportional to the torque beyond rated. Contacts loaded below the root's critical section (the method's arm
+/// h_Fe ≤ 0) are left out and counted. Infinite when none is left. Throws InputError without the material's fatigue
+/// data, or for teeth the method does not cover.
 ToothRootFigure tooth_root_limit(const GearParams& gear, const FlexsplineParams& flexspline, const Material& material,
                                  const ContactAnalysis& contact);
 

@@ -1,12 +1,14 @@
 // The datasheet's limits that stand on the loaded contact: the generator's ball loads from its stations' forces, and
-// the teeth's pulsating allowable root stress.
+// the teeth's root limit (its pulsating allowable stress, the contact it is read on).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 #include <numeric>
 
+#include "common/error.hpp"
 #include "datasheet/limits.hpp"
+#include "gear/tooth_root.hpp"
 
 namespace sw {
 namespace {
@@ -49,6 +51,57 @@ TEST(ToothRoot, PulsatingAllowableIsOnGoodmansLine) {
   const double s = pulsating_allowable_stress_Pa(500e6, 1100e6);
   EXPECT_NEAR(s / 2 / 500e6 + s / 2 / 1100e6, 1.0, 1e-12);
   EXPECT_NEAR(s, 687.5e6, 1e-3);
+}
+
+// The root limit on a face in three sections (the ends a quarter of the face each, the centre a half), by hand: each
+// loaded contact's ISO 6336-3 stress at its own radius over its own band; the largest stands. Here the same force on
+// the centre (half the face) and on an end (a quarter) at one radius: the end's, twice the centre's, stands; a larger
+// force at a radius below the root's critical section (the method's arm ≤ 0) is left out and counted, not a failure.
+TEST(ToothRoot, TheLimitIsTheLargestContactStressOverItsOwnBandOfTheFace) {
+  GearParams g;  // the designed size 17 at ratio 100
+  g.module_m = 0.2159e-3;
+  g.teeth_flexspline = 200;
+  g.teeth_circular = 202;
+  g.profile_shift_flexspline = 1.52;
+  g.profile_shift_circular = 1.69;
+  g.addendum_coefficient_flexspline = g.addendum_coefficient_circular = 0.7;
+  g.dedendum_coefficient_flexspline = g.dedendum_coefficient_circular = 0.95;
+  FlexsplineParams f;
+  f.rim_width_m = 6.477e-3;
+  f.rim_thickness_m = 0.60452e-3;
+  Material m;
+  m.fatigue_limit_Pa = 500e6;
+  m.ultimate_strength_Pa = 1100e6;
+  const SpurTeeth teeth = flexspline_teeth(g);
+  const double r_on = spur_tip_radius_m(teeth, false) - 0.05e-3, base = teeth.module_m * 100 * std::cos(g.pressure_angle_rad);
+  const double r_low = base * 1.0005;
+  EXPECT_THROW(external_root_form(teeth, r_low), InputError);  // the premise: below the critical section
+  ContactAnalysis a;
+  a.face_slices = 3;
+  a.rated_torque_Nm = 31;
+  for (const auto& [slice, r] : {std::pair{1, r_on}, std::pair{0, r_on}, std::pair{2, r_low}}) {
+    FlankContact c;
+    c.slice = slice;
+    c.contact_radius_m = r;
+    a.flanks.push_back(c);
+  }
+  TorqueStep rated;
+  rated.torque_Nm = 31;
+  rated.flank_force_N = {100, 100, 400};
+  a.steps = {rated};
+  const ToothRootFigure t = tooth_root_limit(g, f, m, a);
+  RootStressFactors y;
+  y.rim_thickness = rim_thickness_factor(f.rim_thickness_m, 1.65 * g.module_m);
+  const double end = nominal_root_stress_Pa(external_root_form(teeth, r_on), g.module_m,
+                                            100 * std::cos(g.pressure_angle_rad), f.rim_width_m / 4, y);
+  std::printf("root stress at rated %.1f MPa (an end section's contact, by hand %.1f); %s\n", t.root_stress_at_rated_Pa / 1e6,
+              end / 1e6, t.method.c_str());
+  EXPECT_NEAR(t.root_stress_at_rated_Pa / end, 1.0, 1e-12);
+  EXPECT_NEAR(t.torque_Nm, 31 * pulsating_allowable_stress_Pa(500e6, 1100e6) / end, 1e-9 * t.torque_Nm);
+  EXPECT_NE(t.method.find("1 loaded contacts below the root's critical section left out"), std::string::npos) << t.method;
+  // Only contacts below the critical section: nothing to read, an infinite limit.
+  a.steps.front().flank_force_N = {0, 0, 400};
+  EXPECT_TRUE(std::isinf(tooth_root_limit(g, f, m, a).torque_Nm));
 }
 
 }  // namespace

@@ -22,6 +22,14 @@ struct BacklashJobOptions {
   int revolution_steps = 3600;                      ///< 0.1° steps
 };
 
+/// Where the backlash stage reads the teeth when the contact meshes the face in sections (" on the face's centre
+/// section (...)"; empty for one section): the stage has one neutral curve, the rim at mid-face.
+inline std::string at_face_centre(const Case& c) {
+  if (c.contact.face_slices <= 1) return "";
+  return " on the face's centre section (the contact meshes " + std::to_string(c.contact.face_slices) +
+         " sections of straight teeth, each with its own play: the drive's play is theirs together)";
+}
+
 /// Builds the model from the case, sweeps, writes backlash.json/.csv/.svg, profiles.vtp and drive.svg (the drawing of
 /// the drive's parts) into the set `out` (owning
 /// kBacklashJobFiles; an fem result of the same set is read as staged), prints the paper's table on stdout. Throws

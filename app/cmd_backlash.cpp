@@ -92,8 +92,8 @@ void print_backlash_summary(const Case& c, const BacklashReport& r) {
   std::printf("backlash %s: %s\n", c.path.c_str(), r.curve_source.c_str());
   std::printf("%s", geometry_check_text(r.geometry, r.module_m).c_str());
   const auto& rb = r.revolution_basic;
-  std::printf("  geometric angular play of the output over a revolution: %.3f .. %.3f arcmin (teeth and rim rigid; "
-              "not the catalog's lost motion, which includes elastic twist)\n",
+  std::printf("  geometric angular play of the output over a revolution%s: %.3f .. %.3f arcmin (teeth and rim rigid; "
+              "not the catalog's lost motion, which includes elastic twist)\n", at_face_centre(c).c_str(),
               rb.angular_play_min_rad * kArcmin, rb.angular_play_max_rad * kArcmin);
   int near_min = 1 << 30, near_max = 0;
   for (const MeshState& st : rb.period) {

@@ -62,9 +62,10 @@ void print_summary(const Case& c, const FemJobResult& fem, const std::optional<B
   }
   if (b) {
     const auto& rb = b->revolution_basic;
-    std::printf("  geometric angular play of the output: %.3f .. %.3f arcmin over a revolution (rigid teeth; not the "
-                "catalog's lost motion); interference at rest: %s\n", rb.angular_play_min_rad * kArcmin,
-                rb.angular_play_max_rad * kArcmin, b->geometry.interference ? "YES" : "none");
+    std::printf("  geometric angular play of the output%s: %.3f .. %.3f arcmin over a revolution (rigid teeth; not the "
+                "catalog's lost motion); interference at rest: %s\n", at_face_centre(c).c_str(),
+                rb.angular_play_min_rad * kArcmin, rb.angular_play_max_rad * kArcmin,
+                b->geometry.interference ? "YES" : "none");
     const bool point_loads = !cam_of(*c.wave_generator);
     if (b->geometry.interference && point_loads && b->curve_source.find("FEM") != std::string::npos)
       std::printf("  note: the neutral curve is the FEM's under a generator that loads the rim at points (forces or "

@@ -46,7 +46,7 @@ std::vector<NeutralCurve> generator_deformed_sections(const Case& c, int section
   const FourierSolution fs = solve_fourier_model(c, 0, 0.0, section_s);
   const double face = c.flexspline.rim_width_m, mid = fs.figures.neutral_curve->z_m;
   std::vector<double> z;
-  for (int j = 0; j < sections; ++j) z.push_back(mid - face / 2 + face * face_slice(j, sections).at);
+  for (int j = 0; j < sections; ++j) z.push_back(face_section_z_m(mid, face, j, sections));
   std::vector<NeutralCurve> curves;
   const std::vector<NeutralCurveSamples> read =
       neutral_curves_at(fs.section, fs.generator, neutral_radius(c.flexspline), z);
@@ -79,7 +79,7 @@ void add_design_command(CLI::App& app) {
   cmd->callback([] {
     CupDesign d = design_cup(parse_int("--size", size), parse_int("--ratio", ratio));
     const std::string name = out.empty() ? "cup_size" + std::to_string(d.size) + ".toml" : out;
-    set_zero_backlash(d, generator_deformed_sections(checked_case(design_case_toml(d), name), d.face_sections),
+    set_zero_backlash(d, generator_deformed_sections(checked_case(design_case_toml(d), name), kDesignFaceSections),
                       "FEM's generator-deformed (harmonic solver) face-end and mid-face");
     const std::string text = design_case_toml(d);
     checked_case(text, name);

@@ -38,12 +38,18 @@ struct FlankPattern {
 /// any other (the trapezoid rule across the width: an end section carries half a band), so the ends, where the cup's
 /// coning makes the teeth tightest or loosest, are sampled themselves. n = 1: the centre section for the whole face.
 struct FaceSlice {
-  double at = 0.5, lo = 0, hi = 1;
+  double at = 0.5, lo = 0, hi = 1;  ///< fractions of the face from its closed end: the section, its band's ends
+  double width() const { return hi - lo; }
 };
 inline FaceSlice face_slice(int j, int n) {
   if (n <= 1) return {};
   const double h = 1.0 / (n - 1), at = j * h;
   return {at, std::max(0.0, at - h / 2), std::min(1.0, at + h / 2)};
+}
+
+/// Axial position of section j of n on a face of `face_m` centred at `centre_m` (any axial origin).
+inline double face_section_z_m(double centre_m, double face_m, int j, int n) {
+  return centre_m - face_m / 2 + face_m * face_slice(j, n).at;
 }
 
 /// Axial range (from the closed end) of slice j of n of the toothed face (the whole face for n = 1).

@@ -311,7 +311,7 @@ void ContactAnalyser::read_face_sections(std::vector<NeutralCurve>& read) {
   const double face = c_.flexspline.rim_width_m;
   std::vector<double> z_read = {nc.z_m - face / 2, nc.z_m + face / 2};
   for (int j = 0; j < n_slices_ && n_slices_ > 1; ++j)
-    z_read.push_back(nc.z_m - face / 2 + face * face_slice(j, n_slices_).at);
+    z_read.push_back(face_section_z_m(nc.z_m, face, j, n_slices_));
   for (const NeutralCurveSamples& at : body_.generator_curves_at(z_read))
     read.push_back(fem_neutral_curve(at));
   if (!read.empty())
@@ -355,7 +355,7 @@ void ContactAnalyser::add_flank(FlankContact f, const FlankClearance& fc, int k,
   f.slice = j;
   f.compliance_m_per_N = opt_.series.tooth_pair_m_per_N
                              ? opt_.series.tooth_pair_m_per_N(f.contact_radius_m, f.contact_radius_c_m) /
-                                   (face_slice(j, n_slices_).hi - face_slice(j, n_slices_).lo)
+                                   face_slice(j, n_slices_).width()
                              : 0.0;
   const double s = std::atan2(fc.point_f.y(), fc.point_f.x());
   std::vector<double> stations{s};

@@ -37,8 +37,7 @@ ToothRootFigure tooth_root_limit(const GearParams& gear, const FlexsplineParams&
   for (std::size_t i = 0; i < contact.flanks.size(); ++i) {
     if (!(rated.flank_force_N[i] > 0)) continue;
     const FlankContact& f = contact.flanks[i];
-    const FaceSlice slice = face_slice(f.slice, contact.face_slices);
-    const double band = flexspline.rim_width_m * (slice.hi - slice.lo);
+    const double band = flexspline.rim_width_m * face_slice(f.slice, contact.face_slices).width();
     ToothRootForm at;
     try {
       at = external_root_form(teeth, f.contact_radius_m);

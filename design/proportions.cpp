@@ -264,7 +264,7 @@ std::string design_case_toml(const CupDesign& c) {
     << fixed(c.zero_backlash.major_axis_play_rad * 180.0 / std::numbers::pi * 60.0, 3)
     << " arcmin of dead band at mid-face (involute flanks and the cup's coning: not every pair is tight at once).\n"
     << "# - straight teeth across the face (shaped or hobbed, no relief along it): the contact meshes the face in "
-    << c.face_sections << " sections,\n#   its ends and centre, each with the rim as the generator leaves it there "
+    << kDesignFaceSections << " sections,\n#   its ends and centre, each with the rim as the generator leaves it there "
     << "([contact] face_slices).\n"
     << "# - w0 = m (Musser: half the tooth difference in modules).\n"
     << "# - rim under the teeth " << num(kRimPerD) << " d, body wall " << num(kWallPerRim) << " x rim, toothed face width "
@@ -291,7 +291,7 @@ std::string design_case_toml(const CupDesign& c) {
   const auto teeth_note = "the rim alone; the teeth act in series (contact)";
   LoadParams load;  // the FEM's torque and the contact's rated torque: the design's rating
   ContactParams contact;
-  contact.face_slices = c.face_sections;
+  contact.face_slices = kDesignFaceSections;
   load.torque_Nm = c.rated_torque_Nm;
   load.rated_torque_Nm = c.rated_torque_Nm;
   s << "[gear]\n"

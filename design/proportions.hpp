@@ -54,7 +54,6 @@ struct CupDesign {
   double rated_torque_Nm = 0;
   std::string rated_torque_from;  ///< "catalog size 17 (CSG, ratio 100)" or the scaling used
   ZeroBacklash zero_backlash;     ///< on the cam's curve from design_cup; on the FEM's when `design` has solved it
-  int face_sections = kDesignFaceSections;  ///< the case's [contact] face_slices
 };
 
 /// The design of a size (kDesignSizeMin..kDesignSizeMax) and ratio (kDesignRatioMin..kDesignRatioMax). Throws

@@ -293,7 +293,7 @@ TEST(CircularSplineRing, SlicesAddUpToTheWholeWidth) {
   for (int j = 0; j < 3; ++j) {
     sliced.push_back(whole);
     sliced.back().slice = j;
-    sliced.back().scale = face_slice(j, 3).hi - face_slice(j, 3).lo;  // the ends a quarter, the centre a half
+    sliced.back().scale = face_slice(j, 3).width();  // the ends a quarter, the centre a half
   }
   const double A_whole = circular_spline_block(ring, {whole}).A(0, 0);
   EXPECT_NEAR(circular_spline_block(ring, sliced).A.sum() / A_whole, 1.0, 1e-10);

@@ -112,8 +112,8 @@ BucklingFigure buckling(const Case& c, const FourierSolution& s, const std::file
 }
 
 /// The losses at the catalog's conditions (datasheet/losses.hpp), or why not.
-std::optional<LossFigures> losses(const Case& c, const ContactAnalysis& contact, const ContactBody& body,
-                                  const FemReadout& readout, int ratio, std::string& why_not) {
+std::optional<LossFigures> losses(const Case& c, const FourierSolution& fem, const ContactAnalysis& contact,
+                                  const ContactBody& body, const FemReadout& readout, int ratio, std::string& why_not) {
   if (!c.lubricant) {
     why_not = "not computed: the case gives no [lubricant] (kind, viscosity_40C_mm2_s, viscosity_100C_mm2_s, "
               "temperature_C)";
@@ -139,6 +139,8 @@ std::optional<LossFigures> losses(const Case& c, const ContactAnalysis& contact,
                             "rolling speed vanishes (the teeth slide radially in and out of the spaces)";
   }
   l.flank_friction = at.flank_friction;
+  at.loss_factor = l.loss_factor = c.material.loss_factor;
+  at.wave_energy_J = harmonic_strain_energy_J(fem.section, c.material, fem.generator);
   const LossAt split = [&](std::size_t i, const LossConditions& conditions) {
     return drive_losses(contact, i, sliding, bearing,
                         ball_loads_N(body.stations(), contact.steps[i].station_force_N, bearing.balls), ratio,
@@ -154,8 +156,10 @@ std::optional<LossFigures> losses(const Case& c, const ContactAnalysis& contact,
   l.half_rated_2000 = at_step(step_nearest(contact, 0.5 * rated), kInputSpeed_rpm);
   const std::size_t rest = step_nearest(contact, 0.0);
   l.no_load_2000 = at_step(rest, kInputSpeed_rpm);
-  l.starting_torque_Nm = starting_torque_Nm(
-      bearing, ball_loads_N(body.stations(), contact.steps[rest].station_force_N, bearing.balls), ratio);
+  l.damping_input_torque_Nm = damping_input_torque_Nm(at.wave_energy_J, at.loss_factor, ratio);
+  l.starting_torque_Nm =
+      starting_torque_Nm(bearing, ball_loads_N(body.stations(), contact.steps[rest].station_force_N, bearing.balls),
+                         ratio, {}, l.damping_input_torque_Nm);
   l.backdriving_torque_Nm = backdriving_torque_Nm(l.starting_torque_Nm, l.rated_2000, ratio);
   l.map = loss_map(contact, split, at);
   char text[200];
@@ -212,7 +216,7 @@ void add_datasheet_command(CLI::App& app) {
       });
     else
       in.why_no_bearing = "not computed: the case gives no [wave_generator] bearing (balls, ball_diameter_mm)";
-    in.losses = naming_file(c.path, [&] { return losses(c, contact, *body, readout, in.ratio, in.why_no_losses); });
+    in.losses = naming_file(c.path, [&] { return losses(c, *fem.harmonic, contact, *body, readout, in.ratio, in.why_no_losses); });
     if (c.material.fatigue_limit_Pa) in.tooth_root = tooth_root_limit(*c.gear, c.flexspline, c.material, contact);
     else in.why_no_tooth_root = "not computed: the case gives no [material] fatigue_limit_MPa and ultimate_strength_MPa";
     const Datasheet sheet = make_datasheet(in);

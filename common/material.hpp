@@ -16,6 +16,10 @@ struct Material {
   std::optional<double> fatigue_limit_Pa;      ///< endurance limit (fully reversed) for the Goodman safety factor
   std::optional<double> ultimate_strength_Pa;  ///< tensile strength, the Goodman line's intercept
   std::optional<double> yield_strength_Pa;     ///< 0.2 % proof stress: the flexspline's first yield (momentary limit)
+  /// Hysteretic loss factor η (complex modulus E(1 + iη)): the flexspline's damping under the generator's wave. The
+  /// default is the top of iron's bending loss factor, 2–6·10⁻⁴ (Cremer & Heckl, Structure-Borne Sound, 1988, table of
+  /// material loss factors), a small-amplitude figure: at a flexspline's stresses steels damp more (Lazan, 1968).
+  double loss_factor = 6e-4;
   double shear_modulus_Pa() const { return youngs_modulus_Pa / (2.0 * (1.0 + poisson_ratio)); }
 };
 
@@ -32,6 +36,9 @@ inline const std::vector<CaseKey<Material>>& material_keys() {
                              "tensile strength, the Goodman line's intercept (with fatigue_limit_MPa)"),
       optional_number_key<M>("yield_strength_MPa", &M::yield_strength_Pa, 1e6, "MPa", above(0),
                              "0.2 % proof stress: the flexspline's first yield, <= ultimate_strength_MPa"),
+      number_key<M>("loss_factor", &M::loss_factor, 1, "", within(0, 1, false, true),
+                    "hysteretic loss factor eta: the flexspline's damping under the generator's wave (iron 2-6e-4, "
+                    "Cremer & Heckl)"),
   };
   return keys;
 }

@@ -52,6 +52,8 @@ struct ToothRootFigure {
 struct LossFigures {
   LossSplit rated_2000, rated_1000, half_rated_2000, no_load_2000;
   double starting_torque_Nm = 0;
+  double damping_input_torque_Nm = 0;  ///< the flexspline's material damping at the input, at any speed
+  double loss_factor = 0;              ///< η it was computed with
   double backdriving_torque_Nm = 0;  ///< at the output (datasheet/losses.hpp backdriving_torque_Nm)
   double flank_friction = 0;
   std::string flank_friction_from;  ///< "[contact] friction_coefficient" or why the boundary value is taken

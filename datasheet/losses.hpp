@@ -8,14 +8,21 @@
 //    M1 kept apart;
 //  - the flanks' sliding: Coulomb friction μ·F_i on each loaded flank times its kinematic sliding speed |s_i|·σ̇
 //    (dynamics/moving_mesh_build.hpp flank_velocity: the two contact points' relative velocity along the profile per
-//    unit σ = θ_w − θ_f, on the rim's generator-deformed neutral curve at rest), σ̇ = ω_in·(1 + 1/ratio).
+//    unit σ = θ_w − θ_f, on the rim's generator-deformed neutral curve at rest), σ̇ = ω_in·(1 + 1/ratio);
+//  - the flexspline's material damping: the generator's deformation is a wave fixed to the generator, so harmonic n of
+//    it (strain energy U_n, fem/fourier_solver.hpp harmonic_strain_energy_J) strains every point of the turning body
+//    at n·σ̇. With a hysteretic loss factor η (the complex modulus E(1 + iη): per cycle 2π·η times the energy stored)
+//    a travelling wave of energy U_n dissipates 2·η·n·σ̇·U_n (two standing waves in quadrature, each 2π·η·U_n per
+//    cycle), so P = 2·η·σ̇·Σ n·U_n. Rate-independent: the same torque at the input at any speed, breakaway included.
 // P_in = P_out + the losses, efficiency P_out/P_in, the input torque P_in/ω_in.
 //
 // Idealisations (said in every figure's method): the contact's flank forces and contact points at one generator
 // position and at rest stand for the running mesh (the teeth's sliding read where they touch at rest, not where the
-// load has moved the contact); μ constant over the flank; no churning or drag of the lubricant, no seal, no
-// material damping of the flexspline, no heat (the temperature is the case's). A loss left out makes the
-// efficiency an upper bound.
+// load has moved the contact); μ constant over the flank; the damping from the generator's deformation alone (what
+// the torque adds to the wave left out) at the loss factor of small strain amplitudes (at a flexspline's stresses
+// steels damp more: Lazan, Damping of Materials and Members in Structural Mechanics, 1968); no churning or drag of
+// the lubricant beyond what Palmgren's f0 holds for the bearing, no seal, no heat (the temperature is the case's).
+// A loss left out makes the efficiency an upper bound.
 #include <functional>
 #include <string>
 #include <vector>
@@ -33,7 +40,15 @@ struct LossConditions {
   double input_speed_rpm = 2000;  ///< the generator's speed, ≥ 0
   double flank_friction = 0;      ///< μ of the flanks, in [0, 1]
   PalmgrenCoefficients palmgren;  ///< the bearing's coefficients
+  double loss_factor = 0;         ///< η of the flexspline's material, in [0, 1)
+  /// The generator's deformation's strain energy per harmonic n = 0.. (J); empty: no damping counted.
+  std::vector<double> wave_energy_J;
 };
+
+/// The input torque the flexspline's material damping takes (N·m): 2·η·(1 + 1/ratio)·Σ n·U_n over the wave's
+/// harmonics U_n (J) (the power 2·η·σ̇·Σ n·U_n over ω_in). InputError for η outside [0, 1), a negative energy or
+/// ratio < 1.
+double damping_input_torque_Nm(const std::vector<double>& wave_energy_J, double loss_factor, int ratio);
 
 /// The power balance at one output torque and input speed. W unless named otherwise.
 struct LossSplit {
@@ -42,8 +57,9 @@ struct LossSplit {
   double bearing_viscous_W = 0;  ///< Palmgren's M0 at the rings' relative speed
   double bearing_load_W = 0;     ///< Palmgren's M1
   double flank_sliding_W = 0;    ///< Σ μ·F·|v_slide| over the loaded flanks (both teeth of a half-turn pair)
+  double flexspline_damping_W = 0;  ///< the material's hysteresis under the generator's wave
   double viscosity_mm2_s = 0;    ///< the lubricant's at its temperature
-  double loss_W() const { return bearing_viscous_W + bearing_load_W + flank_sliding_W; }
+  double loss_W() const { return bearing_viscous_W + bearing_load_W + flank_sliding_W + flexspline_damping_W; }
   double input_power_W() const { return output_power_W + loss_W(); }
   /// P_out / P_in; 1 with no loss; 0 at zero output torque.
   double efficiency() const { return input_power_W() > 0 ? output_power_W / input_power_W() : 0.0; }
@@ -86,9 +102,10 @@ LossMap loss_map(const ContactAnalysis& contact, const LossAt& at, const LossCon
 
 /// The input torque that starts the drive from rest with no load on the output, N·m: Palmgren's breakaway moment of
 /// the generator bearing under these ball loads (palmgren_breakaway_moment_Nm: M1 alone, a lower bound) carried to
-/// the input as in the power balance, ×(1 + 1/ratio) (the rings turn against each other at σ̇ = ω_in·(1 + 1/ratio)).
+/// the input as in the power balance, ×(1 + 1/ratio) (the rings turn against each other at σ̇ = ω_in·(1 + 1/ratio)),
+/// plus the flexspline's damping torque (damping_input_torque_Nm, `damping_Nm`: rate-independent, there at breakaway).
 double starting_torque_Nm(const GeneratorBearing& bearing, const std::vector<double>& ball_loads_N, int ratio,
-                          const PalmgrenCoefficients& palmgren = {});
+                          const PalmgrenCoefficients& palmgren = {}, double damping_Nm = 0);
 
 /// The output torque that starts the drive turning its free input from rest (backdriving), N·m. At breakaway the
 /// output's power goes into the losses: T·ω_out = T_start·ω_in + k·T·ω_in with ω_in = ratio·ω_out, T_start the

@@ -109,6 +109,30 @@ std::vector<NeutralCurveSamples> neutral_curves_at(const SectionMesh& s, const H
   return out;
 }
 
+std::vector<double> harmonic_strain_energy_J(const SectionMesh& s, const Material& m, const HarmonicField& u) {
+  std::vector<double> U(static_cast<std::size_t>(u.harmonics() + 1), 0.0);
+  for (int n = 0; n <= u.harmonics(); ++n) {
+    const Eigen::MatrixXd &sym = u.sym[static_cast<std::size_t>(n)], &anti = u.anti[static_cast<std::size_t>(n)];
+    if (sym.size() == 0 && anti.size() == 0) continue;  // a harmonic the loads did not reach
+    for (std::size_t e = 0; e < s.triangles.size(); ++e) {
+      const auto& t = s.triangles[e];
+      const Eigen::Matrix<double, 18, 18> K = harmonic_element_stiffness(coords(s, e), m, n);
+      Eigen::Matrix<double, 18, 1> us = Eigen::Matrix<double, 18, 1>::Zero(), ua = us;
+      for (int a = 0; a < 6; ++a) {
+        if (sym.size()) us.segment<3>(3 * a) = sym.row(t[a]).transpose();
+        if (anti.size()) ua.segment<3>(3 * a) = anti.row(t[a]).transpose();
+      }
+      if (n == 0) {  // one field: a and c of the symmetric family, b of the antisymmetric one
+        for (int a = 0; a < 6; ++a) us[3 * a + 1] = ua[3 * a + 1];
+        U[0] += 0.5 * us.dot(K * us);
+      } else {
+        U[static_cast<std::size_t>(n)] += 0.5 * (us.dot(K * us) + ua.dot(K * ua));
+      }
+    }
+  }
+  return U;
+}
+
 double clamp_reaction_moment(const SectionMesh& s, const Material& m, const std::vector<bool>& clamped,
                              const HarmonicField& u, const Eigen::MatrixXd& anti0) {
   Eigen::MatrixXd R = -anti0;

@@ -111,6 +111,11 @@ ModelSizeEstimate fourier_model_size(const FlexsplineModel& c, const SectionMesh
 std::vector<NeutralCurveSamples> neutral_curves_at(const SectionMesh& s, const HarmonicField& u, double radius_m,
                                                    const std::vector<double>& z_m);
 
+/// Strain energy of each harmonic 0..N of a field over the whole body (J): ½ uᵀK_n u of its two families (at n = 0
+/// the one field (sym a, anti b, sym c)). The harmonics are orthogonal in energy, so they add to the field's; a
+/// travelling wave of harmonic n (the generator's deformation as the body turns under it) keeps U_n at every instant.
+std::vector<double> harmonic_strain_energy_J(const SectionMesh& s, const Material& m, const HarmonicField& u);
+
 /// Moment about z (N·m) of the clamp's reaction to a harmonic field under loads whose harmonic-0 antisymmetric
 /// generalised forces are `anti0` (n_nodes × 3): K₀·u − F on the clamped nodes.
 double clamp_reaction_moment(const SectionMesh& s, const Material& m, const std::vector<bool>& clamped,

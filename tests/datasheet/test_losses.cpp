@@ -121,6 +121,38 @@ TEST(DriveLosses, StartingTorqueIsTheBreakawayMomentAtTheInput) {
             std::string::npos);
 }
 
+// The flexspline's material damping: harmonic n of the generator's wave strains the turning body at n·σ̇ and a
+// travelling wave of energy U_n loses 2·η·n·σ̇·U_n, so P = 2·η·σ̇·Σ n·U_n; harmonic 0 is static in the body and
+// loses nothing. Written out for U = (5, 0, 3, 0, 1) mJ, η = 6e-4, ratio 100: the input torque is the same at every
+// speed (hysteretic damping is rate-independent), so it is in the starting torque too; η = 0 loses nothing.
+TEST(DriveLosses, MaterialDampingIsTwiceEtaTimesTheWavesEnergyWeightedByHarmonic) {
+  const ContactAnalysis a = two_flanks(true);
+  const std::vector<double> sliding = {0, 0, 0};
+  const GeneratorBearing b = bearing_6205();
+  const std::vector<double> Q = stribeck_loads(9, 800.0, 0.0);
+  LossConditions c;
+  c.lubricant = vg68(40.0);
+  c.loss_factor = 6e-4;
+  c.wave_energy_J = {5e-3, 0.0, 3e-3, 0.0, 1e-3};
+  const int ratio = 100;
+  const double torque = 2 * 6e-4 * (1 + 1.0 / ratio) * (2 * 3e-3 + 4 * 1e-3);
+  EXPECT_NEAR(damping_input_torque_Nm(c.wave_energy_J, c.loss_factor, ratio), torque, 1e-15);
+  for (const double rpm : {500.0, 2000.0, 3500.0}) {
+    c.input_speed_rpm = rpm;
+    const LossSplit l = drive_losses(a, 0, sliding, b, Q, ratio, c);
+    EXPECT_NEAR(l.flexspline_damping_W, torque * rpm * kRadPerS, 1e-12) << rpm;
+    EXPECT_NEAR(l.loss_W(), l.bearing_viscous_W + l.bearing_load_W + l.flank_sliding_W + l.flexspline_damping_W,
+                1e-12);
+  }
+  EXPECT_NEAR(starting_torque_Nm(b, Q, ratio, {}, torque), starting_torque_Nm(b, Q, ratio) + torque, 1e-15);
+  c.loss_factor = 0;
+  EXPECT_EQ(drive_losses(a, 0, sliding, b, Q, ratio, c).flexspline_damping_W, 0.0);
+  EXPECT_EQ(sw::testing::message_of([&] { damping_input_torque_Nm(c.wave_energy_J, 1.0, ratio); }),
+            "material.loss_factor = 1; must be in [0, 1)");
+  EXPECT_EQ(sw::testing::message_of([&] { damping_input_torque_Nm({-1.0}, 1e-4, ratio); }),
+            "damping torque: the wave's strain energy must be >= 0");
+}
+
 // Backdriving: the output's power at breakaway is the input's breakaway plus the flanks' sliding, which grows with the
 // torque as it does at the loaded state given. Written out: 10 N·m at 2,000 rpm losing 5 W on the flanks is
 // k = 5 / (10 · 209.44 rad/s); at ratio 50 the output needs 50 · T_start / (1 − 50 k). A mesh whose flank loss per

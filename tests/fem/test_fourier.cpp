@@ -118,6 +118,38 @@ TEST(FourierLame, ThickCylinder) {
   EXPECT_GT(coarse / fine, 4.0);
 }
 
+// The strain energy of one harmonic (harmonic_strain_energy_J, what the flexspline's material damping dissipates a
+// part of per wave cycle) against the thin ring's closed form: a free ring of mean radius R, square section t × t,
+// under a radial traction p·cos nθ on its outside (force per unit arc of the mean line q = p·t·r_o/R) deforms
+// inextensibly, w_n = q·R⁴/(E·I·(n² − 1)²), I = t⁴/12, and stores U = π·R·q·w_n/2 (Clapeyron; the bending energy
+// E·I·π·(n² − 1)²·w_n²/(2R³) is the same). t/R = 1/20: shear, stretching and the curved section's stress move it by
+// O((t/R)²), so 1 %. The same U from the solver's loads, ½ Fᵀu, to 1e-9: the energy's element stiffness is the
+// solver's.
+TEST(FourierStrainEnergy, ThinRingHarmonicAgainstClosedForm) {
+  const double R = 20e-3, t = 1e-3, p = 1e6;
+  Material m;
+  const SectionMesh s = mesh_annulus_section(R - t / 2, R + t / 2, t, 4, 4);
+  const std::vector<bool> fixed(3 * s.n_nodes(), false);  // n >= 2: no rigid mode
+  for (const int n : {2, 4}) {
+    const Eigen::MatrixXd F = kPi * section_traction_load(s, kSurfaceOuter, Eigen::Vector3d(p, 0, 0));
+    HarmonicField u;
+    u.sym.assign(static_cast<std::size_t>(n + 1), Eigen::MatrixXd());
+    u.anti = u.sym;
+    u.sym[static_cast<std::size_t>(n)] = solve_harmonic(s, m, n, fixed, F);
+    const std::vector<double> U = harmonic_strain_energy_J(s, m, u);
+    ASSERT_EQ(U.size(), static_cast<std::size_t>(n + 1));
+    for (int k = 0; k < n; ++k) EXPECT_EQ(U[static_cast<std::size_t>(k)], 0.0);
+    const double q = p * t * (R + t / 2) / R, I = t * t * t * t / 12;
+    const double w = q * std::pow(R, 4) / (m.youngs_modulus_Pa * I * (n * n - 1.0) * (n * n - 1.0));
+    const double closed = kPi * R * q * w / 2, energy = U[static_cast<std::size_t>(n)];
+    const double work = 0.5 * (F.array() * u.sym[static_cast<std::size_t>(n)].array()).sum();
+    std::printf("ring n = %d: U %.6e J, closed form %.6e (%+.3f %%), 1/2 F.u %.6e\n", n, energy, closed,
+                100 * (energy / closed - 1), work);
+    EXPECT_NEAR(energy / closed, 1.0, 1e-2) << "n = " << n;
+    EXPECT_NEAR(energy / work, 1.0, 1e-9) << "n = " << n;
+  }
+}
+
 // The cup's boss reaches the axis: the regularity conditions must keep every harmonic well posed (a singular or
 // indefinite matrix throws) and the axis displacement single-valued: at n = 1, b = −a.
 TEST(FourierAxis, CupBossWithEveryHarmonic) {

@@ -138,14 +138,16 @@ private:
   bool near_edge(int k, int pitches) const { return near_edge_in(rest_, k, pitches); }
   /// A radial observer (unit outward, per tooth of the unknown) at the flexspline tip of the tooth at material angle
   /// phi on the rim at rest, and at its half-turn partner's.
-  FlankPattern tip_observer(double phi) const {
-    const ToothPlacement place = place_tooth(curve_, phi, 0.0);
+  /// A radial observer at the tip of the tooth at material angle phi: on the whole face (slice −1, the centre's rim),
+  /// or on face slice j's band at its section's rim.
+  FlankPattern tip_observer(double phi, int slice = -1) const {
+    const ToothPlacement place = place_tooth(slice < 0 ? curve_ : slices_[slice].curve, phi, 0.0);
     const Eigen::Vector2d tip =
         Eigen::Rotation2Dd(place.angle_rad) * Eigen::Vector2d(model_->radii.tip_f, 0.0) + place.offset_m;
     const double s = std::atan2(tip.y(), tip.x());
     std::vector<double> stations{s};
     if (out_.half_turn_pairs) stations.push_back(s + kPi);
-    return {stations, Eigen::Vector2d(std::cos(s), std::sin(s)), tip.norm(), -1, 1 / n_teeth_, phi,
+    return {stations, Eigen::Vector2d(std::cos(s), std::sin(s)), tip.norm(), slice, 1 / n_teeth_, phi,
             Eigen::Vector2d(model_->radii.tip_f, 0.0)};
   }
   /// The change of the body's loads since rest for contact forces x (flanks, then stations when unilateral): the
@@ -419,21 +421,24 @@ void ContactAnalyser::watch_zone_edges() {
   no_ = static_cast<Eigen::Index>(observers_.size());
 }
 
-/// For the ratcheting ramp: every tooth with a flank in the problem, its overlap at rest (the centre section's) and
-/// radial observers at its tip, on the rim (as the zone edges') and on the circular spline's tip circle at the same
-/// angle.
+/// For the ratcheting ramp: every tooth with a flank in the problem, in each section of the face where it has one
+/// (straight teeth on a coned rim overlap differently at the face's ends, so each section lets go on its own): its
+/// overlap at rest there and radial observers at its tip, on the rim over the section's band (as the zone edges', on
+/// the whole face with one section) and on the circular spline's tip circle over the same band at the same angle.
 void ContactAnalyser::watch_ratchet_teeth() {
   if (opt_.ratcheting_ceiling_Nm <= 0) return;
   for (const FlankContact& f : out_.flanks) {
     std::size_t t = 0;
-    while (t < ratchet_teeth_.size() && ratchet_teeth_[t].tooth != f.tooth) ++t;
+    while (t < ratchet_teeth_.size() && !(ratchet_teeth_[t].tooth == f.tooth && ratchet_teeth_[t].slice == f.slice))
+      ++t;
     ratchet_tooth_of_flank_.push_back(t);
     if (t < ratchet_teeth_.size()) continue;
-    ratchet_teeth_.push_back({f.tooth, f.phi_rad, rest_[f.tooth].depth_m});
-    const FlankPattern rim = tip_observer(f.phi_rad);
+    const int band = n_slices_ > 1 ? f.slice : -1;
+    ratchet_teeth_.push_back({f.tooth, f.phi_rad, slices_[f.slice].rest[f.tooth].depth_m, f.slice});
+    const FlankPattern rim = tip_observer(f.phi_rad, band);
     ratchet_rim_.push_back(rim);
     // The ring's at the same angle and along the same radial line, on the circular spline's tip circle.
-    ratchet_ring_.push_back({rim.stations_rad, rim.force_dir, model_->radii.tip_c, -1, 1 / n_teeth_});
+    ratchet_ring_.push_back({rim.stations_rad, rim.force_dir, model_->radii.tip_c, band, 1 / n_teeth_});
   }
   nr_ = static_cast<Eigen::Index>(ratchet_teeth_.size());
 }

@@ -64,6 +64,7 @@ Ratcheting ratcheting_torque(const std::vector<RatchetTooth>& teeth, const Ratch
     const int t = h ? engaged_released(h->first) : -1;
     if (t >= 0) {
       r.first_tooth = teeth[t].tooth;
+      r.first_slice = teeth[t].slice;
       r.first_phi_rad = teeth[t].phi_rad;
     }
   }
@@ -81,6 +82,7 @@ Ratcheting ratcheting_torque(const std::vector<RatchetTooth>& teeth, const Ratch
       if (h->second.loaded[t] && o < least) {
         least = o;
         r.last_tooth = teeth[t].tooth;
+        r.last_slice = teeth[t].slice;
         r.last_phi_rad = teeth[t].phi_rad;
         r.last_overlap_m = o;
         if (h->second.rim_in_m.size()) r.last_rim_in_m = h->second.rim_in_m[static_cast<Eigen::Index>(t)];

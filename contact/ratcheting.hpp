@@ -10,7 +10,8 @@
 //  - the contact normals stay those at rest: the contact point does not climb the flank, so a flank's radial share
 //    does not grow as it nears the tip (on an involute it would: the figure is an upper bound on that count);
 //  - a tooth releases when its radial overlap (tip beyond the circular spline's tip circle) is gone, read at its tip on
-//    the rim and on the ring; its own bending moves the tip along the pitch circle, not radially, and is left out;
+//    the rim and on the ring, in each section of the face on its own (the sections' bands coupled through the rim and
+//    the ring only); its own bending moves the tip along the pitch circle, not radially, and is left out;
 //  - a tooth that has let go does not come back in during the ramp (loading is monotonic).
 #include <functional>
 #include <limits>
@@ -22,11 +23,13 @@
 
 namespace sw {
 
-/// A tooth that can carry in the ramp: its flanks' unknowns in the contact problem and its overlap at rest.
+/// A tooth that can carry in the ramp, in one section of the face (straight teeth on a coned rim: each section's
+/// overlap its own): its flanks' unknowns there in the contact problem and its overlap at rest there.
 struct RatchetTooth {
   int tooth = 0;
   double phi_rad = 0;            ///< material angle from the major axis
   double overlap_at_rest_m = 0;  ///< |tip| − r_a,c with the generator alone (> 0: engaged)
+  int slice = 0;                 ///< the face's section (contact/contact_body.hpp face_slice); 0 with one
 };
 
 /// The drive loaded with only the teeth `can_carry` (per RatchetTooth) taking part: each tooth's radial overlap under
@@ -47,12 +50,12 @@ struct Ratcheting {
   double tolerance_rel = 0;                                    ///< of the torque, from the bisection
   /// The first tooth loaded at rated torque or above that lets go, and the torque it does so at.
   double first_release_Nm = std::numeric_limits<double>::infinity();
-  int first_tooth = -1;
+  int first_tooth = -1, first_slice = 0;
   double first_phi_rad = 0;
   /// Just below the ratcheting torque: the teeth still carrying, the one of them with least overlap left and that
   /// overlap, and the twist.
   int teeth_holding = 0;
-  int last_tooth = -1;
+  int last_tooth = -1, last_slice = 0;
   double last_phi_rad = 0, last_overlap_m = 0, twist_below_rad = 0;
   double last_rim_in_m = 0, last_ring_out_m = 0;  ///< that tooth's tip parted by the rim and by the ring
 };

@@ -92,10 +92,17 @@ void add_ratcheting_figure(Datasheet& d, const DatasheetInputs& in) {
     return;
   }
   const Ratcheting& r = *in.contact->ratcheting;
+  const int sections = in.contact->face_slices;
+  const auto where = [&](int slice) -> std::string {  // the face's section a tooth let go or held in
+    if (sections <= 1) return "";
+    if (slice == 0) return ", at the face's closed end";
+    if (slice == sections - 1) return ", at the face's open end";
+    return ", face section " + std::to_string(slice + 1) + " of " + std::to_string(sections);
+  };
   const std::string how =
       "generator locked, torque raised past rated until the teeth still overlapping the circular spline's tip circle "
-      "cannot carry it; each tooth lets go when the rim's inward and the ring's outward give under the flanks' radial "
-      "forces take its overlap; contact normals as at rest (the contact does not climb the flank: an upper bound on "
+      "cannot carry it; each tooth lets go (in each section of the face on its own) when the rim's inward and the "
+      "ring's outward give under the flanks' radial forces take its overlap; contact normals as at rest (the contact does not climb the flank: an upper bound on "
       "that count), a released tooth stays out";
   const double deg = 180 / std::numbers::pi;
   if (!std::isfinite(r.torque_Nm)) {  // a lower bound: beyond the search
@@ -111,8 +118,9 @@ void add_ratcheting_figure(Datasheet& d, const DatasheetInputs& in) {
   }
   std::string method = how + "; ±" + fmt("%.1g", 100 * r.tolerance_rel) + " %. First loaded tooth to let go at " +
                        fmt("%.3g", r.first_release_Nm) + " N·m (" + fmt("%.1f", r.first_phi_rad * deg) +
-                       " deg from the major axis); just below, " + std::to_string(r.teeth_holding) +
-                       " teeth hold, the last at " + fmt("%.1f", r.last_phi_rad * deg) + " deg with " +
+                       " deg from the major axis" + where(r.first_slice) + "); just below, " +
+                       std::to_string(r.teeth_holding) + (sections > 1 ? " tooth sections" : " teeth") +
+                       " hold, the last at " + fmt("%.1f", r.last_phi_rad * deg) + " deg" + where(r.last_slice) + " with " +
                        fmt("%.2f", r.last_overlap_m * 1e6) + " um of overlap left, its tip parted " +
                        fmt("%.1f", r.last_rim_in_m * 1e6) + " um by the rim and " +
                        fmt("%.1f", r.last_ring_out_m * 1e6) + " um by the ring";

@@ -42,7 +42,9 @@ ContactOptions options_of(const Case& c) {
   ContactOptions o;
   o.rated_torque_Nm = c.load.rated_torque_Nm.value_or(c.load.torque_Nm);
   o.series = app::series_parts(c);
-  o.ratcheting_ceiling_Nm = 100 * o.rated_torque_Nm;  // as the datasheet looks for it
+  // Twice as far as the datasheet looks: the designed size 17 ratchets at 113 x rated with each section of the face
+  // letting go on its own (3500 N·m), so both bodies reach it and the comparison below is made.
+  o.ratcheting_ceiling_Nm = 200 * o.rated_torque_Nm;
   o.contact = c.contact;  // the case's face sections (the designed cups: straight teeth in three)
   return o;
 }
@@ -155,6 +157,9 @@ TEST_P(BothSolvers, HarmonicContactMatchesTet10Contact) {
               h.ratcheting->last_rim_in_m * 1e6, h.ratcheting->last_ring_out_m * 1e6, t.ratcheting->last_rim_in_m * 1e6,
               t.ratcheting->last_ring_out_m * 1e6);
   ASSERT_EQ(std::isfinite(h.ratcheting->torque_Nm), std::isfinite(t.ratcheting->torque_Nm));
+  // The seed's teeth do not let go below the ceiling (first releases 498 and 557 N·m); the cup's must, or nothing is
+  // compared (measured 3499.5 against 3525.4 N·m, 0.7 %).
+  if (std::string(GetParam()).find("cup") != std::string::npos) ASSERT_TRUE(std::isfinite(t.ratcheting->torque_Nm));
   if (std::isfinite(t.ratcheting->torque_Nm)) EXPECT_NEAR(h.ratcheting->torque_Nm / t.ratcheting->torque_Nm, 1.0, 0.03);
   // The harmonic body's own checks: the quadrature of its hats against its closed-form moments, the balances.
   EXPECT_LT(h.superposition_error_rel, 1e-8);

@@ -81,7 +81,10 @@ std::vector<double> ball_loads_N(const BodyStations& stations, const std::vector
   at.insert(at.begin(), {at[at.size() - 2].first - kTwoPi, at[at.size() - 2].second});
   // ∫ q over [a, b] (a ≤ b, within one period of the list's range), exactly: trapezoids of the linear pieces.
   const auto q_at = [&](double t) {
-    const auto hi = std::upper_bound(at.begin(), at.end(), std::make_pair(t, std::numeric_limits<double>::infinity()));
+    // The piece holding t; at the period's closing point (t = 2π with a station at 0) the last one, not past the end.
+    const auto hi = std::clamp(
+        std::upper_bound(at.begin(), at.end(), std::make_pair(t, std::numeric_limits<double>::infinity())),
+        at.begin() + 1, at.end() - 1);
     const auto lo = hi - 1;
     return lo->second + (hi->second - lo->second) * (t - lo->first) / (hi->first - lo->first);
   };

@@ -46,6 +46,28 @@ TEST(BallLoads, ATwoLobedLoadKeepsItsTotalAndItsPeakAtTheMajorAxis) {
   EXPECT_NEAR(Q[6], 0.0, 1e-9);  // the minor axis (a quarter turn on) carries nothing
 }
 
+// A station on the major axis puts its partner's piece at θ = π and the period's closing point at exactly 2π, where
+// the last ball's arc ends: the line load there is read from the last piece (it was read one past the list's end, so
+// the life of size 14 at ratio 100 came out 23,580 or 31,365 h from run to run with the same loads). A load that is
+// linear between the stations gives each ball its arc's share by hand: P(θ) = P0 + P1·cos θ over the half turn's
+// stations and their partners, the balls' sum the stations' 2·ΣP and the ball on the major axis the same in a list
+// rotated by a whole station (the closing point then falls elsewhere).
+TEST(BallLoads, TheClosingPointOfThePeriodIsReadOnTheLastPiece) {
+  const BodyStations s = stations_over_half_turn(12);
+  std::vector<double> p;
+  for (double a : s.angle_rad) p.push_back(100.0 + 40.0 * std::cos(a));
+  const std::vector<double> Q = ball_loads_N(s, p, 12);
+  const double stations = 2 * std::accumulate(p.begin(), p.end(), 0.0);
+  EXPECT_NEAR(std::accumulate(Q.begin(), Q.end(), 0.0) / stations, 1.0, 1e-12);
+  BodyStations shifted = s;  // the same stations listed from the second one, the first moved a half turn on
+  std::rotate(shifted.angle_rad.begin(), shifted.angle_rad.begin() + 1, shifted.angle_rad.end());
+  shifted.angle_rad.back() += kPi;
+  std::vector<double> q = p;
+  std::rotate(q.begin(), q.begin() + 1, q.end());
+  const std::vector<double> R = ball_loads_N(shifted, q, 12);
+  for (std::size_t b = 0; b < Q.size(); ++b) EXPECT_NEAR(R[b], Q[b], 1e-9 * Q[0]) << "ball " << b;
+}
+
 // Goodman's line under a pulsating cycle 0..σ (σ_a = σ_m = σ/2): σ = 2/(1/S_e + 1/S_u).
 TEST(ToothRoot, PulsatingAllowableIsOnGoodmansLine) {
   const double s = pulsating_allowable_stress_Pa(500e6, 1100e6);

@@ -137,9 +137,8 @@ private:
   }
   bool near_edge(int k, int pitches) const { return near_edge_in(rest_, k, pitches); }
   /// A radial observer (unit outward, per tooth of the unknown) at the flexspline tip of the tooth at material angle
-  /// phi on the rim at rest, and at its half-turn partner's.
-  /// A radial observer at the tip of the tooth at material angle phi: on the whole face (slice −1, the centre's rim),
-  /// or on face slice j's band at its section's rim.
+  /// phi on the rim at rest, and at its half-turn partner's: on the whole face (slice −1, the centre section's rim), or
+  /// on face slice j's band (its section's rim).
   FlankPattern tip_observer(double phi, int slice = -1) const {
     const ToothPlacement place = place_tooth(slice < 0 ? curve_ : slices_[slice].curve, phi, 0.0);
     const Eigen::Vector2d tip =

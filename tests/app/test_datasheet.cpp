@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 
 #include "io/datasheet_output.hpp"
 #include "tests/cli.hpp"
@@ -76,20 +77,26 @@ TEST(Size17Sheet, CarriesTheContactsFiguresThePublishedRowsAndSaysHowEachWasComp
   // its torque on the harmonic body against the TET10 body's in test_harmonic_contact): above rated torque, its
   // method naming the idealisation; the momentary limit the first of yield (the case's EN 10083-3 R_e), it and
   // buckling.
+  // A figure's value; null is beyond the search (the reader's infinity): the size-17 sheet's ratcheting torque, each
+  // section of the face letting go on its own, is above the 100 x rated the sheet searches to (3500 N·m).
+  const auto value_of = [](const nlohmann::json& figure) {
+    return figure["value"].is_null() ? std::numeric_limits<double>::infinity() : figure["value"].get<double>();
+  };
   const auto& ratchet = f["ratcheting_torque_Nm"];
   ASSERT_TRUE(ratchet["computed"].get<bool>()) << ratchet["method"];
-  EXPECT_GT(ratchet["value"].get<double>(), f["rated_torque_Nm"]["value"].get<double>());
+  const double ratchet_Nm = value_of(ratchet);
+  EXPECT_GT(ratchet_Nm, f["rated_torque_Nm"]["value"].get<double>());
   EXPECT_NE(ratchet["method"].get<std::string>().find("contact normals as at rest"), std::string::npos);
   const auto& momentary = f["momentary_limit_Nm"];
   ASSERT_TRUE(momentary["computed"].get<bool>()) << momentary["method"];
   const auto& yield = f["first_yield_torque_Nm"];
   ASSERT_TRUE(yield["computed"].get<bool>()) << yield["method"];
   EXPECT_EQ(momentary["value"].get<double>(),
-            std::min({yield["value"].get<double>(), ratchet["value"].get<double>(),
+            std::min({yield["value"].get<double>(), ratchet_Nm,
                       f["buckling_torque_Nm"]["value"].get<double>()}));
   EXPECT_EQ(momentary["method"].get<std::string>().find("upper bound"), std::string::npos);  // all three computed
   std::printf("size 17: ratcheting torque %.0f N*m (published %.0f), first yield %.0f, momentary limit %.0f "
-              "(published %.0f)\n", ratchet["value"].get<double>(), ratchet["published"].get<double>(),
+              "(published %.0f)\n", ratchet_Nm, ratchet["published"].get<double>(),
               yield["value"].get<double>(), momentary["value"].get<double>(), momentary["published"].get<double>());
 
   // Where the power goes: the sheet's efficiency is its own split's (P_out over P_out plus the three losses), the
@@ -109,7 +116,9 @@ TEST(Size17Sheet, CarriesTheContactsFiguresThePublishedRowsAndSaysHowEachWasComp
   EXPECT_LT(back["value"].get<double>(), 1e3 * f["starting_torque_Nm"]["value"].get<double>());
   std::printf("size 17: backdriving torque %.4f N*m (published %.2f)\n", back["value"].get<double>(),
               back["published"].get<double>());
-  EXPECT_NE(eta["method"].get<std::string>().find("leaves out churning"), std::string::npos);
+  // What it counts and what it leaves out.
+  EXPECT_NE(eta["method"].get<std::string>().find("the flexspline's material damping"), std::string::npos);
+  EXPECT_NE(eta["method"].get<std::string>().find("leaves out the lubricant's drag"), std::string::npos);
   // The map over speed, load and temperature: its point at rated torque, 2,000 rpm and the oil's 20 °C is the sheet's
   // efficiency (the same step and conditions), and the page draws it.
   const auto& map = sheet["loss_map"];
@@ -124,7 +133,7 @@ TEST(Size17Sheet, CarriesTheContactsFiguresThePublishedRowsAndSaysHowEachWasComp
   ASSERT_TRUE(read_back.loss_map.has_value());
   EXPECT_EQ(read_back.loss_map->efficiency_at_rated, map["efficiency_at_rated"].get<std::vector<double>>());
   EXPECT_EQ(read_back.loss_map->no_load_torque_Nm, map["no_load_torque_Nm"].get<std::vector<std::vector<double>>>());
-  EXPECT_EQ(*read_back.find("ratcheting_torque_Nm")->value, f["ratcheting_torque_Nm"]["value"].get<double>());
+  EXPECT_EQ(*read_back.find("ratcheting_torque_Nm")->value, value_of(f["ratcheting_torque_Nm"]));
   {
     std::ifstream html(dir / "datasheet.html");
     const std::string page((std::istreambuf_iterator<char>(html)), std::istreambuf_iterator<char>());

@@ -148,6 +148,7 @@ density_kg_m3 = 7800
 fatigue_limit_MPa = 480
 ultimate_strength_MPa = 1050
 yield_strength_MPa = 900
+loss_factor = 4e-4
 [lubricant]
 kind = "oil"
 viscosity_40C_mm2_s = 100

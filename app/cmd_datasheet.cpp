@@ -216,7 +216,8 @@ void add_datasheet_command(CLI::App& app) {
       });
     else
       in.why_no_bearing = "not computed: the case gives no [wave_generator] bearing (balls, ball_diameter_mm)";
-    in.losses = naming_file(c.path, [&] { return losses(c, *fem.harmonic, contact, *body, readout, in.ratio, in.why_no_losses); });
+    in.losses = naming_file(
+        c.path, [&] { return losses(c, *fem.harmonic, contact, *body, readout, in.ratio, in.why_no_losses); });
     if (c.material.fatigue_limit_Pa) in.tooth_root = tooth_root_limit(*c.gear, c.flexspline, c.material, contact);
     else in.why_no_tooth_root = "not computed: the case gives no [material] fatigue_limit_MPa and ultimate_strength_MPa";
     const Datasheet sheet = make_datasheet(in);

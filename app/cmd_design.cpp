@@ -6,12 +6,14 @@
 #include <cstdio>
 #include <numbers>
 #include <string>
+#include <type_traits>
 
 #include <CLI/CLI.hpp>
 
 #include "app/commands.hpp"
 #include "app/fem_job.hpp"
 #include "common/error.hpp"
+#include "common/format.hpp"
 #include "contact/contact_body.hpp"
 #include "contact/loaded_contact.hpp"
 #include "fem/fourier_solver.hpp"
@@ -24,17 +26,19 @@
 namespace sw::app {
 namespace {
 
-/// A whole decimal integer, or InputError naming the option.
-int parse_int(const std::string& option, const std::string& text) {
+/// A whole decimal integer (T = int) or a decimal number (T = double), or InputError naming the option.
+template <class T>
+T parse_number(const std::string& option, const std::string& text) {
   std::size_t used = 0;
-  int v = 0;
+  T v = 0;
   try {
-    v = std::stoi(text, &used);
+    if constexpr (std::is_same_v<T, int>) v = std::stoi(text, &used);
+    else v = std::stod(text, &used);
   } catch (const std::exception&) {
     used = 0;
   }
   if (text.empty() || used != text.size())
-    throw InputError(option + " " + text + "; expected an integer");
+    throw InputError(option + " " + text + (std::is_same_v<T, int> ? "; expected an integer" : "; expected a number"));
   return v;
 }
 
@@ -71,13 +75,27 @@ Case checked_case(const std::string& text, const std::string& name) {
 
 void add_design_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("design", "write a cup-type case for a catalog size from documented proportions");
-  static std::string size, ratio = "100", out;
+  static std::string size, ratio = "100", out, rim, wall, face;
   cmd->add_option("--size", size, "catalog size: the pitch diameter in tenths of an inch (8-65; 14, 17, 20 have "
                                   "published stiffness)")->required();
   cmd->add_option("--ratio", ratio, "reduction ratio z_f/(z_c - z_f), 30-160 (default 100)");
   cmd->add_option("--out", out, "case file to write (default: print to stdout)");
+  const DesignProportions nominal;
+  cmd->add_option("--rim-per-d", rim, "rim under the teeth over the pitch diameter, in Ivanov's [" +
+                                          six_digits(kRimPerDMin) + ", " + six_digits(kRimPerDMax) + "] (default " +
+                                          six_digits(nominal.rim_per_d) + ")");
+  cmd->add_option("--wall-per-rim", wall, "body wall over the rim, in Ivanov's [" + six_digits(kWallPerRimMin) + ", " +
+                                              six_digits(kWallPerRimMax) + "] (default " +
+                                              six_digits(nominal.wall_per_rim) + ")");
+  cmd->add_option("--face-per-d", face, "toothed face width over the pitch diameter, in Ivanov's [" +
+                                            six_digits(kFacePerDMin) + ", " + six_digits(kFacePerDMax) + "] (default " +
+                                            six_digits(nominal.face_per_d) + ")");
   cmd->callback([] {
-    CupDesign d = design_cup(parse_int("--size", size), parse_int("--ratio", ratio));
+    DesignProportions p;
+    if (!rim.empty()) p.rim_per_d = parse_number<double>("--rim-per-d", rim);
+    if (!wall.empty()) p.wall_per_rim = parse_number<double>("--wall-per-rim", wall);
+    if (!face.empty()) p.face_per_d = parse_number<double>("--face-per-d", face);
+    CupDesign d = design_cup(parse_number<int>("--size", size), parse_number<int>("--ratio", ratio), p);
     const std::string name = out.empty() ? "cup_size" + std::to_string(d.size) + ".toml" : out;
     set_zero_backlash(d, generator_deformed_sections(checked_case(design_case_toml(d), name), kDesignFaceSections),
                       "FEM's generator-deformed (harmonic solver) face-end and mid-face");

@@ -3,9 +3,10 @@
 //   2. For each size and ratio: `strainwave design`, then `strainwave datasheet` on it (wall clock of the whole
 //      command), and one row of the sheet's figures with the catalog's beside (published in brackets).
 // Run by hand: build/bench/bench_datasheet [--sizes 14,17,20] [--ratios 50,80,100] [--friction MU]
-// [--lubricant NU40,NU100,TEMP_C]. --friction sets [contact] friction_coefficient (the loop's hysteresis) and
-// --lubricant adds a [lubricant] table (the losses' rows); without them those rows are "-". Wall clock; on a shared
-// machine say so with the figures.
+// [--lubricant NU40,NU100,TEMP_C] [--design "OPTIONS"]. --friction sets [contact] friction_coefficient (the loop's
+// hysteresis) and --lubricant adds a [lubricant] table (the losses' rows); without them those rows are "-". --design
+// passes its options to `strainwave design` (the proportions within their published ranges, docs/commands.md). Wall
+// clock; on a shared machine say so with the figures.
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -20,18 +21,11 @@
 #include <nlohmann/json.hpp>
 
 #include "dgemm.hpp"
+#include "integer_list.hpp"
 #include "io/case_edit.hpp"
 #include "tests/cli.hpp"
 
 namespace {
-
-std::vector<int> integers(const std::string& text) {
-  std::vector<int> out;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) out.push_back(std::stoi(item));
-  return out;
-}
 
 std::string number(const char* format, double v) {
   char buf[64];
@@ -59,6 +53,9 @@ int main(int argc, char** argv) {
   std::string lubricant;
   app.add_option("--friction", friction, "the flanks' friction coefficient written into each designed case");
   app.add_option("--lubricant", lubricant, "NU40,NU100,TEMP_C: an oil written into each designed case");
+  std::string design_options;
+  app.add_option("--design", design_options,
+                 "more options for `strainwave design`, e.g. \"--rim-per-d 0.01 --wall-per-rim 0.6\" (its proportions)");
   CLI11_PARSE(app, argc, argv);
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / ("sw_bench_datasheet_" + std::to_string(::getpid()));
@@ -68,12 +65,13 @@ int main(int argc, char** argv) {
               "first yield | momentary | infinite life | "
               "tooth root | L10 (h) | exponent | efficiency 2000/1000 rpm, half load | no-load, starting (mN·m) | "
               "seconds\n");
-  for (const int size : integers(sizes))
-    for (const int ratio : integers(ratios)) {
+  for (const int size : sw::bench::integer_list(sizes))
+    for (const int ratio : sw::bench::integer_list(ratios)) {
       const std::string tag = std::to_string(size) + "_" + std::to_string(ratio);
       const fs::path case_file = dir / (tag + ".toml"), out = dir / tag;
       const auto design = sw::testing::run_strainwave("design --size " + std::to_string(size) + " --ratio " +
-                                                      std::to_string(ratio) + " --out " + case_file.string());
+                                                      std::to_string(ratio) + " " + design_options + " --out " +
+                                                      case_file.string());
       if (design.exit_code != 0) {
         std::printf("%d %d | design failed: %s", size, ratio, design.output.c_str());
         continue;

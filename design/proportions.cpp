@@ -50,9 +50,8 @@ constexpr double kAddendum = 0.7;                // short teeth on both gears: w
                                                  // tips pass at the minor axis ([Seed] case; the geometry check)
 constexpr double kTipClearance = 0.25;           // [ISO 53] c*: h_f* = h_a* + c*
 constexpr double kW0PerModule = 1.0;             // [Musser] w0 = m·(z_c − z_f)/2
-constexpr double kRimPerD = 0.014;               // [Ivanov] rim under the teeth, within 0.01–0.015·d
-constexpr double kWallPerRim = 0.7;              // [Ivanov] body wall, within 0.6–0.9 of the rim
-constexpr double kFaceWidthPerD = 0.15;          // [Ivanov] toothed rim width, 0.15–0.2·d
+// [Ivanov] the rim under the teeth (0.01–0.015·d), the body wall (0.6–0.9 of the rim) and the toothed face width
+// (0.15–0.2·d): DesignProportions (proportions.hpp), its defaults 0.014·d, 0.7 and 0.15·d.
 constexpr double kLengthPerD = 0.6;              // [Estimate] the short cup of the CSF/CSG generation, L ≈ 0.6·d
                                                  // (Ivanov's older recommendation: L ≥ 0.8·d)
 constexpr double kDiaphragmPerRim = 2.0;         // [Estimate] diaphragm twice the rim: a plate that carries the
@@ -107,9 +106,33 @@ std::string key_lines(const T& t, const std::vector<CaseKey<T>>& keys, std::init
   return s;
 }
 
+/// One proportion against its range: "--rim-per-d 0.02; must be in [0.01, 0.015] (what)".
+void check_range(const char* option, double v, double lo, double hi, const char* what) {
+  if (v >= lo && v <= hi) return;
+  throw InputError(std::string(option) + " " + num(v) + "; must be in [" + num(lo) + ", " + num(hi) + "] (" + what +
+                   ")");
+}
+
 }  // namespace
 
-CupDesign design_cup(int size, int ratio) {
+void validate_design_proportions(const DesignProportions& p) {
+  check_range("--rim-per-d", p.rim_per_d, kRimPerDMin, kRimPerDMax,
+              "Ivanov's rim under the teeth, of the pitch diameter");
+  check_range("--wall-per-rim", p.wall_per_rim, kWallPerRimMin, kWallPerRimMax, "Ivanov's body wall, of the rim");
+  check_range("--face-per-d", p.face_per_d, kFacePerDMin, kFacePerDMax,
+              "Ivanov's toothed face width, of the pitch diameter");
+}
+
+std::string design_proportion_options(const DesignProportions& p) {
+  const DesignProportions d;
+  std::string s;
+  if (p.rim_per_d != d.rim_per_d) s += " --rim-per-d " + num(p.rim_per_d);
+  if (p.wall_per_rim != d.wall_per_rim) s += " --wall-per-rim " + num(p.wall_per_rim);
+  if (p.face_per_d != d.face_per_d) s += " --face-per-d " + num(p.face_per_d);
+  return s;
+}
+
+CupDesign design_cup(int size, int ratio, const DesignProportions& p) {
   if (size < kDesignSizeMin || size > kDesignSizeMax)
     throw InputError("--size " + std::to_string(size) + "; must be an integer in [" + std::to_string(kDesignSizeMin) +
                      ", " + std::to_string(kDesignSizeMax) + "] (the pitch diameter in tenths of an inch)");
@@ -117,9 +140,11 @@ CupDesign design_cup(int size, int ratio) {
     throw InputError("--ratio " + std::to_string(ratio) + "; must be an integer in [" +
                      std::to_string(kDesignRatioMin) + ", " + std::to_string(kDesignRatioMax) +
                      "] (z_f = 2 x ratio teeth, z_c = z_f + 2; the short-tooth rule is verified in that range)");
+  validate_design_proportions(p);
   CupDesign c;
   c.size = size;
   c.ratio = ratio;
+  c.proportions = p;
   const double d = size * kMmPerSize * 1e-3;
   c.pitch_diameter_m = d;
 
@@ -141,10 +166,10 @@ CupDesign design_cup(int size, int ratio) {
   // root. A ring smearing half the tooth layer would over-state the rim's hoop bending (((t + h/2)/t)³ ≈ 2× here),
   // which is what the tooth loads bend locally; teeth separated by spaces carry almost no hoop or torsional shear.
   f.teeth = TeethModel::None;
-  f.rim_thickness_m = kRimPerD * d;
+  f.rim_thickness_m = p.rim_per_d * d;
   f.inner_radius_m = radii.root_f - f.rim_thickness_m;  // the root circle is the rim's outside, exactly
-  f.wall_thickness_m = kWallPerRim * f.rim_thickness_m;
-  f.rim_width_m = kFaceWidthPerD * d;
+  f.wall_thickness_m = p.wall_per_rim * f.rim_thickness_m;
+  f.rim_width_m = p.face_per_d * d;
   f.length_m = kLengthPerD * d;
   f.diaphragm_thickness_m = kDiaphragmPerRim * f.rim_thickness_m;
   f.boss_radius_m = kBossPerD * d;
@@ -248,7 +273,7 @@ std::string design_case_toml(const CupDesign& c) {
   const GeneratorBearing& b = *w.bearing;
   std::ostringstream s;
   s << "# Cup-type strain wave gear of catalog size " << c.size << ", ratio " << c.ratio << ": written by `strainwave design --size "
-    << c.size << " --ratio " << c.ratio << "`.\n"
+    << c.size << " --ratio " << c.ratio << design_proportion_options(c.proportions) << "`.\n"
     << "# One set of proportions for every size (design/proportions.cpp), all lengths multiples of the pitch diameter\n"
     << "# d = size x 2.54 mm = " << mm(c.pitch_diameter_m) << " mm; nothing tuned per size. Where each comes from:\n"
     << "# - teeth: z_f = 2 x ratio = " << g.teeth_flexspline << ", z_c = z_f + 2 (two lobes, tooth difference two: Musser, US 2,906,143),\n"
@@ -267,8 +292,9 @@ std::string design_case_toml(const CupDesign& c) {
     << kDesignFaceSections << " sections,\n#   its ends and centre, each with the rim as the generator leaves it there "
     << "([contact] face_slices).\n"
     << "# - w0 = m (Musser: half the tooth difference in modules).\n"
-    << "# - rim under the teeth " << num(kRimPerD) << " d, body wall " << num(kWallPerRim) << " x rim, toothed face width "
-    << num(kFaceWidthPerD) << " d (Ivanov, Wave gear drives, 1981: 0.01-0.015 d,\n"
+    << "# - rim under the teeth " << num(c.proportions.rim_per_d) << " d, body wall " << num(c.proportions.wall_per_rim)
+    << " x rim, toothed face width " << num(c.proportions.face_per_d)
+    << " d (Ivanov, Wave gear drives, 1981: 0.01-0.015 d,\n"
     << "#   0.6-0.9 x rim, 0.15-0.2 d); the rim's outside is the teeth's root circle. The FEM holds the rim alone\n"
     << "#   (teeth = \"none\"): the teeth are the contact stage's tooth-pair compliance, built in at the root.\n"
     << "# - estimates from the CSF/CSG component sets' outline (not the maker's drawing): cup length " << num(kLengthPerD)

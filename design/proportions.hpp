@@ -41,10 +41,35 @@ struct ZeroBacklash {
 /// all of them (the design's [contact] face_slices).
 inline constexpr int kDesignFaceSections = 3;
 
+/// The three proportions Ivanov gives as ranges (M. N. Ivanov, Volnovye zubchatye peredachi, 1981, the steel
+/// flexspline's recommendations): the design takes one point of each range, by default the one `design` has always
+/// used. Every other rule follows from these (the diaphragm from the rim, the fillet from the wall, the generator's
+/// band and axial place from the face). A designer picks within the ranges; outside them the rules are not the
+/// source's and `validate_design_proportions` refuses them.
+struct DesignProportions {
+  double rim_per_d = 0.014;    ///< rim under the teeth over the pitch diameter, in [0.01, 0.015]
+  double wall_per_rim = 0.7;   ///< body wall over the rim, in [0.6, 0.9]
+  double face_per_d = 0.15;    ///< toothed face width over the pitch diameter, in [0.15, 0.2]
+  bool operator==(const DesignProportions&) const = default;
+};
+
+/// Ivanov's ranges of the three proportions.
+inline constexpr double kRimPerDMin = 0.01, kRimPerDMax = 0.015;
+inline constexpr double kWallPerRimMin = 0.6, kWallPerRimMax = 0.9;
+inline constexpr double kFacePerDMin = 0.15, kFacePerDMax = 0.2;
+
+/// Checks each proportion against its range. Throws InputError "--rim-per-d 0.02; must be in [0.01, 0.015] (Ivanov's
+/// rim under the teeth, of the pitch diameter)", naming the command line option that sets it.
+void validate_design_proportions(const DesignProportions& p);
+
+/// The options that set `p` where it differs from the defaults ("" for the defaults): " --rim-per-d 0.01 ...".
+std::string design_proportion_options(const DesignProportions& p);
+
 /// Everything the written case holds (SI), with where the rated torque came from.
 struct CupDesign {
   int size = 0;
   int ratio = 0;
+  DesignProportions proportions;
   double pitch_diameter_m = 0;  ///< z_f·m = size × 2.54 mm
   GearParams gear;
   FlexsplineParams flexspline;
@@ -56,9 +81,10 @@ struct CupDesign {
   ZeroBacklash zero_backlash;     ///< on the cam's curve from design_cup; on the FEM's when `design` has solved it
 };
 
-/// The design of a size (kDesignSizeMin..kDesignSizeMax) and ratio (kDesignRatioMin..kDesignRatioMax). Throws
-/// InputError "--size 7; must be an integer in [8, 65] ..." for a size or ratio outside them.
-CupDesign design_cup(int size, int ratio);
+/// The design of a size (kDesignSizeMin..kDesignSizeMax) and ratio (kDesignRatioMin..kDesignRatioMax) with the
+/// proportions `p`. Throws InputError "--size 7; must be an integer in [8, 65] ..." for a size or ratio outside them,
+/// and validate_design_proportions' for a proportion outside its range.
+CupDesign design_cup(int size, int ratio, const DesignProportions& p = {});
 
 /// Sets the circular spline's profile shift x_c for zero backlash on the rim's neutral curves `sections` (rigid teeth;
 /// the sections of the face the contact meshes, each with the rim as the generator leaves it there): the smallest

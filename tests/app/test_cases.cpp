@@ -269,7 +269,11 @@ TEST(Design, WritesTheShippedCaseAndRefusesBadSizesWithOneLine) {
   for (const auto& [args, expected] : std::vector<std::pair<std::string, std::string>>{
            {"--size 7", "--size 7; must be an integer in [8, 65]"},
            {"--size 17x", "--size 17x; expected an integer"},
-           {"--size 17 --ratio 20", "--ratio 20; must be an integer in [30, 160]"}}) {
+           {"--size 17 --ratio 20", "--ratio 20; must be an integer in [30, 160]"},
+           {"--size 17 --rim-per-d 0.02", "--rim-per-d 0.02; must be in [0.01, 0.015]"},
+           {"--size 17 --wall-per-rim 0.5", "--wall-per-rim 0.5; must be in [0.6, 0.9]"},
+           {"--size 17 --face-per-d 0.3", "--face-per-d 0.3; must be in [0.15, 0.2]"},
+           {"--size 17 --face-per-d .2mm", "--face-per-d .2mm; expected a number"}}) {
     const CommandRun r = run_strainwave("design " + args + " --out " + (dir / "bad.toml").string());
     EXPECT_NE(r.exit_code, 0) << args;
     EXPECT_NE(r.output.find(expected), std::string::npos) << r.output;

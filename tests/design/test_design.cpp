@@ -177,6 +177,64 @@ TEST(Design, HandWrittenCupsOfSize25And40WithoutAMeshTableFitTheMachine) {
   }
 }
 
+// Ivanov's three ranges (rim 0.01–0.015 d, wall 0.6–0.9 rim, face 0.15–0.2 d) are the design's to choose within:
+// each sets its length exactly, the rules that follow from them follow (the diaphragm from the rim, the fillet from
+// the wall, the generator's band and place from the face), the rest of the drive does not move, and the written case
+// says which options made it, so that it can be made again.
+TEST(Design, ProportionsWithinIvanovsRangesSetTheirLengthsAndWhatFollowsFromThem) {
+  const CupDesign n = design_cup(17, 100);
+  const CupDesign t = design_cup(17, 100, {.rim_per_d = 0.01, .wall_per_rim = 0.6, .face_per_d = 0.2});
+  const double d = t.pitch_diameter_m;
+  EXPECT_DOUBLE_EQ(t.flexspline.rim_thickness_m, 0.01 * d);
+  EXPECT_DOUBLE_EQ(t.flexspline.wall_thickness_m, 0.6 * 0.01 * d);
+  EXPECT_DOUBLE_EQ(t.flexspline.rim_width_m, 0.2 * d);
+  EXPECT_DOUBLE_EQ(t.flexspline.diaphragm_thickness_m / t.flexspline.rim_thickness_m,
+                   n.flexspline.diaphragm_thickness_m / n.flexspline.rim_thickness_m);
+  EXPECT_DOUBLE_EQ(t.flexspline.fillet_radius_m / t.flexspline.wall_thickness_m,
+                   n.flexspline.fillet_radius_m / n.flexspline.wall_thickness_m);
+  EXPECT_DOUBLE_EQ(t.wave_generator.band_width_m / t.flexspline.rim_width_m,
+                   n.wave_generator.band_width_m / n.flexspline.rim_width_m);
+  EXPECT_DOUBLE_EQ(t.wave_generator.axial_position_m / t.flexspline.rim_width_m,
+                   n.wave_generator.axial_position_m / n.flexspline.rim_width_m);
+  // The root circle is the rim's outside whatever its thickness; the teeth, the cup's length and boss do not move.
+  EXPECT_DOUBLE_EQ(t.flexspline.inner_radius_m + t.flexspline.rim_thickness_m,
+                   n.flexspline.inner_radius_m + n.flexspline.rim_thickness_m);
+  EXPECT_EQ(t.gear.teeth_flexspline, n.gear.teeth_flexspline);
+  EXPECT_DOUBLE_EQ(t.flexspline.length_m, n.flexspline.length_m);
+  EXPECT_DOUBLE_EQ(t.flexspline.boss_radius_m, n.flexspline.boss_radius_m);
+  const std::string text = design_case_toml(t);
+  EXPECT_NE(text.find("`strainwave design --size 17 --ratio 100 --rim-per-d 0.01 --wall-per-rim 0.6 --face-per-d 0.2`"),
+            std::string::npos) << text.substr(0, 200);
+  EXPECT_NE(text.find("rim under the teeth 0.01 d, body wall 0.6 x rim, toothed face width 0.2 d"), std::string::npos);
+  const Case c = parse_case(text, "thin.toml");
+  EXPECT_NEAR(c.flexspline.rim_thickness_m, 0.01 * d, 1e-9 * d);  // 9 digits in the text
+  // The defaults name no option: the shipped cases stay `design --size N`'s output.
+  EXPECT_EQ(design_proportion_options({}), "");
+  EXPECT_NE(design_case_toml(n).find("`strainwave design --size 17 --ratio 100`"), std::string::npos);
+}
+
+TEST(Design, AProportionOutsideIvanovsRangeIsOneClearLine) {
+  auto error_of = [](const DesignProportions& p) {
+    try {
+      design_cup(17, 100, p);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(error_of({.rim_per_d = 0.0099}).rfind("--rim-per-d 0.0099; must be in [0.01, 0.015] (Ivanov's rim", 0), 0u)
+      << error_of({.rim_per_d = 0.0099});
+  EXPECT_EQ(error_of({.rim_per_d = 0.016}).rfind("--rim-per-d 0.016; must be in [0.01, 0.015]", 0), 0u);
+  EXPECT_EQ(error_of({.wall_per_rim = 0.95}).rfind("--wall-per-rim 0.95; must be in [0.6, 0.9] (Ivanov's body wall", 0),
+            0u);
+  EXPECT_EQ(error_of({.face_per_d = 0.1}).rfind("--face-per-d 0.1; must be in [0.15, 0.2] (Ivanov's toothed face", 0),
+            0u);
+  EXPECT_EQ(error_of({.face_per_d = std::nan("")}).rfind("--face-per-d nan; must be in [0.15, 0.2]", 0), 0u)
+      << error_of({.face_per_d = std::nan("")});
+  // The ranges' own ends are the source's and are taken.
+  EXPECT_EQ(error_of({.rim_per_d = 0.015, .wall_per_rim = 0.9, .face_per_d = 0.15}), "no error");
+}
+
 TEST(Design, BadSizeOrRatioIsOneClearLine) {
   auto error_of = [](int size, int ratio) {
     try {

@@ -133,9 +133,11 @@ void print_lost_motion_and_split(const Case& c, const ContactAnalysis& a) {
   // pairs closing one after another); it is negative when the curve softens toward rated torque (the tangent's slope
   // in twist per torque above the secant's), and then says so instead of naming a negative engagement.
   const std::string mounting = c.circular_spline ? " (" + to_string(c.circular_spline->mounting) + ")" : "";
-  std::printf("  twist at rated, along the tangent there: body %.1f %%, teeth %.1f %%, generator bearing %.1f %%, "
-              "circular spline%s %.1f %%; the tangent's intercept %.1f %% (%s)\n", 100 * a.split.body,
-              100 * a.split.teeth, 100 * a.split.generator, mounting.c_str(), 100 * a.split.circular_spline,
+  std::printf("  twist at rated, along the tangent there: body %.1f %% (toothed rim %.1f, wall %.1f, diaphragm %.1f, "
+              "boss %.1f), teeth %.1f %%, generator bearing %.1f %%, circular spline%s %.1f %%; the tangent's "
+              "intercept %.1f %% (%s)\n", 100 * a.split.body, 100 * a.split.rim, 100 * a.split.wall,
+              100 * a.split.diaphragm, 100 * a.split.boss, 100 * a.split.teeth, 100 * a.split.generator,
+              mounting.c_str(), 100 * a.split.circular_spline,
               100 * a.split.engagement,
               a.split.engagement >= 0 ? "engagement: play taken up and pairs closing one after another"
                                       : "below the origin: the curve softens toward rated torque");

@@ -73,6 +73,10 @@ struct BodyInfluence {
   Eigen::VectorXd lever;
   /// The loads x (per column of A) applied to the body in one direct solve, read back independently of A.
   std::function<BodyCheck(const Eigen::VectorXd& x)> check;
+  /// The strain energy (J) of the body under the loads x (per column of A), per region of its mesh (0 body wall, 1 the
+  /// toothed rim, 2 diaphragm, 3 boss): from the field of a direct solve, so its sum is ½xᵀAx only as far as the
+  /// coefficients are the field's (a check).
+  std::function<std::vector<double>(const Eigen::VectorXd& x)> energy_by_region_J;
 };
 
 /// The generator's stations on the bore (angles of the pairs' first stations, their hats' half-width).

@@ -142,6 +142,9 @@ BodyInfluence HarmonicBody::influence(const std::vector<FlankPattern>& patterns,
     c.clamp_reaction_torque_Nm = clamp_reaction_moment(s_.section, c_.material, s_.clamped, u, anti0_loads(*m, r, x));
     return c;
   };
+  out.energy_by_region_J = [this, m, r](const Eigen::VectorXd& x) {
+    return strain_energy_by_region_J(s_.section, c_.material, field_of(*m, r, x));
+  };
   return out;
 }
 

@@ -815,6 +815,17 @@ void ContactAnalyser::split_compliance() {
   split.generator = dz.cwiseProduct(brg).dot(dz) * T_fl / total;
   split.circular_spline = dz.dot(Mc * dz) * T_fl / total;
   split.engagement = 1.0 - split.body - split.teeth - split.generator - split.circular_spline;
+  // The body's part by the regions of its mesh: the field of dz on the body (its columns of the influence: observers
+  // and tangential patterns carry nothing), its strain energy per region, shared out of the body's part.
+  const Eigen::Index n_obs = no_ + nr_, nt = static_cast<Eigen::Index>(tangential_.size());
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(influence_.A.cols());
+  for (Eigen::Index r = 0; r < n; ++r) x[S[r] < nf_ ? n_obs + S[r] : n_obs + nt + S[r]] = dz[r];
+  if (!unilateral_) x.segment(n_obs + nf_ + nt, nb_) = band_solve_ * x.segment(n_obs, nf_);  // the band's reactions
+  const std::vector<double> U = influence_.energy_by_region_J(x);
+  double sum = 0;
+  for (const double u : U) sum += u;
+  const auto part = [&](std::size_t region) { return region < U.size() && sum > 0 ? split.body * U[region] / sum : 0; };
+  split.wall = part(0), split.rim = part(1), split.diaphragm = part(2), split.boss = part(3);
 }
 
 /// What the teeth at the zones' edges hold: their flanks' share of +rated torque, and the twist at +rated without

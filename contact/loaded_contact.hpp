@@ -171,6 +171,9 @@ struct FrictionLoop {
 /// being the engagement (play taken up and pairs engaging progressively).
 struct ComplianceSplit {
   double engagement = 0, body = 0, teeth = 0, generator = 0, circular_spline = 0;
+  /// The body's share by its parts (their strain energy under the tangent's force increment): the cup's wall, the
+  /// toothed rim (the face's axial range, its whole thickness), the diaphragm and the boss; they add to `body`.
+  double wall = 0, rim = 0, diaphragm = 0, boss = 0;
 };
 
 /// The rim at a section of the toothed face, as the generator leaves it (the cup's coning: the deflection grows with

@@ -229,6 +229,9 @@ BodyInfluence Tet10Body::influence(const std::vector<FlankPattern>& patterns, in
     c.clamp_reaction_torque_Nm = moment_about_z(mesh_, internal_forces(mesh_, c_.material, u) - f, sys_.clamped);
     return c;
   };
+  b.energy_by_region_J = [this, L](const Eigen::VectorXd& x) {
+    return strain_energy_by_region_J(mesh_, c_.material, sys_.solve(*L * x).col(0));
+  };
   return b;
 }
 

@@ -192,6 +192,19 @@ Eigen::VectorXd internal_forces(const TetMesh& mesh, const Material& material, c
   return f;
 }
 
+std::vector<double> strain_energy_by_region_J(const TetMesh& mesh, const Material& material, const Eigen::VectorXd& u) {
+  const int regions = mesh.region.empty() ? 1 : *std::max_element(mesh.region.begin(), mesh.region.end()) + 1;
+  std::vector<double> U(static_cast<std::size_t>(regions), 0.0);
+  const Matrix6d D = elasticity_matrix(material);
+  for (std::size_t e = 0; e < mesh.tets.size(); ++e) {
+    Eigen::Matrix<double, 30, 1> ue;
+    for (int a = 0; a < 10; ++a) ue.segment<3>(3 * a) = u.segment<3>(3 * mesh.tets[e][a]);
+    U[mesh.region.empty() ? 0 : static_cast<std::size_t>(mesh.region[e])] +=
+        0.5 * ue.dot(tet10_stiffness(element_coordinates(mesh, e), D) * ue);
+  }
+  return U;
+}
+
 Eigen::VectorXd restrict_to_free(const DofMap& dofs, const Eigen::VectorXd& full) {
   Eigen::VectorXd r(dofs.n_equations);
   for (std::size_t g = 0; g < dofs.equation.size(); ++g)

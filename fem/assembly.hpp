@@ -62,6 +62,10 @@ Eigen::VectorXd to_global(const NodeFrames& frames, const Eigen::VectorXd& local
 /// reaction.
 Eigen::VectorXd internal_forces(const TetMesh& mesh, const Material& material, const Eigen::VectorXd& u);
 
+/// Strain energy ½ u_eᵀK_e u_e of a displacement u (3·n_nodes) summed per region of the mesh (J, indexed by
+/// TetMesh::region: 0 body wall, 1 rim, 2 diaphragm, 3 boss); the regions add to ½ uᵀK u.
+std::vector<double> strain_energy_by_region_J(const TetMesh& mesh, const Material& material, const Eigen::VectorXd& u);
+
 /// Gathers the element's node coordinates (10 x 3).
 Eigen::Matrix<double, 10, 3> element_coordinates(const TetMesh& mesh, std::size_t element);
 

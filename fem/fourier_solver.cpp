@@ -109,8 +109,13 @@ std::vector<NeutralCurveSamples> neutral_curves_at(const SectionMesh& s, const H
   return out;
 }
 
-std::vector<double> harmonic_strain_energy_J(const SectionMesh& s, const Material& m, const HarmonicField& u) {
-  std::vector<double> U(static_cast<std::size_t>(u.harmonics() + 1), 0.0);
+namespace {
+
+/// Calls add(n, e, U) with the strain energy U (J) of harmonic n of the field in triangle e, for every harmonic the
+/// field has and every triangle: ½ uᵀK_n u of its two families (at n = 0 the one field: a and c of the symmetric
+/// family, b of the antisymmetric one).
+template <class Add>
+void for_each_element_energy(const SectionMesh& s, const Material& m, const HarmonicField& u, const Add& add) {
   for (int n = 0; n <= u.harmonics(); ++n) {
     const Eigen::MatrixXd &sym = u.sym[static_cast<std::size_t>(n)], &anti = u.anti[static_cast<std::size_t>(n)];
     if (sym.size() == 0 && anti.size() == 0) continue;  // a harmonic the loads did not reach
@@ -122,14 +127,30 @@ std::vector<double> harmonic_strain_energy_J(const SectionMesh& s, const Materia
         if (sym.size()) us.segment<3>(3 * a) = sym.row(t[a]).transpose();
         if (anti.size()) ua.segment<3>(3 * a) = anti.row(t[a]).transpose();
       }
-      if (n == 0) {  // one field: a and c of the symmetric family, b of the antisymmetric one
+      if (n == 0) {
         for (int a = 0; a < 6; ++a) us[3 * a + 1] = ua[3 * a + 1];
-        U[0] += 0.5 * us.dot(K * us);
+        add(n, e, 0.5 * us.dot(K * us));
       } else {
-        U[static_cast<std::size_t>(n)] += 0.5 * (us.dot(K * us) + ua.dot(K * ua));
+        add(n, e, 0.5 * (us.dot(K * us) + ua.dot(K * ua)));
       }
     }
   }
+}
+
+}  // namespace
+
+std::vector<double> harmonic_strain_energy_J(const SectionMesh& s, const Material& m, const HarmonicField& u) {
+  std::vector<double> U(static_cast<std::size_t>(u.harmonics() + 1), 0.0);
+  for_each_element_energy(s, m, u, [&](int n, std::size_t, double e) { U[static_cast<std::size_t>(n)] += e; });
+  return U;
+}
+
+std::vector<double> strain_energy_by_region_J(const SectionMesh& s, const Material& m, const HarmonicField& u) {
+  const int regions = s.region.empty() ? 1 : *std::max_element(s.region.begin(), s.region.end()) + 1;
+  std::vector<double> U(static_cast<std::size_t>(regions), 0.0);
+  for_each_element_energy(s, m, u, [&](int, std::size_t e, double energy) {
+    U[s.region.empty() ? 0 : static_cast<std::size_t>(s.region[e])] += energy;
+  });
   return U;
 }
 

@@ -116,6 +116,10 @@ std::vector<NeutralCurveSamples> neutral_curves_at(const SectionMesh& s, const H
 /// travelling wave of harmonic n (the generator's deformation as the body turns under it) keeps U_n at every instant.
 std::vector<double> harmonic_strain_energy_J(const SectionMesh& s, const Material& m, const HarmonicField& u);
 
+/// Strain energy of a field per region of the section (J, indexed by SectionMesh::region: 0 body wall, 1 rim,
+/// 2 diaphragm, 3 boss), all harmonics together; the regions add to harmonic_strain_energy_J's sum.
+std::vector<double> strain_energy_by_region_J(const SectionMesh& s, const Material& m, const HarmonicField& u);
+
 /// Moment about z (N·m) of the clamp's reaction to a harmonic field under loads whose harmonic-0 antisymmetric
 /// generalised forces are `anti0` (n_nodes × 3): K₀·u − F on the clamped nodes.
 double clamp_reaction_moment(const SectionMesh& s, const Material& m, const std::vector<bool>& clamped,

@@ -99,7 +99,8 @@ ContactResult contact_result(const ContactAnalysis& a, const Case& c, const std:
   r.twist_at_rated_arcmin = a.curve.twist_rad.back() * kArcmin;
   r.torque_balance_error_rel = a.torque_balance_error_rel;
   r.fem_reaction_torque_Nm = a.fem_reaction_torque_Nm;
-  r.compliance_split = {a.split.engagement, a.split.body, a.split.teeth, a.split.generator, a.split.circular_spline};
+  r.compliance_split = {a.split.engagement, a.split.body, a.split.teeth, a.split.generator, a.split.circular_spline,
+                        ContactResult::BodyParts{a.split.wall, a.split.rim, a.split.diaphragm, a.split.boss}};
   r.zone_edges = zone_edge_figures(a);
   r.generator_support = a.generator_support;
   r.solver.method = a.solver;
@@ -196,10 +197,17 @@ static auto fields(std::type_identity<ContactResult::FaceSection>) {
                     field("overlap_angle_deg", &T::overlap_angle_deg)};
 }
 
+static auto fields(std::type_identity<ContactResult::BodyParts>) {
+  using T = ContactResult::BodyParts;
+  return std::tuple{field("wall", &T::wall), field("rim", &T::rim), field("diaphragm", &T::diaphragm),
+                    field("boss", &T::boss)};
+}
+
 static auto fields(std::type_identity<ContactResult::Split>) {
   using T = ContactResult::Split;
   return std::tuple{field("engagement", &T::engagement), field("body", &T::body), field("teeth", &T::teeth),
-                    field("generator", &T::generator), field("circular_spline", &T::circular_spline)};
+                    field("generator", &T::generator), field("circular_spline", &T::circular_spline),
+                    field("body_parts", &T::body_parts)};
 }
 
 static auto fields(std::type_identity<ContactResult::EdgeTooth>) {

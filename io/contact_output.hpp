@@ -50,8 +50,13 @@ struct ContactResult {
   struct FaceSection {
     double z_mm = 0, w_major_um = 0, first_closing_arcmin = 0, overlap_at_rest_um = 0, overlap_angle_deg = 0;
   };
+  /// The body's share by its parts (fractions of the twist at rated torque, adding to Split::body).
+  struct BodyParts {
+    double wall = 0, rim = 0, diaphragm = 0, boss = 0;
+  };
   struct Split {
     double engagement = 0, body = 0, teeth = 0, generator = 0, circular_spline = 0;
+    std::optional<BodyParts> body_parts;  ///< absent in files written before the body was split
   };
   struct EdgeTooth {
     int tooth = 0;

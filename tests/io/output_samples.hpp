@@ -137,7 +137,7 @@ inline ContactResult sample_contact_result() {
   r.face_slices = 3;
   r.face_sections = {{f(), f(), f(), f(), f()}, {f(), f(), f(), 0.0, 0.0}, {f(), f(), -f(), f(), f()}};
   r.twist_at_rated_arcmin = f(), r.torque_balance_error_rel = f(), r.fem_reaction_torque_Nm = f();
-  r.compliance_split = {-f(), f(), f(), f(), f()};
+  r.compliance_split = {-f(), f(), f(), f(), f(), ContactResult::BodyParts{f(), f(), f(), f()}};
   r.zone_edges = {false, {{f.whole(), f(), true, true, f(), -f(), f(), true, false}}, f(), std::nullopt};
   r.generator_support = "cam in unilateral contact";
   r.half_turn_pairs = true;

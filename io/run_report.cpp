@@ -213,7 +213,12 @@ void add_twist_rows(Table& t, const ContactResult& a) {
 /// Where the twist at rated torque comes from, and the checks of the solve.
 void add_split_and_check_rows(Table& t, const ContactResult& a) {
   const ContactResult::Split& sp = a.compliance_split;
-  t.row("twist at rated, by part", fmt("body %.0f %%", 100 * sp.body) + fmt(", teeth %.0f %%", 100 * sp.teeth) +
+  const std::string parts =
+      sp.body_parts ? fmt(" (rim %.0f", 100 * sp.body_parts->rim) + fmt(", wall %.0f", 100 * sp.body_parts->wall) +
+                          fmt(", diaphragm %.0f", 100 * sp.body_parts->diaphragm) +
+                          fmt(", boss %.0f)", 100 * sp.body_parts->boss)
+                    : "";
+  t.row("twist at rated, by part", fmt("body %.0f %%", 100 * sp.body) + parts + fmt(", teeth %.0f %%", 100 * sp.teeth) +
         fmt(", generator %.0f %%", 100 * sp.generator) + fmt(", circular spline %.0f %%", 100 * sp.circular_spline) +
         fmt(", tangent's intercept %.0f %%", 100 * sp.engagement),
         sp.engagement >= 0

@@ -91,7 +91,9 @@ Rows contact_rows(const sw::ContactResult& a) {
           {"play", fmt("%.3f arcmin", a.play_arcmin)},
           {"overlap at rest", fmt("%.2f µm", a.overlap_at_rest_um)},
           {"twist at rated, by part",
-           fmt("body %.0f %%", 100 * s.body) + fmt(", teeth %.0f %%", 100 * s.teeth) +
+           fmt("body %.0f %%", 100 * s.body) + fmt(" (rim %.0f", 100 * s.body_parts->rim) +
+               fmt(", wall %.0f", 100 * s.body_parts->wall) + fmt(", diaphragm %.0f", 100 * s.body_parts->diaphragm) +
+               fmt(", boss %.0f)", 100 * s.body_parts->boss) + fmt(", teeth %.0f %%", 100 * s.teeth) +
                fmt(", generator %.0f %%", 100 * s.generator) + fmt(", circular spline %.0f %%", 100 * s.circular_spline) +
                fmt(", tangent's intercept %.0f %%", 100 * s.engagement)},
           {"checks", fmt("balance %.1e", a.torque_balance_error_rel)}};

@@ -75,7 +75,7 @@ struct BodyInfluence {
   std::function<BodyCheck(const Eigen::VectorXd& x)> check;
   /// The strain energy (J) of the body under the loads x (per column of A), per region of its mesh (0 body wall, 1 the
   /// toothed rim, 2 diaphragm, 3 boss): from the field of a direct solve, so its sum is ½xᵀAx only as far as the
-  /// coefficients are the field's (a check).
+  /// coefficients are the field's (a check). Empty for a body without a mesh (the body's part is then not split).
   std::function<std::vector<double>(const Eigen::VectorXd& x)> energy_by_region_J;
 };
 

@@ -816,7 +816,9 @@ void ContactAnalyser::split_compliance() {
   split.circular_spline = dz.dot(Mc * dz) * T_fl / total;
   split.engagement = 1.0 - split.body - split.teeth - split.generator - split.circular_spline;
   // The body's part by the regions of its mesh: the field of dz on the body (its columns of the influence: observers
-  // and tangential patterns carry nothing), its strain energy per region, shared out of the body's part.
+  // and tangential patterns carry nothing), its strain energy per region, shared out of the body's part. A body with
+  // no mesh (a closed form's) has no parts.
+  if (!influence_.energy_by_region_J) return;
   const Eigen::Index n_obs = no_ + nr_, nt = static_cast<Eigen::Index>(tangential_.size());
   Eigen::VectorXd x = Eigen::VectorXd::Zero(influence_.A.cols());
   for (Eigen::Index r = 0; r < n; ++r) x[S[r] < nf_ ? n_obs + S[r] : n_obs + nt + S[r]] = dz[r];

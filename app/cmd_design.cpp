@@ -4,6 +4,7 @@
 // on). The text is read back by the case reader and the flexspline checked before anything is written; --out is
 // written atomically, without it the case goes to stdout.
 #include <cstdio>
+#include <iterator>
 #include <numbers>
 #include <string>
 #include <type_traits>
@@ -75,26 +76,23 @@ Case checked_case(const std::string& text, const std::string& name) {
 
 void add_design_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("design", "write a cup-type case for a catalog size from documented proportions");
-  static std::string size, ratio = "100", out, rim, wall, face;
+  static std::string size, ratio = "100", out;
+  static std::string proportion[std::size(kDesignProportions)];
   cmd->add_option("--size", size, "catalog size: the pitch diameter in tenths of an inch (8-65; 14, 17, 20 have "
                                   "published stiffness)")->required();
   cmd->add_option("--ratio", ratio, "reduction ratio z_f/(z_c - z_f), 30-160 (default 100)");
   cmd->add_option("--out", out, "case file to write (default: print to stdout)");
   const DesignProportions nominal;
-  cmd->add_option("--rim-per-d", rim, "rim under the teeth over the pitch diameter, in Ivanov's [" +
-                                          six_digits(kRimPerDMin) + ", " + six_digits(kRimPerDMax) + "] (default " +
-                                          six_digits(nominal.rim_per_d) + ")");
-  cmd->add_option("--wall-per-rim", wall, "body wall over the rim, in Ivanov's [" + six_digits(kWallPerRimMin) + ", " +
-                                              six_digits(kWallPerRimMax) + "] (default " +
-                                              six_digits(nominal.wall_per_rim) + ")");
-  cmd->add_option("--face-per-d", face, "toothed face width over the pitch diameter, in Ivanov's [" +
-                                            six_digits(kFacePerDMin) + ", " + six_digits(kFacePerDMax) + "] (default " +
-                                            six_digits(nominal.face_per_d) + ")");
+  for (std::size_t i = 0; i < std::size(kDesignProportions); ++i) {
+    const DesignProportion& q = kDesignProportions[i];
+    cmd->add_option(q.option, proportion[i], std::string(q.meaning) + ", in Ivanov's [" + six_digits(q.min) + ", " +
+                                                 six_digits(q.max) + "] (default " + six_digits(nominal.*q.member) + ")");
+  }
   cmd->callback([] {
     DesignProportions p;
-    if (!rim.empty()) p.rim_per_d = parse_number<double>("--rim-per-d", rim);
-    if (!wall.empty()) p.wall_per_rim = parse_number<double>("--wall-per-rim", wall);
-    if (!face.empty()) p.face_per_d = parse_number<double>("--face-per-d", face);
+    for (std::size_t i = 0; i < std::size(kDesignProportions); ++i)
+      if (!proportion[i].empty())
+        p.*kDesignProportions[i].member = parse_number<double>(kDesignProportions[i].option, proportion[i]);
     CupDesign d = design_cup(parse_number<int>("--size", size), parse_number<int>("--ratio", ratio), p);
     const std::string name = out.empty() ? "cup_size" + std::to_string(d.size) + ".toml" : out;
     set_zero_backlash(d, generator_deformed_sections(checked_case(design_case_toml(d), name), kDesignFaceSections),

@@ -106,29 +106,22 @@ std::string key_lines(const T& t, const std::vector<CaseKey<T>>& keys, std::init
   return s;
 }
 
-/// One proportion against its range: "--rim-per-d 0.02; must be in [0.01, 0.015] (what)".
-void check_range(const char* option, double v, double lo, double hi, const char* what) {
-  if (v >= lo && v <= hi) return;
-  throw InputError(std::string(option) + " " + num(v) + "; must be in [" + num(lo) + ", " + num(hi) + "] (" + what +
-                   ")");
-}
-
 }  // namespace
 
 void validate_design_proportions(const DesignProportions& p) {
-  check_range("--rim-per-d", p.rim_per_d, kRimPerDMin, kRimPerDMax,
-              "Ivanov's rim under the teeth, of the pitch diameter");
-  check_range("--wall-per-rim", p.wall_per_rim, kWallPerRimMin, kWallPerRimMax, "Ivanov's body wall, of the rim");
-  check_range("--face-per-d", p.face_per_d, kFacePerDMin, kFacePerDMax,
-              "Ivanov's toothed face width, of the pitch diameter");
+  for (const DesignProportion& q : kDesignProportions) {
+    const double v = p.*q.member;
+    if (v >= q.min && v <= q.max) continue;
+    throw InputError(std::string(q.option) + " " + num(v) + "; must be in [" + num(q.min) + ", " + num(q.max) +
+                     "] (Ivanov's " + q.meaning + ")");
+  }
 }
 
 std::string design_proportion_options(const DesignProportions& p) {
-  const DesignProportions d;
+  const DesignProportions nominal;
   std::string s;
-  if (p.rim_per_d != d.rim_per_d) s += " --rim-per-d " + num(p.rim_per_d);
-  if (p.wall_per_rim != d.wall_per_rim) s += " --wall-per-rim " + num(p.wall_per_rim);
-  if (p.face_per_d != d.face_per_d) s += " --face-per-d " + num(p.face_per_d);
+  for (const DesignProportion& q : kDesignProportions)
+    if (p.*q.member != nominal.*q.member) s += std::string(" ") + q.option + " " + num(p.*q.member);
   return s;
 }
 

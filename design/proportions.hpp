@@ -53,13 +53,24 @@ struct DesignProportions {
   bool operator==(const DesignProportions&) const = default;
 };
 
-/// Ivanov's ranges of the three proportions.
-inline constexpr double kRimPerDMin = 0.01, kRimPerDMax = 0.015;
-inline constexpr double kWallPerRimMin = 0.6, kWallPerRimMax = 0.9;
-inline constexpr double kFacePerDMin = 0.15, kFacePerDMax = 0.2;
+/// One of the three proportions: the command line option that sets it, its member, Ivanov's range and what it is.
+struct DesignProportion {
+  const char* option;                  ///< "--rim-per-d"
+  double DesignProportions::*member;   ///< &DesignProportions::rim_per_d
+  double min, max;                     ///< Ivanov's range, closed
+  const char* meaning;                 ///< "rim under the teeth over the pitch diameter"
+};
 
-/// Checks each proportion against its range. Throws InputError "--rim-per-d 0.02; must be in [0.01, 0.015] (Ivanov's
-/// rim under the teeth, of the pitch diameter)", naming the command line option that sets it.
+/// The three proportions, in the order `design` lists them: the one table validation, the command line and the
+/// written case's header read.
+inline constexpr DesignProportion kDesignProportions[] = {
+    {"--rim-per-d", &DesignProportions::rim_per_d, 0.01, 0.015, "rim under the teeth over the pitch diameter"},
+    {"--wall-per-rim", &DesignProportions::wall_per_rim, 0.6, 0.9, "body wall over the rim"},
+    {"--face-per-d", &DesignProportions::face_per_d, 0.15, 0.2, "toothed face width over the pitch diameter"},
+};
+
+/// Checks each proportion against its range. Throws InputError "--rim-per-d 0.02; must be in [0.01, 0.015] (Ivanov's rim
+/// under the teeth over the pitch diameter)", naming the command line option that sets it.
 void validate_design_proportions(const DesignProportions& p);
 
 /// The options that set `p` where it differs from the defaults ("" for the defaults): " --rim-per-d 0.01 ...".

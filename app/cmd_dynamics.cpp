@@ -75,10 +75,10 @@ void print_summary(const DynamicsModel& m, const DynamicsSummary& r, const Dynam
     std::printf("  ");
   std::printf("torque balance %.2e; energy balance %.2e\n", r.torque_balance_error_rel, r.energy_error_rel);
   const SteadyPower& w = r.power;
-  std::printf("  efficiency %.4f: output over output + the flanks' friction (mu = %g) + the generator bearing's "
-              "(%s); the contact's damping beside it; churning, seals and the flexspline's damping not modelled: "
-              "%.4g W in, %.4g W out, %.4g W flank friction, %.4g W generator bearing, %.4g W damping; power balance "
-              "%.2e\n",
+  std::printf("  efficiency %.4f: output over output + the flanks' friction (mu = %g) + the generator's moment on the "
+              "rim (%s); the contact's damping beside it; the lubricant's churning and seals not modelled: %.4g W in, "
+              "%.4g W out, %.4g W flank friction, %.4g W generator (bearing, ring on the bore, flexspline damping), "
+              "%.4g W contact damping; power balance %.2e\n",
               w.efficiency, m.friction_coefficient, info.bearing_source.c_str(), w.input_W, w.output_W, w.friction_W,
               w.bearing_W, w.dissipated_W, w.balance_error_rel);
   if (w.damping_exceeds_output)

@@ -13,7 +13,10 @@
 #include "common/progress.hpp"
 #include "contact/harmonic_body.hpp"
 #include "datasheet/limits.hpp"
+#include "datasheet/losses.hpp"
+#include "gear/mesh_friction.hpp"
 #include "generator/bearing_friction.hpp"
+#include "generator/ring_slip.hpp"
 #include "dynamics/kinematic_pairs.hpp"
 #include "dynamics/moving_mesh_build.hpp"
 #include "io/case.hpp"
@@ -82,15 +85,18 @@ SolvedBody solve_body(const Case& c, OutputSet& out) {
   return s;
 }
 
-/// The generator bearing's running friction moment against the speed of its rings relative to each other: Palmgren's
-/// M0 + M1 (generator/bearing_friction.hpp) with the lubricant's viscosity at its temperature and the balls loaded as
-/// the loaded contact loads them at the run's load torque (the step nearest that torque, at most rated), on the body
-/// the rim's coupling solved (`solved`), else on the harmonic solver's (seconds). The balls' loads stay those of that
-/// torque through the run (the load's ramp and the mesh's fluctuation do not change them): an idealisation, said in
-/// `source`. Empty, with the reason in `source`, without a [lubricant] or without a bearing whose balls a cam or
-/// rollers load.
-std::function<double(double)> bearing_moment(const Case& c, double load_torque_Nm, const SeriesParts& series,
-                                             const SolvedBody* solved, std::string& source) {
+/// The generator's friction moment on the rim against the speed of the two relative to each other (the wave's turn
+/// through the flexspline's material): the bearing's Palmgren M0 + M1 (generator/bearing_friction.hpp) with the
+/// lubricant's viscosity at its temperature and the balls loaded as the loaded contact loads them at the run's load
+/// torque (the step nearest that torque, at most rated), and the rate-independent moments the datasheet counts with
+/// it (datasheet/losses.hpp): the outer ring slipping on the bore under the same stations' forces (a cam;
+/// generator/ring_slip.hpp) and the flexspline's material damping under the generator's wave. On the body the rim's
+/// coupling solved (`solved`), else on the harmonic solver's (seconds; its solution gives the wave's energies in both
+/// cases when the solved body is TET10). The loads stay those of that torque through the run (the load's ramp and the
+/// mesh's fluctuation do not change them): an idealisation, said in `source`. Empty, with the reason in `source`,
+/// without a [lubricant] or without a bearing whose balls a cam or rollers load.
+std::function<double(double)> generator_moment(const Case& c, double load_torque_Nm, const SeriesParts& series,
+                                               const SolvedBody* solved, std::string& source) {
   if (!c.lubricant) {
     source = "frictionless: the case gives no [lubricant]";
     return {};
@@ -103,13 +109,13 @@ std::function<double(double)> bearing_moment(const Case& c, double load_torque_N
   progress("dynamics: the generator bearing's ball loads from the loaded contact at " +
            std::to_string(load_torque_Nm) + " N·m");
   const FlexsplineModel m = flexspline_model(c);
-  std::optional<FourierSolution> fourier;
-  std::optional<HarmonicBody> harmonic;
-  if (!solved) {
+  std::shared_ptr<const FourierSolution> fourier = solved ? solved->fem.harmonic : nullptr;
+  if (!fourier) {
     double section_s = 0;
-    fourier = solve_fourier_model(c, 0, 0.0, section_s);
-    harmonic.emplace(m, *fourier);
+    fourier = std::make_shared<const FourierSolution>(solve_fourier_model(c, 0, 0.0, section_s));
   }
+  std::optional<HarmonicBody> harmonic;
+  if (!solved) harmonic.emplace(m, *fourier);
   const ContactBody& body = solved ? *solved->body : static_cast<const ContactBody&>(*harmonic);
   const FemReadout readout = solved ? solved->readout : fem_readout(fourier->figures);
   const ContactAnalysis contact =
@@ -122,13 +128,31 @@ std::function<double(double)> bearing_moment(const Case& c, double load_torque_N
   const std::size_t i = step_nearest(contact, std::abs(load_torque_Nm));
   const std::vector<double> balls = ball_loads_N(body.stations(), contact.steps[i].station_force_N, bearing.balls);
   const double nu = kinematic_viscosity_mm2_s(*c.lubricant, c.lubricant->temperature_C);
+  double ring_Nm = 0;
+  if (const Cam* cam = cam_of(*c.wave_generator)) {
+    // As the datasheet's: boundary friction of a contact that slides without rolling; the stations' half-turn
+    // partners alike.
+    const double bore = c.flexspline.inner_radius_m;
+    const std::vector<double> curvature = bore_curvature_change_per_m(
+        CamSurface(*cam, c.wave_generator->radial_deformation_m.value_or(0.0), bore), bore, body.stations().angle_rad);
+    ring_Nm = 2 * ring_slip(contact.steps[i].station_force_N, curvature, bore,
+                            ring_slip_lever_m(c.flexspline.rim_thickness_m, bearing), kBoundaryFriction)
+                      .moment_Nm;
+  }
+  const double damping_Nm =
+      damping_moment_Nm(harmonic_strain_energy_J(fourier->section, c.material, fourier->generator),
+                        c.material.loss_factor);
   std::ostringstream os;
   os << "Palmgren's M0 + M1 (f0 = 2, z = 0.0005, y = 0.55), the lubricant's " << nu << " mm²/s at "
      << c.lubricant->temperature_C << " °C, the balls loaded as at " << contact.steps[i].torque_Nm
-     << " N·m in the loaded contact (held there through the run)";
+     << " N·m in the loaded contact (held there through the run); with the outer ring slipping on the bore ("
+     << ring_Nm * 1e3 << " mN·m, boundary μ " << kBoundaryFriction << ") and the flexspline's material damping ("
+     << damping_Nm * 1e3 << " mN·m, loss factor " << c.material.loss_factor << "), both at any speed";
   source = os.str();
-  return [bearing, balls, nu](double relative_speed_rad_s) {
-    return palmgren_friction_moment(bearing, balls, relative_speed_rad_s * 30 / std::numbers::pi, nu).total_Nm;
+  const double constant_Nm = ring_Nm + damping_Nm;
+  return [bearing, balls, nu, constant_Nm](double relative_speed_rad_s) {
+    return palmgren_friction_moment(bearing, balls, relative_speed_rad_s * 30 / std::numbers::pi, nu).total_Nm +
+           constant_Nm;
   };
 }
 
@@ -190,7 +214,7 @@ DynamicsJobModel dynamics_model(const Case& c, DynamicsParams p, const DynamicsM
   }
   r.model.friction_coefficient = c.contact.friction_coefficient;
   r.model.generator_bearing_moment_Nm =
-      bearing_moment(c, p.load_torque_Nm, series, solved ? &*solved : nullptr, r.bearing_source);
+      generator_moment(c, p.load_torque_Nm, series, solved ? &*solved : nullptr, r.bearing_source);
   return r;
 }
 

@@ -210,14 +210,21 @@ void add_loss_figures(Datasheet& d, const DatasheetInputs& in) {
     const std::string damping = "the flexspline's material damping under the generator's wave (loss factor " +
                                 fmt("%.3g", l.loss_factor) + " at small amplitude: " +
                                 fmt("%.3g", l.damping_input_torque_Nm * 1e3) + " mN·m at the input, at any speed)";
+    const std::string ring = l.ring_slip_input_torque_Nm > 0
+                                 ? ", the generator's outer ring slipping on the bore as rim and ring bend together "
+                                   "(boundary μ " + fmt("%.3g", l.ring_friction) + ", gross slip; " +
+                                       fmt("%.3g", l.ring_slip_input_torque_Nm * 1e3) +
+                                       " mN·m at the input with no load, at any speed)"
+                                 : "";
     const std::string counts = "counts the generator bearing (Palmgren M0 + M1, balls loaded as the contact loads "
                                "them), the flanks' sliding (μ = " + fmt("%.3g", l.flank_friction) + ", " +
-                               l.flank_friction_from + ") and " + damping + "; leaves out the lubricant's drag "
+                               l.flank_friction_from + "), " + damping + ring + "; leaves out the lubricant's drag "
                                "beyond the bearing's f0 and seals, so it is an upper bound; " + l.lubricant;
     const auto split = [](const LossSplit& s) {
       return " (losses: bearing viscous " + fmt("%.3g", s.bearing_viscous_W) + " W, bearing load " +
              fmt("%.3g", s.bearing_load_W) + " W, flanks " + fmt("%.3g", s.flank_sliding_W) + " W, flexspline " +
-             "damping " + fmt("%.3g", s.flexspline_damping_W) + " W, of " + fmt("%.3g", s.input_power_W()) + " W in)";
+             "damping " + fmt("%.3g", s.flexspline_damping_W) + " W, ring on the bore " +
+             fmt("%.3g", s.ring_slip_W) + " W, of " + fmt("%.3g", s.input_power_W()) + " W in)";
     };
     d.loss_map = l.map;
     d.loss_map_counts = counts;
@@ -230,11 +237,12 @@ void add_loss_figures(Datasheet& d, const DatasheetInputs& in) {
     d.figures.push_back(computed("no_load_running_torque_Nm", "no-load running torque (input, 2,000 rpm)", "N·m",
                                  l.no_load_2000.input_torque_Nm(),
                                  "the generator bearing's friction under its own preload (the flanks carry no force "
-                                 "at zero torque) and " + damping + "; the lubricant's drag beyond the bearing's f0 "
-                                 "and seals left out" + split(l.no_load_2000)));
+                                 "at zero torque), " + damping + ring + "; the lubricant's drag beyond the bearing's "
+                                 "f0 and seals left out" + split(l.no_load_2000)));
     d.figures.push_back(computed("starting_torque_Nm", "starting torque (input)", "N·m", l.starting_torque_Nm,
-                                 "Palmgren's breakaway moment M1 of the generator bearing under its preload and " +
-                                 damping + ": a lower bound (the grease's yield stress, seals and stiction left out)"));
+                                 "Palmgren's breakaway moment M1 of the generator bearing under its preload, " +
+                                 damping + ring + ": a lower bound (the grease's yield stress, seals and stiction "
+                                 "left out)"));
     if (!std::isfinite(l.backdriving_torque_Nm))
       d.figures.push_back(not_computed("backdriving_torque_Nm", "backdriving torque (output)", "N·m",
                                        "none: the flanks' sliding per output torque reaches 1/ratio, so the mesh locks "

@@ -53,6 +53,8 @@ struct LossFigures {
   LossSplit rated_2000, rated_1000, half_rated_2000, no_load_2000;
   double starting_torque_Nm = 0;
   double damping_input_torque_Nm = 0;  ///< the flexspline's material damping at the input, at any speed
+  double ring_slip_input_torque_Nm = 0;  ///< the generator's outer ring slipping on the bore, at no load, any speed
+  double ring_friction = 0;              ///< μ of the ring on the bore
   double loss_factor = 0;              ///< η it was computed with
   double backdriving_torque_Nm = 0;  ///< at the output (datasheet/losses.hpp backdriving_torque_Nm)
   double flank_friction = 0;

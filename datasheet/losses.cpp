@@ -7,6 +7,7 @@
 
 #include "common/error.hpp"
 #include "dynamics/moving_mesh_build.hpp"
+#include "generator/ring_slip.hpp"
 
 namespace sw {
 namespace {
@@ -20,19 +21,24 @@ double LossSplit::input_torque_Nm() const {
   return omega_in > 0 ? input_power_W() / omega_in : 0.0;
 }
 
-double damping_input_torque_Nm(const std::vector<double>& wave_energy_J, double loss_factor, int ratio) {
+double damping_moment_Nm(const std::vector<double>& wave_energy_J, double loss_factor) {
   if (!(loss_factor >= 0 && loss_factor < 1)) {
     std::ostringstream os;
     os << "material.loss_factor = " << loss_factor << "; must be in [0, 1)";
     throw InputError(os.str());
   }
-  if (ratio < 1) throw InputError("damping torque: ratio " + std::to_string(ratio) + "; must be >= 1");
   double weighted = 0;
   for (std::size_t n = 0; n < wave_energy_J.size(); ++n) {
     if (!(wave_energy_J[n] >= 0)) throw InputError("damping torque: the wave's strain energy must be >= 0");
     weighted += static_cast<double>(n) * wave_energy_J[n];  // n = 0 is static in the turning body: no cycle
   }
-  return 2 * loss_factor * (1.0 + 1.0 / ratio) * weighted;
+  return 2 * loss_factor * weighted;
+}
+
+double damping_input_torque_Nm(const std::vector<double>& wave_energy_J, double loss_factor, int ratio) {
+  const double moment = damping_moment_Nm(wave_energy_J, loss_factor);
+  if (ratio < 1) throw InputError("damping torque: ratio " + std::to_string(ratio) + "; must be >= 1");
+  return moment * (1.0 + 1.0 / ratio);
 }
 
 std::vector<double> flank_sliding_m_per_rad(const BacklashModel& model, const ContactAnalysis& contact) {
@@ -86,6 +92,12 @@ LossSplit drive_losses(const ContactAnalysis& contact, std::size_t step, const s
     sliding_W += c.flank_friction * s.flank_force_N[i] * teeth * std::abs(sliding[i]) * sigma_rate;
   out.flank_sliding_W = sliding_W;
   out.flexspline_damping_W = damping_input_torque_Nm(c.wave_energy_J, c.loss_factor, ratio) * omega_in;
+  if (!c.ring.curvature_change_per_m.empty()) {
+    // The stations cover half a turn; their partners half a turn on carry the same forces at the same curvature.
+    const RingSlip slip = ring_slip(s.station_force_N, c.ring.curvature_change_per_m, c.ring.bore_radius_m,
+                                    c.ring.lever_m, c.ring.friction);
+    out.ring_slip_W = 2 * slip.moment_Nm * sigma_rate;
+  }
   return out;
 }
 
@@ -126,9 +138,9 @@ LossMap loss_map(const ContactAnalysis& contact, const LossAt& at, const LossCon
 }
 
 double starting_torque_Nm(const GeneratorBearing& bearing, const std::vector<double>& ball_loads_N, int ratio,
-                          const PalmgrenCoefficients& palmgren, double damping_Nm) {
+                          const PalmgrenCoefficients& palmgren, double rate_independent_Nm) {
   if (ratio < 1) throw InputError("starting torque: ratio " + std::to_string(ratio) + "; must be >= 1");
-  return palmgren_breakaway_moment_Nm(bearing, ball_loads_N, palmgren) * (1.0 + 1.0 / ratio) + damping_Nm;
+  return palmgren_breakaway_moment_Nm(bearing, ball_loads_N, palmgren) * (1.0 + 1.0 / ratio) + rate_independent_Nm;
 }
 
 double backdriving_torque_Nm(double starting_torque_Nm, const LossSplit& loaded, int ratio) {

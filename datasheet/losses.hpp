@@ -13,7 +13,10 @@
 //    it (strain energy U_n, fem/fourier_solver.hpp harmonic_strain_energy_J) strains every point of the turning body
 //    at n·σ̇. With a hysteretic loss factor η (the complex modulus E(1 + iη): per cycle 2π·η times the energy stored)
 //    a travelling wave of energy U_n dissipates 2·η·n·σ̇·U_n (two standing waves in quadrature, each 2π·η·U_n per
-//    cycle), so P = 2·η·σ̇·Σ n·U_n. Rate-independent: the same torque at the input at any speed, breakaway included.
+//    cycle), so P = 2·η·σ̇·Σ n·U_n. Rate-independent: the same torque at the input at any speed, breakaway included;
+//  - the generator's outer ring slipping on the flexspline's bore (generator/ring_slip.hpp): rim and ring bent
+//    together differ in surface strain by d·Δκ, and the running wave makes the bore slide on the ring under the
+//    stations' forces, μ·Ω·R·d·Σ F_i·|Δκ_i − κ_c| (Goodman and Klumpp's slip damping); rate-independent too.
 // P_in = P_out + the losses, efficiency P_out/P_in, the input torque P_in/ω_in.
 //
 // Idealisations (said in every figure's method): the contact's flank forces and contact points at one generator
@@ -43,11 +46,22 @@ struct LossConditions {
   double loss_factor = 0;         ///< η of the flexspline's material, in [0, 1)
   /// The generator's deformation's strain energy per harmonic n = 0.. (J); empty: no damping counted.
   std::vector<double> wave_energy_J;
+  /// The generator's outer ring on the bore (generator/ring_slip.hpp): the bore's curvature change at each of the
+  /// contact's stations (their half turn; the partners half a turn on are alike), the bore's radius, the lever d and
+  /// the interface's μ. No curvatures: no slip counted.
+  struct {
+    std::vector<double> curvature_change_per_m;
+    double bore_radius_m = 0, lever_m = 0, friction = 0;
+  } ring;
 };
 
-/// The input torque the flexspline's material damping takes (N·m): 2·η·(1 + 1/ratio)·Σ n·U_n over the wave's
-/// harmonics U_n (J) (the power 2·η·σ̇·Σ n·U_n over ω_in). InputError for η outside [0, 1), a negative energy or
-/// ratio < 1.
+/// The flexspline's material damping as a moment between the generator and the flexspline against the wave's turn
+/// σ̇ (N·m): 2·η·Σ n·U_n over the wave's harmonics U_n (J) (the power 2·η·σ̇·Σ n·U_n over σ̇). InputError for η
+/// outside [0, 1) or a negative energy.
+double damping_moment_Nm(const std::vector<double>& wave_energy_J, double loss_factor);
+
+/// The input torque the flexspline's material damping takes (N·m): damping_moment_Nm·(1 + 1/ratio) (the power over
+/// ω_in). InputError as damping_moment_Nm's and for ratio < 1.
 double damping_input_torque_Nm(const std::vector<double>& wave_energy_J, double loss_factor, int ratio);
 
 /// The power balance at one output torque and input speed. W unless named otherwise.
@@ -58,8 +72,11 @@ struct LossSplit {
   double bearing_load_W = 0;     ///< Palmgren's M1
   double flank_sliding_W = 0;    ///< Σ μ·F·|v_slide| over the loaded flanks (both teeth of a half-turn pair)
   double flexspline_damping_W = 0;  ///< the material's hysteresis under the generator's wave
+  double ring_slip_W = 0;        ///< the generator's outer ring slipping on the bore
   double viscosity_mm2_s = 0;    ///< the lubricant's at its temperature
-  double loss_W() const { return bearing_viscous_W + bearing_load_W + flank_sliding_W + flexspline_damping_W; }
+  double loss_W() const {
+    return bearing_viscous_W + bearing_load_W + flank_sliding_W + flexspline_damping_W + ring_slip_W;
+  }
   double input_power_W() const { return output_power_W + loss_W(); }
   /// P_out / P_in; 1 with no loss; 0 at zero output torque.
   double efficiency() const { return input_power_W() > 0 ? output_power_W / input_power_W() : 0.0; }
@@ -103,9 +120,10 @@ LossMap loss_map(const ContactAnalysis& contact, const LossAt& at, const LossCon
 /// The input torque that starts the drive from rest with no load on the output, N·m: Palmgren's breakaway moment of
 /// the generator bearing under these ball loads (palmgren_breakaway_moment_Nm: M1 alone, a lower bound) carried to
 /// the input as in the power balance, ×(1 + 1/ratio) (the rings turn against each other at σ̇ = ω_in·(1 + 1/ratio)),
-/// plus the flexspline's damping torque (damping_input_torque_Nm, `damping_Nm`: rate-independent, there at breakaway).
+/// plus the rate-independent losses' input torque at rest (`rate_independent_Nm`: the flexspline's damping,
+/// damping_input_torque_Nm, and the ring's slip on the bore, there at breakaway).
 double starting_torque_Nm(const GeneratorBearing& bearing, const std::vector<double>& ball_loads_N, int ratio,
-                          const PalmgrenCoefficients& palmgren = {}, double damping_Nm = 0);
+                          const PalmgrenCoefficients& palmgren = {}, double rate_independent_Nm = 0);
 
 /// The output torque that starts the drive turning its free input from rest (backdriving), N·m. At breakaway the
 /// output's power goes into the losses: T·ω_out = T_start·ω_in + k·T·ω_in with ω_in = ratio·ω_out, T_start the

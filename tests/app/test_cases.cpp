@@ -579,19 +579,41 @@ TEST(CliErrors, AHarmonicModelThatWouldNotFitIsRefusedFromItsSection) {
 // The dynamics' rim coupled through the FEM runs on the body the case's solver gives: the seed's [dynamics] has
 // rim = "fem", and a case that asks for the harmonic solver by name couples its moving pairs through the harmonic
 // body (before, the TET10 model only: such a case was refused).
+// The seed with a generator bearing and an oil: the generator's moment on the rim is the bearing's Palmgren moment
+// plus the rate-independent ones the datasheet counts (the outer ring slipping on the bore, the flexspline's
+// damping), each named with its value; at the steady window's relative speed σ̇ = ω_in·(1 + 1/ratio) the generator's
+// power is at least those two moments' (Palmgren's adds to them), and the run's balances close as before.
 TEST(CliRuns, DynamicsWithTheFemRimRunsOnTheHarmonicBody) {
   const fs::path dir = fresh_dir("dyn_fourier");
   fs::create_directories(dir);
   const fs::path case_file = dir / "seed_fourier.toml";
   {
+    std::string text = read_text("cases/seed_190_192.toml");
+    const std::string cam = "model = \"cam\"\n";
+    ASSERT_NE(text.find(cam), std::string::npos);
+    text.insert(text.find(cam) + cam.size(), "bearing = { balls = 21, ball_diameter_mm = 3.5 }\n");
     std::ofstream out(case_file);
-    out << read_text("cases/seed_190_192.toml") << "\n[solver]\nmethod = \"fourier\"\n";
+    out << text << "\n[solver]\nmethod = \"fourier\"\n\n[lubricant]\nkind = \"oil\"\nviscosity_40C_mm2_s = 68\n"
+        << "viscosity_100C_mm2_s = 8.6\ntemperature_C = 20\n";
   }
   const CommandRun r = run_strainwave("dynamics --quiet " + case_file.string() + " --out " + (dir / "out").string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string json = read_text(dir / "out" / "dynamics.json");
   EXPECT_NE(json.find("moving pairs coupled through the rim"), std::string::npos);
   EXPECT_NE(r.out.find("energy balance"), std::string::npos) << r.out;
+  const nlohmann::json d = nlohmann::json::parse(json);
+  const std::string source = d["generator_bearing_friction"].get<std::string>();
+  const auto moment_after = [&](const std::string& what) {
+    const std::size_t at = source.find(what);
+    EXPECT_NE(at, std::string::npos) << source;
+    return at == std::string::npos ? 0.0 : std::stod(source.substr(at + what.size())) * 1e-3;
+  };
+  const double constant_Nm = moment_after("the outer ring slipping on the bore (") +
+                             moment_after("the flexspline's material damping (");
+  EXPECT_GT(constant_Nm, 0.0);
+  const double sigma_rate = 1000 * std::numbers::pi / 30 * (1 + 1.0 / 95);  // the seed's 1,000 rpm, ratio 190/2
+  EXPECT_GT(d["power_W"]["generator_bearing"].get<double>(), constant_Nm * sigma_rate);
+  EXPECT_LT(d["power_balance_error_rel"].get<double>(), 1e-3);
   fs::remove_all(dir);
 }
 

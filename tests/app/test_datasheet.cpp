@@ -118,6 +118,8 @@ TEST(Size17Sheet, CarriesTheContactsFiguresThePublishedRowsAndSaysHowEachWasComp
               back["published"].get<double>());
   // What it counts and what it leaves out.
   EXPECT_NE(eta["method"].get<std::string>().find("the flexspline's material damping"), std::string::npos);
+  EXPECT_NE(eta["method"].get<std::string>().find("the generator's outer ring slipping on the bore"),
+            std::string::npos);
   EXPECT_NE(eta["method"].get<std::string>().find("leaves out the lubricant's drag"), std::string::npos);
   // The map over speed, load and temperature: its point at rated torque, 2,000 rpm and the oil's 20 °C is the sheet's
   // efficiency (the same step and conditions), and the page draws it.

@@ -153,6 +153,37 @@ TEST(DriveLosses, MaterialDampingIsTwiceEtaTimesTheWavesEnergyWeightedByHarmonic
             "damping torque: the wave's strain energy must be >= 0");
 }
 
+// The generator's outer ring on the bore: the stations' forces of the step at their curvatures, the half turn's
+// partners alike (twice generator/ring_slip.hpp's torque over the listed stations), rate-independent (the same input
+// torque at every speed); no curvatures, nothing counted. Written out for three stations whose middle one sticks.
+TEST(DriveLosses, TheRingOnTheBoreSlipsUnderTheStationsForcesAtEverySpeed) {
+  ContactAnalysis a = two_flanks(true);
+  a.steps[0].station_force_N = {10.0, 30.0, 5.0};
+  const std::vector<double> sliding = {0, 0, 0};
+  const GeneratorBearing b = bearing_6205();
+  const std::vector<double> Q = stribeck_loads(9, 800.0, 0.0);
+  LossConditions c;
+  c.lubricant = vg68(40.0);
+  c.ring.curvature_change_per_m = {1.0, 2.0, 0.5};
+  c.ring.bore_radius_m = 0.02;
+  c.ring.lever_m = 1e-3;
+  c.ring.friction = 0.1;
+  const int ratio = 50;
+  const double torque = 2 * 0.1 * (1 + 1.0 / ratio) * 0.02 * 1e-3 * (10 * 1.0 + 5 * 1.5);
+  for (const double rpm : {500.0, 2000.0, 3500.0}) {
+    c.input_speed_rpm = rpm;
+    const LossSplit l = drive_losses(a, 0, sliding, b, Q, ratio, c);
+    EXPECT_NEAR(l.ring_slip_W, torque * rpm * kRadPerS, 1e-12) << rpm;
+    EXPECT_NEAR(l.loss_W(), l.bearing_viscous_W + l.bearing_load_W + l.flank_sliding_W + l.ring_slip_W, 1e-12);
+  }
+  c.ring.curvature_change_per_m.clear();
+  EXPECT_EQ(drive_losses(a, 0, sliding, b, Q, ratio, c).ring_slip_W, 0.0);
+  c.ring.curvature_change_per_m = {1.0, 2.0};  // one short of the stations
+  EXPECT_EQ(sw::testing::message_of([&] { drive_losses(a, 0, sliding, b, Q, ratio, c); })
+                .rfind("ring slip: stations' curvatures 2;", 0),
+            0u);
+}
+
 // Backdriving: the output's power at breakaway is the input's breakaway plus the flanks' sliding, which grows with the
 // torque as it does at the loaded state given. Written out: 10 N·m at 2,000 rpm losing 5 W on the flanks is
 // k = 5 / (10 · 209.44 rad/s); at ratio 50 the output needs 50 · T_start / (1 − 50 k). A mesh whose flank loss per

@@ -167,10 +167,14 @@ std::optional<LossFigures> losses(const Case& c, const FourierSolution& fem, con
   const std::size_t rest = step_nearest(contact, 0.0);
   l.no_load_2000 = at_step(rest, kInputSpeed_rpm);
   l.damping_input_torque_Nm = damping_input_torque_Nm(at.wave_energy_J, at.loss_factor, ratio);
-  l.ring_slip_input_torque_Nm = l.no_load_2000.ring_slip_W / (kInputSpeed_rpm * 2 * std::numbers::pi / 60);
-  l.starting_torque_Nm =
-      starting_torque_Nm(bearing, ball_loads_N(body.stations(), contact.steps[rest].station_force_N, bearing.balls),
-                         ratio, {}, l.damping_input_torque_Nm + l.ring_slip_input_torque_Nm);
+  // The Coulomb losses at rest are rate-independent, so there at breakaway: the ring's slip, and the flanks' sliding
+  // where the teeth bear on each other with no load (a preloaded mesh; nothing on teeth cut to zero backlash).
+  const double omega_in = kInputSpeed_rpm * 2 * std::numbers::pi / 60;
+  l.ring_slip_input_torque_Nm = l.no_load_2000.ring_slip_W / omega_in;
+  l.flanks_at_rest_input_torque_Nm = l.no_load_2000.flank_sliding_W / omega_in;
+  l.starting_torque_Nm = starting_torque_Nm(
+      bearing, ball_loads_N(body.stations(), contact.steps[rest].station_force_N, bearing.balls), ratio, {},
+      l.damping_input_torque_Nm + l.ring_slip_input_torque_Nm + l.flanks_at_rest_input_torque_Nm);
   l.backdriving_torque_Nm = backdriving_torque_Nm(l.starting_torque_Nm, l.rated_2000, ratio);
   l.map = loss_map(contact, split, at);
   char text[200];

@@ -114,7 +114,7 @@ int main(int argc, char** argv) {
                   figure(f, "bearing_life_exponent", "%.2f").c_str(), figure(f, "efficiency", "%.2f").c_str(),
                   figure(f, "efficiency_1000rpm", "%.2f").c_str(), figure(f, "efficiency_half_rated", "%.2f").c_str(),
                   figure(f, "no_load_running_torque_Nm", "%.0f", 1e3).c_str(),
-                  figure(f, "starting_torque_Nm", "%.0f", 1e3).c_str(), seconds);
+                  figure(f, "starting_torque_Nm", "%.2g", 1e3).c_str(), seconds);
       std::fflush(stdout);
     }
   fs::remove_all(dir);

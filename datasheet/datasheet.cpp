@@ -241,8 +241,9 @@ void add_loss_figures(Datasheet& d, const DatasheetInputs& in) {
                                  "f0 and seals left out" + split(l.no_load_2000)));
     d.figures.push_back(computed("starting_torque_Nm", "starting torque (input)", "N·m", l.starting_torque_Nm,
                                  "Palmgren's breakaway moment M1 of the generator bearing under its preload, " +
-                                 damping + ring + ": a lower bound (the grease's yield stress, seals and stiction "
-                                 "left out)"));
+                                 damping + ring + ", the flanks' sliding where the teeth bear with no load (" +
+                                 fmt("%.3g", l.flanks_at_rest_input_torque_Nm * 1e3) +
+                                 " mN·m): a lower bound (the grease's yield stress, seals and stiction left out)"));
     if (!std::isfinite(l.backdriving_torque_Nm))
       d.figures.push_back(not_computed("backdriving_torque_Nm", "backdriving torque (output)", "N·m",
                                        "none: the flanks' sliding per output torque reaches 1/ratio, so the mesh locks "

@@ -55,6 +55,7 @@ struct LossFigures {
   double damping_input_torque_Nm = 0;  ///< the flexspline's material damping at the input, at any speed
   double ring_slip_input_torque_Nm = 0;  ///< the generator's outer ring slipping on the bore, at no load, any speed
   double ring_friction = 0;              ///< μ of the ring on the bore
+  double flanks_at_rest_input_torque_Nm = 0;  ///< the flanks' sliding with no load (a preloaded mesh), at any speed
   double loss_factor = 0;              ///< η it was computed with
   double backdriving_torque_Nm = 0;  ///< at the output (datasheet/losses.hpp backdriving_torque_Nm)
   double flank_friction = 0;

@@ -121,7 +121,8 @@ LossMap loss_map(const ContactAnalysis& contact, const LossAt& at, const LossCon
 /// the generator bearing under these ball loads (palmgren_breakaway_moment_Nm: M1 alone, a lower bound) carried to
 /// the input as in the power balance, ×(1 + 1/ratio) (the rings turn against each other at σ̇ = ω_in·(1 + 1/ratio)),
 /// plus the rate-independent losses' input torque at rest (`rate_independent_Nm`: the flexspline's damping,
-/// damping_input_torque_Nm, and the ring's slip on the bore, there at breakaway).
+/// damping_input_torque_Nm, the ring's slip on the bore and the flanks' sliding of a mesh preloaded at rest, there at
+/// breakaway).
 double starting_torque_Nm(const GeneratorBearing& bearing, const std::vector<double>& ball_loads_N, int ratio,
                           const PalmgrenCoefficients& palmgren = {}, double rate_independent_Nm = 0);
 

@@ -38,14 +38,12 @@ struct BothWays {
   ContactAnalysis harmonic_own;  ///< on the harmonic solver's own FEM readout (its rim as the generator leaves it)
 };
 
+/// The contact's options as `contact` takes them from the case (app::contact_options), searching for the ratcheting
+/// torque twice as far as the datasheet looks: the designed size 17 ratchets at 113 x rated with each section of the
+/// face letting go on its own (3500 N·m), so both bodies reach it and the comparison below is made.
 ContactOptions options_of(const Case& c) {
-  ContactOptions o;
-  o.rated_torque_Nm = c.load.rated_torque_Nm.value_or(c.load.torque_Nm);
-  o.series = app::series_parts(c);
-  // Twice as far as the datasheet looks: the designed size 17 ratchets at 113 x rated with each section of the face
-  // letting go on its own (3500 N·m), so both bodies reach it and the comparison below is made.
+  ContactOptions o = app::contact_options(c, app::series_parts(c));
   o.ratcheting_ceiling_Nm = 200 * o.rated_torque_Nm;
-  o.contact = c.contact;  // the case's face sections (the designed cups: straight teeth in three)
   return o;
 }
 

@@ -581,7 +581,7 @@ void locating_key(const toml::table& root, const std::string& path, const std::m
       node = node->is_table() ? node->as_table()->get(key.substr(from, to - from)) : nullptr;
       from = to + 1;
     }
-    if (node && node->source().begin) throw InputError(path + ":" + std::to_string(node->source().begin.line) + ": " + what);
+    if (const std::string at = where(node); !at.empty()) throw InputError(path + at + ": " + what);
     const auto from = derived.find(key);
     if (node || from == derived.end() || semi == std::string::npos) throw InputError(path + ": " + what);
     throw InputError(path + ": " + what.substr(0, semi) + " (not in the file: derived from " + from->second + ")" +

@@ -18,7 +18,6 @@
 #include "contact/harmonic_body.hpp"
 #include "datasheet/datasheet.hpp"
 #include "datasheet/limits.hpp"
-#include "generator/ring_slip.hpp"
 #include "fem/fourier_buckling.hpp"
 #include "fem/infinite_life.hpp"
 #include "gear/mesh_friction.hpp"
@@ -142,15 +141,8 @@ std::optional<LossFigures> losses(const Case& c, const FourierSolution& fem, con
   l.flank_friction = at.flank_friction;
   at.loss_factor = l.loss_factor = c.material.loss_factor;
   at.wave_energy_J = harmonic_strain_energy_J(fem.section, c.material, fem.generator);
-  if (const Cam* cam = cam_of(*c.wave_generator)) {
-    // The ring slides on the bore without rolling: boundary friction, as the flanks' where their rolling vanishes.
-    const double bore = c.flexspline.inner_radius_m;
-    at.ring.curvature_change_per_m = bore_curvature_change_per_m(
-        CamSurface(*cam, c.wave_generator->radial_deformation_m.value_or(0.0), bore), bore, body.stations().angle_rad);
-    at.ring.bore_radius_m = bore;
-    at.ring.lever_m = ring_slip_lever_m(c.flexspline.rim_thickness_m, bearing);
-    at.ring.friction = l.ring_friction = kBoundaryFriction;
-  }
+  at.ring = ring_on_bore(c, body.stations());
+  l.ring_friction = at.ring.friction;
   const LossAt split = [&](std::size_t i, const LossConditions& conditions) {
     return drive_losses(contact, i, sliding, bearing,
                         ball_loads_N(body.stations(), contact.steps[i].station_force_N, bearing.balls), ratio,

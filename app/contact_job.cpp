@@ -17,6 +17,7 @@
 #include "contact/harmonic_body.hpp"
 #include "contact/tet10_body.hpp"
 #include "generator/generator_bearing.hpp"
+#include "gear/mesh_friction.hpp"
 #include "design/catalog.hpp"
 #include "gear/tooth_profile.hpp"
 #include "gear/tooth_stiffness.hpp"
@@ -79,6 +80,19 @@ ContactOptions contact_options(const Case& c, SeriesParts series) {
     o.catalog_t2_Nm = reference->t2_Nm;
   }
   return o;
+}
+
+RingOnBore ring_on_bore(const Case& c, const BodyStations& stations) {
+  RingOnBore r;
+  const Cam* cam = c.wave_generator ? cam_of(*c.wave_generator) : nullptr;
+  if (!cam || !c.wave_generator->bearing) return r;
+  r.bore_radius_m = c.flexspline.inner_radius_m;
+  r.curvature_change_per_m = bore_curvature_change_per_m(
+      CamSurface(*cam, c.wave_generator->radial_deformation_m.value_or(0.0), r.bore_radius_m), r.bore_radius_m,
+      stations.angle_rad);
+  r.lever_m = ring_slip_lever_m(c.flexspline.rim_thickness_m, *c.wave_generator->bearing);
+  r.friction = kBoundaryFriction;
+  return r;
 }
 
 namespace {

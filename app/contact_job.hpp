@@ -11,6 +11,7 @@
 #include "app/fem_job.hpp"
 #include "contact/loaded_contact.hpp"
 #include "fem/cholmod_factor.hpp"
+#include "generator/ring_slip.hpp"
 #include "io/atomic_file.hpp"
 #include "io/contact_output.hpp"
 
@@ -31,6 +32,12 @@ std::unique_ptr<ContactBody> contact_body(const Case& c, const FemJobResult& fem
 /// The contact's options from the case: rated torque, the series parts given (`series`), face slices, flank friction
 /// and the catalog size's breakpoints (the torque steps at their default).
 ContactOptions contact_options(const Case& c, SeriesParts series);
+
+/// The generator's outer ring on the flexspline's bore at `stations` (generator/ring_slip.hpp): the bore's curvature
+/// where it lies on a cam's surface, the rim's and the bearing's lever, and boundary friction (the ring slides on the
+/// bore without rolling, as the flanks where their rolling vanishes: gear/mesh_friction.hpp kBoundaryFriction).
+/// Without curvatures for a generator that is not a cam with a bearing.
+RingOnBore ring_on_bore(const Case& c, const BodyStations& stations);
 
 /// The catalog's law of the case's catalog size, when the catalog gives its stiffness.
 std::optional<CatalogLaw> catalog_reference(const Case& c);

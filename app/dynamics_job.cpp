@@ -14,9 +14,7 @@
 #include "contact/harmonic_body.hpp"
 #include "datasheet/limits.hpp"
 #include "datasheet/losses.hpp"
-#include "gear/mesh_friction.hpp"
 #include "generator/bearing_friction.hpp"
-#include "generator/ring_slip.hpp"
 #include "dynamics/kinematic_pairs.hpp"
 #include "dynamics/moving_mesh_build.hpp"
 #include "io/case.hpp"
@@ -128,17 +126,8 @@ std::function<double(double)> generator_moment(const Case& c, double load_torque
   const std::size_t i = step_nearest(contact, std::abs(load_torque_Nm));
   const std::vector<double> balls = ball_loads_N(body.stations(), contact.steps[i].station_force_N, bearing.balls);
   const double nu = kinematic_viscosity_mm2_s(*c.lubricant, c.lubricant->temperature_C);
-  double ring_Nm = 0;
-  if (const Cam* cam = cam_of(*c.wave_generator)) {
-    // As the datasheet's: boundary friction of a contact that slides without rolling; the stations' half-turn
-    // partners alike.
-    const double bore = c.flexspline.inner_radius_m;
-    const std::vector<double> curvature = bore_curvature_change_per_m(
-        CamSurface(*cam, c.wave_generator->radial_deformation_m.value_or(0.0), bore), bore, body.stations().angle_rad);
-    ring_Nm = 2 * ring_slip(contact.steps[i].station_force_N, curvature, bore,
-                            ring_slip_lever_m(c.flexspline.rim_thickness_m, bearing), kBoundaryFriction)
-                      .moment_Nm;
-  }
+  const RingOnBore ring = ring_on_bore(c, body.stations());
+  const double ring_Nm = ring_on_bore_moment_Nm(ring, contact.steps[i].station_force_N);
   const double damping_Nm =
       damping_moment_Nm(harmonic_strain_energy_J(fourier->section, c.material, fourier->generator),
                         c.material.loss_factor);
@@ -146,7 +135,7 @@ std::function<double(double)> generator_moment(const Case& c, double load_torque
   os << "Palmgren's M0 + M1 (f0 = 2, z = 0.0005, y = 0.55), the lubricant's " << nu << " mm²/s at "
      << c.lubricant->temperature_C << " °C, the balls loaded as at " << contact.steps[i].torque_Nm
      << " N·m in the loaded contact (held there through the run); with the outer ring slipping on the bore ("
-     << ring_Nm * 1e3 << " mN·m, boundary μ " << kBoundaryFriction << ") and the flexspline's material damping ("
+     << ring_Nm * 1e3 << " mN·m, boundary μ " << ring.friction << ") and the flexspline's material damping ("
      << damping_Nm * 1e3 << " mN·m, loss factor " << c.material.loss_factor << "), both at any speed";
   source = os.str();
   const double constant_Nm = ring_Nm + damping_Nm;

@@ -7,7 +7,6 @@
 
 #include "common/error.hpp"
 #include "dynamics/moving_mesh_build.hpp"
-#include "generator/ring_slip.hpp"
 
 namespace sw {
 namespace {
@@ -92,12 +91,7 @@ LossSplit drive_losses(const ContactAnalysis& contact, std::size_t step, const s
     sliding_W += c.flank_friction * s.flank_force_N[i] * teeth * std::abs(sliding[i]) * sigma_rate;
   out.flank_sliding_W = sliding_W;
   out.flexspline_damping_W = damping_input_torque_Nm(c.wave_energy_J, c.loss_factor, ratio) * omega_in;
-  if (!c.ring.curvature_change_per_m.empty()) {
-    // The stations cover half a turn; their partners half a turn on carry the same forces at the same curvature.
-    const RingSlip slip = ring_slip(s.station_force_N, c.ring.curvature_change_per_m, c.ring.bore_radius_m,
-                                    c.ring.lever_m, c.ring.friction);
-    out.ring_slip_W = 2 * slip.moment_Nm * sigma_rate;
-  }
+  out.ring_slip_W = ring_on_bore_moment_Nm(c.ring, s.station_force_N) * sigma_rate;
   return out;
 }
 

@@ -33,6 +33,7 @@
 #include "common/lubricant.hpp"
 #include "contact/loaded_contact.hpp"
 #include "generator/bearing_friction.hpp"
+#include "generator/ring_slip.hpp"
 #include "kinematics/backlash.hpp"
 
 namespace sw {
@@ -46,13 +47,9 @@ struct LossConditions {
   double loss_factor = 0;         ///< η of the flexspline's material, in [0, 1)
   /// The generator's deformation's strain energy per harmonic n = 0.. (J); empty: no damping counted.
   std::vector<double> wave_energy_J;
-  /// The generator's outer ring on the bore (generator/ring_slip.hpp): the bore's curvature change at each of the
-  /// contact's stations (their half turn; the partners half a turn on are alike), the bore's radius, the lever d and
-  /// the interface's μ. No curvatures: no slip counted.
-  struct {
-    std::vector<double> curvature_change_per_m;
-    double bore_radius_m = 0, lever_m = 0, friction = 0;
-  } ring;
+  /// The generator's outer ring on the bore (generator/ring_slip.hpp) at the contact's stations; no curvatures: no
+  /// slip counted.
+  RingOnBore ring;
 };
 
 /// The flexspline's material damping as a moment between the generator and the flexspline against the wave's turn

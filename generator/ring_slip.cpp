@@ -68,4 +68,10 @@ RingSlip ring_slip(const std::vector<double>& force_N, const std::vector<double>
   return out;
 }
 
+double ring_on_bore_moment_Nm(const RingOnBore& ring, const std::vector<double>& station_force_N) {
+  if (ring.curvature_change_per_m.empty()) return 0;
+  return 2 * ring_slip(station_force_N, ring.curvature_change_per_m, ring.bore_radius_m, ring.lever_m, ring.friction)
+                 .moment_Nm;
+}
+
 }  // namespace sw

@@ -58,4 +58,17 @@ struct RingSlip {
 RingSlip ring_slip(const std::vector<double>& force_N, const std::vector<double>& curvature_change_per_m,
                    double bore_radius_m, double lever_m, double friction);
 
+/// The ring on the bore of one drive: the bore's curvature change at each of the generator's stations (their half
+/// turn; the partners half a turn on are alike), the bore's radius, the lever d (ring_slip_lever_m) and the interface's
+/// μ. No curvatures: a generator without a ring on the bore (the given forces, rollers).
+struct RingOnBore {
+  std::vector<double> curvature_change_per_m;
+  double bore_radius_m = 0, lever_m = 0, friction = 0;
+};
+
+/// The ring's slip moment under the stations' forces `station_force_N` (their half turn, as RingOnBore's curvatures):
+/// twice ring_slip's over the listed stations, the partners carrying the same forces at the same curvature. 0 for a
+/// RingOnBore without curvatures; ring_slip's InputError otherwise.
+double ring_on_bore_moment_Nm(const RingOnBore& ring, const std::vector<double>& station_force_N);
+
 }  // namespace sw

@@ -262,6 +262,11 @@ Partition partition_nodes(const TetMesh& mesh, const std::vector<PetscInt>& free
 
 constexpr PetscInt kDirectBlock = 32;  // right-hand sides per MatMatSolve (memory: rows × 32 doubles, twice)
 
+}  // namespace
+
+// Outside the anonymous namespace: PetscSolver::Impl (a member of a class with linkage) holds one.
+namespace petsc_detail {
+
 struct Distributed {
   Mat A = nullptr;
   KSP ksp = nullptr;
@@ -288,6 +293,12 @@ struct Distributed {
     MatDestroy(&A);
   }
 };
+
+}  // namespace petsc_detail
+
+namespace {
+
+using petsc_detail::Distributed;
 
 std::string mumps_ordering(PetscInt code) {
   switch (code) {

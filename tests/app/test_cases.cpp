@@ -608,9 +608,11 @@ TEST(CliRuns, DynamicsWithTheFemRimRunsOnTheHarmonicBody) {
     EXPECT_NE(at, std::string::npos) << source;
     return at == std::string::npos ? 0.0 : std::stod(source.substr(at + what.size())) * 1e-3;
   };
-  const double constant_Nm = moment_after("the outer ring slipping on the bore (") +
-                             moment_after("the flexspline's material damping (");
-  EXPECT_GT(constant_Nm, 0.0);
+  const double ring_Nm = moment_after("the outer ring slipping on the bore ("),
+               damping_Nm = moment_after("the flexspline's material damping (");
+  EXPECT_GT(ring_Nm, 0.0);  // the seed's generator is a cam: its ring lies on the bore
+  EXPECT_GT(damping_Nm, 0.0);
+  const double constant_Nm = ring_Nm + damping_Nm;
   const double sigma_rate = 1000 * std::numbers::pi / 30 * (1 + 1.0 / 95);  // the seed's 1,000 rpm, ratio 190/2
   EXPECT_GT(d["power_W"]["generator_bearing"].get<double>(), constant_Nm * sigma_rate);
   EXPECT_LT(d["power_balance_error_rel"].get<double>(), 1e-3);

@@ -202,7 +202,7 @@ DynamicsJobModel dynamics_model(const Case& c, DynamicsParams p, const DynamicsM
     r.source = r.model.moving->source;
   }
   r.model.friction_coefficient = c.contact.friction_coefficient;
-  r.model.generator_bearing_moment_Nm =
+  r.model.generator_moment_Nm =
       generator_moment(c, p.load_torque_Nm, series, solved ? &*solved : nullptr, r.bearing_source);
   return r;
 }

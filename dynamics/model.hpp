@@ -82,10 +82,11 @@ struct DynamicsModel {
   /// The friction force μ·F·tanh(v/v_s) is smoothed over this sliding speed v_s (m/s), > 0: far below the flanks'
   /// sliding, whose sign changes where a tooth turns back out of the circular spline's space (dynamics/README.md).
   double friction_smoothing_m_per_s = 1.0e-3;
-  /// The wave generator bearing's running friction moment (N·m, ≥ 0) at the speed of its rings relative to each other
-  /// (rad/s, ≥ 0): between the generator and the flexspline's rim, against their relative turn, the Coulomb step
-  /// smoothed over params.drag_smoothing_rad_per_s. Empty: a frictionless bearing.
-  std::function<double(double relative_speed_rad_s)> generator_bearing_moment_Nm;
+  /// The generator's running friction moment on the rim (N·m, ≥ 0: its bearing's, and what else turns with the wave
+  /// against the flexspline) at the speed of the two relative to each other (rad/s, ≥ 0): between the generator and
+  /// the flexspline's rim, against their relative turn, the Coulomb step smoothed over
+  /// params.drag_smoothing_rad_per_s. Empty: a frictionless generator.
+  std::function<double(double relative_speed_rad_s)> generator_moment_Nm;
 };
 
 enum class BodyRole { Fixed, Driven, Free, MergedIntoFlange };

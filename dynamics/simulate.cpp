@@ -110,7 +110,7 @@ public:
                           rho_ * (ratio_[idx(BodyId::CircularSpline)] - ratio_[idx(BodyId::WaveGenerator)]);
     mesh_phase_rate_ = m.teeth_flexspline * std::abs(ratio_[idx(fs_)] - ratio_[idx(BodyId::WaveGenerator)]);
     friction_ = m.moving && m.friction_coefficient > 0.0;
-    bearing_ = static_cast<bool>(m.generator_bearing_moment_Nm);
+    bearing_ = static_cast<bool>(m.generator_moment_Nm);
   }
   /// The work quadratures: input, output, dissipated, parametric, then the friction's when the flanks have friction
   /// and the generator bearing's when it has a friction moment.
@@ -398,7 +398,7 @@ private:
   double add_bearing_friction(const Snapshot& s, std::array<double, kBodyCount>& Q) const {
     const int w = idx(BodyId::WaveGenerator), f = idx(fs_);
     const double relative = s.omega[w] - s.omega[f];
-    const double M = m_.generator_bearing_moment_Nm(std::abs(relative)) *
+    const double M = m_.generator_moment_Nm(std::abs(relative)) *
                      std::tanh(relative / p_.drag_smoothing_rad_per_s);
     Q[w] -= M;
     Q[f] += M;

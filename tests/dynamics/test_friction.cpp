@@ -128,7 +128,7 @@ TEST(DynamicsPower, TheContactDampingIsFlaggedWhenItTakesMoreThanTheOutput) {
 double bearing_power_W(const std::function<double(double)>& moment, double& sampled_W, double& output_W,
                        double& efficiency) {
   DynamicsModel m = short_small_gear(0.0);
-  m.generator_bearing_moment_Nm = moment;
+  m.generator_moment_Nm = moment;
   const DynamicsSeries s = simulate(m);
   const DynamicsSummary r = summarize(m, s);
   const int w = static_cast<int>(BodyId::WaveGenerator), f = static_cast<int>(BodyId::FlexsplineFlange);

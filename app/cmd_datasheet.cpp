@@ -158,10 +158,11 @@ std::optional<LossFigures> losses(const Case& c, const FourierSolution& fem, con
   l.half_rated_2000 = at_step(step_nearest(contact, 0.5 * rated), kInputSpeed_rpm);
   const std::size_t rest = step_nearest(contact, 0.0);
   l.no_load_2000 = at_step(rest, kInputSpeed_rpm);
-  l.damping_input_torque_Nm = damping_input_torque_Nm(at.wave_energy_J, at.loss_factor, ratio);
-  // The Coulomb losses at rest are rate-independent, so there at breakaway: the ring's slip, and the flanks' sliding
-  // where the teeth bear on each other with no load (a preloaded mesh; nothing on teeth cut to zero backlash).
+  // The rate-independent losses at rest, so there at breakaway, read off the no-load split: the flexspline's damping,
+  // the ring's slip, and the flanks' sliding where the teeth bear on each other with no load (a preloaded mesh;
+  // nothing on teeth cut to zero backlash).
   const double omega_in = kInputSpeed_rpm * 2 * std::numbers::pi / 60;
+  l.damping_input_torque_Nm = l.no_load_2000.flexspline_damping_W / omega_in;
   l.ring_slip_input_torque_Nm = l.no_load_2000.ring_slip_W / omega_in;
   l.flanks_at_rest_input_torque_Nm = l.no_load_2000.flank_sliding_W / omega_in;
   l.starting_torque_Nm = starting_torque_Nm(

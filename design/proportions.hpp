@@ -69,8 +69,8 @@ inline constexpr DesignProportion kDesignProportions[] = {
     {"--face-per-d", &DesignProportions::face_per_d, 0.15, 0.2, "toothed face width over the pitch diameter"},
 };
 
-/// Checks each proportion against its range. Throws InputError "--rim-per-d 0.02; must be in [0.01, 0.015] (Ivanov's rim
-/// under the teeth over the pitch diameter)", naming the command line option that sets it.
+/// Checks each proportion against its range. Throws InputError "--rim-per-d 0.02; must be in [0.01, 0.015]
+/// (Ivanov's rim under the teeth over the pitch diameter)", naming the command line option that sets it.
 void validate_design_proportions(const DesignProportions& p);
 
 /// The options that set `p` where it differs from the defaults ("" for the defaults): " --rim-per-d 0.01 ...".

@@ -22,11 +22,10 @@
 // Idealisations: gross slip wherever a station carries, the rings rigid along the bore. The friction's traction
 // stretches the two rings' sections by about μ·ΣF/(2·E·A) each, on the designed size 17 about a tenth of the spread
 // of d·Δκ over the loaded arc: a partial-slip analysis would lower the loss by up to that, so the figure is an upper
-// bound on this count; the curvature
-// the generator's surface's (the balls' Hertz approach, microns, ripples it between balls and is left out); the
-// neutral axes at the rim's and the ring's mid-thickness (teeth and the ring's shoulders would move them apart a
-// little: d is a lower bound); Coulomb friction μ constant, the boundary value for a contact that slides without
-// rolling.
+// bound on this count; the curvature the generator's surface's (the balls' Hertz approach, microns, ripples it
+// between balls and is left out); the neutral axes at the rim's and the ring's mid-thickness (teeth and the ring's
+// shoulders would move them apart a little: d is a lower bound); Coulomb friction μ constant, the boundary value for
+// a contact that slides without rolling.
 #include <vector>
 
 #include "generator/cam_profile.hpp"

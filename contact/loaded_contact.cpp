@@ -159,7 +159,14 @@ private:
   }
   /// The problem at torque T with only the flanks `flanks` (and every station) taking part; empty when they cannot
   /// carry T. The forces come back in the full problem's order, zero for the flanks left out.
-  std::optional<ContactSolution> solve_with_flanks(std::vector<Eigen::Index> flanks, double T);
+  std::optional<ContactSolution> solve_with_flanks(std::vector<Eigen::Index> flanks, double T) {
+    return solve_with_flanks(P_, lambda_, std::move(flanks), T);
+  }
+  /// The same on the problem P whose output moments are `moments`.
+  /// `warm`: the forces (in the full problem's order) of a nearby solution, where the active set starts.
+  std::optional<ContactSolution> solve_with_flanks(const ContactProblem& P, const Eigen::VectorXd& moments,
+                                                   std::vector<Eigen::Index> flanks, double T,
+                                                   const Eigen::VectorXd* warm = nullptr);
 
   void read_rim_at_rest();
   void read_face_sections(std::vector<NeutralCurve>& read);
@@ -170,6 +177,9 @@ private:
   void watch_ratchet_teeth();
   void compute_influence();
   void set_up_problem();
+  ContactProblem body_problem(const Eigen::MatrixXd& A_body, const Eigen::VectorXd& q_flank,
+                              const Eigen::VectorXd& lever, Eigen::MatrixXd& band_solve) const;
+  void add_series(ContactProblem& P, const Eigen::MatrixXd& A_cs) const;
   /// A solve of the contact problem at one torque with the bearing's secants on its diagonal: frictionless
   /// (solve_contact) or with friction along a history (solve_frictional_step from the history's last state); called
   /// with the iterate before (null on the first).
@@ -230,8 +240,8 @@ private:
   double first_closing_[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
   double reach_ = 0;
   // The patterns: flanks' columns and gaps, the edge teeth's radial observers.
-  std::vector<FlankPattern> patterns_, observers_, tangential_;  // tangential_: with friction
-  std::vector<FlankPattern> cs_patterns_;  // the flanks' forces on the circular spline
+  std::vector<FlankPattern> patterns_, observers_, tangential_;  // tangential_: with friction or the ramp
+  std::vector<FlankPattern> cs_patterns_, cs_tangential_;  // the flanks' forces on the circular spline
   std::vector<double> q_flank_;
   Eigen::Index nf_ = 0, nb_ = 0, no_ = 0;
   // The ratcheting ramp: the teeth that can carry, radial observers at their tips on the rim and on the ring, and
@@ -241,6 +251,28 @@ private:
   std::vector<std::size_t> ratchet_tooth_of_flank_;
   Eigen::Index nr_ = 0;
   Eigen::MatrixXd R_rim_, R_ring_;
+  /// The ramp's climbing contacts: each flank's force turned in the transverse plane by β from its direction at rest
+  /// (cos β along its normal pattern, sin β along its tangential one); the blocks that turn with it, over the normal
+  /// patterns, the tangential ones and the stations (2 nf + nb).
+  struct ClimbBlocks {
+    Eigen::MatrixXd body, rim;      // the body's coefficients; the ramp's rim observers against them
+    Eigen::MatrixXd cs, ring;       // the circular spline's (2 nf); its tip observers against them
+    Eigen::VectorXd lever;
+    std::vector<ClosedFlank> rest;  // each flank closed with its tooth as placed
+    std::vector<Eigen::Vector2d> centre_line;  // its tooth's centre line at rest (unit, outward)
+  };
+  /// The problem with the flanks' forces turned by β, their levers scaled by lever_scale and their gaps moved by dq:
+  /// its levers (the output's moments) and the band's reactions per flank force when the generator holds it.
+  struct ClimbedProblem {
+    ContactProblem P;
+    Eigen::VectorXd moments;
+    Eigen::VectorXd cos, sin;  // of each flank's β
+    Eigen::MatrixXd band_solve;
+    Eigen::VectorXd parts(const Eigen::VectorXd& dx) const;
+  };
+  ClimbBlocks climb_blocks() const;
+  ClimbedProblem climbed_problem(const ClimbBlocks& b, const Eigen::VectorXd& beta, const Eigen::VectorXd& dq,
+                                 const Eigen::VectorXd& lever_scale) const;
   // Influence coefficients.
   bool unilateral_ = false;
   BodyInfluence influence_;
@@ -256,6 +288,7 @@ private:
   bool bearing_ = false;
   double ball_per_N_ = 0;
   Eigen::VectorXd bearing_c_;
+  bool secants_from_last_ = false;  ///< solve_step starts from bearing_c_ as it stands (the ramp's rounds)
   // The torque steps.
   std::vector<double> torques_;
   int N_ = 1;
@@ -367,8 +400,9 @@ void ContactAnalyser::add_flank(FlankContact f, const FlankClearance& fc, int k,
   const Eigen::Vector2d on_tooth = Eigen::Rotation2Dd(-place.angle_rad) * (fc.point_f - place.offset_m);
   // One slice loads the whole face; more, each its own band of the rim.
   patterns_.push_back({stations, -fc.normal, fc.point_f.norm(), n_slices_ > 1 ? j : -1, 1, f.phi_rad, on_tooth});
-  // With friction, the flank's tangential force: along the profile in the transverse plane (the normal turned by 90°).
-  if (opt_.contact.friction_coefficient > 0)
+  // With friction, the flank's tangential force: along the profile in the transverse plane (the normal turned by 90°);
+  // for the ratcheting ramp, the part its force takes on as the contact climbs and the normal turns.
+  if (opt_.contact.friction_coefficient > 0 || opt_.ratcheting_ceiling_Nm > 0)
     tangential_.push_back({stations, Eigen::Vector2d(fc.normal.y(), -fc.normal.x()), fc.point_f.norm(),
                            n_slices_ > 1 ? j : -1, 1, f.phi_rad, on_tooth});
   // Its force on the circular spline: the opposite, at the contact point on the circular spline's tooth.
@@ -376,6 +410,9 @@ void ContactAnalyser::add_flank(FlankContact f, const FlankClearance& fc, int k,
   std::vector<double> on_cs{c};
   if (out_.half_turn_pairs) on_cs.push_back(c + kPi);
   cs_patterns_.push_back({on_cs, fc.normal, fc.point_c.norm(), n_slices_ > 1 ? j : -1});
+  if (opt_.ratcheting_ceiling_Nm > 0)  // the circular spline's side of the tangential pattern
+    cs_tangential_.push_back({on_cs, Eigen::Vector2d(-fc.normal.y(), fc.normal.x()), fc.point_c.norm(),
+                              n_slices_ > 1 ? j : -1});
   q_flank_.push_back(n_teeth_ * (std::abs(f.lever_m) * f.closing_angle_rad + deviation_gap(fc, k, j)));
   out_.flanks.push_back(f);
 }
@@ -477,30 +514,14 @@ void ContactAnalyser::compute_influence() {
 /// generator's surface, the flanks' gaps measured in the generator's state (p0). Force idealisation: the band held
 /// radially (bilateral), eliminated.
 void ContactAnalyser::set_up_problem() {
-  const Eigen::Index nf = nf_, nb = nb_;
+  const Eigen::Index nf = nf_;
   if (unilateral_) {
-    const Eigen::VectorXd& obstacle = fem_.generator_obstacle_m;
-    p0_ = unilateral_contact(A_body_.bottomRightCorner(nb, nb), obstacle).force_N;
-    P_.A = A_body_;
-    P_.q.resize(nf + nb);
-    P_.q.head(nf) = Eigen::Map<const Eigen::VectorXd>(q_flank_.data(), nf) - A_body_.topRightCorner(nf, nb) * p0_;
-    P_.q.tail(nb) = -obstacle;
-    // A turn of the output leaves the stations' gaps alone: the flexspline turns on the generator's bearing while
-    // the deformation wave stays with the cam. (In the linear model a rigid turn would also turn the wave, and a
-    // non-circular cam would then hold the output back with a stiffness it does not have.) The stations' forces still
-    // have a moment about the axis through the cam's tilted normal: the locked generator's share of the torque.
-    P_.lambda = lambda_;
-    P_.lambda.tail(nb).setZero();
+    p0_ = unilateral_contact(A_body_.bottomRightCorner(nb_, nb_), fem_.generator_obstacle_m).force_N;
     out_.generator_support = "the generator's contact (" + fem_.generator_model + ", unilateral) in the same problem";
   } else {
-    const Eigen::LDLT<Eigen::MatrixXd> bb(A_body_.bottomRightCorner(nb, nb));
-    band_solve_ = -bb.solve(A_body_.bottomLeftCorner(nb, nf));
-    P_.A = A_body_.topLeftCorner(nf, nf) + A_body_.topRightCorner(nf, nb) * band_solve_;
-    P_.A = 0.5 * (P_.A + P_.A.transpose()).eval();
-    P_.q = Eigen::Map<const Eigen::VectorXd>(q_flank_.data(), nf);
-    P_.lambda = lambda_.head(nf);
     out_.generator_support = "the band held radially at the stations (the paper's given-force idealisation)";
   }
+  P_ = body_problem(A_body_, Eigen::Map<const Eigen::VectorXd>(q_flank_.data(), nf), lambda_, band_solve_);
   A_noseries_ = P_.A;
   cs_.A = Eigen::MatrixXd::Zero(nf, nf);
   if (opt_.series.circular_spline) cs_ = opt_.series.circular_spline(cs_patterns_);
@@ -511,15 +532,52 @@ void ContactAnalyser::set_up_problem() {
     with_tips.insert(with_tips.end(), ratchet_ring_.begin(), ratchet_ring_.end());
     R_ring_ = opt_.series.circular_spline(with_tips).A.bottomLeftCorner(nr_, nf);
   }
-  P_.A.topLeftCorner(nf, nf) += cs_.A;
-  for (Eigen::Index i = 0; i < nf; ++i) P_.A(i, i) += n_teeth_ * out_.flanks[i].compliance_m_per_N;
+  add_series(P_, cs_.A);
   out_.unknowns = static_cast<int>(P_.q.size());
   out_.problem = P_;
   // Bearing balls in series with the stations (unilateral generators): the secant of the Hertzian approach from the
   // generator's state, iterated to a fixed point.
   bearing_ = unilateral_ && opt_.series.bearing_approach_m && opt_.series.bearing_balls > 0;
   ball_per_N_ = bearing_ ? 2 * kPi / (opt_.series.bearing_balls * body_.stations().half_width_rad) : 0.0;
-  bearing_c_ = Eigen::VectorXd::Zero(nb);
+  bearing_c_ = Eigen::VectorXd::Zero(nb_);
+}
+
+/// The problem on the body's coefficients A_body (flanks, then stations) with the flanks' gaps q_flank and the levers
+/// (flanks, then stations), before the parts in series: with a unilateral generator the stations take part (their
+/// gaps the generator's obstacle, the flanks' measured from its state p0, a turn of the output leaving the stations'
+/// gaps alone); with the band held radially the stations are eliminated, their reactions per flank force in
+/// band_solve.
+ContactProblem ContactAnalyser::body_problem(const Eigen::MatrixXd& A_body, const Eigen::VectorXd& q_flank,
+                                             const Eigen::VectorXd& lever, Eigen::MatrixXd& band_solve) const {
+  const Eigen::Index nf = nf_, nb = nb_;
+  ContactProblem P;
+  if (unilateral_) {
+    P.A = A_body;
+    P.q.resize(nf + nb);
+    P.q.head(nf) = q_flank - A_body.topRightCorner(nf, nb) * p0_;
+    P.q.tail(nb) = -fem_.generator_obstacle_m;
+    // A turn of the output leaves the stations' gaps alone: the flexspline turns on the generator's bearing while
+    // the deformation wave stays with the cam. (In the linear model a rigid turn would also turn the wave, and a
+    // non-circular cam would then hold the output back with a stiffness it does not have.) The stations' forces still
+    // have a moment about the axis through the cam's tilted normal: the locked generator's share of the torque.
+    P.lambda = lever;
+    P.lambda.tail(nb).setZero();
+  } else {
+    const Eigen::LDLT<Eigen::MatrixXd> bb(A_body.bottomRightCorner(nb, nb));
+    band_solve = -bb.solve(A_body.bottomLeftCorner(nb, nf));
+    P.A = A_body.topLeftCorner(nf, nf) + A_body.topRightCorner(nf, nb) * band_solve;
+    P.A = 0.5 * (P.A + P.A.transpose()).eval();
+    P.q = q_flank;
+    P.lambda = lever.head(nf);
+  }
+  return P;
+}
+
+/// The parts in series with the body: the circular spline's block on the flanks and each tooth pair's own compliance
+/// on the diagonal.
+void ContactAnalyser::add_series(ContactProblem& P, const Eigen::MatrixXd& A_cs) const {
+  P.A.topLeftCorner(nf_, nf_) += A_cs;
+  for (Eigen::Index i = 0; i < nf_; ++i) P.A(i, i) += n_teeth_ * out_.flanks[i].compliance_m_per_N;
 }
 
 /// The secant of the approach between the preload p and x; where the two are too close for a difference quotient to
@@ -550,7 +608,8 @@ Solution ContactAnalyser::solve_step(const Problem& base, Eigen::Index n_fl, dou
   constexpr double kConverged = 1e-4, kAcceptable = 1e-2;  // of the largest preload's approach
   Problem Pb = base;
   const double p_ref = std::max(p0_.maxCoeff(), 1.0), approach_ref_m = approach(p_ref);
-  for (Eigen::Index k = 0; k < nb_; ++k) bearing_c_[k] = secant(p0_[k], p0_[k], p_ref);  // the tangent at the preload
+  if (!secants_from_last_)  // else the last solve's secants: a nearby state's (the ratcheting ramp's rounds)
+    for (Eigen::Index k = 0; k < nb_; ++k) bearing_c_[k] = secant(p0_[k], p0_[k], p_ref);  // the tangent at the preload
   Solution s, best;
   double best_residual = std::numeric_limits<double>::infinity();
   Eigen::Index worst_station = 0;
@@ -849,61 +908,243 @@ void ContactAnalyser::measure_zone_edge_teeth() {
       s ? s->twist_rad : std::numeric_limits<double>::infinity();  // nothing else carries it
 }
 
-std::optional<ContactSolution> ContactAnalyser::solve_with_flanks(std::vector<Eigen::Index> keep, double T) {
+std::optional<ContactSolution> ContactAnalyser::solve_with_flanks(const ContactProblem& P,
+                                                                  const Eigen::VectorXd& moments,
+                                                                  std::vector<Eigen::Index> keep, double T,
+                                                                  const Eigen::VectorXd* warm) {
   const auto kept_flanks = static_cast<Eigen::Index>(keep.size());
   if (kept_flanks == 0) return std::nullopt;
-  for (Eigen::Index k = nf_; k < P_.q.size(); ++k) keep.push_back(k);
+  for (Eigen::Index k = nf_; k < P.q.size(); ++k) keep.push_back(k);
   ContactProblem Pr;
-  Pr.A = P_.A(keep, keep);
-  Pr.q = P_.q(keep);
-  Pr.lambda = P_.lambda(keep);
+  Pr.A = P.A(keep, keep);
+  Pr.q = P.q(keep);
+  Pr.lambda = P.lambda(keep);
   ContactSolution s;
   try {
-    s = solve_torque(Pr, kept_flanks, lambda_(keep), T, nullptr).first;
+    const Eigen::VectorXd start = warm ? Eigen::VectorXd((*warm)(keep)) : Eigen::VectorXd();
+    s = solve_torque(Pr, kept_flanks, moments(keep), T, warm ? &start : nullptr).first;
   } catch (const InputError&) {
     return std::nullopt;
   }
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(P_.q.size());
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(P.q.size());
   x(keep) = s.force_N;
   s.force_N = x;
   return s;
 }
 
-/// The ramp past rated torque to the ratcheting torque (contact/ratcheting.hpp): with only the teeth that still
-/// overlap taking part, the problem solved as at the curve's steps; each tooth's overlap is its overlap at rest, less
-/// the rim's inward and the ring's outward motion at its tip (both from the change of the loads since rest: the
-/// flanks' forces and the generator's stations'). After the split, like the zone edges' re-solve.
+/// The blocks the ramp's climbing turns: the body's coefficients over the flanks' normal and tangential patterns and
+/// the stations, the rim observers' rows against them, the circular spline's (normal, then tangential) and its tip
+/// observers' rows; each flank as it closes at rest, and its tooth's centre line.
+ContactAnalyser::ClimbBlocks ContactAnalyser::climb_blocks() const {
+  const Eigen::Index nf = nf_, n_obs = no_ + nr_;
+  std::vector<Eigen::Index> cols, ratchet;
+  for (Eigen::Index i = 0; i < 2 * nf + nb_; ++i) cols.push_back(n_obs + i);  // normal, tangential, stations
+  for (Eigen::Index i = 0; i < nr_; ++i) ratchet.push_back(no_ + i);
+  ClimbBlocks b;
+  b.body = influence_.A(cols, cols);
+  b.rim = influence_.A(ratchet, cols);
+  b.lever = influence_.lever(cols);
+  b.cs = Eigen::MatrixXd::Zero(2 * nf, 2 * nf);
+  b.ring = Eigen::MatrixXd::Zero(nr_, 2 * nf);
+  if (opt_.series.circular_spline) {
+    std::vector<FlankPattern> all = cs_patterns_;
+    all.insert(all.end(), cs_tangential_.begin(), cs_tangential_.end());
+    all.insert(all.end(), ratchet_ring_.begin(), ratchet_ring_.end());
+    const Eigen::MatrixXd A = opt_.series.circular_spline(all).A;
+    b.cs = A.topLeftCorner(2 * nf, 2 * nf);
+    b.ring = A.bottomLeftCorner(nr_, 2 * nf);
+  }
+  for (const FlankContact& f : out_.flanks) {
+    const Slice& sl = slices_[f.slice];
+    b.rest.push_back(closed_flank(sl.model, f.phi_rad, 0.0, f.flank));
+    b.centre_line.push_back(Eigen::Rotation2Dd(place_tooth(sl.curve, f.phi_rad, 0.0).angle_rad) *
+                            Eigen::Vector2d(1.0, 0.0));
+  }
+  return b;
+}
+
+namespace {
+
+/// The rows of B over (normal patterns, tangential patterns, the rest) turned: row i of the flanks is cos β_i times its
+/// normal row plus sin β_i times its tangential row; the rest (the stations) as they are.
+Eigen::MatrixXd turned_rows(const Eigen::MatrixXd& B, const Eigen::VectorXd& c, const Eigen::VectorXd& s) {
+  const Eigen::Index nf = c.size(), rest = B.rows() - 2 * nf;
+  Eigen::MatrixXd out(nf + rest, B.cols());
+  out.topRows(nf) = c.asDiagonal() * B.topRows(nf) + s.asDiagonal() * B.middleRows(nf, nf);
+  out.bottomRows(rest) = B.bottomRows(rest);
+  return out;
+}
+
+}  // namespace
+
+ContactAnalyser::ClimbedProblem ContactAnalyser::climbed_problem(const ClimbBlocks& b, const Eigen::VectorXd& beta,
+                                                                 const Eigen::VectorXd& dq,
+                                                                 const Eigen::VectorXd& lever_scale) const {
+  ClimbedProblem c;
+  c.cos = beta.array().cos();
+  c.sin = beta.array().sin();
+  const Eigen::MatrixXd half = turned_rows(b.body, c.cos, c.sin);
+  Eigen::MatrixXd A_body = turned_rows(half.transpose(), c.cos, c.sin);
+  A_body = 0.5 * (A_body + A_body.transpose()).eval();
+  c.moments.resize(nf_ + nb_);
+  c.moments << b.lever.head(nf_).cwiseProduct(lever_scale), b.lever.tail(nb_);
+  const Eigen::VectorXd q = Eigen::Map<const Eigen::VectorXd>(q_flank_.data(), nf_) + dq;
+  c.P = body_problem(A_body, q, c.moments, c.band_solve);
+  add_series(c.P, turned_rows(turned_rows(b.cs, c.cos, c.sin).transpose(), c.cos, c.sin));
+  return c;
+}
+
+/// The loads dx (flanks, then stations) as parts along the blocks' columns: each flank's along its normal and its
+/// tangential pattern, the stations' as they are.
+Eigen::VectorXd ContactAnalyser::ClimbedProblem::parts(const Eigen::VectorXd& dx) const {
+  const Eigen::Index nf = cos.size(), rest = dx.size() - nf;
+  Eigen::VectorXd p(2 * nf + rest);
+  p << cos.cwiseProduct(dx.head(nf)), sin.cwiseProduct(dx.head(nf)), dx.tail(rest);
+  return p;
+}
+
+/// The ramp past rated torque to the ratcheting torque (contact/ratcheting.hpp), with only the teeth that still
+/// overlap taking part and their contacts climbing. At a torque, from the teeth parted by nothing: each
+/// flank the torque closes met where a rigid turn closes it with its tooth drawn in by its parting (closed_flank); its
+/// force turned with that contact's normal, read in the frame of its load's point at rest (β); its lever the climbed
+/// contact's; its gap the rigid turn that closes it there, less the parting's first-order share, which the turned
+/// coefficients add back (so at no parting the problem is the curve's). The problem solved as at the curve's steps (the
+/// bearing's secants from the round before), the parting read again (the rim's inward and the ring's outward motion at
+/// each tooth's tip, from the change of the loads since rest) and relaxed (halved, to 1/8, while it does not settle)
+/// until it moves by less than 0.1 µm (the tips of the designed size 17 part by tens of µm in the ramp; 0.1 µm is the
+/// order of the wobble of two near-conformal flanks' nearest points from round to round). A loaded tooth whose
+/// overlap is gone is handed back at once to be released. Rounds that stall (8 without a better one, or 60 in all) go
+/// round a state they do not reach (a contact on a sharp corner has no one normal): the best of them stands, and the
+/// loaded teeth whose overlap left is within its wobble are handed back to be released. So the teeth fail to hold T
+/// only when those left cannot carry it (the cascade of releases). After the split, like the zone edges' re-solve.
 void ContactAnalyser::find_ratcheting() {
   if (nr_ == 0) return;
+  Stopwatch ramp_clock;
+  const ClimbBlocks b = climb_blocks();
+  constexpr int kRounds = 60, kStalled = 8;
+  constexpr double kSettled_m = 1e-7;  // of the parting: see above
+  long solves = 0, rounds = 0;
+  double geometry_s = 0, solve_s = 0;
+  Eigen::VectorXd warm_forces;  // the last round's: where the next solve's active set starts
   const RatchetSolve solve = [&](double T, const std::vector<bool>& carry) -> std::optional<RatchetState> {
+    ++solves;
     std::vector<Eigen::Index> keep;
     for (Eigen::Index i = 0; i < nf_; ++i)
       if (carry[ratchet_tooth_of_flank_[i]]) keep.push_back(i);
-    const std::optional<ContactSolution> s = solve_with_flanks(keep, T);
-    if (!s) return std::nullopt;  // those teeth cannot carry T
-    const Eigen::VectorXd& x = s->force_N;
-    RatchetState st;
-    st.rim_in_m = -(R_rim_ * load_change(x));
-    st.ring_out_m = R_ring_ * x.head(nf_);
-    st.overlap_m.resize(nr_);
-    st.loaded.assign(static_cast<std::size_t>(nr_), false);
+    // From no parting, every time: the state is the least parting that holds T, whatever was solved before.
+    Eigen::VectorXd parting = Eigen::VectorXd::Zero(nr_), beta = Eigen::VectorXd::Zero(nf_), dq = Eigen::VectorXd::Zero(nf_),
+                    scale = Eigen::VectorXd::Ones(nf_);
+    std::vector<std::string> where(static_cast<std::size_t>(nf_));
+    std::optional<RatchetState> last;
+    double relax = 1, last_residual = std::numeric_limits<double>::infinity(),
+           best_residual = std::numeric_limits<double>::infinity();
+    std::optional<RatchetState> best;
+    int best_round = 0;
+    for (int round = 0; round < kRounds; ++round) {
+      ++rounds;
+      Stopwatch round_clock;
+      // The contacts where the parting leaves them: the flanks this torque closes (the others only open further).
+      std::vector<Eigen::Index> past_tips;
+      for (const Eigen::Index i : keep) {
+        if (!(b.lever[i] * T > 0)) continue;
+        const Eigen::Index t = static_cast<Eigen::Index>(ratchet_tooth_of_flank_[i]);
+        const FlankContact& f = out_.flanks[i];
+        const ClosedFlank& rest = b.rest[i];
+        const ClosedFlank c = parting[t] == 0 ? rest : closed_flank(slices_[f.slice].model, f.phi_rad, 0.0, f.flank,
+                                                                    parting[t]);
+        if (!std::isfinite(c.turn_rad) || !std::isfinite(rest.turn_rad) || rest.contact.lever_arm_m == 0) {
+          if (last && last->loaded[t]) past_tips.push_back(t);
+          beta[i] = dq[i] = 0, scale[i] = 1;
+          continue;  // no rigid turn closes it there: left as at rest
+        }
+        // Its force along the climbed normal, read in the frame of the load's point at rest: the normal's turn less
+        // the turn of the radial line through the contact point as it moves.
+        const Eigen::Vector2d &n0 = rest.contact.normal, &n = c.contact.normal, &p0 = rest.contact.point_f,
+                              &p = c.contact.point_f;
+        beta[i] = std::atan2(n0.x() * n.y() - n0.y() * n.x(), n0.dot(n)) -
+                  std::atan2(p0.x() * p.y() - p0.y() * p.x(), p0.dot(p));
+        // Its moment about the axis: the pattern's lever at rest times the climbed contact's over the contact's at rest
+        // (the exact lever of the force at its climbed point); its gap: the rigid turn that closes it there at that
+        // lever, less the parting's first-order share, which the turned coefficients add back.
+        scale[i] = c.contact.lever_arm_m / rest.contact.lever_arm_m;
+        dq[i] = std::abs(scale[i] * b.lever[i]) * c.turn_rad - std::abs(b.lever[i]) * rest.turn_rad -
+                n_teeth_ * b.centre_line[i].dot(n) * parting[t];
+        where[i] = std::string(part_name(c.contact.part_f)) + " on " + part_name(c.contact.part_c);
+      }
+      if (!past_tips.empty()) {  // a loaded tooth parted so far that its tips pass: handed back to be released
+        for (const Eigen::Index t : past_tips) last->overlap_m[t] = std::min(last->overlap_m[t], 0.0);
+        return last;
+      }
+      geometry_s += round_clock.lap();
+      const ClimbedProblem cp = climbed_problem(b, beta, dq, scale);
+      secants_from_last_ = round > 0;
+      const std::optional<ContactSolution> s =
+          solve_with_flanks(cp.P, cp.moments, keep, T, warm_forces.size() ? &warm_forces : nullptr);
+      secants_from_last_ = false;
+      solve_s += round_clock.lap();
+      if (!s) return std::nullopt;  // those teeth cannot carry T
+      const Eigen::VectorXd& x = s->force_N;
+      warm_forces = x;
+      // The loads' change since rest along the turned directions: normal and tangential parts, the stations'.
+      Eigen::VectorXd dx(nf_ + nb_);
+      if (unilateral_) dx << x.head(nf_), x.tail(nb_) - p0_;
+      else dx << x, cp.band_solve * x;
+      const Eigen::VectorXd parts = cp.parts(dx);
+      RatchetState st;
+      st.rim_in_m = -(b.rim * parts);
+      st.ring_out_m = b.ring * parts.head(2 * nf_);
+      st.overlap_m.resize(nr_);
+      st.loaded.assign(static_cast<std::size_t>(nr_), false);
+      st.normal_turn_rad.assign(static_cast<std::size_t>(nr_), 0.0);
+      st.contact.assign(static_cast<std::size_t>(nr_), std::string());
+      std::vector<double> most(static_cast<std::size_t>(nr_), 0.0);
+      for (Eigen::Index t = 0; t < nr_; ++t)
+        st.overlap_m[t] = ratchet_teeth_[t].overlap_at_rest_m - st.rim_in_m[t] - st.ring_out_m[t];
+      for (Eigen::Index i = 0; i < nf_; ++i) {
+        const std::size_t t = ratchet_tooth_of_flank_[i];
+        if (!(x[i] > most[t])) continue;
+        most[t] = x[i];
+        st.loaded[t] = true;
+        st.normal_turn_rad[t] = beta[i];
+        st.contact[t] = where[i];
+      }
+      st.twist_rad = s->twist_rad;
+      const Eigen::VectorXd next = st.rim_in_m + st.ring_out_m;
+      bool gone = false;
+      for (Eigen::Index t = 0; t < nr_; ++t) gone = gone || (carry[t] && st.loaded[t] && st.overlap_m[t] <= 0);
+      const double residual = (next - parting).cwiseAbs().maxCoeff();
+      last = std::move(st);
+      if (gone || residual <= kSettled_m) return last;
+      if (residual < best_residual) best = last, best_residual = residual, best_round = round;
+      if (round - best_round >= kStalled) break;  // the rounds go round a state they do not reach
+      if (residual >= last_residual) relax = std::max(relax / 2, 1.0 / 8);
+      last_residual = residual;
+      parting += relax * (next - parting);
+    }
+    // Not settled: the rounds go round a state they do not reach (a contact on a sharp corner has no one normal).
+    // The best round stands, and the loaded teeth whose overlap left its wobble could take let go.
     for (Eigen::Index t = 0; t < nr_; ++t)
-      st.overlap_m[t] = ratchet_teeth_[t].overlap_at_rest_m - st.rim_in_m[t] - st.ring_out_m[t];
-    for (Eigen::Index i = 0; i < nf_; ++i)
-      if (x[i] > 0) st.loaded[ratchet_tooth_of_flank_[i]] = true;
-    st.twist_rad = s->twist_rad;
-    return st;
+      if (carry[t] && best->loaded[t] && best->overlap_m[t] <= best_residual)
+        best->overlap_m[t] = std::min(best->overlap_m[t], 0.0);
+    return best;
   };
   // From rated torque, which the curve carried with every flank; should the teeth not hold it with those out of
   // overlap released, the ramp starts at a thousandth of it, and a drive whose teeth do not hold even that ratchets
   // at once (0).
+  const auto said = [&] {
+    progress("contact: ratcheting ramp, " + std::to_string(solves) + " solves in " + std::to_string(rounds) +
+             " rounds of the climbing contacts, " + std::to_string(ramp_clock.lap()) + " s (the contacts' geometry " +
+             std::to_string(geometry_s) + " s, the problems " + std::to_string(solve_s) + " s)");
+  };
   for (const double from : {T_R_, 1e-3 * T_R_}) {
     try {
       out_.ratcheting = ratcheting_torque(ratchet_teeth_, solve, from, opt_.ratcheting_ceiling_Nm);
+      said();
       return;
     } catch (const InputError&) {
     }
   }
+  said();
   Ratcheting at_once;
   at_once.torque_Nm = at_once.first_release_Nm = 0;
   at_once.ceiling_Nm = opt_.ratcheting_ceiling_Nm;

@@ -87,6 +87,8 @@ Ratcheting ratcheting_torque(const std::vector<RatchetTooth>& teeth, const Ratch
         r.last_overlap_m = o;
         if (h->second.rim_in_m.size()) r.last_rim_in_m = h->second.rim_in_m[static_cast<Eigen::Index>(t)];
         if (h->second.ring_out_m.size()) r.last_ring_out_m = h->second.ring_out_m[static_cast<Eigen::Index>(t)];
+        if (t < h->second.normal_turn_rad.size()) r.last_normal_turn_rad = h->second.normal_turn_rad[t];
+        if (t < h->second.contact.size()) r.last_contact = h->second.contact[t];
       }
     }
   }

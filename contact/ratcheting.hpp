@@ -6,12 +6,19 @@
 // load passes to the teeth that still overlap, which are pushed further apart. The teeth let go from the zones' edges
 // (a few µm deep at rest) inward, until those left cannot carry the torque: the output turns through a tooth.
 //
+// The contacts climb as the teeth part: at every torque of the ramp each flank meets its partner where a rigid turn
+// closes it with its tooth drawn in by the radial parting the load has made (kinematics/backlash.hpp closed_flank),
+// so its normal turns along the involutes and round the tip corners, its force pushes harder radially and its lever
+// shortens; the loads' parting is iterated to its fixed point (a parting that keeps growing is a tooth riding over).
+//
 // Idealisations, said wherever the figure is printed:
-//  - the contact normals stay those at rest: the contact point does not climb the flank, so a flank's radial share
-//    does not grow as it nears the tip (on an involute it would: the figure is an upper bound on that count);
+//  - a flank's load on the body keeps its point of application at rest (its direction turns with the contact's
+//    normal, its gap and lever are the climbed contact's): the point moves up the flank by a fraction of the tooth's
+//    height, which changes its moment about the tooth's foot, not its radial push;
 //  - a tooth releases when its radial overlap (tip beyond the circular spline's tip circle) is gone, read at its tip on
 //    the rim and on the ring, in each section of the face on its own (the sections' bands coupled through the rim and
 //    the ring only); its own bending moves the tip along the pitch circle, not radially, and is left out;
+//  - the tooth pair's own compliance stays the one at rest's contact radii;
 //  - a tooth that has let go does not come back in during the ramp (loading is monotonic).
 #include <functional>
 #include <limits>
@@ -41,6 +48,10 @@ struct RatchetState {
   Eigen::VectorXd rim_in_m, ring_out_m;
   std::vector<bool> loaded;
   double twist_rad = 0;
+  /// Per tooth, its most loaded flank's contact: how far its normal has turned from rest (rad, the climb) and where
+  /// the teeth touch (e.g. "flank on flank", "tip corner on flank"). Empty when the solve does not climb.
+  std::vector<double> normal_turn_rad;
+  std::vector<std::string> contact;
 };
 using RatchetSolve = std::function<std::optional<RatchetState>(double torque_Nm, const std::vector<bool>& can_carry)>;
 
@@ -58,6 +69,8 @@ struct Ratcheting {
   int last_tooth = -1, last_slice = 0;
   double last_phi_rad = 0, last_overlap_m = 0, twist_below_rad = 0;
   double last_rim_in_m = 0, last_ring_out_m = 0;  ///< that tooth's tip parted by the rim and by the ring
+  double last_normal_turn_rad = 0;  ///< how far that tooth's contact normal has turned from rest as it climbed
+  std::string last_contact;         ///< where its teeth touch then (empty: not climbed)
 };
 
 /// The teeth that can carry T: all those engaged at rest, then, round by round, those whose overlap under load is

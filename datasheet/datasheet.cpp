@@ -102,8 +102,9 @@ void add_ratcheting_figure(Datasheet& d, const DatasheetInputs& in) {
   const std::string how =
       "generator locked, torque raised past rated until the teeth still overlapping the circular spline's tip circle "
       "cannot carry it; each tooth lets go (in each section of the face on its own) when the rim's inward and the "
-      "ring's outward give under the flanks' radial forces take its overlap; contact normals as at rest (the contact "
-      "does not climb the flank: an upper bound on that count), a released tooth stays out";
+      "ring's outward give under the flanks' radial forces take its overlap; the contacts climb as the teeth part (each "
+      "flank closed where the parting leaves it, its force turned with the contact's normal, the parting iterated to "
+      "its fixed point), each load kept at its point of application at rest, a released tooth stays out";
   const double deg = 180 / std::numbers::pi;
   if (!std::isfinite(r.torque_Nm)) {  // a lower bound: beyond the search
     d.figures.push_back(computed(name, label, "N·m", r.torque_Nm,
@@ -125,6 +126,9 @@ void add_ratcheting_figure(Datasheet& d, const DatasheetInputs& in) {
                        fmt("%.2f", r.last_overlap_m * 1e6) + " um of overlap left, its tip parted " +
                        fmt("%.1f", r.last_rim_in_m * 1e6) + " um by the rim and " +
                        fmt("%.1f", r.last_ring_out_m * 1e6) + " um by the ring";
+  if (!r.last_contact.empty())
+    method += ", touching " + r.last_contact + " with its normal turned " + fmt("%.1f", r.last_normal_turn_rad * deg) +
+              " deg from rest";
   d.figures.push_back(computed(name, label, "N·m", r.torque_Nm, method));
 }
 

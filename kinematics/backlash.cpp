@@ -376,16 +376,20 @@ PairClearance pair_clearance(const BacklashModel& m, double phi, double phi0) {
   return p;
 }
 
-double closing_angle_rad(const BacklashModel& m, double phi, double phi0, Flank flank) {
+ClosedFlank closed_flank(const BacklashModel& m, double phi, double phi0, Flank flank, double drawn_in_m) {
   // The space is chosen once, at the start: a closing turn (≪ the circular pitch) does not change which space the
   // tooth faces.
   const auto [sigma, j] = facing_space(m, phi, place_tooth(m.curve, phi, phi0));
   (void)j;
   const double sign = flank == Flank::Ccw ? 1.0 : -1.0;
-  auto f = [&](double delta) { return one_flank(m, place_tooth(m.curve, phi, phi0 + sign * delta), sigma, flank); };
+  auto f = [&](double delta) {
+    ToothPlacement t = place_tooth(m.curve, phi, phi0 + sign * delta);
+    t.offset_m -= drawn_in_m * (rot(t.angle_rad) * Eigen::Vector2d(1.0, 0.0));  // along the tooth's centre line
+    return one_flank(m, t, sigma, flank);
+  };
   const FlankClearance c0 = f(0.0);
   const double j0 = c0.clearance_m;
-  if (j0 == 0.0) return 0.0;
+  if (j0 == 0.0) return {0.0, c0};
   // Rate at which a turn closes the flank: sign·lever (the cw lever is negative); bounded below so that a flank whose
   // nearest parts are tip lands (radial normal) still brackets.
   const double rate = std::max(sign * c0.lever_arm_m, 0.2 * m.curve.mean_radius_m);
@@ -394,7 +398,8 @@ double closing_angle_rad(const BacklashModel& m, double phi, double phi0, Flank 
   double a = 0.0, fa = j0, step = 1.2 * std::abs(j0) / rate, b = dir * step, fb = f(b).clearance_m;
   int expansions = 0;
   while (fb * fa > 0) {
-    if (++expansions > 40 || std::abs(b) > 0.1) return j0 > 0 ? std::numeric_limits<double>::infinity() : j0 / rate;
+    if (++expansions > 40 || std::abs(b) > 0.1)
+      return {j0 > 0 ? std::numeric_limits<double>::infinity() : j0 / rate, c0};
     a = b;
     fa = fb;
     step *= 2.0;
@@ -404,7 +409,7 @@ double closing_angle_rad(const BacklashModel& m, double phi, double phi0, Flank 
   int side = 0;
   for (int it = 0; it < 100 && std::abs(b - a) > 1e-13; ++it) {
     const double c = (a * fb - b * fa) / (fb - fa), fc = f(c).clearance_m;
-    if (fc == 0.0) return c;
+    if (fc == 0.0) return {c, c0};
     if (fc * fb < 0) {
       a = b;
       fa = fb;
@@ -416,7 +421,11 @@ double closing_angle_rad(const BacklashModel& m, double phi, double phi0, Flank 
     fb = fc;
     if (fc * fa > 0 && side != -1) side = -1;
   }
-  return std::abs(fa) < std::abs(fb) ? a : b;
+  return {std::abs(fa) < std::abs(fb) ? a : b, c0};
+}
+
+double closing_angle_rad(const BacklashModel& m, double phi, double phi0, Flank flank) {
+  return closed_flank(m, phi, phi0, flank).turn_rad;
 }
 
 std::vector<PairClearance> pair_clearances(const BacklashModel& m, double wg, double phi0, bool engaged_only) {

@@ -114,6 +114,20 @@ enum class Flank { Ccw, Cw };
 /// 0.1 rad closes it.
 double closing_angle_rad(const BacklashModel& model, double phi_rad, double phi0_rad, Flank flank);
 
+/// The flank where a rigid turn closes it, its tooth first drawn in along its centre line by `drawn_in_m` (the rim's
+/// inward and the circular spline's outward give under load, which a turn does not make; 0: as placed): the turn (as
+/// closing_angle_rad, +infinity when none below 0.1 rad closes it) and the clearance drawn in, before the turn: its
+/// points, normal and lever are the contact's where the turn closes it, to first order in the turn (at the closed
+/// position itself the nearest points of two near-conjugate flanks are ill-determined, and at zero distance the
+/// normal is not defined). As the teeth part radially the contact climbs toward the tips: its normal turns (along the
+/// involutes, round a tip corner) and its lever and radial share change with it.
+struct ClosedFlank {
+  double turn_rad = 0;
+  FlankClearance contact;
+};
+ClosedFlank closed_flank(const BacklashModel& model, double phi_rad, double phi0_rad, Flank flank,
+                         double drawn_in_m = 0);
+
 /// Counts of pairs near contact, per flank: within 1, 5 and 10 µm.
 inline constexpr double kNearContact_m[3] = {1e-6, 5e-6, 10e-6};
 

@@ -428,3 +428,82 @@ TEST(Distance, RoundedTipsAgainstBruteForcePolylines) {
     EXPECT_NE(std::string(e.what()).find("gear.tip_rounding_flexspline_mm"), std::string::npos) << e.what();
   }
 }
+
+namespace {
+
+/// A rigid flexspline whose centre sits at (a, 0): the neutral circle translated, w = a·cos φ, v = −a·sin φ (each
+/// tooth placed on it keeps its own angle: γ = φ).
+sw::BacklashModel translated_rigid_model(const sw::GearParams& g, double a) {
+  sw::NeutralCurve c = sw::cam_neutral_curve(0.9 * sw::gear_radii(g).root_f, 0.0);
+  c.w.a = {0.0, a};
+  c.w.b = {0.0, 0.0};
+  c.v.a = {0.0, 0.0};
+  c.v.b = {0.0, -a};
+  c.mu.a = {0.0};
+  c.mu.b = {0.0};
+  return sw::make_backlash_model(g, c);
+}
+
+}  // namespace
+
+// A tooth drawn in along its centre line by s, closed by a rigid turn: on a rigid internal pair the tooth on the line
+// of centres drawn in is the whole gear's centre moved in, so while both contacts lie inside the flanks the contact's
+// normal is the line of action at the centre distance a − s, inclined by α_w to the pitch tangent with
+// cos α_w = (r_bc − r_bf)/(a − s): the climb pulls the teeth apart and turns the normal (on an internal involute pair
+// toward the tangent). Where the turn closes it the flank touches (1e-12 m), and at s = 0 it is closing_angle_rad.
+TEST(ClosedFlank, DrawnInOnARigidPairIsTheLineOfActionAtTheShorterCentreDistance) {
+  sw::GearParams g;  // the conventional internal pair of rigid_sets()
+  g.teeth_flexspline = 60;
+  g.teeth_circular = 72;
+  g.profile_shift_flexspline = 0.3;
+  g.profile_shift_circular = 0.5;
+  g.cutter_teeth = 30;
+  const double a = 1.244e-3;
+  const sw::BacklashModel m = translated_rigid_model(g, a);
+  const double rbf = m.radii.base_f, rbc = m.radii.base_c;
+  EXPECT_EQ(sw::closed_flank(m, 0.0, 0.0, sw::Flank::Ccw).turn_rad, sw::closing_angle_rad(m, 0.0, 0.0, sw::Flank::Ccw));
+  int inside = 0;
+  for (double s = 0; s <= 40e-6; s += 5e-6) {
+    const sw::ClosedFlank c = sw::closed_flank(m, 0.0, 0.0, sw::Flank::Ccw, s);
+    ASSERT_TRUE(std::isfinite(c.turn_rad)) << s;
+    // Closed by the turn: the tooth drawn in and turned touches.
+    sw::ToothPlacement t;
+    t.angle_rad = c.turn_rad;
+    t.offset_m = Eigen::Rotation2Dd(c.turn_rad) * Eigen::Vector2d(a - s, 0.0);
+    EXPECT_NEAR(sw::tooth_clearance(m, t, 0.0).ccw.clearance_m, 0.0, 1e-12) << s;
+    const double rc = c.contact.point_c.norm();
+    if (!(c.contact.roll_f > m.flank_f.u_min + 1e-9 && c.contact.roll_f < m.flank_f.u_max - 1e-9 &&
+          rc > m.radii.tip_c + 1e-12 && rc < m.radii.form_c - 1e-12))
+      continue;
+    ++inside;
+    const double aw = std::acos((rbc - rbf) / (a - s));
+    // The pitch tangent at the line of centres (the contact as drawn in, before the turn).
+    EXPECT_NEAR(std::abs(c.contact.normal.dot(Eigen::Vector2d(0, 1))), std::cos(aw), 1e-6) << "s = " << s * 1e6 << " µm";
+  }
+  EXPECT_GE(inside, 5);
+}
+
+// What the loaded contact's ratcheting ramp takes from the climbed contact: the gap a rigid turn closes, lever × turn,
+// grows with the drawn-in length at the rate of the normal's share along the tooth's centre line (the first-order
+// term the ramp leaves to the body's coefficients). Central differences on the seed's teeth on a cam, at a mid-zone
+// and a deep tooth, each flank: within 1 % of the rate (the lever's own change with the climb, times the small turn,
+// and the turn's second order; a 1 % slip of the rate moves a gap by 0.4 nm per 100 nm of parting).
+TEST(ClosedFlank, TheClosedGapGrowsAtTheNormalsShareAlongTheCentreLine) {
+  const sw::BacklashModel m = cam_model();
+  for (const double deg : {0.0, 25.0})
+    for (const sw::Flank side : {sw::Flank::Ccw, sw::Flank::Cw})
+      for (const double s : {0.0, 10e-6, 30e-6}) {
+        const double phi = deg * kDeg, h = 1e-8;
+        const auto gap = [&](double d) {
+          const sw::ClosedFlank c = sw::closed_flank(m, phi, 0.0, side, d);
+          return std::abs(c.contact.lever_arm_m) * c.turn_rad;
+        };
+        const sw::ClosedFlank c = sw::closed_flank(m, phi, 0.0, side, s);
+        ASSERT_TRUE(std::isfinite(c.turn_rad));
+        const double gamma = sw::place_tooth(m.curve, phi, 0.0).angle_rad;
+        const double rate = c.contact.normal.dot(Eigen::Vector2d(std::cos(gamma), std::sin(gamma)));
+        const double fd = (gap(s + h) - gap(s - h)) / (2 * h);
+        EXPECT_NEAR(fd, rate, 1e-2 * std::abs(rate)) << deg << " deg, s = " << s * 1e6 << " µm";
+        EXPECT_GT(rate, 0.0);  // drawing the tooth in opens the flank
+      }
+}

@@ -33,8 +33,10 @@ std::string number(const char* format, double v) {
   return buf;
 }
 
-/// A figure of the sheet as "value (published)": "-" when not computed, "inf" when beyond the search.
+/// A figure of the sheet as "value (published)": "-" when not computed or not on the sheet (the efficiencies at the
+/// other conditions come only with a lubricant), "inf" when beyond the search.
 std::string figure(const nlohmann::json& f, const char* name, const char* format, double scale = 1) {
+  if (!f.contains(name)) return "-";
   const auto& x = f[name];
   std::string out = x["value"].is_null() ? (x["computed"].get<bool>() ? "inf" : "-")
                                          : number(format, x["value"].get<double>() * scale);

@@ -150,11 +150,13 @@ private:
             Eigen::Vector2d(model_->radii.tip_f, 0.0)};
   }
   /// The change of the body's loads since rest for contact forces x (flanks, then stations when unilateral): the
-  /// flanks' forces and the stations' change from the generator's state, or the band's reactions when it is held.
-  Eigen::VectorXd load_change(const Eigen::VectorXd& x) const {
+  /// flanks' forces and the stations' change from the generator's state, or the band's reactions (band_solve per
+  /// flank force: the curve's problem's, or the ramp's turned one) when it is held.
+  Eigen::VectorXd load_change(const Eigen::VectorXd& x) const { return load_change(x, band_solve_); }
+  Eigen::VectorXd load_change(const Eigen::VectorXd& x, const Eigen::MatrixXd& band_solve) const {
     Eigen::VectorXd dx(nf_ + nb_);
     if (unilateral_) dx << x.head(nf_), x.tail(nb_) - p0_;
-    else dx << x, band_solve_ * x;
+    else dx << x, band_solve * x;
     return dx;
   }
   /// The problem at torque T with only the flanks `flanks` (and every station) taking part; empty when they cannot
@@ -250,7 +252,6 @@ private:
   std::vector<FlankPattern> ratchet_rim_, ratchet_ring_;
   std::vector<std::size_t> ratchet_tooth_of_flank_;
   Eigen::Index nr_ = 0;
-  Eigen::MatrixXd R_rim_, R_ring_;
   /// The ramp's climbing contacts: each flank's force turned in the transverse plane by β from its direction at rest
   /// (cos β along its normal pattern, sin β along its tangential one); the blocks that turn with it, over the normal
   /// patterns, the tangential ones and the stations (2 nf + nb).
@@ -491,17 +492,15 @@ void ContactAnalyser::compute_influence() {
   all.insert(all.end(), patterns_.begin(), patterns_.end());
   all.insert(all.end(), tangential_.begin(), tangential_.end());
   influence_ = body_.influence(all, n_slices_);
-  // Columns: observers (the zone edges', the ratcheting ramp's), flanks, tangential patterns (with friction), stations.
+  // Columns: observers (the zone edges', the ratcheting ramp's), flanks, tangential patterns (with friction or the ramp), stations.
   const Eigen::Index nt = static_cast<Eigen::Index>(tangential_.size()), n_obs = no_ + nr_;
-  std::vector<Eigen::Index> body, obs, ratchet, tan;
+  std::vector<Eigen::Index> body, obs, tan;
   for (Eigen::Index i = 0; i < no_; ++i) obs.push_back(i);
-  for (Eigen::Index i = 0; i < nr_; ++i) ratchet.push_back(no_ + i);
   for (Eigen::Index i = 0; i < nf_; ++i) body.push_back(n_obs + i);
   for (Eigen::Index i = 0; i < nt; ++i) tan.push_back(n_obs + nf_ + i);
   for (Eigen::Index i = 0; i < nb_; ++i) body.push_back(n_obs + nf_ + nt + i);
   A_body_ = influence_.A(body, body);
   R_edge_ = influence_.A(obs, body);  // radial motion at the edge teeth's tips
-  R_rim_ = influence_.A(ratchet, body);
   A_tn_ = influence_.A(tan, body);
   A_tt_ = influence_.A(tan, tan);
   out_.influence_s = clock_.lap();
@@ -525,13 +524,6 @@ void ContactAnalyser::set_up_problem() {
   A_noseries_ = P_.A;
   cs_.A = Eigen::MatrixXd::Zero(nf, nf);
   if (opt_.series.circular_spline) cs_ = opt_.series.circular_spline(cs_patterns_);
-  // The ring's radial motion at the ratcheting teeth's tips under the flanks' forces: the cross block of the same ring.
-  R_ring_ = Eigen::MatrixXd::Zero(nr_, nf);
-  if (nr_ > 0 && opt_.series.circular_spline) {
-    std::vector<FlankPattern> with_tips = cs_patterns_;
-    with_tips.insert(with_tips.end(), ratchet_ring_.begin(), ratchet_ring_.end());
-    R_ring_ = opt_.series.circular_spline(with_tips).A.bottomLeftCorner(nr_, nf);
-  }
   add_series(P_, cs_.A);
   out_.unknowns = static_cast<int>(P_.q.size());
   out_.problem = P_;
@@ -1086,10 +1078,7 @@ void ContactAnalyser::find_ratcheting() {
       const Eigen::VectorXd& x = s->force_N;
       warm_forces = x;
       // The loads' change since rest along the turned directions: normal and tangential parts, the stations'.
-      Eigen::VectorXd dx(nf_ + nb_);
-      if (unilateral_) dx << x.head(nf_), x.tail(nb_) - p0_;
-      else dx << x, cp.band_solve * x;
-      const Eigen::VectorXd parts = cp.parts(dx);
+      const Eigen::VectorXd parts = cp.parts(load_change(x, cp.band_solve));
       RatchetState st;
       st.rim_in_m = -(b.rim * parts);
       st.ring_out_m = b.ring * parts.head(2 * nf_);

@@ -24,35 +24,54 @@
 namespace sw {
 namespace {
 
-/// A body that only twists: compliance C (rad/N·m) about the axis; the generator held, with no stations.
-class TwistingBody : public ContactBody {
+/// What a closed-form body reads of each pattern: its lever (minus the moment about the axis of its load on the
+/// flexspline, what the partner takes back: contact/contact_body.hpp) and its outward radial force, over its stations.
+struct PatternResultants {
+  Eigen::VectorXd lever, radial;
+};
+PatternResultants resultants(const std::vector<FlankPattern>& patterns) {
+  const Eigen::Index n = static_cast<Eigen::Index>(patterns.size());
+  PatternResultants r{Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n)};
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const FlankPattern& p = patterns[static_cast<std::size_t>(i)];
+    for (const double s : p.stations_rad) {
+      const Eigen::Vector2d e(std::cos(s), std::sin(s)), at = p.contact_radius_m * e;
+      const Eigen::Vector2d dir = Eigen::Rotation2Dd(s - p.stations_rad[0]) * p.force_dir;
+      r.lever[i] -= p.scale * (at.x() * dir.y() - at.y() * dir.x());
+      r.radial[i] += p.scale * dir.dot(e);
+    }
+  }
+  return r;
+}
+
+/// A closed-form body with the generator held and no stations: its coefficients from the patterns' resultants.
+class HeldBody : public ContactBody {
 public:
-  explicit TwistingBody(double compliance_rad_per_Nm) : C_(compliance_rad_per_Nm) {}
-  std::string solver() const override { return "twisting body"; }
   const BodyStations& stations() const override { return stations_; }
   BodyInfluence influence(const std::vector<FlankPattern>& patterns, int) const override {
-    const Eigen::Index n = static_cast<Eigen::Index>(patterns.size());
+    const PatternResultants r = resultants(patterns);
     BodyInfluence out;
-    out.lever.resize(n);
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const FlankPattern& p = patterns[static_cast<std::size_t>(i)];
-      double moment = 0;  // of the pattern's load on the flexspline about the axis, at each of its stations
-      for (const double s : p.stations_rad) {
-        const Eigen::Vector2d at = p.contact_radius_m * Eigen::Vector2d(std::cos(s), std::sin(s));
-        const Eigen::Vector2d dir = Eigen::Rotation2Dd(s - p.stations_rad[0]) * p.force_dir;
-        moment += p.scale * (at.x() * dir.y() - at.y() * dir.x());
-      }
-      out.lever[i] = -moment;  // the lever: what the partner takes back (contact/contact_body.hpp)
-    }
-    out.A = C_ * out.lever * out.lever.transpose();
+    out.lever = r.lever;
+    out.A = coefficients(r);
     out.check = [lever = out.lever](const Eigen::VectorXd& x) { return BodyCheck{0.0, lever.dot(x)}; };
     return out;
   }
   std::vector<NeutralCurveSamples> generator_curves_at(const std::vector<double>&) const override { return {}; }
 
 private:
-  double C_;
+  virtual Eigen::MatrixXd coefficients(const PatternResultants& r) const = 0;
   BodyStations stations_;
+};
+
+/// A body that only twists: compliance C (rad/N·m) about the axis, A = C·λλᵀ.
+class TwistingBody : public HeldBody {
+public:
+  explicit TwistingBody(double compliance_rad_per_Nm) : C_(compliance_rad_per_Nm) {}
+  std::string solver() const override { return "twisting body"; }
+
+private:
+  Eigen::MatrixXd coefficients(const PatternResultants& r) const override { return C_ * r.lever * r.lever.transpose(); }
+  double C_;
 };
 
 /// ψ at flank torque T: the breakpoints walked in order.
@@ -126,39 +145,17 @@ TEST(DriveClosedForm, TwistingBodyWithTeethInSeriesAndPlayToRoundOff) {
 
 /// Rigid teeth on a ring that only shrinks, as a whole: its radial stiffness K against the patterns' total outward
 /// radial force, every point moving in by the same u = −Σρ_j x_j / K (ρ_j a pattern's outward radial force per unit),
-/// so A = ρρᵀ/K; no twist of its own. The generator held, with no stations.
-class ShrinkingRingBody : public ContactBody {
+/// so A = ρρᵀ/K; no twist of its own.
+class ShrinkingRingBody : public HeldBody {
 public:
   explicit ShrinkingRingBody(double K_N_per_m) : K_(K_N_per_m) {}
   std::string solver() const override { return "shrinking ring"; }
-  const BodyStations& stations() const override { return stations_; }
-  BodyInfluence influence(const std::vector<FlankPattern>& patterns, int) const override {
-    const Eigen::Index n = static_cast<Eigen::Index>(patterns.size());
-    BodyInfluence out;
-    out.lever.resize(n);
-    Eigen::VectorXd rho(n);
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const FlankPattern& p = patterns[static_cast<std::size_t>(i)];
-      double moment = 0, radial = 0;
-      for (const double s : p.stations_rad) {
-        const Eigen::Vector2d e(std::cos(s), std::sin(s));
-        const Eigen::Vector2d dir = Eigen::Rotation2Dd(s - p.stations_rad[0]) * p.force_dir;
-        const Eigen::Vector2d at = p.contact_radius_m * e;
-        moment += p.scale * (at.x() * dir.y() - at.y() * dir.x());
-        radial += p.scale * dir.dot(e);
-      }
-      out.lever[i] = -moment;
-      rho[i] = radial;
-    }
-    out.A = rho * rho.transpose() / K_;
-    out.check = [lever = out.lever](const Eigen::VectorXd& x) { return BodyCheck{0.0, lever.dot(x)}; };
-    return out;
-  }
-  std::vector<NeutralCurveSamples> generator_curves_at(const std::vector<double>&) const override { return {}; }
 
 private:
+  Eigen::MatrixXd coefficients(const PatternResultants& r) const override {
+    return r.radial * r.radial.transpose() / K_;
+  }
   double K_;
-  BodyStations stations_;
 };
 
 // The ratcheting ramp with climbing contacts against rigid teeth on a ring that shrinks as a whole (the size-17

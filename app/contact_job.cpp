@@ -148,7 +148,8 @@ void print_lost_motion_and_split(const Case& c, const ContactAnalysis& a) {
   // in twist per torque above the secant's), and then says so instead of naming a negative engagement.
   const std::string mounting = c.circular_spline ? " (" + to_string(c.circular_spline->mounting) + ")" : "";
   std::printf("  twist at rated, along the tangent there: body %.1f %% (toothed rim %.1f, wall %.1f, diaphragm %.1f, "
-              "boss %.1f), teeth %.1f %%, generator bearing %.1f %%, circular spline%s %.1f %%; the tangent's "
+              "boss %.1f), teeth %.1f %%, generator bearing %.1f %% (its balls' Hertzian contacts; its races and the "
+              "cam's plug rigid), circular spline%s %.1f %%; the tangent's "
               "intercept %.1f %% (%s)\n", 100 * a.split.body, 100 * a.split.rim, 100 * a.split.wall,
               100 * a.split.diaphragm, 100 * a.split.boss, 100 * a.split.teeth, 100 * a.split.generator,
               mounting.c_str(), 100 * a.split.circular_spline,

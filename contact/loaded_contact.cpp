@@ -274,6 +274,29 @@ private:
   ClimbBlocks climb_blocks() const;
   ClimbedProblem climbed_problem(const ClimbBlocks& b, const Eigen::VectorXd& beta, const Eigen::VectorXd& dq,
                                  const Eigen::VectorXd& lever_scale) const;
+  /// One round's contacts: each flank of `keep` that the torque T closes met with its tooth parted by `parting` (its
+  /// force's turn β, its lever's scale, its gap's move dq, the parts that touch; the others only open further and stay
+  /// as at rest), and the teeth loaded in `last` that are parted so far that no rigid turn closes them (tips passing).
+  struct Climb {
+    Eigen::VectorXd beta, dq, scale;
+    std::vector<std::string> where;
+    std::vector<Eigen::Index> past_tips;
+  };
+  Climb climb(const ClimbBlocks& b, const std::vector<Eigen::Index>& keep, double T, const Eigen::VectorXd& parting,
+              const RatchetState* last) const;
+  /// The teeth after the climbed problem's solve s: the rim in and the ring out at each tooth's tip, the overlap
+  /// left, and the flank that carries each tooth most (its normal's turn, where it touches).
+  RatchetState ratchet_state(const ClimbBlocks& b, const ClimbedProblem& cp, const ContactSolution& s,
+                             const Climb& c) const;
+  /// The ramp's counts (its progress line) and the last round's forces, where the next solve's active set starts.
+  struct RampCount {
+    long solves = 0, rounds = 0;
+    double geometry_s = 0, solve_s = 0;
+    Eigen::VectorXd warm_forces;
+  };
+  /// The ramp's solve (RatchetSolve) at T with the teeth `carry`: the climb's rounds to a settled parting.
+  std::optional<RatchetState> ratchet_solve(const ClimbBlocks& b, double T, const std::vector<bool>& carry,
+                                            RampCount& n);
   // Influence coefficients.
   bool unilateral_ = false;
   BodyInfluence influence_;
@@ -1009,121 +1032,133 @@ Eigen::VectorXd ContactAnalyser::ClimbedProblem::parts(const Eigen::VectorXd& dx
 /// round a state they do not reach (a contact on a sharp corner has no one normal): the best of them stands, and the
 /// loaded teeth whose overlap left is within its wobble are handed back to be released. So the teeth fail to hold T
 /// only when those left cannot carry it (the cascade of releases). After the split, like the zone edges' re-solve.
+ContactAnalyser::Climb ContactAnalyser::climb(const ClimbBlocks& b, const std::vector<Eigen::Index>& keep, double T,
+                                              const Eigen::VectorXd& parting, const RatchetState* last) const {
+  Climb c;
+  c.beta = c.dq = Eigen::VectorXd::Zero(nf_);
+  c.scale = Eigen::VectorXd::Ones(nf_);
+  c.where.resize(static_cast<std::size_t>(nf_));
+  for (const Eigen::Index i : keep) {
+    if (!(b.lever[i] * T > 0)) continue;
+    const Eigen::Index t = static_cast<Eigen::Index>(ratchet_tooth_of_flank_[i]);
+    const FlankContact& f = out_.flanks[i];
+    const ClosedFlank& rest = b.rest[i];
+    const ClosedFlank at = parting[t] == 0 ? rest : closed_flank(slices_[f.slice].model, f.phi_rad, 0.0, f.flank,
+                                                                 parting[t]);
+    if (!std::isfinite(at.turn_rad) || !std::isfinite(rest.turn_rad) || rest.contact.lever_arm_m == 0) {
+      if (last && last->loaded[t]) c.past_tips.push_back(t);
+      continue;  // no rigid turn closes it there: left as at rest
+    }
+    // Its force along the climbed normal, read in the frame of the load's point at rest: the normal's turn less the
+    // turn of the radial line through the contact point as it moves.
+    const Eigen::Vector2d &n0 = rest.contact.normal, &n = at.contact.normal, &p0 = rest.contact.point_f,
+                          &p = at.contact.point_f;
+    c.beta[i] = std::atan2(n0.x() * n.y() - n0.y() * n.x(), n0.dot(n)) -
+                std::atan2(p0.x() * p.y() - p0.y() * p.x(), p0.dot(p));
+    // Its moment about the axis: the pattern's lever at rest times the climbed contact's over the contact's at rest
+    // (the exact lever of the force at its climbed point); its gap: the rigid turn that closes it there at that
+    // lever, less the parting's first-order share, which the turned coefficients add back.
+    c.scale[i] = at.contact.lever_arm_m / rest.contact.lever_arm_m;
+    c.dq[i] = std::abs(c.scale[i] * b.lever[i]) * at.turn_rad - std::abs(b.lever[i]) * rest.turn_rad -
+              n_teeth_ * b.centre_line[i].dot(n) * parting[t];
+    c.where[static_cast<std::size_t>(i)] = std::string(part_name(at.contact.part_f)) + " on " +
+                                           part_name(at.contact.part_c);
+  }
+  return c;
+}
+
+RatchetState ContactAnalyser::ratchet_state(const ClimbBlocks& b, const ClimbedProblem& cp, const ContactSolution& s,
+                                            const Climb& c) const {
+  const Eigen::VectorXd& x = s.force_N;
+  // The loads' change since rest along the turned directions: normal and tangential parts, the stations'.
+  const Eigen::VectorXd parts = cp.parts(load_change(x, cp.band_solve));
+  RatchetState st;
+  st.rim_in_m = -(b.rim * parts);
+  st.ring_out_m = b.ring * parts.head(2 * nf_);
+  st.overlap_m.resize(nr_);
+  st.loaded.assign(static_cast<std::size_t>(nr_), false);
+  st.normal_turn_rad.assign(static_cast<std::size_t>(nr_), 0.0);
+  st.contact.assign(static_cast<std::size_t>(nr_), std::string());
+  std::vector<double> most(static_cast<std::size_t>(nr_), 0.0);
+  for (Eigen::Index t = 0; t < nr_; ++t)
+    st.overlap_m[t] = ratchet_teeth_[t].overlap_at_rest_m - st.rim_in_m[t] - st.ring_out_m[t];
+  for (Eigen::Index i = 0; i < nf_; ++i) {
+    const std::size_t t = ratchet_tooth_of_flank_[i];
+    if (!(x[i] > most[t])) continue;
+    most[t] = x[i];
+    st.loaded[t] = true;
+    st.normal_turn_rad[t] = c.beta[i];
+    st.contact[t] = c.where[static_cast<std::size_t>(i)];
+  }
+  st.twist_rad = s.twist_rad;
+  return st;
+}
+
+std::optional<RatchetState> ContactAnalyser::ratchet_solve(const ClimbBlocks& b, double T,
+                                                           const std::vector<bool>& carry, RampCount& n) {
+  constexpr int kRounds = 60, kStalled = 8;
+  constexpr double kSettled_m = 1e-7;  // of the parting (the ramp's comment above climb)
+  ++n.solves;
+  std::vector<Eigen::Index> keep;
+  for (Eigen::Index i = 0; i < nf_; ++i)
+    if (carry[ratchet_tooth_of_flank_[i]]) keep.push_back(i);
+  // From no parting, every time: the state is the least parting that holds T, whatever was solved before.
+  Eigen::VectorXd parting = Eigen::VectorXd::Zero(nr_);
+  std::optional<RatchetState> last, best;
+  double relax = 1, last_residual = std::numeric_limits<double>::infinity(),
+         best_residual = std::numeric_limits<double>::infinity();
+  int best_round = 0;
+  for (int round = 0; round < kRounds; ++round) {
+    ++n.rounds;
+    Stopwatch round_clock;
+    const Climb c = climb(b, keep, T, parting, last ? &*last : nullptr);
+    if (!c.past_tips.empty()) {  // a loaded tooth parted so far that its tips pass: handed back to be released
+      for (const Eigen::Index t : c.past_tips) last->overlap_m[t] = std::min(last->overlap_m[t], 0.0);
+      return last;
+    }
+    n.geometry_s += round_clock.lap();
+    const ClimbedProblem cp = climbed_problem(b, c.beta, c.dq, c.scale);
+    secants_from_last_ = round > 0;
+    const std::optional<ContactSolution> s =
+        solve_with_flanks(cp.P, cp.moments, keep, T, n.warm_forces.size() ? &n.warm_forces : nullptr);
+    secants_from_last_ = false;
+    n.solve_s += round_clock.lap();
+    if (!s) return std::nullopt;  // those teeth cannot carry T
+    n.warm_forces = s->force_N;
+    RatchetState st = ratchet_state(b, cp, *s, c);
+    const Eigen::VectorXd next = st.rim_in_m + st.ring_out_m;
+    bool gone = false;
+    for (Eigen::Index t = 0; t < nr_; ++t) gone = gone || (carry[t] && st.loaded[t] && st.overlap_m[t] <= 0);
+    const double residual = (next - parting).cwiseAbs().maxCoeff();
+    last = std::move(st);
+    if (gone || residual <= kSettled_m) return last;
+    if (residual < best_residual) best = last, best_residual = residual, best_round = round;
+    if (round - best_round >= kStalled) break;  // the rounds go round a state they do not reach
+    if (residual >= last_residual) relax = std::max(relax / 2, 1.0 / 8);
+    last_residual = residual;
+    parting += relax * (next - parting);
+  }
+  // Not settled: the rounds go round a state they do not reach (a contact on a sharp corner has no one normal).
+  // The best round stands, and the loaded teeth whose overlap left its wobble could take let go.
+  for (Eigen::Index t = 0; t < nr_; ++t)
+    if (carry[t] && best->loaded[t] && best->overlap_m[t] <= best_residual)
+      best->overlap_m[t] = std::min(best->overlap_m[t], 0.0);
+  return best;
+}
+
 void ContactAnalyser::find_ratcheting() {
   if (nr_ == 0) return;
   Stopwatch ramp_clock;
   const ClimbBlocks b = climb_blocks();
-  constexpr int kRounds = 60, kStalled = 8;
-  constexpr double kSettled_m = 1e-7;  // of the parting: see above
-  long solves = 0, rounds = 0;
-  double geometry_s = 0, solve_s = 0;
-  Eigen::VectorXd warm_forces;  // the last round's: where the next solve's active set starts
-  const RatchetSolve solve = [&](double T, const std::vector<bool>& carry) -> std::optional<RatchetState> {
-    ++solves;
-    std::vector<Eigen::Index> keep;
-    for (Eigen::Index i = 0; i < nf_; ++i)
-      if (carry[ratchet_tooth_of_flank_[i]]) keep.push_back(i);
-    // From no parting, every time: the state is the least parting that holds T, whatever was solved before.
-    Eigen::VectorXd parting = Eigen::VectorXd::Zero(nr_), beta = Eigen::VectorXd::Zero(nf_), dq = Eigen::VectorXd::Zero(nf_),
-                    scale = Eigen::VectorXd::Ones(nf_);
-    std::vector<std::string> where(static_cast<std::size_t>(nf_));
-    std::optional<RatchetState> last;
-    double relax = 1, last_residual = std::numeric_limits<double>::infinity(),
-           best_residual = std::numeric_limits<double>::infinity();
-    std::optional<RatchetState> best;
-    int best_round = 0;
-    for (int round = 0; round < kRounds; ++round) {
-      ++rounds;
-      Stopwatch round_clock;
-      // The contacts where the parting leaves them: the flanks this torque closes (the others only open further).
-      std::vector<Eigen::Index> past_tips;
-      for (const Eigen::Index i : keep) {
-        if (!(b.lever[i] * T > 0)) continue;
-        const Eigen::Index t = static_cast<Eigen::Index>(ratchet_tooth_of_flank_[i]);
-        const FlankContact& f = out_.flanks[i];
-        const ClosedFlank& rest = b.rest[i];
-        const ClosedFlank c = parting[t] == 0 ? rest : closed_flank(slices_[f.slice].model, f.phi_rad, 0.0, f.flank,
-                                                                    parting[t]);
-        if (!std::isfinite(c.turn_rad) || !std::isfinite(rest.turn_rad) || rest.contact.lever_arm_m == 0) {
-          if (last && last->loaded[t]) past_tips.push_back(t);
-          beta[i] = dq[i] = 0, scale[i] = 1;
-          continue;  // no rigid turn closes it there: left as at rest
-        }
-        // Its force along the climbed normal, read in the frame of the load's point at rest: the normal's turn less
-        // the turn of the radial line through the contact point as it moves.
-        const Eigen::Vector2d &n0 = rest.contact.normal, &n = c.contact.normal, &p0 = rest.contact.point_f,
-                              &p = c.contact.point_f;
-        beta[i] = std::atan2(n0.x() * n.y() - n0.y() * n.x(), n0.dot(n)) -
-                  std::atan2(p0.x() * p.y() - p0.y() * p.x(), p0.dot(p));
-        // Its moment about the axis: the pattern's lever at rest times the climbed contact's over the contact's at rest
-        // (the exact lever of the force at its climbed point); its gap: the rigid turn that closes it there at that
-        // lever, less the parting's first-order share, which the turned coefficients add back.
-        scale[i] = c.contact.lever_arm_m / rest.contact.lever_arm_m;
-        dq[i] = std::abs(scale[i] * b.lever[i]) * c.turn_rad - std::abs(b.lever[i]) * rest.turn_rad -
-                n_teeth_ * b.centre_line[i].dot(n) * parting[t];
-        where[i] = std::string(part_name(c.contact.part_f)) + " on " + part_name(c.contact.part_c);
-      }
-      if (!past_tips.empty()) {  // a loaded tooth parted so far that its tips pass: handed back to be released
-        for (const Eigen::Index t : past_tips) last->overlap_m[t] = std::min(last->overlap_m[t], 0.0);
-        return last;
-      }
-      geometry_s += round_clock.lap();
-      const ClimbedProblem cp = climbed_problem(b, beta, dq, scale);
-      secants_from_last_ = round > 0;
-      const std::optional<ContactSolution> s =
-          solve_with_flanks(cp.P, cp.moments, keep, T, warm_forces.size() ? &warm_forces : nullptr);
-      secants_from_last_ = false;
-      solve_s += round_clock.lap();
-      if (!s) return std::nullopt;  // those teeth cannot carry T
-      const Eigen::VectorXd& x = s->force_N;
-      warm_forces = x;
-      // The loads' change since rest along the turned directions: normal and tangential parts, the stations'.
-      const Eigen::VectorXd parts = cp.parts(load_change(x, cp.band_solve));
-      RatchetState st;
-      st.rim_in_m = -(b.rim * parts);
-      st.ring_out_m = b.ring * parts.head(2 * nf_);
-      st.overlap_m.resize(nr_);
-      st.loaded.assign(static_cast<std::size_t>(nr_), false);
-      st.normal_turn_rad.assign(static_cast<std::size_t>(nr_), 0.0);
-      st.contact.assign(static_cast<std::size_t>(nr_), std::string());
-      std::vector<double> most(static_cast<std::size_t>(nr_), 0.0);
-      for (Eigen::Index t = 0; t < nr_; ++t)
-        st.overlap_m[t] = ratchet_teeth_[t].overlap_at_rest_m - st.rim_in_m[t] - st.ring_out_m[t];
-      for (Eigen::Index i = 0; i < nf_; ++i) {
-        const std::size_t t = ratchet_tooth_of_flank_[i];
-        if (!(x[i] > most[t])) continue;
-        most[t] = x[i];
-        st.loaded[t] = true;
-        st.normal_turn_rad[t] = beta[i];
-        st.contact[t] = where[i];
-      }
-      st.twist_rad = s->twist_rad;
-      const Eigen::VectorXd next = st.rim_in_m + st.ring_out_m;
-      bool gone = false;
-      for (Eigen::Index t = 0; t < nr_; ++t) gone = gone || (carry[t] && st.loaded[t] && st.overlap_m[t] <= 0);
-      const double residual = (next - parting).cwiseAbs().maxCoeff();
-      last = std::move(st);
-      if (gone || residual <= kSettled_m) return last;
-      if (residual < best_residual) best = last, best_residual = residual, best_round = round;
-      if (round - best_round >= kStalled) break;  // the rounds go round a state they do not reach
-      if (residual >= last_residual) relax = std::max(relax / 2, 1.0 / 8);
-      last_residual = residual;
-      parting += relax * (next - parting);
-    }
-    // Not settled: the rounds go round a state they do not reach (a contact on a sharp corner has no one normal).
-    // The best round stands, and the loaded teeth whose overlap left its wobble could take let go.
-    for (Eigen::Index t = 0; t < nr_; ++t)
-      if (carry[t] && best->loaded[t] && best->overlap_m[t] <= best_residual)
-        best->overlap_m[t] = std::min(best->overlap_m[t], 0.0);
-    return best;
-  };
+  RampCount n;
+  const RatchetSolve solve = [&](double T, const std::vector<bool>& carry) { return ratchet_solve(b, T, carry, n); };
   // From rated torque, which the curve carried with every flank; should the teeth not hold it with those out of
   // overlap released, the ramp starts at a thousandth of it, and a drive whose teeth do not hold even that ratchets
   // at once (0).
   const auto said = [&] {
-    progress("contact: ratcheting ramp, " + std::to_string(solves) + " solves in " + std::to_string(rounds) +
+    progress("contact: ratcheting ramp, " + std::to_string(n.solves) + " solves in " + std::to_string(n.rounds) +
              " rounds of the climbing contacts, " + std::to_string(ramp_clock.lap()) + " s (the contacts' geometry " +
-             std::to_string(geometry_s) + " s, the problems " + std::to_string(solve_s) + " s)");
+             std::to_string(n.geometry_s) + " s, the problems " + std::to_string(n.solve_s) + " s)");
   };
   for (const double from : {T_R_, 1e-3 * T_R_}) {
     try {

@@ -1018,20 +1018,6 @@ Eigen::VectorXd ContactAnalyser::ClimbedProblem::parts(const Eigen::VectorXd& dx
   return p;
 }
 
-/// The ramp past rated torque to the ratcheting torque (contact/ratcheting.hpp), with only the teeth that still
-/// overlap taking part and their contacts climbing. At a torque, from the teeth parted by nothing: each
-/// flank the torque closes met where a rigid turn closes it with its tooth drawn in by its parting (closed_flank); its
-/// force turned with that contact's normal, read in the frame of its load's point at rest (β); its lever the climbed
-/// contact's; its gap the rigid turn that closes it there, less the parting's first-order share, which the turned
-/// coefficients add back (so at no parting the problem is the curve's). The problem solved as at the curve's steps (the
-/// bearing's secants from the round before), the parting read again (the rim's inward and the ring's outward motion at
-/// each tooth's tip, from the change of the loads since rest) and relaxed (halved, to 1/8, while it does not settle)
-/// until it moves by less than 0.1 µm (the tips of the designed size 17 part by tens of µm in the ramp; 0.1 µm is the
-/// order of the wobble of two near-conformal flanks' nearest points from round to round). A loaded tooth whose
-/// overlap is gone is handed back at once to be released. Rounds that stall (8 without a better one, or 60 in all) go
-/// round a state they do not reach (a contact on a sharp corner has no one normal): the best of them stands, and the
-/// loaded teeth whose overlap left is within its wobble are handed back to be released. So the teeth fail to hold T
-/// only when those left cannot carry it (the cascade of releases). After the split, like the zone edges' re-solve.
 ContactAnalyser::Climb ContactAnalyser::climb(const ClimbBlocks& b, const std::vector<Eigen::Index>& keep, double T,
                                               const Eigen::VectorXd& parting, const RatchetState* last) const {
   Climb c;
@@ -1094,10 +1080,24 @@ RatchetState ContactAnalyser::ratchet_state(const ClimbBlocks& b, const ClimbedP
   return st;
 }
 
+/// The ramp past rated torque to the ratcheting torque (contact/ratcheting.hpp), with only the teeth that still
+/// overlap taking part and their contacts climbing. At a torque, from the teeth parted by nothing: each
+/// flank the torque closes met where a rigid turn closes it with its tooth drawn in by its parting (closed_flank); its
+/// force turned with that contact's normal, read in the frame of its load's point at rest (β); its lever the climbed
+/// contact's; its gap the rigid turn that closes it there, less the parting's first-order share, which the turned
+/// coefficients add back (so at no parting the problem is the curve's). The problem solved as at the curve's steps (the
+/// bearing's secants from the round before), the parting read again (the rim's inward and the ring's outward motion at
+/// each tooth's tip, from the change of the loads since rest) and relaxed (halved, to 1/8, while it does not settle)
+/// until it moves by less than 0.1 µm (the tips of the designed size 17 part by tens of µm in the ramp; 0.1 µm is the
+/// order of the wobble of two near-conformal flanks' nearest points from round to round). A loaded tooth whose
+/// overlap is gone is handed back at once to be released. Rounds that stall (8 without a better one, or 60 in all) go
+/// round a state they do not reach (a contact on a sharp corner has no one normal): the best of them stands, and the
+/// loaded teeth whose overlap left is within its wobble are handed back to be released. So the teeth fail to hold T
+/// only when those left cannot carry it (the cascade of releases). After the split, like the zone edges' re-solve.
 std::optional<RatchetState> ContactAnalyser::ratchet_solve(const ClimbBlocks& b, double T,
                                                            const std::vector<bool>& carry, RampCount& n) {
   constexpr int kRounds = 60, kStalled = 8;
-  constexpr double kSettled_m = 1e-7;  // of the parting (the ramp's comment above climb)
+  constexpr double kSettled_m = 1e-7;  // of the parting: see above
   ++n.solves;
   std::vector<Eigen::Index> keep;
   for (Eigen::Index i = 0; i < nf_; ++i)

@@ -125,7 +125,7 @@ private:
     std::vector<PairClearance> rest;
   };
 
-  double tooth_angle(int k) const { return tooth_material_angle(g_, k, opt_.wg_angle_rad); }
+  double tooth_angle(int k) const { return tooth_material_angle(g_, k, opt_.contact.generator_angle_rad); }
   /// Teeth at θ and θ + π are one unknown: only the half turn around the major axis's first end is kept.
   bool on_other_half(double phi) const { return out_.half_turn_pairs && !(phi > -kPi / 2 && phi <= kPi / 2); }
   /// Within `pitches` of a change of engagement (a mesh zone's edge) among the clearances `r`.
@@ -375,7 +375,7 @@ void ContactAnalyser::read_face_sections(std::vector<NeutralCurve>& read) {
   if (!read.empty())
     for (const auto& [z, cz] : {std::pair<double, const NeutralCurve&>{nc.z_m - face / 2, read[0]}, {nc.z_m, curve_},
                                 {nc.z_m + face / 2, read[1]}})
-      out_.face_sections.push_back(section_at_rest(g_, cz, z, opt_.wg_angle_rad));
+      out_.face_sections.push_back(section_at_rest(g_, cz, z, opt_.contact.generator_angle_rad));
 }
 
 void ContactAnalyser::select_flanks() {
@@ -1289,6 +1289,11 @@ ContactAnalysis analyse_contact(const FlexsplineModel& c, const ContactBody& bod
     }
     progress("contact: the twist reaches flanks left out; again with twice the reach");
   }
+}
+
+std::string generator_share_meaning(double generator_share) {
+  return generator_share > 0 ? "its balls' Hertzian contacts; its races and the cam's plug rigid"
+                             : "rigid: the case's generator has no bearing compliance";
 }
 
 }  // namespace sw

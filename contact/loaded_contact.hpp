@@ -77,7 +77,6 @@ struct ToothDeviations {
 struct ContactOptions {
   double rated_torque_Nm = 0;  ///< the curve runs from −rated to +rated
   int steps = 20;              ///< torque steps each way (beyond the two limits at zero)
-  double wg_angle_rad = 0;     ///< where the generator is locked (0: a flexspline tooth on the major axis)
   SeriesParts series;
   /// Flanks closing more than this many body twists at rated torque (C_τ·T_R) after the first stay out; doubled until
   /// the twist at rated torque stays short of them. That check sees the rigid turn only, while the rim's elastic
@@ -92,7 +91,8 @@ struct ContactOptions {
   /// each section's from the FEM's rim as the generator leaves it there (needs the solution's generator case);
   /// 1: the face width as one contact at its centre section.
   /// friction_coefficient: Coulomb's μ on the tooth flanks; > 0 adds the load cycle's loop (ContactAnalysis::friction).
-  /// The generator's stations roll: frictionless.
+  /// The generator's stations roll: frictionless. generator_angle_rad: where the generator is locked (0: a
+  /// flexspline tooth on the major axis).
   ContactParams contact;
   /// Catalog breakpoints (T1, T2) to read K1..K3 at; 0: fitted to the curve.
   double catalog_t1_Nm = 0, catalog_t2_Nm = 0;
@@ -175,6 +175,12 @@ struct ComplianceSplit {
   /// toothed rim (the face's axial range, its whole thickness), the diaphragm and the boss; they add to `body`.
   double wall = 0, rim = 0, diaphragm = 0, boss = 0;
 };
+
+/// What the split's generator share counts, for the summary and the report. A bearing's balls (their Hertzian
+/// approach, the only generator compliance the contact problem carries) give it a share > 0, and then its races and the
+/// cam's plug are said to be rigid; a share of exactly 0 is a generator without compliance (a rigid cam, or the band
+/// held at the given forces), said so instead of naming balls that are not there.
+std::string generator_share_meaning(double generator_share);
 
 /// The rim at a section of the toothed face, as the generator leaves it (the cup's coning: the deflection grows with
 /// the distance from the diaphragm), and how the teeth sit there at rest.

@@ -221,12 +221,10 @@ void add_split_and_check_rows(Table& t, const ContactResult& a) {
   t.row("twist at rated, by part", fmt("body %.0f %%", 100 * sp.body) + parts + fmt(", teeth %.0f %%", 100 * sp.teeth) +
         fmt(", generator %.0f %%", 100 * sp.generator) + fmt(", circular spline %.0f %%", 100 * sp.circular_spline) +
         fmt(", tangent's intercept %.0f %%", 100 * sp.engagement),
-        sp.engagement >= 0
-            ? "the tangent at rated torque split by energy; its intercept is the engagement (play, pairs engaging); "
-              "the generator is its balls' Hertzian contacts, its races and the cam's plug rigid"
-            : "the tangent at rated torque split by energy; its intercept is below the origin: the curve softens "
-              "toward rated torque; the generator is its balls' Hertzian contacts, its races and the cam's plug "
-              "rigid");
+        std::string("the tangent at rated torque split by energy; ") +
+            (sp.engagement >= 0 ? "its intercept is the engagement (play, pairs engaging)"
+                                : "its intercept is below the origin: the curve softens toward rated torque") +
+            "; the generator: " + generator_share_meaning(sp.generator));
   t.row("checks", fmt("balance %.1e", a.torque_balance_error_rel),
         fmt("clamp reaction in a direct FEM solve %.6g N·m", a.fem_reaction_torque_Nm));
 }

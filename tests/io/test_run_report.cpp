@@ -111,6 +111,23 @@ TEST(RunReport, EveryFigureOfTheThreeResultsStandsInItsRow) {
   fs::remove_all(d);
 }
 
+TEST(RunReport, TheSplitSaysWhatItsGeneratorCountsOrThatItIsRigid) {
+  const fs::path d = scratch_dir("report_generator_share");
+  sw::ContactResult contact = sample_contact_result();
+  ASSERT_GT(contact.compliance_split.generator, 0);
+  const std::string balls = sw::html_escape("the generator: its balls' Hertzian contacts");
+  const std::string rigid = sw::html_escape("the generator: rigid: the case's generator has no bearing compliance");
+  std::string page = page_of(d, sample_fem_result(), nullptr, &contact);
+  EXPECT_NE(page.find(balls), std::string::npos);
+  EXPECT_EQ(page.find(rigid), std::string::npos);
+  contact.compliance_split.engagement += contact.compliance_split.generator;
+  contact.compliance_split.generator = 0;  // a rigid cam, or the band held at the given forces
+  page = page_of(d, sample_fem_result(), nullptr, &contact);
+  EXPECT_EQ(page.find(balls), std::string::npos);
+  EXPECT_NE(page.find(rigid), std::string::npos);
+  fs::remove_all(d);
+}
+
 TEST(RunReport, AHarmonicRunShowsItsSectionAndNoMissingSections) {
   const fs::path d = scratch_dir("report_fourier");
   const sw::FemResult fem = sample_fourier_result();

@@ -25,6 +25,10 @@
 namespace sw::app {
 namespace {
 
+/// Face sections from which the designed drives' K1 changes by about 1 % (12 against 16 on size 17 at ratios 30 and
+/// 100; the lost motion by 1 % and 7 %: contact/README.md, How many sections).
+constexpr int kResolvedFaceSlices = 12;
+
 
 }  // namespace
 
@@ -104,9 +108,11 @@ void print_contact_headline(const Case& c, const ContactAnalysis& a, const std::
   for (std::size_t i = 0; i < a.flanks.size(); ++i)
     if (r.flank_force_N[i] > r.flank_force_N[top]) top = i;
   const FlankContact& tf = a.flanks[top];
-  std::printf("contact %s: %d contacts (%zu flanks%s, generator: %s), %zu torque steps in %.2f s (influence %.2f s)\n",
+  std::printf("contact %s: %d contacts (%zu flanks%s, generator: %s, locked at %.4g deg from a tooth on the major "
+              "axis), %zu torque steps in %.2f s (influence %.2f s)\n",
               c.path.c_str(), a.unknowns, a.flanks.size(), a.half_turn_pairs ? " × 2 teeth" : "",
-              a.generator_support.c_str(), a.steps.size(), a.contact_s, a.influence_s);
+              a.generator_support.c_str(), c.contact.generator_angle_rad * 180 / std::numbers::pi, a.steps.size(),
+              a.contact_s, a.influence_s);
   const char* unit = a.face_slices > 1 ? "flank slices" : "flanks";
   std::printf("  twist at rated torque %.4g N·m: %.3f arcmin; %d %s in contact, largest force on one %.1f N at "
               "%.1f deg (the flexspline's %s on the circular spline's %s); teeth: %s\n", a.rated_torque_Nm,
@@ -115,6 +121,12 @@ void print_contact_headline(const Case& c, const ContactAnalysis& a, const std::
   std::printf("  three segments (%s): T1 %.3g N·m, T2 %.3g N·m, K1 %.4g, K2 %.4g, K3 %.4g N·m/rad\n",
               a.catalog.breakpoints_fitted ? "breakpoints fitted" : "the catalog's breakpoints", a.catalog.t1_Nm,
               a.catalog.t2_Nm, a.catalog.k1_Nm_per_rad, a.catalog.k2_Nm_per_rad, a.catalog.k3_Nm_per_rad);
+  // Straight teeth on the coned rim first touch at a face end along a length that grows with the load: the sections
+  // resolve the twist at rated torque from 5, the start of the curve from about 12 (contact/README.md, How many
+  // sections: on the designed size 17, 3 sections put K1 some 40 % above 16's and the lost motion 35–45 % below).
+  if (a.face_slices >= 2 && a.face_slices < kResolvedFaceSlices)
+    std::printf("  the face in %d sections: the twist at rated torque is resolved, the curve below T1 (K1, lost "
+                "motion) is not: it needs about %d ([contact] face_slices)\n", a.face_slices, kResolvedFaceSlices);
 }
 
 /// The computed curve against the catalog's law of the case's size.
@@ -148,11 +160,10 @@ void print_lost_motion_and_split(const Case& c, const ContactAnalysis& a) {
   // in twist per torque above the secant's), and then says so instead of naming a negative engagement.
   const std::string mounting = c.circular_spline ? " (" + to_string(c.circular_spline->mounting) + ")" : "";
   std::printf("  twist at rated, along the tangent there: body %.1f %% (toothed rim %.1f, wall %.1f, diaphragm %.1f, "
-              "boss %.1f), teeth %.1f %%, generator bearing %.1f %% (its balls' Hertzian contacts; its races and the "
-              "cam's plug rigid), circular spline%s %.1f %%; the tangent's "
+              "boss %.1f), teeth %.1f %%, generator %.1f %% (%s), circular spline%s %.1f %%; the tangent's "
               "intercept %.1f %% (%s)\n", 100 * a.split.body, 100 * a.split.rim, 100 * a.split.wall,
               100 * a.split.diaphragm, 100 * a.split.boss, 100 * a.split.teeth, 100 * a.split.generator,
-              mounting.c_str(), 100 * a.split.circular_spline,
+              generator_share_meaning(a.split.generator).c_str(), mounting.c_str(), 100 * a.split.circular_spline,
               100 * a.split.engagement,
               a.split.engagement >= 0 ? "engagement: play taken up and pairs closing one after another"
                                       : "below the origin: the curve softens toward rated torque");

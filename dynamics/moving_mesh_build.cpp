@@ -121,7 +121,7 @@ MovingMesh fem_coupled_mesh(const FlexsplineModel& c, const ContactBody& body, c
     ContactOptions o;
     o.rated_torque_Nm = rated_torque_Nm;
     o.steps = 1;
-    o.wg_angle_rad = contact_wg_angle_rad(g, ph.shift_rad);
+    o.contact.generator_angle_rad = contact_wg_angle_rad(g, ph.shift_rad);
     o.reach_factor = reach_factor;  // body only: the teeth come from the table, the generator bearing is not modelled
     progress("dynamics: loaded-contact problem at generator phase " + std::to_string(s + 1) + "/" +
              std::to_string(phases));

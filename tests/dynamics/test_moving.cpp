@@ -338,7 +338,7 @@ TEST(MovingMesh, SlowRunReproducesTheLoadedContactAtEveryGeneratorAngle) {
     ContactOptions o;
     o.rated_torque_Nm = 44.1;
     o.steps = 1;
-    o.wg_angle_rad = contact_wg_angle_rad(*k.c.gear, sigma);
+    o.contact.generator_angle_rad = contact_wg_angle_rad(*k.c.gear, sigma);
     o.series.tooth_pair_m_per_N = teeth;
     const ContactAnalysis a = analyse_contact(flexspline_model(k.c), k.mesh, k.system, fem_readout(k.fem), o);
     const double flank_torque = s.mesh_torque_Nm[j] - s.travel_torque_Nm[j];  // Σ λ_i x_i

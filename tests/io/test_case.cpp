@@ -140,13 +140,13 @@ TEST(CaseFile, TipRoundingIsReadInMillimetresAndChecked) {
   EXPECT_NE(big.find("gear.tip_rounding_flexspline_mm = 0.2; must be in [0, module)"), std::string::npos) << big;
 }
 
-TEST(CaseFile, ContactFaceSlicesAreAnIntegerFromOneToEight) {
+TEST(CaseFile, ContactFaceSlicesAreAnIntegerFromOneToSixteen) {
   EXPECT_EQ(parse_case(kTube, "cases/x.toml").contact.face_slices, 1);
   EXPECT_EQ(parse_case(std::string(kTube) + "[contact]\nface_slices = 3\n", "cases/x.toml").contact.face_slices, 3);
   const std::string zero = error_of(std::string(kTube) + "[contact]\nface_slices = 0\n");
-  EXPECT_NE(zero.find("x.toml:8: contact.face_slices = 0; must be in [1, 8]"), std::string::npos) << zero;
-  const std::string many = error_of(std::string(kTube) + "[contact]\nface_slices = 9\n");
-  EXPECT_NE(many.find("contact.face_slices = 9; must be in [1, 8]"), std::string::npos) << many;
+  EXPECT_NE(zero.find("x.toml:8: contact.face_slices = 0; must be in [1, 16]"), std::string::npos) << zero;
+  const std::string many = error_of(std::string(kTube) + "[contact]\nface_slices = 17\n");
+  EXPECT_NE(many.find("contact.face_slices = 17; must be in [1, 16]"), std::string::npos) << many;
   const std::string other = error_of(std::string(kTube) + "[contact]\nslices = 3\n");
   EXPECT_NE(other.find("contact.slices"), std::string::npos) << other;
 }
@@ -164,6 +164,18 @@ TEST(CaseFile, ContactFrictionCoefficientIsANumberFromZeroToOne) {
   EXPECT_NE(above.find("contact.friction_coefficient = 1.5; must be in [0, 1]"), std::string::npos) << above;
   const std::string text = error_of(std::string(kTube) + "[contact]\nfriction_coefficient = \"low\"\n");
   EXPECT_NE(text.find("contact.friction_coefficient"), std::string::npos) << text;
+}
+
+// Where the generator is locked: 0 by default (a tooth on the major axis), degrees in [0, 360), read as radians.
+TEST(CaseFile, ContactGeneratorAngleIsDegreesFromZeroToAFullTurn) {
+  EXPECT_EQ(parse_case(kTube, "cases/x.toml").contact.generator_angle_rad, 0.0);
+  EXPECT_NEAR(parse_case(std::string(kTube) + "[contact]\ngenerator_angle_deg = 0.45\n", "cases/x.toml")
+                  .contact.generator_angle_rad, 0.45 * 3.141592653589793 / 180, 1e-15);
+  const std::string full = error_of(std::string(kTube) + "[contact]\ngenerator_angle_deg = 360\n");
+  EXPECT_NE(full.find("x.toml:8: contact.generator_angle_deg = 360; must be in [0, 360)"), std::string::npos) << full;
+  EXPECT_EQ(full.find('\n'), std::string::npos) << full;
+  const std::string negative = error_of(std::string(kTube) + "[contact]\ngenerator_angle_deg = -1\n");
+  EXPECT_NE(negative.find("contact.generator_angle_deg = -1; must be in [0, 360)"), std::string::npos) << negative;
 }
 
 TEST(CaseFile, TeethNeedAGearTable) {

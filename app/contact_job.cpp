@@ -122,11 +122,12 @@ void print_contact_headline(const Case& c, const ContactAnalysis& a, const std::
               a.catalog.breakpoints_fitted ? "breakpoints fitted" : "the catalog's breakpoints", a.catalog.t1_Nm,
               a.catalog.t2_Nm, a.catalog.k1_Nm_per_rad, a.catalog.k2_Nm_per_rad, a.catalog.k3_Nm_per_rad);
   // Straight teeth on the coned rim first touch at a face end along a length that grows with the load: the sections
-  // resolve the twist at rated torque from 5, the start of the curve from about 12 (contact/README.md, How many
-  // sections: on the designed size 17, 3 sections put K1 some 40 % above 16's and the lost motion 35–45 % below).
+  // resolve the twist at rated torque from 5 (3 leave it 5–7 % low), the start of the curve from about 12
+  // (contact/README.md, How many sections: on the designed size 17, 3 sections put K1 some 40 % above 16's and the
+  // lost motion 35–45 % below).
   if (a.face_slices >= 2 && a.face_slices < kResolvedFaceSlices)
-    std::printf("  the face in %d sections: the twist at rated torque is resolved, the curve below T1 (K1, lost "
-                "motion) is not: it needs about %d ([contact] face_slices)\n", a.face_slices, kResolvedFaceSlices);
+    std::printf("  the face in %d sections: the curve below T1 (K1, lost motion) is not resolved along the face, "
+                "which takes about %d ([contact] face_slices)\n", a.face_slices, kResolvedFaceSlices);
 }
 
 /// The computed curve against the catalog's law of the case's size.

@@ -170,6 +170,7 @@ bolt_circle_outer_mm = 25
 [contact]
 face_slices = 3
 friction_coefficient = 0.05
+generator_angle_deg = 0.45
 [mesh]
 size_mm = 0.9
 wall_layers = 1

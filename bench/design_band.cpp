@@ -22,7 +22,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -95,12 +94,6 @@ int main(int argc, char** argv) {
               "| lost motion, play (arcmin) | body, teeth, generator, circular spline, engagement (%% of the twist "
               "at rated) | hysteresis loss at each mu (arcmin) | catalog targets met | seconds\n");
   using sw::kArcmin;
-  const auto text_of = [](const fs::path& f) {
-    std::ifstream in(f);
-    std::stringstream t;
-    t << in.rdbuf();
-    return t.str();
-  };
   for (const int size : sw::bench::integer_list(sizes))
     for (const int ratio : sw::bench::integer_list(ratios))
       for (const Proportions& p : sets) {
@@ -116,7 +109,7 @@ int main(int argc, char** argv) {
         }
         const double design_s =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - design_start).count();
-        const std::string design_text = text_of(design_file);
+        const std::string design_text = sw::testing::read_text(design_file);
         const int teeth_circular = sw::load_case(design_file.string()).gear->teeth_circular;
         for (const double at : positions) {
           const auto start = std::chrono::steady_clock::now();
@@ -158,10 +151,10 @@ int main(int argc, char** argv) {
             met += ok;
           };
           const double twists[] = {at_T1, at_T2, c["twist_at_rated_arcmin"].get<double>()};
-          const char* keys[] = {"twist_at_T1_rad", "twist_at_T2_rad", "twist_at_rated_rad"};
+          const nlohmann::json catalog_twists[] = {published("twist_at_T1_rad"), published("twist_at_T2_rad"),
+                                                   published("twist_at_rated_rad")};
           for (int i = 0; i < 3; ++i)
-            if (const nlohmann::json pub = published(keys[i]); !pub.is_null())
-              target(std::abs(twists[i] / pub.get<double>() - 1) <= 0.25);
+            if (!catalog_twists[i].is_null()) target(std::abs(twists[i] / catalog_twists[i].get<double>() - 1) <= 0.25);
           const bool stated = ratio >= 50;  // the catalog's lost motion and hysteresis figures
           if (stated) target(c["lost_motion_arcmin"].get<double>() < 1);
           std::string loops;
@@ -185,9 +178,8 @@ int main(int argc, char** argv) {
           const double seconds =
               design_s + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
           std::printf("%s | %s, %s, %s | %.2f %.2f %.2f | %.2f, %.2f | %.0f, %.0f, %.0f, %.0f, %.0f | %s | %d of %d | "
-                      "%.1f\n", row, against(at_T1, published("twist_at_T1_rad")).c_str(),
-                      against(at_T2, published("twist_at_T2_rad")).c_str(),
-                      against(twists[2], published("twist_at_rated_rad")).c_str(), K1 * 1e-4, K2 * 1e-4, K3 * 1e-4,
+                      "%.1f\n", row, against(twists[0], catalog_twists[0]).c_str(),
+                      against(twists[1], catalog_twists[1]).c_str(), against(twists[2], catalog_twists[2]).c_str(), K1 * 1e-4, K2 * 1e-4, K3 * 1e-4,
                       c["lost_motion_arcmin"].get<double>(), c["play_arcmin"].get<double>(),
                       100 * s["body"].get<double>(), 100 * s["teeth"].get<double>(),
                       100 * s["generator"].get<double>(), 100 * s["circular_spline"].get<double>(),

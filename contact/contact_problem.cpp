@@ -13,22 +13,108 @@
 namespace sw {
 namespace {
 
-/// KKT system on the passive set S: A_SS·z − ψ·λ_S = −q_S, λ_Sᵀz = T (Schur complement on ψ).
+/// The passive set S and its block of the compliance in Cholesky form, L·Lᵀ = A_SS (A is positive definite, so is
+/// every principal block). A contact that joins appends a row (one triangular solve, O(k²)); one that leaves deletes
+/// its row and restores the trailing block by a rank-one update (O(k²)), where factorising afresh at every step of the
+/// active-set method costs O(k³) a step (Golub & Van Loan, Matrix Computations, 4th ed., 2013, §6.5: updating
+/// Cholesky factors; the same updates Lawson & Hanson, Solving Least Squares Problems, 1974, ch. 24, make on their QR
+/// form). Written here: Eigen's LLT updates a whole factor by a rank-one term but neither inserts nor deletes a row.
+class PassiveFactor {
+ public:
+  explicit PassiveFactor(const ContactProblem& p) : p_(p), L_(p.q.size(), p.q.size()), at_(p.q.size(), -1) {}
+
+  const std::vector<Eigen::Index>& set() const { return S_; }
+  Eigen::Index size() const { return static_cast<Eigen::Index>(S_.size()); }
+  bool contains(Eigen::Index i) const { return at_[i] >= 0; }
+  /// Position of contact i in set() (−1 when it is not passive).
+  Eigen::Index position(Eigen::Index i) const { return at_[i]; }
+
+  /// S becomes `S`, factorised at once (blocked: a warm start's set).
+  void reset(const std::vector<Eigen::Index>& S) {
+    for (Eigen::Index i : S_) at_[i] = -1;
+    S_ = S;
+    const Eigen::Index k = size();
+    Eigen::MatrixXd A(k, k);
+    for (Eigen::Index r = 0; r < k; ++r) {
+      at_[S_[r]] = r;
+      for (Eigen::Index c = 0; c < k; ++c) A(r, c) = p_.A(S_[r], S_[c]);
+    }
+    const Eigen::LLT<Eigen::MatrixXd> llt(A);
+    L_.topLeftCorner(k, k) = llt.matrixL();
+    ok_ = llt.info() == Eigen::Success;
+  }
+
+  /// Contact i joins S as its last row. False, S unchanged, when its pattern is (to round-off) a combination of those
+  /// already in S: it adds no stiffness the set has not got.
+  bool add(Eigen::Index i) {
+    const Eigen::Index k = size();
+    Eigen::VectorXd a(k);
+    for (Eigen::Index r = 0; r < k; ++r) a[r] = p_.A(S_[r], i);
+    L_.topLeftCorner(k, k).triangularView<Eigen::Lower>().solveInPlace(a);
+    const double d2 = p_.A(i, i) - a.squaredNorm();
+    if (!(d2 > 1e-14 * p_.A(i, i))) return false;
+    L_.row(k).head(k) = a.transpose();
+    L_(k, k) = std::sqrt(d2);
+    at_[i] = k;
+    S_.push_back(i);
+    return true;
+  }
+
+  /// Contact i leaves S: its row and column go, the rows below move up and the trailing block takes the rank-one
+  /// update by the column it lost (L₂₂·L₂₂ᵀ + v·vᵀ, LINPACK's dchud: plane rotations, stable).
+  void remove(Eigen::Index i) {
+    const Eigen::Index r = at_[i], k = size(), m = k - 1 - r;
+    Eigen::VectorXd v = L_.col(r).segment(r + 1, m);
+    if (r > 0) L_.block(r, 0, m, r) = L_.block(r + 1, 0, m, r).eval();
+    L_.block(r, r, m, m).triangularView<Eigen::Lower>() = L_.block(r + 1, r + 1, m, m).eval();
+    for (Eigen::Index j = 0; j < m; ++j) {
+      const Eigen::Index J = r + j;
+      const double Ljj = L_(J, J), rho = std::hypot(Ljj, v[j]), c = rho / Ljj, s = v[j] / Ljj;
+      L_(J, J) = rho;
+      for (Eigen::Index t = j + 1; t < m; ++t) {
+        double& Ltj = L_(r + t, J);
+        Ltj = (Ltj + s * v[t]) / c;
+        v[t] = c * v[t] - s * Ltj;
+      }
+    }
+    at_[i] = -1;
+    S_.erase(S_.begin() + r);
+    for (Eigen::Index t = r; t < k - 1; ++t) at_[S_[t]] = t;
+  }
+
+  /// A_SS⁻¹·b (b in set() order).
+  Eigen::VectorXd solve(Eigen::VectorXd b) const {
+    const Eigen::Index k = size();
+    const auto L = L_.topLeftCorner(k, k);
+    L.triangularView<Eigen::Lower>().solveInPlace(b);
+    L.transpose().triangularView<Eigen::Upper>().solveInPlace(b);
+    return b;
+  }
+
+  bool factorised() const { return ok_; }
+
+ private:
+  const ContactProblem& p_;
+  Eigen::MatrixXd L_;  // its top-left size() × size() lower triangle is the factor
+  std::vector<Eigen::Index> S_;
+  std::vector<Eigen::Index> at_;
+  bool ok_ = true;
+};
+
+/// KKT system on the passive set S: A_SS·z − ψ·λ_S = −q_S, λ_Sᵀz = T (Schur complement on ψ); z in set() order.
 struct Kkt {
   Eigen::VectorXd z;
   double psi = 0;
 };
-Kkt solve_on(const ContactProblem& p, const std::vector<Eigen::Index>& S, double T) {
+Kkt solve_on(const ContactProblem& p, const PassiveFactor& f, double T) {
+  const std::vector<Eigen::Index>& S = f.set();
   const auto n = static_cast<Eigen::Index>(S.size());
-  Eigen::MatrixXd A(n, n);
   Eigen::VectorXd q(n), l(n);
   for (Eigen::Index r = 0; r < n; ++r) {
     q[r] = p.q[S[r]];
     l[r] = p.lambda[S[r]];
-    for (Eigen::Index c = 0; c < n; ++c) A(r, c) = p.A(S[r], S[c]);
   }
-  const Eigen::LDLT<Eigen::MatrixXd> ldlt(A);
-  const Eigen::VectorXd Aq = ldlt.solve(q), Al = ldlt.solve(l);
+  const Eigen::VectorXd Aq = f.solve(q), Al = f.solve(l);
   Kkt k;
   k.psi = (T + l.dot(Aq)) / l.dot(Al);
   k.z = k.psi * Al - Aq;
@@ -36,19 +122,12 @@ Kkt solve_on(const ContactProblem& p, const std::vector<Eigen::Index>& S, double
 }
 
 /// The iterate of the active-set method: the forces x (feasible: x ≥ 0, λᵀx = T), the passive set (contacts free to
-/// carry force) and the last multiplier ψ.
+/// carry force, with their factor) and the last multiplier ψ.
 struct ActiveSet {
   Eigen::VectorXd x;
-  std::vector<bool> passive;
+  PassiveFactor passive;
   double psi = 0;
 };
-
-std::vector<Eigen::Index> passive_indices(const std::vector<bool>& passive) {
-  std::vector<Eigen::Index> S;
-  for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(passive.size()); ++i)
-    if (passive[i]) S.push_back(i);
-  return S;
-}
 
 /// A feasible start: the whole torque on the contact that closes first in T's direction, or, when `warm` loads a set
 /// whose forces on it all come out positive, that set's solution. InputError when no contact closes in T's direction.
@@ -61,22 +140,24 @@ ActiveSet feasible_start(const ContactProblem& p, double T, const Eigen::VectorX
   if (first < 0)
     throw InputError("contact: no tooth flank can carry a torque of " + std::to_string(T) +
                      " N·m (no flank pair closes in that direction)");
-  ActiveSet s{Eigen::VectorXd::Zero(n), std::vector<bool>(n, false)};
-  s.x[first] = T / p.lambda[first];
-  s.passive[first] = true;
-  if (!warm || warm->size() != n) return s;
-  std::vector<Eigen::Index> S;
-  for (Eigen::Index i = 0; i < n; ++i)
-    if ((*warm)[i] > 0) S.push_back(i);
-  if (S.empty()) return s;
-  const Kkt k = solve_on(p, S, T);
-  if (!((k.z.array() > 0).all() && k.z.allFinite())) return s;
-  s.x.setZero();
-  std::fill(s.passive.begin(), s.passive.end(), false);
-  for (std::size_t r = 0; r < S.size(); ++r) {
-    s.x[S[r]] = k.z[r];
-    s.passive[S[r]] = true;
+  ActiveSet s{Eigen::VectorXd::Zero(n), PassiveFactor(p)};
+  if (warm && warm->size() == n) {
+    std::vector<Eigen::Index> S;
+    for (Eigen::Index i = 0; i < n; ++i)
+      if ((*warm)[i] > 0) S.push_back(i);
+    if (!S.empty()) {
+      s.passive.reset(S);
+      if (s.passive.factorised()) {
+        const Kkt k = solve_on(p, s.passive, T);
+        if ((k.z.array() > 0).all() && k.z.allFinite()) {
+          for (std::size_t r = 0; r < S.size(); ++r) s.x[S[r]] = k.z[r];
+          return s;
+        }
+      }
+    }
   }
+  s.passive.reset({first});
+  s.x[first] = T / p.lambda[first];
   return s;
 }
 
@@ -85,20 +166,14 @@ ActiveSet feasible_start(const ContactProblem& p, double T, const Eigen::VectorX
 /// passive set and the previous iterate, left as it was, is optimal.
 bool solve_on_passive_set(const ContactProblem& p, double T, ActiveSet& s, Eigen::Index added) {
   for (bool first_pass = true;; first_pass = false) {
-    const std::vector<Eigen::Index> S = passive_indices(s.passive);
-    const Kkt k = solve_on(p, S, T);
-    if (first_pass && added >= 0) {
-      const auto r = std::find(S.begin(), S.end(), added) - S.begin();
-      if (k.z[r] <= 0) {
-        s.passive[added] = false;
-        return false;
-      }
+    const Kkt k = solve_on(p, s.passive, T);
+    const std::vector<Eigen::Index> S = s.passive.set();
+    if (first_pass && added >= 0 && k.z[s.passive.position(added)] <= 0) {
+      s.passive.remove(added);
+      return false;
     }
     s.psi = k.psi;
-    bool all_positive = true;
-    for (double v : k.z) all_positive = all_positive && v > 0;
-    if (all_positive) {
-      s.x.setZero();
+    if ((k.z.array() > 0).all()) {
       for (std::size_t r = 0; r < S.size(); ++r) s.x[S[r]] = k.z[r];
       return true;
     }
@@ -110,9 +185,16 @@ bool solve_on_passive_set(const ContactProblem& p, double T, ActiveSet& s, Eigen
     for (Eigen::Index i : S)
       if (s.x[i] <= 1e-14 * xmax) {
         s.x[i] = 0;
-        s.passive[i] = false;
+        s.passive.remove(i);
       }
   }
+}
+
+/// The gaps g = A·x + q − ψ·λ, from the passive set's columns only (x is zero elsewhere): O(n·k).
+Eigen::VectorXd gaps(const ContactProblem& p, const ActiveSet& s) {
+  Eigen::VectorXd g = p.q - s.psi * p.lambda;
+  for (Eigen::Index j : s.passive.set()) g.noalias() += p.A.col(j) * s.x[j];
+  return g;
 }
 
 /// The gap below which a contact counts as penetrating: round-off of the problem's largest gap, or of the gap the
@@ -124,11 +206,11 @@ double penetration_tolerance(const ContactProblem& p, double T) {
 }
 
 /// The most penetrating contact outside the passive set (gap below −tol), −1 when none.
-Eigen::Index most_penetrating(const Eigen::VectorXd& gap, const std::vector<bool>& passive, double tol) {
+Eigen::Index most_penetrating(const Eigen::VectorXd& gap, const PassiveFactor& passive, double tol) {
   Eigen::Index add = -1;
   double worst = -tol;
   for (Eigen::Index i = 0; i < gap.size(); ++i)
-    if (!passive[i] && gap[i] < worst) worst = gap[add = i];
+    if (!passive.contains(i) && gap[i] < worst) worst = gap[add = i];
   return add;
 }
 
@@ -144,19 +226,18 @@ ContactSolution solve_contact(const ContactProblem& p, double T, const Eigen::Ve
   for (int outer = 0; outer < 6 * n + 20; ++outer) {
     const bool stalled = !solve_on_passive_set(p, T, s, added);
     // The most penetrating contact outside the passive set joins it; none (or a stalled step): optimal.
-    const Eigen::VectorXd gap = p.A * s.x + p.q - s.psi * p.lambda;
-    const Eigen::Index add = stalled ? -1 : most_penetrating(gap, s.passive, tol);
+    const Eigen::VectorXd gap = gaps(p, s);
+    Eigen::Index add = stalled ? -1 : most_penetrating(gap, s.passive, tol);
+    if (add >= 0 && !s.passive.add(add)) add = -1;  // it adds nothing the set has not got: optimal to round-off
     if (add < 0) {
       ContactSolution out;
       out.force_N = s.x;
       out.gap_m = gap;
-      for (Eigen::Index i = 0; i < n; ++i)
-        if (s.passive[i]) out.gap_m[i] = 0;  // equal to zero to round-off by construction
+      for (Eigen::Index i : s.passive.set()) out.gap_m[i] = 0;  // equal to zero to round-off by construction
       out.twist_rad = s.psi;
       out.iterations = outer + 1;
       return out;
     }
-    s.passive[add] = true;
     added = add;
   }
   throw std::runtime_error("solve_contact: the active-set iteration did not converge");

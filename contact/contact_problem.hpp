@@ -13,8 +13,9 @@
 //     min ½ xᵀA x + qᵀx   subject to x ≥ 0, λᵀx = T,
 // ψ being the multiplier of the equality. Solved exactly (to round-off) by a Lawson–Hanson active-set method kept
 // feasible for the equality (each iterate is a convex combination of feasible points). Written here because the
-// problem is small and dense (tens to a few hundred contacts) and no Debian library offers an equality-constrained
-// NNLS; Eigen's LDLT does the linear algebra.
+// problem is dense (tens to a few thousand contacts, a few hundred loaded) and no Debian library offers an
+// equality-constrained NNLS. The passive set's block is held as a Cholesky factor updated as contacts join and leave
+// (O(k²) a step instead of O(k³)), the gaps from the loaded columns only.
 #include <Eigen/Core>
 
 namespace sw {

@@ -74,7 +74,8 @@ struct FreeOptimum {
 };
 
 /// The optimum over the free variables F with the others held at x: H_FF·z − ψ·a_F = −(c_F + H_FB·x_B),
-/// a_Fᵀz = t − a_Bᵀx_B, by the Schur complement on ψ (solve_contact's algebra: with x_B = 0 its very numbers).
+/// a_Fᵀz = t − a_Bᵀx_B, by the Schur complement on ψ (solve_contact's algebra: with x_B = 0 its
+/// numbers to round-off).
 /// Not finite when no free variable carries the equality.
 FreeOptimum optimum_on(const BoundedQp& qp, const std::vector<Eigen::Index>& F, const Eigen::VectorXd& x) {
   Eigen::VectorXd held = x;

@@ -125,6 +125,48 @@ TEST(ContactProblem, WarmStartGivesTheSameSolution) {
   EXPECT_LT(warm.iterations, cold.iterations);
 }
 
+// Many coupled contacts (the passive set's factor grows and shrinks by updates through dozens of steps): the answer
+// meets the Signorini conditions to round-off and equals the KKT system on its own contact set solved afresh (LU).
+TEST(ContactProblem, ManyContactsMeetSignoriniAndTheFreshKkt) {
+  const int n = 200;
+  ContactProblem p = random_problem(n, 1e-10);
+  // Strongly coupled through a few shapes (a low-rank compliance on a small diagonal): contacts leave the set as
+  // others join, so the factor is updated both ways.
+  const Eigen::MatrixXd B = Eigen::MatrixXd::Random(n, 6);
+  p.A = (B * B.transpose() + 0.05 * Eigen::MatrixXd::Identity(n, n)) * 1e-8;
+  for (int i = 0; i < n; i += 3) p.lambda[i] = -0.02;
+  const Eigen::VectorXd* warm = nullptr;
+  ContactSolution last;
+  for (const double T : {20.0, 60.0, 200.0, 80.0}) {
+    const ContactSolution s = solve_contact(p, T, warm);
+    const double f = s.force_N.maxCoeff(), g = p.q.cwiseAbs().maxCoeff();
+    const Eigen::VectorXd gap = p.A * s.force_N + p.q - s.twist_rad * p.lambda;
+    EXPECT_GE(s.force_N.minCoeff(), 0.0);
+    EXPECT_GE(gap.minCoeff(), -1e-10 * g) << "T = " << T;
+    EXPECT_LT(gap.cwiseProduct(s.force_N).cwiseAbs().maxCoeff(), 1e-10 * g * f);
+    EXPECT_NEAR(p.lambda.dot(s.force_N), T, 1e-12 * T);
+    std::vector<int> S;
+    for (int i = 0; i < n; ++i)
+      if (s.force_N[i] > 0) S.push_back(i);
+    ASSERT_GT(S.size(), 5u) << "T = " << T;  // the test's premise: a set of several contacts
+    const int m = static_cast<int>(S.size());
+    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(m + 1, m + 1);
+    Eigen::VectorXd rhs(m + 1);
+    for (int a = 0; a < m; ++a) {
+      for (int b = 0; b < m; ++b) K(a, b) = p.A(S[a], S[b]);
+      K(a, m) = -p.lambda[S[a]];
+      K(m, a) = p.lambda[S[a]];
+      rhs[a] = -p.q[S[a]];
+    }
+    rhs[m] = T;
+    const Eigen::VectorXd z = K.fullPivLu().solve(rhs);
+    EXPECT_NEAR(s.twist_rad, z[m], 1e-10 * std::abs(z[m]));
+    for (int a = 0; a < m; ++a) EXPECT_NEAR(s.force_N[S[a]], z[a], 1e-9 * f);
+    last = s;
+    warm = &last.force_N;
+  }
+}
+
 TEST(ContactProblem, NoFlankForTheTorqueIsRefused) {
   ContactProblem p;
   p.A = Eigen::Matrix2d::Identity() * 1e-8;

@@ -306,16 +306,19 @@ TEST(FrictionalContact, EveryStepOfTheLoopMeetsCoulombsLaw) {
     }
 }
 
-// Without friction the step is the frictionless contact problem: solve_contact's twist and forces at every step.
+// Without friction the step is the frictionless contact problem: solve_contact's twist and forces at every step, to
+// round-off of the loop's largest force (the two factorise differently; at the steps next to zero torque the forces
+// are themselves of that order).
 TEST(FrictionalContact, WithoutFrictionEqualsSolveContact) {
   for (const double gap0 : {0.5e-6, kPreloadGap}) {
     const FrictionalContactProblem p = rim_problem(7, 0.0, gap0);
     const std::vector<double> T = cycle_torque_history(kRated, 10);
     const std::vector<FrictionalStep> h = solve_torque_history(p, T);
+    const double force_scale = solve_contact(p, kRated).force_N.maxCoeff();
     for (std::size_t i = 0; i < T.size(); ++i) {
       const ContactSolution s = solve_contact(p, T[i]);
       EXPECT_NEAR(h[i].twist_rad, s.twist_rad, 1e-12 * std::abs(s.twist_rad)) << "step " << i;
-      EXPECT_LE((h[i].normal_force_N - s.force_N).cwiseAbs().maxCoeff(), 1e-12 * s.force_N.maxCoeff()) << "step " << i;
+      EXPECT_LE((h[i].normal_force_N - s.force_N).cwiseAbs().maxCoeff(), 1e-12 * force_scale) << "step " << i;
       EXPECT_EQ(h[i].tangential_force_N.cwiseAbs().maxCoeff(), 0.0);
     }
     const LoopReading r = read_loop(h, kRated);

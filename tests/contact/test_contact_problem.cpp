@@ -58,6 +58,21 @@ ContactProblem random_problem(int n, double c) {
   return p;
 }
 
+/// The KKT system on the contact set S solved afresh (full-pivot LU): the forces on S, then ψ.
+Eigen::VectorXd fresh_kkt(const ContactProblem& p, const std::vector<int>& S, double T) {
+  const int m = static_cast<int>(S.size());
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(m + 1, m + 1);
+  Eigen::VectorXd rhs(m + 1);
+  for (int a = 0; a < m; ++a) {
+    for (int b = 0; b < m; ++b) K(a, b) = p.A(S[a], S[b]);
+    K(a, m) = -p.lambda[S[a]];
+    K(m, a) = p.lambda[S[a]];
+    rhs[a] = -p.q[S[a]];
+  }
+  rhs[m] = T;
+  return K.fullPivLu().solve(rhs);
+}
+
 TEST(ContactProblem, CoupledMatchesEnumeration) {
   const int n = 5;
   ContactProblem p = random_problem(n, 1e-9);
@@ -70,16 +85,7 @@ TEST(ContactProblem, CoupledMatchesEnumeration) {
     for (int i = 0; i < n; ++i)
       if (mask >> i & 1) S.push_back(i);
     const int m = static_cast<int>(S.size());
-    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(m + 1, m + 1);
-    Eigen::VectorXd rhs(m + 1);
-    for (int a = 0; a < m; ++a) {
-      for (int b = 0; b < m; ++b) K(a, b) = p.A(S[a], S[b]);
-      K(a, m) = -p.lambda[S[a]];
-      K(m, a) = p.lambda[S[a]];
-      rhs[a] = -p.q[S[a]];
-    }
-    rhs[m] = T;
-    const Eigen::VectorXd z = K.fullPivLu().solve(rhs);
+    const Eigen::VectorXd z = fresh_kkt(p, S, T);
     Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
     for (int a = 0; a < m; ++a) x[S[a]] = z[a];
     const Eigen::VectorXd gap = p.A * x + p.q - z[m] * p.lambda;
@@ -150,16 +156,7 @@ TEST(ContactProblem, ManyContactsMeetSignoriniAndTheFreshKkt) {
       if (s.force_N[i] > 0) S.push_back(i);
     ASSERT_GT(S.size(), 5u) << "T = " << T;  // the test's premise: a set of several contacts
     const int m = static_cast<int>(S.size());
-    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(m + 1, m + 1);
-    Eigen::VectorXd rhs(m + 1);
-    for (int a = 0; a < m; ++a) {
-      for (int b = 0; b < m; ++b) K(a, b) = p.A(S[a], S[b]);
-      K(a, m) = -p.lambda[S[a]];
-      K(m, a) = p.lambda[S[a]];
-      rhs[a] = -p.q[S[a]];
-    }
-    rhs[m] = T;
-    const Eigen::VectorXd z = K.fullPivLu().solve(rhs);
+    const Eigen::VectorXd z = fresh_kkt(p, S, T);
     EXPECT_NEAR(s.twist_rad, z[m], 1e-10 * std::abs(z[m]));
     for (int a = 0; a < m; ++a) EXPECT_NEAR(s.force_N[S[a]], z[a], 1e-9 * f);
     last = s;

@@ -123,7 +123,7 @@ BlasInfo blas_for_the_factor() {
 void write_fem_files(const Case& c, const OutputSet& out, const FemJobOptions& options,
                      const FlexsplineModel& model, const TetMesh& mesh, const FlexsplineSolution& s) {
   progress("output: " + out.dir().string());
-  if (options.write_vtk) write_fem_vtk(out.staging(), c, mesh, s);
+  if (options.write_vtk) write_fem_vtk(out.staging(), mesh, s.cases);
   if (options.export_inp) {
     write_inp_deck(*options.export_inp, c, mesh, clamped_nodes(mesh), torque_load_vector(model, mesh, c.load.torque_Nm),
                    "fem --export-inp (clamp and torque only; no generator)");

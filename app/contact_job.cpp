@@ -25,10 +25,6 @@
 namespace sw::app {
 namespace {
 
-/// Face sections from which the designed drives' K1 changes by about 1 % (12 against 16 on size 17 at ratios 30 and
-/// 100; the lost motion by 1 % and 7 %: contact/README.md, How many sections).
-constexpr int kResolvedFaceSlices = 12;
-
 
 }  // namespace
 
@@ -125,9 +121,9 @@ void print_contact_headline(const Case& c, const ContactAnalysis& a, const std::
   // resolve the twist at rated torque from 5 (3 leave it 5–7 % low), the start of the curve from about 12
   // (contact/README.md, How many sections: on the designed size 17, 3 sections put K1 some 40 % above 16's and the
   // lost motion 35–45 % below).
-  if (a.face_slices >= 2 && a.face_slices < kResolvedFaceSlices)
+  if (face_slices_leave_k1_unresolved(a.face_slices))
     std::printf("  the face in %d sections: the curve below T1 (K1, lost motion) is not resolved along the face, "
-                "which takes about %d ([contact] face_slices)\n", a.face_slices, kResolvedFaceSlices);
+                "which takes about %d ([contact] face_slices)\n", a.face_slices, kFaceSlicesResolvingK1);
 }
 
 /// The computed curve against the catalog's law of the case's size.

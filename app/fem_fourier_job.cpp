@@ -9,6 +9,7 @@
 #include "contact/harmonic_body.hpp"
 #include "contact/loaded_contact.hpp"
 #include "fem/fourier_analysis.hpp"
+#include "fem/fourier_element.hpp"
 #include "fem/fourier_solver.hpp"
 #include "io/atomic_file.hpp"
 #include "io/fem_output.hpp"
@@ -41,24 +42,32 @@ FemJobResult run_fourier_fem_job(const Case& c, OutputSet& out, bool write_vtk, 
   const double t_start = elapsed_s();
   RunInfo run;
   run.blas = detect_blas();
-  FourierSolution fourier = solve_fourier_model(c, write_vtk ? kGridSectors : 0, max_memory_gb, run.mesh_s);
+  auto fourier = std::make_shared<FourierSolution>(solve_fourier_model(c, 0, max_memory_gb, run.mesh_s));
   Stopwatch clock;
-  const FlexsplineSolution& s = fourier.figures;
+  const FlexsplineSolution& s = fourier->figures;
   progress("output: " + out.dir().string());
-  if (write_vtk) write_fem_vtk(out.staging(), c, fourier.grid, s);
+  if (write_vtk) {
+    // The views are a reader's, not the stages': the load cases are evaluated on the grid and written on a thread of
+    // their own while the command goes on (Eigen only, no BLAS: the figures are the same with or without it).
+    fourier->grid = fourier::revolve_section(fourier->section, kGridSectors);
+    out.write_beside([fourier = std::shared_ptr<const FourierSolution>(fourier), material = c.material,
+                      staging = out.staging()] {
+      write_fem_vtk(staging, fourier->grid, revolved_load_cases(*fourier, material, kGridSectors));
+    });
+  }
   if (s.neutral_curve) write_file_atomic(out.staging() / "neutral_curve.csv", neutral_curve_csv(*s.neutral_curve));
   run.output_s = clock.lap();
   run.total_s = elapsed_s() - t_start;
   run.peak_rss_bytes = peak_rss_bytes();
 
   FemJobResult job;
-  const FemResult result = fem_result(c, fourier, run);
+  const FemResult result = fem_result(c, *fourier, run);
   job.result_json_path = out.dir() / "result.json";
   write_file_atomic(out.staging() / "result.json", fem_result_json(result));
 
   std::printf("fem %s (fourier): section %zu nodes, harmonics 0..%d (%zu solved, %lld equations in all), factor "
               "%.3f GF, total %.2f s, peak %.0f MB\n",
-              c.path.c_str(), fourier.section.n_nodes(), fourier.harmonics_kept, fourier.harmonics.size(),
+              c.path.c_str(), fourier->section.n_nodes(), fourier->harmonics_kept, fourier->harmonics.size(),
               static_cast<long long>(result.solver.equations), s.timings.factor.factor_gflop, run.total_s, run.peak_rss_bytes / 1e6);
   std::printf("  phi0 = %.6e rad at T = %g N·m (C_tau = %.6e rad/N·m); theory T·L/(G·J) = %.6e rad (FEM/theory %.4f)\n",
               s.phi0_rad, s.torque_Nm, s.compliance_rad_per_Nm, s.checks.phi0_theory_rad,
@@ -71,9 +80,8 @@ FemJobResult run_fourier_fem_job(const Case& c, OutputSet& out, bool write_vtk, 
                 s.generator_force_N, s.generator_w0_m * 1e3, s.checks.generator_rotation_rad,
                 s.hoop.max_tensile_Pa / 1e6, s.hoop.max_tensile_angle_deg, s.hoop.max_compressive_Pa / 1e6,
                 s.hoop.max_compressive_angle_deg);
-  job.solution = std::move(fourier.figures);
-  fourier.grid = {};
-  job.harmonic = std::make_shared<const FourierSolution>(std::move(fourier));
+  job.solution = s;
+  job.harmonic = std::move(fourier);
   return job;
 }
 

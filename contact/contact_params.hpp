@@ -8,6 +8,17 @@
 
 namespace sw {
 
+/// Face sections from which the designed drives' K1 changes by about 1 % (12 against 16 on size 17 at ratios 30 and
+/// 100; the lost motion by 1 % and 7 %: contact/README.md, How many sections). Straight teeth on the coned rim first
+/// touch at a face end along a length that grows with the load: fewer sections (n ≥ 2) resolve the twist at rated
+/// torque (from 5) but not the curve below T1.
+inline constexpr int kFaceSlicesResolvingK1 = 12;
+
+/// Whether n ≥ 2 face sections leave the curve below T1 (K1, the lost motion) unresolved along the face.
+constexpr bool face_slices_leave_k1_unresolved(int face_slices) {
+  return face_slices >= 2 && face_slices < kFaceSlicesResolvingK1;
+}
+
 struct ContactParams {
   /// Sections of the toothed face in the loaded contact (ContactOptions::face_slices): n ≥ 2 meshes straight teeth
   /// at the face's two ends and evenly between (contact/contact_body.hpp face_slice); 1, the default: the face as one

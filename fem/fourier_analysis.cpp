@@ -33,6 +33,28 @@ constexpr double kPatchHalfAngle = kGeneratorPatchHalfAngle_rad;  // as the tet1
 // the odd harmonics of a generator symmetric about both axes: the sum is exactly 0, the computed one round-off).
 constexpr double kNoLoad = 1e-12;
 
+/// One field's displacement and stress at every node of revolve_section(s, sectors)'s grid, the series summed at all
+/// stations at once (SeriesTerms::at).
+LoadCaseSolution revolved_case(const SectionMesh& s, const Material& m, const HarmonicField& field, int sectors) {
+  const Eigen::Index ns = static_cast<Eigen::Index>(s.n_nodes());
+  std::vector<double> theta;
+  for (int k = 0; k < 2 * sectors; ++k) theta.push_back(kPi * k / sectors);
+  const Eigen::Index gn = static_cast<Eigen::Index>(theta.size()) * ns;
+  std::vector<Eigen::MatrixXd> ss, sa;
+  nodal_stress(s, m, field, ss, sa);
+  const Eigen::MatrixXd values = series_terms(ns, field, ss, sa).at(theta);
+  LoadCaseSolution r;
+  r.u.resize(3 * gn);
+  r.stress.resize(gn, 6);
+  for (Eigen::Index k = 0; k < values.cols(); ++k)
+    for (Eigen::Index i = 0; i < ns; ++i) {
+      const Eigen::Matrix<double, 9, 1> v = values.col(k).segment<9>(9 * i);
+      r.u.segment<3>(3 * (k * ns + i)) = to_cartesian(v.head<3>(), theta[static_cast<std::size_t>(k)]);
+      r.stress.row(k * ns + i) = cartesian_stress(v.tail<6>(), theta[static_cast<std::size_t>(k)]);
+    }
+  return r;
+}
+
 /// The harmonic analysis of a case on its section (analyse_section_fourier) as the steps of run(): supports, loads,
 /// the harmonics solved, the load cases built from them (the generator's contact or forces, the torque case) and the
 /// figures read from them. The members are what one step hands to the next.
@@ -615,28 +637,13 @@ private:
     if (grid_sectors_ > 0) revolve_cases(cases);
   }
 
-  /// The section revolved into the TET10 grid, and each case's displacement and stress at every grid node, the
-  /// series summed at all stations at once (SeriesTerms::at).
+  /// The section revolved into the TET10 grid, and each case's displacement and stress at every grid node.
   void revolve_cases(const std::vector<NamedField>& cases) {
     out_.grid = revolve_section(sec_, grid_sectors_);
-    const Eigen::Index ns = static_cast<Eigen::Index>(sec_.n_nodes());
-    std::vector<double> theta;
-    for (int k = 0; k < 2 * grid_sectors_; ++k) theta.push_back(kPi * k / grid_sectors_);
-    const Eigen::Index gn = static_cast<Eigen::Index>(theta.size()) * ns;
     for (std::size_t lc = 0; lc < cases.size(); ++lc) {
-      std::vector<Eigen::MatrixXd> ss, sa;
-      nodal_stress(sec_, c_.material, cases[lc].second, ss, sa);
-      const Eigen::MatrixXd values = series_terms(ns, cases[lc].second, ss, sa).at(theta);
-      Eigen::VectorXd U(3 * gn);
-      RowMatrixX6d S(gn, 6);
-      for (Eigen::Index k = 0; k < values.cols(); ++k)
-        for (Eigen::Index i = 0; i < ns; ++i) {
-          const Eigen::Matrix<double, 9, 1> v = values.col(k).segment<9>(9 * i);
-          U.segment<3>(3 * (k * ns + i)) = to_cartesian(v.head<3>(), theta[static_cast<std::size_t>(k)]);
-          S.row(k * ns + i) = cartesian_stress(v.tail<6>(), theta[static_cast<std::size_t>(k)]);
-        }
-      fs_.cases[lc].u = std::move(U);
-      fs_.cases[lc].stress = std::move(S);
+      LoadCaseSolution r = revolved_case(sec_, c_.material, cases[lc].second, grid_sectors_);
+      fs_.cases[lc].u = std::move(r.u);
+      fs_.cases[lc].stress = std::move(r.stress);
     }
   }
 
@@ -681,6 +688,20 @@ private:
 };
 
 }  // namespace
+
+std::vector<LoadCaseSolution> revolved_load_cases(const FourierSolution& s, const Material& m, int sectors) {
+  std::vector<LoadCaseSolution> cases = s.figures.cases;
+  for (LoadCaseSolution& lc : cases) {
+    // As read_load_cases builds them: the torque case is what the case's torque adds with the generator in place.
+    HarmonicField field = s.torque_with_generator * s.figures.torque_Nm;
+    if (lc.name == "generator") field = s.generator;
+    if (lc.name == "generator_torque") field += s.generator;
+    LoadCaseSolution r = revolved_case(s.section, m, field, sectors);
+    lc.u = std::move(r.u);
+    lc.stress = std::move(r.stress);
+  }
+  return cases;
+}
 
 FourierSolution analyse_flexspline_fourier(const FlexsplineModel& c, int grid_sectors, const BandRequest& request) {
   Stopwatch clock;

@@ -12,8 +12,18 @@ namespace sw {
 FourierSolution analyse_flexspline_fourier(const FlexsplineModel& c, int grid_sectors = 0,
                                           const BandRequest& request = {});
 
+/// The solution's load cases (figures.cases: their names and rotations) with each one's displacement and stress at
+/// every node of revolve_section(s.section, sectors)'s grid, as `grid_sectors` > 0 fills them: for VTU output after
+/// the analysis (the fem job writes them while the contact goes on).
+std::vector<LoadCaseSolution> revolved_load_cases(const FourierSolution& s, const Material& m, int sectors);
+
 /// Same on a given section (tests: the annulus of fem/fourier_section.hpp).
 FourierSolution analyse_section_fourier(const FlexsplineModel& c, SectionMesh section, int grid_sectors = 0,
                                         const BandRequest& request = {});
+
+/// The solution's load cases (figures.cases: their names and rotations) with each one's displacement and stress at
+/// every node of revolve_section(s.section, sectors)'s grid, as `grid_sectors` > 0 fills them: for VTU output after
+/// the analysis (the fem job writes them while the contact goes on).
+std::vector<LoadCaseSolution> revolved_load_cases(const FourierSolution& s, const Material& m, int sectors);
 
 }  // namespace sw

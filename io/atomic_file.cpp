@@ -225,8 +225,19 @@ OutputSet::OutputSet(fs::path dir, std::vector<std::string> owned)
 }
 
 OutputSet::~OutputSet() {
+  for (std::future<void>& w : writers_)
+    if (w.valid()) w.wait();  // what it threw is moot: the set is not brought in
   std::error_code ec;
   if (!committed_) fs::remove_all(staging_, ec);
+}
+
+void OutputSet::write_beside(std::function<void()> write) {
+  writers_.push_back(std::async(std::launch::async, std::move(write)));
+}
+
+void OutputSet::wait_for_writers() {
+  for (std::future<void>& w : writers_) w.get();
+  writers_.clear();
 }
 
 void OutputSet::own(const std::vector<std::string>& names) { owned_.insert(owned_.end(), names.begin(), names.end()); }
@@ -256,6 +267,7 @@ void OutputSet::link_others_into_staging() const {
 }
 
 void OutputSet::commit() {
+  wait_for_writers();
   const CommitPhase phase;
   try {
     const FolderLock lock(folder_.parent_path());

@@ -7,6 +7,7 @@
 // InputError when a path cannot be written.
 #include <filesystem>
 #include <functional>
+#include <future>
 #include <memory>
 #include <string>
 #include <vector>
@@ -43,6 +44,10 @@ class OutputSet {
   const std::filesystem::path& staging() const { return staging_; }
   /// Adds names of files the command owns in dir() (as the constructor's `owned`).
   void own(const std::vector<std::string>& names);
+  /// Runs `write` (it writes files under staging()) on a thread of its own while the command goes on: a file only a
+  /// reader of the folder needs (the FEM's VTU views) costs the command no time. commit() waits for it first and
+  /// throws what it threw; the destructor waits for it too, so no writer outlives the staging folder.
+  void write_beside(std::function<void()> write);
   /// `path`, or its staged copy when it names a file of dir() that this set has written: a command reads its own
   /// new outputs, and another command's outputs where they are.
   std::filesystem::path read_path(const std::filesystem::path& path) const;
@@ -55,6 +60,7 @@ class OutputSet {
  private:
   bool owns(const std::string& name) const;
   void link_others_into_staging() const;
+  void wait_for_writers();
 
   std::filesystem::path dir_;      ///< as given
   std::filesystem::path folder_;   ///< dir_ resolved (links followed): the folder replaced
@@ -62,6 +68,7 @@ class OutputSet {
   std::vector<std::string> owned_;
   std::unique_ptr<TemporaryEntry> temporary_;  ///< the staging folder, removed by a signal
   bool committed_ = false;
+  std::vector<std::future<void>> writers_;  ///< write_beside's, in the order started
 };
 
 }  // namespace sw

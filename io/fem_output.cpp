@@ -455,10 +455,10 @@ NeutralCurveSamples read_neutral_curve_csv(const std::filesystem::path& csv) {
   return nc;
 }
 
-void write_fem_vtk(const std::filesystem::path& dir, const Case& c, const TetMesh& mesh, const FlexsplineSolution& s) {
+void write_fem_vtk(const std::filesystem::path& dir, const TetMesh& mesh, const std::vector<LoadCaseSolution>& cases) {
   std::vector<std::pair<std::string, std::string>> datasets;
   const Eigen::Index n = static_cast<Eigen::Index>(mesh.n_nodes());
-  for (const auto& lc : s.cases) {
+  for (const auto& lc : cases) {
     const CylindricalFields cyl = cylindrical_components(mesh, lc.u, lc.stress);
     std::vector<NodalField> fields;
     fields.push_back({"displacement", Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(
@@ -475,7 +475,6 @@ void write_fem_vtk(const std::filesystem::path& dir, const Case& c, const TetMes
     write_vtu(dir / file, mesh, fields);
     datasets.emplace_back(lc.name, file);
   }
-  (void)c;
   write_pvd(dir / "flexspline.pvd", datasets);
 }
 

@@ -212,7 +212,8 @@ std::string neutral_curve_csv(const NeutralCurveSamples& nc);
 /// a wrong number of values.
 NeutralCurveSamples read_neutral_curve_csv(const std::filesystem::path& csv);
 
-/// Writes flexspline.pvd and flexspline_<case>.vtu (displacement, stress, von Mises, cylindrical components).
-void write_fem_vtk(const std::filesystem::path& dir, const Case& c, const TetMesh& mesh, const FlexsplineSolution& s);
+/// Writes flexspline.pvd and flexspline_<case>.vtu (displacement, stress, von Mises, cylindrical components) of each
+/// load case on `mesh`.
+void write_fem_vtk(const std::filesystem::path& dir, const TetMesh& mesh, const std::vector<LoadCaseSolution>& cases);
 
 }  // namespace sw

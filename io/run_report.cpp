@@ -10,6 +10,7 @@
 #include "common/constants.hpp"
 #include "common/error.hpp"
 #include "common/svg_plot.hpp"
+#include "contact/contact_params.hpp"
 #include "io/provenance.hpp"
 #include "io/backlash_output.hpp"
 #include "io/contact_output.hpp"
@@ -199,11 +200,18 @@ std::string backlash_section(const fs::path& dir) {
 void add_twist_rows(Table& t, const ContactResult& a) {
   const ContactResult::Catalog& k = a.catalog;
   t.row("twist at rated torque", fmt("%.3f arcmin", a.twist_at_rated_arcmin), fmt("at %.4g N·m", a.rated_torque_Nm));
+  // As contact's summary says it: straight teeth in too few sections leave the start of the curve unresolved.
+  const std::string unresolved =
+      face_slices_leave_k1_unresolved(a.face_slices)
+          ? "; the face in " + std::to_string(a.face_slices) +
+                " sections does not resolve the curve below T1 along the face, which takes about " +
+                std::to_string(kFaceSlicesResolvingK1) + " ([contact] face_slices)"
+          : "";
   t.row("three segments", fmt("K1 %.4g", k.K1_Nm_per_rad) + fmt(", K2 %.4g", k.K2_Nm_per_rad) +
         fmt(", K3 %.4g N·m/rad", k.K3_Nm_per_rad),
-        fmt("T1 %.3g N·m", k.T1_Nm) + fmt(", T2 %.3g N·m (", k.T2_Nm) + k.breakpoints + ")");
+        fmt("T1 %.3g N·m", k.T1_Nm) + fmt(", T2 %.3g N·m (", k.T2_Nm) + k.breakpoints + ")" + unresolved);
   t.row("lost motion", fmt("%.3f arcmin", a.lost_motion_arcmin),
-        "twist between ±4 % of rated torque on the middle line (includes the elastic twist)");
+        "twist between ±4 % of rated torque on the middle line (includes the elastic twist)" + unresolved);
   t.row("play", fmt("%.3f arcmin", a.play_arcmin), "jump of the curve at zero torque");
   if (a.overlap_at_rest_um > 0)
     t.row("overlap at rest", fmt("%.2f µm", a.overlap_at_rest_um),

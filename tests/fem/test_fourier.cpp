@@ -237,6 +237,19 @@ TEST(FourierGrid, RevolvedVolumeAndValues) {
   Eigen::Matrix<double, 1, 6> exact_stress;  // xx yy zz yz xz xy
   exact_stress << 0, 0, 0, tau * std::cos(t), -tau * std::sin(t), 0;
   EXPECT_LT((torque.stress.row(id) - exact_stress).norm(), 1e-6 * tau);
+
+  // The same cases revolved after the analysis (what the fem job writes beside the command): every node's
+  // displacement and stress as the analysis' own, to round-off of the torque case's scaling.
+  const std::vector<LoadCaseSolution> after = revolved_load_cases(s, c.material, sectors);
+  ASSERT_EQ(after.size(), s.figures.cases.size());
+  for (std::size_t lc = 0; lc < after.size(); ++lc) {
+    const LoadCaseSolution& a = after[lc];
+    const LoadCaseSolution& b = s.figures.cases[lc];
+    EXPECT_EQ(a.name, b.name);
+    ASSERT_EQ(a.u.size(), b.u.size());
+    EXPECT_LE((a.u - b.u).lpNorm<Eigen::Infinity>(), 1e-13 * b.u.lpNorm<Eigen::Infinity>()) << a.name;
+    EXPECT_LE((a.stress - b.stress).lpNorm<Eigen::Infinity>(), 1e-13 * b.stress.lpNorm<Eigen::Infinity>()) << a.name;
+  }
 }
 
 // The cam in unilateral contact on the harmonic basis: the generator pushes only (every station force ≥ 0), touches

@@ -1,16 +1,20 @@
 // A command's outputs as one set (io/atomic_file.hpp): what commit() leaves in the folder (the new files, other
 // commands' files and subfolders, none of the command's own earlier files it did not write again), a set not
 // committed leaves the folder as it was, a command reads its own staged files, and folders that cannot take a set
-// are refused in one line.
+// are refused in one line. A file written beside the command (write_beside) is in the set when it is brought in; a
+// writer that fails leaves the folder as it was.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <set>
+#include <stdexcept>
 #include <string>
+#include <thread>
 
 #include "common/error.hpp"
 #include "io/atomic_file.hpp"
@@ -85,6 +89,50 @@ TEST(OutputSet, WithoutCommitTheFolderStaysAsItWasAndTheStagingGoes) {
     write_file_atomic(out.staging() / "result.json", "new");
   }
   EXPECT_FALSE(fs::exists(root / "never"));
+  fs::remove_all(root);
+}
+
+TEST(OutputSet, AFileWrittenBesideIsInTheSetAndAFailedOneKeepsTheFolder) {
+  const fs::path root = fresh_root("beside");
+  const fs::path dir = earlier_folder(root);
+  {
+    OutputSet out(dir, kFem);
+    out.write_beside([staging = out.staging()] {
+      std::this_thread::sleep_for(std::chrono::milliseconds(300));  // still writing when the command commits
+      write_file_atomic(staging / "flexspline_torque.vtu", "new");
+    });
+    write_file_atomic(out.staging() / "result.json", "new");
+    out.commit();
+  }
+  EXPECT_EQ(text_of(dir / "flexspline_torque.vtu"), "new");
+  EXPECT_EQ(text_of(dir / "result.json"), "new");
+  const std::set<std::string> before = names_in(dir);
+  {
+    OutputSet out(dir, kFem);
+    out.write_beside([] { throw InputError("out/case/flexspline_torque.vtu: cannot write"); });
+    write_file_atomic(out.staging() / "result.json", "newer");
+    EXPECT_THROW(
+        {
+          try {
+            out.commit();
+          } catch (const InputError& e) {
+            EXPECT_STREQ(e.what(), "out/case/flexspline_torque.vtu: cannot write");
+            throw;
+          }
+        },
+        InputError);
+  }
+  EXPECT_EQ(names_in(dir), before);
+  EXPECT_EQ(text_of(dir / "result.json"), "new");
+  {  // a set given up while its writer runs: the destructor waits for it before the staging folder goes
+    OutputSet out(dir, kFem);
+    out.write_beside([staging = out.staging()] {
+      std::this_thread::sleep_for(std::chrono::milliseconds(300));
+      write_file_atomic(staging / "flexspline_generator.vtu", "never seen");
+    });
+  }
+  EXPECT_EQ(names_in(dir), before);
+  EXPECT_EQ(names_in(root), std::set<std::string>{"case"});  // no staging folder left
   fs::remove_all(root);
 }
 

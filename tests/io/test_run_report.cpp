@@ -128,6 +128,26 @@ TEST(RunReport, TheSplitSaysWhatItsGeneratorCountsOrThatItIsRigid) {
   fs::remove_all(d);
 }
 
+// K1 and the lost motion say, as contact's summary does, when the face's sections leave them unresolved along the
+// face (fewer than 12 sections of straight teeth), and nothing of it with enough sections or one (the relieved face).
+TEST(RunReport, TheCurveBelowT1SaysWhenTheFaceIsNotResolved) {
+  const fs::path d = scratch_dir("report_face_sections");
+  sw::ContactResult contact = sample_contact_result();
+  ASSERT_EQ(contact.face_slices, 3);
+  const std::string caveat = sw::html_escape(
+      "the face in 3 sections does not resolve the curve below T1 along the face, which takes about 12");
+  std::string page = page_of(d, sample_fem_result(), nullptr, &contact);
+  const std::size_t first = page.find(caveat);
+  ASSERT_NE(first, std::string::npos);
+  EXPECT_NE(page.find(caveat, first + 1), std::string::npos) << "the K1 row and the lost motion row both say it";
+  for (int n : {1, 12}) {
+    contact.face_slices = n;
+    page = page_of(d, sample_fem_result(), nullptr, &contact);
+    EXPECT_EQ(page.find("does not resolve the curve below T1"), std::string::npos) << n << " sections";
+  }
+  fs::remove_all(d);
+}
+
 TEST(RunReport, AHarmonicRunShowsItsSectionAndNoMissingSections) {
   const fs::path d = scratch_dir("report_fourier");
   const sw::FemResult fem = sample_fourier_result();

@@ -67,7 +67,7 @@ ContactFem fem_from_run(const Case& c, const std::filesystem::path& result_json,
     progress("fourier: " + c.path + " (the model of " + result_json.string() + ")");
     const FlexsplineModel m = flexspline_model(c);
     auto harmonic = std::make_shared<FourierSolution>(
-        analyse_flexspline_fourier(m, 0, contact_band_request(m, c.contact.face_slices)));
+        analyse_flexspline_fourier(m, contact_band_request(m, c.contact.face_slices)));
     std::int64_t equations = 0;
     for (const HarmonicStats& h : harmonic->harmonics) equations += h.equations;
     if (equations != run.equations) throw model_mismatch(c, result_json, run.equations, equations);

@@ -42,7 +42,7 @@ inline const std::vector<std::string> kDatasheetFiles = {"datasheet.json", "data
 FemJobResult solve_flexspline(const Case& c, double max_memory_gb) {
   progress("datasheet: the flexspline on harmonics 0.." + std::to_string(c.solver.harmonics));
   double section_s = 0;
-  FourierSolution fourier = solve_fourier_model(c, 0, max_memory_gb, section_s);
+  FourierSolution fourier = solve_fourier_model(c, max_memory_gb, section_s);
   FemJobResult job;
   job.solution = std::move(fourier.figures);
   job.harmonic = std::make_shared<const FourierSolution>(std::move(fourier));

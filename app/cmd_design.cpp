@@ -48,7 +48,7 @@ T parse_number(const std::string& option, const std::string& text) {
 /// from the case's harmonic FEM: the curves the contact places the teeth on.
 std::vector<NeutralCurve> generator_deformed_sections(const Case& c, int sections) {
   double section_s = 0;
-  const FourierSolution fs = solve_fourier_model(c, 0, 0.0, section_s);
+  const FourierSolution fs = solve_fourier_model(c, 0.0, section_s);
   const double face = c.flexspline.rim_width_m, mid = fs.figures.neutral_curve->z_m;
   std::vector<double> z;
   for (int j = 0; j < sections; ++j) z.push_back(face_section_z_m(mid, face, j, sections));

@@ -23,10 +23,6 @@
 #include "gear/tooth_stiffness.hpp"
 
 namespace sw::app {
-namespace {
-
-
-}  // namespace
 
 SeriesParts series_parts(const Case& c) {
   SeriesParts s;

@@ -110,7 +110,7 @@ std::function<double(double)> generator_moment(const Case& c, double load_torque
   std::shared_ptr<const FourierSolution> fourier = solved ? solved->fem.harmonic : nullptr;
   if (!fourier) {
     double section_s = 0;
-    fourier = std::make_shared<const FourierSolution>(solve_fourier_model(c, 0, 0.0, section_s));
+    fourier = std::make_shared<const FourierSolution>(solve_fourier_model(c, 0.0, section_s));
   }
   std::optional<HarmonicBody> harmonic;
   if (!solved) harmonic.emplace(m, *fourier);

@@ -26,7 +26,7 @@ namespace {
 constexpr int kGridSectors = 32;
 }  // namespace
 
-FourierSolution solve_fourier_model(const Case& c, int grid_sectors, double max_memory_gb, double& section_s) {
+FourierSolution solve_fourier_model(const Case& c, double max_memory_gb, double& section_s) {
   Stopwatch clock;
   // A case the loaded contact can take has its bands solved in the same pass (a few more columns per harmonic).
   const FlexsplineModel model = flexspline_model(c);
@@ -35,14 +35,14 @@ FourierSolution solve_fourier_model(const Case& c, int grid_sectors, double max_
   section_s = clock.lap();
   // Seconds, not minutes: refused from the section before anything is assembled.
   refuse_if_too_large(fourier_model_size(model, section), max_memory_gb * 1e9, c.path);
-  return analyse_section_fourier(model, std::move(section), grid_sectors, bands);
+  return analyse_section_fourier(model, std::move(section), bands);
 }
 
 FemJobResult run_fourier_fem_job(const Case& c, OutputSet& out, bool write_vtk, double max_memory_gb) {
   const double t_start = elapsed_s();
   RunInfo run;
   run.blas = detect_blas();
-  auto fourier = std::make_shared<FourierSolution>(solve_fourier_model(c, 0, max_memory_gb, run.mesh_s));
+  auto fourier = std::make_shared<FourierSolution>(solve_fourier_model(c, max_memory_gb, run.mesh_s));
   Stopwatch clock;
   const FlexsplineSolution& s = fourier->figures;
   progress("output: " + out.dir().string());

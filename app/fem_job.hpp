@@ -50,10 +50,10 @@ TetMesh mesh_for_case(const Case& c, double max_memory_gb = 0);
 /// case's solver.method).
 FemJobResult run_fem_job(const Case& c, OutputSet& out, const FemJobOptions& options = {});
 
-/// The case's harmonic solution (with the bands the loaded contact reads, when it can take the case; the section
-/// revolved into `grid_sectors` sectors for VTU when > 0), refused from its section before assembly when its estimate
-/// exceeds max_memory_gb (0: the machine's available memory). `section_s`: the section's meshing time.
-FourierSolution solve_fourier_model(const Case& c, int grid_sectors, double max_memory_gb, double& section_s);
+/// The case's harmonic solution (with the bands the loaded contact reads, when it can take the case), refused from its
+/// section before assembly when its estimate exceeds max_memory_gb (0: the machine's available memory). `section_s`:
+/// the section's meshing time.
+FourierSolution solve_fourier_model(const Case& c, double max_memory_gb, double& section_s);
 
 /// The same on the harmonic solver (solver.method = "fourier"; app/fem_fourier_job.cpp); VTU output optional. A model
 /// whose estimate exceeds max_memory_gb (0: the machine's available memory) is refused before it is assembled.

@@ -36,7 +36,7 @@ bool leaves_series_parts(const std::string& key) {
 /// as contact.json would be.
 ContactCurve contact_curve_of(const Case& c, const SeriesParts& series, const ModelRunOptions& options) {
   const FlexsplineModel model = flexspline_model(c);
-  const FourierSolution fourier = analyse_flexspline_fourier(model, 0, contact_band_request(model, c.contact.face_slices));
+  const FourierSolution fourier = analyse_flexspline_fourier(model, contact_band_request(model, c.contact.face_slices));
   const HarmonicBody body(model, fourier);
   ContactOptions o = contact_options(c, series);
   o.steps = options.contact_steps;

@@ -130,7 +130,7 @@ SolvedCase solve_case(const std::string& path, bool centre_cut) {
   s.c = sw::load_case(path);
   if (centre_cut) s.c.gear->profile_shift_circular = s.c.gear->profile_shift_flexspline + 0.03277929;
   s.m = sw::flexspline_model(s.c);
-  s.fourier = sw::analyse_flexspline_fourier(s.m, 0, sw::contact_band_request(s.m, s.c.contact.face_slices));
+  s.fourier = sw::analyse_flexspline_fourier(s.m, sw::contact_band_request(s.m, s.c.contact.face_slices));
   s.series = sw::app::series_parts(s.c);
   return s;
 }

@@ -27,7 +27,7 @@ void one_case(const std::string& path) {
   Case c = load_case(path);
   const FlexsplineModel m = flexspline_model(c);
   Stopwatch clock;
-  const FourierSolution fourier = analyse_flexspline_fourier(m, 0, contact_band_request(m, c.contact.face_slices));
+  const FourierSolution fourier = analyse_flexspline_fourier(m, contact_band_request(m, c.contact.face_slices));
   const HarmonicBody body(m, fourier);
   const double t_fem = clock.lap();
   const CatalogDrive* catalog = c.catalog_size ? catalog_drive(*c.catalog_size) : nullptr;

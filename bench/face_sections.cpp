@@ -10,7 +10,6 @@
 // [--before /path/to/old/strainwave]. Wall clock: say so when the machine was shared.
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>

@@ -79,7 +79,7 @@ int main(int argc, char** argv) {
     {
       Stopwatch clock;
       const FlexsplineModel m = flexspline_model(c);
-      const FourierSolution fourier = analyse_flexspline_fourier(m, 0, contact_band_request(m, c.contact.face_slices));
+      const FourierSolution fourier = analyse_flexspline_fourier(m, contact_band_request(m, c.contact.face_slices));
       const ContactAnalysis a = analyse_contact(m, HarmonicBody(m, fourier), fem_readout(fourier.figures), options(c));
       print("fast model (harmonic)", a, clock.lap());
     }

@@ -33,35 +33,13 @@ constexpr double kPatchHalfAngle = kGeneratorPatchHalfAngle_rad;  // as the tet1
 // the odd harmonics of a generator symmetric about both axes: the sum is exactly 0, the computed one round-off).
 constexpr double kNoLoad = 1e-12;
 
-/// One field's displacement and stress at every node of revolve_section(s, sectors)'s grid, the series summed at all
-/// stations at once (SeriesTerms::at).
-LoadCaseSolution revolved_case(const SectionMesh& s, const Material& m, const HarmonicField& field, int sectors) {
-  const Eigen::Index ns = static_cast<Eigen::Index>(s.n_nodes());
-  std::vector<double> theta;
-  for (int k = 0; k < 2 * sectors; ++k) theta.push_back(kPi * k / sectors);
-  const Eigen::Index gn = static_cast<Eigen::Index>(theta.size()) * ns;
-  std::vector<Eigen::MatrixXd> ss, sa;
-  nodal_stress(s, m, field, ss, sa);
-  const Eigen::MatrixXd values = series_terms(ns, field, ss, sa).at(theta);
-  LoadCaseSolution r;
-  r.u.resize(3 * gn);
-  r.stress.resize(gn, 6);
-  for (Eigen::Index k = 0; k < values.cols(); ++k)
-    for (Eigen::Index i = 0; i < ns; ++i) {
-      const Eigen::Matrix<double, 9, 1> v = values.col(k).segment<9>(9 * i);
-      r.u.segment<3>(3 * (k * ns + i)) = to_cartesian(v.head<3>(), theta[static_cast<std::size_t>(k)]);
-      r.stress.row(k * ns + i) = cartesian_stress(v.tail<6>(), theta[static_cast<std::size_t>(k)]);
-    }
-  return r;
-}
-
 /// The harmonic analysis of a case on its section (analyse_section_fourier) as the steps of run(): supports, loads,
 /// the harmonics solved, the load cases built from them (the generator's contact or forces, the torque case) and the
 /// figures read from them. The members are what one step hands to the next.
 class SectionAnalyser {
 public:
-  SectionAnalyser(const FlexsplineModel& c, SectionMesh section, int grid_sectors, const BandRequest& request)
-      : c_(c), f_(c.flexspline), N_(c.solver.harmonics), grid_sectors_(grid_sectors), request_(request),
+  SectionAnalyser(const FlexsplineModel& c, SectionMesh section, const BandRequest& request)
+      : c_(c), f_(c.flexspline), N_(c.solver.harmonics), request_(request),
         plain_tube_(f_.shape == FlexsplineShape::Tube && f_.teeth == TeethModel::None),
         has_generator_(c.wave_generator.has_value()),
         z_wg_(c.wave_generator ? f_.length_m - c.wave_generator->axial_position_m : 0.0),
@@ -625,32 +603,17 @@ private:
     }
   }
 
-  using NamedField = std::pair<std::string, HarmonicField>;
-
-  /// Load cases (as the tet10 path: generator, torque, generator + torque), on the revolved grid when asked for.
+  /// Load cases (as the tet10 path: generator, torque, generator + torque): their names and rotations; their fields
+  /// on a grid are revolved_load_cases'.
   void read_load_cases() {
-    std::vector<NamedField> cases;
-    if (has_generator_) cases.emplace_back("generator", gen_);
-    cases.emplace_back("torque", torque_case_);
-    if (has_generator_) cases.emplace_back("generator_torque", combined());
-    for (const auto& [name, field] : cases) fs_.cases.push_back({name, {}, {}, rotation(field)});
-    if (grid_sectors_ > 0) revolve_cases(cases);
-  }
-
-  /// The section revolved into the TET10 grid, and each case's displacement and stress at every grid node.
-  void revolve_cases(const std::vector<NamedField>& cases) {
-    out_.grid = revolve_section(sec_, grid_sectors_);
-    for (std::size_t lc = 0; lc < cases.size(); ++lc) {
-      LoadCaseSolution r = revolved_case(sec_, c_.material, cases[lc].second, grid_sectors_);
-      fs_.cases[lc].u = std::move(r.u);
-      fs_.cases[lc].stress = std::move(r.stress);
-    }
+    if (has_generator_) fs_.cases.push_back({"generator", {}, {}, rotation(gen_)});
+    fs_.cases.push_back({"torque", {}, {}, rotation(torque_case_)});
+    if (has_generator_) fs_.cases.push_back({"generator_torque", {}, {}, rotation(combined())});
   }
 
   const FlexsplineModel& c_;
   const FlexsplineParams& f_;
   const int N_;  ///< the harmonics kept, 0..N
-  const int grid_sectors_;
   const BandRequest& request_;
   const bool plain_tube_, has_generator_;
   const double z_wg_;   ///< the generator band's mid-plane
@@ -689,10 +652,36 @@ private:
 
 }  // namespace
 
+namespace {
+
+/// One field's displacement and stress at every node of revolve_section(s, sectors)'s grid, the series summed at all
+/// stations at once (SeriesTerms::at).
+LoadCaseSolution revolved_case(const SectionMesh& s, const Material& m, const HarmonicField& field, int sectors) {
+  const Eigen::Index ns = static_cast<Eigen::Index>(s.n_nodes());
+  std::vector<double> theta;
+  for (int k = 0; k < 2 * sectors; ++k) theta.push_back(kPi * k / sectors);
+  const Eigen::Index gn = static_cast<Eigen::Index>(theta.size()) * ns;
+  std::vector<Eigen::MatrixXd> ss, sa;
+  nodal_stress(s, m, field, ss, sa);
+  const Eigen::MatrixXd values = series_terms(ns, field, ss, sa).at(theta);
+  LoadCaseSolution r;
+  r.u.resize(3 * gn);
+  r.stress.resize(gn, 6);
+  for (Eigen::Index k = 0; k < values.cols(); ++k)
+    for (Eigen::Index i = 0; i < ns; ++i) {
+      const Eigen::Matrix<double, 9, 1> v = values.col(k).segment<9>(9 * i);
+      r.u.segment<3>(3 * (k * ns + i)) = to_cartesian(v.head<3>(), theta[static_cast<std::size_t>(k)]);
+      r.stress.row(k * ns + i) = cartesian_stress(v.tail<6>(), theta[static_cast<std::size_t>(k)]);
+    }
+  return r;
+}
+
+}  // namespace
+
 std::vector<LoadCaseSolution> revolved_load_cases(const FourierSolution& s, const Material& m, int sectors) {
   std::vector<LoadCaseSolution> cases = s.figures.cases;
   for (LoadCaseSolution& lc : cases) {
-    // As read_load_cases builds them: the torque case is what the case's torque adds with the generator in place.
+    // As the analysis builds them: the torque case is what the case's torque adds with the generator in place.
     HarmonicField field = s.torque_with_generator * s.figures.torque_Nm;
     if (lc.name == "generator") field = s.generator;
     if (lc.name == "generator_torque") field += s.generator;
@@ -703,18 +692,17 @@ std::vector<LoadCaseSolution> revolved_load_cases(const FourierSolution& s, cons
   return cases;
 }
 
-FourierSolution analyse_flexspline_fourier(const FlexsplineModel& c, int grid_sectors, const BandRequest& request) {
+FourierSolution analyse_flexspline_fourier(const FlexsplineModel& c, const BandRequest& request) {
   Stopwatch clock;
   SectionMesh section = case_section(c);
   const double section_s = clock.lap();
-  FourierSolution s = analyse_section_fourier(c, std::move(section), grid_sectors, request);
+  FourierSolution s = analyse_section_fourier(c, std::move(section), request);
   s.section_s = section_s;
   return s;
 }
 
-FourierSolution analyse_section_fourier(const FlexsplineModel& c, SectionMesh section, int grid_sectors,
-                                        const BandRequest& request) {
-  return SectionAnalyser(c, std::move(section), grid_sectors, request).run();
+FourierSolution analyse_section_fourier(const FlexsplineModel& c, SectionMesh section, const BandRequest& request) {
+  return SectionAnalyser(c, std::move(section), request).run();
 }
 
 }  // namespace sw

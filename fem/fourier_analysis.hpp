@@ -6,24 +6,17 @@
 
 namespace sw {
 
-/// Solves the case (teeth "ring" or "none") by harmonics 0..c.solver.harmonics on its meridian section. With
-/// `grid_sectors` > 0 also revolves the section into a TET10 grid of that many sectors (midside nodes included,
-/// every node evaluated from the series) and fills figures.cases[].u / .stress on it for VTU output.
-FourierSolution analyse_flexspline_fourier(const FlexsplineModel& c, int grid_sectors = 0,
-                                          const BandRequest& request = {});
-
-/// The solution's load cases (figures.cases: their names and rotations) with each one's displacement and stress at
-/// every node of revolve_section(s.section, sectors)'s grid, as `grid_sectors` > 0 fills them: for VTU output after
-/// the analysis (the fem job writes them while the contact goes on).
-std::vector<LoadCaseSolution> revolved_load_cases(const FourierSolution& s, const Material& m, int sectors);
+/// Solves the case (teeth "ring" or "none") by harmonics 0..c.solver.harmonics on its meridian section
+/// (figures.cases without fields: revolved_load_cases evaluates them for VTU output).
+FourierSolution analyse_flexspline_fourier(const FlexsplineModel& c, const BandRequest& request = {});
 
 /// Same on a given section (tests: the annulus of fem/fourier_section.hpp).
-FourierSolution analyse_section_fourier(const FlexsplineModel& c, SectionMesh section, int grid_sectors = 0,
+FourierSolution analyse_section_fourier(const FlexsplineModel& c, SectionMesh section,
                                         const BandRequest& request = {});
 
 /// The solution's load cases (figures.cases: their names and rotations) with each one's displacement and stress at
-/// every node of revolve_section(s.section, sectors)'s grid, as `grid_sectors` > 0 fills them: for VTU output after
-/// the analysis (the fem job writes them while the contact goes on).
+/// every node of fourier::revolve_section(s.section, sectors)'s grid (midside nodes included, every node evaluated
+/// from the series), for VTU output after the analysis (the fem job writes them while the contact goes on).
 std::vector<LoadCaseSolution> revolved_load_cases(const FourierSolution& s, const Material& m, int sectors);
 
 }  // namespace sw

@@ -25,7 +25,7 @@ inline const Size17Harmonic& size17_harmonic() {
     k->c = load_case("cases/cup_size17.toml");
     const FlexsplineModel m = flexspline_model(k->c);
     k->fourier = std::make_shared<FourierSolution>(
-        analyse_flexspline_fourier(m, 0, contact_band_request(m, k->c.contact.face_slices)));
+        analyse_flexspline_fourier(m, contact_band_request(m, k->c.contact.face_slices)));
     k->body = std::make_shared<HarmonicBody>(m, *k->fourier);
     k->readout = fem_readout(k->fourier->figures);
     k->options = app::contact_options(k->c, app::series_parts(k->c));

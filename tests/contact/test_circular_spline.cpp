@@ -398,7 +398,7 @@ namespace {
 TEST(CircularSplineInTheDrive, AddsItsBlockCarriesTheFlanksTorqueAndTakesItsShareOfTheSplit) {
   const Case c = load_case("cases/cup_size17.toml");
   const FlexsplineModel model = flexspline_model(c);
-  const FourierSolution s = analyse_flexspline_fourier(model, 0, contact_band_request(model, 1));
+  const FourierSolution s = analyse_flexspline_fourier(model, contact_band_request(model, 1));
   const HarmonicBody body(model, s);
   ContactOptions o;
   o.rated_torque_Nm = 31;

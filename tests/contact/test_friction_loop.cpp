@@ -29,7 +29,7 @@ const Solved& size17(bool band_held) {
     k->c = load_case("cases/cup_size17.toml");
     if (band_held) k->c.wave_generator->model = FourForce{};
     const FlexsplineModel m = flexspline_model(k->c);
-    k->fourier = analyse_flexspline_fourier(m, 0, contact_band_request(m, k->c.contact.face_slices));
+    k->fourier = analyse_flexspline_fourier(m, contact_band_request(m, k->c.contact.face_slices));
     s[band_held] = k;
   }
   return *s[band_held];

@@ -60,7 +60,7 @@ const BothWays& both_ways(const std::string& path) {
   s->tet10_fem = analyse_flexspline(m, *s->mesh, *s->system);
   s->tet10 = analyse_contact(m, *s->mesh, *s->system, fem_readout(s->tet10_fem), o);
   s->fourier = std::make_unique<FourierSolution>(
-      analyse_flexspline_fourier(m, 0, contact_band_request(m, s->c.contact.face_slices)));
+      analyse_flexspline_fourier(m, contact_band_request(m, s->c.contact.face_slices)));
   // The contact on both bodies from the same rim at rest (TET10's readout: the generator-deformed neutral curve, C_τ,
   // the stations' standoff), so that only the body's influence coefficients differ; and on the harmonic solver's own.
   const HarmonicBody body(m, *s->fourier);
@@ -254,14 +254,14 @@ TEST(HarmonicContact, CirculantBlockAndEnergyByRegionMatchTet10) {
 TEST(HarmonicContact, HalfTheToothCountOfHarmonicsIsEnough) {
   const Case c = load_case("cases/cup_size17.toml");
   FlexsplineModel m = flexspline_model(c);
-  const FourierSolution once = analyse_flexspline_fourier(m, 0, contact_band_request(m, 1));
+  const FourierSolution once = analyse_flexspline_fourier(m, contact_band_request(m, 1));
   ContactOptions o = options_of(c);
   o.contact.face_slices = 1;  // whole-face patterns on the solution's whole-face band
   const ContactAnalysis a = analyse_contact(m, HarmonicBody(m, once), fem_readout(once.figures), o);
   const std::vector<FlankPattern> p = some_flanks(a);
   const Eigen::MatrixXd A = HarmonicBody(m, once).influence(p, 1).A;
   m.solver.harmonics *= 2;
-  const FourierSolution twice = analyse_flexspline_fourier(m, 0, contact_band_request(m, 1));
+  const FourierSolution twice = analyse_flexspline_fourier(m, contact_band_request(m, 1));
   const Eigen::MatrixXd A2 = HarmonicBody(m, twice).influence(p, 1).A;
   ASSERT_EQ(A.rows(), A2.rows());
   const double change = (A2 - A).cwiseAbs().maxCoeff() / A2.cwiseAbs().maxCoeff();

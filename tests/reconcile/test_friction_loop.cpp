@@ -53,7 +53,7 @@ const Drive& preloaded_size17() {
     k->c.gear->profile_shift_circular = k->c.gear->profile_shift_flexspline + 0.03277929;  // the centre's cut
     k->c.contact.face_slices = 3;
     const FlexsplineModel m = flexspline_model(k->c);
-    const FourierSolution f = analyse_flexspline_fourier(m, 0, contact_band_request(m, 3));
+    const FourierSolution f = analyse_flexspline_fourier(m, contact_band_request(m, 3));
     ContactOptions o;
     o.rated_torque_Nm = *k->c.load.rated_torque_Nm;
     o.series = app::series_parts(k->c);

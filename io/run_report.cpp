@@ -268,7 +268,7 @@ std::string run_report_html(const RunReportInputs& in) {
   s << "<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'><title>strainwave: "
     << html_escape(in.case_path) << "</title>\n<style>body{font-family:sans-serif;max-width:1000px;margin:2em auto;"
     << "color:#222}table{border-collapse:collapse;margin:1em 0}td{border-bottom:1px solid #ddd;padding:4px 10px;"
-    << "vertical-align:top}td.v{font-family:monospace;white-space:nowrap}td.n{color:#555;font-size:90%}"
+    << "vertical-align:top}td.v{font-family:monospace}td.n{color:#555;font-size:90%;min-width:16em}"
     << "pre{background:#f6f6f6;padding:1em;font-size:85%;overflow:auto}.fig{margin:1em 0}</style></head><body>\n";
   s << "<h1>strainwave run: " << html_escape(in.case_path) << "</h1>\n<p>strainwave " << html_escape(tool_version())
     << "</p>\n";

@@ -30,7 +30,12 @@ SeriesParts series_parts(const Case& c) {
   if (c.gear) {
     // The tooth pair's own compliance per unit face width over the rim's width, at the flank's contact radius (kept
     // on the active flank): contact/loaded_contact.hpp tooth_pair_compliance_of.
-    s.tooth_pair_m_per_N = tooth_pair_compliance_of(flexspline_model(c));
+    const FlexsplineModel m = flexspline_model(c);
+    const ToothCompliances teeth = tooth_pair_compliance_of(m);
+    s.tooth_pair_m_per_N = teeth.pair_m_per_N;
+    // The sections' springs side by side: a solid tooth's coupling across the face (SeriesParts::face_shape,
+    // contact/tooth_fem.hpp face_coupling) moves the twist by 0.1-2.2 % on the designs measured (bench_face_coupling)
+    // and costs its slabs 1-5 s; left out.
     s.teeth_source = std::string("tooth pair compliance (flexspline tooth: ") +
                      (c.flexspline.teeth == TeethModel::Explicit
                           ? "the body's own explicit teeth, loaded on their flanks"

@@ -15,7 +15,9 @@
 #include "common/progress.hpp"
 #include "contact/harmonic_body.hpp"
 #include "contact/loaded_contact.hpp"
+#include "contact/tet10_body.hpp"
 #include "contact/torque_twist.hpp"
+#include "design/proportions.hpp"
 #include "dgemm.hpp"
 #include "fem/flexspline_analysis.hpp"
 #include "fem/flexspline_system.hpp"
@@ -53,10 +55,29 @@ void on_tet10(sw::Case c, sw::TeethModel teeth, const sw::bench::MeshSpec& spec)
   const TetMesh mesh = bench::mesh_for_bench(c);
   const FlexsplineSystem system = assemble_and_factorise(m, mesh);
   const FlexsplineSolution fem = analyse_flexspline(m, mesh, system);
-  const ContactAnalysis a = analyse_contact(m, mesh, system, fem_readout(fem), options(c));
+  const FemReadout readout = fem_readout(fem);
+  const ContactAnalysis a = analyse_contact(m, mesh, system, readout, options(c));
   const std::string what = std::string(teeth == TeethModel::Explicit ? "explicit teeth" : "bare rim + tooth slabs") +
                            ", " + std::to_string(mesh.n_nodes() / 1000) + "k nodes";
   print(what.c_str(), a, clock.lap());
+  if (teeth != TeethModel::Explicit) return;
+  // The design's zero-backlash cut is set on the harmonic solver's bare rim; the toothed rim deforms to another shape
+  // and keeps play there. The same cut on this rim's own sections (design/proportions.hpp zero_backlash) separates
+  // the deformed shape from the rest of what the two bodies differ in.
+  const Tet10Body body(m, mesh, system, readout.generator_u);
+  const int n = c.contact.face_slices;
+  std::vector<double> z;
+  for (int j = 0; j < n; ++j) z.push_back(face_section_z_m(readout.neutral_curve.z_m, c.flexspline.rim_width_m, j, n));
+  std::vector<NeutralCurve> sections;
+  for (const NeutralCurveSamples& s : body.generator_curves_at(z)) sections.push_back(fem_neutral_curve(s));
+  const ZeroBacklash cut = zero_backlash(*m.gear, sections, "the explicit teeth's rim");
+  Case own = c;  // the circular spline's shift alone changes: the flexspline's mesh and factor stand
+  own.gear->profile_shift_circular = own.gear->profile_shift_flexspline + cut.shift_difference;
+  std::printf("  zero backlash on the explicit rim's own %d sections: x_c - x_f = %.8f (the design's %.8f)\n", n,
+              cut.shift_difference, m.gear->profile_shift_circular - m.gear->profile_shift_flexspline);
+  const FlexsplineModel mo = flexspline_model(own);
+  print("explicit teeth, own cut", analyse_contact(mo, Tet10Body(mo, mesh, system, readout.generator_u), readout,
+                                                   options(own)), clock.lap());
 }
 
 }  // namespace

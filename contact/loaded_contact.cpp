@@ -181,7 +181,11 @@ private:
   void set_up_problem();
   ContactProblem body_problem(const Eigen::MatrixXd& A_body, const Eigen::VectorXd& q_flank,
                               const Eigen::VectorXd& lever, Eigen::MatrixXd& band_solve) const;
+  void set_up_teeth();
   void add_series(ContactProblem& P, const Eigen::MatrixXd& A_cs) const;
+  bool coupled_face() const {
+    return n_slices_ > 1 && opt_.series.flexspline_tooth_m_per_N && opt_.series.face_shape;
+  }
   /// A solve of the contact problem at one torque with the bearing's secants on its diagonal: frictionless
   /// (solve_contact) or with friction along a history (solve_frictional_step from the history's last state); called
   /// with the iterate before (null on the first).
@@ -245,6 +249,8 @@ private:
   std::vector<FlankPattern> patterns_, observers_, tangential_;  // tangential_: with friction or the ramp
   std::vector<FlankPattern> cs_patterns_, cs_tangential_;  // the flanks' forces on the circular spline
   std::vector<double> q_flank_;
+  std::vector<double> tooth_f_;  // each flank's flexspline tooth part over the face (m/N), with the face coupled
+  Eigen::MatrixXd teeth_;        // the tooth pairs in series per unknown (set_up_teeth)
   Eigen::Index nf_ = 0, nb_ = 0, no_ = 0;
   // The ratcheting ramp: the teeth that can carry, radial observers at their tips on the rim and on the ring, and
   // which of them each flank belongs to.
@@ -415,6 +421,7 @@ void ContactAnalyser::add_flank(FlankContact f, const FlankClearance& fc, int k,
                              ? opt_.series.tooth_pair_m_per_N(f.contact_radius_m, f.contact_radius_c_m) /
                                    face_slice(j, n_slices_).width()
                              : 0.0;
+  tooth_f_.push_back(coupled_face() ? opt_.series.flexspline_tooth_m_per_N(f.contact_radius_m) : 0.0);
   const double s = std::atan2(fc.point_f.y(), fc.point_f.x());
   std::vector<double> stations{s};
   if (out_.half_turn_pairs) stations.push_back(s + kPi);
@@ -547,6 +554,7 @@ void ContactAnalyser::set_up_problem() {
   A_noseries_ = P_.A;
   cs_.A = Eigen::MatrixXd::Zero(nf, nf);
   if (opt_.series.circular_spline) cs_ = opt_.series.circular_spline(cs_patterns_);
+  set_up_teeth();
   add_series(P_, cs_.A);
   out_.unknowns = static_cast<int>(P_.q.size());
   out_.problem = P_;
@@ -588,11 +596,31 @@ ContactProblem ContactAnalyser::body_problem(const Eigen::MatrixXd& A_body, cons
   return P;
 }
 
-/// The parts in series with the body: the circular spline's block on the flanks and each tooth pair's own compliance
-/// on the diagonal.
+/// The tooth pairs in series, per unknown: each flank's pair on the diagonal and, with the face coupled, a solid
+/// flexspline tooth's flanks on one side sharing their loads across the face's sections. The flexspline tooth's part
+/// t (m/N over the face) of flank i in section j and i' in j' couples as sqrt(t_i·t_i')·G(j, j') (G the face's shape,
+/// contact/tooth_fem.hpp FaceCoupling), which for one contact radius is the slabs' own C; its diagonal replaces the
+/// springs' t/w_j. Each flank's compliance_m_per_N becomes its diagonal.
+void ContactAnalyser::set_up_teeth() {
+  teeth_ = Eigen::MatrixXd::Zero(nf_, nf_);
+  for (Eigen::Index i = 0; i < nf_; ++i) teeth_(i, i) = n_teeth_ * out_.flanks[i].compliance_m_per_N;
+  if (!coupled_face()) return;
+  const Eigen::MatrixXd G = opt_.series.face_shape(n_slices_);
+  if (G.rows() != n_slices_ || G.cols() != n_slices_)
+    throw std::invalid_argument("contact: the face's coupling is not one row and column per face section");
+  for (Eigen::Index i = 0; i < nf_; ++i)
+    for (Eigen::Index k = 0; k < nf_; ++k) {
+      const FlankContact &a = out_.flanks[i], &b = out_.flanks[k];
+      if (a.tooth != b.tooth || a.flank != b.flank) continue;
+      const double springs = a.slice == b.slice ? 1.0 / face_slice(a.slice, n_slices_).width() : 0.0;
+      teeth_(i, k) += n_teeth_ * std::sqrt(tooth_f_[i] * tooth_f_[k]) * (G(a.slice, b.slice) - springs);
+    }
+  for (Eigen::Index i = 0; i < nf_; ++i) out_.flanks[i].compliance_m_per_N = teeth_(i, i) / n_teeth_;
+}
+
+/// The parts in series with the body: the circular spline's block on the flanks and the tooth pairs (set_up_teeth).
 void ContactAnalyser::add_series(ContactProblem& P, const Eigen::MatrixXd& A_cs) const {
-  P.A.topLeftCorner(nf_, nf_) += A_cs;
-  for (Eigen::Index i = 0; i < nf_; ++i) P.A(i, i) += n_teeth_ * out_.flanks[i].compliance_m_per_N;
+  P.A.topLeftCorner(nf_, nf_) += A_cs + teeth_;
 }
 
 /// The secant of the approach between the preload p and x; where the two are too close for a difference quotient to
@@ -868,24 +896,24 @@ void ContactAnalyser::split_compliance() {
   for (Eigen::Index i = 0; i < at_rated_.force_N.size(); ++i)
     if (at_rated_.force_N[i] > 0) S.push_back(i);
   const auto n = static_cast<Eigen::Index>(S.size());
-  Eigen::MatrixXd M(n, n), Mb(n, n), Mc = Eigen::MatrixXd::Zero(n, n);
-  Eigen::VectorXd l(n), teeth(n), brg(n);
+  Eigen::MatrixXd M(n, n), Mb(n, n), Mc = Eigen::MatrixXd::Zero(n, n), Mt = Eigen::MatrixXd::Zero(n, n);
+  Eigen::VectorXd l(n), brg(n);
   for (Eigen::Index r = 0; r < n; ++r) {
     l[r] = P_.lambda[S[r]];
-    teeth[r] = S[r] < nf_ ? n_teeth_ * out_.flanks[S[r]].compliance_m_per_N : 0.0;
     brg[r] = S[r] >= nf_ && bearing_ ? bearing_c_[S[r] - nf_] : 0.0;
     for (Eigen::Index q = 0; q < n; ++q) Mb(r, q) = A_noseries_(S[r], S[q]);
     for (Eigen::Index q = 0; q < n && S[r] < nf_; ++q) Mc(r, q) = S[q] < nf_ ? cs_.A(S[r], S[q]) : 0.0;
+    for (Eigen::Index q = 0; q < n && S[r] < nf_; ++q) Mt(r, q) = S[q] < nf_ ? teeth_(S[r], S[q]) : 0.0;
   }
-  M = Mb + Mc;
-  M.diagonal() += teeth + brg;
+  M = Mb + Mc + Mt;
+  M.diagonal() += brg;
   const Eigen::VectorXd Ml = M.ldlt().solve(l);
   const double C_t = 1.0 / l.dot(Ml);
   const Eigen::VectorXd dz = Ml * C_t;
   const double total = out_.curve.twist_rad.back(), T_fl = flanks_torque_at_rated_;
   ComplianceSplit& split = out_.split;
   split.body = dz.dot(Mb * dz) * T_fl / total;
-  split.teeth = dz.cwiseProduct(teeth).dot(dz) * T_fl / total;
+  split.teeth = dz.dot(Mt * dz) * T_fl / total;
   split.generator = dz.cwiseProduct(brg).dot(dz) * T_fl / total;
   split.circular_spline = dz.dot(Mc * dz) * T_fl / total;
   split.engagement = 1.0 - split.body - split.teeth - split.generator - split.circular_spline;
@@ -1194,7 +1222,7 @@ void ContactAnalyser::check_independently() {
 
 }  // namespace
 
-std::function<double(double, double)> tooth_pair_compliance_of(const FlexsplineModel& c) {
+ToothCompliances tooth_pair_compliance_of(const FlexsplineModel& c) {
   if (!c.gear) return {};
   const GearParams g = *c.gear;
   const Material m = c.material;
@@ -1209,11 +1237,14 @@ std::function<double(double, double)> tooth_pair_compliance_of(const FlexsplineM
              " contact radii (two plane-strain slabs, " + std::to_string(tooth->nodes) + " nodes) in " +
              std::to_string(tooth->seconds) + " s");
   }
-  return [=](double r_f, double r_c) {
+  ToothCompliances out;
+  out.pair_m_per_N = [=](double r_f, double r_c) {
     const double rf = std::clamp(r_f, radii.form_f, radii.tip_f);
     const ToothPairCompliance p = tooth_pair_compliance(g, m, rf, kReferenceLineLoad_N_per_m, bore, r_c);
     return ((tooth ? (*tooth)(rf) : 0.0) + p.bending_c + p.foundation_c + p.contact) / width;
   };
+  if (tooth) out.flexspline_tooth_m_per_N = [=](double r_f) { return (*tooth)(r_f) / width; };
+  return out;
 }
 
 NeutralCurve fem_neutral_curve(const NeutralCurveSamples& s, const std::string& source) {

@@ -48,6 +48,12 @@ struct SeriesParts {
   /// Compliance of one tooth pair over the whole face width (m/N), loaded where the teeth touch: at these radii on the
   /// flexspline's tooth (its own frame) and on the circular spline's (0: the conjugate point).
   std::function<double(double contact_radius_f_m, double contact_radius_c_m)> tooth_pair_m_per_N;
+  /// With more than one face section: the flexspline tooth's own part of tooth_pair_m_per_N (m/N over the whole face)
+  /// and how a solid tooth shares a section's load with the others (contact/tooth_fem.hpp FaceCoupling::shape, n × n
+  /// for n sections), which couples the flanks of one tooth across the face. Either empty: each section's spring on
+  /// its own.
+  std::function<double(double contact_radius_f_m)> flexspline_tooth_m_per_N;
+  std::function<Eigen::MatrixXd(int sections)> face_shape;
   std::string teeth_source;  ///< what the tooth compliance comes from, for reports
   /// Approach of the generator bearing's races (m) under one ball's load (N), and the number of balls.
   std::function<double(double ball_load_N)> bearing_approach_m;
@@ -60,9 +66,13 @@ struct SeriesParts {
 /// The flexspline model's tooth pair compliance over the rim's face width (m/N) at the two contact radii: the flexspline's tooth
 /// from the explicit-tooth FEM with the ring model's own share taken off (contact/tooth_fem.hpp), the circular
 /// spline's tooth (bending, foundation) and the flattening of both from gear/tooth_stiffness.hpp; the flexspline's
-/// radius clamped to its active flank. Builds the FEM tooth once (two small slabs). Empty without a [gear].
-std::function<double(double contact_radius_f_m, double contact_radius_c_m)> tooth_pair_compliance_of(
-    const FlexsplineModel& model);
+/// radius clamped to its active flank. Builds the FEM tooth once (two small slabs). Empty without a [gear]; the
+/// flexspline tooth's part empty too with explicit teeth (the body holds them).
+struct ToothCompliances {
+  std::function<double(double contact_radius_f_m, double contact_radius_c_m)> pair_m_per_N;
+  std::function<double(double contact_radius_f_m)> flexspline_tooth_m_per_N;  ///< its part of pair_m_per_N
+};
+ToothCompliances tooth_pair_compliance_of(const FlexsplineModel& model);
 
 /// Where each tooth sits off its nominal place along its pitch circle (m, positive counter-clockwise): the pitch
 /// deviations of manufacture (contact/accuracy_band.hpp draws them for an ISO 1328-1 class). A flexspline tooth's
@@ -114,7 +124,7 @@ struct FlankContact {
   double lever_m = 0;          ///< signed moment arm (> 0 ccw: closed by a positive turn)
   double contact_radius_m = 0;  ///< on the flexspline tooth, its own frame
   double contact_radius_c_m = 0;  ///< on the circular spline's tooth
-  double compliance_m_per_N = 0;  ///< the tooth pair's own (series)
+  double compliance_m_per_N = 0;  ///< the tooth pair's own (series), the tooth's other sections unloaded
   ToothPart part_f = ToothPart::Flank, part_c = ToothPart::Flank;  ///< where the teeth touch (flank, tip corner)
   /// Free at rest (the flexspline's tip short of the circular spline's tip circle, near a zone's edge); its gap is its
   /// exact closing turn like every other flank's.

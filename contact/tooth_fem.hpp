@@ -17,6 +17,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Dense>
 
 #include "common/material.hpp"
 #include "fem/assembly.hpp"
@@ -26,11 +27,12 @@
 
 namespace sw {
 
-/// A slab of mesh/tooth_slab held at its bore (its kSurfaceClamped faces) under plane strain (u_z = 0 at every node,
-/// so the 3-D TET10 model is exactly the 2-D plane-strain one), factorised once.
-class PlaneStrainSlab {
+/// A slab of mesh/tooth_slab held at its bore (its kSurfaceClamped faces), factorised once: under plane strain
+/// (u_z = 0 at every node, so the 3-D TET10 model is exactly the 2-D plane-strain one), or free in z (a slab as deep
+/// as the face: the solid tooth with its two free ends).
+class ClampedSlab {
 public:
-  PlaneStrainSlab(ToothSlab slab, const Material& m);
+  ClampedSlab(ToothSlab slab, const Material& m, bool plane_strain = true);
   const ToothSlab& slab() const { return slab_; }
   /// Displacement (3·n_nodes, m) under nodal loads f (N).
   Eigen::VectorXd solve(const Eigen::VectorXd& f) const;
@@ -57,5 +59,30 @@ struct FlexsplineToothFem {
 /// Throws InputError when the bore is not inside the root circle.
 FlexsplineToothFem flexspline_tooth_fem(const GearParams& g, const Material& m, double bore_radius_m,
                                         double ring_outer_radius_m, int samples = 9, int points_per_flank = 24);
+
+/// How a solid flexspline tooth shares a flank's load between the loaded contact's face sections
+/// (contact/contact_body.hpp face_slice: n sections, each for its band of the face). The fast model's teeth are
+/// plane-strain slabs, one spring per section side by side; a real tooth is one solid along the face and carries a
+/// band's load into its neighbours (a cantilever plate). From two bore-clamped slabs as deep as the face, free in z
+/// (mesh/tooth_slab, the same pair as flexspline_tooth_fem: the teeth, and the ring the 3-D model already holds):
+/// band j loaded by 1 N along the flank's normal at mid-flank (the explicit slab: the elliptic strip over the band;
+/// the ring slab: contact/'s flank pattern over the band), band i's deflection read as flexspline_tooth_fem reads it
+/// (the explicit slab's centre line averaged over the band; the ring's fᵀu). C = explicit − ring (m/N, symmetrised).
+/// The shape is C·b / c_3D with c_3D = b·wᵀCw (b the face width, w_j the bands' fractions of it): the coupled
+/// sections under a uniform line load hold the energy the plane-strain tooth holds, so the tooth's level stays
+/// flexspline_tooth_fem's (its radius dependence included) and only its spread along the face comes from here. For
+/// springs side by side (C = diag(t/b_j)) the shape is diag(1/w_j): today's sections exactly.
+struct FaceCoupling {
+  Eigen::MatrixXd shape;          ///< n×n, symmetric positive definite, dimensionless
+  double uniform_m2_per_N = 0;    ///< c_3D: the slabs' energy-mean deflection per line load under a uniform line load
+  double interior_m2_per_N = 0;   ///< band n/2's deflection per line load under it (near plane strain on a long face)
+  double radius_m = 0;            ///< the contact radius loaded (mid-flank)
+  std::size_t nodes = 0;          ///< of both slabs
+  double seconds = 0;
+};
+
+/// Throws InputError when the bore is not inside the root circle, n < 2, or a band holds no loaded surface.
+FaceCoupling face_coupling(const GearParams& g, const Material& m, double bore_radius_m, double ring_outer_radius_m,
+                           double face_width_m, int sections, int points_per_flank = 8);
 
 }  // namespace sw

@@ -207,9 +207,10 @@ CupDesign design_cup(int size, int ratio, const DesignProportions& p) {
   return c;
 }
 
-void set_zero_backlash(CupDesign& d, const std::vector<NeutralCurve>& sections, const std::string& what) {
-  if (sections.empty()) throw std::invalid_argument("set_zero_backlash: no neutral curve");
-  GearParams g = d.gear;
+ZeroBacklash zero_backlash(const GearParams& gear, const std::vector<NeutralCurve>& sections, const std::string& drive,
+                          const std::string& what) {
+  if (sections.empty()) throw std::invalid_argument("zero_backlash: no neutral curve");
+  GearParams g = gear;
   std::size_t tightest_on = 0;  // the section of the last call's tightest pair
   auto tightest = [&](double shift_difference) {
     g.profile_shift_circular = g.profile_shift_flexspline + shift_difference;
@@ -231,7 +232,7 @@ void set_zero_backlash(CupDesign& d, const std::vector<NeutralCurve>& sections, 
   double lo = kLo, hi = kHi;
   if (!(tightest(lo).clearance_m < kTouch_m && tightest(hi).clearance_m > kTouch_m)) {
     std::ostringstream os;
-    os << "size " << d.size << ", ratio " << d.ratio << ": no profile shift difference x_c - x_f in [" << kLo << ", "
+    os << drive << ": no profile shift difference x_c - x_f in [" << kLo << ", "
        << kHi << "] takes the teeth from overlap to clearance at rest on the " << curves << " curve";
     throw InputError(os.str());
   }
@@ -244,7 +245,7 @@ void set_zero_backlash(CupDesign& d, const std::vector<NeutralCurve>& sections, 
   const TightestPair t = tightest(shift_difference);
   const BacklashModel model = make_backlash_model(g, curve);
   const FlankClearance& touching = t.pair.ccw.clearance_m < t.pair.cw.clearance_m ? t.pair.ccw : t.pair.cw;
-  ZeroBacklash& z = d.zero_backlash;
+  ZeroBacklash z;
   z.curve = curves;
   z.tightest_section = sections[tightest_on].source;
   z.shift_difference = shift_difference;
@@ -255,7 +256,13 @@ void set_zero_backlash(CupDesign& d, const std::vector<NeutralCurve>& sections, 
   z.tightest_parts = std::string(part_name(touching.part_f)) + " / " + part_name(touching.part_c);
   z.major_axis_play_rad =
       closing_angle_rad(model, 0.0, 0.0, Flank::Ccw) + closing_angle_rad(model, 0.0, 0.0, Flank::Cw);
-  d.gear.profile_shift_circular = g.profile_shift_circular;
+  return z;
+}
+
+void set_zero_backlash(CupDesign& d, const std::vector<NeutralCurve>& sections, const std::string& what) {
+  d.zero_backlash =
+      zero_backlash(d.gear, sections, "size " + std::to_string(d.size) + ", ratio " + std::to_string(d.ratio), what);
+  d.gear.profile_shift_circular = d.gear.profile_shift_flexspline + d.zero_backlash.shift_difference;
 }
 
 std::string design_case_toml(const CupDesign& c) {

@@ -107,6 +107,10 @@ CupDesign design_cup(int size, int ratio, const DesignProportions& p = {});
 /// InputError when no x_c − x_f in [−0.2, 0.3] brackets it (the teeth interfere whatever the shift), and
 /// std::invalid_argument for no curve.
 void set_zero_backlash(CupDesign& d, const std::vector<NeutralCurve>& sections, const std::string& what = "");
+/// The same for any gear on any rim's curves (its x_c left as it is; the shift is x_f + shift_difference), `drive`
+/// naming it in the error ("size 14, ratio 30").
+ZeroBacklash zero_backlash(const GearParams& g, const std::vector<NeutralCurve>& sections, const std::string& drive,
+                           const std::string& what = "");
 
 /// The design as a case file (TOML, lengths in mm) with a header comment naming the source of every proportion.
 /// It loads with io/case.hpp's load_case and passes the flexspline, gear and bearing validation.

@@ -15,30 +15,32 @@ namespace sw {
 
 namespace {
 
-/// The closed outline (points in order, each segment's marker) extruded from z = 0 to `depth`: two caps and one quad
-/// per segment, TET10 through TetGen with tets no larger than a regular one of edge `max_edge` (0 = no bound).
+/// The closed outline (points in order, each segment's marker) extruded from z = 0 to `depth`: a cap at each level
+/// (z = 0, depth and the cuts between: inner ones are facets the tets do not cross) and one quad per segment and
+/// layer, TET10 through TetGen with tets no larger than a regular one of edge `max_edge` (0 = no bound).
 TetMesh extrude(const std::vector<Eigen::Vector2d>& pts, const std::vector<int>& seg_marker, double depth,
-                double max_edge) {
+                double max_edge, const std::vector<double>& cuts) {
   const int n = static_cast<int>(pts.size());
+  std::vector<double> levels{0.0};
+  for (const double c : cuts) levels.push_back(c * depth);
+  levels.push_back(depth);
   Plc plc;
-  for (double zz : {0.0, depth})
+  for (const double zz : levels)
     for (const auto& p : pts) plc.points.emplace_back(p.x(), p.y(), zz);
-  PlcFacet bottom, top;
-  bottom.polygons.emplace_back();
-  top.polygons.emplace_back();
-  for (int i = 0; i < n; ++i) {
-    bottom.polygons[0].push_back(i);
-    top.polygons[0].push_back(n + i);
+  for (std::size_t l = 0; l < levels.size(); ++l) {
+    PlcFacet cap;
+    cap.polygons.emplace_back();
+    for (int i = 0; i < n; ++i) cap.polygons[0].push_back(static_cast<int>(l) * n + i);
+    plc.facets.push_back(cap);
   }
-  plc.facets.push_back(bottom);
-  plc.facets.push_back(top);
-  for (int i = 0; i < n; ++i) {
-    const int j = (i + 1) % n;
-    PlcFacet quad;
-    quad.polygons.push_back({i, j, n + j, n + i});
-    quad.marker = seg_marker[i];
-    plc.facets.push_back(quad);
-  }
+  for (std::size_t l = 0; l + 1 < levels.size(); ++l)
+    for (int i = 0; i < n; ++i) {
+      const int j = (i + 1) % n, b = static_cast<int>(l) * n, t = b + n;
+      PlcFacet quad;
+      quad.polygons.push_back({b + i, b + j, t + j, t + i});
+      quad.marker = seg_marker[i];
+      plc.facets.push_back(quad);
+    }
   TetgenOptions t;
   t.time_limit_s = 10.0;
   t.max_radius_edge_ratio = 2.0;
@@ -92,16 +94,23 @@ ToothSlab extrude_with_retries(const std::vector<Eigen::Vector2d>& outline, cons
     const double depth = o.depth_over_spacing * spacing;
     close_with_body(top_m, o.bore_radius_m, a_end, spacing, attempt == 2 ? 1 : 0, attempt > 0, pts, seg_marker);
     try {
-      return ToothSlab{extrude(pts, seg_marker, depth, o.max_edge_over_spacing * spacing), depth};
+      return ToothSlab{extrude(pts, seg_marker, depth, o.max_edge_over_spacing * spacing, o.depth_cuts), depth};
     } catch (const InputError&) {
       if (attempt == 2) throw;
     }
   }
 }
 
+void check_cuts(const std::vector<double>& cuts) {
+  for (std::size_t i = 0; i < cuts.size(); ++i)
+    if (!(cuts[i] > 0 && cuts[i] < 1) || (i > 0 && !(cuts[i] > cuts[i - 1])))
+      throw InputError("tooth slab: depth cut " + std::to_string(cuts[i]) + " must lie in (0, 1), ascending");
+}
+
 }  // namespace
 
 ToothSlab mesh_tooth_slab(const GearParams& g, const ToothSlabOptions& o) {
+  check_cuts(o.depth_cuts);
   const GearRadii r = gear_radii(g);
   if (!(o.bore_radius_m > 0 && o.bore_radius_m < r.root_f) || o.teeth_each_side < 0 ||
       2 * o.teeth_each_side + 1 > g.teeth_flexspline) {
@@ -146,6 +155,7 @@ ToothSlab mesh_tooth_slab(const GearParams& g, const ToothSlabOptions& o) {
 }
 
 ToothSlab mesh_ring_slab(const GearParams& g, const ToothSlabOptions& o, double r_o) {
+  check_cuts(o.depth_cuts);
   const GearRadii r = gear_radii(g);
   if (!(o.bore_radius_m > 0 && o.bore_radius_m < r_o) || o.teeth_each_side < 0 ||
       2 * o.teeth_each_side + 1 > g.teeth_flexspline) {

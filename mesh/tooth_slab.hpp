@@ -2,6 +2,8 @@
 // A thin plane slab of an external gear's teeth on their body, for the explicit-tooth check of the tooth-pair
 // stiffness: the 2-D section (2K+1 teeth of flexspline_outline centred on +x, the body down to the bore radius)
 // extruded by a short depth in z. Plane strain is imposed by the caller (u_z = 0). Metres.
+#include <vector>
+
 #include "gear/gear.hpp"
 #include "mesh/tet_mesh.hpp"
 
@@ -13,6 +15,9 @@ struct ToothSlabOptions {
   int points_per_flank = 48;        ///< outline samples on each flank of the loaded tooth (neighbours get a quarter)
   double depth_over_spacing = 3.0;  ///< slab depth in z as a multiple of the loaded flank's point spacing
   double max_edge_over_spacing = 6.0;  ///< tet size bound everywhere (regular tet of this edge), 0 = none
+  /// Planes z = cut·depth (fractions in (0, 1), ascending) the tets do not cross: a load over a band of the depth
+  /// then falls on whole faces (the loaded contact's face sections, contact/tooth_fem.hpp face_coupling).
+  std::vector<double> depth_cuts;
 };
 
 /// Markers of the slab's boundary faces (TetMesh::faces): the loaded tooth's outline (flanks, tip, fillets and the root

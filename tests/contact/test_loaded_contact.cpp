@@ -263,6 +263,28 @@ TEST(LoadedContact, FaceSlicesFollowTheCupsConing) {
   FemReadout read_back = fem_readout(k.fem);
   read_back.generator_u = nullptr;  // as `contact --fem` reads it back from result.json
   EXPECT_THROW(analyse_contact(flexspline_model(k.c), k.mesh, k.system, read_back, o), InputError);
+
+  // A solid tooth across the face (the pair all flexspline tooth here): coupled by the springs' own shape
+  // diag(1/w_j) it is today's sections to round-off; by a shape that shares half of each band's load evenly with the
+  // whole face (G = diag(1/w)/2 + 1/2: the same energy under a uniform load) each flank is half as compliant on its
+  // own plus the face's share, and the drive stiffer.
+  ContactOptions c = o;
+  c.series.flexspline_tooth_m_per_N = [](double) { return 1e-8; };
+  const Eigen::Vector3d w(0.25, 0.5, 0.25);
+  const Eigen::MatrixXd springs = w.cwiseInverse().asDiagonal();
+  c.series.face_shape = [&](int n) { EXPECT_EQ(n, 3); return springs; };
+  const ContactAnalysis same = analyse_contact(flexspline_model(k.c), k.mesh, k.system, fem_readout(k.fem), c);
+  EXPECT_NEAR(same.curve.twist_rad.back() / a.curve.twist_rad.back(), 1.0, 1e-12);
+  const Eigen::MatrixXd shared = 0.5 * springs + 0.5 * Eigen::MatrixXd::Ones(3, 3);
+  c.series.face_shape = [&](int) { return shared; };
+  const ContactAnalysis solid = analyse_contact(flexspline_model(k.c), k.mesh, k.system, fem_readout(k.fem), c);
+  for (const FlankContact& f : solid.flanks) EXPECT_NEAR(f.compliance_m_per_N, 1e-8 * shared(f.slice, f.slice), 1e-20);
+  std::printf("twist at rated: sections side by side %.4e rad, one solid tooth sharing half %.4e\n",
+              a.curve.twist_rad.back(), solid.curve.twist_rad.back());
+  EXPECT_LT(solid.curve.twist_rad.back(), a.curve.twist_rad.back());
+  EXPECT_LT(solid.torque_balance_error_rel, 1e-6);
+  c.series.face_shape = [](int) { return Eigen::MatrixXd::Identity(2, 2); };
+  EXPECT_THROW(analyse_contact(flexspline_model(k.c), k.mesh, k.system, fem_readout(k.fem), c), std::invalid_argument);
 }
 
 }  // namespace

@@ -31,7 +31,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-ToothCompliance teeth_of(const Case& c) { return tooth_pair_compliance_of(flexspline_model(c)); }
+ToothCompliance teeth_of(const Case& c) { return tooth_pair_compliance_of(flexspline_model(c)).pair_m_per_N; }
 
 DynamicsModel model_of(const Case& c, DynamicsParams p) {
   DynamicsModel m = make_model(*c.gear, c.flexspline, c.flexspline.shape == FlexsplineShape::Cup, c.material, p,

@@ -1,6 +1,6 @@
 #pragma once
 // Explicit-tooth FEM of one loaded tooth: the slab of mesh/tooth_slab under plane strain, body held at the bore
-// (contact/tooth_fem.hpp's PlaneStrainSlab), a line load along the involute's
+// (contact/tooth_fem.hpp's ClampedSlab), a line load along the involute's
 // normal at the contact radius spread over a small elliptic (Hertzian) strip. The deflection is read, along the load,
 // at the tooth's centre line at the height of the contact point (Weber's convention: no local indentation).
 #include <cmath>
@@ -27,7 +27,7 @@ struct SlabResult {
 /// FEM compliance of flexspline tooth 0 of `g` loaded on its ccw flank at `contact_radius_m`.
 inline SlabResult slab_compliance(const GearParams& g, const Material& mat, const ToothSlabOptions& opt,
                                   double contact_radius_m, double strip_half_width_m) {
-  const PlaneStrainSlab model(mesh_tooth_slab(g, opt), mat);
+  const ClampedSlab model(mesh_tooth_slab(g, opt), mat);
   const ToothSlab& slab = model.slab();
   const TetMesh& m = slab.mesh;
 
@@ -57,7 +57,7 @@ inline SlabResult slab_compliance(const GearParams& g, const Material& mat, cons
 inline double ring_slab_compliance(const GearParams& g, const Material& mat, const ToothSlabOptions& opt,
                                    double contact_radius_m) {
   const GearRadii radii = gear_radii(g);
-  const PlaneStrainSlab model(mesh_ring_slab(g, opt, radii.root_f + 0.5 * (radii.tip_f - radii.root_f)), mat);
+  const ClampedSlab model(mesh_ring_slab(g, opt, radii.root_f + 0.5 * (radii.tip_f - radii.root_f)), mat);
   const TetMesh& m = model.slab().mesh;
   const double depth = model.slab().depth_m, pitch = 2 * 3.14159265358979323846 / g.teeth_flexspline;
   const Involute fl = flexspline_flank(g);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "common/error.hpp"
+#include "contact/contact_body.hpp"
 #include "contact/tooth_fem.hpp"
 #include "gear/tooth_profile.hpp"
 #include "gear/tooth_stiffness.hpp"
@@ -214,3 +215,32 @@ TEST(ToothPairCompliance, ContactRadiusOutsideTheActiveFlankIsRejectedInOneLine)
 }
 
 }  // namespace
+
+// The solid tooth across the face (contact/tooth_fem.hpp face_coupling) on the seed's tooth, a face 20 teeth-heights
+// wide in 5 sections. Two checks that can fail: (1) its centre band under a uniform line load is the plane-strain tooth
+// of flexspline_tooth_fem at the same resolution (8 points a flank) and radius: plane strain holds far from the free
+// ends (tolerance 3 %: the two slabs differ only in z; their meshes and the 3-D slab's reading averaged over the band);
+// (2) a solid tooth is stiffer for a load on one band than that band's spring alone (G_jj < 1/w_j) and carries part of
+// it into the others (G_ij > 0), the nearer band more than the farther.
+TEST(FaceCoupling, CentreOfALongFaceIsThePlaneStrainToothAndOneBandsLoadSpreads) {
+  const GearParams g = seed_gear();
+  const GearRadii r = gear_radii(g);
+  const Material steel;
+  const double outer = r.root_f, face = 20 * (r.tip_f - r.root_f);  // the bare rim of flexspline.teeth = "none"
+  constexpr int n = 5;
+  const FaceCoupling f = face_coupling(g, steel, kSeedBore_m, outer, face, n);
+  const FlexsplineToothFem plane = flexspline_tooth_fem(g, steel, kSeedBore_m, outer, 9, 8);
+  std::printf("face coupling: %zu nodes, %.1f s; centre band %.4e, uniform %.4e, plane strain %.4e m2/N\n", f.nodes,
+              f.seconds, f.interior_m2_per_N, f.uniform_m2_per_N, plane(f.radius_m));
+  EXPECT_NEAR(f.interior_m2_per_N / plane(f.radius_m), 1.0, 0.03);
+  EXPECT_GT(f.uniform_m2_per_N, f.interior_m2_per_N);  // the free ends are softer
+  ASSERT_EQ(f.shape.rows(), n);
+  for (int j = 0; j < n; ++j) {
+    std::printf("  G row %d:", j);
+    for (int i = 0; i < n; ++i) std::printf(" %.3f", f.shape(j, i));
+    std::printf("  (springs %.3f)\n", 1 / face_slice(j, n).width());
+    EXPECT_LT(f.shape(j, j), 1 / face_slice(j, n).width()) << j;
+  }
+  EXPECT_GT(f.shape(2, 1), 10 * std::abs(f.shape(2, 0)));
+  EXPECT_NEAR(f.shape(0, 1), f.shape(4, 3), 0.02 * f.shape(0, 1));  // the face's two ends alike
+}

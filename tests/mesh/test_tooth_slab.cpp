@@ -191,5 +191,39 @@ TEST(ToothSlab, RefusesARingWhoseOutsideIsNotBeyondTheBore) {
   EXPECT_THROW(mesh_ring_slab(g, o, 16e-3), InputError);
 }
 
+// Depth cuts (a slab as deep as the face, cut at its sections' band ends): no tet crosses a cut plane, the volume is
+// the uncut slab's section times the depth, and a cut outside (0, 1) or out of order is refused naming it.
+TEST(ToothSlab, DepthCutsAreFacesNoTetCrossesAndBadCutsAreRefused) {
+  const GearParams g = case_14_50_gear();
+  ToothSlabOptions o;
+  o.bore_radius_m = 17.4556104 * 1e-3;
+  o.points_per_flank = 8;
+  o.teeth_each_side = 1;
+  o.depth_over_spacing = 40;
+  const double r_o = o.bore_radius_m + 0.49784 * 1e-3;
+  const ToothSlab plain = mesh_ring_slab(g, o, r_o);
+  o.depth_cuts = {0.125, 0.375, 0.625, 0.875};
+  const ToothSlab cut = mesh_ring_slab(g, o, r_o);
+  EXPECT_NEAR(mesh_volume(cut.mesh) / mesh_volume(plain.mesh), 1.0, 1e-3);  // the chords: the same outline
+  const double tol = 1e-9 * cut.depth_m;
+  int crossing = 0;
+  for (const auto& t : cut.mesh.tets)
+    for (const double c : o.depth_cuts) {
+      double lo = cut.depth_m, hi = 0;
+      for (int k = 0; k < 4; ++k) lo = std::min(lo, cut.mesh.nodes(t[k], 2)), hi = std::max(hi, cut.mesh.nodes(t[k], 2));
+      if (lo < c * cut.depth_m - tol && hi > c * cut.depth_m + tol) ++crossing;
+    }
+  EXPECT_EQ(crossing, 0);
+  for (const std::vector<double>& bad : {std::vector<double>{0.5, 0.25}, {0.0}, {1.0}}) {
+    o.depth_cuts = bad;
+    try {
+      mesh_tooth_slab(g, o);
+      FAIL() << "accepted a bad cut";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("depth cut"), std::string::npos) << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace sw

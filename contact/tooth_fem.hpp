@@ -73,7 +73,11 @@ FlexsplineToothFem flexspline_tooth_fem(const GearParams& g, const Material& m, 
 /// flexspline_tooth_fem's (its radius dependence included) and only its spread along the face comes from here. For
 /// springs side by side (C = diag(t/b_j)) the shape is diag(1/w_j): today's sections exactly.
 struct FaceCoupling {
-  Eigen::MatrixXd shape;          ///< n×n, symmetric positive definite, dimensionless
+  /// n×n, symmetric, dimensionless, its diagonal positive. Not always positive definite: from some 8 sections on a
+  /// load alternating band to band deflects the toothed slab less than the bare one (the tooth a deep rib along the
+  /// face over a thin rim), so the explicit slab's coupling less the ring's has negative eigenvalues. Only its sum
+  /// with the body's coefficients, which hold the bare rim's, has to be positive definite.
+  Eigen::MatrixXd shape;
   double uniform_m2_per_N = 0;    ///< c_3D: the slabs' energy-mean deflection per line load under a uniform line load
   double interior_m2_per_N = 0;   ///< band n/2's deflection per line load under it (near plane strain on a long face)
   double radius_m = 0;            ///< the contact radius loaded (mid-flank)

@@ -249,7 +249,6 @@ private:
   std::vector<FlankPattern> patterns_, observers_, tangential_;  // tangential_: with friction or the ramp
   std::vector<FlankPattern> cs_patterns_, cs_tangential_;  // the flanks' forces on the circular spline
   std::vector<double> q_flank_;
-  std::vector<double> tooth_f_;  // each flank's flexspline tooth part over the face (m/N), with the face coupled
   Eigen::MatrixXd teeth_;        // the tooth pairs in series per unknown (set_up_teeth)
   Eigen::Index nf_ = 0, nb_ = 0, no_ = 0;
   // The ratcheting ramp: the teeth that can carry, radial observers at their tips on the rim and on the ring, and
@@ -421,7 +420,6 @@ void ContactAnalyser::add_flank(FlankContact f, const FlankClearance& fc, int k,
                              ? opt_.series.tooth_pair_m_per_N(f.contact_radius_m, f.contact_radius_c_m) /
                                    face_slice(j, n_slices_).width()
                              : 0.0;
-  tooth_f_.push_back(coupled_face() ? opt_.series.flexspline_tooth_m_per_N(f.contact_radius_m) : 0.0);
   const double s = std::atan2(fc.point_f.y(), fc.point_f.x());
   std::vector<double> stations{s};
   if (out_.half_turn_pairs) stations.push_back(s + kPi);
@@ -608,12 +606,14 @@ void ContactAnalyser::set_up_teeth() {
   const Eigen::MatrixXd G = opt_.series.face_shape(n_slices_);
   if (G.rows() != n_slices_ || G.cols() != n_slices_)
     throw std::invalid_argument("contact: the face's coupling is not one row and column per face section");
+  Eigen::VectorXd t(nf_);  // each flank's flexspline tooth part over the face (m/N)
+  for (Eigen::Index i = 0; i < nf_; ++i) t[i] = opt_.series.flexspline_tooth_m_per_N(out_.flanks[i].contact_radius_m);
   for (Eigen::Index i = 0; i < nf_; ++i)
     for (Eigen::Index k = 0; k < nf_; ++k) {
       const FlankContact &a = out_.flanks[i], &b = out_.flanks[k];
       if (a.tooth != b.tooth || a.flank != b.flank) continue;
       const double springs = a.slice == b.slice ? 1.0 / face_slice(a.slice, n_slices_).width() : 0.0;
-      teeth_(i, k) += n_teeth_ * std::sqrt(tooth_f_[i] * tooth_f_[k]) * (G(a.slice, b.slice) - springs);
+      teeth_(i, k) += n_teeth_ * std::sqrt(t[i] * t[k]) * (G(a.slice, b.slice) - springs);
     }
   for (Eigen::Index i = 0; i < nf_; ++i) out_.flanks[i].compliance_m_per_N = teeth_(i, i) / n_teeth_;
 }

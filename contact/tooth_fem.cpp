@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include <Eigen/Dense>
@@ -27,6 +28,34 @@ DofMap bore_clamped(const TetMesh& m, bool plane_strain) {
     if (f.marker == kSurfaceClamped)
       for (int a : f.nodes) fixed[3 * a] = fixed[3 * a + 1] = fixed[3 * a + 2] = true;
   return make_dof_map(fixed);
+}
+
+/// The flexspline flank's point at contact radius rc and the load's direction there: −e′(ε − u), into the tooth.
+struct FlankPoint {
+  Eigen::Vector2d P;
+  Eigen::Vector3d dir;
+};
+FlankPoint flank_point(const Involute& fl, double rc) {
+  const double u = roll_at_radius(fl.base_radius, rc), a = fl.epsilon - u;
+  return {involute_point(fl, u), Eigen::Vector3d(std::sin(a), -std::cos(a), 0.0)};
+}
+
+/// The explicit slab's load: `force_N` along the flank point's direction, spread over the elliptic strip of half-width
+/// `strip_m` about it on the loaded tooth's outline, on the faces whose centroids lie in z ∈ [z_lo, z_hi).
+Eigen::VectorXd strip_load(const TetMesh& m, const FlankPoint& p, double strip_m, double force_N,
+                           double z_lo = -std::numeric_limits<double>::infinity(),
+                           double z_hi = std::numeric_limits<double>::infinity()) {
+  auto dist = [&](const Eigen::Vector3d& x) { return std::hypot(x.x() - p.P.x(), x.y() - p.P.y()); };
+  auto shape = [&](const Eigen::Vector3d& x) { const double s = dist(x) / strip_m; return s < 1 ? std::sqrt(1 - s * s) : 0.0; };
+  const auto faces = select_faces(m, kSurfaceRimOuter, [&](const Eigen::Vector3d& c) {
+    return c.y() > 0 && dist(c) < 3 * strip_m && c.z() >= z_lo && c.z() < z_hi;
+  });
+  const double area = faces.empty() ? 0.0 : faces_integral(m, faces, shape);
+  if (!(area > 0)) throw InputError("tooth FEM: no flank surface under the load's strip");
+  const double scale = force_N / area;
+  return traction_load(m, faces, [&](const Eigen::Vector3d& x, const Eigen::Vector3d&) {
+    return Eigen::Vector3d(scale * shape(x) * p.dir);
+  });
 }
 
 }  // namespace
@@ -67,19 +96,11 @@ FlexsplineToothFem flexspline_tooth_fem(const GearParams& g, const Material& mat
   FlexsplineToothFem out;
   for (int k = 0; k < samples; ++k) {
     const double rc = r.form_f + (top - r.form_f) * k / (samples - 1);
-    const double u = roll_at_radius(fl.base_radius, rc);
-    const Eigen::Vector2d P = involute_point(fl, u);
-    const double a = fl.epsilon - u;
-    const Eigen::Vector3d dir(std::sin(a), -std::cos(a), 0.0);  // −e′(ε − u): into the tooth
-    // explicit: w = 1 N/m over the strip, read at the centre line
-    const TetMesh& m = toothed.slab().mesh;
-    auto dist = [&](const Eigen::Vector3d& x) { return std::hypot(x.x() - P.x(), x.y() - P.y()); };
-    const auto faces = select_faces(m, kSurfaceRimOuter, [&](const Eigen::Vector3d& c) { return c.y() > 0 && dist(c) < 3 * strip; });
-    auto shape = [&](const Eigen::Vector3d& x) { const double s = dist(x) / strip; return s < 1 ? std::sqrt(1 - s * s) : 0.0; };
-    const double scale = toothed.slab().depth_m / faces_integral(m, faces, shape);
-    const Eigen::VectorXd f = traction_load(m, faces, [&](const Eigen::Vector3d& x, const Eigen::Vector3d&) {
-      return Eigen::Vector3d(scale * shape(x) * dir);
-    });
+    const FlankPoint fp = flank_point(fl, rc);
+    const Eigen::Vector2d& P = fp.P;
+    const Eigen::Vector3d& dir = fp.dir;
+    // explicit: w = 1 N/m over the strip (depth N over the slab), read at the centre line
+    const Eigen::VectorXd f = strip_load(toothed.slab().mesh, fp, strip, toothed.slab().depth_m);
     const Eigen::Vector3d uc = sampler.displacement(Eigen::Vector3d(P.x(), 0.0, 0.5 * toothed.slab().depth_m), toothed.solve(f));
     // ring: contact/'s pattern of 1 N over the depth, read fᵀu
     const Eigen::Vector2d d2(dir.x(), dir.y());
@@ -112,27 +133,15 @@ FaceCoupling face_coupling(const GearParams& g, const Material& mat, double bore
   const Involute fl = flexspline_flank(g);
   FaceCoupling out;
   out.radius_m = 0.5 * (r.form_f + r.tip_f);
-  const double u = roll_at_radius(fl.base_radius, out.radius_m);
-  const Eigen::Vector2d P = involute_point(fl, u);
-  const double a = fl.epsilon - u;
-  const Eigen::Vector3d dir(std::sin(a), -std::cos(a), 0.0);  // into the tooth, as flexspline_tooth_fem
-  auto dist = [&](const Eigen::Vector3d& x) { return std::hypot(x.x() - P.x(), x.y() - P.y()); };
-  auto shape = [&](const Eigen::Vector3d& x) { const double s = dist(x) / strip; return s < 1 ? std::sqrt(1 - s * s) : 0.0; };
+  const FlankPoint fp = flank_point(fl, out.radius_m);
+  const Eigen::Vector2d& P = fp.P;
+  const Eigen::Vector3d& dir = fp.dir;
   const double depth = toothed.slab().depth_m;
   auto band = [&](int j) { const FaceSlice s = face_slice(j, n); return std::pair{depth * s.lo, depth * s.hi}; };
   std::vector<Eigen::VectorXd> u_explicit, f_ring, u_ring;
   for (int j = 0; j < n; ++j) {
     const auto [lo, hi] = band(j);
-    const auto faces = select_faces(m, kSurfaceRimOuter, [&](const Eigen::Vector3d& c) {
-      return c.y() > 0 && dist(c) < 3 * strip && c.z() >= lo && c.z() < hi;
-    });
-    const double area = faces.empty() ? 0.0 : faces_integral(m, faces, shape);
-    if (!(area > 0))
-      throw InputError("tooth face coupling: no flank surface in face band " + std::to_string(j) + " of " +
-                       std::to_string(n));
-    u_explicit.push_back(toothed.solve(traction_load(m, faces, [&](const Eigen::Vector3d& x, const Eigen::Vector3d&) {
-      return Eigen::Vector3d(shape(x) / area * dir);  // 1 N over the band
-    })));
+    u_explicit.push_back(toothed.solve(strip_load(m, fp, strip, 1.0, lo, hi)));  // 1 N over the band
     f_ring.push_back(FlankLoads(ring.slab().mesh, 2 * std::numbers::pi / g.teeth_flexspline, lo, hi)
                          .pattern({std::atan2(P.y(), P.x())}, Eigen::Vector2d(dir.x(), dir.y()), P.norm()));
     u_ring.push_back(ring.solve(f_ring.back()));

@@ -17,7 +17,6 @@
 #include <vector>
 
 #include <Eigen/Core>
-#include <Eigen/Dense>
 
 #include "common/material.hpp"
 #include "fem/assembly.hpp"
@@ -85,7 +84,8 @@ struct FaceCoupling {
   double seconds = 0;
 };
 
-/// Throws InputError when the bore is not inside the root circle, n < 2, or a band holds no loaded surface.
+/// Throws InputError when the bore is not inside the root circle, n < 2, or a band holds no flank surface under the
+/// strip.
 FaceCoupling face_coupling(const GearParams& g, const Material& m, double bore_radius_m, double ring_outer_radius_m,
                            double face_width_m, int sections, int points_per_flank = 8);
 

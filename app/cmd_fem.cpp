@@ -78,6 +78,9 @@ void apply_solver_option(Case& c, const std::string& solver, const std::string& 
   if (c.solver.method == SolverMethod::Fourier && c.flexspline.teeth == TeethModel::Explicit)
     throw InputError(c.path + ": --solver fourier needs a body of revolution; flexspline.teeth = \"explicit\" is not "
                               "one (use teeth = \"ring\" or \"none\", or --solver tet10)");
+  if (c.solver.method == SolverMethod::Tet10 && c.flexspline.teeth == TeethModel::Layer)
+    throw InputError(c.path + ": --solver tet10 meshes the teeth as solids or a ring; flexspline.teeth = \"layer\" is "
+                              "the harmonic solver's (use --solver fourier, or teeth = \"explicit\")");
   if (c.solver.method == SolverMethod::Fourier && c.solver.backend == SolverBackend::Petsc)
     throw InputError(c.path + ": the petsc backend solves the TET10 model; the fourier solver runs in one process "
                               "(use --solver tet10, or --backend cholmod)");

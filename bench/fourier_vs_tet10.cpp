@@ -1,4 +1,4 @@
-// bench_fourier_vs_tet10: one flexspline (a body of revolution: teeth "ring" or "none") through the harmonic solver,
+// bench_fourier_vs_tet10: one flexspline (a body of revolution: teeth "ring" or "none"; the TET10 peer has no tooth layer) through the harmonic solver,
 // the tet10 solver and CalculiX in one run, each converged on its own:
 //   1. DGEMM rate of the loaded BLAS (the reference for the tet10 factor's efficiency).
 //   2. fourier, harmonic convergence on the case's section: N = 8 … 128 (φ₀, w, v on the neutral circle, hoop stress),

@@ -1,7 +1,8 @@
 // bench_teeth_reference: the 3-D reference of the flexspline's teeth against the fast model on one drive. For each
 // TET10 mesh: the loaded contact on the bare rim with the tooth in series (the fast model's teeth, TET10 body) and on
 // explicit teeth (flexspline.teeth = "explicit": the teeth solids on the cup, each flank's force on its own flank);
-// beside them the harmonic solver's fast model at the case's own settings. Twist at T1, T2 and rated torque (from the
+// beside them the harmonic solver's fast model at the case's own settings, on the bare rim and with the teeth as a
+// layer of ribs along the face (teeth = "none" and "layer", the tooth in series on both). Twist at T1, T2 and rated torque (from the
 // dead band's edge too, as the two rims at rest keep different play), the split, the wall times; the machine's DGEMM
 // rate in the same run.
 #include <cstdio>
@@ -93,16 +94,19 @@ int main(int argc, char** argv) {
     const std::vector<bench::MeshSpec> specs = bench::parse_mesh_specs(meshes, "--mesh", true);
     quiet_progress() = true;
     const Case c = load_case(path);
-    if (!c.gear || c.flexspline.teeth != TeethModel::None)
-      throw InputError(path + ": flexspline.teeth = \"none\" with a [gear] expected (a case from strainwave design)");
+    if (!c.gear || (c.flexspline.teeth != TeethModel::None && c.flexspline.teeth != TeethModel::Layer))
+      throw InputError(path + ": flexspline.teeth = \"layer\" or \"none\" with a [gear] expected (a case from "
+                              "strainwave design)");
     std::printf("DGEMM (n = 2000): %.1f GF/s\n", bench::dgemm_gflops(2000, 3));
     std::printf("%s: z_f = %d, m = %.4g mm\n", path.c_str(), c.gear->teeth_flexspline, c.gear->module_m * 1e3);
-    {
+    for (const TeethModel teeth : {TeethModel::None, TeethModel::Layer}) {
       Stopwatch clock;
-      const FlexsplineModel m = flexspline_model(c);
-      const FourierSolution fourier = analyse_flexspline_fourier(m, contact_band_request(m, c.contact.face_slices));
-      const ContactAnalysis a = analyse_contact(m, HarmonicBody(m, fourier), fem_readout(fourier.figures), options(c));
-      print("fast model (harmonic)", a, clock.lap());
+      Case h = c;
+      h.flexspline.teeth = teeth;
+      const FlexsplineModel m = flexspline_model(h);
+      const FourierSolution fourier = analyse_flexspline_fourier(m, contact_band_request(m, h.contact.face_slices));
+      const ContactAnalysis a = analyse_contact(m, HarmonicBody(m, fourier), fem_readout(fourier.figures), options(h));
+      print(teeth == TeethModel::None ? "harmonic, bare rim" : "harmonic, tooth layer", a, clock.lap());
     }
     for (const bench::MeshSpec& s : specs) {
       std::printf(" TET10 at mesh.size_mm %.3g, wall_layers %d:\n", s.size_mm, s.layers);

@@ -1,7 +1,7 @@
 #pragma once
 // The flexspline body of the loaded contact on the harmonic solver (fem/fourier_solver.hpp): no mesh, no TET10.
 //
-// For a body of revolution (teeth "ring" or "none") the response at θ_i to a load pattern at θ_j depends on θ_i − θ_j
+// For a body of revolution (teeth "ring", "layer" or "none") the response at θ_i to a load pattern at θ_j depends on θ_i − θ_j
 // only: every block of the contact's influence matrix is circulant. A flank's pattern is the TET10 path's
 // (contact/tet10_body.hpp FlankLoads): a radial and a tangential linear hat one tooth pitch wide and a radial couple
 // (two hats half as wide, outward and inward) on the rim's outer surface, uniform across the face (or its slice), the

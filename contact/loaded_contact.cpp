@@ -20,6 +20,7 @@
 #include "contact/tet10_body.hpp"
 #include "contact/tooth_fem.hpp"
 #include "fem/assembly.hpp"
+#include "fem/fourier_section.hpp"
 #include "fem/loads.hpp"
 #include "fem/post.hpp"
 #include "mesh/flexspline.hpp"
@@ -929,7 +930,8 @@ void ContactAnalyser::split_compliance() {
   double sum = 0;
   for (const double u : U) sum += u;
   const auto part = [&](std::size_t region) { return region < U.size() && sum > 0 ? split.body * U[region] / sum : 0; };
-  split.wall = part(0), split.rim = part(1), split.diaphragm = part(2), split.boss = part(3);
+  split.wall = part(0), split.rim = part(1) + part(kToothLayerRegion), split.diaphragm = part(2),
+  split.boss = part(3);
 }
 
 /// What the teeth at the zones' edges hold: their flanks' share of +rated torque, and the twist at +rated without

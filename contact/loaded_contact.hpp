@@ -182,7 +182,8 @@ struct FrictionLoop {
 struct ComplianceSplit {
   double engagement = 0, body = 0, teeth = 0, generator = 0, circular_spline = 0;
   /// The body's share by its parts (their strain energy under the tangent's force increment): the cup's wall, the
-  /// toothed rim (the face's axial range, its whole thickness), the diaphragm and the boss; they add to `body`.
+  /// toothed rim (the face's axial range, its whole thickness, with the teeth as a layer when so modelled), the
+  /// diaphragm and the boss; they add to `body`.
   double wall = 0, rim = 0, diaphragm = 0, boss = 0;
 };
 
@@ -275,13 +276,13 @@ NeutralCurve fem_neutral_curve(const NeutralCurveSamples& s, const std::string& 
 /// when the solution has no generator-deformed neutral curve.
 FemReadout fem_readout(const FlexsplineSolution& s);
 
-/// Checks that the model can be analysed (a [gear], a [wave_generator] with radial_deformation_mm, teeth "ring" or
-/// "none") before any work is done. Throws InputError saying what is missing; the caller, which
+/// Checks that the model can be analysed (a [gear], a [wave_generator] with radial_deformation_mm, teeth "ring",
+/// "layer" or "none") before any work is done. Throws InputError saying what is missing; the caller, which
 /// knows the case file, puts its name in front (as for every InputError of this module).
 void check_contact_model(const FlexsplineModel& model);
 
-/// The contact analysis of a model with a gear, a wave generator and teeth = "ring" or "none", on the body its FEM
-/// solution came from (contact/tet10_body.hpp, contact/harmonic_body.hpp). Throws InputError for a model it cannot
+/// The contact analysis of a model with a gear, a wave generator and teeth = "ring", "layer" or "none", on the body its
+/// FEM solution came from (contact/tet10_body.hpp, contact/harmonic_body.hpp). Throws InputError for a model it cannot
 /// handle (no gear, explicit teeth, no flank in the mesh zone).
 ContactAnalysis analyse_contact(const FlexsplineModel& model, const ContactBody& body, const FemReadout& fem,
                                 const ContactOptions& options);

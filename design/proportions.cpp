@@ -155,10 +155,13 @@ CupDesign design_cup(int size, int ratio, const DesignProportions& p) {
 
   FlexsplineParams& f = c.flexspline;
   f.shape = FlexsplineShape::Cup;
-  // The rim alone, its outside the teeth's root circle: the teeth are the contact stage's, in series, built in at the
-  // root. A ring smearing half the tooth layer would over-state the rim's hoop bending (((t + h/2)/t)³ ≈ 2× here),
-  // which is what the tooth loads bend locally; teeth separated by spaces carry almost no hoop or torsional shear.
-  f.teeth = TeethModel::None;
+  // The rim, its outside the teeth's root circle, and on it the teeth as ribs along the face (teeth = "layer"): the
+  // teeth's bending and foundation are the contact stage's, in series, built in at the root. Teeth separated by
+  // spaces carry almost no hoop or torsional shear (a ring smearing half the tooth layer would over-state the rim's
+  // hoop bending, ((t + h/2)/t)³ ≈ 2× here), but each is a solid rib along the face, which stiffens the rim's bending
+  // along it: against the explicit teeth in 3-D (bench_teeth_reference) the layer is closer than the bare rim at every
+  // face section count.
+  f.teeth = TeethModel::Layer;
   f.rim_thickness_m = p.rim_per_d * d;
   f.inner_radius_m = radii.root_f - f.rim_thickness_m;  // the root circle is the rim's outside, exactly
   f.wall_thickness_m = p.wall_per_rim * f.rim_thickness_m;
@@ -295,8 +298,9 @@ std::string design_case_toml(const CupDesign& c) {
     << "# - rim under the teeth " << num(c.proportions.rim_per_d) << " d, body wall " << num(c.proportions.wall_per_rim)
     << " x rim, toothed face width " << num(c.proportions.face_per_d)
     << " d (Ivanov, Wave gear drives, 1981: 0.01-0.015 d,\n"
-    << "#   0.6-0.9 x rim, 0.15-0.2 d); the rim's outside is the teeth's root circle. The FEM holds the rim alone\n"
-    << "#   (teeth = \"none\"): the teeth are the contact stage's tooth-pair compliance, built in at the root.\n"
+    << "#   0.6-0.9 x rim, 0.15-0.2 d); the rim's outside is the teeth's root circle. The FEM holds the rim and on it\n"
+    << "#   the teeth as ribs along the face (teeth = \"layer\": stiff along the face, free around the rim); their\n"
+    << "#   bending and foundation are the contact stage's tooth-pair compliance, built in at the root.\n"
     << "# - estimates from the CSF/CSG component sets' outline (not the maker's drawing): cup length " << num(kLengthPerD)
     << " d, diaphragm " << num(kDiaphragmPerRim) << " x rim,\n"
     << "#   boss radius " << num(kBossPerD) << " d, fillet " << num(kFilletPerWall) << " x wall, generator band "
@@ -314,7 +318,7 @@ std::string design_case_toml(const CupDesign& c) {
     << "# Supports: the boss clamped; the cam pushes the bore over its band; the torque on the rim's engagement zones.\n"
     << "# Mesh: no [mesh] table, so the mesh is derived from the part (the same at every size up to scale).\n"
     << "# Run: build/strainwave run CASE.toml (fem, backlash, contact)\n";
-  const auto teeth_note = "the rim alone; the teeth act in series (contact)";
+  const auto teeth_note = "ribs along the face on the rim; the teeth bend in series (contact)";
   LoadParams load;  // the FEM's torque and the contact's rated torque: the design's rating
   ContactParams contact;
   contact.face_slices = kDesignFaceSections;

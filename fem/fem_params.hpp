@@ -25,8 +25,8 @@ enum class SolverMethod { Tet10, Fourier };
 /// Where the TET10 equations are factorised: CHOLMOD in this process, or PETSc on the MPI ranks of an mpirun launch.
 enum class SolverBackend { Cholmod, Petsc };
 
-/// How the flexspline is solved: 3-D quadratic tetrahedra (any shape), or, for a body of revolution (teeth "ring" or
-/// "none"), the meridian section with circumferential harmonics 0..harmonics (exact in θ up to that order).
+/// How the flexspline is solved: 3-D quadratic tetrahedra (any shape), or, for a body of revolution (teeth "ring",
+/// "layer" or "none"), the meridian section with circumferential harmonics 0..harmonics (exact in θ up to that order).
 struct SolverParams {
   SolverMethod method = SolverMethod::Tet10;
   int harmonics = 64;  ///< fourier only: highest circumferential harmonic kept

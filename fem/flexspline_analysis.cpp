@@ -193,7 +193,7 @@ HoopStressExtreme hoop_stress(const FlexsplineModel& c, const TetMesh& mesh, con
   h.profile_z_m = z;
   h.inner_radius_m = f.inner_radius_m + inset;
   // The wall's outer surface: the body wall (no teeth), the ring's outer radius (teeth as a ring), the root circle
-  // (explicit teeth: the tooth layer carries little hoop stress).
+  // (explicit teeth or the tooth layer: the teeth carry little hoop stress).
   h.outer_radius_m = (f.teeth == TeethModel::None   ? f.inner_radius_m + f.wall_thickness_m
                       : f.teeth == TeethModel::Ring ? rim_outer_radius(f, c.gear)
                                                     : f.inner_radius_m + f.rim_thickness_m) -

@@ -6,7 +6,7 @@
 
 namespace sw {
 
-/// Solves the case (teeth "ring" or "none") by harmonics 0..c.solver.harmonics on its meridian section
+/// Solves the case (teeth "ring", "layer" or "none") by harmonics 0..c.solver.harmonics on its meridian section
 /// (figures.cases without fields: revolved_load_cases evaluates them for VTU output).
 FourierSolution analyse_flexspline_fourier(const FlexsplineModel& c, const BandRequest& request = {});
 

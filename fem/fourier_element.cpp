@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 #include <string>
 
 #include <Eigen/Geometry>
@@ -21,7 +22,7 @@ Mat6x2 coords(const SectionMesh& s, std::size_t e) {
   return X;
 }
 
-Eigen::Matrix<double, 6, 6> elasticity(const Material& m) {
+Mat6 elasticity(const Material& m) {
   const double E = m.youngs_modulus_Pa, nu = m.poisson_ratio;
   const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu)), mu = E / (2 * (1 + nu));
   Eigen::Matrix<double, 6, 6> D = Eigen::Matrix<double, 6, 6>::Zero();
@@ -29,6 +30,24 @@ Eigen::Matrix<double, 6, 6> elasticity(const Material& m) {
   D.topLeftCorner<3, 3>().diagonal().array() += 2 * mu;
   D(3, 3) = D(4, 4) = D(5, 5) = mu;
   return D;
+}
+
+Mat6 tooth_layer_elasticity(const Material& m, double solidity) {
+  const double E = m.youngs_modulus_Pa, nu = m.poisson_ratio, G = E / (2 * (1 + nu));
+  const double plane = solidity * E / (1 - nu * nu);
+  Mat6 D = Mat6::Zero();
+  D(0, 0) = D(1, 1) = plane;
+  D(0, 1) = D(1, 0) = nu * plane;
+  D(3, 3) = solidity * G;
+  D(2, 2) = kToothLayerResidual * E;
+  D(4, 4) = D(5, 5) = kToothLayerResidual * G;
+  return D;
+}
+
+Mat6 elasticity_at(const SectionMesh& s, std::size_t e, const Material& m, double r_m) {
+  if (s.region[e] != kToothLayerRegion) return elasticity(m);
+  if (!s.tooth_layer) throw std::logic_error("a tooth-layer triangle in a section without the layer's solidity");
+  return tooth_layer_elasticity(m, s.tooth_layer->at(r_m));
 }
 
 ShapePoint shape_point(const Mat6x2& X, double xi, double eta) {
@@ -118,7 +137,7 @@ Eigen::MatrixXd to_nodes(const HarmonicDofs& d, const Eigen::VectorXd& x, Eigen:
   return fixed_values;
 }
 
-ElementPolynomial element_polynomial(const Mat6x2& X, const Eigen::Matrix<double, 6, 6>& D) {
+ElementPolynomial element_polynomial(const Mat6x2& X, const std::function<Mat6(double r_m)>& D_at) {
   ElementPolynomial p;
   p.k0.setZero();
   p.k1.setZero();
@@ -128,6 +147,7 @@ ElementPolynomial element_polynomial(const Mat6x2& X, const Eigen::Matrix<double
     const StrainPoint b = strain_matrix(X, kRule.xi[k], kRule.eta[k], 1);
     const Mat6x18 B0 = a.B, B1 = b.B - a.B;
     const double w = kRule.w[k] * std::abs(a.det) * a.r;
+    const Mat6 D = D_at(a.r);
     const Mat6x18 DB0 = D * B0, DB1 = D * B1;
     p.k0.noalias() += w * (B0.transpose() * DB0);
     const Mat18 cross = B0.transpose() * DB1;
@@ -138,9 +158,14 @@ ElementPolynomial element_polynomial(const Mat6x2& X, const Eigen::Matrix<double
 }
 
 std::vector<ElementPolynomial> element_polynomials(const SectionMesh& s, const Material& m) {
-  const auto D = elasticity(m);
+  const Mat6 D = elasticity(m);
   std::vector<ElementPolynomial> out(s.triangles.size());
-  for (std::size_t e = 0; e < s.triangles.size(); ++e) out[e] = element_polynomial(coords(s, e), D);
+  for (std::size_t e = 0; e < s.triangles.size(); ++e) {
+    if (s.region[e] == kToothLayerRegion)
+      out[e] = element_polynomial(coords(s, e), [&](double r) { return elasticity_at(s, e, m, r); });
+    else
+      out[e] = element_polynomial(coords(s, e), [&](double) { return D; });
+  }
   return out;
 }
 
@@ -201,17 +226,26 @@ Eigen::Vector3d to_cartesian(const Eigen::Vector3d& cyl, double theta) {
 
 void nodal_stress(const SectionMesh& s, const Material& m, const HarmonicField& f, std::vector<Eigen::MatrixXd>& sym,
                   std::vector<Eigen::MatrixXd>& anti) {
-  const auto D = elasticity(m);
   const Eigen::Index nn = static_cast<Eigen::Index>(s.n_nodes());
   sym.assign(f.sym.size(), Eigen::MatrixXd());
   anti.assign(f.anti.size(), Eigen::MatrixXd());
+  // A node the body and the tooth layer share takes the body's stress only: the rim's outer surface is the body's
+  // (the layer's homogenised stress is a tooth's times its solidity, no stress of the surface).
+  std::vector<bool> in_body(s.n_nodes(), false);
+  for (std::size_t e = 0; e < s.triangles.size(); ++e)
+    if (s.region[e] != kToothLayerRegion)
+      for (const int i : s.triangles[e]) in_body[static_cast<std::size_t>(i)] = true;
+  const auto counts = [&](std::size_t e, int node) {
+    return s.region[e] != kToothLayerRegion || !in_body[static_cast<std::size_t>(node)];
+  };
   Eigen::VectorXd weight = Eigen::VectorXd::Zero(nn);
   std::vector<double> area(s.triangles.size());
   for (std::size_t e = 0; e < s.triangles.size(); ++e) {
     const Mat6x2 X = coords(s, e);
     area[e] = 0;
     for (int k = 0; k < 7; ++k) area[e] += kRule.w[k] * std::abs((t6_shape_derivatives(kRule.xi[k], kRule.eta[k]) * X).determinant());
-    for (int a = 0; a < 6; ++a) weight[s.triangles[e][a]] += area[e];
+    for (int a = 0; a < 6; ++a)
+      if (counts(e, s.triangles[e][a])) weight[s.triangles[e][a]] += area[e];
   }
   for (std::size_t n = 0; n < f.sym.size(); ++n) {
     if (f.sym[n].size() == 0) continue;
@@ -226,12 +260,14 @@ void nodal_stress(const SectionMesh& s, const Material& m, const HarmonicField& 
         ua.segment<3>(3 * a) = f.anti[n].row(t[a]).transpose();
       }
       for (int a = 0; a < 6; ++a) {
+        if (!counts(e, t[a])) continue;
         double xi = kNodeXi[a], eta = kNodeEta[a];
         if (X(a, 0) <= 1e-12) {
           xi = (1 - 1e-6) * xi + 1e-6 / 3;
           eta = (1 - 1e-6) * eta + 1e-6 / 3;
         }
         const StrainPoint p = strain_matrix(X, xi, eta, static_cast<int>(n));
+        const Mat6 D = elasticity_at(s, e, m, p.r);
         sym[n].row(t[a]) += area[e] * (D * (p.B * us)).transpose();
         anti[n].row(t[a]) += area[e] * (D * (p.B * ua)).transpose();
       }

@@ -10,6 +10,7 @@
 
 #include "common/constants.hpp"
 #include "common/error.hpp"
+#include "gear/tooth_profile.hpp"
 #include "mesh/flexspline.hpp"
 #include "mesh/shapes.hpp"
 
@@ -17,6 +18,11 @@ namespace sw {
 namespace {
 
 constexpr int kInterior = -1;  // a block side that is not on the boundary (or lies on the axis)
+// The tooth layer: at least this many cells from the rim to the tip (the solidity falls from 1 at the root to the
+// tip land's over about the tooth's height), and its solidity tabulated at this many intervals (the layer's steel
+// then holds the teeth's area within 1.5e-4, tests/fem FourierToothLayer).
+constexpr int kMinToothLayerCells = 3;
+constexpr int kToothLayerSamples = 64;
 
 using V2 = Eigen::Vector2d;
 
@@ -147,6 +153,8 @@ struct SectionSizes {
   double along_wall, along_diaphragm;
   int extra, levels;
   std::vector<double> lay;
+  double rt = 0;         ///< teeth = "layer": the tooth layer's outer radius (the tip circle); 0 without a layer
+  int layer_cells = 0;   ///< its cells from the rim's outer radius to the tip
 };
 
 SectionSizes section_sizes(const FlexsplineParams& f, const std::optional<GearParams>& gear, const MeshParams& mesh) {
@@ -179,6 +187,10 @@ SectionSizes section_sizes(const FlexsplineParams& f, const std::optional<GearPa
   // the case gives it, so the corner cell shrinks about as h²).
   s.levels = corner_levels(f, mesh);
   s.lay = graded(s.layers, s.levels, true, true);
+  if (f.teeth == TeethModel::Layer) {
+    s.rt = gear_radii(*gear).tip_f;
+    s.layer_cells = std::max(kMinToothLayerCells, static_cast<int>(std::lround((s.rt - s.rr) / across)));
+  }
   return s;
 }
 
@@ -209,11 +221,25 @@ void add_wall_blocks(SectionBuilder& b, const SectionSizes& s, const std::vector
     const int right = !in_rim ? kSurfaceOuter : s.extra > 0 ? kInterior : kSurfaceRimOuter;
     b.add(graded_block(rectangle(s.ri, s.ro, z0, z1, s.layers, n, in_rim ? 1 : 0, {bottom, right, top, kSurfaceInner}),
                        s.lay, {}));
-    if (in_rim && s.extra > 0) {
-      const int shoulder = std::abs(z0 - s.zr) < 1e-12 ? kSurfaceRimStep : kInterior;
+    const int shoulder = std::abs(z0 - s.zr) < 1e-12 ? kSurfaceRimStep : kInterior;
+    if (in_rim && s.extra > 0)
       b.add(rectangle(s.ro, s.rr, z0, z1, s.extra, n, 1, {shoulder, kSurfaceRimOuter, top, kInterior}));
-    }
+    // The tooth layer outside the rim's outer surface, which stays marked: the contact's loads and readings sit on it
+    // (the teeth carry a flank's load down to the rim in series, contact/tooth_fem.hpp).
+    if (in_rim && s.layer_cells > 0)
+      b.add(rectangle(s.rr, s.rt, z0, z1, s.layer_cells, n, kToothLayerRegion, {shoulder, kSurfaceOther, top, kInterior}));
   }
+}
+
+/// The layer's solidity at kToothLayerSamples radii from the rim's outer radius to the tip.
+ToothLayer tooth_layer(const SectionSizes& s, const GearParams& g) {
+  ToothLayer t;
+  for (int k = 0; k <= kToothLayerSamples; ++k) {
+    const double r = s.rr + (s.rt - s.rr) * k / kToothLayerSamples;
+    t.radius_m.push_back(r);
+    t.solidity.push_back(flexspline_solidity(g, r));
+  }
+  return t;
 }
 
 /// The fillet's centre (r_i - r_f, t_d + r_f).
@@ -302,10 +328,22 @@ SectionMesh mesh_flexspline_section(const FlexsplineParams& f, const std::option
   const SectionSizes s = section_sizes(f, gear, mesh);
   SectionBuilder b;
   add_wall_blocks(b, s, axial_breaks(s, band));
-  if (!s.cup) return b.finish();
-  add_elbow_blocks(b, s);
-  add_diaphragm_and_boss_blocks(b, s, mesh);
-  return b.finish();
+  if (s.cup) {
+    add_elbow_blocks(b, s);
+    add_diaphragm_and_boss_blocks(b, s, mesh);
+  }
+  SectionMesh out = b.finish();
+  if (s.layer_cells > 0) out.tooth_layer = tooth_layer(s, *gear);
+  return out;
+}
+
+double ToothLayer::at(double r_m) const {
+  const auto hi = std::upper_bound(radius_m.begin(), radius_m.end(), r_m);
+  if (hi == radius_m.begin()) return solidity.front();
+  if (hi == radius_m.end()) return solidity.back();
+  const std::size_t k = static_cast<std::size_t>(hi - radius_m.begin());
+  const double t = (r_m - radius_m[k - 1]) / (radius_m[k] - radius_m[k - 1]);
+  return solidity[k - 1] + t * (solidity[k] - solidity[k - 1]);
 }
 
 Eigen::Matrix<double, 6, 1> t6_shape(double xi, double eta) {

@@ -1,7 +1,9 @@
 #pragma once
 // The flexspline's meridian section (the (r, z) half-plane of a body of revolution) as quadratic triangles, for the
 // semi-analytical harmonic solver (fem/fourier_solver.hpp). The profile is the one mesh/flexspline.hpp revolves:
-// tube or cup, body wall, toothed rim as the equivalent ring ("ring") or plain ("none"), diaphragm, fillet, boss.
+// tube or cup, body wall, toothed rim as the equivalent ring ("ring"), plain ("none") or with the teeth as a layer of
+// ribs along the face on it ("layer": region kToothLayerRegion, its solidity in SectionMesh::tooth_layer), diaphragm,
+// fillet, boss.
 //
 // Structured blocks, each split into two 6-node triangles per cell: every wall has the same number of layers
 // (max of wall_size(thickness).layers over the body wall and the diaphragm, so blocks meet conformingly), cells
@@ -20,17 +22,30 @@
 
 namespace sw {
 
+/// The region of the tooth layer's triangles.
+inline constexpr int kToothLayerRegion = 4;
+
 /// A boundary edge of the section: end nodes 0, 1 and the midside node 2; `marker` is a mesh/tet_mesh.hpp Surface.
 struct SectionEdge {
   std::array<int, 3> nodes{};
   int marker = kSurfaceOther;
 };
 
+/// The teeth as a homogenised layer on the rim (teeth = "layer"): its solidity φ(r), the fraction of the circle at
+/// radius r that is tooth (gear/tooth_profile.hpp flexspline_solidity), tabulated from the rim's outer radius to the
+/// tip and read by linear interpolation.
+struct ToothLayer {
+  std::vector<double> radius_m, solidity;
+  double at(double r_m) const;
+};
+
 /// 6-node triangles in (r, z): corners 0..2 counter-clockwise, then midsides of edges (0,1), (1,2), (2,0).
 struct SectionMesh {
   Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor> nodes;  ///< (r, z), metres
   std::vector<std::array<int, 6>> triangles;
-  std::vector<int> region;          ///< per triangle: 0 body, 1 rim, 2 diaphragm, 3 boss (as mesh/flexspline.hpp)
+  std::vector<int> region;          ///< per triangle: 0 body, 1 rim, 2 diaphragm, 3 boss (as mesh/flexspline.hpp),
+                                    ///< kToothLayerRegion the tooth layer
+  std::optional<ToothLayer> tooth_layer;  ///< teeth = "layer": the layer's solidity (its triangles' region)
   std::vector<SectionEdge> edges;   ///< boundary edges with markers (the axis r = 0 carries none)
   std::size_t n_nodes() const { return static_cast<std::size_t>(nodes.rows()); }
 };

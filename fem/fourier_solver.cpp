@@ -116,12 +116,13 @@ namespace {
 /// family, b of the antisymmetric one).
 template <class Add>
 void for_each_element_energy(const SectionMesh& s, const Material& m, const HarmonicField& u, const Add& add) {
+  const std::vector<ElementPolynomial> poly = element_polynomials(s, m);
   for (int n = 0; n <= u.harmonics(); ++n) {
     const Eigen::MatrixXd &sym = u.sym[static_cast<std::size_t>(n)], &anti = u.anti[static_cast<std::size_t>(n)];
     if (sym.size() == 0 && anti.size() == 0) continue;  // a harmonic the loads did not reach
     for (std::size_t e = 0; e < s.triangles.size(); ++e) {
       const auto& t = s.triangles[e];
-      const Eigen::Matrix<double, 18, 18> K = harmonic_element_stiffness(coords(s, e), m, n);
+      const Mat18 K = poly[e].at(n);
       Eigen::Matrix<double, 18, 1> us = Eigen::Matrix<double, 18, 1>::Zero(), ua = us;
       for (int a = 0; a < 6; ++a) {
         if (sym.size()) us.segment<3>(3 * a) = sym.row(t[a]).transpose();
@@ -157,11 +158,12 @@ std::vector<double> strain_energy_by_region_J(const SectionMesh& s, const Materi
 double clamp_reaction_moment(const SectionMesh& s, const Material& m, const std::vector<bool>& clamped,
                              const HarmonicField& u, const Eigen::MatrixXd& anti0) {
   Eigen::MatrixXd R = -anti0;
+  const std::vector<ElementPolynomial> poly = element_polynomials(s, m);
   for (std::size_t e = 0; e < s.triangles.size(); ++e) {
     const auto& t = s.triangles[e];
     Eigen::Matrix<double, 18, 1> ue;
     for (int a = 0; a < 6; ++a) ue.segment<3>(3 * a) = u.anti[0].row(t[a]).transpose();
-    const Eigen::Matrix<double, 18, 1> fe = harmonic_element_stiffness(coords(s, e), m, 0) * ue;
+    const Eigen::Matrix<double, 18, 1> fe = poly[e].at(0) * ue;
     for (int a = 0; a < 6; ++a) R.row(t[a]) += fe.segment<3>(3 * a).transpose();
   }
   for (std::size_t i = 0; i < s.n_nodes(); ++i)

@@ -1,5 +1,5 @@
 #pragma once
-// Semi-analytical solver for flexsplines that are bodies of revolution (teeth "ring" or "none"): the displacement is
+// Semi-analytical solver for flexsplines that are bodies of revolution (teeth "ring", "layer" or "none"): the displacement is
 // expanded in circumferential harmonics n = 0..N,
 //   symmetric family:      u_r = a(r,z)·cos nθ,  u_θ =  b(r,z)·sin nθ,  u_z = c(r,z)·cos nθ
 //   antisymmetric family:  u_r = a(r,z)·sin nθ,  u_θ = −b(r,z)·cos nθ,  u_z = c(r,z)·sin nθ
@@ -39,7 +39,8 @@
 
 namespace sw {
 
-/// Stiffness of a 6-node triangle of the section for harmonic n (18 × 18, dofs node-major (a, b, c)), N/m.
+/// Stiffness of a 6-node triangle of the isotropic material for harmonic n (18 × 18, dofs node-major (a, b, c)), N/m:
+/// integrated directly, the independent statement of element_polynomials' (which also hold the tooth layer's).
 Eigen::Matrix<double, 18, 18> harmonic_element_stiffness(const Eigen::Matrix<double, 6, 2>& X, const Material& m,
                                                          int n);
 

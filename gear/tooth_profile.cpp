@@ -175,29 +175,72 @@ InvoluteDistance involute_signed_distance(const Involute& f, const Eigen::Vector
   return {f.base_radius * (arg + std::tan(aR) - aR - f.epsilon), f.epsilon - arg + aR};
 }
 
+namespace {
+
+/// The flexspline tooth's outline rule in polar form: the involute's polar angle at a radius, and the root fillet (a
+/// quarter ellipse from the form radius down to the root circle, `drop` deep and `dth` wide in angle).
+struct OutlineRule {
+  GearRadii r;
+  Involute f;
+  double half_pitch = 0, th_form = 0, th_tip = 0, drop = 0, dth = 0;
+  double flank_angle(double rad) const {
+    return f.epsilon - involute_function(std::acos(std::min(1.0, f.base_radius / rad)));
+  }
+  /// The fillet at parameter s in [0, π/2]: (radius, polar angle), from the form radius (s = 0) to the root circle.
+  std::pair<double, double> fillet(double s) const {
+    return {r.root_f + drop * (1.0 - std::sin(s)), th_form + dth * (1.0 - std::cos(s))};
+  }
+};
+
+OutlineRule outline_rule(const GearParams& g) {
+  OutlineRule o;
+  o.r = gear_radii(g);
+  o.f = flexspline_flank(g);
+  o.half_pitch = kPi / g.teeth_flexspline;
+  o.th_form = o.flank_angle(o.r.form_f);
+  o.th_tip = o.flank_angle(o.r.tip_f);
+  o.drop = o.r.form_f - o.r.root_f;
+  const double gap = o.half_pitch - o.th_form;  // angular half-width of the gap at the form radius
+  if (gap <= 0) bad_gear("flexspline teeth overlap at the form radius; reduce profile_shift_flexspline");
+  o.dth = std::min(o.drop / o.r.root_f, 0.8 * gap);  // fillet's angular extent
+  return o;
+}
+
+}  // namespace
+
+double flexspline_solidity(const GearParams& g, double radius_m) {
+  const OutlineRule o = outline_rule(g);
+  if (radius_m <= o.r.root_f) return 1.0;
+  if (radius_m > o.r.tip_f) return 0.0;
+  double half_angle;
+  if (radius_m >= o.r.form_f) {
+    half_angle = o.flank_angle(radius_m);
+  } else {  // on the fillet: radius = root + drop (1 − sin s)
+    const double s = std::asin(std::clamp(1.0 - (radius_m - o.r.root_f) / o.drop, 0.0, 1.0));
+    half_angle = o.fillet(s).second;
+  }
+  return std::clamp(half_angle / o.half_pitch, 0.0, 1.0);
+}
+
 std::vector<Eigen::Vector2d> flexspline_outline(const GearParams& g, int points_per_flank) {
   const int n = std::max(points_per_flank, 2);
-  const GearRadii r = gear_radii(g);
-  const Involute f = flexspline_flank(g);
+  const OutlineRule o = outline_rule(g);
+  const GearRadii& r = o.r;
   const int z = g.teeth_flexspline;
-  const double half_pitch = kPi / z;
+  const double half_pitch = o.half_pitch;
   auto polar = [](double rad, double ang) { return Eigen::Vector2d(rad * std::cos(ang), rad * std::sin(ang)); };
-  auto flank_angle = [&](double rad) { return f.epsilon - involute_function(std::acos(std::min(1.0, f.base_radius / rad))); };
+  auto flank_angle = [&](double rad) { return o.flank_angle(rad); };
 
   // Template of one pitch, tooth centred on angle 0, from the gap centre at −π/z (inclusive) to +π/z (exclusive),
   // as (radius, angle) pairs.
   std::vector<std::pair<double, double>> pitch;
-  const double th_form = flank_angle(r.form_f), th_tip = flank_angle(r.tip_f);
-  const double drop = r.form_f - r.root_f;
-  const double gap = half_pitch - th_form;  // angular half-width of the gap at the form radius
-  if (gap <= 0) bad_gear("flexspline teeth overlap at the form radius; reduce profile_shift_flexspline");
-  const double dth = std::min(drop / r.root_f, 0.8 * gap);  // fillet's angular extent
+  const double th_form = o.th_form, th_tip = o.th_tip, drop = o.drop, dth = o.dth;
   const int nr = std::max(1, n / 4), nf = std::max(2, n / 2), nt = std::max(1, n / 3);
   // Root arc (cw half), at the root radius from −π/z to the start of the cw fillet.
   const double root_start = -half_pitch, root_end = -(th_form + dth);
   for (int i = 0; i < nr; ++i) pitch.emplace_back(r.root_f, root_start + (root_end - root_start) * i / nr);
   // cw fillet: root to form (mirror of the ccw fillet, traversed in the opposite direction).
-  auto fillet = [&](double s) { return std::pair{r.root_f + drop * (1.0 - std::sin(s)), th_form + dth * (1.0 - std::cos(s))}; };
+  auto fillet = [&](double s) { return o.fillet(s); };
   if (drop > 0) {
     for (int i = nf; i >= 1; --i) {
       auto [rad, ang] = fillet(0.5 * kPi * i / nf);

@@ -116,6 +116,10 @@ struct InvoluteDistance {
 /// polar angle arg p − α_p); the foot's roll parameter is u = ε − arg p + α_p. Precondition: |p| > r_b.
 InvoluteDistance involute_signed_distance(const Involute& f, const Eigen::Vector2d& p);
 
+/// The solidity of the flexspline's tooth layer at a radius: the fraction of the circle of that radius that lies in
+/// the teeth of flexspline_outline (its involutes and root fillets), 1 at and below the root circle, 0 above the tip.
+double flexspline_solidity(const GearParams& g, double radius_m);
+
 /// Closed counter-clockwise outline of the flexspline's toothed cross-section (z_f teeth, tooth 0 centred on +x):
 /// per tooth the cw flank from the form radius to the tip, the tip arc, the ccw flank back down, then a fillet (quarter
 /// ellipse from the form radius into the root circle) and the root arc to the next tooth. points_per_flank ≥ 2 points

@@ -403,7 +403,8 @@ SolverParams read_solver(TableReader r, const FlexsplineModel& model, std::map<s
     derived["solver.method"] = std::string("\"auto\": ") +
                                (explicit_teeth ? "explicit teeth are no body of revolution"
                                 : petsc        ? "the petsc backend solves the TET10 model"
-                                               : "the flexspline is a body of revolution (teeth \"ring\" or \"none\")");
+                                               : "the flexspline is a body of revolution (teeth \"ring\", \"layer\" "
+                                                 "or \"none\")");
   } else {
     s.method = method == "fourier" ? SolverMethod::Fourier : SolverMethod::Tet10;
   }
@@ -665,12 +666,15 @@ Case case_of(const toml::table& root, const std::string& path) {
   }
   if (c.flexspline.teeth != TeethModel::None && !c.gear)
     throw InputError(path + ": flexspline.teeth = \"" +
-                     std::string(c.flexspline.teeth == TeethModel::Ring ? "ring" : "explicit") +
+                     std::string(teeth_name(c.flexspline.teeth)) +
                      "\" needs a [gear] table (module and teeth), or set teeth = \"none\"");
   validated([&] { validate_flexspline(c.flexspline, c.mesh); });
   if (c.solver.method == SolverMethod::Fourier && c.flexspline.teeth == TeethModel::Explicit)
     throw InputError(path + ": solver.method = \"fourier\" needs a body of revolution; flexspline.teeth = \"explicit\" "
                             "is not one (use teeth = \"ring\" or \"none\", or method = \"tet10\")");
+  if (c.solver.method == SolverMethod::Tet10 && c.flexspline.teeth == TeethModel::Layer)
+    throw InputError(path + ": solver.method = \"tet10\" meshes the teeth as solids or a ring; flexspline.teeth = "
+                            "\"layer\" is the harmonic solver's (use method = \"fourier\", or teeth = \"explicit\")");
   if (c.solver.method == SolverMethod::Fourier && c.solver.backend == SolverBackend::Petsc)
     throw InputError(path + ": solver.backend = \"petsc\" solves the TET10 model; solver.method = \"fourier\" runs in "
                             "one process (use method = \"tet10\", or backend = \"cholmod\")");

@@ -278,6 +278,9 @@ std::int64_t node_budget(const FlexsplineParams& f, const std::optional<GearPara
 TetMesh mesh_flexspline(const FlexsplineParams& f, const std::optional<GearParams>& gear, const MeshParams& mesh) {
   validate_flexspline(f, mesh);
   check_teeth_on_rim(f, gear);
+  if (f.teeth == TeethModel::Layer)
+    throw InputError("flexspline.teeth = \"layer\": the tooth layer is the harmonic solver's (a homogenised, "
+                     "orthotropic layer); the TET10 mesh takes teeth = \"none\", \"ring\" or \"explicit\"");
   const bool cup = f.shape == FlexsplineShape::Cup;
   if (!cup && f.teeth == TeethModel::None)
     return mesh_tube(f.inner_radius_m, f.inner_radius_m + f.wall_thickness_m, f.length_m, mesh);

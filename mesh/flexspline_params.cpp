@@ -111,8 +111,10 @@ const std::vector<CaseKey<FlexsplineParams>>& flexspline_keys() {
       choice_key<F>("teeth", &F::teeth,
                     {{teeth_name(TeethModel::None), TeethModel::None},
                      {teeth_name(TeethModel::Ring), TeethModel::Ring},
-                     {teeth_name(TeethModel::Explicit), TeethModel::Explicit}},
-                    "no teeth, the teeth as a ring on the rim, or as solids on the cup (the 3-D reference, TET10)")
+                     {teeth_name(TeethModel::Explicit), TeethModel::Explicit},
+                     {teeth_name(TeethModel::Layer), TeethModel::Layer}},
+                    "no teeth, the teeth as a ring on the rim, as solids on the cup (the 3-D reference, TET10), or as a "
+                    "layer of ribs along the face on the bare rim (stiff along the face, free around it; harmonic solver)")
           .with_default("\"ring\" for a cup, \"none\" for a tube"),
       number_key<F>("rim_width_mm", &F::rim_width_m, 1e-3, "mm", any_value(),
                     "the toothed rim's axial width at the open end, > 0 and short of the diaphragm's fillet"),

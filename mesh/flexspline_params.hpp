@@ -11,7 +11,7 @@
 namespace sw {
 
 enum class FlexsplineShape { Cup, Tube };
-enum class TeethModel { None, Ring, Explicit };
+enum class TeethModel { None, Ring, Explicit, Layer };
 
 struct FlexsplineParams {
   FlexsplineShape shape = FlexsplineShape::Cup;
@@ -26,9 +26,9 @@ struct FlexsplineParams {
   double fillet_radius_m = 1.0e-3;        ///< cup only
 };
 
-/// The case key's spelling of a teeth model ("none", "ring", "explicit").
+/// The case key's spelling of a teeth model ("none", "ring", "explicit", "layer").
 inline const char* teeth_name(TeethModel t) {
-  return t == TeethModel::None ? "none" : t == TeethModel::Ring ? "ring" : "explicit";
+  return t == TeethModel::None ? "none" : t == TeethModel::Ring ? "ring" : t == TeethModel::Layer ? "layer" : "explicit";
 }
 
 /// The mesh: the case file's [mesh] table, resolved. A case may give size_mm, wall_layers and corner_levels, some of
@@ -40,8 +40,8 @@ inline const char* teeth_name(TeethModel t) {
 ///   stations two edges apart and the torque's engagement zones) and kDerivedEdgesOverRim across a rim's width (the
 ///   loads' axial spread) need, but within [t, kMaxLayerAspect·t] for the body wall's thickness t: one layer through
 ///   it, and no longer along it than that layer allows. The teeth follow: a ring is the rim's outer layer, meshed with
-///   the rim; explicit teeth take their edges from their own thickness, axially no longer than size_mm
-///   (tooth_mesh_size in mesh/flexspline_sizes.hpp).
+///   the rim (as the harmonic section's tooth layer is); explicit teeth take their edges from their own thickness,
+///   axially no longer than size_mm (tooth_mesh_size in mesh/flexspline_sizes.hpp).
 /// - corner_levels = kDerivedCornerLevels + floor(log2(layers through the diaphragm)) for a cup, 0 for a tube (the
 ///   corner edge is the diaphragm's layer halved that many times: it shrinks about as size² when a mesh is refined,
 ///   as the singular corners want). The same value grades the TET10 mesh and the harmonic section.

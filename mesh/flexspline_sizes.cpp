@@ -45,7 +45,7 @@ ProfileSizeField corner_size_field(const FlexsplineParams& f, const MeshParams& 
 
 double rim_outer_radius(const FlexsplineParams& f, const std::optional<GearParams>& gear) {
   const double root = f.inner_radius_m + f.rim_thickness_m;
-  if (f.teeth == TeethModel::None) return root;
+  if (f.teeth == TeethModel::None || f.teeth == TeethModel::Layer) return root;
   if (!gear) throw InputError("flexspline.teeth needs the [gear] table (module, teeth, profile shift) for the tooth height");
   const GearRadii r = gear_radii(*gear);
   if (f.teeth == TeethModel::Explicit) return r.tip_f;

@@ -10,9 +10,9 @@
 
 namespace sw {
 
-/// Outer radius (m) of the rim for the teeth model: inner_radius + rim_thickness for "none", plus half the tooth
-/// height (tip - root radius of `gear`) for "ring", the tip radius for "explicit". Throws InputError when "ring" or
-/// "explicit" has no gear.
+/// Outer radius (m) of the rim for the teeth model: inner_radius + rim_thickness for "none" and "layer" (whose teeth
+/// are a layer outside it, fem/fourier_section.hpp ToothLayer), plus half the tooth height (tip - root radius of
+/// `gear`) for "ring", the tip radius for "explicit". Throws InputError when "ring" or "explicit" has no gear.
 double rim_outer_radius(const FlexsplineParams& f, const std::optional<GearParams>& gear);
 
 /// Boss edge length over mesh.size: every boss face is clamped, so its tets carry no strain worth resolving; only the

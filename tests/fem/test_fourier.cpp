@@ -124,8 +124,8 @@ TEST(FourierLame, ThickCylinder) {
 // under a radial traction p·cos nθ on its outside (force per unit arc of the mean line q = p·t·r_o/R) deforms
 // inextensibly, w_n = q·R⁴/(E·I·(n² − 1)²), I = t⁴/12, and stores U = π·R·q·w_n/2 (Clapeyron; the bending energy
 // E·I·π·(n² − 1)²·w_n²/(2R³) is the same). t/R = 1/20: shear, stretching and the curved section's stress move it by
-// O((t/R)²), so 1 %. The same U from the solver's loads, ½ Fᵀu, to 1e-9: the energy's element stiffness is the
-// solver's.
+// O((t/R)²), so 1 %. The same U from the solver's loads, ½ Fᵀu, to 1e-8 (the solve's round-off on a ring whose
+// bending is (t/R)² of its stretching: 1.1e-9 at n = 2): the energy's element stiffness is the solver's.
 TEST(FourierStrainEnergy, ThinRingHarmonicAgainstClosedForm) {
   const double R = 20e-3, t = 1e-3, p = 1e6;
   Material m;
@@ -147,7 +147,7 @@ TEST(FourierStrainEnergy, ThinRingHarmonicAgainstClosedForm) {
     std::printf("ring n = %d: U %.6e J, closed form %.6e (%+.3f %%), 1/2 F.u %.6e\n", n, energy, closed,
                 100 * (energy / closed - 1), work);
     EXPECT_NEAR(energy / closed, 1.0, 1e-2) << "n = " << n;
-    EXPECT_NEAR(energy / work, 1.0, 1e-9) << "n = " << n;
+    EXPECT_NEAR(energy / work, 1.0, 1e-8) << "n = " << n;
   }
 }
 

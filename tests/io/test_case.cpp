@@ -4,6 +4,8 @@
 #include <algorithm>
 
 #include <cmath>
+#include <fstream>
+#include <iterator>
 
 #include "common/error.hpp"
 #include "io/case.hpp"
@@ -95,6 +97,24 @@ TEST(CaseFile, SolverTable) {
             std::string::npos);
   EXPECT_NE(error_of(std::string(kTube) + "[solver]\nharmonic = 8\n").find("solver.harmonic = 8; unknown key"),
             std::string::npos);
+}
+
+// The tooth layer is the harmonic solver's: "auto" picks it, TET10 refuses it in one line, and it needs the gear.
+TEST(CaseFile, ToothLayerIsTheHarmonicSolvers) {
+  std::ifstream in("cases/seed_190_192.toml");
+  ASSERT_TRUE(in) << "run from the project root";
+  std::string seed((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  seed.replace(seed.find("teeth = \"ring\""), 14, "teeth = \"layer\"");
+  const Case c = parse_case(seed, "cases/x.toml");
+  EXPECT_EQ(c.flexspline.teeth, TeethModel::Layer);
+  EXPECT_EQ(c.solver.method, SolverMethod::Fourier);
+  EXPECT_EQ(error_of(seed + "[solver]\nmethod = \"tet10\"\n"),
+            "cases/x.toml: solver.method = \"tet10\" meshes the teeth as solids or a ring; flexspline.teeth = "
+            "\"layer\" is the harmonic solver's (use method = \"fourier\", or teeth = \"explicit\")");
+  std::string tube = kTube;
+  tube.replace(tube.find("teeth = \"none\""), 14, "teeth = \"layer\"\nrim_width_mm = 5\nrim_thickness_mm = 1.5");
+  EXPECT_EQ(error_of(tube), "cases/x.toml: flexspline.teeth = \"layer\" needs a [gear] table (module and teeth), or "
+                            "set teeth = \"none\"");
 }
 
 TEST(CaseFile, SolverBackend) {
@@ -406,7 +426,7 @@ TEST(CaseFile, DerivedDefaultsOfATubeARingCupAndAnExplicitCup) {
   for (const auto& [key, from] : tube.derived_from)  // only the solver's own: "auto" and the harmonics
     EXPECT_TRUE(key == "solver.method" || key == "solver.harmonics") << key << ": " << from;
   EXPECT_EQ(tube.derived_from.at("solver.method"),
-            "\"auto\": the flexspline is a body of revolution (teeth \"ring\" or \"none\")");
+            "\"auto\": the flexspline is a body of revolution (teeth \"ring\", \"layer\" or \"none\")");
   for (const char* teeth : {"ring", "explicit"}) {
     const Case cup = parse_case(std::string(kCup) + "teeth = \"" + teeth + "\"\n", "c.toml");
     ASSERT_TRUE(cup.circular_spline.has_value()) << teeth;

@@ -86,7 +86,7 @@ void on_tet10(sw::Case c, sw::TeethModel teeth, const sw::bench::MeshSpec& spec)
 int main(int argc, char** argv) {
   CLI::App app{"bench_teeth_reference: the loaded contact on explicit teeth (TET10) against the fast model"};
   std::string path, meshes = "1.0/1";
-  app.add_option("case", path, "case file (a designed drive: teeth = \"none\")")->required();
+  app.add_option("case", path, "case file (a designed drive: teeth = \"layer\" or \"none\")")->required();
   app.add_option("--mesh", meshes, "TET10 meshes, comma-separated SIZE_MM/LAYERS[/CORNER_LEVELS] (default 1.0/1)");
   CLI11_PARSE(app, argc, argv);
   try {

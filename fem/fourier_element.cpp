@@ -32,7 +32,7 @@ Mat6 elasticity(const Material& m) {
   return D;
 }
 
-Mat6 tooth_layer_elasticity(const Material& m, double solidity) {
+Mat6 tooth_layer_elasticity(const Material& m, double solidity, double shear_factor) {
   const double E = m.youngs_modulus_Pa, nu = m.poisson_ratio, G = E / (2 * (1 + nu));
   const double plane = solidity * E / (1 - nu * nu);
   Mat6 D = Mat6::Zero();
@@ -40,14 +40,15 @@ Mat6 tooth_layer_elasticity(const Material& m, double solidity) {
   D(0, 1) = D(1, 0) = nu * plane;
   D(3, 3) = solidity * G;
   D(2, 2) = kToothLayerResidual * E;
-  D(4, 4) = D(5, 5) = kToothLayerResidual * G;
+  D(4, 4) = solidity * G;
+  D(5, 5) = shear_factor * solidity * G;
   return D;
 }
 
 Mat6 elasticity_at(const SectionMesh& s, std::size_t e, const Material& m, double r_m) {
   if (s.region[e] != kToothLayerRegion) return elasticity(m);
   if (!s.tooth_layer) throw std::logic_error("a tooth-layer triangle in a section without the layer's solidity");
-  return tooth_layer_elasticity(m, s.tooth_layer->at(r_m));
+  return tooth_layer_elasticity(m, s.tooth_layer->at(r_m), s.tooth_layer->shear_factor);
 }
 
 ShapePoint shape_point(const Mat6x2& X, double xi, double eta) {

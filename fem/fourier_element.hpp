@@ -64,17 +64,22 @@ using Mat6 = Eigen::Matrix<double, 6, 6>;
 Mat6 elasticity(const Material& m);
 
 /// The tooth layer's elasticity at solidity φ (teeth = "layer"), the teeth homogenised as ribs along the face, one per
-/// pitch, whose flanks are free: no stress crosses the spaces, so σ_θ = τ_rθ = τ_θz = 0 and each tooth is in plane
-/// stress in its (r, z) plane. The layer carries φ times plane stress in (ε_r, ε_z, γ_rz) (the rule of mixtures of
-/// parallel ribs: exact for stress along the ribs, the Voigt bound otherwise) and nothing in θ. Left out: the teeth's
-/// own bending and shear around the rim (in series, contact/tooth_fem.hpp) and their lateral bending (∝ the tooth's
-/// thickness cubed). The θ terms keep kToothLayerResidual of the material's moduli so the layer's tangential
-/// displacement is determined (it carries no load of its own). Its value is numerical, not physical: on the designed
-/// drives 1e-4 and 1e-6 give the same twist to 5e-4 (size 14 ratio 30, size 17 ratio 100), but from 1e-5 down the
-/// loaded contact of the designed size 17 is no longer its own mirror image about the major axis (the generator
-/// locked at ±0.3 of a pitch: 1.1e-3 of the twist at rated against 3e-7 at 1e-4 and 1e-3, test_generator_angle), so
-/// the smallest value that keeps the symmetry, 1e-4, is used.
-Mat6 tooth_layer_elasticity(const Material& m, double solidity);
+/// pitch, whose flanks are free: no stress crosses the spaces, so σ_θ = 0 and each tooth is in plane stress in its
+/// (r, z) plane. The layer carries φ times plane stress in (ε_r, ε_z, γ_rz) (the rule of mixtures of parallel ribs:
+/// exact for stress along the ribs) and nothing in hoop. The two shears across a rib's flanks:
+/// - γ_rθ at φ G: a tooth's section carries the shear of a cantilever on the rim (Timoshenko's, over the tooth's
+///   width), which keeps the ribs standing on the rim as it bends and turns; the rim's shear-free bending strains the
+///   layer not at all. The flanks' load and the tooth's bending under it stay in series (contact/tooth_fem.hpp).
+/// - γ_θz at κ φ G, `shear_factor` κ from the periodic cell of one pitch (fem/rib_cell.hpp): a rib tilting along the
+///   face relaxes away from its root, and is held to the rim at it.
+/// Left out: the ribs' plate bending between sections (∝ the tooth's thickness cubed) and the cell's curvature.
+/// The hoop term keeps kToothLayerResidual of the material's modulus so the layer's displacement around the rim is
+/// determined (the ribs carry no hoop load). Its value is numerical, not physical: on the designed drives 1e-4 and
+/// 1e-6 gave the same twist to 5e-4 (size 14 ratio 30, size 17 ratio 100, with every θ term residual), but from 1e-5
+/// down the loaded contact of the designed size 17 was no longer its own mirror image about the major axis (the
+/// generator locked at ±0.3 of a pitch: 1.1e-3 of the twist at rated against 3e-7 at 1e-4 and 1e-3,
+/// test_generator_angle), so 1e-4 is kept.
+Mat6 tooth_layer_elasticity(const Material& m, double solidity, double shear_factor);
 inline constexpr double kToothLayerResidual = 1e-4;
 
 /// The elasticity of triangle e at radius r: the material's, or in the tooth layer tooth_layer_elasticity at its

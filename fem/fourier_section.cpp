@@ -10,6 +10,7 @@
 
 #include "common/constants.hpp"
 #include "common/error.hpp"
+#include "fem/rib_cell.hpp"
 #include "gear/tooth_profile.hpp"
 #include "mesh/flexspline.hpp"
 #include "mesh/shapes.hpp"
@@ -23,6 +24,12 @@ constexpr int kInterior = -1;  // a block side that is not on the boundary (or l
 // then holds the teeth's area within 1.5e-4, tests/fem FourierToothLayer).
 constexpr int kMinToothLayerCells = 3;
 constexpr int kToothLayerSamples = 64;
+// The rib cell's rows and cells across the tooth (fem/rib_cell.hpp). The rows converge fast (the default tooth's κ at
+// 16 across: 0.27933 / 0.27907 / 0.27902 at 128 / 256 / 512 rows); across, the root's corners set the rate (at 128 rows
+// 0.27933 / 0.27701 / 0.27618 at 16 / 32 / 64, order 1.5, extrapolated 0.2757): 128 × 32 is within 0.5 % of it
+// (tests/fem/test_tooth_layer.cpp).
+constexpr int kRibCellSamples = 128;
+constexpr int kRibCellAcross = 32;
 
 using V2 = Eigen::Vector2d;
 
@@ -231,14 +238,32 @@ void add_wall_blocks(SectionBuilder& b, const SectionSizes& s, const std::vector
   }
 }
 
-/// The layer's solidity at kToothLayerSamples radii from the rim's outer radius to the tip.
+/// The layer's solidity at kToothLayerSamples radii from the rim's outer radius to the tip, and its shear factor from
+/// one pitch of the rim (bore to root) and a tooth on it, sampled at kRibCellSamples heights: the tooth's width at each
+/// radius, φ·2πr/z_f, within the root's pitch (the cell is plane: s = r_root·θ at the root). At the root circle itself
+/// the solidity jumps (1 below, the teeth's share above the spaces' floor); both read it from above, so a rim whose
+/// outer radius is the root circle to the last digit is not a tooth as wide as the pitch in one case and not in the
+/// next.
 ToothLayer tooth_layer(const SectionSizes& s, const GearParams& g) {
+  const double above_root = 1e-6 * (s.rt - s.rr);
+  const auto solidity = [&](double r) { return flexspline_solidity(g, std::max(r, s.rr + above_root)); };
   ToothLayer t;
   for (int k = 0; k <= kToothLayerSamples; ++k) {
     const double r = s.rr + (s.rt - s.rr) * k / kToothLayerSamples;
     t.radius_m.push_back(r);
-    t.solidity.push_back(flexspline_solidity(g, r));
+    t.solidity.push_back(solidity(r));
   }
+  RibCell cell;
+  cell.pitch_m = 2 * kPi * s.rr / g.teeth_flexspline;
+  cell.rim_thickness_m = s.rr - s.ri;
+  cell.cells_across = kRibCellAcross;
+  for (int k = 0; k <= kRibCellSamples; ++k) {
+    const double r = s.rr + (s.rt - s.rr) * k / kRibCellSamples;
+    cell.height_m.push_back(r - s.rr);
+    cell.width_m.push_back(std::min(cell.pitch_m, solidity(r) * 2 * kPi * r / g.teeth_flexspline));
+  }
+  cell.width_m.back() = std::max(cell.width_m.back(), 1e-3 * cell.pitch_m);  // the tip's corner, not a point
+  t.shear_factor = rib_shear_factor(cell);
   return t;
 }
 

@@ -33,9 +33,10 @@ struct SectionEdge {
 
 /// The teeth as a homogenised layer on the rim (teeth = "layer"): its solidity φ(r), the fraction of the circle at
 /// radius r that is tooth (gear/tooth_profile.hpp flexspline_solidity), tabulated from the rim's outer radius to the
-/// tip and read by linear interpolation.
+/// tip and read by linear interpolation; and the ribs' factor on their shear along the face (fem/rib_cell.hpp).
 struct ToothLayer {
   std::vector<double> radius_m, solidity;
+  double shear_factor = 1.0;  ///< κ of G_θz = κ φ G: the rib's anti-plane shear on its rim against the rule of mixtures
   double at(double r_m) const;
 };
 

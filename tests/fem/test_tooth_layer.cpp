@@ -1,11 +1,13 @@
 // The harmonic solver's tooth layer (flexspline.teeth = "layer"): the teeth homogenised as ribs along the face. Its
 // elasticity against the closed forms of three exact fields on an annulus whose outer half is the layer (each field
-// linear or constant, so the quadratic section holds it exactly): a uniaxial stretch along the face, which the ribs
-// carry at their solidity (plane stress in a rib: the field with u_r = −ν·ε·r is the exact one in both parts), and a
-// twist and a uniform radial growth, which the layer does not carry (no stress crosses the spaces between teeth); and
-// the designed section's layer holds the teeth's own area.
+// at most quadratic, so the quadratic section holds it exactly): a uniaxial stretch along the face, which the ribs
+// carry at their solidity (plane stress in a rib: the field with u_r = −ν·ε·r is the exact one in both parts), a
+// twist and a shear across the rim, which they carry at their solidity times the cell's factor and at their solidity,
+// and a uniform radial growth, which the layer does not carry (no stress crosses the spaces between teeth); and the
+// designed section's layer holds the teeth's own area and its shear factor is the cell's.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -13,6 +15,7 @@
 #include "fem/fourier_element.hpp"
 #include "fem/fourier_section.hpp"
 #include "fem/fourier_solver.hpp"
+#include "fem/rib_cell.hpp"
 #include "gear/tooth_profile.hpp"
 #include "mesh/tet_mesh.hpp"
 
@@ -87,25 +90,27 @@ TEST(FourierToothLayer, CarriesItsSolidityAlongTheFace) {
   EXPECT_NEAR(U[kToothLayerRegion] / layer, 1.0, 1e-9);
 }
 
-// Twisted (u_θ = κ r z) or grown (u_r = c), the tube carries its closed-form energy and the layer only its residual
-// moduli's: fourier::kToothLayerResidual of a solid ring's in torsion (the one shear term γ_θz = κ r: exact) and in growth
-// (the one hoop term ε_θ = c/r; 1/r is not a polynomial: the rule's error on these cells is below 1e-6).
-TEST(FourierToothLayer, CarriesNothingAroundTheRim) {
-  const SectionMesh s = layered_annulus();
+// Twisted (u_θ = κ r z: the one shear γ_θz = κ r), sheared across the rim (u_θ = c r²: the one shear γ_rθ = c r) or
+// grown (u_r = c: the one hoop term ε_θ = c/r), the tube carries its closed-form energy and the layer its solidity
+// times the shear factor in twist, its solidity in γ_rθ and only the residual hoop modulus in growth. The first two
+// fields are polynomials the section and the 7-point rule hold exactly (1e-10); 1/r is not: the rule's error on these
+// cells is below 1e-6.
+TEST(FourierToothLayer, ShearsAtItsSolidityAndCarriesNoHoop) {
+  SectionMesh s = layered_annulus();
+  s.tooth_layer->shear_factor = 0.4;
   const Material m;
   const double E = m.youngs_modulus_Pa, nu = m.poisson_ratio, G = E / (2 * (1 + nu)), kappa = 1e-2, c = 1e-6;
+  const auto zero = [](double, double) { return 0.0; };
   const auto Ut = strain_energy_by_region_J(
-      s, m,
-      axisymmetric_field(s, [](double, double) { return 0.0; }, [&](double r, double z) { return kappa * r * z; },
-                         [](double, double) { return 0.0; }));
-  const double solid_twist = 0.5 * G * kappa * kappa * layer_volume_integral([](double r) { return r * r; });
+      s, m, axisymmetric_field(s, zero, [&](double r, double z) { return kappa * r * z; }, zero));
+  const auto phi_r2 = [](double r) { return solidity(r) * r * r; };
   EXPECT_NEAR(Ut[0] / (0.5 * G * kappa * kappa * kPi * (std::pow(kR1, 4) - std::pow(kR0, 4)) / 2 * kL), 1.0, 1e-10);
-  EXPECT_NEAR(Ut[kToothLayerRegion] / solid_twist, fourier::kToothLayerResidual, 1e-10 * fourier::kToothLayerResidual);
+  EXPECT_NEAR(Ut[kToothLayerRegion] / (0.4 * 0.5 * G * kappa * kappa * layer_volume_integral(phi_r2)), 1.0, 1e-10);
 
-  const auto Ug = strain_energy_by_region_J(
-      s, m,
-      axisymmetric_field(s, [&](double, double) { return c; }, [](double, double) { return 0.0; },
-                         [](double, double) { return 0.0; }));
+  const auto Us = strain_energy_by_region_J(s, m, axisymmetric_field(s, zero, [&](double r, double) { return c * r * r; }, zero));
+  EXPECT_NEAR(Us[kToothLayerRegion] / (0.5 * G * c * c * layer_volume_integral(phi_r2)), 1.0, 1e-10);
+
+  const auto Ug = strain_energy_by_region_J(s, m, axisymmetric_field(s, [&](double, double) { return c; }, zero, zero));
   const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu)), mu = G;
   const auto hoop = [&](double r) { return c * c / (r * r); };
   EXPECT_NEAR(Ug[kToothLayerRegion] / (0.5 * E * layer_volume_integral(hoop)), fourier::kToothLayerResidual,
@@ -156,6 +161,54 @@ TEST(FourierToothLayer, TheDesignedLayerHoldsTheTeethsArea) {
   const double teeth = (polygon - kPi * radii.root_f * radii.root_f) * f.rim_width_m;
   std::printf("the layer's steel over the teeth's volume: %.6f\n", steel / teeth);
   EXPECT_NEAR(steel / teeth, 1.0, 1e-3);
+}
+
+/// The default gear and flexspline with the rim's outside on the root circle, everything scaled by k (the drive
+/// geometrically similar), its section's layer.
+ToothLayer designed_layer(double k, double rim_offset_m = 0) {
+  GearParams g;
+  g.module_m *= k;
+  FlexsplineParams f;
+  f.teeth = TeethModel::Layer;
+  f.inner_radius_m *= k;
+  f.wall_thickness_m *= k;
+  f.length_m *= k;
+  f.rim_width_m *= k;
+  f.diaphragm_thickness_m *= k;
+  f.fillet_radius_m *= k;
+  f.boss_radius_m *= k;
+  f.rim_thickness_m = gear_radii(g).root_f - f.inner_radius_m + rim_offset_m;
+  MeshParams mesh;
+  mesh.size_m *= k;
+  return *mesh_flexspline_section(f, g, mesh).tooth_layer;
+}
+
+// The layer's shear factor is the rib cell's of the designed tooth: against the cell built here from the solidity at
+// 512 rows and 64 cells across (the layer's 128 × 32 within 0.5 % of it: 1 %), the
+// tooth read from just above the root circle, where the spaces' floor begins. A drive scaled as a whole keeps it (to
+// 1e-9), and so does a rim whose outer radius misses the root circle by a rounding (1e-10 m, where the solidity
+// jumps from 1 to the teeth's share; to 1e-3, the fillet's width growing as the square root of the height there).
+TEST(FourierToothLayer, ItsShearIsTheRibCellsOfTheDesignedTooth) {
+  const GearParams g;
+  const FlexsplineParams f0;
+  const GearRadii radii = gear_radii(g);
+  const ToothLayer layer = designed_layer(1.0);
+  RibCell cell;
+  cell.pitch_m = 2 * kPi * radii.root_f / g.teeth_flexspline;
+  cell.rim_thickness_m = radii.root_f - f0.inner_radius_m;
+  cell.cells_across = 64;
+  const double h = radii.tip_f - radii.root_f;
+  for (int k = 0; k <= 512; ++k) {
+    const double r = radii.root_f + h * std::max(k / 512.0, 1e-6);
+    cell.height_m.push_back(h * k / 512.0);
+    cell.width_m.push_back(std::min(cell.pitch_m, flexspline_solidity(g, r) * 2 * kPi * r / g.teeth_flexspline));
+  }
+  const double converged = rib_shear_factor(cell);
+  std::printf("the designed layer's shear factor %.6f, the converged cell's %.6f\n", layer.shear_factor, converged);
+  EXPECT_NEAR(layer.shear_factor / converged, 1.0, 1e-2);
+  EXPECT_NEAR(designed_layer(1.3).shear_factor / layer.shear_factor, 1.0, 1e-9);
+  EXPECT_NEAR(designed_layer(1.0, 1e-10).shear_factor / layer.shear_factor, 1.0, 1e-3);
+  EXPECT_NEAR(designed_layer(1.0, -1e-10).shear_factor / layer.shear_factor, 1.0, 1e-3);
 }
 
 }  // namespace

@@ -193,8 +193,10 @@ FemResult fem_result(const Case& c, const TetMesh& mesh, const FlexsplineSolutio
 
 FemResult fem_result(const Case& c, const FourierSolution& f, const RunInfo& run) {
   FemResult r = fem_result(c, f.grid, f.figures, run);
+  std::optional<double> shear_factor;
+  if (f.section.tooth_layer) shear_factor = f.section.tooth_layer->shear_factor;
   r.mesh = SectionMeshFigures{"meridian section, 6-node triangles", f.section.n_nodes(), f.section.triangles.size(),
-                              f.grid.n_nodes(), f.grid.tets.size()};
+                              f.grid.n_nodes(), f.grid.tets.size(), shear_factor};
   FemResult::Harmonics h{f.harmonics_kept, {}};
   r.solver.equations = 0;
   for (const HarmonicStats& n : f.harmonics) {
@@ -311,7 +313,8 @@ static auto fields(std::type_identity<TetMeshFigures>) {
 static auto fields(std::type_identity<SectionMeshFigures>) {
   using T = SectionMeshFigures;
   return std::tuple{field("kind", &T::kind), field("nodes", &T::nodes), field("elements", &T::elements),
-                    field("grid_nodes", &T::grid_nodes), field("grid_elements", &T::grid_elements)};
+                    field("grid_nodes", &T::grid_nodes), field("grid_elements", &T::grid_elements),
+                    field("tooth_layer_shear_factor", &T::tooth_layer_shear_factor)};
 }
 
 static auto fields(std::type_identity<FemResult::PetscFigures>) {

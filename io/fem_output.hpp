@@ -37,6 +37,7 @@ struct TetMeshFigures {
 struct SectionMeshFigures {
   std::string kind;
   std::size_t nodes = 0, elements = 0, grid_nodes = 0, grid_elements = 0;
+  std::optional<double> tooth_layer_shear_factor;  ///< teeth = "layer": κ of the ribs' shear along the face
 };
 
 /// result.json, key by key in the file's own units (each member is named as its key): what `strainwave fem` writes

@@ -72,6 +72,9 @@ constexpr double kSize17Phi0Harmonic = 5.938782e-04;
 // 0.414 / 2, 0.207 / 4; order 1.25), the default −0.32 %.
 constexpr double kSeedPhi0Converged = 4.193996e-04;
 constexpr double kSize17Phi0Converged = 5.957610e-04;
+// The designed cups' tooth layer at ratio 100 (z_f = 200, rim 0.0356 d): its ribs' shear factor from one pitch's cell,
+// as the run of 2026-12-07 gave it (the cell's own check against the series solution: tests/fem/test_rib_cell.cpp).
+constexpr double kDesignedShearFactor = 0.3000122;
 constexpr double kDefaultMeshTol = 0.005;
 // The cup's closed form (diaphragm as an annular plate + body wall + rim) against the FEM: 3 % (measured +1.5 % seed,
 // +1.2 % size 17 at the default meshes; the closed form leaves out the fillet and the diaphragm-to-wall corner).
@@ -333,6 +336,13 @@ TEST_P(DesignedSize, IsTheSize17CupScaledAndItsTwistIsPinned) {
   const auto j = read_json(out / "result.json");
   EXPECT_NEAR(-j["reaction_torque_Nm"].get<double>() / p.rated_Nm, 1.0, 1e-8);
   EXPECT_NEAR(j["phi0_rad"].get<double>() / j["phi0_theory_cup_rad"].get<double>(), 1.0, kClosedFormTol);
+  // The designed rims carry the teeth as a layer; its shear factor lies between a free slab's 0 and the rule of
+  // mixtures' 1 (its value against the cell: tests/fem/test_tooth_layer.cpp), the same for the similar drives (1e-4:
+  // the case files' rounded dimensions move it by up to 5e-6 through the fillets' steep start at the root).
+  const double kappa = j["mesh"]["tooth_layer_shear_factor"].get<double>();
+  EXPECT_GT(kappa, 0.0);
+  EXPECT_LT(kappa, 1.0);
+  EXPECT_NEAR(kappa / kDesignedShearFactor, 1.0, 1e-4);
   const double d = p.size * 2.54, d17 = 17 * 2.54;
   EXPECT_NEAR(j["compliance_rad_per_Nm"].get<double>() * std::pow(d / d17, 3) / (kSize17Phi0Harmonic / 31.0), 1.0,
               1e-4);

@@ -81,7 +81,7 @@ inline FemResult sample_fourier_result() {
   r.torque_sweep.reset();
   r.generator.reset();
   r.fatigue.reset();
-  r.mesh = SectionMeshFigures{"meridian section, 6-node triangles", 947, 418, 181824, 118368};
+  r.mesh = SectionMeshFigures{"meridian section, 6-node triangles", 947, 418, 181824, 118368, 0.304};
   r.solver.method = "fourier";
   r.solver.backend = "cholmod";
   r.solver.petsc.reset();

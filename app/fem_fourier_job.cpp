@@ -74,6 +74,10 @@ FemJobResult run_fourier_fem_job(const Case& c, OutputSet& out, bool write_vtk, 
               s.checks.phi0_theory_rad != 0 ? s.phi0_rad / s.checks.phi0_theory_rad : 0.0);
   std::printf("  reaction torque %.9g N·m vs applied %.9g N·m\n", s.checks.reaction_torque_Nm,
               s.checks.applied_torque_Nm);
+  if (const auto& layer = fourier->section.tooth_layer)
+    std::printf("  teeth as ribs along the face on the rim: stiff along it at their solidity, no hoop load; their shear "
+                "along the face %.3f of the rule of mixtures (one pitch's cell)\n",
+                layer->shear_factor);
   if (c.wave_generator)
     std::printf("  generator: %.4g N per force, w0 = %.4f mm, net rim rotation %.2e rad; hoop stress %+.1f MPa at "
                 "%.1f deg, %+.1f MPa at %.1f deg\n",

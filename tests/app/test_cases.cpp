@@ -343,6 +343,9 @@ TEST_P(DesignedSize, IsTheSize17CupScaledAndItsTwistIsPinned) {
   EXPECT_GT(kappa, 0.0);
   EXPECT_LT(kappa, 1.0);
   EXPECT_NEAR(kappa / kDesignedShearFactor, 1.0, 1e-4);
+  char printed[64];
+  std::snprintf(printed, sizeof printed, "their shear along the face %.3f of the rule of mixtures", kappa);
+  EXPECT_NE(r.output.find(printed), std::string::npos) << r.output;
   const double d = p.size * 2.54, d17 = 17 * 2.54;
   EXPECT_NEAR(j["compliance_rad_per_Nm"].get<double>() * std::pow(d / d17, 3) / (kSize17Phi0Harmonic / 31.0), 1.0,
               1e-4);

@@ -10,6 +10,7 @@
 
 #include "common/constants.hpp"
 #include "common/error.hpp"
+#include "common/interpolate.hpp"
 #include "fem/rib_cell.hpp"
 #include "gear/tooth_profile.hpp"
 #include "mesh/flexspline.hpp"
@@ -362,14 +363,7 @@ SectionMesh mesh_flexspline_section(const FlexsplineParams& f, const std::option
   return out;
 }
 
-double ToothLayer::at(double r_m) const {
-  const auto hi = std::upper_bound(radius_m.begin(), radius_m.end(), r_m);
-  if (hi == radius_m.begin()) return solidity.front();
-  if (hi == radius_m.end()) return solidity.back();
-  const std::size_t k = static_cast<std::size_t>(hi - radius_m.begin());
-  const double t = (r_m - radius_m[k - 1]) / (radius_m[k] - radius_m[k - 1]);
-  return solidity[k - 1] + t * (solidity[k] - solidity[k - 1]);
-}
+double ToothLayer::at(double r_m) const { return interpolate_clamped(radius_m, solidity, r_m); }
 
 Eigen::Matrix<double, 6, 1> t6_shape(double xi, double eta) {
   const double l1 = 1 - xi - eta, l2 = xi, l3 = eta;

@@ -10,6 +10,8 @@
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
+#include "common/interpolate.hpp"
+
 namespace sw {
 namespace {
 
@@ -18,39 +20,39 @@ struct CellNode {
   double s, r;
 };
 
-/// The cell's mesh: bilinear quadrilaterals (nodes counter-clockwise in (s, r)) and which nodes are held.
+/// A bilinear quadrilateral, nodes counter-clockwise in (s, r); a quad across the period's seam adds the pitch to the
+/// s of its wrapped nodes.
+struct CellQuad {
+  std::array<int, 4> nodes{};
+  std::array<double, 4> s_shift{};
+};
+
+/// The cell's mesh and which nodes are held.
 struct CellMesh {
   std::vector<CellNode> nodes;
-  std::vector<std::array<int, 4>> quads;
+  std::vector<CellQuad> quads;
   std::vector<bool> held;
   double rim_area = 0;  ///< of the quads below the root
   double rib_area = 0;  ///< of the quads above it
 };
 
-double rib_width_at(const RibCell& c, double h) {
-  const auto hi = std::upper_bound(c.height_m.begin(), c.height_m.end(), h);
-  if (hi == c.height_m.begin()) return c.width_m.front();
-  if (hi == c.height_m.end()) return c.width_m.back();
-  const std::size_t k = static_cast<std::size_t>(hi - c.height_m.begin());
-  const double t = (h - c.height_m[k - 1]) / (c.height_m[k] - c.height_m[k - 1]);
-  return c.width_m[k - 1] + t * (c.width_m[k] - c.width_m[k - 1]);
+/// The quad's corners in (s, r), its seam shift applied.
+Eigen::Matrix<double, 4, 2> corners(const CellMesh& m, const CellQuad& q) {
+  Eigen::Matrix<double, 4, 2> X;
+  for (int a = 0; a < 4; ++a) X.row(a) << m.nodes[q.nodes[a]].s + q.s_shift[a], m.nodes[q.nodes[a]].r;
+  return X;
 }
 
-double cell_quad_area(const CellMesh& m, const std::array<int, 4>& q, const std::array<double, 4>& s_shift) {
+double cell_quad_area(const CellMesh& m, const CellQuad& q) {
+  const Eigen::Matrix<double, 4, 2> X = corners(m, q);
   double a = 0;
-  for (int i = 0; i < 4; ++i) {
-    const int j = (i + 1) % 4;
-    const CellNode& p = m.nodes[q[i]];
-    const CellNode& n = m.nodes[q[j]];
-    a += (p.s + s_shift[i]) * n.r - (n.s + s_shift[j]) * p.r;
-  }
+  for (int i = 0; i < 4; ++i) a += X(i, 0) * X((i + 1) % 4, 1) - X((i + 1) % 4, 0) * X(i, 1);
   return 0.5 * a;
 }
 
 /// The rib on rows of constant height (its width mapped, s = ξ·w(h)); under it, when the rim is there, the rim on
 /// columns of constant s, periodic: the spaces' floor beside the root, then the root's nodes, shared with the rib.
-/// Quads that cross the period's seam carry their wrapped nodes' shift in `shift`.
-CellMesh cell_mesh(const RibCell& c, std::vector<std::array<double, 4>>& shift) {
+CellMesh cell_mesh(const RibCell& c) {
   CellMesh m;
   const int ns = c.cells_across;
   const double h = c.height_m.back(), w0 = c.width_m.front(), P = c.pitch_m;
@@ -79,9 +81,8 @@ CellMesh cell_mesh(const RibCell& c, std::vector<std::array<double, 4>>& shift) 
       for (int k = 0; k < nc; ++k) {
         const int k1 = (k + 1) % nc;
         const double wrap = k1 == 0 ? P : 0.0;
-        m.quads.push_back({rows[i][k], rows[i][k1], rows[i + 1][k1], rows[i + 1][k]});
-        shift.push_back({0.0, wrap, wrap, 0.0});
-        m.rim_area += cell_quad_area(m, m.quads.back(), shift.back());
+        m.quads.push_back({{rows[i][k], rows[i][k1], rows[i + 1][k1], rows[i + 1][k]}, {0.0, wrap, wrap, 0.0}});
+        m.rim_area += cell_quad_area(m, m.quads.back());
       }
     for (int j = 0; j <= ns; ++j) root[j] = rows[nt][(ng + j) % nc];
   } else {
@@ -93,14 +94,13 @@ CellMesh cell_mesh(const RibCell& c, std::vector<std::array<double, 4>>& shift) 
   // The rib: a root node shared across the seam (a rib as wide as the pitch) keeps its own s by the shift.
   std::vector<int> below = root;
   for (int i = 1; i <= nr; ++i) {
-    const double r = h * i / nr, w = rib_width_at(c, r);
+    const double r = h * i / nr, w = interpolate_clamped(c.height_m, c.width_m, r);
     std::vector<int> row;
     for (int j = 0; j <= ns; ++j) row.push_back(add(-0.5 * w + w * j / ns, r));
     for (int j = 0; j < ns; ++j) {
       const bool seam = i == 1 && j + 1 == ns && below[ns] == below[0];
-      m.quads.push_back({below[j], below[j + 1], row[j + 1], row[j]});
-      shift.push_back({0.0, seam ? P : 0.0, 0.0, 0.0});
-      m.rib_area += cell_quad_area(m, m.quads.back(), shift.back());
+      m.quads.push_back({{below[j], below[j + 1], row[j + 1], row[j]}, {0.0, seam ? P : 0.0, 0.0, 0.0}});
+      m.rib_area += cell_quad_area(m, m.quads.back());
     }
     below = row;
   }
@@ -117,8 +117,7 @@ double rib_shear_factor(const RibCell& c) {
   for (std::size_t k = 0; k < n; ++k)
     if (c.width_m[k] <= 0 || c.width_m[k] > c.pitch_m * (1 + 1e-12) || (k > 0 && c.height_m[k] <= c.height_m[k - 1]))
       throw std::invalid_argument("rib_shear_factor: widths in (0, pitch] on increasing heights");
-  std::vector<std::array<double, 4>> shift;
-  const CellMesh m = cell_mesh(c, shift);
+  const CellMesh m = cell_mesh(c);
 
   // Unknowns: the fluctuation w at every node not held; the rim's constant is pinned at its first node (w is
   // determined up to a constant there, and the energy does not see it).
@@ -132,10 +131,9 @@ double rib_shear_factor(const RibCell& c) {
   Eigen::VectorXd b = Eigen::VectorXd::Zero(neq);
   const double g = 1.0 / std::sqrt(3.0);
   const double xi[4] = {-1, 1, 1, -1}, eta[4] = {-1, -1, 1, 1};
-  for (std::size_t e = 0; e < m.quads.size(); ++e) {
-    const auto& q = m.quads[e];
-    Eigen::Matrix<double, 4, 2> X;
-    for (int a = 0; a < 4; ++a) X.row(a) << m.nodes[q[a]].s + shift[e][a], m.nodes[q[a]].r;
+  for (const CellQuad& quad : m.quads) {
+    const auto& q = quad.nodes;
+    const Eigen::Matrix<double, 4, 2> X = corners(m, quad);
     Eigen::Matrix4d ke = Eigen::Matrix4d::Zero();
     Eigen::Vector4d be = Eigen::Vector4d::Zero();
     for (const double gx : {-g, g})

@@ -119,6 +119,28 @@ TEST(FourierToothLayer, ShearsAtItsSolidityAndCarriesNoHoop) {
   EXPECT_NEAR(Ug[0] / tube, 1.0, 1e-6);
 }
 
+/// The default gear and flexspline with the rim's outside on the root circle, everything scaled by k (the drive
+/// geometrically similar), meshed for the harmonic solver.
+SectionMesh designed_section(double k = 1.0, double rim_offset_m = 0) {
+  GearParams g;
+  g.module_m *= k;
+  FlexsplineParams f;
+  f.teeth = TeethModel::Layer;
+  f.inner_radius_m *= k;
+  f.wall_thickness_m *= k;
+  f.length_m *= k;
+  f.rim_width_m *= k;
+  f.diaphragm_thickness_m *= k;
+  f.fillet_radius_m *= k;
+  f.boss_radius_m *= k;
+  f.rim_thickness_m = gear_radii(g).root_f - f.inner_radius_m + rim_offset_m;
+  MeshParams mesh;
+  mesh.size_m *= k;
+  return mesh_flexspline_section(f, g, mesh);
+}
+
+ToothLayer designed_layer(double k, double rim_offset_m = 0) { return *designed_section(k, rim_offset_m).tooth_layer; }
+
 // The designed section's layer: its triangles fill the rim's width from the root circle to the tip, the rim's outer
 // surface (where the contact loads and reads) stays at the root circle, and ∫ φ dV over the layer is the teeth's
 // volume, z_f times the tooth's area above the root circle (the outline polygon's shoelace area less the root disc)
@@ -126,11 +148,7 @@ TEST(FourierToothLayer, ShearsAtItsSolidityAndCarriesNoHoop) {
 TEST(FourierToothLayer, TheDesignedLayerHoldsTheTeethsArea) {
   const GearParams g;
   const GearRadii radii = gear_radii(g);
-  FlexsplineParams f;
-  f.teeth = TeethModel::Layer;
-  f.rim_thickness_m = radii.root_f - f.inner_radius_m;
-  MeshParams mesh;
-  const SectionMesh s = mesh_flexspline_section(f, g, mesh);
+  const SectionMesh s = designed_section();
   ASSERT_TRUE(s.tooth_layer.has_value());
   double steel = 0, r_lo = 1, r_hi = 0;
   for (std::size_t e = 0; e < s.triangles.size(); ++e) {
@@ -158,29 +176,9 @@ TEST(FourierToothLayer, TheDesignedLayerHoldsTheTeethsArea) {
     const auto& b = pts[(i + 1) % pts.size()];
     polygon += 0.5 * (a.x() * b.y() - a.y() * b.x());
   }
-  const double teeth = (polygon - kPi * radii.root_f * radii.root_f) * f.rim_width_m;
+  const double teeth = (polygon - kPi * radii.root_f * radii.root_f) * FlexsplineParams{}.rim_width_m;
   std::printf("the layer's steel over the teeth's volume: %.6f\n", steel / teeth);
   EXPECT_NEAR(steel / teeth, 1.0, 1e-3);
-}
-
-/// The default gear and flexspline with the rim's outside on the root circle, everything scaled by k (the drive
-/// geometrically similar), its section's layer.
-ToothLayer designed_layer(double k, double rim_offset_m = 0) {
-  GearParams g;
-  g.module_m *= k;
-  FlexsplineParams f;
-  f.teeth = TeethModel::Layer;
-  f.inner_radius_m *= k;
-  f.wall_thickness_m *= k;
-  f.length_m *= k;
-  f.rim_width_m *= k;
-  f.diaphragm_thickness_m *= k;
-  f.fillet_radius_m *= k;
-  f.boss_radius_m *= k;
-  f.rim_thickness_m = gear_radii(g).root_f - f.inner_radius_m + rim_offset_m;
-  MeshParams mesh;
-  mesh.size_m *= k;
-  return *mesh_flexspline_section(f, g, mesh).tooth_layer;
 }
 
 // The layer's shear factor is the rib cell's of the designed tooth: against the cell built here from the solidity at

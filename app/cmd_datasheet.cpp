@@ -226,8 +226,10 @@ void add_datasheet_command(CLI::App& app) {
       in.why_no_bearing = "not computed: the case gives no [wave_generator] bearing (balls, ball_diameter_mm)";
     in.losses = naming_file(
         c.path, [&] { return losses(c, *fem.harmonic, contact, *body, readout, in.ratio, in.why_no_losses); });
-    if (c.material.fatigue_limit_Pa) in.tooth_root = tooth_root_limit(*c.gear, c.flexspline, c.material, contact);
-    else in.why_no_tooth_root = "not computed: the case gives no [material] fatigue_limit_MPa and ultimate_strength_MPa";
+    if (!c.material.fatigue_limit_Pa)
+      in.why_no_tooth_root = "not computed: the case gives no [material] fatigue_limit_MPa and ultimate_strength_MPa";
+    else if ((in.why_no_tooth_root = tooth_root_not_covered(*c.gear, c.flexspline)).empty())
+      in.tooth_root = tooth_root_limit(*c.gear, c.flexspline, c.material, contact);
     const Datasheet sheet = make_datasheet(in);
 
     write_file_atomic(outputs.staging() / "datasheet.json", datasheet_json(sheet, c));

@@ -6,6 +6,7 @@
 #include <numeric>
 #include <cstdio>
 #include <numbers>
+#include <string>
 #include <tuple>
 
 #include "common/error.hpp"
@@ -19,6 +20,25 @@ double pulsating_allowable_stress_Pa(double fatigue_limit_Pa, double ultimate_st
   return 2 / (1 / fatigue_limit_Pa + 1 / ultimate_strength_Pa);
 }
 
+namespace {
+/// h_t of the flexspline's teeth: addendum plus dedendum.
+double flexspline_tooth_depth_m(const GearParams& gear) {
+  return (gear.addendum_coefficient_flexspline + gear.dedendum_coefficient_flexspline) * gear.module_m;
+}
+}  // namespace
+
+std::string tooth_root_not_covered(const GearParams& gear, const FlexsplineParams& flexspline) {
+  const double depth_m = flexspline_tooth_depth_m(gear);
+  const double ratio = flexspline.rim_thickness_m / depth_m;
+  if (flexspline.rim_thickness_m == 0 || ratio > kRimBackupRatioMin) return "";
+  char buf[320];
+  std::snprintf(buf, sizeof buf,
+                "not computed: the rim under the teeth (%.3f mm) is %.2f of their depth (%.3f mm), and ISO 6336-3's rim "
+                "factor Y_B covers rims thicker than %.1f of it",
+                flexspline.rim_thickness_m * 1e3, ratio, depth_m * 1e3, kRimBackupRatioMin);
+  return buf;
+}
+
 ToothRootFigure tooth_root_limit(const GearParams& gear, const FlexsplineParams& flexspline, const Material& material,
                                  const ContactAnalysis& contact) {
   if (!material.fatigue_limit_Pa || !material.ultimate_strength_Pa)
@@ -27,8 +47,7 @@ ToothRootFigure tooth_root_limit(const GearParams& gear, const FlexsplineParams&
   const SpurTeeth teeth = flexspline_teeth(gear);
   (void)external_root_form(teeth, spur_tip_radius_m(teeth, false));  // the tooth itself: its errors are the case's
   RootStressFactors factors;
-  const double depth_m = (gear.addendum_coefficient_flexspline + gear.dedendum_coefficient_flexspline) * gear.module_m;
-  factors.rim_thickness = rim_thickness_factor(flexspline.rim_thickness_m, depth_m);
+  factors.rim_thickness = rim_thickness_factor(flexspline.rim_thickness_m, flexspline_tooth_depth_m(gear));
   // Each contact over its own band of the face (a face in sections: each section's force over the band it stands
   // for, so the load's gathering along the face is in the stress, as ISO's K_Fβ would put it), at its own radius.
   double sigma = 0, force_N = 0, radius_m = 0, band_m = 0;

@@ -2,6 +2,8 @@
 // The limits of the datasheet that stand on the loaded contact: the teeth's root strength (ISO 6336-3 on the contact's
 // flank forces, each over its band of the face). Each returns the figure with the one line that says how it was
 // computed.
+#include <string>
+
 #include "contact/loaded_contact.hpp"
 #include "datasheet/datasheet.hpp"
 #include "gear/gear.hpp"
@@ -21,6 +23,12 @@ double pulsating_allowable_stress_Pa(double fatigue_limit_Pa, double ultimate_st
 /// taken proportional to the torque beyond rated. Contacts loaded below the root's critical section (the method's arm
 /// h_Fe ≤ 0) are left out and counted. Infinite when none is left. Throws InputError without the material's fatigue
 /// data, or for teeth the method does not cover.
+/// Why ISO 6336-3 method B does not cover the flexspline's teeth, or "" when it does: its rim factor Y_B is defined for
+/// a rim under the teeth thicker than kRimBackupRatioMin of their depth (clause 8), and a designed rim at a low ratio
+/// (tall teeth of a large module on a rim set by the diameter) can be thinner. Then the datasheet says so in place of
+/// the figure, and keeps every other.
+std::string tooth_root_not_covered(const GearParams& gear, const FlexsplineParams& flexspline);
+
 ToothRootFigure tooth_root_limit(const GearParams& gear, const FlexsplineParams& flexspline, const Material& material,
                                  const ContactAnalysis& contact);
 

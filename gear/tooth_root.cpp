@@ -171,7 +171,8 @@ double rim_thickness_factor(double rim_thickness_m, double tooth_depth_m) {
   if (rim_thickness_m == 0) return 1.0;  // solid gear
   const double ratio = rim_thickness_m / tooth_depth_m;
   // ISO 6336-3:2006 clause 8, external gears.
-  if (!(ratio > 0.5)) bad_input("rim thickness / tooth depth s_R/h_t", ratio, "must be > 0.5 (ISO 6336-3's limit for Y_B)");
+  if (!(ratio > kRimBackupRatioMin))
+    bad_input("rim thickness / tooth depth s_R/h_t", ratio, "must be > 0.5 (ISO 6336-3's limit for Y_B)");
   if (ratio >= 1.2) return 1.0;
   return 1.6 * std::log(2.242 / ratio);
 }

@@ -103,6 +103,8 @@ ToothRootForm internal_root_form(const SpurTeeth& g, double load_radius_m);
 /// 1 for s_R/h_t ≥ 1.2 (and for s_R = 0: a solid gear), 1.6 ln(2.242 h_t/s_R) for 0.5 < s_R/h_t < 1.2; throws InputError
 /// for s_R/h_t ≤ 0.5 (the standard's limit) or a non-positive tooth depth.
 double rim_thickness_factor(double rim_thickness_m, double tooth_depth_m);
+/// The smallest s_R/h_t ISO 6336-3:2006 clause 8 defines Y_B for (external gears): a thinner rim is outside the method.
+inline constexpr double kRimBackupRatioMin = 0.5;
 
 /// The factors of σ_F0 besides Y_F and Y_S (header comment).
 struct RootStressFactors {

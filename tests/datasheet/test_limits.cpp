@@ -126,5 +126,27 @@ TEST(ToothRoot, TheLimitIsTheLargestContactStressOverItsOwnBandOfTheFace) {
   EXPECT_TRUE(std::isinf(tooth_root_limit(g, f, m, a).torque_Nm));
 }
 
+// ISO 6336-3's Y_B is defined for a rim thicker than half the tooth depth. The designed rim (0.014 d) under the teeth of
+// ratio 100 is 1.70 of their depth; at ratio 30 (a module 3.33 times larger) the same rim is 0.51 of it, and at the
+// thin end of Ivanov's range 0.40: outside the method, which the datasheet then says instead of stopping.
+TEST(ToothRoot, ARimThinnerThanHalfTheToothDepthIsOutsideTheMethodAndSaysSo) {
+  GearParams g;
+  g.addendum_coefficient_flexspline = 0.7;
+  g.dedendum_coefficient_flexspline = 0.95;
+  FlexsplineParams f;
+  g.module_m = 0.2159e-3;  // size 17, ratio 100: depth 0.356 mm
+  f.rim_thickness_m = 0.60452e-3;
+  EXPECT_EQ(tooth_root_not_covered(g, f), "");
+  g.module_m = 0.719666667e-3;  // size 17, ratio 30: depth 1.187 mm
+  EXPECT_EQ(tooth_root_not_covered(g, f), "");  // 0.509
+  f.rim_thickness_m = 0.47498e-3;  // --rim-per-d 0.011: 0.400
+  const std::string why = tooth_root_not_covered(g, f);
+  EXPECT_EQ(why, "not computed: the rim under the teeth (0.475 mm) is 0.40 of their depth (1.187 mm), and ISO "
+                 "6336-3's rim factor Y_B covers rims thicker than 0.5 of it");
+  EXPECT_THROW(rim_thickness_factor(f.rim_thickness_m, 1.65 * g.module_m), InputError);  // the method itself refuses
+  f.rim_thickness_m = 0.5 * 1.65 * g.module_m;  // exactly at the limit: outside (the standard's bound is strict)
+  EXPECT_NE(tooth_root_not_covered(g, f), "");
+}
+
 }  // namespace
 }  // namespace sw

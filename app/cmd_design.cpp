@@ -18,6 +18,7 @@
 #include "contact/contact_body.hpp"
 #include "contact/loaded_contact.hpp"
 #include "fem/fourier_solver.hpp"
+#include "fem/infinite_life.hpp"
 #include "design/proportions.hpp"
 #include "io/atomic_file.hpp"
 #include "io/case.hpp"
@@ -46,9 +47,7 @@ T parse_number(const std::string& option, const std::string& text) {
 /// The rim's neutral curves under the generator alone at the face's sections the loaded contact meshes (`sections`
 /// of contact/contact_body.hpp face_slice: for the design's three, its closed-end edge, its centre and its open end),
 /// from the case's harmonic FEM: the curves the contact places the teeth on.
-std::vector<NeutralCurve> generator_deformed_sections(const Case& c, int sections) {
-  double section_s = 0;
-  const FourierSolution fs = solve_fourier_model(c, 0.0, section_s);
+std::vector<NeutralCurve> generator_deformed_sections(const Case& c, const FourierSolution& fs, int sections) {
   const double face = c.flexspline.rim_width_m, mid = fs.figures.neutral_curve->z_m;
   std::vector<double> z;
   for (int j = 0; j < sections; ++j) z.push_back(face_section_z_m(mid, face, j, sections));
@@ -62,6 +61,34 @@ std::vector<NeutralCurve> generator_deformed_sections(const Case& c, int section
         fem_neutral_curve(read[j], std::string("FEM's generator-deformed (harmonic solver, ") + where + ")"));
   }
   return curves;
+}
+
+/// The designed flexspline body's fatigue strength, one line: its torque for infinite life (fem/infinite_life.hpp,
+/// Sines' criterion with Goodman's line over a generator revolution, searched to 20 × rated as the datasheet does)
+/// against the rated torque. The generator's bending stress grows as rim × w0 / r², and w0 = m grows as the ratio
+/// falls: at a low ratio the rim the diameter sets can fail under the generator alone. The design is written all the
+/// same (a case to study), and the line says it would not live and what lowers that stress.
+std::string strength_line(const Case& c, const FourierSolution& fs, double rated_Nm) {
+  const InfiniteLife life = infinite_life_torque(fs, flexspline_model(c), 20 * rated_Nm);
+  const FatigueState& z = life.at_zero;
+  char where[160];
+  std::snprintf(where, sizeof where, "safety factor %.2f under the generator alone, at the %s r = %.2f mm, z = %.2f mm",
+                z.safety_factor, z.place.c_str(), z.r_m * 1e3, z.z_m * 1e3);
+  char line[640];
+  const char* what = "  strength of the flexspline body (Sines-Goodman over a generator revolution; the teeth's notch "
+                     "left out)";
+  if (life.torque_Nm == 0)
+    std::snprintf(line, sizeof line,
+                  "%s: fails: the generator's bending alone exceeds the fatigue limit (%s); it grows with the rim's "
+                  "thickness times w0 = m, so a thinner rim (--rim-per-d) lowers it\n",
+                  what, where);
+  else if (life.torque_Nm < rated_Nm)
+    std::snprintf(line, sizeof line, "%s: fails at rated torque: infinite life only up to %.4g N m of the rated %.4g N m (%s)\n",
+                  what, life.torque_Nm, rated_Nm, where);
+  else
+    std::snprintf(line, sizeof line, "%s: infinite life up to %.4g N m, %.3g x the rated %.4g N m (%s)\n", what,
+                  life.torque_Nm, life.torque_Nm / rated_Nm, rated_Nm, where);
+  return line;
 }
 
 /// The case text of a design, read back and checked as any case.
@@ -95,7 +122,10 @@ void add_design_command(CLI::App& app) {
         p.*kDesignProportions[i].member = parse_number<double>(kDesignProportions[i].option, proportion[i]);
     CupDesign d = design_cup(parse_number<int>("--size", size), parse_number<int>("--ratio", ratio), p);
     const std::string name = out.empty() ? "cup_size" + std::to_string(d.size) + ".toml" : out;
-    set_zero_backlash(d, generator_deformed_sections(checked_case(design_case_toml(d), name), kDesignFaceSections),
+    const Case first = checked_case(design_case_toml(d), name);
+    double section_s = 0;
+    const FourierSolution fs = solve_fourier_model(first, 0.0, section_s);
+    set_zero_backlash(d, generator_deformed_sections(first, fs, kDesignFaceSections),
                       "FEM's generator-deformed (harmonic solver) face-end and mid-face");
     const std::string text = design_case_toml(d);
     checked_case(text, name);
@@ -112,6 +142,7 @@ void add_design_command(CLI::App& app) {
                 "on the %s curve; the major-axis pair's dead band at mid-face %.3f arcmin\n",
                 z.curve.c_str(), z.shift_difference, z.tightest_angle_deg, z.tightest_parts.c_str(),
                 z.tightest_section.c_str(), z.major_axis_play_rad * 180.0 / std::numbers::pi * 60.0);
+    std::fputs(strength_line(first, fs, d.rated_torque_Nm).c_str(), stdout);
   });
 }
 

@@ -3,10 +3,12 @@
 // harmonic FEM of the designed cup: the neutral curves at the face's sections the loaded contact meshes the teeth
 // on). The text is read back by the case reader and the flexspline checked before anything is written; --out is
 // written atomically, without it the case goes to stdout.
+#include <cmath>
 #include <cstdio>
 #include <iterator>
 #include <numbers>
 #include <string>
+#include <tuple>
 #include <type_traits>
 
 #include <CLI/CLI.hpp>
@@ -63,13 +65,11 @@ std::vector<NeutralCurve> generator_deformed_sections(const Case& c, const Fouri
   return curves;
 }
 
-/// The designed flexspline body's fatigue strength, one line: its torque for infinite life (fem/infinite_life.hpp,
-/// Sines' criterion with Goodman's line over a generator revolution, searched to 20 × rated as the datasheet does)
-/// against the rated torque. The generator's bending stress grows as rim × w0 / r², and w0 = m grows as the ratio
-/// falls: at a low ratio the rim the diameter sets can fail under the generator alone. The design is written all the
-/// same (a case to study), and the line says it would not live and what lowers that stress.
-std::string strength_line(const Case& c, const FourierSolution& fs, double rated_Nm) {
-  const InfiniteLife life = infinite_life_torque(fs, flexspline_model(c), 20 * rated_Nm);
+/// The designed flexspline body's fatigue strength, one line: its torque for infinite life (body_life below) against
+/// the rated torque. The generator's bending stress grows as rim × w0 / r², and w0 = m grows as the ratio falls: at a
+/// low ratio the rim the diameter sets can fail under the generator alone. The design is written all the same (a case
+/// to study), and the line says it would not live and what lowers that stress.
+std::string strength_line(const InfiniteLife& life, double rated_Nm) {
   const FatigueState& z = life.at_zero;
   char where[160];
   std::snprintf(where, sizeof where, "safety factor %.2f under the generator alone, at the %s r = %.2f mm, z = %.2f mm",
@@ -83,8 +83,9 @@ std::string strength_line(const Case& c, const FourierSolution& fs, double rated
                   "thickness times w0 = m, so a thinner rim (--rim-per-d) lowers it\n",
                   what, where);
   else if (life.torque_Nm < rated_Nm)
-    std::snprintf(line, sizeof line, "%s: fails at rated torque: infinite life only up to %.4g N m of the rated %.4g N m (%s)\n",
-                  what, life.torque_Nm, rated_Nm, where);
+    std::snprintf(line, sizeof line,
+                  "%s: fails at rated torque: infinite life only up to %.4g N m of the rated %.4g N m (%s)\n", what,
+                  life.torque_Nm, rated_Nm, where);
   else
     std::snprintf(line, sizeof line, "%s: infinite life up to %.4g N m, %.3g x the rated %.4g N m (%s)\n", what,
                   life.torque_Nm, life.torque_Nm / rated_Nm, rated_Nm, where);
@@ -97,6 +98,55 @@ Case checked_case(const std::string& text, const std::string& name) {
   validate_flexspline(c.flexspline, c.mesh);
   check_teeth_on_rim(c.flexspline, c.gear);
   return c;
+}
+
+/// The body's infinite life on a design's harmonic solution, searched to 20 × rated as the datasheet's.
+InfiniteLife body_life(const Case& c, const FourierSolution& fs, double rated_Nm) {
+  return infinite_life_torque(fs, flexspline_model(c), 20 * rated_Nm);
+}
+
+/// The body's torque for infinite life of the design `d` (its own harmonic FEM, a few seconds).
+double body_life_Nm(const CupDesign& d, const std::string& name) {
+  const Case c = checked_case(design_case_toml(d), name);
+  double section_s = 0;
+  return body_life(c, solve_fourier_model(c, 0.0, section_s), d.rated_torque_Nm).torque_Nm;
+}
+
+/// For a design whose body fails at rated torque: the thickest rim in Ivanov's range, the other proportions as given,
+/// at which it lives (infinite life at rated torque), on the option's grid of 1e-4 d by bisection (a FEM a step:
+/// about six), with its torque for infinite life; one line of advice, not a rule `design` applies (the case keeps the
+/// rim it was asked for). The generator's bending stress falls with the rim, the torque's rises as it thins: the
+/// bisection takes the rims between the range's thinnest and the one given as living below a threshold, which it
+/// checks at the thinnest.
+std::string thickest_living_rim_line(const CupDesign& d, const std::string& name) {
+  const DesignProportion& rim = kDesignProportions[0];
+  auto life_at = [&](int k) {
+    DesignProportions p = d.proportions;
+    p.rim_per_d = k * 1e-4;
+    return body_life_Nm(design_cup(d.size, d.ratio, p), name);
+  };
+  int lo = static_cast<int>(std::ceil(rim.min * 1e4 - 1e-9));
+  int hi = static_cast<int>(std::floor(d.proportions.rim_per_d * 1e4 + 1e-9));
+  double lo_life = life_at(lo);
+  char line[320];
+  if (lo_life < d.rated_torque_Nm) {
+    std::snprintf(line, sizeof line,
+                  "    even the thinnest rim of Ivanov's range (--rim-per-d %.4g) fails at rated torque (infinite life "
+                  "up to %.4g N m): this ratio needs a design beyond these proportions\n",
+                  lo * 1e-4, lo_life);
+    return line;
+  }
+  while (hi - lo > 1) {
+    const int mid = (lo + hi) / 2;
+    const double life = life_at(mid);
+    if (life >= d.rated_torque_Nm) std::tie(lo, lo_life) = std::pair{mid, life};
+    else hi = mid;
+  }
+  std::snprintf(line, sizeof line,
+                "    the thickest rim of Ivanov's range that lives at rated torque: --rim-per-d %.4f (infinite life up "
+                "to %.4g N m)\n",
+                lo * 1e-4, lo_life);
+  return line;
 }
 
 }  // namespace
@@ -142,7 +192,12 @@ void add_design_command(CLI::App& app) {
                 "on the %s curve; the major-axis pair's dead band at mid-face %.3f arcmin\n",
                 z.curve.c_str(), z.shift_difference, z.tightest_angle_deg, z.tightest_parts.c_str(),
                 z.tightest_section.c_str(), z.major_axis_play_rad * 180.0 / std::numbers::pi * 60.0);
-    std::fputs(strength_line(first, fs, d.rated_torque_Nm).c_str(), stdout);
+    const InfiniteLife life = body_life(first, fs, d.rated_torque_Nm);
+    std::fputs(strength_line(life, d.rated_torque_Nm).c_str(), stdout);
+    if (life.torque_Nm < d.rated_torque_Nm) {
+      std::fflush(stdout);  // the advice takes a few FEMs
+      std::fputs(thickest_living_rim_line(d, name).c_str(), stdout);
+    }
   });
 }
 

@@ -305,9 +305,11 @@ ContactAnalysis run_contact_job(const Case& c, const ContactBody& body, const Fe
   print_lost_motion_and_split(c, a);
   if (a.friction)
     std::printf("  friction on the flanks (mu = %g): hysteresis loss %.3f arcmin (the loop's branches apart at zero "
-                "torque), loop area %.4g J = friction work %.4g J per cycle; steady after %d cycle%s of %d steps a "
-                "quarter; lost motion and the three segments above read on the loop's middle line\n",
+                "torque); the loop is widest at %.4g N m, %.3f arcmin; loop area %.4g J = friction work %.4g J per "
+                "cycle; steady after %d cycle%s of %d steps a quarter; lost motion and the three segments above read "
+                "on the loop's middle line\n",
                 a.friction->friction_coefficient, a.friction->hysteresis_loss_rad * kArcmin,
+                a.friction->widest.torque_Nm, a.friction->widest.width_rad * kArcmin,
                 a.friction->dissipated_energy_J, a.friction->friction_work_J, a.friction->cycles,
                 a.friction->cycles == 1 ? "" : "s", a.friction->steps_per_quarter);
   if (!a.edges.empty()) {

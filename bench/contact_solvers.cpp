@@ -180,17 +180,19 @@ void loop_step_study(const SolvedCase& s, const std::string& label) {
     for (const int N : {5, 10, 20, 40, 80}) levels.push_back(*contact_of(s, mu, N).friction);
     const sw::FrictionLoop& fine = levels.back();
     std::printf("%s, mu %.2f: steps, cycles, loss (arcmin), area (J), friction work (J), area/work - 1, lost motion "
-                "(arcmin), twist at rated (arcmin); in () the change from %d steps; the loop's time\n", label.c_str(),
-                mu, fine.steps_per_quarter);
+                "(arcmin), twist at rated (arcmin), widest width (arcmin) at (N m); in () the change from %d steps; the "
+                "loop's time\n", label.c_str(), mu, fine.steps_per_quarter);
     const auto rel = [](double a, double b) { return b != 0 ? 100 * (a / b - 1) : 0.0; };
     for (const sw::FrictionLoop& f : levels)
       std::printf("  %3d %d  %.5f (%+.2f %%)  %.5e (%+.2f %%)  %.5e (%+.2f %%)  %+.2f %%  %.4f (%+.2f %%)  "
-                  "%.4f (%+.3f %%)  %.3f s\n", f.steps_per_quarter, f.cycles, f.hysteresis_loss_rad * kArcmin,
+                  "%.4f (%+.3f %%)  %.4f (%+.2f %%) at %.4g  %.3f s\n", f.steps_per_quarter, f.cycles, f.hysteresis_loss_rad * kArcmin,
                   rel(f.hysteresis_loss_rad, fine.hysteresis_loss_rad), f.dissipated_energy_J,
                   rel(f.dissipated_energy_J, fine.dissipated_energy_J), f.friction_work_J,
                   rel(f.friction_work_J, fine.friction_work_J), rel(f.dissipated_energy_J, f.friction_work_J),
                   f.lost_motion_rad * kArcmin, rel(f.lost_motion_rad, fine.lost_motion_rad),
-                  twist_at_rated(f) * kArcmin, rel(twist_at_rated(f), twist_at_rated(fine)), f.seconds);
+                  twist_at_rated(f) * kArcmin, rel(twist_at_rated(f), twist_at_rated(fine)),
+                  f.widest.width_rad * kArcmin, rel(f.widest.width_rad, fine.widest.width_rad), f.widest.torque_Nm,
+                  f.seconds);
   }
 }
 

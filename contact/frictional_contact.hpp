@@ -108,6 +108,7 @@ std::vector<double> cycle_torque_history(double rated_torque_Nm, int steps_per_q
 struct LoopReading {
   TorqueLoop loop;
   double hysteresis_loss_rad = 0;  ///< the branches' gap at zero torque (unloading − loading)
+  LoopWidth widest;                ///< the branches' largest gap and its torque
   double dissipated_energy_J = 0;  ///< the loop's area ∮T dψ
   double friction_work_J = 0;      ///< Σ over the cycle's steps and contacts of |q|·|Δs|
   double lost_motion_rad = 0;      ///< between ±4 % of T_R on the loop's middle line

@@ -814,6 +814,7 @@ void ContactAnalyser::run_friction_loop() {
   f.steps_per_quarter = N;
   f.cycles = loop.cycles;
   f.hysteresis_loss_rad = loop.reading.hysteresis_loss_rad;
+  f.widest = loop.reading.widest;
   f.dissipated_energy_J = loop.reading.dissipated_energy_J;
   f.friction_work_J = loop.reading.friction_work_J;
   f.lost_motion_rad = loop.reading.lost_motion_rad;

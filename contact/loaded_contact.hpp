@@ -171,6 +171,7 @@ struct FrictionLoop {
   int steps_per_quarter = 0, cycles = 0;
   std::vector<TorqueStep> steps;   ///< the last cycle: the loading branch (−rated → +rated), then the unloading one
   double hysteresis_loss_rad = 0;  ///< the branches' gap at zero torque
+  LoopWidth widest;                ///< the branches' largest gap and its torque (teeth with play: a lens, 0 at zero)
   double dissipated_energy_J = 0;  ///< the loop's area ∮T dψ
   double friction_work_J = 0;      ///< Σ |q|·|slip increment| over the cycle
   double lost_motion_rad = 0;      ///< between ±4 % of rated on the loop's middle line

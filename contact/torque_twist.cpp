@@ -132,6 +132,23 @@ double loop_width_rad(const TorqueLoop& loop, double T) {
 
 double hysteresis_loss_rad(const TorqueLoop& loop) { return loop_width_rad(loop, 0.0); }
 
+LoopWidth widest_loop_width(const TorqueLoop& loop) {
+  const double lo = std::max(loop.loading.torque_Nm.front(), loop.unloading.torque_Nm.front());
+  const double hi = std::min(loop.loading.torque_Nm.back(), loop.unloading.torque_Nm.back());
+  std::vector<LoopWidth> at;
+  for (const TorqueTwist* b : {&loop.loading, &loop.unloading})
+    for (const double T : b->torque_Nm)
+      if (T >= lo && T <= hi) at.push_back({loop_width_rad(loop, T), T});
+  if (at.empty()) throw std::invalid_argument("widest_loop_width: the branches share no torque");
+  double widest = at.front().width_rad;
+  for (const LoopWidth& w : at) widest = std::max(widest, w.width_rad);
+  const double tie = widest - 1e-9 * std::abs(widest);
+  LoopWidth best{widest, lo};
+  for (const LoopWidth& w : at)
+    if (w.width_rad >= tie && w.torque_Nm >= best.torque_Nm) best = w;
+  return best;
+}
+
 namespace {
 /// ∫T dψ along a branch in its order, trapezoids.
 double work_along(const TorqueTwist& b) {

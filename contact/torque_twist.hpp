@@ -66,6 +66,16 @@ double loop_width_rad(const TorqueLoop& loop, double torque_Nm);
 /// The catalog's hysteresis loss: the loop's width at zero torque.
 double hysteresis_loss_rad(const TorqueLoop& loop);
 
+/// The loop's widest place: its width (loop_width_rad) and the torque where it is. The width is linear between the
+/// branches' points, so the largest over the union of their torques (where both branches reach) is exact. Friction on
+/// flanks that all unload at zero torque (teeth with play) draws a lens, closed at zero torque and at the corners and
+/// widest between; a preloaded mesh's loop (Masing's) is widest at zero torque, the hysteresis loss. Of equal widths
+/// (to 1e-9 of the largest: an odd loop's ±T) the one at the largest torque.
+struct LoopWidth {
+  double width_rad = 0, torque_Nm = 0;
+};
+LoopWidth widest_loop_width(const TorqueLoop& loop);
+
 /// The loop's area ∮T dψ (J): ∫T dψ along the loading branch less along the unloading branch, trapezoids (exact on
 /// the branches' polylines). The energy a cycle dissipates: positive, 0 without friction.
 double loop_area_J(const TorqueLoop& loop);

@@ -114,5 +114,27 @@ TEST(FrictionLoop, FlankForcePanelDrawsTheLoopsForces) {
   }
 }
 
+// The designed cup's teeth keep their play at the locked generator angle, so no flank carries at zero torque and the
+// loop closes there: a lens, widest between zero and the corners (measured 0.43 arcmin at 0.55 of rated at μ = 0.1;
+// the loop is odd only to round-off, so its widest place may fall on either side). The widest place is the gap between
+// the branches' steps at its torque, and contact.json carries it.
+TEST(FrictionLoop, TeethWithPlayDrawALensWidestBetweenZeroTorqueAndRated) {
+  const ContactAnalysis a = loop_at(0.1, 20);
+  ASSERT_TRUE(a.friction.has_value());
+  ASSERT_GT(a.play_rad, 0.0);
+  const FrictionLoop& f = *a.friction;
+  EXPECT_LT(std::abs(f.hysteresis_loss_rad), 1e-3 * f.widest.width_rad);
+  EXPECT_GT(std::abs(f.widest.torque_Nm), 0.2 * a.rated_torque_Nm);
+  EXPECT_LT(std::abs(f.widest.torque_Nm), 0.9 * a.rated_torque_Nm);
+  double loading = NAN, unloading = NAN;
+  for (const TorqueStep& s : f.steps)
+    if (s.torque_Nm == f.widest.torque_Nm) (s.branch == "loading" ? loading : unloading) = s.twist_rad;
+  EXPECT_NEAR(unloading - loading, f.widest.width_rad, 1e-12 * std::abs(unloading));
+  const ContactResult r = contact_result(a, size17(false).c, std::nullopt);
+  ASSERT_TRUE(r.widest_loop_width_arcmin && r.widest_loop_width_at_Nm);
+  EXPECT_DOUBLE_EQ(*r.widest_loop_width_arcmin, f.widest.width_rad * 10800 / M_PI);
+  EXPECT_DOUBLE_EQ(*r.widest_loop_width_at_Nm, f.widest.torque_Nm);
+}
+
 }  // namespace
 }  // namespace sw

@@ -165,6 +165,11 @@ TEST(FrictionalContact, TwoCoulombSlidersFollowMasingsLoop) {
   EXPECT_NEAR(loop.dissipated_energy_J, dissipated, 0.05 * dissipated);
   // At zero torque the branches are 2·x apart, swing(x) = T_R.
   EXPECT_NEAR(loop.hysteresis_loss_rad, 2 * (psi_a - inverse(swing, T_R)), kExact * psi_a);
+  // Masing's swing is concave (the sliders soften it) and straight once both slip, so the width is largest, and flat,
+  // about zero torque: the loop is as wide there as anywhere, and narrower at the corners' side of the flat.
+  EXPECT_NEAR(loop.widest.width_rad, loop.hysteresis_loss_rad, kExact * psi_a);
+  EXPECT_GE(loop.widest.torque_Nm, 0.0);
+  EXPECT_LT(loop_width_rad(loop.loop, 0.75 * T_R), (1 - 1e-3) * loop.widest.width_rad);
 }
 
 // ---- A tooth pair: both flanks of one tooth, with play, against a hand solution ---------------------------------
@@ -400,6 +405,11 @@ TEST(FrictionalContact, LoopWithPlayClosesAtZeroTorque) {
   EXPECT_GT(width, 0.0);
   EXPECT_GT(r.dissipated_energy_J, 0.0);
   EXPECT_LT(std::abs(r.hysteresis_loss_rad), 1e-5 * width);
+  // A lens: widest between zero torque and the corners, and no narrower than at half the rated torque.
+  EXPECT_GE(r.widest.width_rad, width);
+  EXPECT_GT(r.widest.torque_Nm, 0.0);
+  EXPECT_LT(r.widest.torque_Nm, kRated);
+  EXPECT_NEAR(r.widest.width_rad, loop_width_rad(r.loop, r.widest.torque_Nm), 1e-15);
 }
 
 // Halving the step converges the loop: the friction work's changes shrink by about half per level (first order: a
@@ -468,6 +478,10 @@ TEST(TorqueLoop, ParallelogramLoopReadings) {
   // A band h wide between ±10 N·m, and a triangle of base h to each corner at ±T_R, where the branches meet.
   EXPECT_NEAR(loop_area_J(loop), 20 * h + 2 * 0.5 * h * (T_R - 10), 1e-12);
   EXPECT_NEAR(lost_motion_rad(middle_line(loop.loading, loop.unloading), T_R), 2 * d + 0.08 * T_R / K, 1e-12);
+  // h wide at −10, 0 and +10 N·m (a tie): the widest place named at the largest of them.
+  const LoopWidth widest = widest_loop_width(loop);
+  EXPECT_NEAR(widest.width_rad, h, 1e-15);
+  EXPECT_EQ(widest.torque_Nm, 10.0);
   EXPECT_THROW(last_load_cycle({1.0, -1.0, 0.0, -0.5, 1.0}), std::invalid_argument);
 }
 

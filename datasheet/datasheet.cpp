@@ -57,7 +57,9 @@ void add_contact_figures(Datasheet& d, const DatasheetInputs& in) {
                                      (a.play_rad > 0 ? "; with play the loop closes through the dead band (the "
                                                        "flanks of one side cannot hold each other at zero torque), "
                                                        "so what is left is the zero-torque limits' own ±1e-6 of rated"
-                                                     : "")));
+                                                     : "") +
+                                     "; the loop is widest at " + fmt("%.4g", a.friction->widest.torque_Nm) +
+                                     " N·m, " + fmt("%.3f", a.friction->widest.width_rad * kArcmin) + " arcmin"));
   else
     d.figures.push_back(not_computed("hysteresis_loss_arcmin", "hysteresis loss", "arcmin",
                                      "not computed: the case gives no flank friction ([contact] friction_coefficient)"));

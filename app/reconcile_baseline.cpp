@@ -53,8 +53,11 @@ double end_slope(const TorqueTwist& c, bool top) {
 void hold_against_loop(const TorqueLoop& loop, double rated_Nm, const std::vector<double>* torque,
                        reconcile::TorsionPrediction& p, std::vector<std::string>& notes) {
   const double loss = hysteresis_loss_rad(loop);
+  const LoopWidth widest = widest_loop_width(loop);
   const std::string what = "the curve is a loop (friction in the teeth; hysteresis loss " +
-                           six_digits(loss * kArcmin) + " arcmin at +-" + six_digits(rated_Nm) + " N*m)";
+                           six_digits(loss * kArcmin) + " arcmin at +-" + six_digits(rated_Nm) + " N*m, widest " +
+                           six_digits(widest.width_rad * kArcmin) + " arcmin at " + six_digits(widest.torque_Nm) +
+                           " N*m)";
   const double tol = kCurveEndTolerance * rated_Nm;
   auto cycled_to_rated = [&] {
     if (!torque || torque->empty()) return false;

@@ -20,6 +20,7 @@
 #include "fem/fourier_solver.hpp"
 #include "io/atomic_file.hpp"
 #include "io/case.hpp"
+#include "common/format.hpp"
 #include "io/contact_output.hpp"
 #include "reconcile/reconcile.hpp"
 #include "result_lookup.hpp"
@@ -101,14 +102,16 @@ reconcile::Recording loop_recording(const ContactAnalysis& a) {
 }
 
 reconcile::Experiment experiment_against(const Drive& d, const reconcile::Recording& rec,
-                                         const std::string& contact_json) {
+                                         const std::string& contact_json, std::vector<std::string>* notes_out = nullptr) {
   app::BaselineSources src;
   src.case_file = d.c;
   src.torsion = app::TorsionBaseline::Contact;
   src.contact_result = contact_json;
   src.recording = &rec;
   std::vector<std::string> notes;
-  return reconcile::make_experiment(rec, app::make_baseline(reconcile::Kind::Torsion, src, notes));
+  reconcile::Experiment e = reconcile::make_experiment(rec, app::make_baseline(reconcile::Kind::Torsion, src, notes));
+  if (notes_out) *notes_out = notes;
+  return e;
 }
 
 // The loop's width is not a transition after each reversal here: 0.129 arcmin from zero to a fifth of rated torque,
@@ -136,9 +139,19 @@ TEST(ReconcileFrictionLoop, TheLoopItselfLeavesOnlyNoise) {
   const Drive& d = preloaded_size17();
   const reconcile::Recording rec = loop_recording(d.loop);
   const std::string json = write_contact(d, d.loop, "loop.json");
-  const reconcile::Result r = reconcile::reconcile(experiment_against(d, rec, json));
+  std::vector<std::string> notes;
+  const reconcile::Result r = reconcile::reconcile(experiment_against(d, rec, json, &notes));
   EXPECT_EQ(r.verdict, "no_significant_mismatch");
   EXPECT_NEAR(r.baseline_rms / kNoise_rad, 1.0, 0.05);  // 4000 rows: the noise's own RMS scatters by 1 %
+  // The notes name the loop's widest gap beside its gap at zero torque, as contact.json's branches give them (the
+  // preloaded loop is widest near zero torque, not at it: 0.283 against 0.273 arcmin).
+  const FrictionLoop& f = *d.loop.friction;
+  const std::string said = "N*m, widest " + six_digits(f.widest.width_rad * kArcmin) + " arcmin at " +
+                           six_digits(f.widest.torque_Nm) + " N*m)";
+  EXPECT_TRUE(std::any_of(notes.begin(), notes.end(), [&](const std::string& n) {
+    return n.find(said) != std::string::npos;
+  })) << said;
+  EXPECT_GT(f.widest.width_rad, f.hysteresis_loss_rad);
   // A recording cycled to half the rated torque is held against the middle line (the branches are of ±rated only).
   reconcile::Recording half = rec;
   for (double& T : half.values[1]) T *= 0.5;

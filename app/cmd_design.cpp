@@ -8,7 +8,6 @@
 #include <iterator>
 #include <numbers>
 #include <string>
-#include <tuple>
 #include <type_traits>
 
 #include <CLI/CLI.hpp>
@@ -117,8 +116,9 @@ double body_life_Nm(const CupDesign& d, const std::string& name) {
 /// about six), with its torque for infinite life; one line of advice, not a rule `design` applies (the case keeps the
 /// rim it was asked for). The generator's bending stress falls with the rim, the torque's rises as it thins: the
 /// bisection takes the rims between the range's thinnest and the one given as living below a threshold, which it
-/// checks at the thinnest.
-std::string thickest_living_rim_line(const CupDesign& d, const std::string& name) {
+/// checks at the thinnest. `given_life_Nm`: the given rim's, which fails; so does every grid rim at least as thick
+/// (the bracket's upper end, never solved again).
+std::string thickest_living_rim_line(const CupDesign& d, double given_life_Nm, const std::string& name) {
   const DesignProportion& rim = kDesignProportions[0];
   auto life_at = [&](int k) {
     DesignProportions p = d.proportions;
@@ -126,8 +126,8 @@ std::string thickest_living_rim_line(const CupDesign& d, const std::string& name
     return body_life_Nm(design_cup(d.size, d.ratio, p), name);
   };
   int lo = static_cast<int>(std::ceil(rim.min * 1e4 - 1e-9));
-  int hi = static_cast<int>(std::floor(d.proportions.rim_per_d * 1e4 + 1e-9));
-  double lo_life = life_at(lo);
+  int hi = static_cast<int>(std::ceil(d.proportions.rim_per_d * 1e4 - 1e-9));
+  double lo_life = hi <= lo ? given_life_Nm : life_at(lo);
   char line[320];
   if (lo_life < d.rated_torque_Nm) {
     std::snprintf(line, sizeof line,
@@ -139,8 +139,12 @@ std::string thickest_living_rim_line(const CupDesign& d, const std::string& name
   while (hi - lo > 1) {
     const int mid = (lo + hi) / 2;
     const double life = life_at(mid);
-    if (life >= d.rated_torque_Nm) std::tie(lo, lo_life) = std::pair{mid, life};
-    else hi = mid;
+    if (life >= d.rated_torque_Nm) {
+      lo = mid;
+      lo_life = life;
+    } else {
+      hi = mid;
+    }
   }
   std::snprintf(line, sizeof line,
                 "    the thickest rim of Ivanov's range that lives at rated torque: --rim-per-d %.4f (infinite life up "
@@ -196,7 +200,7 @@ void add_design_command(CLI::App& app) {
     std::fputs(strength_line(life, d.rated_torque_Nm).c_str(), stdout);
     if (life.torque_Nm < d.rated_torque_Nm) {
       std::fflush(stdout);  // the advice takes a few FEMs
-      std::fputs(thickest_living_rim_line(d, name).c_str(), stdout);
+      std::fputs(thickest_living_rim_line(d, life.torque_Nm, name).c_str(), stdout);
     }
   });
 }

@@ -56,8 +56,11 @@ void add_contact_figures(Datasheet& d, const DatasheetInputs& in) {
                                      fmt("%.3g", a.friction->friction_coefficient) + " on the flanks" +
                                      (a.play_rad > 0 ? "; with play the loop closes through the dead band (the "
                                                        "flanks of one side cannot hold each other at zero torque), "
-                                                       "so what is left is the zero-torque limits' own ±1e-6 of rated"
-                                                     : "") +
+                                                       "so what is left is the zero-torque limits' own ±1e-6 of rated; "
+                                                       "a rig, whose output stays where it arrives on returning to zero "
+                                                       "torque from ±rated, reads the play as well: " +
+                                                           fmt("%.3f", a.play_rad * kArcmin) + " arcmin more"
+                                                     : std::string()) +
                                      "; the loop is widest at " + fmt("%.4g", a.friction->widest.torque_Nm) +
                                      " N·m, " + fmt("%.3f", a.friction->widest.width_rad * kArcmin) + " arcmin"));
   else

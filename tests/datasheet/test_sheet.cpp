@@ -34,7 +34,8 @@ DatasheetInputs inputs(const ContactAnalysis& a) {
 
 // With play the loop's gap at zero torque is nothing, and the sheet says why and where the loop is wide: the
 // hysteresis figure is the gap at zero torque, its method names the widest gap and its torque (the lens the flanks'
-// friction draws between zero and the corners). Without play the dead band's sentence is not there.
+// friction draws between zero and the corners) and what a rig would read more (its output stops at the dead band's
+// edge it arrives at). Without play the dead band's sentences are not there.
 TEST(SheetHysteresis, TheFigureIsTheGapAtZeroTorqueAndItsMethodNamesTheWidestGap) {
   const ContactAnalysis with_play = loop_with_play(2e-5);
   const Datasheet sheet = make_datasheet(inputs(with_play));
@@ -43,6 +44,7 @@ TEST(SheetHysteresis, TheFigureIsTheGapAtZeroTorqueAndItsMethodNamesTheWidestGap
   ASSERT_TRUE(h->value.has_value());
   EXPECT_DOUBLE_EQ(*h->value, 1e-12 * kArcminPerRad);
   EXPECT_NE(h->method.find("closes through the dead band"), std::string::npos) << h->method;
+  EXPECT_NE(h->method.find("reads the play as well: 0.069 arcmin more"), std::string::npos) << h->method;
   EXPECT_NE(h->method.find("the loop is widest at 17.05 N·m, 0.430 arcmin"), std::string::npos) << h->method;
 
   const ContactAnalysis preloaded = loop_with_play(0);

@@ -303,15 +303,21 @@ ContactAnalysis run_contact_job(const Case& c, const ContactBody& body, const Fe
   print_contact_headline(c, a, o.series.teeth_source);
   if (reference) print_against_catalog(a, *reference);
   print_lost_motion_and_split(c, a);
-  if (a.friction)
+  if (a.friction) {
+    // On returning to zero torque a rig's output stays where it arrives in the dead band, at the edge it came from.
+    char rig[160] = "";
+    if (a.play_rad > 0)
+      std::snprintf(rig, sizeof rig, "; a rig, its output staying at the dead band's edge it arrives at, reads the play "
+                    "too: %.3f arcmin more", a.play_rad * kArcmin);
     std::printf("  friction on the flanks (mu = %g): hysteresis loss %.3f arcmin (the loop's branches apart at zero "
-                "torque); the loop is widest at %.4g N m, %.3f arcmin; loop area %.4g J = friction work %.4g J per "
+                "torque%s); the loop is widest at %.4g N m, %.3f arcmin; loop area %.4g J = friction work %.4g J per "
                 "cycle; steady after %d cycle%s of %d steps a quarter; lost motion and the three segments above read "
                 "on the loop's middle line\n",
-                a.friction->friction_coefficient, a.friction->hysteresis_loss_rad * kArcmin,
+                a.friction->friction_coefficient, a.friction->hysteresis_loss_rad * kArcmin, rig,
                 a.friction->widest.torque_Nm, a.friction->widest.width_rad * kArcmin,
                 a.friction->dissipated_energy_J, a.friction->friction_work_J, a.friction->cycles,
                 a.friction->cycles == 1 ? "" : "s", a.friction->steps_per_quarter);
+  }
   if (!a.edges.empty()) {
     print_zone_edges_hold(a);
     print_edge_teeth_share(c, a);

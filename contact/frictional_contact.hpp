@@ -103,15 +103,19 @@ constexpr double kZeroTorqueLimit = 1e-6, kZeroTorqueSnap = 1e-3;
 /// −T_R/N, …, −T_R, …, −ε, ε, …, T_R (ε = kZeroTorqueLimit·T_R). Preconditions: T_R > 0, N ≥ 1, cycles ≥ 1.
 std::vector<double> cycle_torque_history(double rated_torque_Nm, int steps_per_quarter, int cycles = 1);
 
-/// The readings of the last full cycle of a history (torque_twist.hpp's, on the steps' twists; friction work summed
-/// over the cycle's steps).
-struct LoopReading {
-  TorqueLoop loop;
+/// What a load cycle's loop gives (torque_twist.hpp's readings of its branches, and the friction's work).
+struct LoopFigures {
   double hysteresis_loss_rad = 0;  ///< the branches' gap at zero torque (unloading − loading)
-  LoopWidth widest;                ///< the branches' largest gap and its torque
+  LoopWidth widest;                ///< the branches' largest gap and its torque (teeth with play: a lens, 0 at zero)
   double dissipated_energy_J = 0;  ///< the loop's area ∮T dψ
   double friction_work_J = 0;      ///< Σ over the cycle's steps and contacts of |q|·|Δs|
   double lost_motion_rad = 0;      ///< between ±4 % of T_R on the loop's middle line
+};
+
+/// The readings of the last full cycle of a history (on the steps' twists; friction work summed over the cycle's
+/// steps), with the loop they are read on.
+struct LoopReading : LoopFigures {
+  TorqueLoop loop;
 };
 LoopReading read_loop(const std::vector<FrictionalStep>& history, double rated_torque_Nm);
 

@@ -813,11 +813,7 @@ void ContactAnalyser::run_friction_loop() {
   f.friction_coefficient = opt_.contact.friction_coefficient;
   f.steps_per_quarter = N;
   f.cycles = loop.cycles;
-  f.hysteresis_loss_rad = loop.reading.hysteresis_loss_rad;
-  f.widest = loop.reading.widest;
-  f.dissipated_energy_J = loop.reading.dissipated_energy_J;
-  f.friction_work_J = loop.reading.friction_work_J;
-  f.lost_motion_rad = loop.reading.lost_motion_rad;
+  static_cast<LoopFigures&>(f) = loop.reading;
   middle_line_ = middle_line(loop.reading.loop.loading, loop.reading.loop.unloading);
   std::vector<double> torques;
   for (const FrictionalStep& s : loop.history) torques.push_back(s.torque_Nm);

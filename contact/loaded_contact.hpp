@@ -32,6 +32,7 @@
 #include "contact/contact_body.hpp"
 #include "contact/contact_params.hpp"
 #include "contact/contact_problem.hpp"
+#include "contact/frictional_contact.hpp"
 #include "contact/ratcheting.hpp"
 #include "contact/tet10_body.hpp"
 #include "contact/torque_twist.hpp"
@@ -166,16 +167,11 @@ struct TorqueStep {
 
 /// The drive's loop under the catalog's load cycle with friction on the flanks: from rest to +rated, then +rated →
 /// −rated → +rated until a cycle repeats the one before (contact/frictional_contact.hpp run_steady_loop).
-struct FrictionLoop {
+struct FrictionLoop : LoopFigures {
   double friction_coefficient = 0;
   int steps_per_quarter = 0, cycles = 0;
-  std::vector<TorqueStep> steps;   ///< the last cycle: the loading branch (−rated → +rated), then the unloading one
-  double hysteresis_loss_rad = 0;  ///< the branches' gap at zero torque
-  LoopWidth widest;                ///< the branches' largest gap and its torque (teeth with play: a lens, 0 at zero)
-  double dissipated_energy_J = 0;  ///< the loop's area ∮T dψ
-  double friction_work_J = 0;      ///< Σ |q|·|slip increment| over the cycle
-  double lost_motion_rad = 0;      ///< between ±4 % of rated on the loop's middle line
-  double seconds = 0;              ///< wall clock of the loop (its steps and readings)
+  std::vector<TorqueStep> steps;  ///< the last cycle: the loading branch (−rated → +rated), then the unloading one
+  double seconds = 0;             ///< wall clock of the loop (its steps and readings)
 };
 
 /// Fractions of the twist at rated torque (sum 1): the tangent line at rated torque split by energy, its intercept

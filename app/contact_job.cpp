@@ -167,6 +167,26 @@ void print_lost_motion_and_split(const Case& c, const ContactAnalysis& a) {
                                       : "below the origin: the curve softens toward rated torque");
 }
 
+/// The split of the twist at rated torque in arcmin, beside the catalog's twist there (when its row lists K3): what
+/// each part holds, and what no part of the model holds.
+void print_split_against_catalog(const ContactAnalysis& a, const CatalogLaw& reference) {
+  const double catalog_rad = reference.law().twist_rad(a.rated_torque_Nm);
+  if (!(std::isfinite(catalog_rad) && catalog_rad > 0)) return;  // a row without K3 (ratio 50)
+  const double model_rad = a.curve.twist_rad.back();
+  const auto arcmin = [&](double share) { return share * model_rad * kArcmin; };
+  const double short_rad = catalog_rad - model_rad;
+  char rest[160];
+  if (short_rad > 0)
+    std::snprintf(rest, sizeof rest, "%.3f arcmin (%.1f %% of the catalog's) held by no part the model has",
+                  short_rad * kArcmin, 100 * short_rad / catalog_rad);
+  else
+    std::snprintf(rest, sizeof rest, "the model %.3f arcmin softer than the catalog", -short_rad * kArcmin);
+  std::printf("  beside the catalog's twist at rated (%.3f arcmin): body %.3f, teeth %.3f, generator %.3f, circular "
+              "spline %.3f, engagement %.3f arcmin, the model's %.3f; %s\n",
+              catalog_rad * kArcmin, arcmin(a.split.body), arcmin(a.split.teeth), arcmin(a.split.generator),
+              arcmin(a.split.circular_spline), arcmin(a.split.engagement), model_rad * kArcmin, rest);
+}
+
 /// Whether the mesh zones' edges hold under load: the last engaged tooth, the flanks beyond the tip circle, the
 /// nearest tooth left out.
 void print_zone_edges_hold(const ContactAnalysis& a) {
@@ -303,6 +323,7 @@ ContactAnalysis run_contact_job(const Case& c, const ContactBody& body, const Fe
   print_contact_headline(c, a, o.series.teeth_source);
   if (reference) print_against_catalog(a, *reference);
   print_lost_motion_and_split(c, a);
+  if (reference) print_split_against_catalog(a, *reference);
   if (a.friction) {
     // On returning to zero torque a rig's output stays where it arrives in the dead band, at the edge it came from.
     char rig[160] = "";

@@ -175,16 +175,12 @@ void print_split_against_catalog(const ContactAnalysis& a, const CatalogLaw& ref
   const double model_rad = a.curve.twist_rad.back();
   const auto arcmin = [&](double share) { return share * model_rad * kArcmin; };
   const double short_rad = catalog_rad - model_rad;
-  char rest[160];
-  if (short_rad > 0)
-    std::snprintf(rest, sizeof rest, "%.3f arcmin (%.1f %% of the catalog's) held by no part the model has",
-                  short_rad * kArcmin, 100 * short_rad / catalog_rad);
-  else
-    std::snprintf(rest, sizeof rest, "the model %.3f arcmin softer than the catalog", -short_rad * kArcmin);
   std::printf("  beside the catalog's twist at rated (%.3f arcmin): body %.3f, teeth %.3f, generator %.3f, circular "
-              "spline %.3f, engagement %.3f arcmin, the model's %.3f; %s\n",
+              "spline %.3f, engagement %.3f arcmin, the model's %.3f; the catalog's is %.3f arcmin (%.1f %%) %s\n",
               catalog_rad * kArcmin, arcmin(a.split.body), arcmin(a.split.teeth), arcmin(a.split.generator),
-              arcmin(a.split.circular_spline), arcmin(a.split.engagement), model_rad * kArcmin, rest);
+              arcmin(a.split.circular_spline), arcmin(a.split.engagement), model_rad * kArcmin,
+              std::abs(short_rad) * kArcmin, 100 * std::abs(short_rad) / catalog_rad,
+              short_rad >= 0 ? "more, in no part of the model" : "less");
 }
 
 /// Whether the mesh zones' edges hold under load: the last engaged tooth, the flanks beyond the tip circle, the

@@ -168,7 +168,7 @@ void print_lost_motion_and_split(const Case& c, const ContactAnalysis& a) {
 }
 
 /// The split of the twist at rated torque in arcmin, beside the catalog's twist there (when its row lists K3): what
-/// each part holds, and what no part of the model holds.
+/// each part holds, and how much more (or less) the catalog's twist is.
 void print_split_against_catalog(const ContactAnalysis& a, const CatalogLaw& reference) {
   const double catalog_rad = reference.law().twist_rad(a.rated_torque_Nm);
   if (!(std::isfinite(catalog_rad) && catalog_rad > 0)) return;  // a row without K3 (ratio 50)

@@ -321,19 +321,16 @@ ContactAnalysis run_contact_job(const Case& c, const ContactBody& body, const Fe
   print_lost_motion_and_split(c, a);
   if (reference) print_split_against_catalog(a, *reference);
   if (a.friction) {
-    // On returning to zero torque a rig's output stays where it arrives in the dead band, at the edge it came from.
-    char rig[160] = "";
-    if (a.play_rad > 0)
-      std::snprintf(rig, sizeof rig, "; a rig, its output staying at the dead band's edge it arrives at, reads the play "
-                    "too: %.3f arcmin more", a.play_rad * kArcmin);
-    std::printf("  friction on the flanks (mu = %g): hysteresis loss %.3f arcmin (the loop's branches apart at zero "
-                "torque%s); the loop is widest at %.4g N m, %.3f arcmin; loop area %.4g J = friction work %.4g J per "
-                "cycle; steady after %d cycle%s of %d steps a quarter; lost motion and the three segments above read "
-                "on the loop's middle line\n",
-                a.friction->friction_coefficient, a.friction->hysteresis_loss_rad * kArcmin, rig,
-                a.friction->widest.torque_Nm, a.friction->widest.width_rad * kArcmin,
-                a.friction->dissipated_energy_J, a.friction->friction_work_J, a.friction->cycles,
-                a.friction->cycles == 1 ? "" : "s", a.friction->steps_per_quarter);
+    const LoopFigures& f = *a.friction;
+    std::printf("  friction on the flanks (mu = %g): hysteresis loss %.3f arcmin as a rig reads it (the output's place "
+                "on returning to zero torque from +rated less that from -rated: the flanks' friction %.3f, the dead "
+                "band the branches cross there %.3f); the loop is widest at %.4g N m, %.3f arcmin; loop area %.4g J = "
+                "friction work %.4g J per cycle; steady after %d cycle%s of %d steps a quarter; lost motion and the "
+                "three segments above read on the loop's middle line\n",
+                a.friction->friction_coefficient, f.rig_hysteresis_loss_rad * kArcmin,
+                f.hysteresis_loss_rad * kArcmin, (f.rig_hysteresis_loss_rad - f.hysteresis_loss_rad) * kArcmin,
+                f.widest.torque_Nm, f.widest.width_rad * kArcmin, f.dissipated_energy_J, f.friction_work_J,
+                a.friction->cycles, a.friction->cycles == 1 ? "" : "s", a.friction->steps_per_quarter);
   }
   if (!a.edges.empty()) {
     print_zone_edges_hold(a);

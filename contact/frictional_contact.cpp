@@ -498,6 +498,7 @@ LoopReading read_loop(const std::vector<FrictionalStep>& history, double T_R) {
   LoopReading r;
   r.loop = loop_branches(T, psi, cycle, kZeroTorqueSnap * T_R);
   r.hysteresis_loss_rad = hysteresis_loss_rad(r.loop);
+  r.rig_hysteresis_loss_rad = rig_hysteresis_loss_rad(r.loop);
   r.widest = widest_loop_width(r.loop);
   r.dissipated_energy_J = loop_area_J(r.loop);
   r.lost_motion_rad = lost_motion_rad(middle_line(r.loop.loading, r.loop.unloading), T_R);

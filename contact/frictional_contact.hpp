@@ -105,7 +105,8 @@ std::vector<double> cycle_torque_history(double rated_torque_Nm, int steps_per_q
 
 /// What a load cycle's loop gives (torque_twist.hpp's readings of its branches, and the friction's work).
 struct LoopFigures {
-  double hysteresis_loss_rad = 0;  ///< the branches' gap at zero torque (unloading − loading)
+  double hysteresis_loss_rad = 0;      ///< the branches' gap at zero torque, each in its dead band's middle: friction's
+  double rig_hysteresis_loss_rad = 0;  ///< what a rig reads there: the friction's gap and the dead bands crossed
   LoopWidth widest;                ///< the branches' largest gap and its torque (teeth with play: a lens, 0 at zero)
   double dissipated_energy_J = 0;  ///< the loop's area ∮T dψ
   double friction_work_J = 0;      ///< Σ over the cycle's steps and contacts of |q|·|Δs|

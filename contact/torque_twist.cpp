@@ -132,6 +132,10 @@ double loop_width_rad(const TorqueLoop& loop, double T) {
 
 double hysteresis_loss_rad(const TorqueLoop& loop) { return loop_width_rad(loop, 0.0); }
 
+double rig_hysteresis_loss_rad(const TorqueLoop& loop) {
+  return twist_limits(loop.unloading, 0.0).second - twist_limits(loop.loading, 0.0).first;
+}
+
 LoopWidth widest_loop_width(const TorqueLoop& loop) {
   const double lo = std::max(loop.loading.torque_Nm.front(), loop.unloading.torque_Nm.front());
   const double hi = std::min(loop.loading.torque_Nm.back(), loop.unloading.torque_Nm.back());

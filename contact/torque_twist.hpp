@@ -63,8 +63,16 @@ TorqueLoop loop_branches(const std::vector<double>& torque_Nm, const std::vector
 /// twist_at). Throws InputError when a branch does not reach the torque.
 double loop_width_rad(const TorqueLoop& loop, double torque_Nm);
 
-/// The catalog's hysteresis loss: the loop's width at zero torque.
+/// The loop's width at zero torque with each branch read in the middle of any dead band it crosses there: the part of
+/// the gap that the flanks' friction holds (a parallelogram loop with play 2d and friction h gives h).
 double hysteresis_loss_rad(const TorqueLoop& loop);
+
+/// The catalog's hysteresis loss as a rig reads it: the output's position on returning to zero torque from +T_R (the
+/// unloading branch's limit from above) less that on returning from −T_R (the loading branch's limit from below). A
+/// rig's output, held by its own bearings, stays where it arrives, at the edge of the dead band it came from, so the
+/// reading holds the dead bands the branches cross at zero torque as well as the friction's gap (the parallelogram:
+/// 2d + h). Without play it is hysteresis_loss_rad.
+double rig_hysteresis_loss_rad(const TorqueLoop& loop);
 
 /// The loop's widest place: its width (loop_width_rad) and the torque where it is. The width is linear between the
 /// branches' points, so the largest over the union of their torques (where both branches reach) is exact. Friction on

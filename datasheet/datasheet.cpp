@@ -49,23 +49,23 @@ void add_contact_figures(Datasheet& d, const DatasheetInputs& in) {
                                "twist between ±4 % of rated torque on the loop's middle line (play and elastic twist)"));
   d.figures.push_back(computed("play_arcmin", "play (dead band)", "arcmin", a.play_rad * kArcmin,
                                "the curve's jump at zero torque: the teeth's clearance at the locked generator"));
-  if (a.friction)
-    d.figures.push_back(computed("hysteresis_loss_arcmin", "hysteresis loss", "arcmin",
-                                 a.friction->hysteresis_loss_rad * kArcmin,
-                                 "branches' gap at zero torque of the steady loop ±rated, Coulomb μ = " +
-                                     fmt("%.3g", a.friction->friction_coefficient) + " on the flanks" +
-                                     (a.play_rad > 0 ? "; with play the loop closes through the dead band (the "
-                                                       "flanks of one side cannot hold each other at zero torque), "
-                                                       "so what is left is the zero-torque limits' own ±1e-6 of rated; "
-                                                       "a rig, whose output stays where it arrives on returning to zero "
-                                                       "torque from ±rated, reads the play as well: " +
-                                                           fmt("%.3f", a.play_rad * kArcmin) + " arcmin more"
-                                                     : std::string()) +
-                                     "; the loop is widest at " + fmt("%.4g", a.friction->widest.torque_Nm) +
-                                     " N·m, " + fmt("%.3f", a.friction->widest.width_rad * kArcmin) + " arcmin"));
-  else
+  if (a.friction) {
+    const LoopFigures& f = *a.friction;
+    const double dead_band_rad = f.rig_hysteresis_loss_rad - f.hysteresis_loss_rad;
+    d.figures.push_back(computed(
+        "hysteresis_loss_arcmin", "hysteresis loss", "arcmin", f.rig_hysteresis_loss_rad * kArcmin,
+        "the output's place on returning to zero torque from +rated less that from −rated, the steady loop ±rated "
+        "as a rig reads it (its output stays where it arrives), Coulomb μ = " +
+            fmt("%.3g", a.friction->friction_coefficient) + " on the flanks: the flanks' friction " +
+            fmt("%.3f", f.hysteresis_loss_rad * kArcmin) + " arcmin (the branches apart in the middle of their dead "
+            "bands) and the dead band the branches cross at zero torque " + fmt("%.3f", dead_band_rad * kArcmin) +
+            " arcmin (clearance, not friction)" +
+            "; the loop is widest at " + fmt("%.4g", f.widest.torque_Nm) + " N·m, " +
+            fmt("%.3f", f.widest.width_rad * kArcmin) + " arcmin"));
+  } else {
     d.figures.push_back(not_computed("hysteresis_loss_arcmin", "hysteresis loss", "arcmin",
                                      "not computed: the case gives no flank friction ([contact] friction_coefficient)"));
+  }
 }
 
 /// The flexspline's first yield: the torque at which its largest von Mises stress over a revolution reaches R_e.

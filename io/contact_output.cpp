@@ -82,6 +82,7 @@ ContactResult contact_result(const ContactAnalysis& a, const Case& c, const std:
     r.friction = ContactResult::Friction{a.friction->friction_coefficient, a.friction->steps_per_quarter,
                                          a.friction->cycles};
     r.hysteresis_loss_arcmin = a.friction->hysteresis_loss_rad * kArcmin;
+    r.rig_hysteresis_loss_arcmin = a.friction->rig_hysteresis_loss_rad * kArcmin;
     r.widest_loop_width_arcmin = a.friction->widest.width_rad * kArcmin;
     r.widest_loop_width_at_Nm = a.friction->widest.torque_Nm;
     r.dissipated_energy_J = a.friction->dissipated_energy_J;
@@ -268,6 +269,7 @@ static auto fields(std::type_identity<ContactResult>) {
                     field("flanks", &T::flanks), field("timings_s", &T::timings_s), field("unknowns", &T::unknowns),
                     field("solver", &T::solver), field("friction", &T::friction),
                     field("hysteresis_loss_arcmin", &T::hysteresis_loss_arcmin),
+                    field("rig_hysteresis_loss_arcmin", &T::rig_hysteresis_loss_arcmin),
                     field("widest_loop_width_arcmin", &T::widest_loop_width_arcmin),
                     field("widest_loop_width_at_Nm", &T::widest_loop_width_at_Nm),
                     field("dissipated_energy_J", &T::dissipated_energy_J), field("friction_work_J", &T::friction_work_J),

@@ -118,6 +118,8 @@ struct ContactResult {
   Solver solver;
   std::optional<Friction> friction;
   std::optional<double> hysteresis_loss_arcmin, dissipated_energy_J, friction_work_J;  ///< with friction
+  /// With friction: the hysteresis loss as a rig reads it (the output stays at the dead band's edge it arrives at).
+  std::optional<double> rig_hysteresis_loss_arcmin;
   /// With friction: the loop's widest place (its width between the branches, and the torque where it is).
   std::optional<double> widest_loop_width_arcmin, widest_loop_width_at_Nm;
   std::optional<AccuracyBand> accuracy_band;

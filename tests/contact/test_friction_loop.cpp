@@ -117,13 +117,16 @@ TEST(FrictionLoop, FlankForcePanelDrawsTheLoopsForces) {
 // The designed cup's teeth keep their play at the locked generator angle, so no flank carries at zero torque and the
 // loop closes there: a lens, widest between zero and the corners (measured 0.43 arcmin at 0.55 of rated at μ = 0.1;
 // the loop is odd only to round-off, so its widest place may fall on either side). The widest place is the gap between
-// the branches' steps at its torque, and contact.json carries it.
+// the branches' steps at its torque, and contact.json carries it. A rig reads the play as the hysteresis loss.
 TEST(FrictionLoop, TeethWithPlayDrawALensWidestBetweenZeroTorqueAndRated) {
   const ContactAnalysis a = loop_at(0.1, 20);
   ASSERT_TRUE(a.friction.has_value());
   ASSERT_GT(a.play_rad, 0.0);
   const FrictionLoop& f = *a.friction;
   EXPECT_LT(std::abs(f.hysteresis_loss_rad), 1e-3 * f.widest.width_rad);
+  // A rig, its output staying at the dead band's edge it arrives at, reads the play: the frictionless curve's within
+  // 2 % (friction moves the dead band's edges by the friction's own part, below 1e-3 of the widest gap here).
+  EXPECT_NEAR(f.rig_hysteresis_loss_rad, a.play_rad, 0.02 * a.play_rad);
   EXPECT_GT(std::abs(f.widest.torque_Nm), 0.2 * a.rated_torque_Nm);
   EXPECT_LT(std::abs(f.widest.torque_Nm), 0.9 * a.rated_torque_Nm);
   double loading = NAN, unloading = NAN;
@@ -133,6 +136,8 @@ TEST(FrictionLoop, TeethWithPlayDrawALensWidestBetweenZeroTorqueAndRated) {
   const ContactResult r = contact_result(a, size17(false).c, std::nullopt);
   ASSERT_TRUE(r.widest_loop_width_arcmin && r.widest_loop_width_at_Nm);
   EXPECT_DOUBLE_EQ(*r.widest_loop_width_arcmin, f.widest.width_rad * 10800 / M_PI);
+  ASSERT_TRUE(r.rig_hysteresis_loss_arcmin);
+  EXPECT_DOUBLE_EQ(*r.rig_hysteresis_loss_arcmin, f.rig_hysteresis_loss_rad * 10800 / M_PI);
   EXPECT_DOUBLE_EQ(*r.widest_loop_width_at_Nm, f.widest.torque_Nm);
 }
 

@@ -165,6 +165,9 @@ TEST(FrictionalContact, TwoCoulombSlidersFollowMasingsLoop) {
   EXPECT_NEAR(loop.dissipated_energy_J, dissipated, 0.05 * dissipated);
   // At zero torque the branches are 2·x apart, swing(x) = T_R.
   EXPECT_NEAR(loop.hysteresis_loss_rad, 2 * (psi_a - inverse(swing, T_R)), kExact * psi_a);
+  // No dead band: a rig reads the same gap, less the branches' own twist between the limits at zero torque (±1e-6 of
+  // T_R, at a slope below ψ_a/T_R each).
+  EXPECT_NEAR(loop.rig_hysteresis_loss_rad, loop.hysteresis_loss_rad, 2 * kZeroTorqueLimit * psi_a);
   // Masing's swing is concave (the sliders soften it) and straight once both slip, so the width is largest, and flat,
   // about zero torque: the loop is as wide there as anywhere, and narrower at the corners' side of the flat.
   EXPECT_NEAR(loop.widest.width_rad, loop.hysteresis_loss_rad, kExact * psi_a);
@@ -456,7 +459,7 @@ TEST(FrictionalContact, StepThatCannotBeCarriedIsRefused) {
 // ---- The loop's readings on a hand-made loop ------------------------------------------------------------------
 
 // A loop with a dead band: branches of slope 1/K shifted by ±h/2 in twist, play 2d at zero torque, meeting at the
-// corners ±T_R. Its hysteresis loss is h, its middle line the curve without the shift (lost motion 2d + 2·0.04·T_R/K).
+// corners ±T_R. Its hysteresis loss is h (2d + h as a rig reads it), its middle line the curve without the shift (lost motion 2d + 2·0.04·T_R/K).
 TEST(TorqueLoop, ParallelogramLoopReadings) {
   const double K = 1e4, h = 2e-4, d = 1e-4, T_R = 20, eps = 1e-6 * T_R;
   std::vector<double> T, psi;
@@ -475,6 +478,8 @@ TEST(TorqueLoop, ParallelogramLoopReadings) {
   const TorqueLoop loop = loop_branches(T, psi, c, 1e-3 * T_R);
   EXPECT_EQ(loop.unloading.torque_Nm, (std::vector<double>{-T_R, -10, 0, 0, 10, T_R}));
   EXPECT_NEAR(hysteresis_loss_rad(loop), h, 1e-15);
+  // A rig stays at the dead band's edge it arrives at: from +T_R at d + h/2, from −T_R at −d − h/2.
+  EXPECT_NEAR(rig_hysteresis_loss_rad(loop), 2 * d + h, 1e-15);
   // A band h wide between ±10 N·m, and a triangle of base h to each corner at ±T_R, where the branches meet.
   EXPECT_NEAR(loop_area_J(loop), 20 * h + 2 * 0.5 * h * (T_R - 10), 1e-12);
   EXPECT_NEAR(lost_motion_rad(middle_line(loop.loading, loop.unloading), T_R), 2 * d + 0.08 * T_R / K, 1e-12);

@@ -18,6 +18,7 @@ ContactAnalysis loop_with_play(double play_rad) {
   FrictionLoop f;
   f.friction_coefficient = 0.1;
   f.hysteresis_loss_rad = play_rad > 0 ? 1e-12 : 5e-5;
+  f.rig_hysteresis_loss_rad = f.hysteresis_loss_rad + play_rad;
   f.widest = {1.25e-4, 17.05};
   a.friction = f;
   return a;
@@ -32,26 +33,29 @@ DatasheetInputs inputs(const ContactAnalysis& a) {
   return in;
 }
 
-// With play the loop's gap at zero torque is nothing, and the sheet says why and where the loop is wide: the
-// hysteresis figure is the gap at zero torque, its method names the widest gap and its torque (the lens the flanks'
-// friction draws between zero and the corners) and what a rig would read more (its output stops at the dead band's
-// edge it arrives at). Without play the dead band's sentences are not there.
-TEST(SheetHysteresis, TheFigureIsTheGapAtZeroTorqueAndItsMethodNamesTheWidestGap) {
+// The sheet's hysteresis figure is the catalog's as a rig reads it, the output staying where it arrives on returning to
+// zero torque: with play the friction's part is nothing (1e-12 rad, shown at the printed 0.000) and the figure is the
+// dead band, which the method names as clearance beside the friction's part and the loop's widest gap (the lens the
+// flanks' friction draws between zero and the corners). Preloaded, the figure is the friction's gap and the dead band
+// is 0.
+TEST(SheetHysteresis, TheFigureIsWhatARigReadsAndItsMethodSplitsFrictionFromClearance) {
   const ContactAnalysis with_play = loop_with_play(2e-5);
   const Datasheet sheet = make_datasheet(inputs(with_play));
   const DatasheetFigure* h = sheet.find("hysteresis_loss_arcmin");
   ASSERT_NE(h, nullptr);
   ASSERT_TRUE(h->value.has_value());
-  EXPECT_DOUBLE_EQ(*h->value, 1e-12 * kArcminPerRad);
-  EXPECT_NE(h->method.find("closes through the dead band"), std::string::npos) << h->method;
-  EXPECT_NE(h->method.find("reads the play as well: 0.069 arcmin more"), std::string::npos) << h->method;
+  EXPECT_DOUBLE_EQ(*h->value, (2e-5 + 1e-12) * kArcminPerRad);
+  EXPECT_NE(h->method.find("the flanks' friction 0.000 arcmin"), std::string::npos) << h->method;
+  EXPECT_NE(h->method.find("cross at zero torque 0.069 arcmin (clearance, not friction)"), std::string::npos)
+      << h->method;
   EXPECT_NE(h->method.find("the loop is widest at 17.05 N·m, 0.430 arcmin"), std::string::npos) << h->method;
 
   const ContactAnalysis preloaded = loop_with_play(0);
   const DatasheetFigure* p = make_datasheet(inputs(preloaded)).find("hysteresis_loss_arcmin");
   ASSERT_NE(p, nullptr);
   EXPECT_DOUBLE_EQ(*p->value, 5e-5 * kArcminPerRad);
-  EXPECT_EQ(p->method.find("dead band"), std::string::npos) << p->method;
+  EXPECT_NE(p->method.find("the flanks' friction 0.172 arcmin"), std::string::npos) << p->method;
+  EXPECT_NE(p->method.find("cross at zero torque 0.000 arcmin"), std::string::npos) << p->method;
   EXPECT_NE(p->method.find("widest at 17.05 N·m"), std::string::npos) << p->method;
 }
 

@@ -286,7 +286,8 @@ void print_accuracy_band(const ContactResult::AccuracyBand& b) {
               of(b.twist_at_rated_arcmin, "%.3f/%.3f/%.3f").c_str(), of(b.lost_motion_arcmin, "%.3f/%.3f/%.3f").c_str(),
               of(b.play_arcmin, "%.3f/%.3f/%.3f").c_str(), of(b.preload_overlap_at_rest_um, "%.2f/%.2f/%.2f").c_str(),
               b.hysteresis_loss_arcmin
-                  ? ("; hysteresis loss " + of(*b.hysteresis_loss_arcmin, "%.3f/%.3f/%.3f") + " arcmin").c_str()
+                  ? ("; hysteresis loss from the flanks' friction " +
+                     of(*b.hysteresis_loss_arcmin, "%.3f/%.3f/%.3f") + " arcmin").c_str()
                   : "");
 }
 

@@ -34,7 +34,7 @@ struct AccuracyBand {
     double k1_Nm_per_rad = 0, k2_Nm_per_rad = 0, k3_Nm_per_rad = 0;
     double twist_at_rated_rad = 0, lost_motion_rad = 0, play_rad = 0;
     double overlap_at_rest_m = 0;          ///< the largest preload at rest along a contact normal (0: none)
-    std::optional<double> hysteresis_rad;  ///< with friction on the flanks
+    std::optional<double> hysteresis_rad;  ///< with friction on the flanks: its part of the loss (the middle reading)
     int flanks_at_rated = 0;
   };
   std::vector<Drive> drive;

@@ -89,7 +89,7 @@ struct ContactResult {
     std::optional<std::string> outside_scope;
     Spread K1_Nm_per_rad, K2_Nm_per_rad, K3_Nm_per_rad, twist_at_rated_arcmin, lost_motion_arcmin, play_arcmin,
         preload_overlap_at_rest_um;
-    std::optional<Spread> hysteresis_loss_arcmin;  ///< with friction on the flanks
+    std::optional<Spread> hysteresis_loss_arcmin;  ///< with friction: the flanks' part (the middle reading)
   };
   struct Timings {
     double setup = 0, influence = 0, contact = 0, check = 0;

@@ -158,7 +158,7 @@ std::string thickest_living_rim_line(const CupDesign& d, double given_life_Nm, c
 void add_design_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("design", "write a cup-type case for a catalog size from documented proportions");
   static std::string size, ratio = "100", out;
-  static std::string proportion[std::size(kDesignProportions)];
+  static std::string proportion[std::size(kDesignProportions)], tip_rounding;
   cmd->add_option("--size", size, "catalog size: the pitch diameter in tenths of an inch (8-65; 14, 17, 20 have "
                                   "published stiffness)")->required();
   cmd->add_option("--ratio", ratio, "reduction ratio z_f/(z_c - z_f), 30-160 (default 100)");
@@ -169,12 +169,16 @@ void add_design_command(CLI::App& app) {
     cmd->add_option(q.option, proportion[i], std::string(q.meaning) + ", in Ivanov's [" + six_digits(q.min) + ", " +
                                                  six_digits(q.max) + "] (default " + six_digits(nominal.*q.member) + ")");
   }
+  cmd->add_option("--tip-rounding-per-m", tip_rounding,
+                  "both gears' tip corners rounded by this times the module before the zero-backlash cut (default 0: "
+                  "sharp, as generated)");
   cmd->callback([] {
     DesignProportions p;
     for (std::size_t i = 0; i < std::size(kDesignProportions); ++i)
       if (!proportion[i].empty())
         p.*kDesignProportions[i].member = parse_number<double>(kDesignProportions[i].option, proportion[i]);
     CupDesign d = design_cup(parse_number<int>("--size", size), parse_number<int>("--ratio", ratio), p);
+    if (!tip_rounding.empty()) round_tips(d, parse_number<double>("--tip-rounding-per-m", tip_rounding));
     const std::string name = out.empty() ? "cup_size" + std::to_string(d.size) + ".toml" : out;
     const Case first = checked_case(design_case_toml(d), name);
     double section_s = 0;

@@ -125,6 +125,23 @@ std::string design_proportion_options(const DesignProportions& p) {
   return s;
 }
 
+void round_tips(CupDesign& d, double per_module) {
+  const std::string option = "--tip-rounding-per-m " + num(per_module);
+  if (!(per_module >= 0 && per_module < 1))
+    throw InputError(option + "; must be in [0, 1) (both gears' tip rounding over the module; 0: sharp)");
+  GearParams g = d.gear;
+  g.tip_rounding_flexspline_m = g.tip_rounding_circular_m = per_module * g.module_m;
+  try {
+    flexspline_tip_rounding(g);
+    circular_tip_rounding(g);
+  } catch (const InputError&) {
+    throw InputError(option + " (" + num(g.tip_rounding_flexspline_m * 1e3) + " mm); the rounding must end on both "
+                     "teeth's flanks above their form radius and leave part of their tip lands: make it smaller");
+  }
+  d.gear = g;
+  d.tip_rounding_per_module = per_module;
+}
+
 CupDesign design_cup(int size, int ratio, const DesignProportions& p) {
   if (size < kDesignSizeMin || size > kDesignSizeMax)
     throw InputError("--size " + std::to_string(size) + "; must be an integer in [" + std::to_string(kDesignSizeMin) +
@@ -276,7 +293,9 @@ std::string design_case_toml(const CupDesign& c) {
   const GeneratorBearing& b = *w.bearing;
   std::ostringstream s;
   s << "# Cup-type strain wave gear of catalog size " << c.size << ", ratio " << c.ratio << ": written by `strainwave design --size "
-    << c.size << " --ratio " << c.ratio << design_proportion_options(c.proportions) << "`.\n"
+    << c.size << " --ratio " << c.ratio << design_proportion_options(c.proportions)
+    << (c.tip_rounding_per_module > 0 ? " --tip-rounding-per-m " + num(c.tip_rounding_per_module) : std::string())
+    << "`.\n"
     << "# One set of proportions for every size (design/proportions.cpp), all lengths multiples of the pitch diameter\n"
     << "# d = size x 2.54 mm = " << mm(c.pitch_diameter_m) << " mm; nothing tuned per size. Where each comes from:\n"
     << "# - teeth: z_f = 2 x ratio = " << g.teeth_flexspline << ", z_c = z_f + 2 (two lobes, tooth difference two: Musser, US 2,906,143),\n"
@@ -291,6 +310,12 @@ std::string design_case_toml(const CupDesign& c) {
     << c.zero_backlash.tightest_section << " curve,\n#   the major-axis pair keeps "
     << fixed(c.zero_backlash.major_axis_play_rad * 180.0 / std::numbers::pi * 60.0, 3)
     << " arcmin of dead band at mid-face (involute flanks and the cup's coning: not every pair is tight at once).\n"
+    << (c.tip_rounding_per_module > 0
+            ? "# - tip corners of both gears rounded by " + num(c.tip_rounding_per_module) + " m = " +
+                  mm(c.gear.tip_rounding_flexspline_m) +
+                  " mm (the designer's choice: no standard gives one), before the cut.\n"
+            : std::string("# - tip corners sharp, as generated (no standard gives an edge rounding; --tip-rounding-per-m "
+                          "sets one before the cut).\n"))
     << "# - straight teeth across the face (shaped or hobbed, no relief along it): the contact meshes the face in "
     << kDesignFaceSections << " sections,\n#   its ends and centre, each with the rim as the generator leaves it there "
     << "([contact] face_slices).\n"
@@ -330,6 +355,9 @@ std::string design_case_toml(const CupDesign& c) {
                   {"profile_shift_flexspline"}, {"profile_shift_circular"}, {"cutter_teeth"},
                   {"addendum_coefficient_flexspline"}, {"addendum_coefficient_circular"},
                   {"dedendum_coefficient_flexspline"}, {"dedendum_coefficient_circular"}})
+    << (c.tip_rounding_per_module > 0
+            ? key_lines(g, gear_keys(), {{"tip_rounding_flexspline_mm"}, {"tip_rounding_circular_mm"}})
+            : std::string())
     << "\n[flexspline]\n"
     << key_lines(f, flexspline_keys(),
                  {{"shape"}, {"inner_radius_mm"}, {"wall_thickness_mm"}, {"length_mm"}, {"rim_width_mm"},

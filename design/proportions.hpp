@@ -90,12 +90,21 @@ struct CupDesign {
   double rated_torque_Nm = 0;
   std::string rated_torque_from;  ///< "catalog size 17 (CSG, ratio 100)" or the scaling used
   ZeroBacklash zero_backlash;     ///< on the cam's curve from design_cup; on the FEM's when `design` has solved it
+  double tip_rounding_per_module = 0;  ///< both gears' tip corners rounded by this × m (round_tips); 0: sharp
 };
 
 /// The design of a size (kDesignSizeMin..kDesignSizeMax) and ratio (kDesignRatioMin..kDesignRatioMax) with the
 /// proportions `p`. Throws InputError "--size 7; must be an integer in [8, 65] ..." for a size or ratio outside them,
 /// and validate_design_proportions' for a proportion outside its range.
 CupDesign design_cup(int size, int ratio, const DesignProportions& p = {});
+
+/// Rounds both gears' tip corners by ρ = per_module·m (gear.tip_rounding_*): the designer's choice, since no
+/// standard this tool cites gives an edge rounding for such teeth; `design` leaves them sharp, as generated, unless
+/// asked (--tip-rounding-per-m). Rounded corners change which pairs are tightest (on the designed size 17 at ratio 100
+/// the sharp tip corners at ±52.6° decide the cut; rounded by 0.05 m the tightest pair is at the major axis and the
+/// play at the locked generator closes: contact/README.md), so it comes before set_zero_backlash. Throws InputError
+/// "--tip-rounding-per-m 0.9 (0.1943 mm); ..." for a negative value or one whose arc does not fit on both teeth.
+void round_tips(CupDesign& d, double per_module);
 
 /// Sets the circular spline's profile shift x_c for zero backlash on the rim's neutral curves `sections` (rigid teeth;
 /// the sections of the face the contact meshes, each with the rim as the generator leaves it there): the smallest

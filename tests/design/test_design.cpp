@@ -5,6 +5,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "common/error.hpp"
 #include "design/catalog.hpp"
@@ -211,6 +214,57 @@ TEST(Design, ProportionsWithinIvanovsRangesSetTheirLengthsAndWhatFollowsFromThem
   // The defaults name no option: the shipped cases stay `design --size N`'s output.
   EXPECT_EQ(design_proportion_options({}), "");
   EXPECT_NE(design_case_toml(n).find("`strainwave design --size 17 --ratio 100`"), std::string::npos);
+}
+
+// Rounded tip corners only take material off the teeth, so the zero-backlash cut with them needs no larger a shift
+// than the sharp one; where the sharp cut is decided by a tip corner it needs a smaller one. Here the designed size 17
+// on three cam sections about the design's deflection (the coning), sharp against rounded by 0.05 m; the written case
+// carries the rounding and its option, and loads with it.
+TEST(Design, RoundedTipsAreCutWithNoLargerShiftAndTheCaseCarriesThem) {
+  CupDesign sharp = design_cup(17, 100);
+  const double r_m = rim_mean_radius(sharp.flexspline), w0 = *sharp.wave_generator.radial_deformation_m;
+  const std::vector<NeutralCurve> sections = {cam_neutral_curve(r_m, 0.85 * w0), cam_neutral_curve(r_m, w0),
+                                              cam_neutral_curve(r_m, 1.15 * w0)};
+  CupDesign rounded = sharp;
+  round_tips(rounded, 0.05);
+  EXPECT_DOUBLE_EQ(rounded.gear.tip_rounding_flexspline_m, 0.05 * rounded.gear.module_m);
+  EXPECT_DOUBLE_EQ(rounded.gear.tip_rounding_circular_m, 0.05 * rounded.gear.module_m);
+  set_zero_backlash(sharp, sections, "three cams");
+  set_zero_backlash(rounded, sections, "three cams");
+  std::printf("sharp: x_c - x_f %.8f, tightest at %.1f deg (%s); rounded 0.05 m: %.8f at %.1f deg (%s)\n",
+              sharp.zero_backlash.shift_difference, sharp.zero_backlash.tightest_angle_deg,
+              sharp.zero_backlash.tightest_parts.c_str(), rounded.zero_backlash.shift_difference,
+              rounded.zero_backlash.tightest_angle_deg, rounded.zero_backlash.tightest_parts.c_str());
+  EXPECT_LE(rounded.zero_backlash.shift_difference, sharp.zero_backlash.shift_difference + 1.01e-8);
+  if (sharp.zero_backlash.tightest_parts.find("tip corner") != std::string::npos)
+    EXPECT_LT(rounded.zero_backlash.shift_difference, sharp.zero_backlash.shift_difference - 1e-6);
+  for (const NeutralCurve& s : sections)
+    EXPECT_GE(tightest_pair_at_rest(make_backlash_model(rounded.gear, s)).clearance_m, 1e-10);
+
+  const std::string text = design_case_toml(rounded);
+  EXPECT_NE(text.find("--ratio 100 --tip-rounding-per-m 0.05`"), std::string::npos);
+  const Case c = parse_case(text, "rounded.toml");
+  ASSERT_TRUE(c.gear.has_value());
+  EXPECT_NEAR(c.gear->tip_rounding_flexspline_m, rounded.gear.tip_rounding_flexspline_m, 1e-12);
+  EXPECT_NEAR(c.gear->tip_rounding_circular_m, rounded.gear.tip_rounding_circular_m, 1e-12);
+  EXPECT_EQ(design_case_toml(sharp).find("tip_rounding_"), std::string::npos);  // sharp: the keys' default, not written
+}
+
+// A rounding that is negative, not a number, or whose arc does not fit on both teeth is one line naming the option.
+TEST(Design, ATipRoundingThatDoesNotFitIsOneClearLine) {
+  const CupDesign designed = design_cup(17, 100);
+  for (const auto& [value, expected] : std::vector<std::pair<double, std::string>>{
+           {-0.01, "--tip-rounding-per-m -0.01; must be in [0, 1)"},
+           {std::nan(""), "--tip-rounding-per-m nan; must be in [0, 1)"},
+           {0.9, "--tip-rounding-per-m 0.9 (0.19431 mm); the rounding must end on both teeth's flanks"}}) {
+    CupDesign d = designed;
+    const GearParams before = d.gear;
+    const std::string what = sw::testing::message_of([&] { round_tips(d, value); });
+    EXPECT_EQ(what.rfind(expected, 0), 0u) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+    EXPECT_EQ(d.gear.tip_rounding_flexspline_m, before.tip_rounding_flexspline_m);  // nothing half done
+    EXPECT_EQ(d.tip_rounding_per_module, 0.0);
+  }
 }
 
 TEST(Design, AProportionOutsideIvanovsRangeIsOneClearLine) {

@@ -230,8 +230,9 @@ void print_edge_teeth_share(const Case& c, const ContactAnalysis& a) {
   const bool sharp = c.gear->tip_rounding_flexspline_m == 0 && c.gear->tip_rounding_circular_m == 0;
   std::printf("  the teeth within two pitches of the zones' edges carry %.1f %% of the rated torque%s; without them "
               "the twist at rated torque is %s\n", 100 * a.edge_teeth_torque_share,
-              sharp ? " on sharp tip corners (real tips are rounded: [gear] tip_rounding_flexspline_mm, "
-                      "tip_rounding_circular_mm)"
+              sharp ? " on sharp tip corners (real tips are rounded: design --tip-rounding-per-m cuts the teeth "
+                      "with rounded corners, [gear] tip_rounding_flexspline_mm and tip_rounding_circular_mm round them "
+                      "as cut)"
                     : "",
               rest);
 }

@@ -323,16 +323,15 @@ ContactAnalysis run_contact_job(const Case& c, const ContactBody& body, const Fe
   print_lost_motion_and_split(c, a);
   if (reference) print_split_against_catalog(a, *reference);
   if (a.friction) {
-    const LoopFigures& f = *a.friction;
+    const FrictionLoop& f = *a.friction;
     std::printf("  friction on the flanks (mu = %g): hysteresis loss %.3f arcmin as a rig reads it (the output's place "
                 "on returning to zero torque from +rated less that from -rated: the flanks' friction %.3f, the dead "
                 "band the branches cross there %.3f); the loop is widest at %.4g N m, %.3f arcmin; loop area %.4g J = "
                 "friction work %.4g J per cycle; steady after %d cycle%s of %d steps a quarter; lost motion and the "
                 "three segments above read on the loop's middle line\n",
-                a.friction->friction_coefficient, f.rig_hysteresis_loss_rad * kArcmin,
-                f.hysteresis_loss_rad * kArcmin, (f.rig_hysteresis_loss_rad - f.hysteresis_loss_rad) * kArcmin,
-                f.widest.torque_Nm, f.widest.width_rad * kArcmin, f.dissipated_energy_J, f.friction_work_J,
-                a.friction->cycles, a.friction->cycles == 1 ? "" : "s", a.friction->steps_per_quarter);
+                f.friction_coefficient, f.rig_hysteresis_loss_rad * kArcmin, f.hysteresis_loss_rad * kArcmin,
+                f.zero_torque_dead_band_rad() * kArcmin, f.widest.torque_Nm, f.widest.width_rad * kArcmin,
+                f.dissipated_energy_J, f.friction_work_J, f.cycles, f.cycles == 1 ? "" : "s", f.steps_per_quarter);
   }
   if (!a.edges.empty()) {
     print_zone_edges_hold(a);

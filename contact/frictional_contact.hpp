@@ -111,6 +111,8 @@ struct LoopFigures {
   double dissipated_energy_J = 0;  ///< the loop's area ∮T dψ
   double friction_work_J = 0;      ///< Σ over the cycle's steps and contacts of |q|·|Δs|
   double lost_motion_rad = 0;      ///< between ±4 % of T_R on the loop's middle line
+  /// The dead bands the branches cross at zero torque, as a rig's reading holds them beside the friction's gap.
+  double zero_torque_dead_band_rad() const { return rig_hysteresis_loss_rad - hysteresis_loss_rad; }
 };
 
 /// The readings of the last full cycle of a history (on the steps' twists; friction work summed over the cycle's

@@ -50,15 +50,14 @@ void add_contact_figures(Datasheet& d, const DatasheetInputs& in) {
   d.figures.push_back(computed("play_arcmin", "play (dead band)", "arcmin", a.play_rad * kArcmin,
                                "the curve's jump at zero torque: the teeth's clearance at the locked generator"));
   if (a.friction) {
-    const LoopFigures& f = *a.friction;
-    const double dead_band_rad = f.rig_hysteresis_loss_rad - f.hysteresis_loss_rad;
+    const FrictionLoop& f = *a.friction;
     d.figures.push_back(computed(
         "hysteresis_loss_arcmin", "hysteresis loss", "arcmin", f.rig_hysteresis_loss_rad * kArcmin,
         "the output's place on returning to zero torque from +rated less that from −rated, the steady loop ±rated "
         "as a rig reads it (its output stays where it arrives), Coulomb μ = " +
-            fmt("%.3g", a.friction->friction_coefficient) + " on the flanks: the flanks' friction " +
+            fmt("%.3g", f.friction_coefficient) + " on the flanks: the flanks' friction " +
             fmt("%.3f", f.hysteresis_loss_rad * kArcmin) + " arcmin (the branches apart in the middle of their dead "
-            "bands) and the dead band the branches cross at zero torque " + fmt("%.3f", dead_band_rad * kArcmin) +
+            "bands) and the dead band the branches cross at zero torque " + fmt("%.3f", f.zero_torque_dead_band_rad() * kArcmin) +
             " arcmin (clearance, not friction)" +
             "; the loop is widest at " + fmt("%.4g", f.widest.torque_Nm) + " N·m, " +
             fmt("%.3f", f.widest.width_rad * kArcmin) + " arcmin"));

@@ -314,8 +314,8 @@ std::string design_case_toml(const CupDesign& c) {
             ? "# - tip corners of both gears rounded by " + num(c.tip_rounding_per_module) + " m = " +
                   mm(c.gear.tip_rounding_flexspline_m) +
                   " mm (the designer's choice: no standard gives one), before the cut.\n"
-            : std::string("# - tip corners sharp, as generated (no standard gives an edge rounding; --tip-rounding-per-m "
-                          "sets one before the cut).\n"))
+            : std::string("# - tip corners sharp, as generated (no standard gives an edge rounding; "
+                          "--tip-rounding-per-m sets one before the cut).\n"))
     << "# - straight teeth across the face (shaped or hobbed, no relief along it): the contact meshes the face in "
     << kDesignFaceSections << " sections,\n#   its ends and centre, each with the rim as the generator leaves it there "
     << "([contact] face_slices).\n"

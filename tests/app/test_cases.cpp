@@ -392,8 +392,8 @@ TEST_P(DesignedSize, IsTheSize17CupScaledAndItsTwistIsPinned) {
   ASSERT_NE(at, std::string::npos) << r.output;
   double catalog = 0, body = 0, teeth = 0, generator = 0, ring = 0, engagement = 0, model = 0, held_by_none = 0;
   ASSERT_EQ(std::sscanf(r.output.c_str() + at,
-                        "beside the catalog's twist at rated (%lf arcmin): body %lf, teeth %lf, generator %lf, circular "
-                        "spline %lf, engagement %lf arcmin, the model's %lf; the catalog's is %lf arcmin",
+                        "beside the catalog's twist at rated (%lf arcmin): body %lf, teeth %lf, generator %lf, "
+                        "circular spline %lf, engagement %lf arcmin, the model's %lf; the catalog's is %lf arcmin",
                         &catalog, &body, &teeth, &generator, &ring, &engagement, &model, &held_by_none),
             8)
       << r.output.substr(at, 300);

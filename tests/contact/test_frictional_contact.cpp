@@ -459,7 +459,8 @@ TEST(FrictionalContact, StepThatCannotBeCarriedIsRefused) {
 // ---- The loop's readings on a hand-made loop ------------------------------------------------------------------
 
 // A loop with a dead band: branches of slope 1/K shifted by ±h/2 in twist, play 2d at zero torque, meeting at the
-// corners ±T_R. Its hysteresis loss is h (2d + h as a rig reads it), its middle line the curve without the shift (lost motion 2d + 2·0.04·T_R/K).
+// corners ±T_R. Its hysteresis loss is h (2d + h as a rig reads it), its middle line the curve without the shift
+// (lost motion 2d + 2·0.04·T_R/K).
 TEST(TorqueLoop, ParallelogramLoopReadings) {
   const double K = 1e4, h = 2e-4, d = 1e-4, T_R = 20, eps = 1e-6 * T_R;
   std::vector<double> T, psi;

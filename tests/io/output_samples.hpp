@@ -146,7 +146,8 @@ inline ContactResult sample_contact_result() {
   r.timings_s = {f(), f(), f(), f()};
   r.unknowns = f.whole();
   r.friction = ContactResult::Friction{f(), f.whole(), f.whole()};
-  r.hysteresis_loss_arcmin = f(), r.rig_hysteresis_loss_arcmin = f(), r.widest_loop_width_arcmin = f(), r.widest_loop_width_at_Nm = f();
+  r.hysteresis_loss_arcmin = f(), r.rig_hysteresis_loss_arcmin = f();
+  r.widest_loop_width_arcmin = f(), r.widest_loop_width_at_Nm = f();
   r.dissipated_energy_J = f(), r.friction_work_J = f();
   return r;
 }
